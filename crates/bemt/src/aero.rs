@@ -1,0 +1,283 @@
+//! Section aerodynamics: the [`SectionAero`] trait the solver calls, and QPROP's parametric
+//! airfoil model ([`QpropAirfoil`]), the first implementation.
+//!
+//! The solver only ever asks a section for lift (with the derivatives Newton needs) and, once
+//! the station has converged, for drag. A tabulated polar (cl, cd over alpha and Re) plugs in by
+//! implementing the same trait.
+
+use serde::{Deserialize, Serialize};
+
+/// Lift of a section at one state, with the derivatives the Newton solve needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LiftEval {
+    /// Lift coefficient [-].
+    pub cl: f64,
+    /// d(cl)/d(alpha) [1/rad].
+    pub dcl_dalpha: f64,
+    /// d(cl)/d(M^2) [-], zero where the model has no Mach dependence.
+    pub dcl_dmsq: f64,
+    /// d(cl)/d(Re) [-], zero where the model has no Reynolds dependence.
+    pub dcl_dre: f64,
+    /// True when alpha is beyond the model's stall limits.
+    pub stalled: bool,
+}
+
+/// Everything a drag law may depend on, evaluated at the converged state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DragInput {
+    /// Angle of attack [rad].
+    pub alpha: f64,
+    /// Lift coefficient returned by [`SectionAero::lift`] at this state [-].
+    pub cl: f64,
+    /// Whether [`SectionAero::lift`] reported stall.
+    pub stalled: bool,
+    /// Chord Reynolds number [-].
+    pub re: f64,
+    /// Mach number used by the drag law (QPROP: from the capped M^2, at least 1e-8) [-].
+    pub mach: f64,
+}
+
+/// Aerodynamics of one blade section.
+pub trait SectionAero: Send + Sync + std::fmt::Debug {
+    /// Lift at angle of attack `alpha` [rad], Reynolds number `re` and squared Mach number
+    /// `msq` (already capped by the solver at [`MSQ_MAX`]).
+    fn lift(&self, alpha: f64, re: f64, msq: f64) -> LiftEval;
+    /// Drag coefficient at a converged state [-].
+    fn drag(&self, input: &DragInput) -> f64;
+    /// Zero-lift angle of attack [rad]; QPROP starts its Newton iteration at
+    /// `psi = beta - alpha_zero_lift` when that exceeds the geometric inflow angle.
+    fn alpha_zero_lift(&self) -> f64;
+}
+
+/// Cap on the local M^2 used for Prandtl-Glauert and drag rise (QPROP's `MSQMAX`).
+pub const MSQ_MAX: f64 = 0.9;
+
+/// The ten per-station coefficients of a QPROP prop file (SI: lift slope per radian).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct QpropCoefficients {
+    /// Lift coefficient at zero angle of attack [-].
+    pub cl0: f64,
+    /// Lift-curve slope [1/rad].
+    pub cl_a: f64,
+    /// Negative stall limit of cl [-].
+    pub cl_min: f64,
+    /// Positive stall limit of cl [-].
+    pub cl_max: f64,
+    /// Minimum drag coefficient [-].
+    pub cd0: f64,
+    /// Drag-polar curvature above `clcd0` [-].
+    pub cd2u: f64,
+    /// Drag-polar curvature below `clcd0` [-].
+    pub cd2l: f64,
+    /// Lift coefficient at minimum drag [-].
+    pub clcd0: f64,
+    /// Reynolds number at which the drag polar applies [-].
+    pub re_ref: f64,
+    /// Reynolds-number scaling exponent of drag [-].
+    pub re_exp: f64,
+}
+
+impl QpropCoefficients {
+    /// The coefficients as an array, in prop-file column order.
+    pub fn to_array(&self) -> [f64; 10] {
+        [
+            self.cl0,
+            self.cl_a,
+            self.cl_min,
+            self.cl_max,
+            self.cd0,
+            self.cd2u,
+            self.cd2l,
+            self.clcd0,
+            self.re_ref,
+            self.re_exp,
+        ]
+    }
+
+    /// Builds the coefficients from an array in prop-file column order.
+    pub fn from_array(a: [f64; 10]) -> Self {
+        Self {
+            cl0: a[0],
+            cl_a: a[1],
+            cl_min: a[2],
+            cl_max: a[3],
+            cd0: a[4],
+            cd2u: a[5],
+            cd2l: a[6],
+            clcd0: a[7],
+            re_ref: a[8],
+            re_exp: a[9],
+        }
+    }
+
+    /// Column names in prop-file order.
+    pub const NAMES: [&'static str; 10] = [
+        "CL0", "CL_a", "CLmin", "CLmax", "CD0", "CD2u", "CD2l", "CLCD0", "REref", "REexp",
+    ];
+}
+
+/// QPROP's parametric section model (QPROP 1.22 `GVCALC`/`CDFUN`/`DCDFUN`):
+///
+/// $$c_l = \frac{CL0 + CL_a\,\alpha}{\sqrt{1-M^2}}$$ clipped by a cosine roll-off
+/// $c_l = CL_{max}\cos(\alpha - CL0/CL_a)$ beyond `CLmax` (and likewise `CLmin`), and
+/// $$c_d = [CD0 + CD2\,(c_l - CLCD0)^2]\,(Re/RE_{ref})^{RE_{exp}} + 10\,(M - M_{crit})^3_{M>M_{crit}}
+///        + 2\sin^2(\alpha - \alpha_{CD0})_{stalled}$$
+/// with `CD2 = CD2u` above `CLCD0`, `CD2l` below, and $\alpha_{CD0} = (CLCD0 - CL0)/CL_a$.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct QpropAirfoil {
+    /// The ten prop-file coefficients.
+    pub coeffs: QpropCoefficients,
+    /// Critical Mach number of the drag rise [-] (QPROP: always 0.70).
+    pub mcrit: f64,
+}
+
+/// QPROP's fixed critical Mach number (`MCRIT0` in qprop.f).
+pub const QPROP_MCRIT: f64 = 0.70;
+
+/// Smallest Reynolds number the drag law's power scaling is evaluated at; below it (a station
+/// with no flow) `(Re/REref)^REexp` would be infinite for negative exponents.
+const RE_FLOOR: f64 = 1.0;
+
+impl QpropAirfoil {
+    /// The model with QPROP's critical Mach number.
+    pub fn new(coeffs: QpropCoefficients) -> Self {
+        Self {
+            coeffs,
+            mcrit: QPROP_MCRIT,
+        }
+    }
+}
+
+impl SectionAero for QpropAirfoil {
+    fn lift(&self, alpha: f64, _re: f64, msq: f64) -> LiftEval {
+        let k = &self.coeffs;
+        let pg = 1.0 / (1.0 - msq).sqrt();
+        let cl_inc = k.cl0 + k.cl_a * alpha;
+        let cl = cl_inc * pg;
+        let limit = if cl > k.cl_max {
+            Some(k.cl_max)
+        } else if cl < k.cl_min {
+            Some(k.cl_min)
+        } else {
+            None
+        };
+        match limit {
+            // Stall: cosine roll-off about the zero-lift angle, no compressibility factor.
+            Some(lim) => {
+                let a = alpha - k.cl0 / k.cl_a;
+                LiftEval {
+                    cl: lim * a.cos(),
+                    dcl_dalpha: -lim * a.sin(),
+                    dcl_dmsq: 0.0,
+                    dcl_dre: 0.0,
+                    stalled: true,
+                }
+            }
+            None => LiftEval {
+                cl,
+                dcl_dalpha: k.cl_a * pg,
+                dcl_dmsq: cl_inc * 0.5 * pg / (1.0 - msq),
+                dcl_dre: 0.0,
+                stalled: false,
+            },
+        }
+    }
+
+    fn drag(&self, q: &DragInput) -> f64 {
+        let k = &self.coeffs;
+        let fac = (q.re.max(RE_FLOOR) / k.re_ref).powf(k.re_exp);
+        let clb = q.cl - k.clcd0;
+        let cd2 = if q.cl > k.clcd0 { k.cd2u } else { k.cd2l };
+        let mut cd = (k.cd0 + cd2 * clb * clb) * fac;
+        if q.mach > self.mcrit {
+            cd += 10.0 * (q.mach - self.mcrit).powi(3);
+        }
+        if q.stalled {
+            let acd0 = (k.clcd0 - k.cl0) / k.cl_a;
+            cd += 2.0 * (q.alpha - acd0).sin().powi(2);
+        }
+        cd
+    }
+
+    fn alpha_zero_lift(&self) -> f64 {
+        -self.coeffs.cl0 / self.coeffs.cl_a
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn cam() -> QpropAirfoil {
+        // Global coefficients of QPROP's example prop `cam6x3`.
+        QpropAirfoil::new(QpropCoefficients::from_array([
+            0.5, 5.8, -0.3, 1.2, 0.028, 0.05, 0.05, 0.5, 70000.0, -0.7,
+        ]))
+    }
+
+    #[test]
+    fn lift_linear_range_and_prandtl_glauert() {
+        let m = cam();
+        let e = m.lift(0.05, 5e4, 0.0);
+        assert_relative_eq!(e.cl, 0.5 + 5.8 * 0.05, epsilon = 1e-14);
+        assert!(!e.stalled);
+        let e = m.lift(0.05, 5e4, 0.36);
+        assert_relative_eq!(e.cl, (0.5 + 5.8 * 0.05) / 0.8, epsilon = 1e-14);
+        // Derivatives agree with finite differences.
+        let h = 1e-7;
+        let fd = (m.lift(0.05 + h, 5e4, 0.36).cl - m.lift(0.05 - h, 5e4, 0.36).cl) / (2.0 * h);
+        assert_relative_eq!(e.dcl_dalpha, fd, epsilon = 1e-6);
+        let fd = (m.lift(0.05, 5e4, 0.36 + h).cl - m.lift(0.05, 5e4, 0.36 - h).cl) / (2.0 * h);
+        assert_relative_eq!(e.dcl_dmsq, fd, epsilon = 1e-6);
+    }
+
+    #[test]
+    fn stall_rolls_off_with_cosine() {
+        let m = cam();
+        let alpha = 0.3; // (0.5 + 5.8*0.3) = 2.24 > CLmax
+        let e = m.lift(alpha, 5e4, 0.0);
+        assert!(e.stalled);
+        assert_relative_eq!(e.cl, 1.2 * (alpha - 0.5 / 5.8).cos(), epsilon = 1e-14);
+        let e = m.lift(-0.3, 5e4, 0.0);
+        assert!(e.stalled);
+        assert_relative_eq!(e.cl, -0.3 * (-0.3 - 0.5 / 5.8f64).cos(), epsilon = 1e-14);
+    }
+
+    #[test]
+    fn drag_law_terms() {
+        let m = cam();
+        let base = DragInput {
+            alpha: 0.0,
+            cl: 0.8,
+            stalled: false,
+            re: 70000.0,
+            mach: 0.3,
+        };
+        assert_relative_eq!(m.drag(&base), 0.028 + 0.05 * 0.09, epsilon = 1e-14);
+        let low_re = DragInput { re: 35000.0, ..base };
+        assert_relative_eq!(
+            m.drag(&low_re),
+            (0.028 + 0.05 * 0.09) * 0.5f64.powf(-0.7),
+            epsilon = 1e-14
+        );
+        let fast = DragInput { mach: 0.8, ..base };
+        assert_relative_eq!(
+            m.drag(&fast),
+            0.028 + 0.05 * 0.09 + 10.0 * 0.1f64.powi(3),
+            epsilon = 1e-12
+        );
+        let stalled = DragInput {
+            stalled: true,
+            alpha: 0.4,
+            ..base
+        };
+        assert_relative_eq!(
+            m.drag(&stalled),
+            0.028 + 0.05 * 0.09 + 2.0 * (0.4f64).sin().powi(2),
+            epsilon = 1e-14
+        );
+        // No flow: finite drag, not infinity.
+        assert!(m.drag(&DragInput { re: 0.0, ..base }).is_finite());
+    }
+}

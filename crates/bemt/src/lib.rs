@@ -1,0 +1,23 @@
+//! Blade-element/momentum solver with QPROP 1.22's formulation.
+//!
+//! - [`aero`]: the section-aerodynamics trait and QPROP's parametric airfoil model.
+//! - [`rotor`]: rotor and station definitions; QPROP's 25-midpoint spline discretisation.
+//! - [`solve`]: the per-station solve (Newton on psi with a bracketed fallback) and loads.
+//! - [`sweep`]: parallel sweeps over operating points.
+//! - [`spline`]: Drela's derivative-form cubic spline.
+//!
+//! SI units throughout; angles in radians. This crate reads no files.
+#![deny(missing_docs)]
+
+pub mod aero;
+pub mod fluid;
+pub mod rotor;
+pub mod solve;
+pub mod spline;
+pub mod sweep;
+
+pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, SectionAero};
+pub use fluid::Fluid;
+pub use rotor::{Discretization, QpropBlade, Rotor, RotorError, Station};
+pub use solve::{solve_point, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};
+pub use sweep::{grid_rpm_j, grid_rpm_v, solve_points};

@@ -1,0 +1,354 @@
+//! Rotor definition: blade count, tip radius and the computational stations the solver
+//! integrates over, plus QPROP's discretisation of a blade table into those stations.
+//!
+//! Frame: stations are at radius `r` from the rotation axis; `beta` is the blade angle between
+//! the chord line and the rotation plane, positive nose towards the oncoming axial flow (the
+//! angle that grows with pitch). Thrust is positive along the direction the air is pushed away
+//! from, i.e. opposite to the induced slipstream.
+
+use std::sync::Arc;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use crate::aero::{QpropAirfoil, QpropCoefficients, SectionAero};
+use crate::spline::DrelaSpline;
+
+/// One computational blade station (midpoint-rule strip).
+#[derive(Debug, Clone)]
+pub struct Station {
+    /// Radius of the strip's midpoint [m].
+    pub r: f64,
+    /// Radial width of the strip [m].
+    pub dr: f64,
+    /// Local chord [m].
+    pub chord: f64,
+    /// Blade angle to the rotation plane [rad].
+    pub beta: f64,
+    /// Section aerodynamics.
+    pub aero: Arc<dyn SectionAero>,
+}
+
+/// A rotor ready for the solver.
+#[derive(Debug, Clone)]
+pub struct Rotor {
+    /// Number of blades (real, as in QPROP) [-].
+    pub blades: f64,
+    /// Tip radius used by the tip-loss factor and the coefficients [m].
+    pub tip_radius: f64,
+    /// Computational stations, radius increasing.
+    pub stations: Vec<Station>,
+}
+
+/// What is wrong with a rotor or blade table.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum RotorError {
+    /// Fewer stations than needed.
+    #[error("a blade needs at least {needed} radial stations, found {found}")]
+    TooFewStations {
+        /// Minimum number of stations.
+        needed: usize,
+        /// Stations given.
+        found: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("{what} at station {index} (r = {r} m) is not a finite number")]
+    NotFinite {
+        /// The quantity.
+        what: &'static str,
+        /// Zero-based station index.
+        index: usize,
+        /// Station radius [m] (may itself be the bad value).
+        r: f64,
+    },
+    /// Radii must increase strictly.
+    #[error("radii must increase: station {index} has r = {r} m after r = {prev} m")]
+    NonIncreasingRadius {
+        /// Zero-based station index.
+        index: usize,
+        /// Its radius [m].
+        r: f64,
+        /// The previous radius [m].
+        prev: f64,
+    },
+    /// A negative radius.
+    #[error("radius must not be negative: station {index} has r = {r} m")]
+    NegativeRadius {
+        /// Zero-based station index.
+        index: usize,
+        /// Its radius [m].
+        r: f64,
+    },
+    /// A negative chord.
+    #[error("chord must not be negative: station {index} (r = {r} m) has chord {chord} m")]
+    NegativeChord {
+        /// Zero-based station index.
+        index: usize,
+        /// Its radius [m].
+        r: f64,
+        /// The chord [m].
+        chord: f64,
+    },
+    /// Blade count not positive.
+    #[error("blade count must be positive, found {0}")]
+    BadBladeCount(f64),
+    /// Tip radius inside the blade.
+    #[error("tip radius R = {tip} m must not be less than the last station radius r = {last} m")]
+    TipInsideBlade {
+        /// Tip radius [m].
+        tip: f64,
+        /// Last station radius [m].
+        last: f64,
+    },
+    /// A coefficient that must be positive is not.
+    #[error("{what} must be positive at station {index} (r = {r} m), found {value}")]
+    NotPositive {
+        /// The coefficient.
+        what: &'static str,
+        /// Zero-based station index.
+        index: usize,
+        /// Station radius [m].
+        r: f64,
+        /// The value.
+        value: f64,
+    },
+}
+
+impl Rotor {
+    /// Checks the invariants the solver relies on.
+    pub fn validate(&self) -> Result<(), RotorError> {
+        check_blades_and_tip(self.blades, self.tip_radius)?;
+        if self.stations.is_empty() {
+            return Err(RotorError::TooFewStations {
+                needed: 1,
+                found: 0,
+            });
+        }
+        let mut prev = f64::NEG_INFINITY;
+        for (i, s) in self.stations.iter().enumerate() {
+            for (what, v) in [
+                ("radius", s.r),
+                ("strip width", s.dr),
+                ("chord", s.chord),
+                ("blade angle", s.beta),
+            ] {
+                if !v.is_finite() {
+                    return Err(RotorError::NotFinite {
+                        what,
+                        index: i,
+                        r: s.r,
+                    });
+                }
+            }
+            if s.r < 0.0 {
+                return Err(RotorError::NegativeRadius { index: i, r: s.r });
+            }
+            if s.r <= prev {
+                return Err(RotorError::NonIncreasingRadius {
+                    index: i,
+                    r: s.r,
+                    prev,
+                });
+            }
+            if s.chord < 0.0 {
+                return Err(RotorError::NegativeChord {
+                    index: i,
+                    r: s.r,
+                    chord: s.chord,
+                });
+            }
+            prev = s.r;
+        }
+        if self.tip_radius < prev {
+            return Err(RotorError::TipInsideBlade {
+                tip: self.tip_radius,
+                last: prev,
+            });
+        }
+        Ok(())
+    }
+}
+
+fn check_blades_and_tip(blades: f64, tip: f64) -> Result<(), RotorError> {
+    if !(blades.is_finite() && blades > 0.0) {
+        return Err(RotorError::BadBladeCount(blades));
+    }
+    if !(tip.is_finite() && tip > 0.0) {
+        return Err(RotorError::NotPositive {
+            what: "tip radius",
+            index: 0,
+            r: tip,
+            value: tip,
+        });
+    }
+    Ok(())
+}
+
+/// A blade as a QPROP prop file describes it, in SI units: input stations with chord, blade
+/// angle and the ten coefficients at each.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct QpropBlade {
+    /// Number of blades [-].
+    pub blades: f64,
+    /// Tip radius [m].
+    pub tip_radius: f64,
+    /// Input station radii [m], strictly increasing.
+    pub r: Vec<f64>,
+    /// Chord at each input station [m].
+    pub chord: Vec<f64>,
+    /// Blade angle at each input station [rad].
+    pub beta: Vec<f64>,
+    /// Coefficients at each input station.
+    pub coeffs: Vec<QpropCoefficients>,
+}
+
+/// How to turn a [`QpropBlade`] into computational stations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Discretization {
+    /// Number of equal strips between the first and last input radius (QPROP: 25).
+    pub stations: usize,
+    /// Use the REref interpolated at the first station for every station, as QPROP 1.22 does
+    /// (its `TQCALC` passes the array, i.e. element 1, to the drag law).
+    pub qprop_reref_quirk: bool,
+}
+
+impl Default for Discretization {
+    fn default() -> Self {
+        Self {
+            stations: 25,
+            qprop_reref_quirk: false,
+        }
+    }
+}
+
+impl QpropBlade {
+    /// Checks the table: at least two stations, finite values, radii increasing and
+    /// non-negative, chords non-negative, REref positive, R not inside the blade.
+    pub fn validate(&self) -> Result<(), RotorError> {
+        check_blades_and_tip(self.blades, self.tip_radius)?;
+        let n = self.r.len();
+        if n < 2 {
+            return Err(RotorError::TooFewStations { needed: 2, found: n });
+        }
+        assert!(
+            self.chord.len() == n && self.beta.len() == n && self.coeffs.len() == n,
+            "blade table columns differ in length"
+        );
+        for i in 0..n {
+            let r = self.r[i];
+            let mut values = vec![("radius", r), ("chord", self.chord[i]), ("blade angle", self.beta[i])];
+            values.extend(
+                QpropCoefficients::NAMES
+                    .iter()
+                    .zip(self.coeffs[i].to_array())
+                    .map(|(name, v)| (*name, v)),
+            );
+            for (what, v) in values {
+                if !v.is_finite() {
+                    return Err(RotorError::NotFinite { what, index: i, r });
+                }
+            }
+            if r < 0.0 {
+                return Err(RotorError::NegativeRadius { index: i, r });
+            }
+            if i > 0 && r <= self.r[i - 1] {
+                return Err(RotorError::NonIncreasingRadius {
+                    index: i,
+                    r,
+                    prev: self.r[i - 1],
+                });
+            }
+            if self.chord[i] < 0.0 {
+                return Err(RotorError::NegativeChord {
+                    index: i,
+                    r,
+                    chord: self.chord[i],
+                });
+            }
+            for (what, v) in [("REref", self.coeffs[i].re_ref), ("CL_a", self.coeffs[i].cl_a)] {
+                if v <= 0.0 {
+                    return Err(RotorError::NotPositive {
+                        what,
+                        index: i,
+                        r,
+                        value: v,
+                    });
+                }
+            }
+        }
+        if self.tip_radius < self.r[n - 1] {
+            return Err(RotorError::TipInsideBlade {
+                tip: self.tip_radius,
+                last: self.r[n - 1],
+            });
+        }
+        Ok(())
+    }
+
+    /// QPROP's discretisation: `n` stations at the midpoints of `n` equal intervals between the
+    /// first and last input radius, chord, angle and every coefficient interpolated with
+    /// [`DrelaSpline`]; no hub model and no extension to the tip radius.
+    pub fn to_rotor(&self, disc: Discretization) -> Result<Rotor, RotorError> {
+        self.validate()?;
+        let n = disc.stations.max(1);
+        let r0 = self.r[0];
+        let r1 = self.r[self.r.len() - 1];
+        let dr = (r1 - r0) / n as f64;
+        let column = |f: &dyn Fn(usize) -> f64| -> DrelaSpline {
+            let x: Vec<f64> = (0..self.r.len()).map(f).collect();
+            DrelaSpline::new(&self.r, &x)
+        };
+        let chord = column(&|i| self.chord[i]);
+        let beta = column(&|i| self.beta[i]);
+        let coeff_splines: Vec<DrelaSpline> = (0..10)
+            .map(|k| column(&|i| self.coeffs[i].to_array()[k]))
+            .collect();
+        let radii: Vec<f64> = (0..n)
+            .map(|i| {
+                let frac = (i as f64 + 0.5) / n as f64;
+                r0 * (1.0 - frac) + r1 * frac
+            })
+            .collect();
+        let reref_first = coeff_splines[8].eval(radii[0]);
+        let mut stations = Vec::with_capacity(n);
+        for (i, &r) in radii.iter().enumerate() {
+            let mut k = [0.0; 10];
+            for (slot, sp) in k.iter_mut().zip(&coeff_splines) {
+                *slot = sp.eval(r);
+            }
+            if disc.qprop_reref_quirk {
+                k[8] = reref_first;
+            }
+            let c = chord.eval(r);
+            if c < 0.0 {
+                return Err(RotorError::NegativeChord {
+                    index: i,
+                    r,
+                    chord: c,
+                });
+            }
+            if k[8] <= 0.0 {
+                return Err(RotorError::NotPositive {
+                    what: "interpolated REref",
+                    index: i,
+                    r,
+                    value: k[8],
+                });
+            }
+            stations.push(Station {
+                r,
+                dr,
+                chord: c,
+                beta: beta.eval(r),
+                aero: Arc::new(QpropAirfoil::new(QpropCoefficients::from_array(k))),
+            });
+        }
+        let rotor = Rotor {
+            blades: self.blades,
+            tip_radius: self.tip_radius,
+            stations,
+        };
+        rotor.validate()?;
+        Ok(rotor)
+    }
+}

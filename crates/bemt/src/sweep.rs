@@ -1,0 +1,41 @@
+//! Sweeps: many operating points solved in parallel (rayon). Every point is solved
+//! independently from QPROP's cold start, so results do not depend on the order of the points
+//! or on the number of threads.
+
+use rayon::prelude::*;
+
+use crate::fluid::Fluid;
+use crate::rotor::Rotor;
+use crate::solve::{solve_point, OperatingPoint, PointResult, SolverOptions};
+
+/// Solves every point, in parallel, returning results in the order of `points`.
+pub fn solve_points(rotor: &Rotor, fluid: &Fluid, points: &[OperatingPoint], opts: &SolverOptions) -> Vec<PointResult> {
+    points
+        .par_iter()
+        .with_min_len(16)
+        .map(|&op| solve_point(rotor, fluid, op, opts))
+        .collect()
+}
+
+/// The grid `rpm x v` in QPROP's nesting order (outer RPM, inner V).
+pub fn grid_rpm_v(rpms: &[f64], speeds: &[f64]) -> Vec<OperatingPoint> {
+    rpms.iter()
+        .flat_map(|&rpm| speeds.iter().map(move |&v| OperatingPoint::from_rpm(v, rpm)))
+        .collect()
+}
+
+/// The grid `rpm x J` (outer RPM, inner J), V = J n D with D = 2 `tip_radius` [m].
+pub fn grid_rpm_j(rpms: &[f64], advance_ratios: &[f64], tip_radius: f64) -> Vec<OperatingPoint> {
+    rpms.iter()
+        .flat_map(|&rpm| {
+            advance_ratios.iter().map(move |&j| {
+                let op = OperatingPoint::from_rpm(0.0, rpm);
+                let n = op.omega / (2.0 * std::f64::consts::PI);
+                OperatingPoint {
+                    v: j * n * 2.0 * tip_radius,
+                    omega: op.omega,
+                }
+            })
+        })
+        .collect()
+}

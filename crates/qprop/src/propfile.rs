@@ -1,0 +1,646 @@
+//! QPROP prop files.
+//!
+//! Format (QPROP 1.22 `qprop.f`, `io.f`): comment lines start with `#` or `!`, text after `!`
+//! is ignored, numbers are separated by blanks, tabs or commas.
+//!
+//! 1. name
+//! 2. `Nblades [R]`
+//! 3. `CL0 CL_a`, 4. `CLmin CLmax`, 5. `CD0 CD2u CD2l CLCD0`, 6. `REref REexp`
+//! 7. `Rfac Cfac Bfac`, 8. `Radd Cadd Badd`
+//! 9. rows `r chord beta [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]`; per-station
+//!    columns fill from the left, missing ones take the global values.
+//!
+//! r = r_in Rfac + Radd, c = c_in Cfac + Cadd, beta[deg] = beta_in Bfac + Badd.
+
+use propbet_bemt::{QpropBlade, QpropCoefficients};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// QPROP's line buffer (`CHARACTER*128 LINE`): longer lines are cut.
+pub const QPROP_LINE_MAX: usize = 128;
+/// QPROP's maximum number of radial rows (`IRDIM`).
+pub const QPROP_MAX_ROWS: usize = 81;
+
+/// One radial row as written in the file (file units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PropRow {
+    /// Radius (file units).
+    pub r: f64,
+    /// Chord (file units).
+    pub chord: f64,
+    /// Blade angle (file units, degrees after scaling).
+    pub beta: f64,
+    /// Per-station coefficients given on this row, filled from the left (0 to 10 values).
+    pub coeffs: Vec<f64>,
+}
+
+/// A parsed prop file, values as written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PropFile {
+    /// Propeller name (line 1).
+    pub name: String,
+    /// Number of blades.
+    pub blades: f64,
+    /// Tip radius as written on line 2, if given.
+    pub radius: Option<f64>,
+    /// Global coefficients, prop-file order (CL0 ... REexp).
+    pub global: [f64; 10],
+    /// Rfac, Cfac, Bfac.
+    pub scale: [f64; 3],
+    /// Radd, Cadd, Badd.
+    pub offset: [f64; 3],
+    /// Radial rows.
+    pub rows: Vec<PropRow>,
+    /// 1-based line number of each row in the source (not part of equality).
+    #[serde(skip)]
+    pub row_lines: Vec<usize>,
+}
+
+impl PartialEq for PropFile {
+    fn eq(&self, o: &Self) -> bool {
+        self.name == o.name
+            && self.blades == o.blades
+            && self.radius == o.radius
+            && self.global == o.global
+            && self.scale == o.scale
+            && self.offset == o.offset
+            && self.rows == o.rows
+    }
+}
+
+/// Something QPROP 1.22 would do differently from what the file means, or a doubtful value.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Warning {
+    /// 1-based line number (0: the file as a whole).
+    pub line: usize,
+    /// What to know.
+    pub message: String,
+}
+
+/// Why a prop file could not be read.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ParsePropError {
+    /// The file ended before a required line.
+    #[error("line {line}: file ends before the {expected} line")]
+    Truncated {
+        /// Line number after the last line.
+        line: usize,
+        /// What was expected.
+        expected: &'static str,
+    },
+    /// A token is not a number.
+    #[error("line {line}: '{token}' is not a number ({expected})")]
+    NotANumber {
+        /// Line number.
+        line: usize,
+        /// The token.
+        token: String,
+        /// What the line should hold.
+        expected: &'static str,
+    },
+    /// A number is NaN or infinite.
+    #[error("line {line}: '{token}' is not a finite number ({expected})")]
+    NotFinite {
+        /// Line number.
+        line: usize,
+        /// The token.
+        token: String,
+        /// What the line should hold.
+        expected: &'static str,
+    },
+    /// Too few numbers on a line.
+    #[error("line {line}: expected {needed} numbers ({expected}), found {found}")]
+    TooFewValues {
+        /// Line number.
+        line: usize,
+        /// Numbers needed.
+        needed: usize,
+        /// Numbers found.
+        found: usize,
+        /// What the line should hold.
+        expected: &'static str,
+    },
+    /// A semantic problem with a value.
+    #[error("line {line}: {message}")]
+    Invalid {
+        /// Line number.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file is not text.
+    #[error("the file is not UTF-8 text (is it a QPROP prop file?)")]
+    NotText,
+}
+
+/// How to read the tip radius R given on line 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum RadiusReading {
+    /// As QPROP's documentation means it: in the units of the r column
+    /// (R_SI = R Rfac + Radd).
+    Documented,
+    /// As QPROP 1.22 does: unscaled, in metres (a defect: with inches, R is 39x too large and
+    /// the tip loss vanishes).
+    Qprop122,
+}
+
+struct Lines<'a> {
+    iter: std::iter::Enumerate<std::str::Lines<'a>>,
+    last: usize,
+    warnings: Vec<Warning>,
+}
+
+impl<'a> Lines<'a> {
+    /// Next non-comment, non-blank line: (1-based number, text before `!`).
+    fn next_data(&mut self) -> Option<(usize, &'a str)> {
+        for (i, raw) in self.iter.by_ref() {
+            let line = i + 1;
+            self.last = line;
+            let raw = raw.strip_suffix('\r').unwrap_or(raw);
+            let raw = if line == 1 { raw.trim_start_matches('\u{feff}') } else { raw };
+            let t = raw.trim_start();
+            if t.is_empty() || t.starts_with('#') || t.starts_with('!') {
+                continue;
+            }
+            if raw.chars().count() > QPROP_LINE_MAX {
+                self.warnings.push(Warning {
+                    line,
+                    message: format!(
+                        "line is {} characters long; QPROP 1.22 reads only the first {QPROP_LINE_MAX}",
+                        raw.chars().count()
+                    ),
+                });
+            }
+            let data = raw.split('!').next().unwrap_or("");
+            return Some((line, data));
+        }
+        None
+    }
+
+    fn numbers(&mut self, expected: &'static str) -> Result<(usize, Vec<f64>), ParsePropError> {
+        let (line, text) = self.next_data().ok_or(ParsePropError::Truncated {
+            line: self.last + 1,
+            expected,
+        })?;
+        Ok((line, parse_numbers(line, text, expected)?))
+    }
+}
+
+fn parse_numbers(line: usize, text: &str, expected: &'static str) -> Result<Vec<f64>, ParsePropError> {
+    text.split(|c: char| c == ',' || c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(|tok| {
+            // Fortran list-directed input also accepts D exponents.
+            let v: f64 = tok.replace(['d', 'D'], "e").parse().map_err(|_| ParsePropError::NotANumber {
+                line,
+                token: tok.to_string(),
+                expected,
+            })?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(ParsePropError::NotFinite {
+                    line,
+                    token: tok.to_string(),
+                    expected,
+                })
+            }
+        })
+        .collect()
+}
+
+fn need(line: usize, v: &[f64], n: usize, expected: &'static str) -> Result<(), ParsePropError> {
+    if v.len() < n {
+        return Err(ParsePropError::TooFewValues {
+            line,
+            needed: n,
+            found: v.len(),
+            expected,
+        });
+    }
+    Ok(())
+}
+
+/// Parses a prop file. Returns the file and the warnings a user should see.
+pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError> {
+    let mut lines = Lines {
+        iter: text.lines().enumerate(),
+        last: 0,
+        warnings: Vec::new(),
+    };
+    let (_, name) = lines.next_data().ok_or(ParsePropError::Truncated {
+        line: 1,
+        expected: "name",
+    })?;
+    let name = name.trim().to_string();
+
+    const L2: &str = "Nblades [R]";
+    let (l, v) = lines.numbers(L2)?;
+    need(l, &v, 1, L2)?;
+    let blades = v[0];
+    if blades <= 0.0 {
+        return Err(ParsePropError::Invalid {
+            line: l,
+            message: format!("blade count must be positive, found {blades}"),
+        });
+    }
+    if blades.fract() != 0.0 {
+        lines.warnings.push(Warning {
+            line: l,
+            message: format!("blade count {blades} is not a whole number"),
+        });
+    }
+    let radius = v.get(1).copied();
+    if let Some(r) = radius {
+        if r <= 0.0 {
+            return Err(ParsePropError::Invalid {
+                line: l,
+                message: format!("tip radius R must be positive, found {r}"),
+            });
+        }
+    }
+
+    let mut global = [0.0; 10];
+    for (slot, n, what) in [
+        (0usize, 2usize, "CL0 CL_a"),
+        (2, 2, "CLmin CLmax"),
+        (4, 4, "CD0 CD2u CD2l CLCD0"),
+        (8, 2, "REref REexp"),
+    ] {
+        let (l, v) = lines.numbers(what)?;
+        need(l, &v, n, what)?;
+        global[slot..slot + n].copy_from_slice(&v[..n]);
+    }
+    let mut scale = [0.0; 3];
+    let mut offset = [0.0; 3];
+    for (dst, what) in [(&mut scale, "Rfac Cfac Bfac"), (&mut offset, "Radd Cadd Badd")] {
+        let (l, v) = lines.numbers(what)?;
+        need(l, &v, 3, what)?;
+        dst.copy_from_slice(&v[..3]);
+    }
+
+    const ROW: &str = "r chord beta [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]";
+    let mut rows = Vec::new();
+    let mut row_lines = Vec::new();
+    while let Some((l, text)) = lines.next_data() {
+        let v = parse_numbers(l, text, ROW)?;
+        need(l, &v, 3, ROW)?;
+        if v.len() > 13 {
+            lines.warnings.push(Warning {
+                line: l,
+                message: format!("{} numbers on a radial row; only the first 13 are used", v.len()),
+            });
+        }
+        rows.push(PropRow {
+            r: v[0],
+            chord: v[1],
+            beta: v[2],
+            coeffs: v[3..v.len().min(13)].to_vec(),
+        });
+        row_lines.push(l);
+    }
+    if rows.len() < 2 {
+        return Err(ParsePropError::Invalid {
+            line: lines.last,
+            message: format!("a prop file needs at least two radial rows, found {}", rows.len()),
+        });
+    }
+    if rows.len() > QPROP_MAX_ROWS {
+        lines.warnings.push(Warning {
+            line: 0,
+            message: format!("{} radial rows; QPROP 1.22 accepts at most {QPROP_MAX_ROWS}", rows.len()),
+        });
+    }
+    let file = PropFile {
+        name,
+        blades,
+        radius,
+        global,
+        scale,
+        offset,
+        rows,
+        row_lines,
+    };
+    file.check_rows()?;
+    let mut warnings = lines.warnings;
+    warnings.extend(file.qprop_differences());
+    Ok((file, warnings))
+}
+
+impl PropFile {
+    fn row_line(&self, i: usize) -> usize {
+        self.row_lines.get(i).copied().unwrap_or(0)
+    }
+
+    /// Radius, chord and angle of each row after scaling, checked.
+    fn check_rows(&self) -> Result<(), ParsePropError> {
+        let mut prev: Option<f64> = None;
+        for (i, row) in self.rows.iter().enumerate() {
+            let line = self.row_line(i);
+            let r = row.r * self.scale[0] + self.offset[0];
+            let c = row.chord * self.scale[1] + self.offset[1];
+            if r < 0.0 {
+                return Err(ParsePropError::Invalid {
+                    line,
+                    message: format!("radius {} gives r = {r} m after scaling; radii must not be negative", row.r),
+                });
+            }
+            if let Some(p) = prev {
+                if r <= p {
+                    return Err(ParsePropError::Invalid {
+                        line,
+                        message: format!(
+                            "radius {} (r = {r} m) does not increase from the previous row (r = {p} m)",
+                            row.r
+                        ),
+                    });
+                }
+            }
+            if c < 0.0 {
+                return Err(ParsePropError::Invalid {
+                    line,
+                    message: format!("chord {} gives c = {c} m after scaling; chords must not be negative", row.chord),
+                });
+            }
+            let k = self.coeffs_at(i);
+            if k.re_ref <= 0.0 {
+                return Err(ParsePropError::Invalid {
+                    line,
+                    message: format!("REref must be positive, found {}", k.re_ref),
+                });
+            }
+            if k.cl_a <= 0.0 {
+                return Err(ParsePropError::Invalid {
+                    line,
+                    message: format!("CL_a must be positive, found {}", k.cl_a),
+                });
+            }
+            prev = Some(r);
+        }
+        if let Some(rad) = self.radius {
+            let last = self.rows.last().map(|r| r.r).unwrap_or(0.0);
+            if rad * self.scale[0] + self.offset[0] < last * self.scale[0] + self.offset[0] {
+                return Err(ParsePropError::Invalid {
+                    line: 0,
+                    message: format!("tip radius R = {rad} on line 2 is less than the last radius {last}"),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Where QPROP 1.22 reads this file differently from what it means.
+    fn qprop_differences(&self) -> Vec<Warning> {
+        let mut w = Vec::new();
+        if let Some(rad) = self.radius {
+            if self.scale[0] != 1.0 || self.offset[0] != 0.0 {
+                let si = rad * self.scale[0] + self.offset[0];
+                w.push(Warning {
+                    line: 0,
+                    message: format!(
+                        "line 2 gives R = {rad}: QPROP 1.22 takes it unscaled as {rad} m, propbet reads it in the \
+                         units of the r column as {si} m (use the QPROP-compatibility switch to reproduce QPROP)"
+                    ),
+                });
+            }
+        }
+        let rerefs: Vec<f64> = (0..self.rows.len()).map(|i| self.coeffs_at(i).re_ref).collect();
+        if rerefs.iter().any(|&r| r != rerefs[0]) {
+            w.push(Warning {
+                line: 0,
+                message: "REref varies along the blade: QPROP 1.22 uses the value at its first station for all \
+                          stations, propbet uses each station's own (use the QPROP-compatibility switch to \
+                          reproduce QPROP)"
+                    .to_string(),
+            });
+        }
+        w
+    }
+
+    /// The ten coefficients of row `i`: the row's own, filled from the left, the rest global.
+    pub fn coeffs_at(&self, i: usize) -> QpropCoefficients {
+        let mut k = self.global;
+        for (slot, v) in k.iter_mut().zip(&self.rows[i].coeffs) {
+            *slot = *v;
+        }
+        QpropCoefficients::from_array(k)
+    }
+
+    /// Tip radius [m] under the given reading of line 2 (last station radius when absent).
+    pub fn tip_radius(&self, reading: RadiusReading) -> f64 {
+        let last = self.rows.last().map(|r| r.r * self.scale[0] + self.offset[0]).unwrap_or(0.0);
+        match (self.radius, reading) {
+            (None, _) => last,
+            (Some(r), RadiusReading::Documented) => r * self.scale[0] + self.offset[0],
+            (Some(r), RadiusReading::Qprop122) => r,
+        }
+    }
+
+    /// The blade in SI units.
+    pub fn to_blade(&self, reading: RadiusReading) -> QpropBlade {
+        let deg = std::f64::consts::PI / 180.0;
+        QpropBlade {
+            blades: self.blades,
+            tip_radius: self.tip_radius(reading),
+            r: self.rows.iter().map(|r| r.r * self.scale[0] + self.offset[0]).collect(),
+            chord: self.rows.iter().map(|r| r.chord * self.scale[1] + self.offset[1]).collect(),
+            beta: self.rows.iter().map(|r| (r.beta * self.scale[2] + self.offset[2]) * deg).collect(),
+            coeffs: (0..self.rows.len()).map(|i| self.coeffs_at(i)).collect(),
+        }
+    }
+
+    /// A prop file for a blade given in SI units (metres, degrees).
+    pub fn from_blade(name: &str, blade: &QpropBlade) -> Self {
+        let deg = 180.0 / std::f64::consts::PI;
+        let global = blade.coeffs[0].to_array();
+        let rows = (0..blade.r.len())
+            .map(|i| {
+                let k = blade.coeffs[i].to_array();
+                // Write only as many columns as needed to express the differences from global.
+                let used = (0..10).rev().find(|&j| k[j] != global[j]).map_or(0, |j| j + 1);
+                PropRow {
+                    r: blade.r[i],
+                    chord: blade.chord[i],
+                    beta: blade.beta[i] * deg,
+                    coeffs: k[..used].to_vec(),
+                }
+            })
+            .collect();
+        PropFile {
+            name: name.to_string(),
+            blades: blade.blades,
+            radius: Some(blade.tip_radius),
+            global,
+            scale: [1.0, 1.0, 1.0],
+            offset: [0.0, 0.0, 0.0],
+            rows,
+            row_lines: Vec::new(),
+        }
+    }
+}
+
+/// Shortest text that reads back as exactly `v` (Rust's shortest round-trip form, in plain or
+/// exponent notation, whichever is shorter; Fortran list-directed input reads both).
+fn num(v: f64) -> String {
+    let plain = format!("{v}");
+    let exp = format!("{v:e}");
+    if exp.len() < plain.len() {
+        exp
+    } else {
+        plain
+    }
+}
+
+fn join(vals: &[f64]) -> String {
+    vals.iter().map(|&v| num(v)).collect::<Vec<_>>().join(" ")
+}
+
+/// Writes a prop file that QPROP 1.22 reads as `file` means it: every number in its shortest
+/// exact form, a blank before every `!`, and no line longer than QPROP's 128-character buffer
+/// (a row that would be longer is written with 10 significant digits).
+///
+/// Note that QPROP 1.22 reads R on line 2 unscaled; with Rfac != 1 the file means R in r units.
+pub fn write_prop(file: &PropFile) -> String {
+    let mut out = String::new();
+    let name: String = file.name.replace('!', "|");
+    let name = if name.trim().is_empty() { "propeller".to_string() } else { name };
+    // A leading blank keeps a name starting with # from being read as a comment.
+    out.push_str(&format!(" {}\n\n", name.trim()));
+    let mut l2 = vec![file.blades];
+    l2.extend(file.radius);
+    out.push_str(&format!(" {}   ! Nblades [R]\n\n", join(&l2)));
+    let g = &file.global;
+    out.push_str(&format!(" {}   ! CL0 CL_a\n", join(&g[0..2])));
+    out.push_str(&format!(" {}   ! CLmin CLmax\n\n", join(&g[2..4])));
+    out.push_str(&format!(" {}   ! CD0 CD2u CD2l CLCD0\n", join(&g[4..8])));
+    out.push_str(&format!(" {}   ! REref REexp\n\n", join(&g[8..10])));
+    out.push_str(&format!(" {}   ! Rfac Cfac Bfac\n", join(&file.scale)));
+    out.push_str(&format!(" {}   ! Radd Cadd Badd\n\n", join(&file.offset)));
+    out.push_str("#  r  chord  beta  [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]\n");
+    for row in &file.rows {
+        let mut vals = vec![row.r, row.chord, row.beta];
+        vals.extend(&row.coeffs);
+        let mut line = format!(" {}", join(&vals));
+        if line.len() > QPROP_LINE_MAX - 2 {
+            line = format!(" {}", vals.iter().map(|v| format!("{v:.9e}")).collect::<Vec<_>>().join(" "));
+        }
+        out.push_str(&line);
+        out.push('\n');
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const CAM: &str = include_str!("../../../props/cam6x3/cam6x3.qprop");
+
+    fn err(text: &str) -> String {
+        parse_prop(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn reads_cam6x3() {
+        let (f, w) = parse_prop(CAM).unwrap();
+        assert_eq!(f.name, "Graupner CAM 6x3 folder");
+        assert_eq!(f.blades, 2.0);
+        assert_eq!(f.radius, None);
+        assert_eq!(f.global, [0.5, 5.8, -0.3, 1.2, 0.028, 0.05, 0.05, 0.5, 70000.0, -0.7]);
+        assert_eq!(f.scale, [0.0254, 0.0254, 1.0]);
+        assert_eq!(f.rows.len(), 7);
+        assert_eq!(f.rows[5], PropRow { r: 2.875, chord: 0.30, beta: 4.6, coeffs: vec![] });
+        assert!(w.is_empty(), "{w:?}");
+        let b = f.to_blade(RadiusReading::Documented);
+        assert!((b.tip_radius - 3.0 * 0.0254).abs() < 1e-15);
+    }
+
+    #[test]
+    fn format_features() {
+        // Comments with # and !, commas, tabs, D exponents, a BOM, CRLF, per-station columns
+        // filled from the left.
+        let text = "\u{feff}! comment\r\nmy prop ! trailing\r\n# c\n 3, 0.1 ! R\n0.4 6.0\n-0.2,1.1\n0.02 0.04 0.05 0.3\n5D4 -0.5\n1 1 1\n0\t0 0\n0.01 0.02 30 0.6\n0.05 0.015 12 0.7 5.5\n0.1 0.01 8\n";
+        let (f, w) = parse_prop(text).unwrap();
+        assert_eq!(f.name, "my prop");
+        assert_eq!(f.blades, 3.0);
+        assert_eq!(f.radius, Some(0.1));
+        assert_eq!(f.global[8], 50000.0);
+        let k0 = f.coeffs_at(0);
+        assert_eq!((k0.cl0, k0.cl_a), (0.6, 6.0));
+        let k1 = f.coeffs_at(1);
+        assert_eq!((k1.cl0, k1.cl_a, k1.cl_min), (0.7, 5.5, -0.2));
+        assert_eq!(f.coeffs_at(2).cl0, 0.4);
+        assert!(w.is_empty(), "{w:?}");
+    }
+
+    #[test]
+    fn bad_input_is_named() {
+        assert_eq!(err(""), "line 1: file ends before the name line");
+        assert_eq!(err("name\n2\n0.5 5.8\n"), "line 4: file ends before the CLmin CLmax line");
+        let base = "n\n2\n0.5 5.8\n-0.3 1.2\n0.03 0.05 0.05 0.5\n70000 -0.7\n1 1 1\n0 0 0\n";
+        assert_eq!(err(&format!("{base}0.01 0.01 10\n0.01 0.01 9\n")).split(':').next().unwrap(), "line 10");
+        assert!(err(&format!("{base}0.02 0.01 10\n0.01 0.01 9\n")).contains("does not increase"));
+        assert!(err(&format!("{base}0.01 -0.01 10\n0.02 0.01 9\n")).contains("chords must not be negative"));
+        assert!(err(&format!("{base}0.01 0.01 NaN\n0.02 0.01 9\n")).contains("'NaN' is not a finite number"));
+        assert!(err(&format!("{base}0.01 0.01 1O\n0.02 0.01 9\n")).contains("line 9: '1O' is not a number"));
+        assert!(err(&format!("{base}0.01 0.01\n")).contains("line 9: expected 3 numbers"));
+        assert!(err(&format!("{base}0.01 0.01 10\n")).contains("at least two radial rows"));
+        assert!(err("n\n2\n0.5 5.8\n-0.3 1.2\n0.03 0.05\n").contains("line 5: expected 4 numbers"));
+        assert!(err("n\n0\n").contains("blade count must be positive"));
+    }
+
+    #[test]
+    fn warns_where_qprop_differs() {
+        let (f, w) = parse_prop(&CAM.replace(" 2           ! Nblades", " 2 3 ! Nblades R")).unwrap();
+        assert_eq!(f.tip_radius(RadiusReading::Qprop122), 3.0);
+        assert!((f.tip_radius(RadiusReading::Documented) - 0.0762).abs() < 1e-15);
+        assert!(w.iter().any(|w| w.message.contains("unscaled")), "{w:?}");
+    }
+
+    #[test]
+    fn writes_what_it_reads() {
+        let (f, _) = parse_prop(CAM).unwrap();
+        let (g, _) = parse_prop(&write_prop(&f)).unwrap();
+        assert_eq!(f, g);
+    }
+
+    fn finite() -> impl Strategy<Value = f64> {
+        prop_oneof![-1e6..1e6f64, -1.0..1.0f64, Just(0.1 + 0.2), 1e-30..1e-20f64]
+    }
+
+    proptest! {
+        #[test]
+        fn round_trip_any_numbers(
+            blades in 1u8..8, r0 in 0.001..0.05f64, steps in proptest::collection::vec(0.001..0.02f64, 2..30),
+            g in proptest::array::uniform10(finite()), extra in proptest::collection::vec(finite(), 0..11),
+            radius in proptest::option::of(1.0..2.0f64),
+        ) {
+            let mut global = g;
+            global[1] = global[1].abs() + 0.1; // CL_a > 0
+            global[8] = global[8].abs() + 1.0; // REref > 0
+            let mut r = r0;
+            let mut rows = Vec::new();
+            for (i, s) in steps.iter().enumerate() {
+                r += s;
+                let mut coeffs: Vec<f64> = if i % 3 == 0 { extra.clone() } else { vec![] };
+                if coeffs.len() > 1 { coeffs[1] = coeffs[1].abs() + 0.1; }
+                if coeffs.len() > 8 { coeffs[8] = coeffs[8].abs() + 1.0; }
+                rows.push(PropRow { r, chord: 0.01 + s, beta: 40.0 * s, coeffs });
+            }
+            let f = PropFile { name: "p".into(), blades: blades as f64, radius, global,
+                scale: [1.0, 1.0, 1.0], offset: [0.0; 3], rows, row_lines: vec![] };
+            let text = write_prop(&f);
+            let (g1, _) = parse_prop(&text).unwrap();
+            let (g2, _) = parse_prop(&write_prop(&g1)).unwrap();
+            prop_assert_eq!(&g1, &g2);
+            // Rows short enough for QPROP are written exactly.
+            let fits = f.rows.iter().all(|r| {
+                let mut v = vec![r.r, r.chord, r.beta];
+                v.extend(&r.coeffs);
+                join(&v).len() + 1 <= QPROP_LINE_MAX - 2
+            });
+            if fits { prop_assert_eq!(&f, &g1); }
+        }
+    }
+}
