@@ -19,8 +19,8 @@ use crate::aero::{DragInput, MSQ_MAX};
 use crate::fluid::Fluid;
 use crate::rotor::{Rotor, Station};
 
-/// QPROP's value of pi (`DATA PI / 3.14159265 /`), used where QPROP converts rpm and degrees
-/// so that results agree with it to the last printed digit.
+/// QPROP's value of pi (`DATA PI / 3.14159265 /`); it differs from pi by 1e-9 relative, far
+/// below QPROP's 4 printed digits, so propbet uses the true value and keeps this for reference.
 pub const QPROP_PI: f64 = 3.14159265;
 
 /// One operating point: axial speed and rotation rate.
@@ -33,11 +33,11 @@ pub struct OperatingPoint {
 }
 
 impl OperatingPoint {
-    /// The point at `rpm` [1/min] and `v` [m/s], converting as QPROP does (`OMG = RPM*PI/30`).
+    /// The point at `rpm` [1/min] and `v` [m/s].
     pub fn from_rpm(v: f64, rpm: f64) -> Self {
         Self {
             v,
-            omega: rpm * QPROP_PI / 30.0,
+            omega: rpm * std::f64::consts::PI / 30.0,
         }
     }
 }
@@ -145,6 +145,9 @@ pub struct StationResult {
     pub stalled: bool,
     /// Final residual Gamma - W c cl / 2 [m^2/s].
     pub residual: f64,
+    /// The Newton step -residual/(d residual/d psi) at the reported state [rad]: below the
+    /// tolerance for a converged station (QPROP does not apply this last step).
+    pub dpsi: f64,
     /// How the solution was obtained.
     pub convergence: Convergence,
 }
@@ -160,7 +163,7 @@ pub struct PointResult {
     pub v: f64,
     /// Rotation rate [rad/s].
     pub omega: f64,
-    /// Rotation rate [1/min] (QPROP's conversion).
+    /// Rotation rate [1/min].
     pub rpm: f64,
     /// Thrust [N].
     pub thrust: f64,
@@ -258,7 +261,7 @@ pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &Solv
     PointResult {
         v: op.v,
         omega: op.omega,
-        rpm: op.omega * 30.0 / QPROP_PI,
+        rpm: op.omega * 30.0 / std::f64::consts::PI,
         thrust,
         torque,
         power,
@@ -523,6 +526,7 @@ fn finish(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, e: &Eval, conv: Co
         dq_dr: c.blades * ft * st.r,
         stalled: e.stalled,
         residual: e.res,
+        dpsi: if e.res_psi != 0.0 { -e.res / e.res_psi } else { 0.0 },
         convergence: conv,
     };
     sanitize(out)
@@ -575,6 +579,7 @@ fn unloaded(r: f64, chord: f64, beta: f64, conv: Convergence) -> StationResult {
         dq_dr: 0.0,
         stalled: false,
         residual: 0.0,
+        dpsi: 0.0,
         convergence: conv,
     }
 }
@@ -584,7 +589,7 @@ fn unloaded(r: f64, chord: f64, beta: f64, conv: Convergence) -> StationResult {
 fn sanitize(s: StationResult) -> StationResult {
     let values = [
         s.alpha, s.cl, s.cd, s.re, s.mach, s.w, s.wa, s.wt, s.va, s.vt, s.f_tip, s.lambda_w, s.gamma, s.dt_dr,
-        s.dq_dr, s.residual,
+        s.dq_dr, s.residual, s.dpsi,
     ];
     if values.iter().all(|v| v.is_finite()) {
         s

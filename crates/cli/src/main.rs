@@ -1,0 +1,63 @@
+//! The `propbet` command: thin glue over the library crates. Parses flags, converts them once
+//! to SI, runs, and maps the outcome to an exit code: 0 ok, 1 ran with failures (reported),
+//! 2 error.
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+mod output;
+mod predict;
+mod prop;
+mod values;
+
+/// Propeller performance from geometry, and why it disagrees with the thrust stand.
+#[derive(Debug, Parser)]
+#[command(name = "propbet", version, about)]
+struct Cli {
+    /// Worker threads for sweeps (default: all cores).
+    #[arg(long, global = true)]
+    threads: Option<usize>,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
+    Predict(predict::PredictArgs),
+    /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
+    Prop(prop::PropArgs),
+}
+
+fn run(cli: Cli) -> anyhow::Result<bool> {
+    if let Some(n) = cli.threads {
+        if n == 0 {
+            anyhow::bail!("--threads must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?;
+    }
+    match cli.command {
+        Command::Predict(a) => predict::run(&a),
+        Command::Prop(a) => prop::run(&a),
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(cli) {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::from(1),
+        Err(e) => {
+            eprintln!("propbet: error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}

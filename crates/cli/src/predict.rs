@@ -1,0 +1,318 @@
+//! `propbet predict`: performance of a QPROP prop file over RPM x (J or V).
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use propbet_atmosphere::AirState;
+use propbet_bemt::{grid_rpm_j, grid_rpm_v, solve_points, Discretization, Fluid, PointResult, SolverOptions};
+use propbet_qprop::{parse_prop, PropFile, RadiusReading};
+use serde::Serialize;
+
+use crate::output::{emit, push_num};
+use crate::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
+
+/// Output format.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// One row per operating point.
+    Csv,
+    /// All results, with the inputs, as one JSON document.
+    Json,
+}
+
+/// Arguments of `propbet predict`.
+#[derive(Debug, Args)]
+pub struct PredictArgs {
+    /// QPROP prop file.
+    #[arg(long)]
+    pub prop: PathBuf,
+    /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rpm: String,
+    /// Advance ratios J = V/(nD), same syntax.
+    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
+    pub j: Option<String>,
+    /// Axial speeds [m/s], same syntax (default: 0, static).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Air density [kg/m^3] (default 1.225, QPROP's).
+    #[arg(long, conflicts_with_all = ["temp", "pressure"], allow_negative_numbers = true)]
+    pub rho: Option<f64>,
+    /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub mu: Option<f64>,
+    /// Speed of sound [m/s] (default 340, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub a: Option<f64>,
+    /// Air temperature with unit (20C, 293.15K, 68F); sets rho, mu and a.
+    #[arg(long, requires = "pressure")]
+    pub temp: Option<String>,
+    /// Air pressure (Pa unless suffixed: hPa, mbar, kPa, inHg, psi).
+    #[arg(long, requires = "temp")]
+    pub pressure: Option<String>,
+    /// Relative humidity in percent (with --temp and --pressure).
+    #[arg(long, requires = "temp")]
+    pub humidity: Option<String>,
+    /// Collective blade-angle change [deg].
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub dbeta: f64,
+    /// Length unit of the prop file's radii and chords (overrides its Rfac and Cfac): m, cm, mm, in.
+    #[arg(long)]
+    pub units: Option<String>,
+    /// Reproduce QPROP 1.22 exactly: R on line 2 unscaled, REref of the first station everywhere.
+    #[arg(long)]
+    pub qprop_compat: bool,
+    /// Switch the tip-loss factor off.
+    #[arg(long)]
+    pub no_tip_loss: bool,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    pub format: Format,
+    /// Output file (default: standard output).
+    #[arg(long, short)]
+    pub out: Option<PathBuf>,
+    /// Also write the per-station table (CSV) to this file; with --format json the stations
+    /// are included in the JSON as well.
+    #[arg(long)]
+    pub stations: Option<PathBuf>,
+}
+
+/// A prop file read and checked, with its warnings printed.
+pub struct LoadedProp {
+    /// The file as written.
+    pub file: PropFile,
+    /// Warnings for the user.
+    pub warnings: Vec<String>,
+}
+
+/// Reads a prop file, naming the file in every error.
+pub fn load_prop(path: &Path, units: Option<&str>) -> Result<LoadedProp> {
+    let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let text = String::from_utf8(bytes)
+        .map_err(|_| anyhow::anyhow!("{}: not UTF-8 text (is it a QPROP prop file?)", path.display()))?;
+    let (mut file, warnings) = parse_prop(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let mut warnings: Vec<String> = warnings
+        .into_iter()
+        .map(|w| match w.line {
+            0 => format!("{}: {}", path.display(), w.message),
+            l => format!("{}: line {l}: {}", path.display(), w.message),
+        })
+        .collect();
+    if let Some(u) = units {
+        let f = parse_length_unit(u)?;
+        warnings.push(format!(
+            "{}: --units {u} replaces the file's Rfac = {} and Cfac = {} with {f}",
+            path.display(),
+            file.scale[0],
+            file.scale[1]
+        ));
+        file.scale[0] = f;
+        file.scale[1] = f;
+    }
+    Ok(LoadedProp { file, warnings })
+}
+
+fn fluid(args: &PredictArgs) -> Result<(Fluid, String)> {
+    if let (Some(t), Some(p)) = (&args.temp, &args.pressure) {
+        let rh = args.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
+        let state = AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh)?;
+        let mut f = state.fluid();
+        if let Some(mu) = args.mu {
+            f.mu = mu;
+        }
+        if let Some(a) = args.a {
+            f.a = a;
+        }
+        return Ok((f, format!("from T = {t}, p = {p}, RH = {:.0} %", rh * 100.0)));
+    }
+    let d = Fluid::QPROP_DEFAULT;
+    let f = Fluid {
+        rho: args.rho.unwrap_or(d.rho),
+        mu: args.mu.unwrap_or(d.mu),
+        a: args.a.unwrap_or(d.a),
+    };
+    f.validate().map_err(|e| anyhow::anyhow!("air: {e}"))?;
+    let source = if args.rho.is_none() && args.mu.is_none() && args.a.is_none() {
+        "QPROP defaults (standard air, not measured)".to_string()
+    } else {
+        "given".to_string()
+    };
+    Ok((f, source))
+}
+
+#[derive(Serialize)]
+struct JsonOut<'a> {
+    prop: &'a str,
+    name: &'a str,
+    blades: f64,
+    tip_radius_m: f64,
+    fluid: Fluid,
+    fluid_source: &'a str,
+    qprop_compat: bool,
+    tip_loss: bool,
+    dbeta_deg: f64,
+    warnings: &'a [String],
+    points: &'a [PointResult],
+}
+
+/// Runs `propbet predict`; returns whether every station of every point converged.
+pub fn run(args: &PredictArgs) -> Result<bool> {
+    let loaded = load_prop(&args.prop, args.units.as_deref())?;
+    for w in &loaded.warnings {
+        eprintln!("propbet: warning: {w}");
+    }
+    let reading = if args.qprop_compat {
+        RadiusReading::Qprop122
+    } else {
+        RadiusReading::Documented
+    };
+    let blade = loaded.file.to_blade(reading);
+    let rotor = blade
+        .to_rotor(Discretization {
+            stations: 25,
+            qprop_reref_quirk: args.qprop_compat,
+        })
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.prop.display()))?;
+    let (fluid, fluid_source) = fluid(args)?;
+    let rpms = parse_list("--rpm", &args.rpm)?;
+    if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {
+        bail!("--rpm: rotation speed must not be negative, found {bad}");
+    }
+    if !args.dbeta.is_finite() {
+        bail!("--dbeta: not a finite number");
+    }
+    let points = match (&args.j, &args.v) {
+        (Some(j), _) => {
+            if rpms.contains(&0.0) {
+                bail!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
+            }
+            grid_rpm_j(&rpms, &parse_list("--j", j)?, rotor.tip_radius)
+        }
+        (None, Some(v)) => grid_rpm_v(&rpms, &parse_list("--v", v)?),
+        (None, None) => grid_rpm_v(&rpms, &[0.0]),
+    };
+    let opts = SolverOptions {
+        tip_loss: !args.no_tip_loss,
+        dbeta: args.dbeta.to_radians(),
+        keep_stations: args.stations.is_some(),
+        ..SolverOptions::default()
+    };
+    let results = solve_points(&rotor, &fluid, &points, &opts);
+    let inputs = [args.prop.as_path()];
+    let body = match args.format {
+        Format::Csv => summary_csv(&results),
+        Format::Json => {
+            let doc = JsonOut {
+                prop: &args.prop.to_string_lossy(),
+                name: &loaded.file.name,
+                blades: rotor.blades,
+                tip_radius_m: rotor.tip_radius,
+                fluid,
+                fluid_source: &fluid_source,
+                qprop_compat: args.qprop_compat,
+                tip_loss: opts.tip_loss,
+                dbeta_deg: args.dbeta,
+                warnings: &loaded.warnings,
+                points: &results,
+            };
+            let mut s = serde_json::to_string_pretty(&doc)?;
+            s.push('\n');
+            s
+        }
+    };
+    emit(args.out.as_deref(), body.as_bytes(), &inputs)?;
+    if let Some(path) = &args.stations {
+        emit(Some(path), stations_csv(&results).as_bytes(), &inputs)?;
+    }
+    let failed: usize = results.iter().map(|p| p.not_converged).sum();
+    if failed > 0 {
+        let points = results.iter().filter(|p| p.not_converged > 0).count();
+        eprintln!(
+            "propbet: {failed} station solutions at {points} operating points did not converge; \
+             they are flagged in the per-station table"
+        );
+    }
+    Ok(failed == 0)
+}
+
+/// Column header of the summary CSV.
+pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
+
+fn summary_csv(results: &[PointResult]) -> String {
+    let mut s = String::with_capacity(200 * results.len() + 200);
+    s.push_str(SUMMARY_HEADER);
+    s.push('\n');
+    for p in results {
+        let cells = [
+            Some(p.rpm),
+            Some(p.v),
+            p.j,
+            Some(p.thrust),
+            Some(p.torque),
+            Some(p.power),
+            p.ct,
+            p.cp,
+            p.cq,
+            Some(p.eta),
+            p.ct_qprop,
+            p.cp_qprop,
+            p.adv_qprop,
+            Some(p.dv),
+            Some(p.cl_avg),
+            Some(p.cd_avg),
+        ];
+        for c in cells {
+            push_num(&mut s, c);
+            s.push(',');
+        }
+        s.push_str(&p.not_converged.to_string());
+        s.push('\n');
+    }
+    s
+}
+
+fn stations_csv(results: &[PointResult]) -> String {
+    let mut s = String::from(
+        "rpm,v_m_s,r_m,chord_m,beta_deg,alpha_deg,cl,cd,re,mach,w_m_s,wa_m_s,wt_m_s,va_m_s,vt_m_s,f_tip,dt_dr_n_m,dq_dr_n,stalled,convergence\n",
+    );
+    for p in results {
+        for st in &p.stations {
+            for v in [
+                p.rpm,
+                p.v,
+                st.r,
+                st.chord,
+                st.beta.to_degrees(),
+                st.alpha.to_degrees(),
+                st.cl,
+                st.cd,
+                st.re,
+                st.mach,
+                st.w,
+                st.wa,
+                st.wt,
+                st.va,
+                st.vt,
+                st.f_tip,
+                st.dt_dr,
+                st.dq_dr,
+            ] {
+                push_num(&mut s, Some(v));
+                s.push(',');
+            }
+            let conv = match st.convergence {
+                propbet_bemt::Convergence::Newton { .. } => "newton",
+                propbet_bemt::Convergence::Bracketed { .. } => "bracketed",
+                propbet_bemt::Convergence::NotConverged => "not_converged",
+                propbet_bemt::Convergence::NoFlow => "no_flow",
+                propbet_bemt::Convergence::NoRotation => "no_rotation",
+                propbet_bemt::Convergence::ZeroChord => "zero_chord",
+            };
+            s.push_str(if st.stalled { "true," } else { "false," });
+            s.push_str(conv);
+            s.push('\n');
+        }
+    }
+    s
+}

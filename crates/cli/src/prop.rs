@@ -1,0 +1,61 @@
+//! `propbet prop`: inspect a QPROP prop file and optionally write it back normalised.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::Args;
+use propbet_bemt::Discretization;
+use propbet_qprop::{write_prop, RadiusReading};
+
+use crate::output::emit;
+use crate::predict::load_prop;
+
+/// Arguments of `propbet prop`.
+#[derive(Debug, Args)]
+pub struct PropArgs {
+    /// QPROP prop file.
+    pub file: PathBuf,
+    /// Length unit of radii and chords (overrides Rfac and Cfac): m, cm, mm, in.
+    #[arg(long)]
+    pub units: Option<String>,
+    /// Read as QPROP 1.22 does (R on line 2 unscaled, REref of the first station).
+    #[arg(long)]
+    pub qprop_compat: bool,
+    /// Write the prop file back (normalised, QPROP-readable) to this path.
+    #[arg(long)]
+    pub write: Option<PathBuf>,
+}
+
+/// Runs `propbet prop`.
+pub fn run(args: &PropArgs) -> Result<bool> {
+    let loaded = load_prop(&args.file, args.units.as_deref())?;
+    for w in &loaded.warnings {
+        eprintln!("propbet: warning: {w}");
+    }
+    let reading = if args.qprop_compat {
+        RadiusReading::Qprop122
+    } else {
+        RadiusReading::Documented
+    };
+    let rotor = loaded
+        .file
+        .to_blade(reading)
+        .to_rotor(Discretization {
+            stations: 25,
+            qprop_reref_quirk: args.qprop_compat,
+        })
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+    println!("name: {}", loaded.file.name);
+    println!("blades: {}", rotor.blades);
+    println!("tip radius: {:.6} m", rotor.tip_radius);
+    println!("input rows: {}", loaded.file.rows.len());
+    println!("# computational stations (QPROP discretisation)");
+    println!("r_m,dr_m,chord_m,beta_deg");
+    for s in &rotor.stations {
+        println!("{:.6},{:.6},{:.6},{:.4}", s.r, s.dr, s.chord, s.beta.to_degrees());
+    }
+    if let Some(out) = &args.write {
+        emit(Some(out), write_prop(&loaded.file).as_bytes(), &[args.file.as_path()])?;
+    }
+    Ok(true)
+}

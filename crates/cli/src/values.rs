@@ -1,0 +1,160 @@
+//! Parsing of command-line values: number lists and ranges, and quantities with units.
+//! Everything is converted to SI here, once.
+
+use anyhow::{bail, Context, Result};
+
+/// Parses a comma-separated list whose items are numbers, `start:stop:step` (inclusive) or
+/// `start:stop/N` (N points).
+pub fn parse_list(flag: &str, text: &str) -> Result<Vec<f64>> {
+    let mut out = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        if item.is_empty() {
+            bail!("{flag} '{text}': empty item");
+        }
+        let num = |s: &str| -> Result<f64> {
+            let v: f64 = s
+                .trim()
+                .parse()
+                .with_context(|| format!("{flag} '{text}': '{s}' is not a number"))?;
+            if !v.is_finite() {
+                bail!("{flag} '{text}': '{s}' is not a finite number");
+            }
+            Ok(v)
+        };
+        if let Some((a, rest)) = item.split_once(':') {
+            let start = num(a)?;
+            if let Some((b, n)) = rest.split_once('/') {
+                let stop = num(b)?;
+                let n: usize = n
+                    .trim()
+                    .parse()
+                    .with_context(|| format!("{flag} '{text}': '{n}' is not a whole number of points"))?;
+                if n == 0 || n > 1_000_000 {
+                    bail!("{flag} '{text}': the number of points must be 1..1000000, found {n}");
+                }
+                if n == 1 {
+                    out.push(start);
+                } else {
+                    out.extend((0..n).map(|i| start + (stop - start) * i as f64 / (n - 1) as f64));
+                }
+            } else {
+                let (b, step) = rest
+                    .split_once(':')
+                    .with_context(|| format!("{flag} '{text}': use start:stop:step or start:stop/N"))?;
+                let stop = num(b)?;
+                let step = num(step)?;
+                if step <= 0.0 {
+                    bail!("{flag} '{text}': the step must be positive, found {step}");
+                }
+                let count = ((stop - start) / step + 1e-9).floor();
+                if count < 0.0 {
+                    bail!("{flag} '{text}': stop {stop} is below start {start}");
+                }
+                if count > 1e6 {
+                    bail!("{flag} '{text}': more than a million points");
+                }
+                out.extend((0..=count as usize).map(|i| start + step * i as f64));
+            }
+        } else {
+            out.push(num(item)?);
+        }
+    }
+    Ok(out)
+}
+
+/// Splits `12.5hPa` into (12.5, "hPa").
+fn split_unit(text: &str) -> Option<(f64, &str)> {
+    let t = text.trim();
+    let k = t
+        .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .unwrap_or(t.len());
+    // An exponent marker followed by letters is a unit, not an exponent ("5e" never occurs).
+    let (num, unit) = t.split_at(k);
+    num.parse::<f64>().ok().filter(|v| v.is_finite()).map(|v| (v, unit.trim()))
+}
+
+/// A temperature with a unit suffix (`15C`, `288.15K`, `59F`) [K].
+pub fn parse_temperature(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--temp '{text}': not a number with a unit"))?;
+    Ok(match unit {
+        "C" | "degC" | "°C" | "ºC" => v + 273.15,
+        "K" => v,
+        "F" | "degF" | "°F" => (v - 32.0) * 5.0 / 9.0 + 273.15,
+        "" => bail!("--temp '{text}': give a unit: C, K or F (for example 20C)"),
+        u => bail!("--temp '{text}': unknown temperature unit '{u}' (use C, K or F)"),
+    })
+}
+
+/// A pressure, Pa unless suffixed (`Pa`, `hPa`, `mbar`, `kPa`, `bar`, `inHg`, `psi`) [Pa].
+pub fn parse_pressure(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--pressure '{text}': not a number"))?;
+    Ok(v * match unit {
+        "" | "Pa" => 1.0,
+        "hPa" | "mbar" => 100.0,
+        "kPa" => 1000.0,
+        "bar" => 1e5,
+        "inHg" => 3386.389,
+        "psi" => 6894.757,
+        u => bail!("--pressure '{text}': unknown pressure unit '{u}' (use Pa, hPa, mbar, kPa, bar, inHg or psi)"),
+    })
+}
+
+/// Relative humidity in percent (`45%` or `45`) or as a fraction below 1 with no suffix is
+/// ambiguous, so a bare number is read as percent [-, 0..1].
+pub fn parse_humidity(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--humidity '{text}': not a number"))?;
+    match unit {
+        "" | "%" => Ok(v / 100.0),
+        u => bail!("--humidity '{text}': unknown unit '{u}' (give percent, for example 45%)"),
+    }
+}
+
+/// A length unit for prop-file radii and chords: metres per unit.
+pub fn parse_length_unit(text: &str) -> Result<f64> {
+    Ok(match text {
+        "m" => 1.0,
+        "cm" => 0.01,
+        "mm" => 0.001,
+        "in" | "inch" => 0.0254,
+        u => bail!("--units '{u}': unknown length unit (use m, cm, mm or in)"),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(text: &str, expected: &[f64]) {
+        let got = parse_list("--x", text).unwrap();
+        assert_eq!(got.len(), expected.len(), "{text}: {got:?}");
+        for (g, e) in got.iter().zip(expected) {
+            assert!((g - e).abs() < 1e-12, "{text}: {got:?}");
+        }
+    }
+
+    #[test]
+    fn lists_and_ranges() {
+        check("4000,6000", &[4000.0, 6000.0]);
+        check("0:0.2:0.05", &[0.0, 0.05, 0.1, 0.15, 0.2]);
+        check("0:20/3", &[0.0, 10.0, 20.0]);
+        check("1, 2:3:1", &[1.0, 2.0, 3.0]);
+        assert_eq!(parse_list("--j", "0:0.8:0.05").unwrap().len(), 17);
+        for bad in ["", "a", "1,,2", "0:1:0", "1:0:0.1", "0:1/0", "nan", "0:1"] {
+            assert!(parse_list("--x", bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn units() {
+        assert!((parse_temperature("15C").unwrap() - 288.15).abs() < 1e-12);
+        assert!((parse_temperature("59F").unwrap() - 288.15).abs() < 1e-9);
+        assert!(parse_temperature("15").is_err());
+        assert!(parse_temperature("15Q").unwrap_err().to_string().contains("unknown temperature unit 'Q'"));
+        assert_eq!(parse_pressure("1013.25hPa").unwrap(), 101325.0);
+        assert_eq!(parse_pressure("101325").unwrap(), 101325.0);
+        assert!(parse_pressure("1atm").is_err());
+        assert_eq!(parse_humidity("50%").unwrap(), 0.5);
+        assert_eq!(parse_length_unit("in").unwrap(), 0.0254);
+        assert!(parse_length_unit("furlong").is_err());
+    }
+}

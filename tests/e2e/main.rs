@@ -1,0 +1,225 @@
+//! End-to-end tests of the `propbet` binary: each runs the real executable in its own
+//! temporary directory and checks its output files, messages and exit code.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_propbet"))
+}
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn cam6x3() -> PathBuf {
+    repo().join("props/cam6x3/cam6x3.qprop")
+}
+
+fn run(args: &[&str], dir: &Path) -> Output {
+    bin().args(args).current_dir(dir).output().expect("propbet runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Reads a CSV written by propbet into (header, rows).
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').map(String::from).collect();
+    (header, lines.map(|l| l.split(',').map(String::from).collect()).collect())
+}
+
+fn col(header: &[String], name: &str) -> usize {
+    header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))
+}
+
+#[test]
+fn predict_matches_qprop_static_point() {
+    // QPROP 1.22, `qprop cam6x3 null 0 12000`: T = 2.386 N, Q = 0.2248E-01 N m
+    // (tests/reference/qprop/cam6x3_point_V0_rpm12000.out).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("p.csv");
+    let o = run(
+        &["predict", "--prop", cam6x3().to_str().unwrap(), "--rpm", "12000", "--v", "0", "--out", out.to_str().unwrap()],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (h, rows) = read_csv(&out);
+    assert_eq!(rows.len(), 1);
+    let t: f64 = rows[0][col(&h, "thrust_n")].parse().unwrap();
+    let q: f64 = rows[0][col(&h, "torque_nm")].parse().unwrap();
+    assert!((t - 2.386).abs() < 5e-4, "{t}");
+    assert!((q - 0.2248e-1).abs() < 5e-6, "{q}");
+    // CT = CT_qprop pi^3/8 (FORMULATION.md).
+    let ct: f64 = rows[0][col(&h, "ct")].parse().unwrap();
+    let ctq: f64 = rows[0][col(&h, "ct_qprop")].parse().unwrap();
+    assert!((ct - ctq * std::f64::consts::PI.powi(3) / 8.0).abs() < 1e-9 * ct);
+}
+
+#[test]
+fn predict_sweeps_j_and_writes_json_and_stations() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        &[
+            "predict", "--prop", cam6x3().to_str().unwrap(), "--rpm", "4000,6000", "--j", "0:0.8:0.05",
+            "--format", "json", "--out", "r.json", "--stations", "st.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("r.json")).unwrap()).unwrap();
+    let points = doc["points"].as_array().unwrap();
+    assert_eq!(points.len(), 2 * 17);
+    assert_eq!(points[0]["stations"].as_array().unwrap().len(), 25);
+    assert_eq!(doc["fluid_source"], "QPROP defaults (standard air, not measured)");
+    // J is reproduced, outer loop RPM.
+    assert!((points[3]["j"].as_f64().unwrap() - 0.15).abs() < 1e-12);
+    assert!((points[17]["rpm"].as_f64().unwrap() - 6000.0).abs() < 1e-9);
+    let (h, rows) = read_csv(&dir.path().join("st.csv"));
+    assert_eq!(rows.len(), 34 * 25);
+    assert!(rows.iter().all(|r| r[col(&h, "convergence")] == "newton"));
+}
+
+#[test]
+fn air_state_changes_density() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = cam6x3();
+    let base = ["predict", "--prop", prop.to_str().unwrap(), "--rpm", "10000", "--format", "json"];
+    let std_air = run(&base, dir.path());
+    let mut hot = base.to_vec();
+    hot.extend(["--temp", "35C", "--pressure", "950hPa", "--humidity", "60%"]);
+    let hot = run(&hot, dir.path());
+    assert!(std_air.status.success() && hot.status.success(), "{}", stderr(&hot));
+    let t = |o: &Output| -> (f64, f64) {
+        let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        (d["points"][0]["thrust"].as_f64().unwrap(), d["fluid"]["rho"].as_f64().unwrap())
+    };
+    let (t0, rho0) = t(&std_air);
+    let (t1, rho1) = t(&hot);
+    assert!(rho1 < 1.08 && rho1 > 1.05, "{rho1}");
+    // Thrust scales about with density (Re and Mach effects are second order).
+    assert!(((t1 / t0) / (rho1 / rho0) - 1.0).abs() < 0.02, "{t0} {t1}");
+}
+
+#[test]
+fn qprop_compat_reads_line_two_radius_as_qprop_does() {
+    // photofoil_8x4.5 gives R = 4 (inches) on line 2; QPROP 1.22 takes 4 m, so its CT is
+    // 0.1304E-07 at 3000 rpm (tests/reference/qprop/photofoil_8x4.5_asgiven_rpmsweep_V0.out).
+    let dir = tempfile::tempdir().unwrap();
+    let prop = repo().join("tests/reference/qprop/photofoil_8x4.5");
+    let args = |compat: bool| {
+        let mut a = vec!["predict", "--prop", prop.to_str().unwrap(), "--rpm", "3000"];
+        if compat {
+            a.push("--qprop-compat");
+        }
+        a
+    };
+    let compat = run(&args(true), dir.path());
+    assert!(compat.status.success());
+    let text = String::from_utf8_lossy(&compat.stdout).into_owned();
+    let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let ctq: f64 = row[10].parse().unwrap();
+    assert!((ctq - 0.1304e-7).abs() < 5e-12, "{ctq}");
+    assert!(stderr(&compat).contains("QPROP 1.22 takes it unscaled"));
+    let meant = run(&args(false), dir.path());
+    let text = String::from_utf8_lossy(&meant.stdout).into_owned();
+    let row: Vec<&str> = text.lines().nth(1).unwrap().split(',').collect();
+    let ctq_meant: f64 = row[10].parse().unwrap();
+    assert!(ctq_meant > 1e-3, "{ctq_meant}");
+}
+
+#[test]
+fn prop_write_round_trips() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&["prop", cam6x3().to_str().unwrap(), "--write", "copy.qprop"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("tip radius: 0.076200 m"));
+    let predict = |p: &str| {
+        let o = run(&["predict", "--prop", p, "--rpm", "7000", "--v", "0:10:5"], dir.path());
+        assert!(o.status.success());
+        o.stdout
+    };
+    assert_eq!(predict(cam6x3().to_str().unwrap()), predict("copy.qprop"));
+}
+
+/// Writes `text` as a prop file in `dir` and runs predict on it; returns (exit code, stderr).
+fn predict_bad_prop(text: &str, extra: &[&str]) -> (i32, String) {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("bad.qprop"), text).unwrap();
+    let mut args = vec!["predict", "--prop", "bad.qprop", "--rpm", "5000"];
+    args.extend(extra);
+    let o = run(&args, dir.path());
+    (o.status.code().unwrap(), stderr(&o))
+}
+
+const HEAD: &str = "bad\n2\n0.5 5.8\n-0.3 1.2\n0.028 0.05 0.05 0.5\n70000 -0.7\n0.0254 0.0254 1\n0 0 0\n";
+
+#[test]
+fn bad_prop_files_get_clear_errors_and_exit_2() {
+    let cases: &[(String, &str)] = &[
+        (format!("{HEAD}0.75 0.66 27.5\n1.0 0.6x9 22\n3 0.2 4\n"), "bad.qprop: line 10: '0.6x9' is not a number"),
+        ("bad\n2\n0.5 5.8\n-0.3 1.2\n".to_string(), "bad.qprop: line 5: file ends before the CD0 CD2u CD2l CLCD0 line"),
+        (format!("{HEAD}0.75 0.66 27.5\n0.70 0.69 22\n3 0.2 4\n"), "line 10: radius 0.7"),
+        (format!("{HEAD}0.75 0.66 27.5\n1.0 -0.69 22\n3 0.2 4\n"), "chords must not be negative"),
+        (format!("{HEAD}0.75 0.66 27.5\n1.0 nan 22\n3 0.2 4\n"), "line 10: 'nan' is not a finite number"),
+        ("\u{0}\u{1}\u{2}binary".to_string(), "line 2: file ends before the Nblades [R] line"),
+    ];
+    for (text, msg) in cases {
+        let (code, err) = predict_bad_prop(text, &[]);
+        assert_eq!(code, 2, "{msg}: {err}");
+        assert!(err.contains(msg), "expected '{msg}' in: {err}");
+    }
+    let (code, err) = predict_bad_prop(&format!("{HEAD}0.75 0.66 27.5\n3 0.2 4\n"), &["--units", "furlong"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("--units 'furlong': unknown length unit"), "{err}");
+    // A file that is not UTF-8 text.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("b.qprop"), [0xff, 0xfe, 0x00, 0x80]).unwrap();
+    let o = run(&["predict", "--prop", "b.qprop", "--rpm", "5000"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("b.qprop: not UTF-8 text"), "{}", stderr(&o));
+    // A missing file.
+    let o = run(&["predict", "--prop", "missing.qprop", "--rpm", "5000"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("missing.qprop: cannot read"), "{}", stderr(&o));
+}
+
+#[test]
+fn bad_values_get_clear_errors_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = cam6x3();
+    let p = p.to_str().unwrap();
+    for (args, msg) in [
+        (vec!["--rpm", "5000", "--temp", "20X", "--pressure", "1bar"], "unknown temperature unit 'X'"),
+        (vec!["--rpm", "5000", "--temp", "20", "--pressure", "1bar"], "give a unit"),
+        (vec!["--rpm", "5000", "--temp", "20C", "--pressure", "1atm"], "unknown pressure unit 'atm'"),
+        (vec!["--rpm", "-5000"], "must not be negative"),
+        (vec!["--rpm", "5000", "--v", "0:nan:1"], "not a finite number"),
+        (vec!["--rpm", "0", "--j", "0.2"], "J = V/(nD) is undefined"),
+        (vec!["--rpm", "5000", "--rho", "-1"], "density must be a positive number"),
+        (vec!["--rpm", "5000", "--j", "0.1", "--v", "3"], "cannot be used with"),
+    ] {
+        let mut a = vec!["predict", "--prop", p];
+        a.extend(args);
+        let o = run(&a, dir.path());
+        assert_eq!(o.status.code(), Some(2), "{msg}: {}", stderr(&o));
+        assert!(stderr(&o).contains(msg), "expected '{msg}' in: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn never_overwrites_an_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = dir.path().join("in.qprop");
+    std::fs::copy(cam6x3(), &prop).unwrap();
+    let before = std::fs::read(&prop).unwrap();
+    let o = run(&["predict", "--prop", "in.qprop", "--rpm", "5000", "--out", "in.qprop"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("refusing to overwrite an input file"), "{}", stderr(&o));
+    let o = run(&["prop", "in.qprop", "--write", "in.qprop"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read(&prop).unwrap(), before);
+}
