@@ -29,11 +29,17 @@ fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();
     let header = lines.next().unwrap().split(',').map(String::from).collect();
-    (header, lines.map(|l| l.split(',').map(String::from).collect()).collect())
+    (
+        header,
+        lines.map(|l| l.split(',').map(String::from).collect()).collect(),
+    )
 }
 
 fn col(header: &[String], name: &str) -> usize {
-    header.iter().position(|h| h == name).unwrap_or_else(|| panic!("no column {name}"))
+    header
+        .iter()
+        .position(|h| h == name)
+        .unwrap_or_else(|| panic!("no column {name}"))
 }
 
 #[test]
@@ -43,7 +49,17 @@ fn predict_matches_qprop_static_point() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("p.csv");
     let o = run(
-        &["predict", "--prop", cam6x3().to_str().unwrap(), "--rpm", "12000", "--v", "0", "--out", out.to_str().unwrap()],
+        &[
+            "predict",
+            "--prop",
+            cam6x3().to_str().unwrap(),
+            "--rpm",
+            "12000",
+            "--v",
+            "0",
+            "--out",
+            out.to_str().unwrap(),
+        ],
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
@@ -64,13 +80,25 @@ fn predict_sweeps_j_and_writes_json_and_stations() {
     let dir = tempfile::tempdir().unwrap();
     let o = run(
         &[
-            "predict", "--prop", cam6x3().to_str().unwrap(), "--rpm", "4000,6000", "--j", "0:0.8:0.05",
-            "--format", "json", "--out", "r.json", "--stations", "st.csv",
+            "predict",
+            "--prop",
+            cam6x3().to_str().unwrap(),
+            "--rpm",
+            "4000,6000",
+            "--j",
+            "0:0.8:0.05",
+            "--format",
+            "json",
+            "--out",
+            "r.json",
+            "--stations",
+            "st.csv",
         ],
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let doc: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.path().join("r.json")).unwrap()).unwrap();
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("r.json")).unwrap()).unwrap();
     let points = doc["points"].as_array().unwrap();
     assert_eq!(points.len(), 2 * 17);
     assert_eq!(points[0]["stations"].as_array().unwrap().len(), 25);
@@ -87,7 +115,15 @@ fn predict_sweeps_j_and_writes_json_and_stations() {
 fn air_state_changes_density() {
     let dir = tempfile::tempdir().unwrap();
     let prop = cam6x3();
-    let base = ["predict", "--prop", prop.to_str().unwrap(), "--rpm", "10000", "--format", "json"];
+    let base = [
+        "predict",
+        "--prop",
+        prop.to_str().unwrap(),
+        "--rpm",
+        "10000",
+        "--format",
+        "json",
+    ];
     let std_air = run(&base, dir.path());
     let mut hot = base.to_vec();
     hot.extend(["--temp", "35C", "--pressure", "950hPa", "--humidity", "60%"]);
@@ -95,7 +131,10 @@ fn air_state_changes_density() {
     assert!(std_air.status.success() && hot.status.success(), "{}", stderr(&hot));
     let t = |o: &Output| -> (f64, f64) {
         let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
-        (d["points"][0]["thrust"].as_f64().unwrap(), d["fluid"]["rho"].as_f64().unwrap())
+        (
+            d["points"][0]["thrust"].as_f64().unwrap(),
+            d["fluid"]["rho"].as_f64().unwrap(),
+        )
     };
     let (t0, rho0) = t(&std_air);
     let (t1, rho1) = t(&hot);
@@ -134,7 +173,10 @@ fn qprop_compat_reads_line_two_radius_as_qprop_does() {
 #[test]
 fn prop_write_round_trips() {
     let dir = tempfile::tempdir().unwrap();
-    let o = run(&["prop", cam6x3().to_str().unwrap(), "--write", "copy.qprop"], dir.path());
+    let o = run(
+        &["prop", cam6x3().to_str().unwrap(), "--write", "copy.qprop"],
+        dir.path(),
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(String::from_utf8_lossy(&o.stdout).contains("tip radius: 0.076200 m"));
     let predict = |p: &str| {
@@ -160,12 +202,30 @@ const HEAD: &str = "bad\n2\n0.5 5.8\n-0.3 1.2\n0.028 0.05 0.05 0.5\n70000 -0.7\n
 #[test]
 fn bad_prop_files_get_clear_errors_and_exit_2() {
     let cases: &[(String, &str)] = &[
-        (format!("{HEAD}0.75 0.66 27.5\n1.0 0.6x9 22\n3 0.2 4\n"), "bad.qprop: line 10: '0.6x9' is not a number"),
-        ("bad\n2\n0.5 5.8\n-0.3 1.2\n".to_string(), "bad.qprop: line 5: file ends before the CD0 CD2u CD2l CLCD0 line"),
-        (format!("{HEAD}0.75 0.66 27.5\n0.70 0.69 22\n3 0.2 4\n"), "line 10: radius 0.7"),
-        (format!("{HEAD}0.75 0.66 27.5\n1.0 -0.69 22\n3 0.2 4\n"), "chords must not be negative"),
-        (format!("{HEAD}0.75 0.66 27.5\n1.0 nan 22\n3 0.2 4\n"), "line 10: 'nan' is not a finite number"),
-        ("\u{0}\u{1}\u{2}binary".to_string(), "line 2: file ends before the Nblades [R] line"),
+        (
+            format!("{HEAD}0.75 0.66 27.5\n1.0 0.6x9 22\n3 0.2 4\n"),
+            "bad.qprop: line 10: '0.6x9' is not a number",
+        ),
+        (
+            "bad\n2\n0.5 5.8\n-0.3 1.2\n".to_string(),
+            "bad.qprop: line 5: file ends before the CD0 CD2u CD2l CLCD0 line",
+        ),
+        (
+            format!("{HEAD}0.75 0.66 27.5\n0.70 0.69 22\n3 0.2 4\n"),
+            "line 10: radius 0.7",
+        ),
+        (
+            format!("{HEAD}0.75 0.66 27.5\n1.0 -0.69 22\n3 0.2 4\n"),
+            "chords must not be negative",
+        ),
+        (
+            format!("{HEAD}0.75 0.66 27.5\n1.0 nan 22\n3 0.2 4\n"),
+            "line 10: 'nan' is not a finite number",
+        ),
+        (
+            "\u{0}\u{1}\u{2}binary".to_string(),
+            "line 2: file ends before the Nblades [R] line",
+        ),
     ];
     for (text, msg) in cases {
         let (code, err) = predict_bad_prop(text, &[]);
@@ -193,13 +253,25 @@ fn bad_values_get_clear_errors_and_exit_2() {
     let p = cam6x3();
     let p = p.to_str().unwrap();
     for (args, msg) in [
-        (vec!["--rpm", "5000", "--temp", "20X", "--pressure", "1bar"], "unknown temperature unit 'X'"),
-        (vec!["--rpm", "5000", "--temp", "20", "--pressure", "1bar"], "give a unit"),
-        (vec!["--rpm", "5000", "--temp", "20C", "--pressure", "1atm"], "unknown pressure unit 'atm'"),
+        (
+            vec!["--rpm", "5000", "--temp", "20X", "--pressure", "1bar"],
+            "unknown temperature unit 'X'",
+        ),
+        (
+            vec!["--rpm", "5000", "--temp", "20", "--pressure", "1bar"],
+            "give a unit",
+        ),
+        (
+            vec!["--rpm", "5000", "--temp", "20C", "--pressure", "1atm"],
+            "unknown pressure unit 'atm'",
+        ),
         (vec!["--rpm", "-5000"], "must not be negative"),
         (vec!["--rpm", "5000", "--v", "0:nan:1"], "not a finite number"),
         (vec!["--rpm", "0", "--j", "0.2"], "J = V/(nD) is undefined"),
-        (vec!["--rpm", "5000", "--rho", "-1"], "density must be a positive number"),
+        (
+            vec!["--rpm", "5000", "--rho", "-1"],
+            "density must be a positive number",
+        ),
         (vec!["--rpm", "5000", "--j", "0.1", "--v", "3"], "cannot be used with"),
     ] {
         let mut a = vec!["predict", "--prop", p];
@@ -216,9 +288,16 @@ fn never_overwrites_an_input() {
     let prop = dir.path().join("in.qprop");
     std::fs::copy(cam6x3(), &prop).unwrap();
     let before = std::fs::read(&prop).unwrap();
-    let o = run(&["predict", "--prop", "in.qprop", "--rpm", "5000", "--out", "in.qprop"], dir.path());
+    let o = run(
+        &["predict", "--prop", "in.qprop", "--rpm", "5000", "--out", "in.qprop"],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("refusing to overwrite an input file"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("refusing to overwrite an input file"),
+        "{}",
+        stderr(&o)
+    );
     let o = run(&["prop", "in.qprop", "--write", "in.qprop"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read(&prop).unwrap(), before);

@@ -11,7 +11,9 @@ use thiserror::Error;
 #[derive(Debug, Error, Clone, PartialEq, Eq)]
 pub enum FindXfoilError {
     /// Not on the PATH (or the given path is not a file).
-    #[error("XFOIL was not found ({searched}); install it with `apt-get install xfoil xvfb` (Debian package xfoil 6.99)")]
+    #[error(
+        "XFOIL was not found ({searched}); install it with `apt-get install xfoil xvfb` (Debian package xfoil 6.99)"
+    )]
     NotFound {
         /// Where it was looked for.
         searched: String,

@@ -135,8 +135,17 @@ mod tests {
 
     #[test]
     fn rejects_wrong_units() {
-        assert_eq!(AirState::new(20.0, 101_325.0, 0.5), Err(AirStateError::Temperature(20.0)));
-        assert_eq!(AirState::new(293.0, 1013.25, 0.5), Err(AirStateError::Pressure(1013.25)));
-        assert_eq!(AirState::new(293.0, 101_325.0, 50.0), Err(AirStateError::Humidity(50.0)));
+        assert_eq!(
+            AirState::new(20.0, 101_325.0, 0.5),
+            Err(AirStateError::Temperature(20.0))
+        );
+        assert_eq!(
+            AirState::new(293.0, 1013.25, 0.5),
+            Err(AirStateError::Pressure(1013.25))
+        );
+        assert_eq!(
+            AirState::new(293.0, 101_325.0, 50.0),
+            Err(AirStateError::Humidity(50.0))
+        );
     }
 }

@@ -23,7 +23,11 @@ impl Fluid {
 
     /// Checks that every property is finite and positive.
     pub fn validate(&self) -> Result<(), String> {
-        for (name, v) in [("density", self.rho), ("viscosity", self.mu), ("speed of sound", self.a)] {
+        for (name, v) in [
+            ("density", self.rho),
+            ("viscosity", self.mu),
+            ("speed of sound", self.a),
+        ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(format!("{name} must be a positive number, found {v}"));
             }

@@ -119,10 +119,7 @@ impl Rotor {
     pub fn validate(&self) -> Result<(), RotorError> {
         check_blades_and_tip(self.blades, self.tip_radius)?;
         if self.stations.is_empty() {
-            return Err(RotorError::TooFewStations {
-                needed: 1,
-                found: 0,
-            });
+            return Err(RotorError::TooFewStations { needed: 1, found: 0 });
         }
         let mut prev = f64::NEG_INFINITY;
         for (i, s) in self.stations.iter().enumerate() {
@@ -133,22 +130,14 @@ impl Rotor {
                 ("blade angle", s.beta),
             ] {
                 if !v.is_finite() {
-                    return Err(RotorError::NotFinite {
-                        what,
-                        index: i,
-                        r: s.r,
-                    });
+                    return Err(RotorError::NotFinite { what, index: i, r: s.r });
                 }
             }
             if s.r < 0.0 {
                 return Err(RotorError::NegativeRadius { index: i, r: s.r });
             }
             if s.r <= prev {
-                return Err(RotorError::NonIncreasingRadius {
-                    index: i,
-                    r: s.r,
-                    prev,
-                });
+                return Err(RotorError::NonIncreasingRadius { index: i, r: s.r, prev });
             }
             if s.chord < 0.0 {
                 return Err(RotorError::NegativeChord {
@@ -300,9 +289,7 @@ impl QpropBlade {
         };
         let chord = column(&|i| self.chord[i]);
         let beta = column(&|i| self.beta[i]);
-        let coeff_splines: Vec<DrelaSpline> = (0..10)
-            .map(|k| column(&|i| self.coeffs[i].to_array()[k]))
-            .collect();
+        let coeff_splines: Vec<DrelaSpline> = (0..10).map(|k| column(&|i| self.coeffs[i].to_array()[k])).collect();
         let radii: Vec<f64> = (0..n)
             .map(|i| {
                 let frac = (i as f64 + 0.5) / n as f64;
@@ -321,11 +308,7 @@ impl QpropBlade {
             }
             let c = chord.eval(r);
             if c < 0.0 {
-                return Err(RotorError::NegativeChord {
-                    index: i,
-                    r,
-                    chord: c,
-                });
+                return Err(RotorError::NegativeChord { index: i, r, chord: c });
             }
             if k[8] <= 0.0 {
                 return Err(RotorError::NotPositive {

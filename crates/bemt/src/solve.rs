@@ -21,6 +21,7 @@ use crate::rotor::{Rotor, Station};
 
 /// QPROP's value of pi (`DATA PI / 3.14159265 /`); it differs from pi by 1e-9 relative, far
 /// below QPROP's 4 printed digits, so propbet uses the true value and keeps this for reference.
+#[allow(clippy::approx_constant)]
 pub const QPROP_PI: f64 = 3.14159265;
 
 /// One operating point: axial speed and rotation rate.
@@ -588,8 +589,8 @@ fn unloaded(r: f64, chord: f64, beta: f64, conv: Convergence) -> StationResult {
 /// reported unloaded and not converged rather than poisoning the integrals.
 fn sanitize(s: StationResult) -> StationResult {
     let values = [
-        s.alpha, s.cl, s.cd, s.re, s.mach, s.w, s.wa, s.wt, s.va, s.vt, s.f_tip, s.lambda_w, s.gamma, s.dt_dr,
-        s.dq_dr, s.residual, s.dpsi,
+        s.alpha, s.cl, s.cd, s.re, s.mach, s.w, s.wa, s.wt, s.va, s.vt, s.f_tip, s.lambda_w, s.gamma, s.dt_dr, s.dq_dr,
+        s.residual, s.dpsi,
     ];
     if values.iter().all(|v| v.is_finite()) {
         s

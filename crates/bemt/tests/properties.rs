@@ -5,11 +5,11 @@
 
 use std::sync::Arc;
 
-use proptest::prelude::*;
 use propbet_bemt::{
     solve_point, solve_points, Convergence, Discretization, Fluid, OperatingPoint, QpropAirfoil, QpropBlade,
     QpropCoefficients, Rotor, SolverOptions, Station,
 };
+use proptest::prelude::*;
 
 fn cam6x3() -> Rotor {
     // props/cam6x3/cam6x3.qprop: r, chord [in], beta [deg]; global coefficients.
@@ -37,9 +37,15 @@ fn cam6x3() -> Rotor {
 
 fn finite(p: &propbet_bemt::PointResult) -> bool {
     let mut v = vec![p.thrust, p.torque, p.power, p.eta, p.dv, p.cl_avg, p.cd_avg];
-    v.extend([p.j, p.ct, p.cp, p.cq, p.adv_qprop, p.ct_qprop, p.cp_qprop].into_iter().flatten());
+    v.extend(
+        [p.j, p.ct, p.cp, p.cq, p.adv_qprop, p.ct_qprop, p.cp_qprop]
+            .into_iter()
+            .flatten(),
+    );
     for s in &p.stations {
-        v.extend([s.alpha, s.cl, s.cd, s.re, s.mach, s.w, s.wa, s.wt, s.va, s.vt, s.gamma, s.dt_dr, s.dq_dr]);
+        v.extend([
+            s.alpha, s.cl, s.cd, s.re, s.mach, s.w, s.wa, s.wt, s.va, s.vt, s.gamma, s.dt_dr, s.dq_dr,
+        ]);
     }
     v.iter().all(|x| x.is_finite())
 }
@@ -133,7 +139,12 @@ fn awkward_operating_points_are_defined_and_flagged() {
     // Q = -0.4735E-02 N m here (tests/reference/qprop/cam6x3_Vsweep_rpm16000.out; our default
     // reading differs from QPROP's only in REref, which is uniform on this prop).
     let p = solve_point(&rotor, &fluid, OperatingPoint::from_rpm(28.0, 16000.0), &keep());
-    assert!((p.thrust + 1.601).abs() < 5e-4 && (p.torque + 0.4735e-2).abs() < 5e-7, "T = {}, Q = {}", p.thrust, p.torque);
+    assert!(
+        (p.thrust + 1.601).abs() < 5e-4 && (p.torque + 0.4735e-2).abs() < 5e-7,
+        "T = {}, Q = {}",
+        p.thrust,
+        p.torque
+    );
 }
 
 #[test]
@@ -148,7 +159,12 @@ fn zero_chord_station_carries_no_load() {
         aero: Arc::new(QpropAirfoil::new(k)),
     });
     rotor.validate().unwrap();
-    let p = solve_point(&rotor, &Fluid::default(), OperatingPoint::from_rpm(5.0, 9000.0), &keep());
+    let p = solve_point(
+        &rotor,
+        &Fluid::default(),
+        OperatingPoint::from_rpm(5.0, 9000.0),
+        &keep(),
+    );
     assert!(finite(&p));
     let last = p.stations.last().unwrap();
     assert_eq!(last.convergence, Convergence::ZeroChord);
@@ -160,7 +176,15 @@ fn tip_loss_switch_removes_the_factor() {
     let rotor = cam6x3();
     let op = OperatingPoint::from_rpm(5.0, 10000.0);
     let with = solve_point(&rotor, &Fluid::default(), op, &keep());
-    let without = solve_point(&rotor, &Fluid::default(), op, &SolverOptions { tip_loss: false, ..keep() });
+    let without = solve_point(
+        &rotor,
+        &Fluid::default(),
+        op,
+        &SolverOptions {
+            tip_loss: false,
+            ..keep()
+        },
+    );
     assert!(without.stations.iter().all(|s| s.f_tip == 1.0));
     assert!(with.stations.last().unwrap().f_tip < 0.8);
     assert!(without.thrust > with.thrust);
@@ -174,7 +198,11 @@ fn bad_rotors_are_rejected() {
     assert!(r.validate().unwrap_err().to_string().contains("radii must increase"));
     let mut r = good.clone();
     r.stations[3].chord = -0.01;
-    assert!(r.validate().unwrap_err().to_string().contains("chord must not be negative"));
+    assert!(r
+        .validate()
+        .unwrap_err()
+        .to_string()
+        .contains("chord must not be negative"));
     let mut r = good.clone();
     r.stations[3].beta = f64::NAN;
     assert!(r.validate().unwrap_err().to_string().contains("not a finite number"));

@@ -25,7 +25,7 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
-    Predict(predict::PredictArgs),
+    Predict(Box<predict::PredictArgs>),
     /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
     Prop(prop::PropArgs),
 }

@@ -30,22 +30,6 @@ pub fn round_sig(v: f64, digits: i32) -> f64 {
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn ten_significant_digits() {
-        let mut s = String::new();
-        for v in [6000.000000000001, 0.19999999999999998, 2.0319999976781014, -1.5e-7, 0.0] {
-            push_num(&mut s, Some(v));
-            s.push(' ');
-        }
-        push_num(&mut s, None);
-        assert_eq!(s, "6000.0 0.2 2.031999998 -1.5e-7 0.0 ");
-    }
-}
-
 /// Writes `bytes` to `path` atomically, refusing to replace any of `inputs`.
 pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[&Path]) -> Result<()> {
     if let Ok(target) = path.canonicalize() {
@@ -61,8 +45,10 @@ pub fn write_atomic(path: &Path, bytes: &[u8], inputs: &[&Path]) -> Result<()> {
     };
     let mut tmp = tempfile::NamedTempFile::new_in(dir)
         .with_context(|| format!("{}: cannot create a file in {}", path.display(), dir.display()))?;
-    tmp.write_all(bytes).with_context(|| format!("{}: write failed", path.display()))?;
-    tmp.persist(path).with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
+    tmp.write_all(bytes)
+        .with_context(|| format!("{}: write failed", path.display()))?;
+    tmp.persist(path)
+        .with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
     Ok(())
 }
 
@@ -75,5 +61,21 @@ pub fn emit(path: Option<&Path>, bytes: &[u8], inputs: &[&Path]) -> Result<()> {
             out.write_all(bytes).context("writing to standard output")?;
             out.flush().context("writing to standard output")
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ten_significant_digits() {
+        let mut s = String::new();
+        for v in [6000.000000000001, 0.19999999999999998, 2.0319999976781014, -1.5e-7, 0.0] {
+            push_num(&mut s, Some(v));
+            s.push(' ');
+        }
+        push_num(&mut s, None);
+        assert_eq!(s, "6000.0 0.2 2.031999998 -1.5e-7 0.0 ");
     }
 }

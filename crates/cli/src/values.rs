@@ -70,7 +70,10 @@ fn split_unit(text: &str) -> Option<(f64, &str)> {
         .unwrap_or(t.len());
     // An exponent marker followed by letters is a unit, not an exponent ("5e" never occurs).
     let (num, unit) = t.split_at(k);
-    num.parse::<f64>().ok().filter(|v| v.is_finite()).map(|v| (v, unit.trim()))
+    num.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .map(|v| (v, unit.trim()))
 }
 
 /// A temperature with a unit suffix (`15C`, `288.15K`, `59F`) [K].
@@ -149,7 +152,10 @@ mod tests {
         assert!((parse_temperature("15C").unwrap() - 288.15).abs() < 1e-12);
         assert!((parse_temperature("59F").unwrap() - 288.15).abs() < 1e-9);
         assert!(parse_temperature("15").is_err());
-        assert!(parse_temperature("15Q").unwrap_err().to_string().contains("unknown temperature unit 'Q'"));
+        assert!(parse_temperature("15Q")
+            .unwrap_err()
+            .to_string()
+            .contains("unknown temperature unit 'Q'"));
         assert_eq!(parse_pressure("1013.25hPa").unwrap(), 101325.0);
         assert_eq!(parse_pressure("101325").unwrap(), 101325.0);
         assert!(parse_pressure("1atm").is_err());

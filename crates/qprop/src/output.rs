@@ -212,6 +212,9 @@ mod tests {
 
     #[test]
     fn not_an_output() {
-        assert_eq!(parse_output("hello").unwrap_err(), ParseOutputError::MissingHeader("#   rho ="));
+        assert_eq!(
+            parse_output("hello").unwrap_err(),
+            ParseOutputError::MissingHeader("#   rho =")
+        );
     }
 }

@@ -23,9 +23,18 @@ const RUNS: &[(&str, &str)] = &[
     ("qprop cam6x3 null 5 12000 0 -4,4,2", "cam6x3_dbeta_sweep.out"),
     ("qprop apc8x6 null 10 6000", "apc8x6_point_V10_rpm6000.out"),
     ("qprop apc8x6 null 0,25/26 6000", "apc8x6_Vsweep_rpm6000.out"),
-    ("qprop photofoil_8x4.5_noR null 0 9000", "photofoil_8x4.5_noR_point_V0_rpm9000.out"),
-    ("qprop photofoil_8x4.5_noR null 0 3000,12000/10", "photofoil_8x4.5_noR_rpmsweep_V0.out"),
-    ("qprop photofoil_8x4.5 null 0 3000,12000/10", "photofoil_8x4.5_asgiven_rpmsweep_V0.out"),
+    (
+        "qprop photofoil_8x4.5_noR null 0 9000",
+        "photofoil_8x4.5_noR_point_V0_rpm9000.out",
+    ),
+    (
+        "qprop photofoil_8x4.5_noR null 0 3000,12000/10",
+        "photofoil_8x4.5_noR_rpmsweep_V0.out",
+    ),
+    (
+        "qprop photofoil_8x4.5 null 0 3000,12000/10",
+        "photofoil_8x4.5_asgiven_rpmsweep_V0.out",
+    ),
 ];
 
 /// Summary columns that depend only on the propeller (the others are QPROP's motor model).
@@ -40,7 +49,8 @@ impl Mismatches {
     /// the windmill point of apc8x6 at 20 m/s, where Q = -3.1e-4 N m is a near-cancellation).
     fn check(&mut self, what: &str, printed: Printed, ours: f64) {
         if (ours - printed.value).abs() > 0.5 * printed.unit + 2e-6 * printed.value.abs() {
-            self.0.push(format!("{what}: QPROP printed {} , propbet {ours:.6e}", printed.value));
+            self.0
+                .push(format!("{what}: QPROP printed {} , propbet {ours:.6e}", printed.value));
         }
     }
 }
@@ -52,14 +62,24 @@ fn reproduces_every_rpm_driven_qprop_run() {
     let mut compared = 0usize;
     let commands = std::fs::read_to_string(dir.join("COMMANDS.txt")).unwrap();
     for (cmd, out_file) in RUNS {
-        assert!(commands.lines().any(|l| l.trim() == *cmd), "{cmd} is not in COMMANDS.txt");
+        assert!(
+            commands.lines().any(|l| l.trim() == *cmd),
+            "{cmd} is not in COMMANDS.txt"
+        );
         let args: Vec<&str> = cmd.split_whitespace().collect();
         let (prop, _) = parse_prop(&std::fs::read_to_string(dir.join(args[1])).unwrap()).unwrap();
         let out = parse_output(&std::fs::read_to_string(dir.join(out_file)).unwrap()).unwrap();
-        let fluid = Fluid { rho: out.rho, mu: out.mu, a: out.a };
+        let fluid = Fluid {
+            rho: out.rho,
+            mu: out.mu,
+            a: out.a,
+        };
         let rotor = prop
             .to_blade(RadiusReading::Qprop122)
-            .to_rotor(Discretization { stations: 25, qprop_reref_quirk: true })
+            .to_rotor(Discretization {
+                stations: 25,
+                qprop_reref_quirk: true,
+            })
             .unwrap();
         let speeds = qprop_sequence(args[3]).unwrap();
         let rpms = qprop_sequence(args[4]).unwrap();
@@ -76,7 +96,9 @@ fn reproduces_every_rpm_driven_qprop_run() {
                         ..SolverOptions::default()
                     };
                     let p = solve_point(&rotor, &fluid, OperatingPoint::from_rpm(v, rpm), &opts);
-                    let row = rows.next().unwrap_or_else(|| panic!("{out_file}: fewer rows than points"));
+                    let row = rows
+                        .next()
+                        .unwrap_or_else(|| panic!("{out_file}: fewer rows than points"));
                     let effprop = if p.power != 0.0 { p.thrust * v / p.power } else { 0.0 };
                     let ours: [f64; 19] = [
                         v,
@@ -143,5 +165,10 @@ fn reproduces_every_rpm_driven_qprop_run() {
         assert!(rows.next().is_none(), "{out_file}: more rows than points");
     }
     assert!(compared > 2500, "compared only {compared} numbers");
-    assert!(bad.0.is_empty(), "{} of {compared} numbers differ:\n{}", bad.0.len(), bad.0.join("\n"));
+    assert!(
+        bad.0.is_empty(),
+        "{} of {compared} numbers differ:\n{}",
+        bad.0.len(),
+        bad.0.join("\n")
+    );
 }

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Sets up a fresh Debian machine for propbet: installs the Debian packages it needs
+# (scripts/debian-packages.txt), checks the Rust toolchain, and builds the release binary.
+# Usage: scripts/setup.sh            install + build
+#        scripts/setup.sh --no-build install only (CI)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+
+missing=()
+while read -r pkg; do
+  case "$pkg" in ''|'#'*) continue ;; esac
+  dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" || missing+=("$pkg")
+done < scripts/debian-packages.txt
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "setup: installing Debian packages: ${missing[*]}"
+  need_root apt-get update -qq
+  need_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}"
+fi
+
+required=$(sed -n 's/^rust-version *= *"\(.*\)"/\1/p' Cargo.toml)
+if ! command -v cargo >/dev/null 2>&1; then
+  echo "setup: no Rust toolchain found. Install Rust $required or newer with rustup" >&2
+  echo "       (https://rustup.rs), then run this script again." >&2
+  exit 2
+fi
+have=$(rustc --version | awk '{print $2}')
+if [ "$(printf '%s\n%s\n' "$required" "$have" | sort -V | head -n1)" != "$required" ]; then
+  echo "setup: rustc $have is older than the required $required; run 'rustup update'" >&2
+  exit 2
+fi
+for comp in rustfmt clippy; do
+  if ! cargo "${comp/rustfmt/fmt}" --version >/dev/null 2>&1; then
+    command -v rustup >/dev/null 2>&1 && rustup component add "$comp"
+  fi
+done
+
+if [ "${1:-}" != "--no-build" ]; then
+  cargo build --release --locked -p propbet-cli
+  echo "setup: built target/release/propbet"
+fi
