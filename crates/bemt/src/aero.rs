@@ -47,6 +47,11 @@ pub trait SectionAero: Send + Sync + std::fmt::Debug {
     /// Zero-lift angle of attack [rad]; QPROP starts its Newton iteration at
     /// `psi = beta - alpha_zero_lift` when that exceeds the geometric inflow angle.
     fn alpha_zero_lift(&self) -> f64;
+    /// This section as QPROP's parametric model, if it is one: the solver then takes its
+    /// vectorised path (four stations at a time).
+    fn as_qprop(&self) -> Option<&QpropAirfoil> {
+        None
+    }
 }
 
 /// Cap on the local M^2 used for Prandtl-Glauert and drag rise (QPROP's `MSQMAX`).
@@ -201,6 +206,10 @@ impl SectionAero for QpropAirfoil {
 
     fn alpha_zero_lift(&self) -> f64 {
         -self.coeffs.cl0 / self.coeffs.cl_a
+    }
+
+    fn as_qprop(&self) -> Option<&QpropAirfoil> {
+        Some(self)
     }
 }
 

@@ -12,6 +12,7 @@
 pub mod aero;
 pub mod fluid;
 pub mod rotor;
+mod simd;
 pub mod solve;
 pub mod spline;
 pub mod sweep;

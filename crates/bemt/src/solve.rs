@@ -203,16 +203,33 @@ pub struct PointResult {
 /// Solves one operating point.
 ///
 /// The rotor must satisfy [`Rotor::validate`]; the operating point must be finite with a
-/// non-negative rotation rate (the CLI checks user input before this point).
+/// non-negative rotation rate (the CLI checks user input before this point). For many points
+/// use [`crate::solve_points`], which prepares the rotor once.
 pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> PointResult {
-    let ctx = Ctx {
+    crate::simd::solve_point_prepared(rotor, crate::simd::Prepared::new(rotor).as_ref(), fluid, op, opts)
+}
+
+/// The context of one operating point for the station solves.
+pub(crate) fn context(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> Ctx {
+    Ctx {
         blades: rotor.blades,
         tip: rotor.tip_radius,
         v: op.v,
         omega: op.omega,
         fluid: *fluid,
         opts: *opts,
-    };
+    }
+}
+
+/// Integrates station results into the point result (QPROP `TQCALC` sums and qprop.f
+/// coefficients, midpoint rule).
+pub(crate) fn integrate(
+    rotor: &Rotor,
+    fluid: &Fluid,
+    op: OperatingPoint,
+    opts: &SolverOptions,
+    results: impl Iterator<Item = StationResult>,
+) -> PointResult {
     let mut thrust = 0.0;
     let mut torque = 0.0;
     let mut wsum = 0.0;
@@ -220,8 +237,7 @@ pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &Solv
     let mut cdsum = 0.0;
     let mut not_converged = 0;
     let mut stations = Vec::with_capacity(if opts.keep_stations { rotor.stations.len() } else { 0 });
-    for st in &rotor.stations {
-        let s = solve_station(st, &ctx);
+    for (st, s) in rotor.stations.iter().zip(results) {
         thrust += s.dt_dr * st.dr;
         torque += s.dq_dr * st.dr;
         let wgt = s.w * s.w * st.chord * st.dr;
@@ -284,30 +300,30 @@ pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &Solv
 
 /// Everything about the operating point a station solve needs.
 #[derive(Debug, Clone, Copy)]
-struct Ctx {
-    blades: f64,
-    tip: f64,
-    v: f64,
-    omega: f64,
-    fluid: Fluid,
-    opts: SolverOptions,
+pub(crate) struct Ctx {
+    pub(crate) blades: f64,
+    pub(crate) tip: f64,
+    pub(crate) v: f64,
+    pub(crate) omega: f64,
+    pub(crate) fluid: Fluid,
+    pub(crate) opts: SolverOptions,
 }
 
 /// The state at one value of psi, with d(residual)/d(psi).
 #[derive(Debug, Clone, Copy)]
-struct Eval {
-    res: f64,
-    res_psi: f64,
-    wa: f64,
-    wt: f64,
-    w: f64,
-    msq: f64,
-    alpha: f64,
-    cl: f64,
-    stalled: bool,
-    f_tip: f64,
-    lambda_w: f64,
-    gamma: f64,
+pub(crate) struct Eval {
+    pub(crate) res: f64,
+    pub(crate) res_psi: f64,
+    pub(crate) wa: f64,
+    pub(crate) wt: f64,
+    pub(crate) w: f64,
+    pub(crate) msq: f64,
+    pub(crate) alpha: f64,
+    pub(crate) cl: f64,
+    pub(crate) stalled: bool,
+    pub(crate) f_tip: f64,
+    pub(crate) lambda_w: f64,
+    pub(crate) gamma: f64,
 }
 
 /// Residual and its analytic derivative at `psi` (QPROP `GVCALC`, one Newton pass).
@@ -388,7 +404,7 @@ fn eval(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, u: f64, psi: f64) ->
     }
 }
 
-fn solve_station(st: &Station, c: &Ctx) -> StationResult {
+pub(crate) fn solve_station(st: &Station, c: &Ctx) -> StationResult {
     let beta = st.beta + c.opts.dbeta;
     let ua = c.v;
     let ut = c.omega * st.r;
@@ -492,7 +508,7 @@ impl CostFunction for Residual<'_> {
 }
 
 /// Drag and loads at a solved state (QPROP `TQCALC`).
-fn finish(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, e: &Eval, conv: Convergence) -> StationResult {
+pub(crate) fn finish(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, e: &Eval, conv: Convergence) -> StationResult {
     let rho = c.fluid.rho;
     let re = rho * e.w * st.chord / c.fluid.mu;
     let mach_drag = e.msq.sqrt().max(1e-8);

@@ -6,14 +6,16 @@ use rayon::prelude::*;
 
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
-use crate::solve::{solve_point, OperatingPoint, PointResult, SolverOptions};
+use crate::simd::{solve_point_prepared, Prepared};
+use crate::solve::{OperatingPoint, PointResult, SolverOptions};
 
 /// Solves every point, in parallel, returning results in the order of `points`.
 pub fn solve_points(rotor: &Rotor, fluid: &Fluid, points: &[OperatingPoint], opts: &SolverOptions) -> Vec<PointResult> {
+    let prepared = Prepared::new(rotor);
     points
         .par_iter()
         .with_min_len(16)
-        .map(|&op| solve_point(rotor, fluid, op, opts))
+        .map(|&op| solve_point_prepared(rotor, prepared.as_ref(), fluid, op, opts))
         .collect()
 }
 

@@ -240,9 +240,19 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
 pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
 
 fn summary_csv(results: &[PointResult]) -> String {
-    let mut s = String::with_capacity(200 * results.len() + 200);
+    use rayon::prelude::*;
+    let chunks: Vec<String> = results.par_chunks(512).map(summary_rows).collect();
+    let mut s = String::with_capacity(chunks.iter().map(String::len).sum::<usize>() + 200);
     s.push_str(SUMMARY_HEADER);
     s.push('\n');
+    for c in &chunks {
+        s.push_str(c);
+    }
+    s
+}
+
+fn summary_rows(results: &[PointResult]) -> String {
+    let mut s = String::with_capacity(200 * results.len());
     for p in results {
         let cells = [
             Some(p.rpm),
