@@ -48,7 +48,7 @@ pub trait SectionAero: Send + Sync + std::fmt::Debug {
     /// `psi = beta - alpha_zero_lift` when that exceeds the geometric inflow angle.
     fn alpha_zero_lift(&self) -> f64;
     /// This section as QPROP's parametric model, if it is one: the solver then takes its
-    /// vectorised path (four stations at a time).
+    /// vectorised path (eight stations at a time).
     fn as_qprop(&self) -> Option<&QpropAirfoil> {
         None
     }

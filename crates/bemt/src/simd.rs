@@ -1,4 +1,4 @@
-//! The vectorised station solve: four stations at a time in `f64x4` lanes (crate `wide`), for
+//! The vectorised station solve: eight stations at a time in `f64x8` lanes (crate `wide`), for
 //! rotors whose sections all use QPROP's parametric model.
 //!
 //! It is the same computation as [`crate::solve`]'s scalar `eval` and Newton loop (QPROP's
@@ -8,7 +8,10 @@
 //! Results agree with the scalar path to rounding (the vector transcendental functions differ
 //! from libm's in the last bits).
 
-use wide::f64x4;
+use wide::f64x8;
+
+/// Stations per vector.
+const LANES: usize = 8;
 
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
@@ -17,22 +20,22 @@ use crate::solve::{
     StationResult,
 };
 
-/// Four stations' constants.
+/// One vector's worth of stations' constants.
 #[derive(Debug, Clone)]
 struct Group {
     /// Station indices of the lanes (padding lanes repeat the last station).
-    index: [usize; 4],
+    index: [usize; 8],
     /// Lanes that are real stations.
     lanes: usize,
-    r: f64x4,
-    chord: f64x4,
-    beta: f64x4,
-    cl0: f64x4,
-    cl_a: f64x4,
-    cl_min: f64x4,
-    cl_max: f64x4,
+    r: f64x8,
+    chord: f64x8,
+    beta: f64x8,
+    cl0: f64x8,
+    cl_a: f64x8,
+    cl_min: f64x8,
+    cl_max: f64x8,
     /// CL0 / CL_a [rad].
-    a0: f64x4,
+    a0: f64x8,
 }
 
 /// A rotor prepared for the vectorised path.
@@ -55,13 +58,13 @@ impl Prepared {
             }
             models.push(*s.aero.as_qprop()?);
         }
-        let groups = (0..n.div_ceil(4))
+        let groups = (0..n.div_ceil(LANES))
             .map(|g| {
-                let index: [usize; 4] = std::array::from_fn(|k| (4 * g + k).min(n - 1));
-                let lane = |f: &dyn Fn(usize) -> f64| f64x4::new(index.map(f));
+                let index: [usize; 8] = std::array::from_fn(|k| (LANES * g + k).min(n - 1));
+                let lane = |f: &dyn Fn(usize) -> f64| f64x8::new(index.map(f));
                 Group {
                     index,
-                    lanes: (n - 4 * g).min(4),
+                    lanes: (n - LANES * g).min(LANES),
                     r: lane(&|i| rotor.stations[i].r),
                     chord: lane(&|i| rotor.stations[i].chord),
                     beta: lane(&|i| rotor.stations[i].beta),
@@ -110,33 +113,33 @@ pub(crate) fn solve_point_prepared(
 
 /// Vector state at one psi per lane (see `solve::eval`).
 struct VEval {
-    res: f64x4,
-    res_psi: f64x4,
-    wa: f64x4,
-    wt: f64x4,
-    w: f64x4,
-    msq: f64x4,
-    alpha: f64x4,
-    cl: f64x4,
-    stalled: f64x4,
-    f_tip: f64x4,
-    lambda_w: f64x4,
-    gamma: f64x4,
+    res: f64x8,
+    res_psi: f64x8,
+    wa: f64x8,
+    wt: f64x8,
+    w: f64x8,
+    msq: f64x8,
+    alpha: f64x8,
+    cl: f64x8,
+    stalled: f64x8,
+    f_tip: f64x8,
+    lambda_w: f64x8,
+    gamma: f64x8,
 }
 
 #[inline]
-fn select(mask: f64x4, yes: f64x4, no: f64x4) -> f64x4 {
+fn select(mask: f64x8, yes: f64x8, no: f64x8) -> f64x8 {
     mask.bitselect(yes, no)
 }
 
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn veval(g: &Group, c: &Ctx, beta: f64x4, ua: f64x4, ut: f64x4, u: f64x4, psi0: f64x4, psi: f64x4) -> VEval {
-    let zero = f64x4::splat(0.0);
-    let one = f64x4::splat(1.0);
-    let half = f64x4::splat(0.5);
-    let two_pi = f64x4::splat(2.0 / std::f64::consts::PI);
-    let tip = f64x4::splat(c.tip);
+fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: f64x8, psi: f64x8) -> VEval {
+    let zero = f64x8::splat(0.0);
+    let one = f64x8::splat(1.0);
+    let half = f64x8::splat(0.5);
+    let two_pi = f64x8::splat(2.0 / std::f64::consts::PI);
+    let tip = f64x8::splat(c.tip);
     let (sinp, cosp) = psi.sin_cos();
     let wa = half * ua + half * u * sinp;
     let wa_p = half * u * cosp;
@@ -150,9 +153,9 @@ fn veval(g: &Group, c: &Ctx, beta: f64x4, ua: f64x4, ut: f64x4, u: f64x4, psi0: 
     let tsr = wt_s / wa_s * tr;
     let tsr_p = (wt_p * tr - tsr * wa_p) / wa_s;
     let (f, f_p) = if c.opts.tip_loss {
-        let k = f64x4::splat(0.5 * c.blades) * (one - g.r / tip);
-        let sign = select(tsr.simd_lt(zero), f64x4::splat(-1.0), one);
-        let farg = (k * tsr * sign).min(f64x4::splat(20.0));
+        let k = f64x8::splat(0.5 * c.blades) * (one - g.r / tip);
+        let sign = select(tsr.simd_lt(zero), f64x8::splat(-1.0), one);
+        let farg = (k * tsr * sign).min(f64x8::splat(20.0));
         let farg_tsr = k * sign;
         let fexp = (-farg).exp();
         let f = two_pi * fexp.acos();
@@ -170,8 +173,8 @@ fn veval(g: &Group, c: &Ctx, beta: f64x4, ua: f64x4, ut: f64x4, u: f64x4, psi0: 
 
     let vt = ut - wt;
     let vt_p = -wt_p;
-    let qbi = f64x4::splat(4.0 / c.blades);
-    let pi_r = f64x4::splat(std::f64::consts::PI) * g.r;
+    let qbi = f64x8::splat(4.0 / c.blades);
+    let pi_r = f64x8::splat(std::f64::consts::PI) * g.r;
     let qr = qbi * tip;
     let pir = (pi_r * pi_r + (qr * adw) * (qr * adw)).sqrt();
     let pir_p = qr * qr * adw / pir * adw_p;
@@ -184,7 +187,7 @@ fn veval(g: &Group, c: &Ctx, beta: f64x4, ua: f64x4, ut: f64x4, u: f64x4, psi0: 
     // The velocity circle passes through the origin (psi = psi0 + pi), so by the inscribed
     // angle theorem the inflow angle atan2(Wa, Wt) is (psi + psi0)/2 for |psi - psi0| < pi,
     // which saves an atan2 per lane and iteration.
-    let inside = (psi - psi0).abs().simd_lt(f64x4::splat(std::f64::consts::PI));
+    let inside = (psi - psi0).abs().simd_lt(f64x8::splat(std::f64::consts::PI));
     let phi = if inside.all() {
         half * (psi + psi0)
     } else {
@@ -192,11 +195,11 @@ fn veval(g: &Group, c: &Ctx, beta: f64x4, ua: f64x4, ut: f64x4, u: f64x4, psi0: 
     };
     let alpha = beta - phi;
     let alpha_p = (-(wt * wa_p) + wa * wt_p) / wsq;
-    let a2 = f64x4::splat(c.fluid.a * c.fluid.a);
+    let a2 = f64x8::splat(c.fluid.a * c.fluid.a);
     let msq_raw = wsq / a2;
-    let capped = msq_raw.simd_gt(f64x4::splat(crate::aero::MSQ_MAX));
-    let msq = select(capped, f64x4::splat(crate::aero::MSQ_MAX), msq_raw);
-    let msq_p = select(capped, zero, f64x4::splat(2.0) * w * w_p / a2);
+    let capped = msq_raw.simd_gt(f64x8::splat(crate::aero::MSQ_MAX));
+    let msq = select(capped, f64x8::splat(crate::aero::MSQ_MAX), msq_raw);
+    let msq_p = select(capped, zero, f64x8::splat(2.0) * w * w_p / a2);
 
     let pg = one / (one - msq).sqrt();
     let cl_inc = g.cl0 + g.cl_a * alpha;
@@ -250,30 +253,28 @@ fn lane(e: &VEval, k: usize) -> Eval {
     }
 }
 
-/// QPROP's Newton iteration on four stations at once; converged lanes are finished and stored
+/// QPROP's Newton iteration on a group of stations at once; converged lanes are finished and stored
 /// in `out`, the others are left `None` for the scalar path.
 fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, out: &mut [Option<StationResult>]) {
-    let beta = g.beta + f64x4::splat(c.opts.dbeta);
-    let ua = f64x4::splat(c.v);
-    let ut = f64x4::splat(c.omega) * g.r;
+    let beta = g.beta + f64x8::splat(c.opts.dbeta);
+    let ua = f64x8::splat(c.v);
+    let ut = f64x8::splat(c.omega) * g.r;
     let u = (ua * ua + ut * ut).sqrt();
     let psi0 = ua.atan2(ut);
     let mut psi = psi0.max(beta + g.a0);
     let tol = c.opts.tol;
-    let mut done = [false; 4];
-    let mut stop = [false; 4];
-    for k in g.lanes..4 {
-        stop[k] = true;
-    }
+    let mut done = [false; 8];
+    // Padding lanes are stopped from the start.
+    let mut stop: [bool; LANES] = std::array::from_fn(|k| k >= g.lanes);
     for iter in 1..=c.opts.max_newton {
         let e = veval(g, c, beta, ua, ut, u, psi0, psi);
         let dpsi_raw = -e.res / e.res_psi;
-        let dpsi = dpsi_raw.max(f64x4::splat(-0.1)).min(f64x4::splat(0.1));
+        let dpsi = dpsi_raw.max(f64x8::splat(-0.1)).min(f64x8::splat(0.1));
         let raw = dpsi_raw.to_array();
         let res = e.res.to_array();
         let step = dpsi.to_array();
         let mut new_psi = psi.to_array();
-        for k in 0..4 {
+        for k in 0..LANES {
             if stop[k] {
                 continue;
             }
@@ -302,7 +303,7 @@ fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, out: &mut [Option<StationResul
         if stop.iter().all(|&s| s) {
             break;
         }
-        psi = f64x4::new(new_psi);
+        psi = f64x8::new(new_psi);
     }
 }
 
@@ -360,7 +361,7 @@ mod tests {
     fn vector_and_scalar_paths_agree() {
         let rotor = rotor();
         let prepared = Prepared::new(&rotor).unwrap();
-        assert_eq!(prepared.groups.len(), 7);
+        assert_eq!(prepared.groups.len(), 25usize.div_ceil(LANES));
         let fluid = Fluid::default();
         let mut worst: f64 = 0.0;
         for rpm in [1500.0, 6000.0, 14000.0, 30000.0, 60000.0] {
