@@ -1,8 +1,8 @@
 //! The vectorised station solve: eight stations at a time in `f64x8` lanes (crate `wide`), for
 //! rotors whose sections all use QPROP's parametric model.
 //!
-//! It is the same computation as [`crate::solve`]'s scalar `eval` and Newton loop (QPROP's
-//! start, step limit and exit), lane by lane. A lane that does not converge within the Newton
+//! It is the same computation as [`crate::solve`]'s scalar `eval`, Newton loop (QPROP's
+//! start, step limit and exit), drag law and loads, lane by lane. A lane that does not converge within the Newton
 //! budget, or meets anything non-finite, is solved again by the scalar path, which has the
 //! bracketed fallback; so are whole points without rotation or with a zero-chord station.
 //! Results agree with the scalar path to rounding (the vector transcendental functions differ
@@ -16,8 +16,8 @@ const LANES: usize = 8;
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
 use crate::solve::{
-    context, finish, integrate, solve_station, Convergence, Ctx, Eval, OperatingPoint, PointResult, SolverOptions,
-    StationResult,
+    context, integrate, point_result, solve_station, Convergence, Ctx, OperatingPoint, PointResult, SolverOptions,
+    StationResult, Sums,
 };
 
 /// One vector's worth of stations' constants.
@@ -36,6 +36,16 @@ struct Group {
     cl_max: f64x8,
     /// CL0 / CL_a [rad].
     a0: f64x8,
+    dr: f64x8,
+    cd0: f64x8,
+    cd2u: f64x8,
+    cd2l: f64x8,
+    clcd0: f64x8,
+    re_ref: f64x8,
+    re_exp: f64x8,
+    mcrit: f64x8,
+    /// (CLCD0 - CL0) / CL_a [rad].
+    acd0: f64x8,
 }
 
 /// A rotor prepared for the vectorised path.
@@ -73,6 +83,15 @@ impl Prepared {
                     cl_min: lane(&|i| models[i].coeffs.cl_min),
                     cl_max: lane(&|i| models[i].coeffs.cl_max),
                     a0: lane(&|i| models[i].coeffs.cl0 / models[i].coeffs.cl_a),
+                    dr: lane(&|i| rotor.stations[i].dr),
+                    cd0: lane(&|i| models[i].coeffs.cd0),
+                    cd2u: lane(&|i| models[i].coeffs.cd2u),
+                    cd2l: lane(&|i| models[i].coeffs.cd2l),
+                    clcd0: lane(&|i| models[i].coeffs.clcd0),
+                    re_ref: lane(&|i| models[i].coeffs.re_ref),
+                    re_exp: lane(&|i| models[i].coeffs.re_exp),
+                    mcrit: lane(&|i| models[i].mcrit),
+                    acd0: lane(&|i| (models[i].coeffs.clcd0 - models[i].coeffs.cl0) / models[i].coeffs.cl_a),
                 }
             })
             .collect();
@@ -91,15 +110,17 @@ pub(crate) fn solve_point_prepared(
     let ctx = context(rotor, fluid, op, opts);
     match prepared {
         Some(p) if op.omega > 0.0 => {
-            let mut results: Vec<Option<StationResult>> = vec![None; rotor.stations.len()];
+            let mut sums = Sums::default();
+            let mut stations: Vec<Option<StationResult>> = if opts.keep_stations {
+                vec![None; rotor.stations.len()]
+            } else {
+                Vec::new()
+            };
             for g in &p.groups {
-                solve_group(rotor, g, &ctx, &mut results);
+                solve_group(rotor, g, &ctx, &mut sums, &mut stations);
             }
-            let all = results
-                .into_iter()
-                .zip(&rotor.stations)
-                .map(|(r, st)| r.unwrap_or_else(|| solve_station(st, &ctx)));
-            integrate(rotor, fluid, op, opts, all)
+            let stations = stations.into_iter().flatten().collect();
+            point_result(rotor, fluid, op, &sums, stations)
         }
         _ => integrate(
             rotor,
@@ -236,74 +257,150 @@ fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: 
     }
 }
 
-fn lane(e: &VEval, k: usize) -> Eval {
-    Eval {
-        res: e.res.to_array()[k],
-        res_psi: e.res_psi.to_array()[k],
-        wa: e.wa.to_array()[k],
-        wt: e.wt.to_array()[k],
-        w: e.w.to_array()[k],
-        msq: e.msq.to_array()[k],
-        alpha: e.alpha.to_array()[k],
-        cl: e.cl.to_array()[k],
-        stalled: e.stalled.to_array()[k].to_bits() != 0,
-        f_tip: e.f_tip.to_array()[k],
-        lambda_w: e.lambda_w.to_array()[k],
-        gamma: e.gamma.to_array()[k],
+impl VEval {
+    fn zero() -> Self {
+        let z = f64x8::splat(0.0);
+        Self {
+            res: z,
+            res_psi: z,
+            wa: z,
+            wt: z,
+            w: z,
+            msq: z,
+            alpha: z,
+            cl: z,
+            stalled: z,
+            f_tip: z,
+            lambda_w: z,
+            gamma: z,
+        }
+    }
+
+    /// Takes `other`'s lanes where `mask` is set.
+    fn blend(&mut self, mask: f64x8, other: &VEval) {
+        self.res = select(mask, other.res, self.res);
+        self.res_psi = select(mask, other.res_psi, self.res_psi);
+        self.wa = select(mask, other.wa, self.wa);
+        self.wt = select(mask, other.wt, self.wt);
+        self.w = select(mask, other.w, self.w);
+        self.msq = select(mask, other.msq, self.msq);
+        self.alpha = select(mask, other.alpha, self.alpha);
+        self.cl = select(mask, other.cl, self.cl);
+        self.stalled = select(mask, other.stalled, self.stalled);
+        self.f_tip = select(mask, other.f_tip, self.f_tip);
+        self.lambda_w = select(mask, other.lambda_w, self.lambda_w);
+        self.gamma = select(mask, other.gamma, self.gamma);
     }
 }
 
-/// QPROP's Newton iteration on a group of stations at once; converged lanes are finished and stored
-/// in `out`, the others are left `None` for the scalar path.
-fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, out: &mut [Option<StationResult>]) {
+/// QPROP's Newton iteration on a group of stations at once, then drag and loads (QPROP
+/// `CDFUN`, `DCDFUN`, `TQCALC`) for the converged lanes, added to `sums`; lanes that did not
+/// converge are solved by the scalar path. With `stations` non-empty, each station's result is
+/// stored there.
+fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mut [Option<StationResult>]) {
+    let zero = f64x8::splat(0.0);
+    let half = f64x8::splat(0.5);
     let beta = g.beta + f64x8::splat(c.opts.dbeta);
     let ua = f64x8::splat(c.v);
     let ut = f64x8::splat(c.omega) * g.r;
     let u = (ua * ua + ut * ut).sqrt();
     let psi0 = ua.atan2(ut);
     let mut psi = psi0.max(beta + g.a0);
-    let tol = c.opts.tol;
-    let mut done = [false; 8];
-    // Padding lanes are stopped from the start.
-    let mut stop: [bool; LANES] = std::array::from_fn(|k| k >= g.lanes);
+    let tol = f64x8::splat(c.opts.tol);
+    let all = f64x8::splat(0.0).simd_eq(zero);
+    let mut active = f64x8::new(std::array::from_fn(|k| if k < g.lanes { 0.0 } else { 1.0 })).simd_eq(zero);
+    let mut conv = !all;
+    let mut iterations = zero;
+    let mut fin = VEval::zero();
     for iter in 1..=c.opts.max_newton {
         let e = veval(g, c, beta, ua, ut, u, psi0, psi);
         let dpsi_raw = -e.res / e.res_psi;
+        let finite = dpsi_raw.is_finite() & e.res.is_finite();
         let dpsi = dpsi_raw.max(f64x8::splat(-0.1)).min(f64x8::splat(0.1));
-        let raw = dpsi_raw.to_array();
-        let res = e.res.to_array();
-        let step = dpsi.to_array();
-        let mut new_psi = psi.to_array();
-        for k in 0..LANES {
-            if stop[k] {
-                continue;
-            }
-            if !raw[k].is_finite() || !res[k].is_finite() {
-                stop[k] = true; // scalar path takes over
-            } else if step[k].abs() < tol {
-                stop[k] = true;
-                done[k] = true;
-                let i = g.index[k];
-                let ua_k = c.v;
-                let ut_k = c.omega * rotor.stations[i].r;
-                let beta_k = rotor.stations[i].beta + c.opts.dbeta;
-                out[i] = Some(finish(
-                    &rotor.stations[i],
-                    c,
-                    beta_k,
-                    ua_k,
-                    ut_k,
-                    &lane(&e, k),
-                    Convergence::Newton { iterations: iter },
-                ));
-            } else {
-                new_psi[k] += step[k];
-            }
+        let newly = active & finite & dpsi.abs().simd_lt(tol);
+        if newly.any() {
+            fin.blend(newly, &e);
+            iterations = select(newly, f64x8::splat(iter as f64), iterations);
+            conv |= newly;
         }
-        if stop.iter().all(|&s| s) {
+        // Lanes that converged or met a non-finite value stop; the latter go to the scalar path.
+        active = active & finite & !newly;
+        if !active.any() {
             break;
         }
-        psi = f64x8::new(new_psi);
+        psi = select(active, psi + dpsi, psi);
+    }
+
+    // Drag (QPROP CDFUN + DCDFUN) and loads at the converged states.
+    let rho = f64x8::splat(c.fluid.rho);
+    let re = rho * fin.w * g.chord / f64x8::splat(c.fluid.mu);
+    let mach = fin.msq.sqrt().max(f64x8::splat(1e-8));
+    let fac = (re.max(f64x8::splat(1.0)) / g.re_ref).powf_simd(g.re_exp);
+    let clb = fin.cl - g.clcd0;
+    let cd2 = select(fin.cl.simd_gt(g.clcd0), g.cd2u, g.cd2l);
+    let mut cd = (g.cd0 + cd2 * clb * clb) * fac;
+    let dm = mach - g.mcrit;
+    cd += select(mach.simd_gt(g.mcrit), f64x8::splat(10.0) * dm * dm * dm, zero);
+    let stalled = fin.stalled.simd_ne(zero);
+    if (stalled & conv).any() {
+        let sa = (fin.alpha - g.acd0).sin_cos().0;
+        cd += select(stalled, f64x8::splat(2.0) * sa * sa, zero);
+    }
+    let hrc = half * rho * g.chord;
+    let fa = hrc * fin.w * (fin.cl * fin.wt - cd * fin.wa);
+    let ft = hrc * fin.w * (fin.cl * fin.wa + cd * fin.wt);
+    let blades = f64x8::splat(c.blades);
+    let dt_dr = blades * fa;
+    let dq_dr = blades * ft * g.r;
+    let conv = conv & dt_dr.is_finite() & dq_dr.is_finite() & cd.is_finite();
+    let wgt = fin.w * fin.w * g.chord * g.dr;
+    sums.thrust += select(conv, dt_dr * g.dr, zero).reduce_add();
+    sums.torque += select(conv, dq_dr * g.dr, zero).reduce_add();
+    sums.wsum += select(conv, wgt, zero).reduce_add();
+    sums.clsum += select(conv, wgt * fin.cl, zero).reduce_add();
+    sums.cdsum += select(conv, wgt * cd, zero).reduce_add();
+
+    let conv_lanes = conv.to_bitmask();
+    let keep = !stations.is_empty();
+    for k in 0..g.lanes {
+        let i = g.index[k];
+        let st = &rotor.stations[i];
+        if conv_lanes & (1 << k) == 0 {
+            let s = solve_station(st, c);
+            sums.add(st, &s);
+            if keep {
+                stations[i] = Some(s);
+            }
+        } else if keep {
+            let a = |v: f64x8| v.to_array()[k];
+            let (wa, wt, res, res_psi) = (a(fin.wa), a(fin.wt), a(fin.res), a(fin.res_psi));
+            stations[i] = Some(StationResult {
+                r: st.r,
+                chord: st.chord,
+                beta: st.beta + c.opts.dbeta,
+                alpha: a(fin.alpha),
+                cl: a(fin.cl),
+                cd: a(cd),
+                re: a(re),
+                mach: a(fin.w) / c.fluid.a,
+                w: a(fin.w),
+                wa,
+                wt,
+                va: wa - c.v,
+                vt: c.omega * st.r - wt,
+                f_tip: a(fin.f_tip),
+                lambda_w: a(fin.lambda_w),
+                gamma: a(fin.gamma),
+                dt_dr: a(dt_dr),
+                dq_dr: a(dq_dr),
+                stalled: fin.stalled.to_bitmask() & (1 << k) != 0,
+                residual: res,
+                dpsi: if res_psi != 0.0 { -res / res_psi } else { 0.0 },
+                convergence: Convergence::Newton {
+                    iterations: a(iterations) as u32,
+                },
+            });
+        }
     }
 }
 

@@ -221,8 +221,33 @@ pub(crate) fn context(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &S
     }
 }
 
-/// Integrates station results into the point result (QPROP `TQCALC` sums and qprop.f
-/// coefficients, midpoint rule).
+/// Running sums of a point's station loads (midpoint rule, QPROP `TQCALC`).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Sums {
+    pub(crate) thrust: f64,
+    pub(crate) torque: f64,
+    /// Sum of W^2 c dr, and the same weighted by cl and cd (qprop.f cl_avg, cd_avg).
+    pub(crate) wsum: f64,
+    pub(crate) clsum: f64,
+    pub(crate) cdsum: f64,
+    pub(crate) not_converged: usize,
+}
+
+impl Sums {
+    pub(crate) fn add(&mut self, st: &Station, s: &StationResult) {
+        self.thrust += s.dt_dr * st.dr;
+        self.torque += s.dq_dr * st.dr;
+        let wgt = s.w * s.w * st.chord * st.dr;
+        self.wsum += wgt;
+        self.clsum += wgt * s.cl;
+        self.cdsum += wgt * s.cd;
+        if !s.convergence.is_ok() {
+            self.not_converged += 1;
+        }
+    }
+}
+
+/// Integrates station results into the point result.
 pub(crate) fn integrate(
     rotor: &Rotor,
     fluid: &Fluid,
@@ -230,27 +255,26 @@ pub(crate) fn integrate(
     opts: &SolverOptions,
     results: impl Iterator<Item = StationResult>,
 ) -> PointResult {
-    let mut thrust = 0.0;
-    let mut torque = 0.0;
-    let mut wsum = 0.0;
-    let mut clsum = 0.0;
-    let mut cdsum = 0.0;
-    let mut not_converged = 0;
+    let mut sums = Sums::default();
     let mut stations = Vec::with_capacity(if opts.keep_stations { rotor.stations.len() } else { 0 });
     for (st, s) in rotor.stations.iter().zip(results) {
-        thrust += s.dt_dr * st.dr;
-        torque += s.dq_dr * st.dr;
-        let wgt = s.w * s.w * st.chord * st.dr;
-        wsum += wgt;
-        clsum += wgt * s.cl;
-        cdsum += wgt * s.cd;
-        if !s.convergence.is_ok() {
-            not_converged += 1;
-        }
+        sums.add(st, &s);
         if opts.keep_stations {
             stations.push(s);
         }
     }
+    point_result(rotor, fluid, op, &sums, stations)
+}
+
+/// Totals and coefficients from the summed loads (qprop.f output block).
+pub(crate) fn point_result(
+    rotor: &Rotor,
+    fluid: &Fluid,
+    op: OperatingPoint,
+    sums: &Sums,
+    stations: Vec<StationResult>,
+) -> PointResult {
+    let (thrust, torque) = (sums.thrust, sums.torque);
     let rho = fluid.rho;
     let big_r = rotor.tip_radius;
     let power = torque * op.omega;
@@ -274,7 +298,7 @@ pub(crate) fn integrate(
     } else {
         (None, None, None, None, None, None, None)
     };
-    let avg = |s: f64| if wsum > 0.0 { s / wsum } else { 0.0 };
+    let avg = |s: f64| if sums.wsum > 0.0 { s / sums.wsum } else { 0.0 };
     PointResult {
         v: op.v,
         omega: op.omega,
@@ -291,9 +315,9 @@ pub(crate) fn integrate(
         ct_qprop: ctq,
         cp_qprop: cpq,
         dv,
-        cl_avg: avg(clsum),
-        cd_avg: avg(cdsum),
-        not_converged,
+        cl_avg: avg(sums.clsum),
+        cd_avg: avg(sums.cdsum),
+        not_converged: sums.not_converged,
         stations,
     }
 }
