@@ -218,12 +218,12 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
             };
             let mut s = serde_json::to_string_pretty(&doc)?;
             s.push('\n');
-            s
+            vec![s]
         }
     };
-    emit(args.out.as_deref(), body.as_bytes(), &inputs)?;
+    emit(args.out.as_deref(), &body, &inputs)?;
     if let Some(path) = &args.stations {
-        emit(Some(path), stations_csv(&results).as_bytes(), &inputs)?;
+        emit(Some(path), &[stations_csv(&results)], &inputs)?;
     }
     let failed: usize = results.iter().map(|p| p.not_converged).sum();
     if failed > 0 {
@@ -239,16 +239,12 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
 /// Column header of the summary CSV.
 pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
 
-fn summary_csv(results: &[PointResult]) -> String {
+/// The summary table as chunks of text (header first), formatted in parallel.
+fn summary_csv(results: &[PointResult]) -> Vec<String> {
     use rayon::prelude::*;
-    let chunks: Vec<String> = results.par_chunks(512).map(summary_rows).collect();
-    let mut s = String::with_capacity(chunks.iter().map(String::len).sum::<usize>() + 200);
-    s.push_str(SUMMARY_HEADER);
-    s.push('\n');
-    for c in &chunks {
-        s.push_str(c);
-    }
-    s
+    let mut chunks = vec![format!("{SUMMARY_HEADER}\n")];
+    chunks.par_extend(results.par_chunks(512).map(summary_rows));
+    chunks
 }
 
 fn summary_rows(results: &[PointResult]) -> String {

@@ -55,7 +55,7 @@ pub fn run(args: &PropArgs) -> Result<bool> {
         println!("{:.6},{:.6},{:.6},{:.4}", s.r, s.dr, s.chord, s.beta.to_degrees());
     }
     if let Some(out) = &args.write {
-        emit(Some(out), write_prop(&loaded.file).as_bytes(), &[args.file.as_path()])?;
+        emit(Some(out), &[write_prop(&loaded.file)], &[args.file.as_path()])?;
     }
     Ok(true)
 }
