@@ -27,14 +27,14 @@ fn pow10(e: i32) -> f64 {
 /// float noise of unit conversions), trailing zeros dropped, in plain notation from 1e-5 to
 /// 1e16 and exponent notation outside; an empty cell for `None`. Hand-written because it runs
 /// for every cell of a 20,000-row table and `format!` with a precision is several times slower.
-pub fn push_num(buf: &mut String, v: Option<f64>) {
+pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
     let Some(v) = v else { return };
     if v == 0.0 {
-        buf.push('0');
+        buf.push(b'0');
         return;
     }
     if !v.is_finite() {
-        buf.push_str(&v.to_string());
+        buf.extend_from_slice(v.to_string().as_bytes());
         return;
     }
     let a = v.abs();
@@ -46,11 +46,7 @@ pub fn push_num(buf: &mut String, v: Option<f64>) {
     } else if a < pow10(e10) {
         e10 -= 1;
     }
-    let scaled = if 9 - e10 >= 0 {
-        a * pow10(9 - e10)
-    } else {
-        a / pow10(e10 - 9)
-    };
+    let scaled = if 9 - e10 >= 0 { a * pow10(9 - e10) } else { a / pow10(e10 - 9) };
     let mut m = scaled.round() as u64;
     if m >= 10_000_000_000 {
         m = (m + 5) / 10;
@@ -61,37 +57,43 @@ pub fn push_num(buf: &mut String, v: Option<f64>) {
         *d = b'0' + (m % 10) as u8;
         m /= 10;
     }
-    let nd = 10 - digits.iter().rev().take_while(|&&d| d == b'0').count();
-    let digits = &digits[..nd.max(1)];
+    let nd = (10 - digits.iter().rev().take_while(|&&d| d == b'0').count()).max(1);
+    let digits = &digits[..nd];
+    let mut out = [0u8; 40];
+    let mut n = 0;
+    let mut put = |bytes: &[u8]| {
+        out[n..n + bytes.len()].copy_from_slice(bytes);
+        n += bytes.len();
+    };
     if v < 0.0 {
-        buf.push('-');
+        put(b"-");
     }
-    let push = |buf: &mut String, d: &[u8]| d.iter().for_each(|&c| buf.push(c as char));
     if (-5..16).contains(&e10) {
         if e10 >= 0 {
             let int_len = e10 as usize + 1;
-            if digits.len() <= int_len {
-                push(buf, digits);
-                (digits.len()..int_len).for_each(|_| buf.push('0'));
+            if nd <= int_len {
+                put(digits);
+                put(&b"0000000000000000"[..int_len - nd]);
             } else {
-                push(buf, &digits[..int_len]);
-                buf.push('.');
-                push(buf, &digits[int_len..]);
+                put(&digits[..int_len]);
+                put(b".");
+                put(&digits[int_len..]);
             }
         } else {
-            buf.push_str("0.");
-            (0..(-e10 - 1)).for_each(|_| buf.push('0'));
-            push(buf, digits);
+            put(b"0.");
+            put(&b"0000"[..(-e10 - 1) as usize]);
+            put(digits);
         }
     } else {
-        push(buf, &digits[..1]);
-        if digits.len() > 1 {
-            buf.push('.');
-            push(buf, &digits[1..]);
+        put(&digits[..1]);
+        if nd > 1 {
+            put(b".");
+            put(&digits[1..]);
         }
-        buf.push('e');
-        buf.push_str(&e10.to_string());
+        put(b"e");
+        put(e10.to_string().as_bytes());
     }
+    buf.extend_from_slice(&out[..n]);
 }
 
 /// Writes `chunks` one after the other to `path` atomically, refusing to replace any of
@@ -142,9 +144,9 @@ mod tests {
     use super::*;
 
     fn check(v: f64, expected: &str) {
-        let mut s = String::new();
+        let mut s = Vec::new();
         push_num(&mut s, Some(v));
-        assert_eq!(s, expected, "{v:e}");
+        assert_eq!(String::from_utf8(s).unwrap(), expected, "{v:e}");
     }
 
     #[test]
@@ -159,17 +161,18 @@ mod tests {
         check(0.00012345678901, "0.000123456789");
         check(1.5e22, "1.5e22");
         check(-0.5, "-0.5");
-        let mut s = String::new();
+        let mut s = Vec::new();
         push_num(&mut s, None);
-        assert_eq!(s, "");
+        assert!(s.is_empty());
     }
 
     proptest::proptest! {
         #[test]
         fn reads_back_as_ten_digit_rounding(m in -1.0..1.0f64, e in -40i32..40) {
             let v = m * 10f64.powi(e);
-            let mut s = String::new();
+            let mut s = Vec::new();
             push_num(&mut s, Some(v));
+            let s = String::from_utf8(s).unwrap();
             let back: f64 = s.parse().unwrap();
             proptest::prop_assert!((back - v).abs() <= 5.000001e-10 * v.abs(), "{} -> {}", v, s);
         }
