@@ -216,8 +216,8 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
                 warnings: &loaded.warnings,
                 points: &results,
             };
-            let mut s = serde_json::to_string_pretty(&doc)?;
-            s.push('\n');
+            let mut s = serde_json::to_vec_pretty(&doc)?;
+            s.push(b'\n');
             vec![s]
         }
     };
@@ -240,15 +240,15 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
 pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
 
 /// The summary table as chunks of text (header first), formatted in parallel.
-fn summary_csv(results: &[PointResult]) -> Vec<String> {
+fn summary_csv(results: &[PointResult]) -> Vec<Vec<u8>> {
     use rayon::prelude::*;
-    let mut chunks = vec![format!("{SUMMARY_HEADER}\n")];
+    let mut chunks = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
     chunks.par_extend(results.par_chunks(512).map(summary_rows));
     chunks
 }
 
-fn summary_rows(results: &[PointResult]) -> String {
-    let mut s = String::with_capacity(200 * results.len());
+fn summary_rows(results: &[PointResult]) -> Vec<u8> {
+    let mut s = Vec::with_capacity(200 * results.len());
     for p in results {
         let cells = [
             Some(p.rpm),
@@ -270,18 +270,18 @@ fn summary_rows(results: &[PointResult]) -> String {
         ];
         for c in cells {
             push_num(&mut s, c);
-            s.push(',');
+            s.push(b',');
         }
-        s.push_str(&p.not_converged.to_string());
-        s.push('\n');
+        s.extend_from_slice(p.not_converged.to_string().as_bytes());
+        s.push(b'\n');
     }
     s
 }
 
-fn stations_csv(results: &[PointResult]) -> String {
-    let mut s = String::from(
-        "rpm,v_m_s,r_m,chord_m,beta_deg,alpha_deg,cl,cd,re,mach,w_m_s,wa_m_s,wt_m_s,va_m_s,vt_m_s,f_tip,dt_dr_n_m,dq_dr_n,stalled,convergence\n",
-    );
+fn stations_csv(results: &[PointResult]) -> Vec<u8> {
+    let mut s = b"rpm,v_m_s,r_m,chord_m,beta_deg,alpha_deg,cl,cd,re,mach,w_m_s,wa_m_s,wt_m_s,va_m_s,vt_m_s,f_tip,\
+dt_dr_n_m,dq_dr_n,stalled,convergence\n"
+        .to_vec();
     for p in results {
         for st in &p.stations {
             for v in [
@@ -305,7 +305,7 @@ fn stations_csv(results: &[PointResult]) -> String {
                 st.dq_dr,
             ] {
                 push_num(&mut s, Some(v));
-                s.push(',');
+                s.push(b',');
             }
             let conv = match st.convergence {
                 propbet_bemt::Convergence::Newton { .. } => "newton",
@@ -315,9 +315,9 @@ fn stations_csv(results: &[PointResult]) -> String {
                 propbet_bemt::Convergence::NoRotation => "no_rotation",
                 propbet_bemt::Convergence::ZeroChord => "zero_chord",
             };
-            s.push_str(if st.stalled { "true," } else { "false," });
-            s.push_str(conv);
-            s.push('\n');
+            s.extend_from_slice(if st.stalled { b"true," } else { b"false," });
+            s.extend_from_slice(conv.as_bytes());
+            s.push(b'\n');
         }
     }
     s
