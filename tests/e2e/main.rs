@@ -69,10 +69,10 @@ fn predict_matches_qprop_static_point() {
     let q: f64 = rows[0][col(&h, "torque_nm")].parse().unwrap();
     assert!((t - 2.386).abs() < 5e-4, "{t}");
     assert!((q - 0.2248e-1).abs() < 5e-6, "{q}");
-    // CT = CT_qprop pi^3/8 (FORMULATION.md).
+    // CT = CT_qprop pi^3/8 (FORMULATION.md), both printed with 7 significant digits.
     let ct: f64 = rows[0][col(&h, "ct")].parse().unwrap();
     let ctq: f64 = rows[0][col(&h, "ct_qprop")].parse().unwrap();
-    assert!((ct - ctq * std::f64::consts::PI.powi(3) / 8.0).abs() < 1e-9 * ct);
+    assert!((ct - ctq * std::f64::consts::PI.powi(3) / 8.0).abs() < 1e-6 * ct);
 }
 
 #[test]

@@ -21,4 +21,4 @@ pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, SectionAero
 pub use fluid::Fluid;
 pub use rotor::{Discretization, QpropBlade, Rotor, RotorError, Station};
 pub use solve::{solve_point, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};
-pub use sweep::{grid_rpm_j, grid_rpm_v, solve_points};
+pub use sweep::{grid_rpm_j, grid_rpm_v, solve_points, Solver};

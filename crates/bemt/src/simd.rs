@@ -46,12 +46,22 @@ struct Group {
     mcrit: f64x8,
     /// (CLCD0 - CL0) / CL_a [rad].
     acd0: f64x8,
+    /// R / r [-].
+    tip_over_r: f64x8,
+    /// B/2 (1 - r/R), the tip factor's f per unit tip-speed ratio [-].
+    f_per_tsr: f64x8,
+    /// pi r [m].
+    pi_r: f64x8,
 }
 
 /// A rotor prepared for the vectorised path.
 #[derive(Debug, Clone)]
 pub(crate) struct Prepared {
     groups: Vec<Group>,
+    /// Stations left over after the last full group when they are too few to fill a vector
+    /// economically (a lane group costs about as much as three scalar solves); solved by the
+    /// scalar path.
+    scalar: Vec<usize>,
 }
 
 impl Prepared {
@@ -68,13 +78,16 @@ impl Prepared {
             }
             models.push(*s.aero.as_qprop()?);
         }
-        let groups = (0..n.div_ceil(LANES))
+        // A remainder of one or two stations is cheaper on the scalar path than in a vector.
+        let rem = n % LANES;
+        let vector_n = if rem > 0 && rem <= 2 && n > LANES { n - rem } else { n };
+        let groups = (0..vector_n.div_ceil(LANES))
             .map(|g| {
-                let index: [usize; 8] = std::array::from_fn(|k| (LANES * g + k).min(n - 1));
+                let index: [usize; LANES] = std::array::from_fn(|k| (LANES * g + k).min(vector_n - 1));
                 let lane = |f: &dyn Fn(usize) -> f64| f64x8::new(index.map(f));
                 Group {
                     index,
-                    lanes: (n - LANES * g).min(LANES),
+                    lanes: (vector_n - LANES * g).min(LANES),
                     r: lane(&|i| rotor.stations[i].r),
                     chord: lane(&|i| rotor.stations[i].chord),
                     beta: lane(&|i| rotor.stations[i].beta),
@@ -92,10 +105,16 @@ impl Prepared {
                     re_exp: lane(&|i| models[i].coeffs.re_exp),
                     mcrit: lane(&|i| models[i].mcrit),
                     acd0: lane(&|i| (models[i].coeffs.clcd0 - models[i].coeffs.cl0) / models[i].coeffs.cl_a),
+                    tip_over_r: lane(&|i| rotor.tip_radius / rotor.stations[i].r),
+                    f_per_tsr: lane(&|i| 0.5 * rotor.blades * (1.0 - rotor.stations[i].r / rotor.tip_radius)),
+                    pi_r: lane(&|i| std::f64::consts::PI * rotor.stations[i].r),
                 }
             })
             .collect();
-        Some(Self { groups })
+        Some(Self {
+            groups,
+            scalar: (vector_n..n).collect(),
+        })
     }
 }
 
@@ -118,6 +137,14 @@ pub(crate) fn solve_point_prepared(
             };
             for g in &p.groups {
                 solve_group(rotor, g, &ctx, &mut sums, &mut stations);
+            }
+            for &i in &p.scalar {
+                let st = &rotor.stations[i];
+                let s = solve_station(st, &ctx);
+                sums.add(st, &s);
+                if opts.keep_stations {
+                    stations[i] = Some(s);
+                }
             }
             let stations = stations.into_iter().flatten().collect();
             point_result(rotor, fluid, op, &sums, stations)
@@ -160,7 +187,6 @@ fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: 
     let one = f64x8::splat(1.0);
     let half = f64x8::splat(0.5);
     let two_pi = f64x8::splat(2.0 / std::f64::consts::PI);
-    let tip = f64x8::splat(c.tip);
     let (sinp, cosp) = psi.sin_cos();
     let wa = half * ua + half * u * sinp;
     let wa_p = half * u * cosp;
@@ -170,41 +196,42 @@ fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: 
     let valid = wa.simd_ne(zero) & wt.simd_ne(zero);
     let wa_s = select(valid, wa, one);
     let wt_s = select(valid, wt, one);
-    let tr = tip / g.r;
-    let tsr = wt_s / wa_s * tr;
-    let tsr_p = (wt_p * tr - tsr * wa_p) / wa_s;
+    let inv_wa = one / wa_s;
+    let tsr = wt_s * inv_wa * g.tip_over_r;
+    let tsr_p = (wt_p * g.tip_over_r - tsr * wa_p) * inv_wa;
     let (f, f_p) = if c.opts.tip_loss {
-        let k = f64x8::splat(0.5 * c.blades) * (one - g.r / tip);
         let sign = select(tsr.simd_lt(zero), f64x8::splat(-1.0), one);
-        let farg = (k * tsr * sign).min(f64x8::splat(20.0));
-        let farg_tsr = k * sign;
+        let farg_tsr = g.f_per_tsr * sign;
+        let farg = (farg_tsr * tsr).min(f64x8::splat(20.0));
         let fexp = (-farg).exp();
         let f = two_pi * fexp.acos();
         let below = fexp.simd_lt(one);
         let denom = select(below, one - fexp * fexp, one).sqrt();
-        let f_tsr = select(below, two_pi / denom * fexp * farg_tsr, zero);
+        let f_tsr = select(below, two_pi * fexp * farg_tsr / denom, zero);
         (f, f_tsr * tsr_p)
     } else {
         (one, zero)
     };
     let f_tip = select(valid, f, one);
     let f_p = select(valid, f_p, zero);
-    let adw = select(valid, one / tsr, zero);
-    let adw_p = select(valid, -tsr_p / (tsr * tsr), zero);
+    let inv_tsr = one / tsr;
+    let adw = select(valid, inv_tsr, zero);
+    let adw_p = select(valid, -tsr_p * inv_tsr * inv_tsr, zero);
 
     let vt = ut - wt;
     let vt_p = -wt_p;
     let qbi = f64x8::splat(4.0 / c.blades);
-    let pi_r = f64x8::splat(std::f64::consts::PI) * g.r;
-    let qr = qbi * tip;
-    let pir = (pi_r * pi_r + (qr * adw) * (qr * adw)).sqrt();
-    let pir_p = qr * qr * adw / pir * adw_p;
+    let qr = f64x8::splat(4.0 / c.blades * c.tip);
+    let qra = qr * adw;
+    let pir = (g.pi_r * g.pi_r + qra * qra).sqrt();
+    let pir_p = qr * qra * adw_p / pir;
     let gamma = qbi * f_tip * vt * pir;
-    let gam_p = qbi * (f_tip * vt_p + f_p * vt) * pir + qbi * f_tip * vt * pir_p;
+    let gam_p = qbi * ((f_tip * vt_p + f_p * vt) * pir + f_tip * vt * pir_p);
 
     let wsq = wa * wa + wt * wt;
     let w = wsq.sqrt();
-    let w_p = (wa * wa_p + wt * wt_p) / w;
+    let inv_w = one / w;
+    let w_p = (wa * wa_p + wt * wt_p) * inv_w;
     // The velocity circle passes through the origin (psi = psi0 + pi), so by the inscribed
     // angle theorem the inflow angle atan2(Wa, Wt) is (psi + psi0)/2 for |psi - psi0| < pi,
     // which saves an atan2 per lane and iteration.
@@ -215,17 +242,18 @@ fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: 
         wa.atan2(wt)
     };
     let alpha = beta - phi;
-    let alpha_p = (-(wt * wa_p) + wa * wt_p) / wsq;
-    let a2 = f64x8::splat(c.fluid.a * c.fluid.a);
-    let msq_raw = wsq / a2;
+    let alpha_p = (wa * wt_p - wt * wa_p) * (inv_w * inv_w);
+    let inv_a2 = f64x8::splat(1.0 / (c.fluid.a * c.fluid.a));
+    let msq_raw = wsq * inv_a2;
     let capped = msq_raw.simd_gt(f64x8::splat(crate::aero::MSQ_MAX));
     let msq = select(capped, f64x8::splat(crate::aero::MSQ_MAX), msq_raw);
-    let msq_p = select(capped, zero, f64x8::splat(2.0) * w * w_p / a2);
+    let msq_p = select(capped, zero, f64x8::splat(2.0) * w * w_p * inv_a2);
 
     let pg = one / (one - msq).sqrt();
     let cl_inc = g.cl0 + g.cl_a * alpha;
     let cl_lin = cl_inc * pg;
-    let cl_lin_p = g.cl_a * pg * alpha_p + cl_inc * half * pg / (one - msq) * msq_p;
+    // d(PG)/d(M^2) = PG^3 / 2.
+    let cl_lin_p = g.cl_a * pg * alpha_p + cl_inc * half * pg * pg * pg * msq_p;
     let hi = cl_lin.simd_gt(g.cl_max);
     let lo = cl_lin.simd_lt(g.cl_min);
     let stalled = hi | lo;
@@ -458,7 +486,9 @@ mod tests {
     fn vector_and_scalar_paths_agree() {
         let rotor = rotor();
         let prepared = Prepared::new(&rotor).unwrap();
-        assert_eq!(prepared.groups.len(), 25usize.div_ceil(LANES));
+        // 25 stations: three full groups of 8, the last station on the scalar path.
+        assert_eq!(prepared.groups.len(), 3);
+        assert_eq!(prepared.scalar, vec![24]);
         let fluid = Fluid::default();
         let mut worst: f64 = 0.0;
         for rpm in [1500.0, 6000.0, 14000.0, 30000.0, 60000.0] {

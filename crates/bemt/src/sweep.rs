@@ -9,14 +9,37 @@ use crate::rotor::Rotor;
 use crate::simd::{solve_point_prepared, Prepared};
 use crate::solve::{OperatingPoint, PointResult, SolverOptions};
 
+/// A rotor, fluid and options prepared once for solving many operating points (the
+/// vectorised path's lane groups are built here).
+#[derive(Debug, Clone)]
+pub struct Solver<'a> {
+    rotor: &'a Rotor,
+    prepared: Option<Prepared>,
+    fluid: Fluid,
+    opts: SolverOptions,
+}
+
+impl<'a> Solver<'a> {
+    /// Prepares `rotor` (which must satisfy [`Rotor::validate`]).
+    pub fn new(rotor: &'a Rotor, fluid: &Fluid, opts: &SolverOptions) -> Self {
+        Self {
+            rotor,
+            prepared: Prepared::new(rotor),
+            fluid: *fluid,
+            opts: *opts,
+        }
+    }
+
+    /// Solves one operating point (same result as [`crate::solve_point`]).
+    pub fn solve(&self, op: OperatingPoint) -> PointResult {
+        solve_point_prepared(self.rotor, self.prepared.as_ref(), &self.fluid, op, &self.opts)
+    }
+}
+
 /// Solves every point, in parallel, returning results in the order of `points`.
 pub fn solve_points(rotor: &Rotor, fluid: &Fluid, points: &[OperatingPoint], opts: &SolverOptions) -> Vec<PointResult> {
-    let prepared = Prepared::new(rotor);
-    points
-        .par_iter()
-        .with_min_len(16)
-        .map(|&op| solve_point_prepared(rotor, prepared.as_ref(), fluid, op, opts))
-        .collect()
+    let solver = Solver::new(rotor, fluid, opts);
+    points.par_iter().with_min_len(16).map(|&op| solver.solve(op)).collect()
 }
 
 /// The grid `rpm x v` in QPROP's nesting order (outer RPM, inner V).

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use propbet_atmosphere::AirState;
-use propbet_bemt::{grid_rpm_j, grid_rpm_v, solve_points, Discretization, Fluid, PointResult, SolverOptions};
+use propbet_bemt::{grid_rpm_j, grid_rpm_v, Discretization, Fluid, PointResult, Solver, SolverOptions};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 use serde::Serialize;
 
@@ -198,29 +198,46 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         keep_stations: args.stations.is_some(),
         ..SolverOptions::default()
     };
-    let results = solve_points(&rotor, &fluid, &points, &opts);
-    let inputs = [args.prop.as_path()];
-    let body = match args.format {
-        Format::Csv => summary_csv(&results),
-        Format::Json => {
-            let doc = JsonOut {
-                prop: &args.prop.to_string_lossy(),
-                name: &loaded.file.name,
-                blades: rotor.blades,
-                tip_radius_m: rotor.tip_radius,
-                fluid,
-                fluid_source: &fluid_source,
-                qprop_compat: args.qprop_compat,
-                tip_loss: opts.tip_loss,
-                dbeta_deg: args.dbeta,
-                warnings: &loaded.warnings,
-                points: &results,
-            };
-            let mut s = serde_json::to_vec_pretty(&doc)?;
-            s.push(b'\n');
-            vec![s]
-        }
+    // Solve and format chunk by chunk in the same parallel task, so the table is written
+    // while the data is still in cache.
+    let solver = Solver::new(&rotor, &fluid, &opts);
+    let csv = args.format == Format::Csv;
+    let chunks: Vec<(Vec<PointResult>, Vec<u8>)> = {
+        use rayon::prelude::*;
+        points
+            .par_chunks(128)
+            .map(|c| {
+                let r: Vec<PointResult> = c.iter().map(|&op| solver.solve(op)).collect();
+                let text = if csv { summary_rows(&r) } else { Vec::new() };
+                (r, text)
+            })
+            .collect()
     };
+    let mut results = Vec::with_capacity(points.len());
+    let mut body = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
+    for (r, text) in chunks {
+        results.extend(r);
+        body.push(text);
+    }
+    let inputs = [args.prop.as_path()];
+    if !csv {
+        let doc = JsonOut {
+            prop: &args.prop.to_string_lossy(),
+            name: &loaded.file.name,
+            blades: rotor.blades,
+            tip_radius_m: rotor.tip_radius,
+            fluid,
+            fluid_source: &fluid_source,
+            qprop_compat: args.qprop_compat,
+            tip_loss: opts.tip_loss,
+            dbeta_deg: args.dbeta,
+            warnings: &loaded.warnings,
+            points: &results,
+        };
+        let mut s = serde_json::to_vec_pretty(&doc)?;
+        s.push(b'\n');
+        body = vec![s];
+    }
     emit(args.out.as_deref(), &body, &inputs)?;
     if let Some(path) = &args.stations {
         emit(Some(path), &[stations_csv(&results)], &inputs)?;
@@ -238,14 +255,6 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
 
 /// Column header of the summary CSV.
 pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
-
-/// The summary table as chunks of text (header first), formatted in parallel.
-fn summary_csv(results: &[PointResult]) -> Vec<Vec<u8>> {
-    use rayon::prelude::*;
-    let mut chunks = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
-    chunks.par_extend(results.par_chunks(512).map(summary_rows));
-    chunks
-}
 
 fn summary_rows(results: &[PointResult]) -> Vec<u8> {
     let mut s = Vec::with_capacity(200 * results.len());
