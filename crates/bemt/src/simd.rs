@@ -2,11 +2,12 @@
 //! rotors whose sections all use QPROP's parametric model.
 //!
 //! It is the same computation as [`crate::solve`]'s scalar `eval`, Newton loop (QPROP's
-//! start, step limit and exit), drag law and loads, lane by lane. A lane that does not converge within the Newton
-//! budget, or meets anything non-finite, is solved again by the scalar path, which has the
-//! bracketed fallback; so are whole points without rotation or with a zero-chord station.
+//! start, step limit and exit), drag law and loads, lane by lane. A lane that does not
+//! converge within the Newton budget, or meets anything non-finite, is solved again by the
+//! scalar path, which has the bracketed fallback; so are whole points without rotation or with
+//! a zero-chord station, and a remainder of one or two stations after the last full group.
 //! Results agree with the scalar path to rounding (the vector transcendental functions differ
-//! from libm's in the last bits).
+//! from libm's in the last bits; `tests::vector_and_scalar_paths_agree` bounds it at 1e-9).
 
 use wide::f64x8;
 

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use propbet_atmosphere::AirState;
-use propbet_bemt::{grid_rpm_j, grid_rpm_v, Discretization, Fluid, PointResult, Solver, SolverOptions};
+use propbet_bemt::{grid_rpm_j, grid_rpm_v, Discretization, Fluid, PointResult, Rotor, Solver, SolverOptions};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 use serde::Serialize;
 
@@ -113,6 +113,29 @@ pub fn load_prop(path: &Path, units: Option<&str>) -> Result<LoadedProp> {
     Ok(LoadedProp { file, warnings })
 }
 
+/// Reads a prop file, prints its warnings and discretises it as QPROP does (or exactly as
+/// QPROP 1.22 reads it, with `qprop_compat`).
+pub fn load_rotor(path: &Path, units: Option<&str>, qprop_compat: bool) -> Result<(LoadedProp, Rotor)> {
+    let loaded = load_prop(path, units)?;
+    for w in &loaded.warnings {
+        eprintln!("propbet: warning: {w}");
+    }
+    let reading = if qprop_compat {
+        RadiusReading::Qprop122
+    } else {
+        RadiusReading::Documented
+    };
+    let rotor = loaded
+        .file
+        .to_blade(reading)
+        .to_rotor(Discretization {
+            stations: 25,
+            qprop_reref_quirk: qprop_compat,
+        })
+        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok((loaded, rotor))
+}
+
 fn fluid(args: &PredictArgs) -> Result<(Fluid, String)> {
     if let (Some(t), Some(p)) = (&args.temp, &args.pressure) {
         let rh = args.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
@@ -158,22 +181,7 @@ struct JsonOut<'a> {
 
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let loaded = load_prop(&args.prop, args.units.as_deref())?;
-    for w in &loaded.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    let reading = if args.qprop_compat {
-        RadiusReading::Qprop122
-    } else {
-        RadiusReading::Documented
-    };
-    let blade = loaded.file.to_blade(reading);
-    let rotor = blade
-        .to_rotor(Discretization {
-            stations: 25,
-            qprop_reref_quirk: args.qprop_compat,
-        })
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.prop.display()))?;
+    let (loaded, rotor) = load_rotor(&args.prop, args.units.as_deref(), args.qprop_compat)?;
     let (fluid, fluid_source) = fluid(args)?;
     let rpms = parse_list("--rpm", &args.rpm)?;
     if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {

@@ -4,11 +4,10 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use propbet_bemt::Discretization;
-use propbet_qprop::{write_prop, RadiusReading};
+use propbet_qprop::write_prop;
 
 use crate::output::emit;
-use crate::predict::load_prop;
+use crate::predict::load_rotor;
 
 /// Arguments of `propbet prop`.
 #[derive(Debug, Args)]
@@ -28,23 +27,7 @@ pub struct PropArgs {
 
 /// Runs `propbet prop`.
 pub fn run(args: &PropArgs) -> Result<bool> {
-    let loaded = load_prop(&args.file, args.units.as_deref())?;
-    for w in &loaded.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    let reading = if args.qprop_compat {
-        RadiusReading::Qprop122
-    } else {
-        RadiusReading::Documented
-    };
-    let rotor = loaded
-        .file
-        .to_blade(reading)
-        .to_rotor(Discretization {
-            stations: 25,
-            qprop_reref_quirk: args.qprop_compat,
-        })
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.file.display()))?;
+    let (loaded, rotor) = load_rotor(&args.file, args.units.as_deref(), args.qprop_compat)?;
     println!("name: {}", loaded.file.name);
     println!("blades: {}", rotor.blades);
     println!("tip radius: {:.6} m", rotor.tip_radius);
