@@ -322,23 +322,34 @@ impl VEval {
     }
 }
 
-/// QPROP's Newton iteration on a group of stations at once, then drag and loads (QPROP
-/// `CDFUN`, `DCDFUN`, `TQCALC`) for the converged lanes, added to `sums`; lanes that did not
-/// converge are solved by the scalar path. With `stations` non-empty, each station's result is
-/// stored there.
-fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mut [Option<StationResult>]) {
+/// What the lanes of one vector solve produce: the converged state and its drag and loads.
+struct LaneOut {
+    /// Lanes that converged with finite loads.
+    conv: f64x8,
+    fin: VEval,
+    iterations: f64x8,
+    re: f64x8,
+    cd: f64x8,
+    dt_dr: f64x8,
+    dq_dr: f64x8,
+    /// W^2 c dr, the weight of the cl and cd averages.
+    wgt: f64x8,
+}
+
+/// QPROP's Newton iteration on eight lanes at once (stations of one point, or one station at
+/// eight points: `ua`, `ut` and the constants in `g` are per lane), then drag (QPROP CDFUN +
+/// DCDFUN) and loads (TQCALC) at the converged states. `real` marks the lanes to solve.
+#[allow(clippy::too_many_arguments)]
+fn solve_lanes(g: &Group, c: &Ctx, ua: f64x8, ut: f64x8, real: f64x8) -> LaneOut {
     let zero = f64x8::splat(0.0);
     let half = f64x8::splat(0.5);
     let beta = g.beta + f64x8::splat(c.opts.dbeta);
-    let ua = f64x8::splat(c.v);
-    let ut = f64x8::splat(c.omega) * g.r;
     let u = (ua * ua + ut * ut).sqrt();
     let psi0 = ua.atan2(ut);
     let mut psi = psi0.max(beta + g.a0);
     let tol = f64x8::splat(c.opts.tol);
-    let all = f64x8::splat(0.0).simd_eq(zero);
-    let mut active = f64x8::new(std::array::from_fn(|k| if k < g.lanes { 0.0 } else { 1.0 })).simd_eq(zero);
-    let mut conv = !all;
+    let mut active = real;
+    let mut conv = zero.simd_ne(zero);
     let mut iterations = zero;
     let mut fin = VEval::zero();
     for iter in 1..=c.opts.max_newton {
@@ -360,7 +371,6 @@ fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mu
         psi = select(active, psi + dpsi, psi);
     }
 
-    // Drag (QPROP CDFUN + DCDFUN) and loads at the converged states.
     let rho = f64x8::splat(c.fluid.rho);
     let re = rho * fin.w * g.chord / f64x8::splat(c.fluid.mu);
     let mach = fin.msq.sqrt().max(f64x8::splat(1e-8));
@@ -383,6 +393,36 @@ fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mu
     let dq_dr = blades * ft * g.r;
     let conv = conv & dt_dr.is_finite() & dq_dr.is_finite() & cd.is_finite();
     let wgt = fin.w * fin.w * g.chord * g.dr;
+    LaneOut {
+        conv,
+        fin,
+        iterations,
+        re,
+        cd,
+        dt_dr,
+        dq_dr,
+        wgt,
+    }
+}
+
+/// The stations of one point in groups of eight: sums of the converged lanes, the scalar path
+/// for the others. With `stations` non-empty, each station's result is stored there.
+fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mut [Option<StationResult>]) {
+    let zero = f64x8::splat(0.0);
+    let real = f64x8::new(std::array::from_fn(|k| if k < g.lanes { 1.0 } else { 0.0 })).simd_ne(zero);
+    let ua = f64x8::splat(c.v);
+    let ut = f64x8::splat(c.omega) * g.r;
+    let out = solve_lanes(g, c, ua, ut, real);
+    let LaneOut {
+        conv,
+        ref fin,
+        iterations,
+        re,
+        cd,
+        dt_dr,
+        dq_dr,
+        wgt,
+    } = out;
     sums.thrust += select(conv, dt_dr * g.dr, zero).reduce_add();
     sums.torque += select(conv, dq_dr * g.dr, zero).reduce_add();
     sums.wsum += select(conv, wgt, zero).reduce_add();
