@@ -63,6 +63,9 @@ pub(crate) struct Prepared {
     /// economically (a lane group costs about as much as three scalar solves); solved by the
     /// scalar path.
     scalar: Vec<usize>,
+    /// One group per station with that station in every lane, for solving eight operating
+    /// points at once ([`solve_batch`]).
+    per_station: Vec<Group>,
 }
 
 impl Prepared {
@@ -82,39 +85,44 @@ impl Prepared {
         // A remainder of one or two stations is cheaper on the scalar path than in a vector.
         let rem = n % LANES;
         let vector_n = if rem > 0 && rem <= 2 && n > LANES { n - rem } else { n };
+        let group = |index: [usize; LANES], lanes: usize| {
+            let lane = |f: &dyn Fn(usize) -> f64| f64x8::new(index.map(f));
+            Group {
+                index,
+                lanes,
+                r: lane(&|i| rotor.stations[i].r),
+                chord: lane(&|i| rotor.stations[i].chord),
+                beta: lane(&|i| rotor.stations[i].beta),
+                cl0: lane(&|i| models[i].coeffs.cl0),
+                cl_a: lane(&|i| models[i].coeffs.cl_a),
+                cl_min: lane(&|i| models[i].coeffs.cl_min),
+                cl_max: lane(&|i| models[i].coeffs.cl_max),
+                a0: lane(&|i| models[i].coeffs.cl0 / models[i].coeffs.cl_a),
+                dr: lane(&|i| rotor.stations[i].dr),
+                cd0: lane(&|i| models[i].coeffs.cd0),
+                cd2u: lane(&|i| models[i].coeffs.cd2u),
+                cd2l: lane(&|i| models[i].coeffs.cd2l),
+                clcd0: lane(&|i| models[i].coeffs.clcd0),
+                re_ref: lane(&|i| models[i].coeffs.re_ref),
+                re_exp: lane(&|i| models[i].coeffs.re_exp),
+                mcrit: lane(&|i| models[i].mcrit),
+                acd0: lane(&|i| (models[i].coeffs.clcd0 - models[i].coeffs.cl0) / models[i].coeffs.cl_a),
+                tip_over_r: lane(&|i| rotor.tip_radius / rotor.stations[i].r),
+                f_per_tsr: lane(&|i| 0.5 * rotor.blades * (1.0 - rotor.stations[i].r / rotor.tip_radius)),
+                pi_r: lane(&|i| std::f64::consts::PI * rotor.stations[i].r),
+            }
+        };
         let groups = (0..vector_n.div_ceil(LANES))
             .map(|g| {
                 let index: [usize; LANES] = std::array::from_fn(|k| (LANES * g + k).min(vector_n - 1));
-                let lane = |f: &dyn Fn(usize) -> f64| f64x8::new(index.map(f));
-                Group {
-                    index,
-                    lanes: (vector_n - LANES * g).min(LANES),
-                    r: lane(&|i| rotor.stations[i].r),
-                    chord: lane(&|i| rotor.stations[i].chord),
-                    beta: lane(&|i| rotor.stations[i].beta),
-                    cl0: lane(&|i| models[i].coeffs.cl0),
-                    cl_a: lane(&|i| models[i].coeffs.cl_a),
-                    cl_min: lane(&|i| models[i].coeffs.cl_min),
-                    cl_max: lane(&|i| models[i].coeffs.cl_max),
-                    a0: lane(&|i| models[i].coeffs.cl0 / models[i].coeffs.cl_a),
-                    dr: lane(&|i| rotor.stations[i].dr),
-                    cd0: lane(&|i| models[i].coeffs.cd0),
-                    cd2u: lane(&|i| models[i].coeffs.cd2u),
-                    cd2l: lane(&|i| models[i].coeffs.cd2l),
-                    clcd0: lane(&|i| models[i].coeffs.clcd0),
-                    re_ref: lane(&|i| models[i].coeffs.re_ref),
-                    re_exp: lane(&|i| models[i].coeffs.re_exp),
-                    mcrit: lane(&|i| models[i].mcrit),
-                    acd0: lane(&|i| (models[i].coeffs.clcd0 - models[i].coeffs.cl0) / models[i].coeffs.cl_a),
-                    tip_over_r: lane(&|i| rotor.tip_radius / rotor.stations[i].r),
-                    f_per_tsr: lane(&|i| 0.5 * rotor.blades * (1.0 - rotor.stations[i].r / rotor.tip_radius)),
-                    pi_r: lane(&|i| std::f64::consts::PI * rotor.stations[i].r),
-                }
+                group(index, (vector_n - LANES * g).min(LANES))
             })
             .collect();
+        let per_station = (0..n).map(|i| group([i; LANES], LANES)).collect();
         Some(Self {
             groups,
             scalar: (vector_n..n).collect(),
+            per_station,
         })
     }
 }
@@ -158,6 +166,63 @@ pub(crate) fn solve_point_prepared(
             rotor.stations.iter().map(|st| solve_station(st, &ctx)),
         ),
     }
+}
+
+/// Solves up to eight operating points at once, one station at a time with the points in
+/// the lanes: neighbouring points need about as many Newton iterations as each other, so less
+/// work is wasted on lanes that already converged than with the stations in the lanes. Each
+/// lane runs exactly the per-station computation of [`solve_point_prepared`]; loads are summed
+/// station by station per point.
+///
+/// Needs every `ops[k].omega > 0` and `!opts.keep_stations`; `ops.len()` must be 1..=8.
+pub(crate) fn solve_batch(
+    rotor: &Rotor,
+    p: &Prepared,
+    fluid: &Fluid,
+    ops: &[OperatingPoint],
+    opts: &SolverOptions,
+) -> Vec<PointResult> {
+    let n = ops.len();
+    assert!((1..=LANES).contains(&n), "a batch holds 1 to {LANES} points");
+    let zero = f64x8::splat(0.0);
+    let ctxs: Vec<Ctx> = ops.iter().map(|&op| context(rotor, fluid, op, opts)).collect();
+    let v = f64x8::new(std::array::from_fn(|k| ops[k.min(n - 1)].v));
+    let omega = f64x8::new(std::array::from_fn(|k| ops[k.min(n - 1)].omega));
+    let real = f64x8::new(std::array::from_fn(|k| if k < n { 1.0 } else { 0.0 })).simd_ne(zero);
+    let (mut thrust, mut torque, mut wsum, mut clsum, mut cdsum) = (zero, zero, zero, zero, zero);
+    let mut extra: Vec<Sums> = vec![Sums::default(); n];
+    for (i, g) in p.per_station.iter().enumerate() {
+        let out = solve_lanes(g, &ctxs[0], v, omega * g.r, real);
+        let c = out.conv;
+        thrust += select(c, out.dt_dr * g.dr, zero);
+        torque += select(c, out.dq_dr * g.dr, zero);
+        wsum += select(c, out.wgt, zero);
+        clsum += select(c, out.wgt * out.fin.cl, zero);
+        cdsum += select(c, out.wgt * out.cd, zero);
+        let conv = c.to_bitmask();
+        for (k, ctx) in ctxs.iter().enumerate() {
+            if conv & (1 << k) == 0 {
+                let st = &rotor.stations[i];
+                extra[k].add(st, &solve_station(st, ctx));
+            }
+        }
+    }
+    let (thrust, torque, wsum, clsum, cdsum) =
+        (thrust.to_array(), torque.to_array(), wsum.to_array(), clsum.to_array(), cdsum.to_array());
+    (0..n)
+        .map(|k| {
+            let e = &extra[k];
+            let sums = Sums {
+                thrust: thrust[k] + e.thrust,
+                torque: torque[k] + e.torque,
+                wsum: wsum[k] + e.wsum,
+                clsum: clsum[k] + e.clsum,
+                cdsum: cdsum[k] + e.cdsum,
+                not_converged: e.not_converged,
+            };
+            point_result(rotor, fluid, ops[k], &sums, Vec::new())
+        })
+        .collect()
 }
 
 /// Vector state at one psi per lane (see `solve::eval`).

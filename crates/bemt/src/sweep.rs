@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
-use crate::simd::{solve_point_prepared, Prepared};
+use crate::simd::{solve_batch, solve_point_prepared, Prepared};
 use crate::solve::{OperatingPoint, PointResult, SolverOptions};
 
 /// A rotor, fluid and options prepared once for solving many operating points (the
@@ -34,12 +34,30 @@ impl<'a> Solver<'a> {
     pub fn solve(&self, op: OperatingPoint) -> PointResult {
         solve_point_prepared(self.rotor, self.prepared.as_ref(), &self.fluid, op, &self.opts)
     }
+
+    /// Solves many operating points, in order; eight at a time in vector lanes where possible.
+    /// Every point is still solved independently (same iteration from the same start).
+    pub fn solve_many(&self, ops: &[OperatingPoint]) -> Vec<PointResult> {
+        let mut out = Vec::with_capacity(ops.len());
+        let Some(p) = self.prepared.as_ref().filter(|_| !self.opts.keep_stations) else {
+            out.extend(ops.iter().map(|&op| self.solve(op)));
+            return out;
+        };
+        for chunk in ops.chunks(8) {
+            if chunk.iter().all(|op| op.omega > 0.0) {
+                out.extend(solve_batch(self.rotor, p, &self.fluid, chunk, &self.opts));
+            } else {
+                out.extend(chunk.iter().map(|&op| self.solve(op)));
+            }
+        }
+        out
+    }
 }
 
 /// Solves every point, in parallel, returning results in the order of `points`.
 pub fn solve_points(rotor: &Rotor, fluid: &Fluid, points: &[OperatingPoint], opts: &SolverOptions) -> Vec<PointResult> {
     let solver = Solver::new(rotor, fluid, opts);
-    points.par_iter().with_min_len(16).map(|&op| solver.solve(op)).collect()
+    points.par_chunks(64).flat_map_iter(|c| solver.solve_many(c)).collect()
 }
 
 /// The grid `rpm x v` in QPROP's nesting order (outer RPM, inner V).

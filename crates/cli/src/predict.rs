@@ -215,7 +215,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         points
             .par_chunks(128)
             .map(|c| {
-                let r: Vec<PointResult> = c.iter().map(|&op| solver.solve(op)).collect();
+                let r: Vec<PointResult> = solver.solve_many(c);
                 let text = if csv { summary_rows(&r) } else { Vec::new() };
                 (r, text)
             })
