@@ -207,8 +207,13 @@ pub(crate) fn solve_batch(
             }
         }
     }
-    let (thrust, torque, wsum, clsum, cdsum) =
-        (thrust.to_array(), torque.to_array(), wsum.to_array(), clsum.to_array(), cdsum.to_array());
+    let (thrust, torque, wsum, clsum, cdsum) = (
+        thrust.to_array(),
+        torque.to_array(),
+        wsum.to_array(),
+        clsum.to_array(),
+        cdsum.to_array(),
+    );
     (0..n)
         .map(|k| {
             let e = &extra[k];

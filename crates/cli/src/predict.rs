@@ -207,25 +207,39 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         ..SolverOptions::default()
     };
     // Solve and format chunk by chunk in the same parallel task, so the table is written
-    // while the data is still in cache.
+    // while the data is still in cache; the results themselves are kept only when the output
+    // needs them (JSON, the station table).
     let solver = Solver::new(&rotor, &fluid, &opts);
     let csv = args.format == Format::Csv;
-    let chunks: Vec<(Vec<PointResult>, Vec<u8>)> = {
+    let keep_results = !csv || args.stations.is_some();
+    struct Chunk {
+        results: Vec<PointResult>,
+        text: Vec<u8>,
+        failed: usize,
+        failed_points: usize,
+    }
+    let chunks: Vec<Chunk> = {
         use rayon::prelude::*;
         points
             .par_chunks(128)
             .map(|c| {
                 let r: Vec<PointResult> = solver.solve_many(c);
-                let text = if csv { summary_rows(&r) } else { Vec::new() };
-                (r, text)
+                Chunk {
+                    text: if csv { summary_rows(&r) } else { Vec::new() },
+                    failed: r.iter().map(|p| p.not_converged).sum(),
+                    failed_points: r.iter().filter(|p| p.not_converged > 0).count(),
+                    results: if keep_results { r } else { Vec::new() },
+                }
             })
             .collect()
     };
-    let mut results = Vec::with_capacity(points.len());
+    let failed: usize = chunks.iter().map(|c| c.failed).sum();
+    let failed_points: usize = chunks.iter().map(|c| c.failed_points).sum();
+    let mut results = Vec::with_capacity(if keep_results { points.len() } else { 0 });
     let mut body = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
-    for (r, text) in chunks {
-        results.extend(r);
-        body.push(text);
+    for c in chunks {
+        results.extend(c.results);
+        body.push(c.text);
     }
     let inputs = [args.prop.as_path()];
     if !csv {
@@ -250,11 +264,9 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     if let Some(path) = &args.stations {
         emit(Some(path), &[stations_csv(&results)], &inputs)?;
     }
-    let failed: usize = results.iter().map(|p| p.not_converged).sum();
     if failed > 0 {
-        let points = results.iter().filter(|p| p.not_converged > 0).count();
         eprintln!(
-            "propbet: {failed} station solutions at {points} operating points did not converge; \
+            "propbet: {failed} station solutions at {failed_points} operating points did not converge; \
              they are flagged in the per-station table"
         );
     }
