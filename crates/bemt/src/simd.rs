@@ -632,4 +632,37 @@ mod tests {
         }
         assert!(worst < 1e-9, "worst relative difference {worst}");
     }
+
+    #[test]
+    fn batches_of_points_match_single_points() {
+        let rotor = rotor();
+        let prepared = Prepared::new(&rotor).unwrap();
+        let fluid = Fluid::default();
+        for dbeta in [-6.0f64, 0.0, 9.0] {
+            let opts = SolverOptions {
+                dbeta: dbeta.to_radians(),
+                ..Default::default()
+            };
+            // Mixed speeds and rotation rates in one batch, and a short batch.
+            let ops: Vec<OperatingPoint> = (0..11)
+                .map(|k| OperatingPoint::from_rpm(-8.0 + 5.3 * k as f64, 1500.0 + 5300.0 * (k % 4) as f64))
+                .collect();
+            for batch in ops.chunks(8) {
+                let many = solve_batch(&rotor, &prepared, &fluid, batch, &opts);
+                for (op, a) in batch.iter().zip(&many) {
+                    let b = solve_point_prepared(&rotor, None, &fluid, *op, &opts);
+                    assert_eq!(a.not_converged, b.not_converged);
+                    let scale = b.thrust.abs() + b.torque.abs() / rotor.tip_radius + 1e-12;
+                    assert!(
+                        (a.thrust - b.thrust).abs() < 1e-9 * scale,
+                        "{op:?}: {} vs {}",
+                        a.thrust,
+                        b.thrust
+                    );
+                    assert!((a.torque - b.torque).abs() < 1e-9 * scale * rotor.tip_radius, "{op:?}");
+                    assert!((a.cd_avg - b.cd_avg).abs() < 1e-9 * b.cd_avg.abs().max(1e-3), "{op:?}");
+                }
+            }
+        }
+    }
 }

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use propbet_bemt::{solve_point, Discretization, Fluid, OperatingPoint, SolverOptions};
+use propbet_bemt::{solve_point, solve_points, Discretization, Fluid, OperatingPoint, SolverOptions};
 use propbet_qprop::output::{RADIAL_COLUMNS, SUMMARY_COLUMNS};
 use propbet_qprop::{parse_output, parse_prop, qprop_sequence, Printed, RadiusReading};
 
@@ -84,18 +84,25 @@ fn reproduces_every_rpm_driven_qprop_run() {
         let speeds = qprop_sequence(args[3]).unwrap();
         let rpms = qprop_sequence(args[4]).unwrap();
         let dbetas = args.get(6).map_or(vec![0.0], |a| qprop_sequence(a).unwrap());
-        // QPROP nests dBeta > RPM > V.
+        // QPROP nests dBeta > RPM > V. Sweeps go through `solve_points` (the production path,
+        // vectorised over points), single points through `solve_point` (with stations).
         let mut rows = out.summary.iter();
         let single = speeds.len() * rpms.len() * dbetas.len() == 1;
         for &db in &dbetas {
-            for &rpm in &rpms {
-                for &v in &speeds {
-                    let opts = SolverOptions {
-                        dbeta: db * propbet_bemt::solve::QPROP_PI / 180.0,
-                        keep_stations: single,
-                        ..SolverOptions::default()
-                    };
-                    let p = solve_point(&rotor, &fluid, OperatingPoint::from_rpm(v, rpm), &opts);
+            let opts = SolverOptions {
+                dbeta: db * propbet_bemt::solve::QPROP_PI / 180.0,
+                keep_stations: single,
+                ..SolverOptions::default()
+            };
+            let grid: Vec<(f64, f64)> = rpms.iter().flat_map(|&r| speeds.iter().map(move |&v| (r, v))).collect();
+            let ops: Vec<OperatingPoint> = grid.iter().map(|&(r, v)| OperatingPoint::from_rpm(v, r)).collect();
+            let solved = if single {
+                vec![solve_point(&rotor, &fluid, ops[0], &opts)]
+            } else {
+                solve_points(&rotor, &fluid, &ops, &opts)
+            };
+            for (&(rpm, v), p) in grid.iter().zip(solved) {
+                {
                     let row = rows
                         .next()
                         .unwrap_or_else(|| panic!("{out_file}: fewer rows than points"));
