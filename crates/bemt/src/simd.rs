@@ -17,8 +17,8 @@ const LANES: usize = 8;
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
 use crate::solve::{
-    context, integrate, point_result, solve_station, Convergence, Ctx, OperatingPoint, PointResult, SolverOptions,
-    StationResult, Sums,
+    context, integrate, point_result, solve_station, station_result, Convergence, Ctx, Eval, OperatingPoint,
+    PointResult, SolverOptions, StationResult, Sums,
 };
 
 /// One vector's worth of stations' constants.
@@ -409,7 +409,6 @@ struct LaneOut {
 /// QPROP's Newton iteration on eight lanes at once (stations of one point, or one station at
 /// eight points: `ua`, `ut` and the constants in `g` are per lane), then drag (QPROP CDFUN +
 /// DCDFUN) and loads (TQCALC) at the converged states. `real` marks the lanes to solve.
-#[allow(clippy::too_many_arguments)]
 fn solve_lanes(g: &Group, c: &Ctx, ua: f64x8, ut: f64x8, real: f64x8) -> LaneOut {
     let zero = f64x8::splat(0.0);
     let half = f64x8::splat(0.5);
@@ -493,6 +492,8 @@ fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mu
         dq_dr,
         wgt,
     } = out;
+    // The sums use the vector loads; a kept station's loads are recomputed by
+    // `station_result` from the same state with the same formula.
     sums.thrust += select(conv, dt_dr * g.dr, zero).reduce_add();
     sums.torque += select(conv, dq_dr * g.dr, zero).reduce_add();
     sums.wsum += select(conv, wgt, zero).reduce_add();
@@ -512,33 +513,25 @@ fn solve_group(rotor: &Rotor, g: &Group, c: &Ctx, sums: &mut Sums, stations: &mu
             }
         } else if keep {
             let a = |v: f64x8| v.to_array()[k];
-            let (wa, wt, res, res_psi) = (a(fin.wa), a(fin.wt), a(fin.res), a(fin.res_psi));
-            stations[i] = Some(StationResult {
-                r: st.r,
-                chord: st.chord,
-                beta: st.beta + c.opts.dbeta,
+            let e = Eval {
+                res: a(fin.res),
+                res_psi: a(fin.res_psi),
+                wa: a(fin.wa),
+                wt: a(fin.wt),
+                w: a(fin.w),
+                msq: a(fin.msq),
                 alpha: a(fin.alpha),
                 cl: a(fin.cl),
-                cd: a(cd),
-                re: a(re),
-                mach: a(fin.w) / c.fluid.a,
-                w: a(fin.w),
-                wa,
-                wt,
-                va: wa - c.v,
-                vt: c.omega * st.r - wt,
+                stalled: fin.stalled.to_bitmask() & (1 << k) != 0,
                 f_tip: a(fin.f_tip),
                 lambda_w: a(fin.lambda_w),
                 gamma: a(fin.gamma),
-                dt_dr: a(dt_dr),
-                dq_dr: a(dq_dr),
-                stalled: fin.stalled.to_bitmask() & (1 << k) != 0,
-                residual: res,
-                dpsi: if res_psi != 0.0 { -res / res_psi } else { 0.0 },
-                convergence: Convergence::Newton {
-                    iterations: a(iterations) as u32,
-                },
-            });
+            };
+            let conv = Convergence::Newton {
+                iterations: a(iterations) as u32,
+            };
+            let beta = st.beta + c.opts.dbeta;
+            stations[i] = Some(station_result(st, c, beta, c.v, c.omega * st.r, &e, a(re), a(cd), conv));
         }
     }
 }

@@ -533,8 +533,7 @@ impl CostFunction for Residual<'_> {
 
 /// Drag and loads at a solved state (QPROP `TQCALC`).
 pub(crate) fn finish(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, e: &Eval, conv: Convergence) -> StationResult {
-    let rho = c.fluid.rho;
-    let re = rho * e.w * st.chord / c.fluid.mu;
+    let re = c.fluid.rho * e.w * st.chord / c.fluid.mu;
     let mach_drag = e.msq.sqrt().max(1e-8);
     let cd = st.aero.drag(&DragInput {
         alpha: e.alpha,
@@ -543,7 +542,24 @@ pub(crate) fn finish(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, e: &Eva
         re,
         mach: mach_drag,
     });
-    let hrc = 0.5 * rho * st.chord;
+    station_result(st, c, beta, ua, ut, e, re, cd, conv)
+}
+
+/// The station's result from its solved state, Reynolds number and drag: loads (QPROP
+/// `TQCALC`), induced velocities, and the no-NaN check. Shared by the scalar and vector paths.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn station_result(
+    st: &Station,
+    c: &Ctx,
+    beta: f64,
+    ua: f64,
+    ut: f64,
+    e: &Eval,
+    re: f64,
+    cd: f64,
+    conv: Convergence,
+) -> StationResult {
+    let hrc = 0.5 * c.fluid.rho * st.chord;
     let fa = hrc * e.w * (e.cl * e.wt - cd * e.wa);
     let ft = hrc * e.w * (e.cl * e.wa + cd * e.wt);
     let out = StationResult {
