@@ -1,66 +1,79 @@
-//! The only crate in propbet that starts a process. So far it locates the XFOIL executable and
-//! says how to install it when missing; driving XFOIL (private Xvfb display, command scripts
-//! built from numbers only, timeouts and restarts) comes with the polar issue.
+//! The only crate in propbet that starts a process: it drives XFOIL 6.99.
+//!
+//! * [`find_xfoil`] locates the executable (with an install hint when it is missing).
+//! * [`Xfoil`] runs viscous alpha sweeps: each run in its own temporary directory, coordinates
+//!   written by us, a command script built only from numbers and fixed keywords (see
+//!   [`script`]), a private X display (see [`display`] for why), a watchdog that kills a run
+//!   that stops printing or overruns, and restarts beyond the angle where XFOIL crashed.
+//!
+//! Sweeps go from the grid angle nearest zero outward in both directions, so that the boundary
+//! layer converges by continuation; each direction is its own XFOIL process.
 #![deny(missing_docs)]
 
-use std::path::{Path, PathBuf};
+pub mod display;
+mod find;
+mod output;
+mod run;
+pub mod script;
+
+pub use find::{find_xfoil, FindXfoilError};
+pub use output::{parse_polar_file, XfoilPoint};
+pub use run::{DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig};
 
 use thiserror::Error;
 
-/// XFOIL could not be found.
-#[derive(Debug, Error, Clone, PartialEq, Eq)]
-pub enum FindXfoilError {
-    /// Not on the PATH (or the given path is not a file).
-    #[error(
-        "XFOIL was not found ({searched}); install it with `apt-get install xfoil xvfb` (Debian package xfoil 6.99)"
-    )]
-    NotFound {
-        /// Where it was looked for.
-        searched: String,
+/// Everything that can go wrong driving XFOIL. Errors that come from an XFOIL run carry the end
+/// of what XFOIL printed.
+#[derive(Debug, Error)]
+pub enum XfoilError {
+    /// The executable is missing.
+    #[error(transparent)]
+    NotFound(#[from] FindXfoilError),
+    /// The private X display could not be started.
+    #[error("{0} (install it with `apt-get install xvfb xfonts-base`)")]
+    Display(String),
+    /// The request itself is invalid (checked before any process starts).
+    #[error("invalid XFOIL request: {0}")]
+    BadRequest(String),
+    /// A file or process operation failed.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was being done.
+        context: String,
+        /// The underlying error.
+        source: std::io::Error,
+    },
+    /// XFOIL wrote something we cannot read.
+    #[error("XFOIL produced unreadable output: {detail}\n--- end of XFOIL's output ---\n{output_tail}")]
+    Garbage {
+        /// What was wrong.
+        detail: String,
+        /// The last lines XFOIL printed.
+        output_tail: String,
+    },
+    /// XFOIL died or hung before its first angle (loading or paneling the airfoil).
+    #[error("XFOIL failed before the first angle ({status}), while loading or paneling the airfoil\n--- end of XFOIL's output ---\n{output_tail}")]
+    Startup {
+        /// How it ended.
+        status: String,
+        /// The last lines XFOIL printed.
+        output_tail: String,
+    },
+    /// Every run crashed or hung before converging a single point.
+    #[error("XFOIL converged no point: {summary}\n--- end of XFOIL's output ---\n{output_tail}")]
+    NoPoints {
+        /// The faults, one per line.
+        summary: String,
+        /// The last lines XFOIL printed in the last run.
+        output_tail: String,
     },
 }
 
-/// Finds the XFOIL executable: `explicit` when given, else `xfoil` on `path_var` (a PATH-style
-/// list of directories).
-pub fn find_xfoil(explicit: Option<&Path>, path_var: Option<&std::ffi::OsStr>) -> Result<PathBuf, FindXfoilError> {
-    if let Some(p) = explicit {
-        return if p.is_file() {
-            Ok(p.to_path_buf())
-        } else {
-            Err(FindXfoilError::NotFound {
-                searched: p.display().to_string(),
-            })
-        };
-    }
-    let dirs: Vec<PathBuf> = path_var.map(|v| std::env::split_paths(v).collect()).unwrap_or_default();
-    dirs.iter()
-        .map(|d| d.join("xfoil"))
-        .find(|c| c.is_file())
-        .ok_or_else(|| FindXfoilError::NotFound {
-            searched: format!("xfoil on PATH ({} directories)", dirs.len()),
-        })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn missing_xfoil_says_how_to_install() {
-        let dir = std::env::temp_dir().join("propbet-no-xfoil-here");
-        let e = find_xfoil(None, Some(dir.as_os_str())).unwrap_err();
-        assert!(e.to_string().contains("apt-get install xfoil"), "{e}");
-        let e = find_xfoil(Some(&dir.join("xfoil")), None).unwrap_err();
-        assert!(e.to_string().contains("propbet-no-xfoil-here"), "{e}");
-    }
-
-    #[test]
-    fn finds_an_executable_on_the_path() {
-        let dir = std::env::temp_dir().join(format!("propbet-xfoil-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        std::fs::write(dir.join("xfoil"), b"#!/bin/sh\n").unwrap();
-        let found = find_xfoil(None, Some(dir.as_os_str())).unwrap();
-        assert_eq!(found, dir.join("xfoil"));
-        std::fs::remove_dir_all(&dir).unwrap();
+impl XfoilError {
+    pub(crate) fn io(context: impl Into<String>, source: std::io::Error) -> Self {
+        XfoilError::Io {
+            context: context.into(),
+            source,
+        }
     }
 }

@@ -1,0 +1,478 @@
+//! Running XFOIL sweeps: processes, watchdog, restarts.
+
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitStatus, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use crate::display::PrivateDisplay;
+use crate::output::{parse_polar_file, XfoilPoint};
+use crate::script::{self, RunSettings};
+use crate::XfoilError;
+
+/// Which X display XFOIL gets.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum DisplayChoice {
+    /// A private Xvfb server started on first use (the default; Debian's XFOIL needs a display).
+    PrivateXvfb {
+        /// The Xvfb executable.
+        xvfb: PathBuf,
+    },
+    /// An existing display, for example `:0`.
+    Existing(String),
+    /// No display: only for an XFOIL built without floating-point traps.
+    Headless,
+}
+
+/// How XFOIL is run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct XfoilConfig {
+    /// The XFOIL executable.
+    pub executable: PathBuf,
+    /// Its display.
+    pub display: DisplayChoice,
+    /// A run that prints nothing for this long is taken as hung and killed.
+    pub stall_timeout: Duration,
+    /// A run may take at most `startup_timeout + point_timeout * (angles + 1)`.
+    pub startup_timeout: Duration,
+    /// See `startup_timeout`.
+    pub point_timeout: Duration,
+    /// Restarts per sweep direction after crashes or hangs before the rest is given up.
+    pub max_restarts: usize,
+}
+
+impl XfoilConfig {
+    /// Defaults for `executable`: a private Xvfb (found on `PATH`), 5 s without output is a
+    /// hang, 5 s + 2 s per angle at most, 6 restarts per direction.
+    pub fn new(executable: PathBuf) -> Self {
+        let xvfb = crate::find::find_on_path("Xvfb", std::env::var_os("PATH").as_deref())
+            .unwrap_or_else(|| PathBuf::from("Xvfb"));
+        XfoilConfig {
+            executable,
+            display: DisplayChoice::PrivateXvfb { xvfb },
+            stall_timeout: Duration::from_secs(5),
+            startup_timeout: Duration::from_secs(5),
+            point_timeout: Duration::from_secs(2),
+            max_restarts: 6,
+        }
+    }
+}
+
+/// One viscous alpha sweep to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepRequest {
+    /// Airfoil contour in Selig order (trailing edge, upper surface, leading edge, lower surface).
+    pub coordinates: Vec<[f64; 2]>,
+    /// Chord Reynolds number [-].
+    pub reynolds: f64,
+    /// Mach number [-].
+    pub mach: f64,
+    /// e^n amplification ratio (9 = average wind tunnel) [-].
+    pub ncrit: f64,
+    /// Angles of attack [deg], ascending, evenly spaced or not.
+    pub alphas_deg: Vec<f64>,
+    /// Viscous iteration limit per point (XFOIL's ITER).
+    pub max_iter: u32,
+    /// Panel nodes (XFOIL's PPAR N, at most 490 in XFOIL 6.99).
+    pub panels: u32,
+}
+
+impl SweepRequest {
+    /// A request with XFOIL's usual settings: Ncrit 9, 100 iterations, 160 panels.
+    pub fn new(coordinates: Vec<[f64; 2]>, reynolds: f64, mach: f64, alphas_deg: Vec<f64>) -> Self {
+        SweepRequest {
+            coordinates,
+            reynolds,
+            mach,
+            ncrit: 9.0,
+            alphas_deg,
+            max_iter: 100,
+            panels: 160,
+        }
+    }
+
+    fn validate(&self) -> Result<(), XfoilError> {
+        let bad = |m: String| Err(XfoilError::BadRequest(m));
+        if !(self.reynolds.is_finite() && self.reynolds > 0.0 && self.reynolds < 1e9) {
+            return bad(format!("Reynolds number {} must be in (0, 1e9)", self.reynolds));
+        }
+        if !(self.mach.is_finite() && (0.0..0.9).contains(&self.mach)) {
+            return bad(format!("Mach number {} must be in [0, 0.9)", self.mach));
+        }
+        if !(self.ncrit.is_finite() && self.ncrit > 0.0 && self.ncrit <= 20.0) {
+            return bad(format!("Ncrit {} must be in (0, 20]", self.ncrit));
+        }
+        if !(1..=1000).contains(&self.max_iter) {
+            return bad(format!("iteration limit {} must be in 1..=1000", self.max_iter));
+        }
+        if !(40..=490).contains(&self.panels) {
+            return bad(format!("panel count {} must be in 40..=490", self.panels));
+        }
+        if self.alphas_deg.is_empty() || self.alphas_deg.len() > 2000 {
+            return bad(format!("{} angles requested; give 1 to 2000", self.alphas_deg.len()));
+        }
+        if let Some(a) = self.alphas_deg.iter().find(|a| !(a.is_finite() && a.abs() <= 90.0)) {
+            return bad(format!("angle of attack {a} deg is outside -90..90"));
+        }
+        if self.alphas_deg.windows(2).any(|w| w[1] <= w[0]) {
+            return bad("angles of attack must be strictly ascending".into());
+        }
+        if self.coordinates.len() < 10 || self.coordinates.len() > 2000 {
+            return bad(format!(
+                "{} coordinate points; XFOIL needs 10 to 2000",
+                self.coordinates.len()
+            ));
+        }
+        if let Some((i, _)) = self
+            .coordinates
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !(p[0].is_finite() && p[1].is_finite()))
+        {
+            return bad(format!("coordinate point {} is not finite", i + 1));
+        }
+        Ok(())
+    }
+}
+
+/// How a run failed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum FaultKind {
+    /// XFOIL died (a signal such as SIGFPE, or a non-zero exit).
+    Crash {
+        /// The exit status as the system reported it.
+        status: String,
+    },
+    /// XFOIL stopped printing, or overran its time budget, and was killed.
+    Hang {
+        /// How long it ran [s].
+        seconds: f64,
+    },
+}
+
+/// One crash or hang, at the angle XFOIL was working on.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Fault {
+    /// What happened.
+    pub kind: FaultKind,
+    /// The angle given up [deg] (the first one after the last converged point).
+    pub alpha_deg: f64,
+    /// The last lines XFOIL printed.
+    pub output_tail: String,
+}
+
+impl std::fmt::Display for Fault {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.kind {
+            FaultKind::Crash { status } => write!(f, "XFOIL crashed ({status}) at alpha {} deg", self.alpha_deg),
+            FaultKind::Hang { seconds } => {
+                write!(
+                    f,
+                    "XFOIL hung at alpha {} deg and was killed after {seconds:.1} s",
+                    self.alpha_deg
+                )
+            }
+        }
+    }
+}
+
+/// What a sweep produced.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+pub struct SweepOutcome {
+    /// Converged points, ascending in alpha.
+    pub points: Vec<XfoilPoint>,
+    /// Angles XFOIL tried but did not converge, or that were given up after a fault [deg].
+    pub unconverged_deg: Vec<f64>,
+    /// Crashes and hangs, each followed by a restart beyond the failed angle.
+    pub faults: Vec<Fault>,
+    /// XFOIL processes started.
+    pub runs: usize,
+}
+
+/// An XFOIL installation ready to run sweeps; share it between threads.
+#[derive(Debug)]
+pub struct Xfoil {
+    config: XfoilConfig,
+    display: Mutex<Option<Arc<PrivateDisplay>>>,
+}
+
+enum Ending {
+    Finished,
+    Crashed(ExitStatus),
+    Hung(Duration),
+}
+
+struct RunOutput {
+    ending: Ending,
+    /// XFOIL printed the result line of at least one angle (its log has "a =").
+    reached_first_angle: bool,
+    points: Vec<XfoilPoint>,
+    output_tail: String,
+}
+
+const TAIL_BYTES: usize = 3000;
+/// Angles closer than this are the same (XFOIL saves alpha with three decimals).
+const ALPHA_MATCH_DEG: f64 = 2e-3;
+
+impl Xfoil {
+    /// Checks that the executable exists; the display starts on the first run.
+    pub fn new(config: XfoilConfig) -> Result<Self, XfoilError> {
+        crate::find_xfoil(Some(&config.executable), None)?;
+        Ok(Xfoil {
+            config,
+            display: Mutex::new(None),
+        })
+    }
+
+    /// The configuration.
+    pub fn config(&self) -> &XfoilConfig {
+        &self.config
+    }
+
+    fn display_name(&self) -> Result<Option<String>, XfoilError> {
+        match &self.config.display {
+            DisplayChoice::Headless => Ok(None),
+            DisplayChoice::Existing(d) => Ok(Some(d.clone())),
+            DisplayChoice::PrivateXvfb { xvfb } => {
+                let mut guard = self.display.lock().unwrap_or_else(|p| p.into_inner());
+                if guard.is_none() {
+                    *guard = Some(Arc::new(PrivateDisplay::start(xvfb, Duration::from_secs(10))?));
+                }
+                Ok(guard.as_ref().map(|d| d.name()))
+            }
+        }
+    }
+
+    /// Runs a viscous sweep: from the requested angle nearest zero upward, and from there
+    /// downward, each direction one XFOIL process restarted beyond any angle where it crashed or
+    /// hung. Converged points come back with the angles that failed; an error only when the
+    /// request is invalid, XFOIL cannot be started, it writes unreadable output, or every run
+    /// faulted before converging anything.
+    pub fn sweep(&self, req: &SweepRequest) -> Result<SweepOutcome, XfoilError> {
+        req.validate()?;
+        let settings = RunSettings {
+            reynolds: req.reynolds,
+            mach: req.mach,
+            ncrit: req.ncrit,
+            max_iter: req.max_iter,
+            panels: req.panels,
+        };
+        let airfoil = script::airfoil_file(&req.coordinates);
+        let a = &req.alphas_deg;
+        let i0 = (0..a.len())
+            .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
+            .unwrap_or(0);
+        let up: Vec<f64> = a[i0..].to_vec();
+        let down: Vec<f64> = a[..i0].iter().rev().copied().collect();
+        let mut out = SweepOutcome::default();
+        let mut last_tail = String::new();
+        self.branch(&airfoil, &settings, None, &up, &mut out, &mut last_tail)?;
+        if !down.is_empty() {
+            self.branch(&airfoil, &settings, Some(a[i0]), &down, &mut out, &mut last_tail)?;
+        }
+        if out.points.is_empty() && !out.faults.is_empty() {
+            let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
+            return Err(XfoilError::NoPoints {
+                summary: summary.join("\n"),
+                output_tail: last_tail,
+            });
+        }
+        out.points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
+        out.points
+            .dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
+        out.unconverged_deg.sort_by(f64::total_cmp);
+        Ok(out)
+    }
+
+    /// One direction: runs until every angle is converged, failed or given up.
+    fn branch(
+        &self,
+        airfoil: &str,
+        settings: &RunSettings,
+        mut warm_up: Option<f64>,
+        angles: &[f64],
+        out: &mut SweepOutcome,
+        last_tail: &mut String,
+    ) -> Result<(), XfoilError> {
+        let mut pos = 0;
+        let mut restarts = 0;
+        while pos < angles.len() {
+            let todo = &angles[pos..];
+            let run = self.run_once(airfoil, settings, warm_up, todo)?;
+            out.runs += 1;
+            // Match saved points to requested angles; anything else is garbage.
+            let mut last_done: Option<usize> = None;
+            for p in &run.points {
+                let k = todo
+                    .iter()
+                    .position(|&a| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG)
+                    .ok_or_else(|| XfoilError::Garbage {
+                        detail: format!(
+                            "XFOIL saved a point at alpha {} deg, which was not requested",
+                            p.alpha_deg
+                        ),
+                        output_tail: run.output_tail.clone(),
+                    })?;
+                last_done = Some(last_done.map_or(k, |d: usize| d.max(k)));
+                out.points.push(*p);
+            }
+            let converged = |a: f64| run.points.iter().any(|p| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG);
+            *last_tail = run.output_tail.clone();
+            if !matches!(run.ending, Ending::Finished) && !run.reached_first_angle {
+                return Err(XfoilError::Startup {
+                    status: match run.ending {
+                        Ending::Crashed(s) => s.to_string(),
+                        _ => "hung".into(),
+                    },
+                    output_tail: run.output_tail,
+                });
+            }
+            let failed_at = match run.ending {
+                Ending::Finished => {
+                    out.unconverged_deg
+                        .extend(todo.iter().copied().filter(|&a| !converged(a)));
+                    return Ok(());
+                }
+                Ending::Crashed(status) => {
+                    let k = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
+                    out.faults.push(Fault {
+                        kind: FaultKind::Crash {
+                            status: status.to_string(),
+                        },
+                        alpha_deg: todo[k],
+                        output_tail: run.output_tail,
+                    });
+                    k
+                }
+                Ending::Hung(t) => {
+                    let k = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
+                    out.faults.push(Fault {
+                        kind: FaultKind::Hang {
+                            seconds: t.as_secs_f64(),
+                        },
+                        alpha_deg: todo[k],
+                        output_tail: run.output_tail,
+                    });
+                    k
+                }
+            };
+            out.unconverged_deg
+                .extend(todo[..=failed_at].iter().copied().filter(|&a| !converged(a)));
+            if let Some(d) = last_done {
+                warm_up = Some(todo[d]);
+            }
+            pos += failed_at + 1;
+            restarts += 1;
+            if restarts > self.config.max_restarts {
+                out.unconverged_deg.extend_from_slice(&angles[pos..]);
+                return Ok(());
+            }
+        }
+        Ok(())
+    }
+
+    fn run_once(
+        &self,
+        airfoil: &str,
+        settings: &RunSettings,
+        warm_up: Option<f64>,
+        angles: &[f64],
+    ) -> Result<RunOutput, XfoilError> {
+        let dir = tempfile::Builder::new()
+            .prefix("propbet-xfoil-")
+            .tempdir()
+            .map_err(|e| XfoilError::io("cannot create a temporary directory for XFOIL", e))?;
+        let path = dir.path();
+        std::fs::write(path.join(script::AIRFOIL_FILE), airfoil)
+            .map_err(|e| XfoilError::io("cannot write the airfoil file for XFOIL", e))?;
+        let log_path = path.join("xfoil.log");
+        let log = File::create(&log_path).map_err(|e| XfoilError::io("cannot create XFOIL's log file", e))?;
+        let log2 = log
+            .try_clone()
+            .map_err(|e| XfoilError::io("cannot create XFOIL's log file", e))?;
+        let mut cmd = Command::new(&self.config.executable);
+        cmd.current_dir(path)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::from(log))
+            .stderr(Stdio::from(log2))
+            // Unbuffered Fortran output: the log shows how far XFOIL got before a crash.
+            .env("GFORTRAN_UNBUFFERED_PRECONNECTED", "y");
+        match self.display_name()? {
+            Some(d) => cmd.env("DISPLAY", d),
+            None => cmd.env_remove("DISPLAY"),
+        };
+        let mut child = cmd
+            .spawn()
+            .map_err(|e| XfoilError::io(format!("cannot start XFOIL ({})", self.config.executable.display()), e))?;
+        let text = script::sweep_script(settings, warm_up, angles);
+        if let Some(mut stdin) = child.stdin.take() {
+            // XFOIL may die before reading everything; the watchdog below reports that.
+            let _ = stdin.write_all(text.as_bytes());
+        }
+        let budget = self.config.startup_timeout + self.config.point_timeout * (angles.len() as u32 + 1);
+        let ending = watch(&mut child, &log_path, self.config.stall_timeout, budget)?;
+        let output = std::fs::read(&log_path).unwrap_or_default();
+        let output_tail = tail(&output);
+        let polar = match std::fs::read(path.join(script::POLAR_FILE)) {
+            Ok(b) => String::from_utf8_lossy(&b).into_owned(),
+            Err(_) => String::new(),
+        };
+        let points = parse_polar_file(&polar, &output_tail)?;
+        if matches!(ending, Ending::Finished) && polar.is_empty() {
+            return Err(XfoilError::Garbage {
+                detail: "XFOIL finished without writing its polar file".into(),
+                output_tail,
+            });
+        }
+        let reached_first_angle = output.windows(3).any(|w| w == b"a =");
+        Ok(RunOutput {
+            ending,
+            reached_first_angle,
+            points,
+            output_tail,
+        })
+    }
+}
+
+/// Waits for `child`, killing it when its log stops growing for `stall` or the whole run
+/// exceeds `budget`.
+fn watch(child: &mut std::process::Child, log: &Path, stall: Duration, budget: Duration) -> Result<Ending, XfoilError> {
+    let start = Instant::now();
+    let mut last_len = 0;
+    let mut last_change = start;
+    let mut nap = Duration::from_millis(1);
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) if status.success() => return Ok(Ending::Finished),
+            Ok(Some(status)) => return Ok(Ending::Crashed(status)),
+            Ok(None) => {}
+            Err(e) => return Err(XfoilError::io("cannot wait for XFOIL", e)),
+        }
+        let len = std::fs::metadata(log).map(|m| m.len()).unwrap_or(0);
+        let now = Instant::now();
+        if len != last_len {
+            last_len = len;
+            last_change = now;
+        }
+        if now - last_change > stall || now - start > budget {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Ok(Ending::Hung(now - start));
+        }
+        std::thread::sleep(nap);
+        nap = (nap * 2).min(Duration::from_millis(10));
+    }
+}
+
+fn tail(bytes: &[u8]) -> String {
+    let start = bytes.len().saturating_sub(TAIL_BYTES);
+    let text = String::from_utf8_lossy(&bytes[start..]);
+    match text.find('\n') {
+        Some(i) if start > 0 => text[i + 1..].to_string(),
+        _ => text.into_owned(),
+    }
+}

@@ -1,0 +1,95 @@
+//! XFOIL command scripts. Every line is a fixed keyword or a number formatted here; no text
+//! from the user (names, paths) ever reaches XFOIL's standard input. The coordinates go to a
+//! file we write ([`AIRFOIL_FILE`]) under a fixed name, and the polar to [`POLAR_FILE`], both in
+//! the run's own temporary directory.
+
+use std::fmt::Write;
+
+/// Name of the coordinate file in a run's directory.
+pub const AIRFOIL_FILE: &str = "airfoil.dat";
+/// Name of the polar save file in a run's directory.
+pub const POLAR_FILE: &str = "polar.txt";
+/// Name line written at the top of the coordinate file.
+pub const AIRFOIL_NAME: &str = "propbet section";
+
+/// Settings of one viscous run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunSettings {
+    /// Chord Reynolds number [-].
+    pub reynolds: f64,
+    /// Mach number [-].
+    pub mach: f64,
+    /// e^n transition amplification ratio [-].
+    pub ncrit: f64,
+    /// Viscous Newton iteration limit per point.
+    pub max_iter: u32,
+    /// Panel nodes (XFOIL's PPAR N).
+    pub panels: u32,
+}
+
+/// The script for one run: plot window made tiny (graphics must stay on, see
+/// [`crate::display`]), load, repanel, viscous settings, an optional warm-up angle that is
+/// solved but not saved (continuation after a restart), then the angles in order, each saved to
+/// the polar file as soon as it converges.
+pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64]) -> String {
+    let mut out = String::with_capacity(256 + 16 * alphas_deg.len());
+    // Writing to a String cannot fail.
+    let _ = writeln!(out, "PLOP\nW 0.05\n");
+    let _ = writeln!(out, "LOAD {AIRFOIL_FILE}");
+    let _ = writeln!(out, "PPAR\nN {}\n\n", s.panels);
+    let _ = writeln!(out, "OPER");
+    let _ = writeln!(out, "VISC {:e}", s.reynolds);
+    let _ = writeln!(out, "MACH {:.6}", s.mach);
+    let _ = writeln!(out, "VPAR\nN {:.6}\n", s.ncrit);
+    let _ = writeln!(out, "ITER {}", s.max_iter);
+    if let Some(a) = warm_up_deg {
+        let _ = writeln!(out, "ALFA {a:.6}");
+    }
+    let _ = writeln!(out, "PACC\n{POLAR_FILE}\n");
+    for a in alphas_deg {
+        let _ = writeln!(out, "ALFA {a:.6}");
+    }
+    let _ = writeln!(out, "PACC\n\nQUIT");
+    out
+}
+
+/// The coordinate file: a fixed name line, then one `x y` pair per line.
+pub fn airfoil_file(points: &[[f64; 2]]) -> String {
+    let mut out = String::with_capacity(32 + 28 * points.len());
+    let _ = writeln!(out, "{AIRFOIL_NAME}");
+    for p in points {
+        let _ = writeln!(out, "{:.8} {:.8}", p[0], p[1]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn script_is_keywords_and_numbers_only() {
+        let s = RunSettings {
+            reynolds: 1e5,
+            mach: 0.1,
+            ncrit: 9.0,
+            max_iter: 100,
+            panels: 160,
+        };
+        let text = sweep_script(&s, Some(3.0), &[4.0, 5.0]);
+        let keywords = [
+            "PLOP", "G", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "ITER", "ALFA", "PACC", "QUIT",
+        ];
+        for line in text.lines() {
+            for word in line.split_whitespace() {
+                let ok = keywords.contains(&word)
+                    || word == AIRFOIL_FILE
+                    || word == POLAR_FILE
+                    || word.parse::<f64>().is_ok();
+                assert!(ok, "unexpected word {word:?} in {line:?}");
+            }
+        }
+        assert!(text.contains("VISC 1e5\n"));
+        assert!(text.contains("ALFA 3.000000\nPACC\npolar.txt\n\nALFA 4.000000\nALFA 5.000000\nPACC\n\nQUIT"));
+    }
+}

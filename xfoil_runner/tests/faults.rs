@@ -1,0 +1,168 @@
+//! The runner's fault handling, with fake `xfoil` scripts that crash, hang, babble or write
+//! garbage at chosen angles. They speak just enough of XFOIL's dialogue: `PACC` + file name,
+//! `ALFA a` (a point saved to the polar file), `QUIT`.
+
+use std::os::unix::fs::PermissionsExt;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use xfoil_runner::{DisplayChoice, FaultKind, SweepRequest, Xfoil, XfoilConfig, XfoilError};
+
+/// A fake XFOIL whose reaction to `ALFA $arg` is `behaviour` (a bash snippet run before the
+/// point is saved).
+fn fake(behaviour: &str) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("xfoil");
+    let script = format!(
+        r#"#!/bin/bash
+echo "  XFOIL Version 6.99 (fake)"
+acc=0
+while read -r cmd arg; do
+  case "$cmd" in
+    PACC)
+      if [ $acc = 0 ]; then
+        read -r polar; read -r dump; acc=1
+        printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
+      else acc=0; fi ;;
+    ALFA)
+      echo "       a =  $arg      CL =  0.5"
+      {behaviour}
+      if [ $acc = 1 ]; then
+        awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
+      fi ;;
+    QUIT) exit 0 ;;
+  esac
+done
+"#
+    );
+    std::fs::write(&path, script).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    (dir, path)
+}
+
+fn runner(exe: PathBuf) -> Xfoil {
+    let mut c = XfoilConfig::new(exe);
+    c.display = DisplayChoice::Headless;
+    c.stall_timeout = Duration::from_millis(500);
+    c.startup_timeout = Duration::from_secs(1);
+    c.point_timeout = Duration::from_millis(200);
+    Xfoil::new(c).unwrap()
+}
+
+fn request() -> SweepRequest {
+    let coords: Vec<[f64; 2]> = (0..40)
+        .map(|i| {
+            let t = std::f64::consts::TAU * f64::from(i) / 40.0;
+            [0.5 + 0.5 * t.cos(), 0.06 * t.sin()]
+        })
+        .collect();
+    SweepRequest::new(coords, 1e5, 0.0, (-3..=6).map(f64::from).collect())
+}
+
+fn alphas(out: &xfoil_runner::SweepOutcome) -> Vec<f64> {
+    out.points.iter().map(|p| p.alpha_deg).collect()
+}
+
+#[test]
+fn a_clean_fake_converges_everything_in_two_runs() {
+    let (_d, exe) = fake("");
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    assert_eq!(out.runs, 2);
+    assert!(out.faults.is_empty() && out.unconverged_deg.is_empty());
+}
+
+#[test]
+fn a_crash_is_restarted_beyond_the_failed_angle() {
+    let (_d, exe) = fake(r#"[ "$arg" = "3.000000" ] && kill -FPE $$"#);
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert_eq!(alphas(&out), vec![-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 5.0, 6.0]);
+    assert_eq!(out.unconverged_deg, vec![3.0]);
+    assert_eq!(out.faults.len(), 1);
+    assert_eq!(out.faults[0].alpha_deg, 3.0);
+    match &out.faults[0].kind {
+        FaultKind::Crash { status } => assert!(status.contains("SIGFPE") || status.contains('8'), "{status}"),
+        k => panic!("expected a crash, got {k:?}"),
+    }
+    assert!(
+        out.faults[0].output_tail.contains("a =  3.000000"),
+        "{}",
+        out.faults[0].output_tail
+    );
+    assert_eq!(out.runs, 3, "up, restart after the crash, down");
+}
+
+#[test]
+fn a_hang_is_killed_and_the_sweep_goes_on() {
+    // An endless loop that prints nothing, as an untrapped XFOIL does on NaN.
+    let (_d, exe) = fake(r#"[ "$arg" = "-2.000000" ] && while :; do :; done"#);
+    let t = Instant::now();
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(t.elapsed() < Duration::from_secs(5), "took {:?}", t.elapsed());
+    assert_eq!(alphas(&out), vec![-3.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+    assert!(matches!(out.faults[0].kind, FaultKind::Hang { .. }), "{:?}", out.faults);
+    assert_eq!(out.faults[0].alpha_deg, -2.0);
+}
+
+#[test]
+fn endless_chatter_is_stopped_by_the_run_budget() {
+    let (_d, exe) = fake(r#"[ "$arg" = "5.000000" ] && while :; do echo " XFOIL   c>"; sleep 0.01; done"#);
+    let t = Instant::now();
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(t.elapsed() < Duration::from_secs(8), "took {:?}", t.elapsed());
+    assert_eq!(out.faults.len(), 1);
+    assert!(matches!(out.faults[0].kind, FaultKind::Hang { .. }));
+    assert_eq!(out.unconverged_deg, vec![5.0]);
+}
+
+#[test]
+fn crashing_everywhere_is_an_error_with_the_output() {
+    let (_d, exe) = fake(r#"echo "Program received signal SIGFPE"; kill -FPE $$"#);
+    let e = runner(exe).sweep(&request()).unwrap_err();
+    let text = e.to_string();
+    assert!(matches!(e, XfoilError::NoPoints { .. }), "{text}");
+    assert!(text.contains("Program received signal SIGFPE"), "{text}");
+}
+
+#[test]
+fn crashing_before_the_first_angle_is_a_startup_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let exe = dir.path().join("xfoil");
+    std::fs::write(&exe, "#!/bin/bash\necho ' Paneling airfoil'\nkill -FPE $$\n").unwrap();
+    std::fs::set_permissions(&exe, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let e = runner(exe).sweep(&request()).unwrap_err();
+    assert!(matches!(e, XfoilError::Startup { .. }), "{e}");
+    assert!(e.to_string().contains("Paneling airfoil"), "{e}");
+}
+
+#[test]
+fn garbage_in_the_polar_file_is_an_error() {
+    let (_d, exe) = fake(r#"[ "$arg" = "2.000000" ] && echo "  2.000  NaN-ish garbage" >> "$polar""#);
+    let e = runner(exe).sweep(&request()).unwrap_err();
+    assert!(matches!(e, XfoilError::Garbage { .. }), "{e}");
+    assert!(e.to_string().contains("garbage"), "{e}");
+}
+
+#[test]
+fn bad_requests_are_refused_before_any_process() {
+    let (_d, exe) = fake("");
+    let x = runner(exe);
+    let mut r = request();
+    r.reynolds = 0.0;
+    assert!(x.sweep(&r).unwrap_err().to_string().contains("Reynolds number 0"));
+    let mut r = request();
+    r.reynolds = -5e4;
+    assert!(matches!(x.sweep(&r), Err(XfoilError::BadRequest(_))));
+    let mut r = request();
+    r.coordinates[7][1] = f64::NAN;
+    assert!(x.sweep(&r).unwrap_err().to_string().contains("point 8"));
+    let mut r = request();
+    r.alphas_deg = vec![2.0, 1.0];
+    assert!(x.sweep(&r).unwrap_err().to_string().contains("ascending"));
+}
+
+#[test]
+fn a_missing_xfoil_says_how_to_install_it() {
+    let e = Xfoil::new(XfoilConfig::new(PathBuf::from("/nonexistent/xfoil"))).unwrap_err();
+    assert!(e.to_string().contains("apt-get install xfoil"), "{e}");
+}

@@ -1,0 +1,46 @@
+//! The runner against the real XFOIL 6.99 (CI installs it with scripts/setup.sh).
+
+use std::path::{Path, PathBuf};
+
+use xfoil_runner::{find_xfoil, SweepRequest, Xfoil, XfoilConfig};
+
+fn airfoil(name: &str) -> Vec<[f64; 2]> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../props/airfoils")
+        .join(name);
+    let text = std::fs::read_to_string(&path).unwrap();
+    text.lines()
+        .skip(1)
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split_whitespace().filter_map(|f| f.parse().ok()).collect();
+            (v.len() == 2).then(|| [v[0], v[1]])
+        })
+        .collect()
+}
+
+fn xfoil() -> Xfoil {
+    let exe: PathBuf = find_xfoil(None, std::env::var_os("PATH").as_deref()).expect("XFOIL must be installed");
+    Xfoil::new(XfoilConfig::new(exe)).unwrap()
+}
+
+#[test]
+fn naca4412_sweep_from_zero_both_ways() {
+    let x = xfoil();
+    let alphas: Vec<f64> = (-4..=8).map(f64::from).collect();
+    let out = x
+        .sweep(&SweepRequest::new(airfoil("naca4412.dat"), 1e5, 0.0, alphas))
+        .unwrap();
+    assert!(out.faults.is_empty(), "{:?}", out.faults);
+    assert_eq!(out.runs, 2, "one process per direction");
+    assert!(
+        out.points.len() >= 12,
+        "{:?} unconverged {:?}",
+        out.points.len(),
+        out.unconverged_deg
+    );
+    assert!(out.points.windows(2).all(|w| w[0].alpha_deg < w[1].alpha_deg));
+    let p4 = out.points.iter().find(|p| p.alpha_deg == 4.0).unwrap();
+    // The shipped 35-point file is coarser than XFOIL's own NACA 4412; same polar to ~2 %.
+    assert!((p4.cl - 0.888).abs() < 0.03, "cl(4) = {}", p4.cl);
+    assert!((p4.cd - 0.0197).abs() < 0.0015, "cd(4) = {}", p4.cd);
+}
