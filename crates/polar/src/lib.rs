@@ -1,0 +1,13 @@
+//! Airfoils and their polars for propbet.
+//!
+//! * [`airfoil`]: coordinate files (Selig, Lednicer), checks, NACA 4-digit, thickness scaling,
+//!   blending, repaneling.
+//! * [`table`]: polars (XFOIL points at one Re, Mach, Ncrit) and their interpolation.
+//! * [`reduce`]: reduction of polars to QPROP's ten coefficients, weighted by the angles the
+//!   blade sees, with residuals and a verdict on whether the parametric law fits.
+//! * [`tabulated`]: a section model that interpolates the polars themselves, with a post-stall
+//!   extension to +-90 deg, usable by the solver instead of the parametric one.
+//! * [`compute`]: polars from XFOIL, in parallel, through a content-addressed cache.
+#![deny(missing_docs)]
+
+pub mod airfoil;
