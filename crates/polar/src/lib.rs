@@ -11,3 +11,5 @@
 #![deny(missing_docs)]
 
 pub mod airfoil;
+pub mod reduce;
+pub mod table;

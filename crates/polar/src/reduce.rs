@@ -1,0 +1,537 @@
+//! Reduction of XFOIL polars to QPROP's ten coefficients.
+//!
+//! QPROP's section law (`propbet_bemt::aero::QpropAirfoil`) is a straight lift line clipped at
+//! CLmin/CLmax, and a drag polar of two half-parabolas in cl about CLCD0, scaled by
+//! (Re/REref)^REexp. Real low-Re polars are not that shape everywhere: a thin, highly cambered
+//! section (E63 at 4-6 % and Re 2e4-1e5) has its drag minimum near cl = 1.2, laminar bubbles
+//! bend the lift line, and XFOIL fails at many positive angles inboard. A fit over the whole
+//! polar then describes angles the blade never sees and misses the ones it does. So:
+//!
+//! 1. the **linear range** grows outward from the angle the blade works at (or the middle of the
+//!    attached range) while one straight line still fits every point within 0.025 in cl;
+//! 2. CL0 and CL_a come from a weighted line fit over it, the weights [`AlphaWeights`] saying
+//!    which angles the blade sees; Prandtl-Glauert is taken out, because QPROP puts it back;
+//! 3. CD0, CD2u, CD2l come from a weighted least-squares fit of the *relative* drag error over
+//!    the linear range for each trial CLCD0 (a fine grid over its cl), keeping the best;
+//! 4. REexp from the drag ratio at equal cl between polars at other Re;
+//! 5. the residuals over the linear range are reported, and [`QpropFit::unfit`] says in words
+//!    when the parametric law does not describe XFOIL's polar where the blade works.
+
+use propbet_bemt::QpropCoefficients;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use crate::table::Polar;
+
+/// Lift tolerance of the linear range: every point within this of one straight line.
+pub const LINEAR_RANGE_CL_TOL: f64 = 0.025;
+/// Largest lift error of an acceptable fit over the linear range.
+pub const FIT_CL_TOL: f64 = 0.03;
+/// Largest relative drag error of an acceptable fit over the linear range.
+pub const FIT_CD_REL_TOL: f64 = 0.10;
+
+/// Which angles of attack matter, and how much.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub enum AlphaWeights {
+    /// Every angle alike.
+    Uniform,
+    /// Gaussian bumps of width `sigma_deg` around each angle the blade works at (from the
+    /// solver), on a floor of 0.05 so that no converged point is ignored entirely.
+    Around {
+        /// Angles of attack seen by the section [deg].
+        alphas_deg: Vec<f64>,
+        /// Width of each bump [deg].
+        sigma_deg: f64,
+    },
+}
+
+impl AlphaWeights {
+    /// Weight of angle `alpha_deg`.
+    pub fn weight(&self, alpha_deg: f64) -> f64 {
+        match self {
+            AlphaWeights::Uniform => 1.0,
+            AlphaWeights::Around { alphas_deg, sigma_deg } => {
+                0.05 + alphas_deg
+                    .iter()
+                    .map(|a| (-0.5 * ((alpha_deg - a) / sigma_deg).powi(2)).exp())
+                    .sum::<f64>()
+            }
+        }
+    }
+
+    fn centre(&self) -> Option<f64> {
+        match self {
+            AlphaWeights::Uniform => None,
+            AlphaWeights::Around { alphas_deg, .. } if !alphas_deg.is_empty() => {
+                Some(alphas_deg.iter().sum::<f64>() / alphas_deg.len() as f64)
+            }
+            AlphaWeights::Around { .. } => None,
+        }
+    }
+}
+
+/// Fit residual at one XFOIL point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct FitResidual {
+    /// Angle of attack [deg].
+    pub alpha_deg: f64,
+    /// XFOIL's lift coefficient [-].
+    pub cl_xfoil: f64,
+    /// The fitted law's lift coefficient [-].
+    pub cl_fit: f64,
+    /// XFOIL's drag coefficient [-].
+    pub cd_xfoil: f64,
+    /// The fitted law's drag coefficient [-].
+    pub cd_fit: f64,
+    /// Whether the point is in the linear range.
+    pub linear: bool,
+}
+
+/// QPROP coefficients fitted to polars, with how well they fit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct QpropFit {
+    /// The ten coefficients (CL_a per radian).
+    pub coeffs: QpropCoefficients,
+    /// The linear range [deg].
+    pub linear_range_deg: [f64; 2],
+    /// Points in the linear range.
+    pub linear_points: usize,
+    /// Largest |cl error| over the linear range [-].
+    pub cl_max_error: f64,
+    /// Weighted RMS cl error over the linear range [-].
+    pub cl_rms_error: f64,
+    /// Largest relative cd error over the linear range [-].
+    pub cd_max_rel_error: f64,
+    /// Weighted RMS relative cd error over the linear range [-].
+    pub cd_rms_rel_error: f64,
+    /// Whether REexp came from polars at other Re (otherwise the default was kept).
+    pub re_exp_fitted: bool,
+    /// Residuals at every converged point of the attached range.
+    pub residuals: Vec<FitResidual>,
+    /// Why the parametric law does not describe this section where the blade works (empty:
+    /// it does).
+    pub unfit: Vec<String>,
+    /// Other remarks (limits taken from the last converged point, defaults kept).
+    pub notes: Vec<String>,
+}
+
+/// Polars that cannot be reduced.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FitError {
+    /// No polar given.
+    #[error("no polar to fit")]
+    NoPolar,
+    /// Too few converged points in the attached range of the polar at `re`.
+    #[error("the polar at Re = {re:.0} has {found} converged points before stall; at least 3 are needed")]
+    TooFewPoints {
+        /// Reynolds number of the polar.
+        re: f64,
+        /// Points found.
+        found: usize,
+    },
+}
+
+/// Fits QPROP's coefficients to `polars` (any order; the one nearest `re_ref` in ln Re gives
+/// lift and drag, the others REexp). `default_re_exp` is kept when there is a single polar.
+pub fn fit_qprop(
+    polars: &[Polar],
+    re_ref: f64,
+    weights: &AlphaWeights,
+    default_re_exp: f64,
+) -> Result<QpropFit, FitError> {
+    let centre = polars
+        .iter()
+        .min_by(|a, b| (a.re.ln() - re_ref.ln()).abs().total_cmp(&(b.re.ln() - re_ref.ln()).abs()))
+        .ok_or(FitError::NoPolar)?;
+    let too_few = |found| FitError::TooFewPoints { re: centre.re, found };
+    let (lo, hi) = centre.attached_range().ok_or(too_few(centre.points.len()))?;
+    let pts = &centre.points[lo..=hi];
+    if pts.len() < 3 {
+        return Err(too_few(pts.len()));
+    }
+    let mut notes = Vec::new();
+    let mut unfit = Vec::new();
+
+    // 1. Linear range, grown from the working angle.
+    let seed_alpha = weights
+        .centre()
+        .unwrap_or(0.5 * (pts[0].alpha_deg + pts[pts.len() - 1].alpha_deg));
+    let seed = (0..pts.len())
+        .min_by(|&i, &j| (pts[i].alpha_deg - seed_alpha).abs().total_cmp(&(pts[j].alpha_deg - seed_alpha).abs()))
+        .unwrap_or(0)
+        .clamp(1, pts.len() - 2);
+    let (mut i0, mut i1) = (seed - 1, seed + 1);
+    loop {
+        let try_range = |a: usize, b: usize| {
+            let xs: Vec<(f64, f64, f64)> = pts[a..=b].iter().map(|p| (p.alpha_deg, p.cl, 1.0)).collect();
+            let (c0, c1) = line_fit(&xs);
+            xs.iter().map(|&(x, y, _)| (y - c0 - c1 * x).abs()).fold(0.0, f64::max)
+        };
+        let left = (i0 > 0).then(|| try_range(i0 - 1, i1));
+        let right = (i1 + 1 < pts.len()).then(|| try_range(i0, i1 + 1));
+        match (left, right) {
+            (Some(l), Some(r)) if l <= r && l <= LINEAR_RANGE_CL_TOL => i0 -= 1,
+            (_, Some(r)) if r <= LINEAR_RANGE_CL_TOL => i1 += 1,
+            (Some(l), _) if l <= LINEAR_RANGE_CL_TOL => i0 -= 1,
+            _ => break,
+        }
+    }
+    let lin = &pts[i0..=i1];
+    let range = [lin[0].alpha_deg, lin[lin.len() - 1].alpha_deg];
+
+    // 2. Lift line, weighted.
+    let xs: Vec<(f64, f64, f64)> = lin.iter().map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg))).collect();
+    let (cl0_m, slope_deg) = line_fit(&xs);
+    let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
+    let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
+
+    // 3. Drag polar: best CLCD0 on a grid over the linear range's cl.
+    let cl_lo = lin.iter().map(|p| p.cl).fold(f64::INFINITY, f64::min);
+    let cl_hi = lin.iter().map(|p| p.cl).fold(f64::NEG_INFINITY, f64::max);
+    let rows: Vec<(f64, f64, f64)> = lin.iter().map(|p| (p.cl, p.cd, weights.weight(p.alpha_deg))).collect();
+    let mut best: Option<(f64, [f64; 3])> = None;
+    let mut best_obj = f64::INFINITY;
+    const GRID: usize = 200;
+    for k in 0..=GRID {
+        let c = cl_lo + (cl_hi - cl_lo) * k as f64 / GRID as f64;
+        if let Some((obj, coef)) = drag_fit(&rows, c) {
+            if obj < best_obj {
+                best_obj = obj;
+                best = Some((c, coef));
+            }
+        }
+    }
+    let (clcd0, [cd0, cd2u, cd2l]) = best.unwrap_or_else(|| {
+        let cd_min = rows.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+        (cl_lo, [cd_min, 0.0, 0.0])
+    });
+    let cd_fit = |cl: f64| {
+        let d = cl - clcd0;
+        cd0 + if d > 0.0 { cd2u } else { cd2l } * d * d
+    };
+
+    // 4. Reynolds-number exponent from the other polars, at equal cl.
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for other in polars.iter().filter(|p| (p.re / centre.re - 1.0).abs() > 1e-6) {
+        let x = (other.re / centre.re).ln();
+        for p in lin {
+            if let Some(cd_o) = other.cd_at_cl(p.cl) {
+                let w = weights.weight(p.alpha_deg);
+                sxy += w * x * (cd_o / p.cd).ln();
+                sxx += w * x * x;
+            }
+        }
+    }
+    let re_exp_fitted = sxx > 0.0;
+    let re_exp = if re_exp_fitted { sxy / sxx } else { default_re_exp };
+    if !re_exp_fitted {
+        notes.push(format!("REexp = {default_re_exp} kept: no polar at another Re overlaps this one's cl"));
+    }
+
+    // Limits: XFOIL's extreme converged cl.
+    let cl_max = pts.iter().map(|p| p.cl).fold(f64::NEG_INFINITY, f64::max);
+    let cl_min = pts.iter().map(|p| p.cl).fold(f64::INFINITY, f64::min);
+    let all = &centre.points;
+    if hi == all.len() - 1 {
+        notes.push(format!(
+            "CLmax = {cl_max:.3} is the last converged point (alpha {} deg), not a stall XFOIL resolved",
+            all[hi].alpha_deg
+        ));
+    }
+    if lo == 0 {
+        notes.push(format!(
+            "CLmin = {cl_min:.3} is the first converged point (alpha {} deg), not a stall XFOIL resolved",
+            all[0].alpha_deg
+        ));
+    }
+
+    // 5. Residuals and verdict.
+    let residuals: Vec<FitResidual> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| FitResidual {
+            alpha_deg: p.alpha_deg,
+            cl_xfoil: p.cl,
+            cl_fit: cl_fit(p.alpha_deg),
+            cd_xfoil: p.cd,
+            cd_fit: cd_fit(p.cl),
+            linear: (i0..=i1).contains(&i),
+        })
+        .collect();
+    let in_lin: Vec<&FitResidual> = residuals.iter().filter(|r| r.linear).collect();
+    let wsum: f64 = in_lin.iter().map(|r| weights.weight(r.alpha_deg)).sum();
+    let cl_max_error = in_lin.iter().map(|r| (r.cl_fit - r.cl_xfoil).abs()).fold(0.0, f64::max);
+    let cd_max_rel_error = in_lin.iter().map(|r| (r.cd_fit / r.cd_xfoil - 1.0).abs()).fold(0.0, f64::max);
+    let cl_rms_error =
+        (in_lin.iter().map(|r| weights.weight(r.alpha_deg) * (r.cl_fit - r.cl_xfoil).powi(2)).sum::<f64>() / wsum).sqrt();
+    let cd_rms_rel_error = (in_lin
+        .iter()
+        .map(|r| weights.weight(r.alpha_deg) * (r.cd_fit / r.cd_xfoil - 1.0).powi(2))
+        .sum::<f64>()
+        / wsum)
+        .sqrt();
+    if range[1] - range[0] < 4.0 || lin.len() < 4 {
+        unfit.push(format!(
+            "the lift curve is straight only over alpha {:.1}..{:.1} deg ({} points)",
+            range[0],
+            range[1],
+            lin.len()
+        ));
+    }
+    if cl_max_error > FIT_CL_TOL {
+        unfit.push(format!("the lift line misses XFOIL by up to {cl_max_error:.3} in cl over the linear range"));
+    }
+    if cd_max_rel_error > FIT_CD_REL_TOL {
+        unfit.push(format!(
+            "the two-parabola drag law misses XFOIL by up to {:.0} % over the linear range",
+            cd_max_rel_error * 100.0
+        ));
+    }
+    if let AlphaWeights::Around { alphas_deg, .. } = weights {
+        let outside: Vec<f64> = alphas_deg
+            .iter()
+            .copied()
+            .filter(|a| *a < range[0] - 0.5 || *a > range[1] + 0.5)
+            .collect();
+        if !outside.is_empty() {
+            unfit.push(format!(
+                "the blade works at alpha {} deg, outside the linear range {:.1}..{:.1} deg",
+                outside.iter().map(|a| format!("{a:.1}")).collect::<Vec<_>>().join(", "),
+                range[0],
+                range[1]
+            ));
+        }
+        let failed = alphas_deg
+            .iter()
+            .filter(|a| centre.unconverged_deg.iter().any(|u| (*u - **a).abs() < 1.0))
+            .count();
+        if failed > 0 {
+            unfit.push(format!("XFOIL did not converge at {failed} of the angles the blade works at"));
+        }
+    }
+    Ok(QpropFit {
+        coeffs: QpropCoefficients {
+            cl0: cl0_m * beta,
+            cl_a: slope_deg.to_degrees() * beta,
+            cl_min,
+            cl_max,
+            cd0,
+            cd2u,
+            cd2l,
+            clcd0,
+            re_ref: centre.re,
+            re_exp,
+        },
+        linear_range_deg: range,
+        linear_points: lin.len(),
+        cl_max_error,
+        cl_rms_error,
+        cd_max_rel_error,
+        cd_rms_rel_error,
+        re_exp_fitted,
+        residuals,
+        unfit,
+        notes,
+    })
+}
+
+/// Weighted least-squares line `y = c0 + c1 x` through `(x, y, w)`.
+fn line_fit(p: &[(f64, f64, f64)]) -> (f64, f64) {
+    let sw: f64 = p.iter().map(|q| q.2).sum();
+    let mx = p.iter().map(|q| q.2 * q.0).sum::<f64>() / sw;
+    let my = p.iter().map(|q| q.2 * q.1).sum::<f64>() / sw;
+    let sxx: f64 = p.iter().map(|q| q.2 * (q.0 - mx).powi(2)).sum();
+    let sxy: f64 = p.iter().map(|q| q.2 * (q.0 - mx) * (q.1 - my)).sum();
+    let c1 = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+    (my - c1 * mx, c1)
+}
+
+/// Drag law for a fixed CLCD0 `c`: minimises sum w (cd_fit / cd - 1)^2 over (CD0, CD2u, CD2l)
+/// with CD0 > 0 and both CD2 >= 0. A side with fewer than two points takes the other side's
+/// curvature. Returns the objective and the coefficients.
+fn drag_fit(rows: &[(f64, f64, f64)], c: f64) -> Option<(f64, [f64; 3])> {
+    let up = rows.iter().filter(|r| r.0 > c).count();
+    let down = rows.len() - up;
+    let basis = |cl: f64, tie_up: bool, tie_down: bool| -> [f64; 3] {
+        let d2 = (cl - c).powi(2);
+        let (u, l) = if cl > c { (d2, 0.0) } else { (0.0, d2) };
+        // A tied side's column is merged into the other one.
+        match (tie_up, tie_down) {
+            (true, _) => [1.0, 0.0, u + l],
+            (_, true) => [1.0, u + l, 0.0],
+            _ => [1.0, u, l],
+        }
+    };
+    let (tie_up, tie_down) = (up < 2, down < 2 && up >= 2);
+    let mut active = [true, !tie_up, !tie_down];
+    for _ in 0..3 {
+        let mut ata = [[0.0; 3]; 3];
+        let mut atb = [0.0; 3];
+        for &(cl, cd, w) in rows {
+            let b = basis(cl, tie_up, tie_down);
+            let s = w / (cd * cd);
+            for i in 0..3 {
+                atb[i] += s * b[i] * cd;
+                for j in 0..3 {
+                    ata[i][j] += s * b[i] * b[j];
+                }
+            }
+        }
+        for i in 0..3 {
+            if !active[i] {
+                for j in 0..3 {
+                    ata[i][j] = 0.0;
+                    ata[j][i] = 0.0;
+                }
+                ata[i][i] = 1.0;
+                atb[i] = 0.0;
+            }
+        }
+        let x = solve3(ata, atb)?;
+        if x[0] <= 0.0 {
+            return None;
+        }
+        let negative: Vec<usize> = (1..3).filter(|&i| active[i] && x[i] < 0.0).collect();
+        if negative.is_empty() {
+            let coef = match (tie_up, tie_down) {
+                (true, _) => [x[0], x[2], x[2]],
+                (_, true) => [x[0], x[1], x[1]],
+                _ => [x[0], x[1], x[2]],
+            };
+            let obj = rows
+                .iter()
+                .map(|&(cl, cd, w)| {
+                    let b = basis(cl, tie_up, tie_down);
+                    w * ((x[0] * b[0] + x[1] * b[1] + x[2] * b[2]) / cd - 1.0).powi(2)
+                })
+                .sum();
+            return Some((obj, coef));
+        }
+        for i in negative {
+            active[i] = false;
+        }
+    }
+    None
+}
+
+/// Gaussian elimination with partial pivoting on a 3x3 system.
+fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+    for col in 0..3 {
+        let piv = (col..3).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if a[piv][col].abs() < 1e-300 {
+            return None;
+        }
+        a.swap(col, piv);
+        b.swap(col, piv);
+        for row in col + 1..3 {
+            let f = a[row][col] / a[col][col];
+            for k in col..3 {
+                a[row][k] -= f * a[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = [0.0; 3];
+    for row in (0..3).rev() {
+        let s: f64 = (row + 1..3).map(|k| a[row][k] * x[k]).sum();
+        x[row] = (b[row] - s) / a[row][row];
+    }
+    Some(x)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::PolarPoint;
+
+    /// A polar made from QPROP's own law (plus a stall) must come back exactly.
+    fn synthetic(re: f64, c: &QpropCoefficients) -> Polar {
+        let points = (-6..=16)
+            .map(|a| {
+                let alpha = f64::from(a);
+                let lin = c.cl0 + c.cl_a * alpha.to_radians();
+                let cl = if alpha > 11.0 { lin - 0.15 * (alpha - 11.0) } else { lin };
+                let d = cl - c.clcd0;
+                let cd2 = if d > 0.0 { c.cd2u } else { c.cd2l };
+                let cd = (c.cd0 + cd2 * d * d) * (re / c.re_ref).powf(c.re_exp);
+                PolarPoint {
+                    alpha_deg: alpha,
+                    cl,
+                    cd,
+                    cdp: 0.0,
+                    cm: 0.0,
+                    xtr_top: 0.5,
+                    xtr_bottom: 1.0,
+                }
+            })
+            .collect();
+        Polar {
+            re,
+            mach: 0.0,
+            ncrit: 9.0,
+            points,
+            unconverged_deg: vec![],
+            faults: vec![],
+        }
+    }
+
+    #[test]
+    fn qprop_law_is_recovered() {
+        let truth = QpropCoefficients {
+            cl0: 0.45,
+            cl_a: 5.8,
+            cl_min: -0.3,
+            cl_max: 1.4,
+            cd0: 0.012,
+            cd2u: 0.02,
+            cd2l: 0.035,
+            clcd0: 0.55,
+            re_ref: 1e5,
+            re_exp: -0.4,
+        };
+        let polars = [synthetic(5e4, &truth), synthetic(1e5, &truth), synthetic(2e5, &truth)];
+        let fit = fit_qprop(&polars, 1e5, &AlphaWeights::Uniform, -0.5).unwrap();
+        let c = fit.coeffs;
+        assert!((c.cl0 - 0.45).abs() < 1e-9 && (c.cl_a - 5.8).abs() < 1e-9, "{c:?}");
+        assert!((c.cd0 - 0.012).abs() < 1e-5, "{c:?}");
+        assert!((c.clcd0 - 0.55).abs() < 0.02, "{c:?}");
+        assert!((c.cd2u - 0.02).abs() < 2e-3 && (c.cd2l - 0.035).abs() < 3e-3, "{c:?}");
+        assert!((c.re_exp + 0.4).abs() < 1e-6, "{c:?}");
+        assert!(fit.re_exp_fitted);
+        assert_eq!(fit.linear_range_deg, [-6.0, 11.0]);
+        assert!(fit.unfit.is_empty(), "{:?}", fit.unfit);
+        assert!(fit.cd_max_rel_error < 0.01);
+    }
+
+    #[test]
+    fn working_outside_the_linear_range_is_called_unfit() {
+        let truth = QpropCoefficients {
+            cl0: 0.45,
+            cl_a: 5.8,
+            cl_min: -0.3,
+            cl_max: 1.4,
+            cd0: 0.012,
+            cd2u: 0.02,
+            cd2l: 0.035,
+            clcd0: 0.55,
+            re_ref: 1e5,
+            re_exp: -0.4,
+        };
+        let w = AlphaWeights::Around {
+            alphas_deg: vec![14.0],
+            sigma_deg: 2.0,
+        };
+        let fit = fit_qprop(&[synthetic(1e5, &truth)], 1e5, &w, -0.5).unwrap();
+        assert!(fit.unfit.iter().any(|u| u.contains("outside the linear range")), "{:?}", fit.unfit);
+        assert!(!fit.re_exp_fitted);
+        assert_eq!(fit.coeffs.re_exp, -0.5);
+    }
+
+    #[test]
+    fn too_few_points_is_an_error() {
+        let mut p = synthetic(1e5, &QpropCoefficients::from_array([0.4, 6.0, -0.3, 1.2, 0.01, 0.02, 0.02, 0.5, 1e5, -0.5]));
+        p.points.truncate(2);
+        assert!(matches!(fit_qprop(&[p], 1e5, &AlphaWeights::Uniform, -0.5), Err(FitError::TooFewPoints { .. })));
+        assert!(matches!(fit_qprop(&[], 1e5, &AlphaWeights::Uniform, -0.5), Err(FitError::NoPolar)));
+    }
+}

@@ -1,0 +1,176 @@
+//! Polars: XFOIL's converged points at one Reynolds number, Mach number and Ncrit, and
+//! interpolation in alpha and Reynolds number.
+
+use std::fmt::Write;
+
+use serde::{Deserialize, Serialize};
+pub use xfoil_runner::{Fault, XfoilPoint as PolarPoint};
+
+/// One polar: the points XFOIL converged, ascending in alpha, and what failed.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Polar {
+    /// Chord Reynolds number [-].
+    pub re: f64,
+    /// Mach number [-].
+    pub mach: f64,
+    /// Transition amplification ratio [-].
+    pub ncrit: f64,
+    /// Converged points, ascending in alpha.
+    pub points: Vec<PolarPoint>,
+    /// Angles requested that did not converge [deg].
+    pub unconverged_deg: Vec<f64>,
+    /// Crashes and hangs of XFOIL while computing this polar.
+    pub faults: Vec<Fault>,
+}
+
+impl Polar {
+    /// The point at `alpha_deg`, linear between converged points; `None` outside their range.
+    pub fn at_alpha(&self, alpha_deg: f64) -> Option<PolarPoint> {
+        let p = &self.points;
+        if p.is_empty() || alpha_deg < p[0].alpha_deg || alpha_deg > p[p.len() - 1].alpha_deg {
+            return None;
+        }
+        let i = p.partition_point(|q| q.alpha_deg <= alpha_deg).clamp(1, p.len().max(2) - 1);
+        if p.len() == 1 {
+            return Some(p[0]);
+        }
+        let (a, b) = (p[i - 1], p[i]);
+        let t = (alpha_deg - a.alpha_deg) / (b.alpha_deg - a.alpha_deg);
+        let mix = |x: f64, y: f64| x + t * (y - x);
+        Some(PolarPoint {
+            alpha_deg,
+            cl: mix(a.cl, b.cl),
+            cd: mix(a.cd, b.cd),
+            cdp: mix(a.cdp, b.cdp),
+            cm: mix(a.cm, b.cm),
+            xtr_top: mix(a.xtr_top, b.xtr_top),
+            xtr_bottom: mix(a.xtr_bottom, b.xtr_bottom),
+        })
+    }
+
+    /// Drag at lift coefficient `cl` on the attached branch (between the lowest and highest cl,
+    /// where cl rises with alpha), linear between points; `None` outside.
+    pub fn cd_at_cl(&self, cl: f64) -> Option<f64> {
+        let (lo, hi) = self.attached_range()?;
+        let p = &self.points[lo..=hi];
+        p.windows(2).find_map(|w| {
+            let (a, b) = (w[0], w[1]);
+            let (c0, c1) = (a.cl.min(b.cl), a.cl.max(b.cl));
+            (c0 <= cl && cl <= c1 && c1 > c0).then(|| a.cd + (cl - a.cl) / (b.cl - a.cl) * (b.cd - a.cd))
+        })
+    }
+
+    /// Indices of the lowest-cl and highest-cl points: the attached range between the stalls
+    /// (as far as XFOIL converged).
+    pub fn attached_range(&self) -> Option<(usize, usize)> {
+        let p = &self.points;
+        if p.len() < 2 {
+            return None;
+        }
+        let lo = (0..p.len()).min_by(|&i, &j| p[i].cl.total_cmp(&p[j].cl))?;
+        let hi = (0..p.len()).max_by(|&i, &j| p[i].cl.total_cmp(&p[j].cl))?;
+        (lo < hi).then_some((lo, hi))
+    }
+
+    /// CSV: a comment header with Re, Mach, Ncrit and the failed angles, then one row per point.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::new();
+        let _ = writeln!(out, "# Re = {}, Mach = {}, Ncrit = {}", self.re, self.mach, self.ncrit);
+        if !self.unconverged_deg.is_empty() {
+            let list: Vec<String> = self.unconverged_deg.iter().map(|a| a.to_string()).collect();
+            let _ = writeln!(out, "# not converged at alpha [deg]: {}", list.join(" "));
+        }
+        for f in &self.faults {
+            let _ = writeln!(out, "# {f}");
+        }
+        let _ = writeln!(out, "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom");
+        for p in &self.points {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{},{},{}",
+                self.re, self.mach, self.ncrit, p.alpha_deg, p.cl, p.cd, p.cdp, p.cm, p.xtr_top, p.xtr_bottom
+            );
+        }
+        out
+    }
+}
+
+/// Interpolation weights between the polars of a set (sorted by Re) at `re`: linear in ln Re,
+/// clamped to the end polars. Returns `(lower index, upper index, fraction)`.
+pub fn re_bracket(res: &[f64], re: f64) -> (usize, usize, f64) {
+    let n = res.len();
+    if n <= 1 || re <= res[0] {
+        return (0, 0, 0.0);
+    }
+    if re >= res[n - 1] {
+        return (n - 1, n - 1, 0.0);
+    }
+    let i = res.partition_point(|&r| r <= re).clamp(1, n - 1);
+    let t = (re.ln() - res[i - 1].ln()) / (res[i].ln() - res[i - 1].ln());
+    (i - 1, i, t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pt(alpha_deg: f64, cl: f64, cd: f64) -> PolarPoint {
+        PolarPoint {
+            alpha_deg,
+            cl,
+            cd,
+            cdp: 0.0,
+            cm: 0.0,
+            xtr_top: 1.0,
+            xtr_bottom: 1.0,
+        }
+    }
+
+    fn polar() -> Polar {
+        Polar {
+            re: 1e5,
+            mach: 0.0,
+            ncrit: 9.0,
+            points: vec![pt(-6.0, -0.3, 0.03), pt(0.0, 0.4, 0.012), pt(4.0, 0.85, 0.015), pt(10.0, 1.3, 0.03), pt(14.0, 1.1, 0.08)],
+            unconverged_deg: vec![12.0],
+            faults: vec![],
+        }
+    }
+
+    #[test]
+    fn interpolates_in_alpha_inside_only() {
+        let p = polar();
+        let q = p.at_alpha(2.0).unwrap();
+        assert!((q.cl - 0.625).abs() < 1e-12 && (q.cd - 0.0135).abs() < 1e-12);
+        assert!(p.at_alpha(-7.0).is_none() && p.at_alpha(15.0).is_none());
+        assert_eq!(p.at_alpha(14.0).unwrap().cl, 1.1);
+    }
+
+    #[test]
+    fn drag_at_lift_stays_on_the_attached_branch() {
+        let p = polar();
+        assert_eq!(p.attached_range(), Some((0, 3)));
+        assert!((p.cd_at_cl(0.4).unwrap() - 0.012).abs() < 1e-12);
+        // cl = 1.2 occurs before and after stall; the attached branch is the one taken.
+        let cd = p.cd_at_cl(1.2).unwrap();
+        assert!(cd < 0.03, "{cd}");
+        assert!(p.cd_at_cl(1.5).is_none());
+    }
+
+    #[test]
+    fn re_bracket_is_log_linear_and_clamped() {
+        let res = [5e4, 1e5, 2e5];
+        assert_eq!(re_bracket(&res, 1e4), (0, 0, 0.0));
+        assert_eq!(re_bracket(&res, 3e5), (2, 2, 0.0));
+        let (i, j, t) = re_bracket(&res, 1e5 * 2f64.sqrt());
+        assert_eq!((i, j), (1, 2));
+        assert!((t - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn csv_names_failures() {
+        let csv = polar().to_csv();
+        assert!(csv.contains("not converged at alpha [deg]: 12"));
+        assert_eq!(csv.lines().filter(|l| l.starts_with("100000,")).count(), 5);
+    }
+}
