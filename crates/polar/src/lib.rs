@@ -13,3 +13,4 @@
 pub mod airfoil;
 pub mod reduce;
 pub mod table;
+pub mod tabulated;

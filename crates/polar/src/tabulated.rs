@@ -1,0 +1,351 @@
+//! A section model that interpolates XFOIL's polars directly (instead of QPROP's parametric
+//! law): cl and cd linear in alpha between points and linear in ln Re between polars, with a
+//! post-stall extension to +-180 deg and Prandtl-Glauert for Mach numbers other than the polars'.
+//!
+//! Past the last converged point on each side the curves blend, over 20 deg, from the last
+//! point's cl and cd to a flat plate (cl = CDmax sin a cos a, cd = CDmax sin^2 a), CDmax = 1.3
+//! (the Viterna-Corrigan value 1.11 + 0.018 AR for an aspect ratio near 10); a blade solved
+//! there is marked stalled. Outside the polars' Re range cl is held and cd scaled by
+//! (Re/Re_edge)^REexp with REexp from the two outermost polars (0 with a single polar).
+
+use std::f64::consts::PI;
+use std::sync::Arc;
+
+use propbet_bemt::{DragInput, LiftEval, Rotor, SectionAero};
+use serde::{Deserialize, Serialize};
+
+use crate::table::{re_bracket, Polar};
+
+/// Drag coefficient of a flat plate broadside to the flow, used by the post-stall extension.
+pub const CD_MAX: f64 = 1.3;
+/// Angle over which the extension blends from the last converged point to the flat plate [deg].
+const BLEND_DEG: f64 = 20.0;
+
+/// One polar as interpolation tables over -180..180 deg.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct Curve {
+    re: f64,
+    /// Angles [rad], ascending, from -pi to pi.
+    alpha: Vec<f64>,
+    cl: Vec<f64>,
+    cd: Vec<f64>,
+    /// Converged range [rad]; outside it the section is stalled (extension).
+    converged: [f64; 2],
+}
+
+impl Curve {
+    fn new(p: &Polar) -> Option<Curve> {
+        if p.points.len() < 2 {
+            return None;
+        }
+        let first = p.points[0];
+        let last = p.points[p.points.len() - 1];
+        let mut alpha = Vec::new();
+        let mut cl = Vec::new();
+        let mut cd = Vec::new();
+        // Skin friction stays when the plate is edgewise to the flow (near +-180 deg).
+        let cd_floor = p.points.iter().map(|q| q.cd).fold(f64::INFINITY, f64::min);
+        let extension = |a_s: f64, cl_s: f64, cd_s: f64, a: f64| -> (f64, f64) {
+            let f = ((a - a_s).abs() / BLEND_DEG.to_radians()).min(1.0);
+            let f = f * f * (3.0 - 2.0 * f);
+            let (s, c) = a.sin_cos();
+            let (cl_fp, cd_fp) = (CD_MAX * s * c, CD_MAX * s * s);
+            ((1.0 - f) * cl_s + f * cl_fp, ((1.0 - f) * cd_s + f * cd_fp).max(cd_floor))
+        };
+        let a_lo = first.alpha_deg.to_radians();
+        let mut deg = -180.0;
+        while deg < first.alpha_deg - 0.5 {
+            let a = f64::to_radians(deg);
+            let (l, d) = extension(a_lo, first.cl, first.cd, a);
+            alpha.push(a);
+            cl.push(l);
+            cd.push(d);
+            deg += 1.0;
+        }
+        for q in &p.points {
+            alpha.push(q.alpha_deg.to_radians());
+            cl.push(q.cl);
+            cd.push(q.cd);
+        }
+        let a_hi = last.alpha_deg.to_radians();
+        let mut deg = last.alpha_deg.floor() + 1.0;
+        if deg - last.alpha_deg < 0.5 {
+            deg += 1.0;
+        }
+        while deg <= 180.0 {
+            let a = f64::to_radians(deg);
+            let (l, d) = extension(a_hi, last.cl, last.cd, a);
+            alpha.push(a);
+            cl.push(l);
+            cd.push(d);
+            deg += 1.0;
+        }
+        Some(Curve {
+            re: p.re,
+            alpha,
+            cl,
+            cd,
+            converged: [a_lo, a_hi],
+        })
+    }
+
+    /// (cl, dcl/dalpha, cd) at `a` in [-pi, pi].
+    fn eval(&self, a: f64) -> (f64, f64, f64) {
+        let x = &self.alpha;
+        let i = x.partition_point(|&v| v <= a).clamp(1, x.len() - 1);
+        let h = x[i] - x[i - 1];
+        let t = ((a - x[i - 1]) / h).clamp(0.0, 1.0);
+        let slope = (self.cl[i] - self.cl[i - 1]) / h;
+        (
+            self.cl[i - 1] + t * (self.cl[i] - self.cl[i - 1]),
+            slope,
+            self.cd[i - 1] + t * (self.cd[i] - self.cd[i - 1]),
+        )
+    }
+}
+
+/// Polars of one section at several Reynolds numbers, as a [`SectionAero`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TabulatedAero {
+    curves: Vec<Curve>,
+    res: Vec<f64>,
+    mach: f64,
+    alpha_zero_lift: f64,
+    re_exp_outside: f64,
+}
+
+impl TabulatedAero {
+    /// Builds the model from polars of one section (polars with fewer than two converged points
+    /// are skipped; `None` when none is left).
+    pub fn new(polars: &[Polar]) -> Option<TabulatedAero> {
+        let mut usable: Vec<&Polar> = polars.iter().filter(|p| p.points.len() >= 2).collect();
+        usable.sort_by(|a, b| a.re.total_cmp(&b.re));
+        usable.dedup_by(|a, b| a.re == b.re);
+        let curves: Vec<Curve> = usable.iter().filter_map(|p| Curve::new(p)).collect();
+        if curves.is_empty() {
+            return None;
+        }
+        let res: Vec<f64> = curves.iter().map(|c| c.re).collect();
+        let mach = usable.iter().map(|p| p.mach).sum::<f64>() / usable.len() as f64;
+        let mid = &curves[curves.len() / 2];
+        let alpha_zero_lift = zero_lift(mid);
+        let re_exp_outside = if curves.len() >= 2 {
+            let (a, b) = (&curves[0], &curves[curves.len() - 1]);
+            let cd_min = |c: &Curve| {
+                (0..c.alpha.len())
+                    .filter(|&i| c.alpha[i] >= c.converged[0] && c.alpha[i] <= c.converged[1])
+                    .map(|i| c.cd[i])
+                    .fold(f64::INFINITY, f64::min)
+            };
+            (cd_min(b) / cd_min(a)).ln() / (b.re / a.re).ln()
+        } else {
+            0.0
+        };
+        Some(TabulatedAero {
+            curves,
+            res,
+            mach,
+            alpha_zero_lift,
+            re_exp_outside,
+        })
+    }
+
+    /// Reynolds numbers of the polars, ascending.
+    pub fn reynolds_numbers(&self) -> &[f64] {
+        &self.res
+    }
+
+    fn at(&self, alpha: f64, re: f64) -> (f64, f64, f64, f64, bool) {
+        let a = wrap(alpha);
+        let (i, j, t) = re_bracket(&self.res, re);
+        let (ci, cj) = (&self.curves[i], &self.curves[j]);
+        let (li, si, di) = ci.eval(a);
+        let (lj, sj, dj) = cj.eval(a);
+        let cl = li + t * (lj - li);
+        let slope = si + t * (sj - si);
+        let mut cd = di + t * (dj - di);
+        let dcl_dre = if i != j { (lj - li) / (re * (cj.re / ci.re).ln()) } else { 0.0 };
+        let edge = if re < self.res[0] {
+            Some(self.res[0])
+        } else if re > self.res[self.res.len() - 1] {
+            Some(self.res[self.res.len() - 1])
+        } else {
+            None
+        };
+        if let Some(e) = edge {
+            cd *= (re / e).powf(self.re_exp_outside);
+        }
+        let lo = ci.converged[0] + t * (cj.converged[0] - ci.converged[0]);
+        let hi = ci.converged[1] + t * (cj.converged[1] - ci.converged[1]);
+        (cl, slope, cd, dcl_dre, a < lo || a > hi)
+    }
+}
+
+impl SectionAero for TabulatedAero {
+    fn lift(&self, alpha: f64, re: f64, msq: f64) -> LiftEval {
+        let (cl, slope, _, dcl_dre, stalled) = self.at(alpha, re);
+        let beta_t = (1.0 - self.mach * self.mach).sqrt();
+        let one_m = (1.0 - msq).max(1e-6);
+        let factor = beta_t / one_m.sqrt();
+        LiftEval {
+            cl: cl * factor,
+            dcl_dalpha: slope * factor,
+            dcl_dmsq: cl * beta_t * 0.5 * one_m.powf(-1.5),
+            dcl_dre: dcl_dre * factor,
+            stalled,
+        }
+    }
+
+    fn drag(&self, input: &DragInput) -> f64 {
+        self.at(input.alpha, input.re).2
+    }
+
+    fn alpha_zero_lift(&self) -> f64 {
+        self.alpha_zero_lift
+    }
+}
+
+/// Zero-lift angle of a curve: the crossing in its converged range, else where its lift line
+/// through the converged points would cross.
+fn zero_lift(c: &Curve) -> f64 {
+    let idx: Vec<usize> = (0..c.alpha.len())
+        .filter(|&i| c.alpha[i] >= c.converged[0] && c.alpha[i] <= c.converged[1])
+        .collect();
+    for w in idx.windows(2) {
+        let (i, j) = (w[0], w[1]);
+        if c.cl[i] <= 0.0 && c.cl[j] >= 0.0 && c.cl[j] > c.cl[i] {
+            return c.alpha[i] - c.cl[i] * (c.alpha[j] - c.alpha[i]) / (c.cl[j] - c.cl[i]);
+        }
+    }
+    let (i, j) = (idx[0], idx[idx.len() - 1]);
+    let slope = (c.cl[j] - c.cl[i]) / (c.alpha[j] - c.alpha[i]);
+    if slope > 0.0 {
+        c.alpha[i] - c.cl[i] / slope
+    } else {
+        0.0
+    }
+}
+
+fn wrap(a: f64) -> f64 {
+    if (-PI..=PI).contains(&a) {
+        a
+    } else {
+        (a + PI).rem_euclid(2.0 * PI) - PI
+    }
+}
+
+/// Puts section models given at radii `r` (ascending) onto the rotor's stations: at a station
+/// between two of them, a [`propbet_bemt::aero::BlendedAero`] of the two by radius; beyond the
+/// ends, the end model.
+pub fn apply_to_rotor(rotor: &mut Rotor, r: &[f64], models: &[Arc<dyn SectionAero>]) {
+    assert_eq!(r.len(), models.len(), "one section model per radius");
+    for st in &mut rotor.stations {
+        let i = r.partition_point(|&x| x <= st.r);
+        st.aero = if i == 0 {
+            models[0].clone()
+        } else if i == r.len() {
+            models[r.len() - 1].clone()
+        } else {
+            let f = (st.r - r[i - 1]) / (r[i] - r[i - 1]);
+            Arc::new(propbet_bemt::aero::BlendedAero::new(models[i - 1].clone(), models[i].clone(), f))
+        };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::table::PolarPoint;
+
+    fn polar(re: f64, cd_scale: f64) -> Polar {
+        let points = (-6..=12)
+            .map(|a| {
+                let alpha = f64::from(a);
+                PolarPoint {
+                    alpha_deg: alpha,
+                    cl: 0.4 + 0.1 * alpha,
+                    cd: cd_scale * (0.012 + 0.0004 * alpha * alpha),
+                    cdp: 0.0,
+                    cm: 0.0,
+                    xtr_top: 0.5,
+                    xtr_bottom: 1.0,
+                }
+            })
+            .collect();
+        Polar {
+            re,
+            mach: 0.0,
+            ncrit: 9.0,
+            points,
+            unconverged_deg: vec![],
+            faults: vec![],
+        }
+    }
+
+    #[test]
+    fn reproduces_the_polar_and_interpolates_in_re() {
+        let t = TabulatedAero::new(&[polar(5e4, 1.2), polar(2e5, 1.0)]).unwrap();
+        let l = t.lift(4f64.to_radians(), 5e4, 0.0);
+        assert!((l.cl - 0.8).abs() < 1e-12, "{l:?}");
+        assert!((l.dcl_dalpha - 0.1f64.to_degrees()).abs() < 1e-9);
+        assert!(!l.stalled);
+        let d = |re: f64| {
+            t.drag(&DragInput {
+                alpha: 0.0,
+                cl: 0.4,
+                stalled: false,
+                re,
+                mach: 0.0,
+            })
+        };
+        assert!((d(5e4) - 0.0144).abs() < 1e-12);
+        assert!((d(1e5) - 0.012 * 1.1).abs() < 1e-12, "halfway in ln Re");
+        // Outside the Re range drag follows the polars' own Re trend.
+        assert!(d(4e5) < d(2e5) && d(2.5e4) > d(5e4));
+        assert!((t.alpha_zero_lift() - (-4f64).to_radians()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn post_stall_goes_to_a_flat_plate_and_is_continuous() {
+        let t = TabulatedAero::new(&[polar(1e5, 1.0)]).unwrap();
+        let mut prev = t.lift(-PI, 1e5, 0.0).cl;
+        for k in -1799..=1800 {
+            let a = f64::from(k).to_radians() / 10.0;
+            let l = t.lift(a, 1e5, 0.0);
+            assert!((l.cl - prev).abs() < 0.05, "jump at {} deg", f64::from(k) / 10.0);
+            prev = l.cl;
+            let d = t.drag(&DragInput {
+                alpha: a,
+                cl: l.cl,
+                stalled: l.stalled,
+                re: 1e5,
+                mach: 0.0,
+            });
+            assert!(d >= 0.012 - 1e-12 && d <= CD_MAX + 1e-9, "cd {d} at {a}");
+        }
+        let l90 = t.lift(PI / 2.0, 1e5, 0.0);
+        assert!(l90.stalled && l90.cl.abs() < 1e-9);
+        let cd90 = t.drag(&DragInput {
+            alpha: PI / 2.0,
+            cl: 0.0,
+            stalled: true,
+            re: 1e5,
+            mach: 0.0,
+        });
+        assert!((cd90 - CD_MAX).abs() < 1e-9);
+        // Angles beyond +-180 wrap.
+        assert!((t.lift(3.0 * PI / 2.0, 1e5, 0.0).cl - t.lift(-PI / 2.0, 1e5, 0.0).cl).abs() < 1e-9);
+    }
+
+    #[test]
+    fn prandtl_glauert_relative_to_the_polar_mach() {
+        let t = TabulatedAero::new(&[polar(1e5, 1.0)]).unwrap();
+        let l0 = t.lift(0.0, 1e5, 0.0);
+        let l = t.lift(0.0, 1e5, 0.36);
+        assert!((l.cl - l0.cl / 0.8).abs() < 1e-12);
+        // d cl / d M^2 by finite difference.
+        let h = 1e-6;
+        let fd = (t.lift(0.0, 1e5, 0.36 + h).cl - t.lift(0.0, 1e5, 0.36 - h).cl) / (2.0 * h);
+        assert!((fd - l.dcl_dmsq).abs() < 1e-6, "{fd} vs {}", l.dcl_dmsq);
+    }
+}
