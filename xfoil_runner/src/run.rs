@@ -208,8 +208,8 @@ enum Ending {
 
 struct RunOutput {
     ending: Ending,
-    /// XFOIL printed the result line of at least one angle (its log has "a =").
-    reached_first_angle: bool,
+    /// XFOIL got as far as the sweep (its log says "Polar accumulation enabled").
+    reached_sweep: bool,
     points: Vec<XfoilPoint>,
     output_tail: String,
 }
@@ -240,7 +240,7 @@ impl Xfoil {
             DisplayChoice::PrivateXvfb { xvfb } => {
                 let mut guard = self.display.lock().unwrap_or_else(|p| p.into_inner());
                 if guard.is_none() {
-                    *guard = Some(Arc::new(PrivateDisplay::start(xvfb, Duration::from_secs(10))?));
+                    *guard = Some(PrivateDisplay::shared(xvfb)?);
                 }
                 Ok(guard.as_ref().map(|d| d.name()))
             }
@@ -270,10 +270,25 @@ impl Xfoil {
         let down: Vec<f64> = a[..i0].iter().rev().copied().collect();
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();
-        self.branch(&airfoil, &settings, None, &up, &mut out, &mut last_tail)?;
-        if !down.is_empty() {
-            self.branch(&airfoil, &settings, Some(a[i0]), &down, &mut out, &mut last_tail)?;
+        for (warm_up, angles) in [(None, up), (Some(a[i0]), down)] {
+            if angles.is_empty() {
+                continue;
+            }
+            // Continuation first; then the angles that failed, each from a fresh boundary layer.
+            let failed = self.branch(&airfoil, &settings, warm_up, &angles, false, &mut out, &mut last_tail)?;
+            let still = if failed.is_empty() {
+                failed
+            } else {
+                self.branch(&airfoil, &settings, None, &failed, true, &mut out, &mut last_tail)?
+            };
+            out.unconverged_deg.extend(still);
         }
+        // A drag below 80 % of laminar flat-plate friction on both sides (2 x 1.328 / sqrt(Re))
+        // is a spurious XFOIL solution, not a polar point.
+        let floor = 0.8 * 2.0 * 1.328 / req.reynolds.sqrt();
+        let (kept, spurious): (Vec<XfoilPoint>, Vec<XfoilPoint>) = out.points.iter().partition(|p| p.cd >= floor);
+        out.points = kept;
+        out.unconverged_deg.extend(spurious.iter().map(|p| p.alpha_deg));
         if out.points.is_empty() && !out.faults.is_empty() {
             let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
             return Err(XfoilError::NoPoints {
@@ -285,24 +300,29 @@ impl Xfoil {
         out.points
             .dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
         out.unconverged_deg.sort_by(f64::total_cmp);
+        out.unconverged_deg.dedup();
         Ok(out)
     }
 
-    /// One direction: runs until every angle is converged, failed or given up.
+    /// One pass over `angles` in order: runs until every angle is converged, failed or given
+    /// up, restarting beyond crashes. Returns the angles that did not converge.
+    #[allow(clippy::too_many_arguments)]
     fn branch(
         &self,
         airfoil: &str,
         settings: &RunSettings,
         mut warm_up: Option<f64>,
         angles: &[f64],
+        init_each: bool,
         out: &mut SweepOutcome,
         last_tail: &mut String,
-    ) -> Result<(), XfoilError> {
+    ) -> Result<Vec<f64>, XfoilError> {
+        let mut failed = Vec::new();
         let mut pos = 0;
         let mut restarts = 0;
         while pos < angles.len() {
             let todo = &angles[pos..];
-            let run = self.run_once(airfoil, settings, warm_up, todo)?;
+            let run = self.run_once(airfoil, settings, warm_up, todo, init_each)?;
             out.runs += 1;
             // Match saved points to requested angles; anything else is garbage.
             let mut last_done: Option<usize> = None;
@@ -322,7 +342,23 @@ impl Xfoil {
             }
             let converged = |a: f64| run.points.iter().any(|p| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG);
             *last_tail = run.output_tail.clone();
-            if !matches!(run.ending, Ending::Finished) && !run.reached_first_angle {
+            if !matches!(run.ending, Ending::Finished) && !run.reached_sweep {
+                if let Some(w) = warm_up.take() {
+                    // The warm-up angle itself failed: note it, go on without one.
+                    out.faults.push(Fault {
+                        kind: match run.ending {
+                            Ending::Hung(t) => FaultKind::Hang {
+                                seconds: t.as_secs_f64(),
+                            },
+                            Ending::Crashed(s) => FaultKind::Crash { status: s.to_string() },
+                            Ending::Finished => unreachable!("checked above"),
+                        },
+                        alpha_deg: w,
+                        output_tail: run.output_tail,
+                    });
+                    restarts += 1;
+                    continue;
+                }
                 return Err(XfoilError::Startup {
                     status: match run.ending {
                         Ending::Crashed(s) => s.to_string(),
@@ -333,9 +369,8 @@ impl Xfoil {
             }
             let failed_at = match run.ending {
                 Ending::Finished => {
-                    out.unconverged_deg
-                        .extend(todo.iter().copied().filter(|&a| !converged(a)));
-                    return Ok(());
+                    failed.extend(todo.iter().copied().filter(|&a| !converged(a)));
+                    return Ok(failed);
                 }
                 Ending::Crashed(status) => {
                     let k = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
@@ -360,19 +395,18 @@ impl Xfoil {
                     k
                 }
             };
-            out.unconverged_deg
-                .extend(todo[..=failed_at].iter().copied().filter(|&a| !converged(a)));
-            if let Some(d) = last_done {
+            failed.extend(todo[..=failed_at].iter().copied().filter(|&a| !converged(a)));
+            if let (Some(d), false) = (last_done, init_each) {
                 warm_up = Some(todo[d]);
             }
             pos += failed_at + 1;
             restarts += 1;
             if restarts > self.config.max_restarts {
-                out.unconverged_deg.extend_from_slice(&angles[pos..]);
-                return Ok(());
+                failed.extend_from_slice(&angles[pos..]);
+                return Ok(failed);
             }
         }
-        Ok(())
+        Ok(failed)
     }
 
     fn run_once(
@@ -381,6 +415,7 @@ impl Xfoil {
         settings: &RunSettings,
         warm_up: Option<f64>,
         angles: &[f64],
+        init_each: bool,
     ) -> Result<RunOutput, XfoilError> {
         let dir = tempfile::Builder::new()
             .prefix("propbet-xfoil-")
@@ -408,7 +443,7 @@ impl Xfoil {
         let mut child = cmd
             .spawn()
             .map_err(|e| XfoilError::io(format!("cannot start XFOIL ({})", self.config.executable.display()), e))?;
-        let text = script::sweep_script(settings, warm_up, angles);
+        let text = script::sweep_script(settings, warm_up, angles, init_each);
         if let Some(mut stdin) = child.stdin.take() {
             // XFOIL may die before reading everything; the watchdog below reports that.
             let _ = stdin.write_all(text.as_bytes());
@@ -428,10 +463,11 @@ impl Xfoil {
                 output_tail,
             });
         }
-        let reached_first_angle = output.windows(3).any(|w| w == b"a =");
+        let marker = b"Polar accumulation enabled";
+        let reached_sweep = output.windows(marker.len()).any(|w| w == marker);
         Ok(RunOutput {
             ending,
-            reached_first_angle,
+            reached_sweep,
             points,
             output_tail,
         })

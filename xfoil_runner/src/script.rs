@@ -30,8 +30,12 @@ pub struct RunSettings {
 /// The script for one run: plot window made tiny (graphics must stay on, see
 /// [`crate::display`]), load, repanel, viscous settings, an optional warm-up angle that is
 /// solved but not saved (continuation after a restart), then the angles in order, each saved to
-/// the polar file as soon as it converges.
-pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64]) -> String {
+/// the polar file as soon as it converges. With `init_each`, the boundary layer is
+/// re-initialised before every angle after the first (the retry pass for angles that failed by
+/// continuation). XFOIL's `INIT` is a toggle: after any `ALFA` it means "initialise on the next
+/// point", but in a fresh process it would mean "assume initialised", and the first point dies
+/// in STFIND; hence never before the first angle.
+pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64], init_each: bool) -> String {
     let mut out = String::with_capacity(256 + 16 * alphas_deg.len());
     // Writing to a String cannot fail.
     let _ = writeln!(out, "PLOP\nW 0.05\n");
@@ -46,7 +50,10 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64
         let _ = writeln!(out, "ALFA {a:.6}");
     }
     let _ = writeln!(out, "PACC\n{POLAR_FILE}\n");
-    for a in alphas_deg {
+    for (k, a) in alphas_deg.iter().enumerate() {
+        if init_each && (k > 0 || warm_up_deg.is_some()) {
+            let _ = writeln!(out, "INIT");
+        }
         let _ = writeln!(out, "ALFA {a:.6}");
     }
     let _ = writeln!(out, "PACC\n\nQUIT");
@@ -76,9 +83,11 @@ mod tests {
             max_iter: 100,
             panels: 160,
         };
-        let text = sweep_script(&s, Some(3.0), &[4.0, 5.0]);
+        let text = sweep_script(&s, Some(3.0), &[4.0, 5.0], false);
+        let retry = sweep_script(&s, None, &[4.0, 6.0], true);
+        assert!(retry.contains("\n\nALFA 4.000000\nINIT\nALFA 6.000000\n"), "{retry}");
         let keywords = [
-            "PLOP", "G", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "ITER", "ALFA", "PACC", "QUIT",
+            "PLOP", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "ITER", "INIT", "ALFA", "PACC", "QUIT",
         ];
         for line in text.lines() {
             for word in line.split_whitespace() {

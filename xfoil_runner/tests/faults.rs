@@ -16,20 +16,22 @@ fn fake(behaviour: &str) -> (tempfile::TempDir, PathBuf) {
     let script = format!(
         r#"#!/bin/bash
 echo "  XFOIL Version 6.99 (fake)"
-acc=0
+acc=0; init=1
 while read -r cmd arg; do
   case "$cmd" in
     PACC)
       if [ $acc = 0 ]; then
-        read -r polar; read -r dump; acc=1
+        read -r polar; read -r dump; acc=1; echo " Polar accumulation enabled"
         printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
       else acc=0; fi ;;
     ALFA)
       echo "       a =  $arg      CL =  0.5"
       {behaviour}
+      was_init=$init; init=0
       if [ $acc = 1 ]; then
         awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
       fi ;;
+    INIT) init=1 ;;
     QUIT) exit 0 ;;
   esac
 done
@@ -78,8 +80,10 @@ fn a_crash_is_restarted_beyond_the_failed_angle() {
     let out = runner(exe).sweep(&request()).unwrap();
     assert_eq!(alphas(&out), vec![-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 4.0, 5.0, 6.0]);
     assert_eq!(out.unconverged_deg, vec![3.0]);
-    assert_eq!(out.faults.len(), 1);
+    // Crashed by continuation, and again from a fresh boundary layer in the retry pass.
+    assert_eq!(out.faults.len(), 2);
     assert_eq!(out.faults[0].alpha_deg, 3.0);
+    assert_eq!(out.faults[1].alpha_deg, 3.0);
     match &out.faults[0].kind {
         FaultKind::Crash { status } => assert!(status.contains("SIGFPE") || status.contains('8'), "{status}"),
         k => panic!("expected a crash, got {k:?}"),
@@ -89,7 +93,7 @@ fn a_crash_is_restarted_beyond_the_failed_angle() {
         "{}",
         out.faults[0].output_tail
     );
-    assert_eq!(out.runs, 3, "up, restart after the crash, down");
+    assert_eq!(out.runs, 4, "up, restart after the crash, retry pass, down");
 }
 
 #[test]
@@ -110,9 +114,30 @@ fn endless_chatter_is_stopped_by_the_run_budget() {
     let t = Instant::now();
     let out = runner(exe).sweep(&request()).unwrap();
     assert!(t.elapsed() < Duration::from_secs(8), "took {:?}", t.elapsed());
-    assert_eq!(out.faults.len(), 1);
+    assert_eq!(out.faults.len(), 2, "once by continuation, once in the retry pass");
     assert!(matches!(out.faults[0].kind, FaultKind::Hang { .. }));
     assert_eq!(out.unconverged_deg, vec![5.0]);
+}
+
+#[test]
+fn angles_lost_by_continuation_are_retried_from_a_fresh_boundary_layer() {
+    // Angles 1..3 "do not converge" by continuation (nothing saved), but do after INIT.
+    let (_d, exe) = fake(r#"case "$arg" in 1.000000|2.000000|3.000000) [ $init = 0 ] && continue ;; esac"#);
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    assert!(out.unconverged_deg.is_empty() && out.faults.is_empty());
+    assert_eq!(out.runs, 3, "up, retry pass, down");
+}
+
+#[test]
+fn spurious_low_drag_points_are_rejected() {
+    // cd = 0.001 at Re 1e5 is below laminar flat-plate friction: not a real solution.
+    let (_d, exe) = fake(
+        r#"[ "$arg" = "4.000000" ] && { printf '%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n' 4 1.2 0.001 0.001 -0.1 0.5 1.0 >> "$polar"; continue; }"#,
+    );
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(!alphas(&out).contains(&4.0));
+    assert_eq!(out.unconverged_deg, vec![4.0]);
 }
 
 #[test]

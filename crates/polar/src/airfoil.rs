@@ -87,7 +87,10 @@ impl Airfoil {
             if line.is_empty() {
                 continue;
             }
-            let fields: Vec<&str> = line.split(|c: char| c.is_whitespace() || c == ',').filter(|f| !f.is_empty()).collect();
+            let fields: Vec<&str> = line
+                .split(|c: char| c.is_whitespace() || c == ',')
+                .filter(|f| !f.is_empty())
+                .collect();
             let nums: Option<Vec<f64>> = fields.iter().map(|f| f.parse::<f64>().ok()).collect();
             match nums {
                 Some(v) if v.len() == 2 => pairs.push((i + 1, [v[0], v[1]])),
@@ -122,7 +125,9 @@ impl Airfoil {
                         found: rest.len(),
                     });
                 }
-                repairs.push(Repair("read as Lednicer format (upper and lower surface from the leading edge)".into()));
+                repairs.push(Repair(
+                    "read as Lednicer format (upper and lower surface from the leading edge)".into(),
+                ));
                 let mut pts: Vec<[f64; 2]> = rest[..nu].iter().rev().copied().collect();
                 let lower = &rest[nu..];
                 let skip = usize::from(dist(lower[0], pts[pts.len() - 1]) < 1e-9);
@@ -141,10 +146,16 @@ impl Airfoil {
         let before = self.points.len();
         self.points.dedup_by(|a, b| dist(*a, *b) < 1e-12);
         if self.points.len() != before {
-            repairs.push(Repair(format!("removed {} repeated point(s)", before - self.points.len())));
+            repairs.push(Repair(format!(
+                "removed {} repeated point(s)",
+                before - self.points.len()
+            )));
         }
         if self.points.len() < 10 {
-            return Err(bad_contour(source_name, format!("{} points; an airfoil needs at least 10", self.points.len())));
+            return Err(bad_contour(
+                source_name,
+                format!("{} points; an airfoil needs at least 10", self.points.len()),
+            ));
         }
         if signed_area(&self.points) < 0.0 {
             self.points.reverse();
@@ -171,18 +182,24 @@ impl Airfoil {
     pub fn check(&self, source_name: &str) -> Result<(), AirfoilError> {
         let p = &self.points;
         if p.len() < 10 {
-            return Err(bad_contour(source_name, format!("{} points; an airfoil needs at least 10", p.len())));
+            return Err(bad_contour(
+                source_name,
+                format!("{} points; an airfoil needs at least 10", p.len()),
+            ));
         }
         if let Some(i) = p.iter().position(|q| !(q[0].is_finite() && q[1].is_finite())) {
             return Err(bad_contour(source_name, format!("point {} is not finite", i + 1)));
         }
         let chord = self.chord_estimate();
-        if !(chord > 0.0) {
+        if chord.is_nan() || chord <= 0.0 {
             return Err(bad_contour(source_name, "all points coincide"));
         }
         let area = signed_area(p);
         if area.abs() < 1e-5 * chord * chord {
-            return Err(bad_contour(source_name, "the contour encloses no area (points on a line?)"));
+            return Err(bad_contour(
+                source_name,
+                "the contour encloses no area (points on a line?)",
+            ));
         }
         let gap = dist(p[0], p[p.len() - 1]);
         if gap > MAX_TE_GAP * chord {
@@ -196,7 +213,10 @@ impl Airfoil {
         }
         let le = self.leading_edge_index();
         if le == 0 || le == p.len() - 1 {
-            return Err(bad_contour(source_name, "no leading edge between the two surfaces (not in Selig order?)"));
+            return Err(bad_contour(
+                source_name,
+                "no leading edge between the two surfaces (not in Selig order?)",
+            ));
         }
         if let Some((i, j)) = first_self_intersection(p) {
             return Err(bad_contour(
@@ -286,11 +306,16 @@ impl Airfoil {
     /// would make zero-length panels, on which XFOIL divides by zero).
     pub fn scale_thickness(&self, target: f64) -> Result<Airfoil, AirfoilError> {
         if !(target.is_finite() && target > 0.0 && target < 0.5) {
-            return Err(AirfoilError::BadArgument(format!("target thickness {target} must be in (0, 0.5)")));
+            return Err(AirfoilError::BadArgument(format!(
+                "target thickness {target} must be in (0, 0.5)"
+            )));
         }
         let (t, _) = self.max_thickness();
         if t <= 0.0 {
-            return Err(AirfoilError::BadArgument(format!("{}: has no thickness to scale", self.name)));
+            return Err(AirfoilError::BadArgument(format!(
+                "{}: has no thickness to scale",
+                self.name
+            )));
         }
         let k = target / t;
         let (upper, lower) = self.surfaces();
@@ -300,7 +325,11 @@ impl Airfoil {
             .iter()
             .enumerate()
             .map(|(i, q)| {
-                let other = if i <= le { interp_surface(&lower, q[0]) } else { interp_surface(&upper, q[0]) };
+                let other = if i <= le {
+                    interp_surface(&lower, q[0])
+                } else {
+                    interp_surface(&upper, q[0])
+                };
                 let camber = (q[1] + other) / 2.0;
                 [q[0], camber + (q[1] - camber) * k]
             })
@@ -316,7 +345,9 @@ impl Airfoil {
     /// each surface. The leading edge and trailing-edge points are kept exactly.
     pub fn repanel(&self, n: usize) -> Result<Airfoil, AirfoilError> {
         if !(21..=999).contains(&n) {
-            return Err(AirfoilError::BadArgument(format!("point count {n} must be in 21..=999")));
+            return Err(AirfoilError::BadArgument(format!(
+                "point count {n} must be in 21..=999"
+            )));
         }
         let per_side = n.div_ceil(2);
         let (upper, lower) = self.surfaces();
@@ -334,10 +365,14 @@ impl Airfoil {
     /// surface at equal arc-length fractions from the leading edge (APC's transition sections).
     pub fn blend(&self, other: &Airfoil, fraction: f64, per_side: usize) -> Result<Airfoil, AirfoilError> {
         if !(fraction.is_finite() && (0.0..=1.0).contains(&fraction)) {
-            return Err(AirfoilError::BadArgument(format!("blend fraction {fraction} must be in [0, 1]")));
+            return Err(AirfoilError::BadArgument(format!(
+                "blend fraction {fraction} must be in [0, 1]"
+            )));
         }
         if !(11..=500).contains(&per_side) {
-            return Err(AirfoilError::BadArgument(format!("points per side {per_side} must be in 11..=500")));
+            return Err(AirfoilError::BadArgument(format!(
+                "points per side {per_side} must be in 11..=500"
+            )));
         }
         let (ua, la) = self.surfaces();
         let (ub, lb) = other.surfaces();
@@ -352,30 +387,65 @@ impl Airfoil {
         let mut points: Vec<[f64; 2]> = u.iter().rev().copied().collect();
         points.extend_from_slice(&l[1..]);
         Ok(Airfoil {
-            name: format!("{} {:.0}% + {} {:.0}%", self.name, (1.0 - fraction) * 100.0, other.name, fraction * 100.0),
+            name: format!(
+                "{} {:.0}% + {} {:.0}%",
+                self.name,
+                (1.0 - fraction) * 100.0,
+                other.name,
+                fraction * 100.0
+            ),
             points,
         })
     }
 }
 
+/// How a NACA 4-digit section is laid out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NacaStyle {
+    /// As XFOIL's own `NACA` command (naca.f): thickness added vertically to the camber line,
+    /// the -0.1015 x^4 coefficient (trailing edge 0.25 % thick). Polars then match XFOIL's.
+    Xfoil,
+    /// NACA Report 824: thickness perpendicular to the camber line; `closed_te` uses -0.1036
+    /// (sharp trailing edge) instead of -0.1015.
+    Report824 {
+        /// Sharp trailing edge.
+        closed_te: bool,
+    },
+}
+
 /// A NACA 4-digit section `m p tt` (max camber m/100 at p/10 chord, thickness tt/100), with
-/// `per_side` points per surface, cosine spaced, thickness laid perpendicular to the camber line.
-/// `closed_te` uses the -0.1036 x^4 coefficient (sharp trailing edge); otherwise the classic
-/// -0.1015 (XFOIL's own `NACA` command), whose trailing edge is 0.25 % thick.
-pub fn naca4(camber: f64, camber_pos: f64, thickness: f64, per_side: usize, closed_te: bool) -> Result<Airfoil, AirfoilError> {
+/// `per_side` points per surface, cosine spaced.
+pub fn naca4(
+    camber: f64,
+    camber_pos: f64,
+    thickness: f64,
+    per_side: usize,
+    style: NacaStyle,
+) -> Result<Airfoil, AirfoilError> {
     if !(camber.is_finite() && (0.0..0.2).contains(&camber)) {
-        return Err(AirfoilError::BadArgument(format!("NACA camber {camber} must be in [0, 0.2)")));
+        return Err(AirfoilError::BadArgument(format!(
+            "NACA camber {camber} must be in [0, 0.2)"
+        )));
     }
     if camber > 0.0 && !(camber_pos.is_finite() && camber_pos > 0.0 && camber_pos < 1.0) {
-        return Err(AirfoilError::BadArgument(format!("NACA camber position {camber_pos} must be in (0, 1)")));
+        return Err(AirfoilError::BadArgument(format!(
+            "NACA camber position {camber_pos} must be in (0, 1)"
+        )));
     }
     if !(thickness.is_finite() && thickness > 0.0 && thickness < 0.5) {
-        return Err(AirfoilError::BadArgument(format!("NACA thickness {thickness} must be in (0, 0.5)")));
+        return Err(AirfoilError::BadArgument(format!(
+            "NACA thickness {thickness} must be in (0, 0.5)"
+        )));
     }
     if !(11..=500).contains(&per_side) {
-        return Err(AirfoilError::BadArgument(format!("points per side {per_side} must be in 11..=500")));
+        return Err(AirfoilError::BadArgument(format!(
+            "points per side {per_side} must be in 11..=500"
+        )));
     }
-    let a4 = if closed_te { -0.1036 } else { -0.1015 };
+    let (a4, perpendicular) = match style {
+        NacaStyle::Xfoil => (-0.1015, false),
+        NacaStyle::Report824 { closed_te } => (if closed_te { -0.1036 } else { -0.1015 }, true),
+    };
     let (m, p, t) = (camber, camber_pos, thickness);
     let surface_point = |x: f64, sign: f64| -> [f64; 2] {
         let yt = 5.0 * t * (0.2969 * x.sqrt() - 0.1260 * x - 0.3516 * x * x + 0.2843 * x.powi(3) + a4 * x.powi(4));
@@ -387,6 +457,9 @@ pub fn naca4(camber: f64, camber_pos: f64, thickness: f64, per_side: usize, clos
             let q = (1.0 - p) * (1.0 - p);
             (m / q * (1.0 - 2.0 * p + 2.0 * p * x - x * x), 2.0 * m / q * (p - x))
         };
+        if !perpendicular {
+            return [x, yc + sign * yt];
+        }
         let th = dyc.atan();
         [x - sign * yt * th.sin(), yc + sign * yt * th.cos()]
     };
@@ -401,7 +474,8 @@ pub fn naca4(camber: f64, camber_pos: f64, thickness: f64, per_side: usize, clos
     })
 }
 
-/// Parses `naca4412` / `NACA 4412` into a NACA 4-digit section (XFOIL's open trailing edge).
+/// Parses `naca4412` / `NACA 4412` into a NACA 4-digit section laid out as XFOIL's `NACA`
+/// command does ([`NacaStyle::Xfoil`]).
 pub fn naca4_from_name(name: &str) -> Option<Result<Airfoil, AirfoilError>> {
     let lower = name.trim().to_ascii_lowercase();
     let digits = lower.strip_prefix("naca")?.trim();
@@ -409,7 +483,13 @@ pub fn naca4_from_name(name: &str) -> Option<Result<Airfoil, AirfoilError>> {
         return None;
     }
     let d: Vec<f64> = digits.bytes().map(|b| f64::from(b - b'0')).collect();
-    Some(naca4(d[0] / 100.0, d[1] / 10.0, (d[2] * 10.0 + d[3]) / 100.0, 81, false))
+    Some(naca4(
+        d[0] / 100.0,
+        d[1] / 10.0,
+        (d[2] * 10.0 + d[3]) / 100.0,
+        81,
+        NacaStyle::Xfoil,
+    ))
 }
 
 fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -436,7 +516,11 @@ fn interp_surface(s: &[[f64; 2]], x: f64) -> f64 {
         let (a, b) = (w[0], w[1]);
         if (a[0] <= x && x <= b[0]) || (b[0] <= x && x <= a[0]) {
             let dx = b[0] - a[0];
-            return if dx.abs() < 1e-15 { a[1] } else { a[1] + (x - a[0]) / dx * (b[1] - a[1]) };
+            return if dx.abs() < 1e-15 {
+                a[1]
+            } else {
+                a[1] + (x - a[0]) / dx * (b[1] - a[1])
+            };
         }
     }
     s[s.len() - 1][1]
@@ -511,7 +595,10 @@ mod tests {
         let (a, repairs) = Airfoil::parse(E63, "e63.dat").unwrap();
         assert_eq!(a.name, "E63  (4.25%)");
         assert_eq!(a.points.first(), a.points.last());
-        assert!(repairs.iter().any(|r| r.0.contains("closed the trailing edge")), "{repairs:?}");
+        assert!(
+            repairs.iter().any(|r| r.0.contains("closed the trailing edge")),
+            "{repairs:?}"
+        );
         let (t, _) = a.max_thickness();
         assert!((t - 0.0425).abs() < 0.001, "t/c = {t}");
     }
@@ -538,9 +625,13 @@ mod tests {
 
     #[test]
     fn garbage_names_the_line() {
-        let e = Airfoil::parse("NACA 0012\n1.0 0.0\n0.5 banana\n", "bad.dat").unwrap_err().to_string();
+        let e = Airfoil::parse("NACA 0012\n1.0 0.0\n0.5 banana\n", "bad.dat")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("bad.dat, line 3"), "{e}");
-        let e = Airfoil::parse("1 0\n0.5 0.1\n0 0\n", "short.dat").unwrap_err().to_string();
+        let e = Airfoil::parse("1 0\n0.5 0.1\n0 0\n", "short.dat")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("at least 10"), "{e}");
         let e = Airfoil::parse("x\n1 0\n0.5 NaN\n", "nan.dat").unwrap_err().to_string();
         assert!(e.contains("line 3"), "{e}");
@@ -551,8 +642,13 @@ mod tests {
         let (a, _) = Airfoil::parse(CLARKY, "clarky.dat").unwrap();
         let le = a.leading_edge_index();
         let half: String = a.points[..=le].iter().map(|q| format!("{} {}\n", q[0], q[1])).collect();
-        let e = Airfoil::parse(&format!("half\n{half}"), "half.dat").unwrap_err().to_string();
-        assert!(e.contains("open contour") || e.contains("no area") || e.contains("leading edge"), "{e}");
+        let e = Airfoil::parse(&format!("half\n{half}"), "half.dat")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("open contour") || e.contains("no area") || e.contains("leading edge"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -560,7 +656,11 @@ mod tests {
         let mut text = String::from("eight\n");
         for i in 0..40 {
             let t = std::f64::consts::TAU * f64::from(i) / 40.0;
-            text.push_str(&format!("{} {}\n", 0.5 + 0.5 * t.cos(), 0.1 * (2.0 * t).sin() + 0.03 * t.sin()));
+            text.push_str(&format!(
+                "{} {}\n",
+                0.5 + 0.5 * t.cos(),
+                0.1 * (2.0 * t).sin() + 0.03 * t.sin()
+            ));
         }
         let e = Airfoil::parse(&text, "eight.dat").unwrap_err().to_string();
         assert!(e.contains("crosses itself"), "{e}");
@@ -647,7 +747,10 @@ mod tests {
             *q = [3.0 + 0.2 * (c * q[0] - s * q[1]), -1.0 + 0.2 * (s * q[0] + c * q[1])];
         }
         let (chord, angle) = a.normalise();
-        assert!((chord - 0.2).abs() < 1e-9 && (angle - 0.3).abs() < 1e-9, "{chord} {angle}");
+        assert!(
+            (chord - 0.2).abs() < 1e-9 && (angle - 0.3).abs() < 1e-9,
+            "{chord} {angle}"
+        );
         for (p, q) in a.points.iter().zip(&orig) {
             assert!(dist(*p, *q) < 1e-9);
         }

@@ -11,6 +11,13 @@
 #![deny(missing_docs)]
 
 pub mod airfoil;
+pub mod compute;
 pub mod reduce;
 pub mod table;
 pub mod tabulated;
+
+pub use airfoil::{naca4, naca4_from_name, Airfoil, AirfoilError, NacaStyle};
+pub use compute::{PolarCache, PolarEngine, PolarError, PolarJob, Source};
+pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit};
+pub use table::{Polar, PolarPoint};
+pub use tabulated::TabulatedAero;

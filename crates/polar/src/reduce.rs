@@ -141,7 +141,11 @@ pub fn fit_qprop(
 ) -> Result<QpropFit, FitError> {
     let centre = polars
         .iter()
-        .min_by(|a, b| (a.re.ln() - re_ref.ln()).abs().total_cmp(&(b.re.ln() - re_ref.ln()).abs()))
+        .min_by(|a, b| {
+            (a.re.ln() - re_ref.ln())
+                .abs()
+                .total_cmp(&(b.re.ln() - re_ref.ln()).abs())
+        })
         .ok_or(FitError::NoPolar)?;
     let too_few = |found| FitError::TooFewPoints { re: centre.re, found };
     let (lo, hi) = centre.attached_range().ok_or(too_few(centre.points.len()))?;
@@ -157,7 +161,11 @@ pub fn fit_qprop(
         .centre()
         .unwrap_or(0.5 * (pts[0].alpha_deg + pts[pts.len() - 1].alpha_deg));
     let seed = (0..pts.len())
-        .min_by(|&i, &j| (pts[i].alpha_deg - seed_alpha).abs().total_cmp(&(pts[j].alpha_deg - seed_alpha).abs()))
+        .min_by(|&i, &j| {
+            (pts[i].alpha_deg - seed_alpha)
+                .abs()
+                .total_cmp(&(pts[j].alpha_deg - seed_alpha).abs())
+        })
         .unwrap_or(0)
         .clamp(1, pts.len() - 2);
     let (mut i0, mut i1) = (seed - 1, seed + 1);
@@ -180,7 +188,10 @@ pub fn fit_qprop(
     let range = [lin[0].alpha_deg, lin[lin.len() - 1].alpha_deg];
 
     // 2. Lift line, weighted.
-    let xs: Vec<(f64, f64, f64)> = lin.iter().map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg))).collect();
+    let xs: Vec<(f64, f64, f64)> = lin
+        .iter()
+        .map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg)))
+        .collect();
     let (cl0_m, slope_deg) = line_fit(&xs);
     let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
     let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
@@ -225,7 +236,9 @@ pub fn fit_qprop(
     let re_exp_fitted = sxx > 0.0;
     let re_exp = if re_exp_fitted { sxy / sxx } else { default_re_exp };
     if !re_exp_fitted {
-        notes.push(format!("REexp = {default_re_exp} kept: no polar at another Re overlaps this one's cl"));
+        notes.push(format!(
+            "REexp = {default_re_exp} kept: no polar at another Re overlaps this one's cl"
+        ));
     }
 
     // Limits: XFOIL's extreme converged cl.
@@ -261,9 +274,16 @@ pub fn fit_qprop(
     let in_lin: Vec<&FitResidual> = residuals.iter().filter(|r| r.linear).collect();
     let wsum: f64 = in_lin.iter().map(|r| weights.weight(r.alpha_deg)).sum();
     let cl_max_error = in_lin.iter().map(|r| (r.cl_fit - r.cl_xfoil).abs()).fold(0.0, f64::max);
-    let cd_max_rel_error = in_lin.iter().map(|r| (r.cd_fit / r.cd_xfoil - 1.0).abs()).fold(0.0, f64::max);
-    let cl_rms_error =
-        (in_lin.iter().map(|r| weights.weight(r.alpha_deg) * (r.cl_fit - r.cl_xfoil).powi(2)).sum::<f64>() / wsum).sqrt();
+    let cd_max_rel_error = in_lin
+        .iter()
+        .map(|r| (r.cd_fit / r.cd_xfoil - 1.0).abs())
+        .fold(0.0, f64::max);
+    let cl_rms_error = (in_lin
+        .iter()
+        .map(|r| weights.weight(r.alpha_deg) * (r.cl_fit - r.cl_xfoil).powi(2))
+        .sum::<f64>()
+        / wsum)
+        .sqrt();
     let cd_rms_rel_error = (in_lin
         .iter()
         .map(|r| weights.weight(r.alpha_deg) * (r.cd_fit / r.cd_xfoil - 1.0).powi(2))
@@ -279,7 +299,9 @@ pub fn fit_qprop(
         ));
     }
     if cl_max_error > FIT_CL_TOL {
-        unfit.push(format!("the lift line misses XFOIL by up to {cl_max_error:.3} in cl over the linear range"));
+        unfit.push(format!(
+            "the lift line misses XFOIL by up to {cl_max_error:.3} in cl over the linear range"
+        ));
     }
     if cd_max_rel_error > FIT_CD_REL_TOL {
         unfit.push(format!(
@@ -306,7 +328,9 @@ pub fn fit_qprop(
             .filter(|a| centre.unconverged_deg.iter().any(|u| (*u - **a).abs() < 1.0))
             .count();
         if failed > 0 {
-            unfit.push(format!("XFOIL did not converge at {failed} of the angles the blade works at"));
+            unfit.push(format!(
+                "XFOIL did not converge at {failed} of the angles the blade works at"
+            ));
         }
     }
     Ok(QpropFit {
@@ -377,15 +401,15 @@ fn drag_fit(rows: &[(f64, f64, f64)], c: f64) -> Option<(f64, [f64; 3])> {
                 }
             }
         }
-        for i in 0..3 {
-            if !active[i] {
-                for j in 0..3 {
-                    ata[i][j] = 0.0;
-                    ata[j][i] = 0.0;
+        for i in (0..3).filter(|&i| !active[i]) {
+            for (j, row) in ata.iter_mut().enumerate() {
+                row[i] = 0.0;
+                if j == i {
+                    row.fill(0.0);
+                    row[i] = 1.0;
                 }
-                ata[i][i] = 1.0;
-                atb[i] = 0.0;
             }
+            atb[i] = 0.0;
         }
         let x = solve3(ata, atb)?;
         if x[0] <= 0.0 {
@@ -414,29 +438,11 @@ fn drag_fit(rows: &[(f64, f64, f64)], c: f64) -> Option<(f64, [f64; 3])> {
     None
 }
 
-/// Gaussian elimination with partial pivoting on a 3x3 system.
-fn solve3(mut a: [[f64; 3]; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
-    for col in 0..3 {
-        let piv = (col..3).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
-        if a[piv][col].abs() < 1e-300 {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for row in col + 1..3 {
-            let f = a[row][col] / a[col][col];
-            for k in col..3 {
-                a[row][k] -= f * a[col][k];
-            }
-            b[row] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 3];
-    for row in (0..3).rev() {
-        let s: f64 = (row + 1..3).map(|k| a[row][k] * x[k]).sum();
-        x[row] = (b[row] - s) / a[row][row];
-    }
-    Some(x)
+/// Solves a 3x3 system (LU with partial pivoting); `None` when singular.
+fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+    let m = nalgebra::Matrix3::from_fn(|i, j| a[i][j]);
+    let x = m.lu().solve(&nalgebra::Vector3::from(b))?;
+    x.iter().all(|v| v.is_finite()).then(|| [x[0], x[1], x[2]])
 }
 
 #[cfg(test)]
@@ -522,16 +528,29 @@ mod tests {
             sigma_deg: 2.0,
         };
         let fit = fit_qprop(&[synthetic(1e5, &truth)], 1e5, &w, -0.5).unwrap();
-        assert!(fit.unfit.iter().any(|u| u.contains("outside the linear range")), "{:?}", fit.unfit);
+        assert!(
+            fit.unfit.iter().any(|u| u.contains("outside the linear range")),
+            "{:?}",
+            fit.unfit
+        );
         assert!(!fit.re_exp_fitted);
         assert_eq!(fit.coeffs.re_exp, -0.5);
     }
 
     #[test]
     fn too_few_points_is_an_error() {
-        let mut p = synthetic(1e5, &QpropCoefficients::from_array([0.4, 6.0, -0.3, 1.2, 0.01, 0.02, 0.02, 0.5, 1e5, -0.5]));
+        let mut p = synthetic(
+            1e5,
+            &QpropCoefficients::from_array([0.4, 6.0, -0.3, 1.2, 0.01, 0.02, 0.02, 0.5, 1e5, -0.5]),
+        );
         p.points.truncate(2);
-        assert!(matches!(fit_qprop(&[p], 1e5, &AlphaWeights::Uniform, -0.5), Err(FitError::TooFewPoints { .. })));
-        assert!(matches!(fit_qprop(&[], 1e5, &AlphaWeights::Uniform, -0.5), Err(FitError::NoPolar)));
+        assert!(matches!(
+            fit_qprop(&[p], 1e5, &AlphaWeights::Uniform, -0.5),
+            Err(FitError::TooFewPoints { .. })
+        ));
+        assert!(matches!(
+            fit_qprop(&[], 1e5, &AlphaWeights::Uniform, -0.5),
+            Err(FitError::NoPolar)
+        ));
     }
 }

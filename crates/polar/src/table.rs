@@ -30,7 +30,9 @@ impl Polar {
         if p.is_empty() || alpha_deg < p[0].alpha_deg || alpha_deg > p[p.len() - 1].alpha_deg {
             return None;
         }
-        let i = p.partition_point(|q| q.alpha_deg <= alpha_deg).clamp(1, p.len().max(2) - 1);
+        let i = p
+            .partition_point(|q| q.alpha_deg <= alpha_deg)
+            .clamp(1, p.len().max(2) - 1);
         if p.len() == 1 {
             return Some(p[0]);
         }
@@ -131,7 +133,13 @@ mod tests {
             re: 1e5,
             mach: 0.0,
             ncrit: 9.0,
-            points: vec![pt(-6.0, -0.3, 0.03), pt(0.0, 0.4, 0.012), pt(4.0, 0.85, 0.015), pt(10.0, 1.3, 0.03), pt(14.0, 1.1, 0.08)],
+            points: vec![
+                pt(-6.0, -0.3, 0.03),
+                pt(0.0, 0.4, 0.012),
+                pt(4.0, 0.85, 0.015),
+                pt(10.0, 1.3, 0.03),
+                pt(14.0, 1.1, 0.08),
+            ],
             unconverged_deg: vec![12.0],
             faults: vec![],
         }

@@ -50,7 +50,10 @@ impl Curve {
             let f = f * f * (3.0 - 2.0 * f);
             let (s, c) = a.sin_cos();
             let (cl_fp, cd_fp) = (CD_MAX * s * c, CD_MAX * s * s);
-            ((1.0 - f) * cl_s + f * cl_fp, ((1.0 - f) * cd_s + f * cd_fp).max(cd_floor))
+            (
+                (1.0 - f) * cl_s + f * cl_fp,
+                ((1.0 - f) * cd_s + f * cd_fp).max(cd_floor),
+            )
         };
         let a_lo = first.alpha_deg.to_radians();
         let mut deg = -180.0;
@@ -164,7 +167,11 @@ impl TabulatedAero {
         let cl = li + t * (lj - li);
         let slope = si + t * (sj - si);
         let mut cd = di + t * (dj - di);
-        let dcl_dre = if i != j { (lj - li) / (re * (cj.re / ci.re).ln()) } else { 0.0 };
+        let dcl_dre = if i != j {
+            (lj - li) / (re * (cj.re / ci.re).ln())
+        } else {
+            0.0
+        };
         let edge = if re < self.res[0] {
             Some(self.res[0])
         } else if re > self.res[self.res.len() - 1] {
@@ -247,7 +254,11 @@ pub fn apply_to_rotor(rotor: &mut Rotor, r: &[f64], models: &[Arc<dyn SectionAer
             models[r.len() - 1].clone()
         } else {
             let f = (st.r - r[i - 1]) / (r[i] - r[i - 1]);
-            Arc::new(propbet_bemt::aero::BlendedAero::new(models[i - 1].clone(), models[i].clone(), f))
+            Arc::new(propbet_bemt::aero::BlendedAero::new(
+                models[i - 1].clone(),
+                models[i].clone(),
+                f,
+            ))
         };
     }
 }
@@ -321,7 +332,7 @@ mod tests {
                 re: 1e5,
                 mach: 0.0,
             });
-            assert!(d >= 0.012 - 1e-12 && d <= CD_MAX + 1e-9, "cd {d} at {a}");
+            assert!((0.012 - 1e-12..=CD_MAX + 1e-9).contains(&d), "cd {d} at {a}");
         }
         let l90 = t.lift(PI / 2.0, 1e5, 0.0);
         assert!(l90.stalled && l90.cl.abs() < 1e-9);

@@ -1,0 +1,291 @@
+//! Polars from XFOIL: one job per (airfoil, Re, Mach, Ncrit, alpha grid), run in parallel
+//! (rayon) with a progress bar (indicatif), through a content-addressed cache.
+//!
+//! The cache key is the SHA-256 of everything that decides XFOIL's answer: the coordinates as
+//! sent (shortest round-trip decimal of each f64), Re, Mach, Ncrit, the angles, the iteration
+//! limit and panel count, the XFOIL executable's own SHA-256 (its version) and the runner's
+//! script version. Entries are JSON files written atomically (temporary file + rename) that
+//! repeat their key; an entry that does not parse or names another key is corrupt, and is
+//! recomputed and replaced.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+use thiserror::Error;
+use xfoil_runner::{SweepRequest, Xfoil, XfoilError};
+
+use crate::airfoil::{Airfoil, AirfoilError};
+use crate::table::Polar;
+
+/// Bumped whenever the XFOIL script or the meaning of a cached polar changes.
+const SCRIPT_VERSION: &str = "propbet-xfoil-script-1";
+
+/// One polar to compute.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolarJob {
+    /// The section (any position and size; sent to XFOIL normalised).
+    pub airfoil: Airfoil,
+    /// Chord Reynolds number [-].
+    pub re: f64,
+    /// Mach number [-].
+    pub mach: f64,
+    /// Transition amplification ratio [-].
+    pub ncrit: f64,
+    /// Angles of attack [deg], ascending.
+    pub alphas_deg: Vec<f64>,
+    /// Panel nodes (XFOIL's default is 160).
+    pub panels: u32,
+    /// Viscous iteration limit per point.
+    pub max_iter: u32,
+}
+
+impl PolarJob {
+    /// A job with XFOIL's default panels (160) and 100 iterations.
+    pub fn new(airfoil: Airfoil, re: f64, mach: f64, ncrit: f64, alphas_deg: Vec<f64>) -> Self {
+        PolarJob {
+            airfoil,
+            re,
+            mach,
+            ncrit,
+            alphas_deg,
+            panels: 160,
+            max_iter: 100,
+        }
+    }
+
+    fn request(&self) -> Result<SweepRequest, PolarError> {
+        self.airfoil.check(&self.airfoil.name)?;
+        let mut a = self.airfoil.clone();
+        a.normalise();
+        Ok(SweepRequest {
+            coordinates: a.points,
+            reynolds: self.re,
+            mach: self.mach,
+            ncrit: self.ncrit,
+            alphas_deg: self.alphas_deg.clone(),
+            max_iter: self.max_iter,
+            panels: self.panels,
+        })
+    }
+}
+
+/// Why a polar could not be had.
+#[derive(Debug, Error)]
+pub enum PolarError {
+    /// The airfoil is unusable.
+    #[error(transparent)]
+    Airfoil(#[from] AirfoilError),
+    /// XFOIL failed (with its output).
+    #[error("{airfoil} at Re {re:.0}: {source}")]
+    Xfoil {
+        /// Airfoil name.
+        airfoil: String,
+        /// Reynolds number.
+        re: f64,
+        /// The runner's error.
+        source: XfoilError,
+    },
+    /// The cache directory cannot be used.
+    #[error("polar cache {path}: {source}")]
+    Cache {
+        /// The path.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
+}
+
+/// Where a polar came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// Read from the cache.
+    Cache,
+    /// Computed by XFOIL now.
+    Xfoil,
+    /// The cache entry was corrupt; computed again and replaced.
+    RecomputedCorrupt,
+}
+
+#[derive(Serialize, Deserialize)]
+struct Entry {
+    key: String,
+    polar: Polar,
+}
+
+/// A directory of cached polars.
+#[derive(Debug, Clone)]
+pub struct PolarCache {
+    dir: PathBuf,
+}
+
+impl PolarCache {
+    /// Uses (and creates) `dir`.
+    pub fn open(dir: &Path) -> Result<Self, PolarError> {
+        std::fs::create_dir_all(dir).map_err(|source| PolarError::Cache {
+            path: dir.to_path_buf(),
+            source,
+        })?;
+        Ok(PolarCache { dir: dir.to_path_buf() })
+    }
+
+    /// The default location: `$PROPBET_CACHE_DIR`, else `$XDG_CACHE_HOME/propbet/polars`, else
+    /// `~/.cache/propbet/polars`.
+    pub fn default_dir() -> Option<PathBuf> {
+        if let Some(d) = std::env::var_os("PROPBET_CACHE_DIR") {
+            return Some(PathBuf::from(d));
+        }
+        if let Some(d) = std::env::var_os("XDG_CACHE_HOME") {
+            return Some(PathBuf::from(d).join("propbet/polars"));
+        }
+        std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache/propbet/polars"))
+    }
+
+    fn path(&self, key: &str) -> PathBuf {
+        self.dir.join(&key[..2]).join(format!("{key}.json"))
+    }
+
+    /// `Ok(None)` when absent, `Err(())` when present but corrupt.
+    fn get(&self, key: &str) -> Result<Option<Polar>, ()> {
+        let Ok(bytes) = std::fs::read(self.path(key)) else {
+            return Ok(None);
+        };
+        match serde_json::from_slice::<Entry>(&bytes) {
+            Ok(e) if e.key == key => Ok(Some(e.polar)),
+            _ => Err(()),
+        }
+    }
+
+    fn put(&self, key: &str, polar: &Polar) -> Result<(), PolarError> {
+        let path = self.path(key);
+        let dir = path.parent().unwrap_or(&self.dir).to_path_buf();
+        let err = |source| PolarError::Cache {
+            path: path.clone(),
+            source,
+        };
+        std::fs::create_dir_all(&dir).map_err(err)?;
+        let json = serde_json::to_vec(&Entry {
+            key: key.to_string(),
+            polar: polar.clone(),
+        })
+        .map_err(|e| err(e.into()))?;
+        let mut tmp = tempfile::NamedTempFile::new_in(&dir).map_err(err)?;
+        std::io::Write::write_all(&mut tmp, &json).map_err(err)?;
+        tmp.persist(&path).map_err(|e| err(e.error))?;
+        Ok(())
+    }
+}
+
+/// XFOIL plus an optional cache.
+#[derive(Debug)]
+pub struct PolarEngine {
+    xfoil: Xfoil,
+    cache: Option<PolarCache>,
+    identity: OnceLock<String>,
+}
+
+impl PolarEngine {
+    /// An engine; `cache` None computes everything afresh.
+    pub fn new(xfoil: Xfoil, cache: Option<PolarCache>) -> Self {
+        PolarEngine {
+            xfoil,
+            cache,
+            identity: OnceLock::new(),
+        }
+    }
+
+    /// SHA-256 of the XFOIL executable and the script version.
+    fn identity(&self) -> &str {
+        self.identity.get_or_init(|| {
+            let exe = &self.xfoil.config().executable;
+            let mut h = Sha256::new();
+            h.update(SCRIPT_VERSION);
+            match std::fs::read(exe) {
+                Ok(bytes) => h.update(&bytes),
+                Err(_) => h.update(exe.to_string_lossy().as_bytes()),
+            }
+            hex(&h.finalize())
+        })
+    }
+
+    fn key(&self, req: &SweepRequest) -> String {
+        let mut h = Sha256::new();
+        h.update(self.identity());
+        let mut text = String::with_capacity(40 * req.coordinates.len());
+        for p in &req.coordinates {
+            text.push_str(&format!("{} {}\n", p[0], p[1]));
+        }
+        text.push_str(&format!(
+            "re {} mach {} ncrit {} iter {} panels {}\nalpha",
+            req.reynolds, req.mach, req.ncrit, req.max_iter, req.panels
+        ));
+        for a in &req.alphas_deg {
+            text.push_str(&format!(" {a}"));
+        }
+        h.update(text.as_bytes());
+        hex(&h.finalize())
+    }
+
+    /// One polar, from the cache when it holds it.
+    pub fn compute(&self, job: &PolarJob) -> Result<(Polar, Source), PolarError> {
+        let req = job.request()?;
+        let key = self.key(&req);
+        let mut source = Source::Xfoil;
+        if let Some(c) = &self.cache {
+            match c.get(&key) {
+                Ok(Some(p)) => return Ok((p, Source::Cache)),
+                Ok(None) => {}
+                Err(()) => source = Source::RecomputedCorrupt,
+            }
+        }
+        let out = self.xfoil.sweep(&req).map_err(|source| PolarError::Xfoil {
+            airfoil: job.airfoil.name.clone(),
+            re: job.re,
+            source,
+        })?;
+        let polar = Polar {
+            re: job.re,
+            mach: job.mach,
+            ncrit: job.ncrit,
+            points: out.points,
+            unconverged_deg: out.unconverged_deg,
+            faults: out.faults,
+        };
+        if let Some(c) = &self.cache {
+            c.put(&key, &polar)?;
+        }
+        Ok((polar, source))
+    }
+
+    /// Every job, in parallel on rayon's pool, with a progress bar on stderr when `progress`
+    /// (and stderr is a terminal). Results come back in job order.
+    pub fn compute_all(&self, jobs: &[PolarJob], progress: bool) -> Vec<Result<(Polar, Source), PolarError>> {
+        let bar = if progress {
+            let b = ProgressBar::new(jobs.len() as u64);
+            if let Ok(style) = ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} polars, {eta} left") {
+                b.set_style(style.progress_chars("=> "));
+            }
+            b.set_prefix("XFOIL");
+            b
+        } else {
+            ProgressBar::hidden()
+        };
+        let out: Vec<_> = jobs
+            .par_iter()
+            .map(|j| {
+                let r = self.compute(j);
+                bar.inc(1);
+                r
+            })
+            .collect();
+        bar.finish_and_clear();
+        out
+    }
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
