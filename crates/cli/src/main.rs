@@ -7,6 +7,8 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod output;
+mod plot;
+mod polar;
 mod predict;
 mod prop;
 mod values;
@@ -28,6 +30,10 @@ enum Command {
     Predict(Box<predict::PredictArgs>),
     /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
     Prop(prop::PropArgs),
+    /// Polars of one section from XFOIL at given Reynolds numbers, with their QPROP fit.
+    Polar(Box<polar::PolarArgs>),
+    /// Polars of every station of a blade at its operating Re and Mach, reduced to a QPROP file.
+    Polars(Box<polar::PolarsArgs>),
 }
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
@@ -40,6 +46,8 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
     match cli.command {
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
+        Command::Polar(a) => polar::run_polar(&a),
+        Command::Polars(a) => polar::run_polars(&a),
     }
 }
 

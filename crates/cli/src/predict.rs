@@ -36,24 +36,9 @@ pub struct PredictArgs {
     /// Axial speeds [m/s], same syntax (default: 0, static).
     #[arg(long, allow_hyphen_values = true)]
     pub v: Option<String>,
-    /// Air density [kg/m^3] (default 1.225, QPROP's).
-    #[arg(long, conflicts_with_all = ["temp", "pressure"], allow_negative_numbers = true)]
-    pub rho: Option<f64>,
-    /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
-    #[arg(long, allow_negative_numbers = true)]
-    pub mu: Option<f64>,
-    /// Speed of sound [m/s] (default 340, QPROP's).
-    #[arg(long, allow_negative_numbers = true)]
-    pub a: Option<f64>,
-    /// Air temperature with unit (20C, 293.15K, 68F); sets rho, mu and a.
-    #[arg(long, requires = "pressure")]
-    pub temp: Option<String>,
-    /// Air pressure (Pa unless suffixed: hPa, mbar, kPa, inHg, psi).
-    #[arg(long, requires = "temp")]
-    pub pressure: Option<String>,
-    /// Relative humidity in percent (with --temp and --pressure).
-    #[arg(long, requires = "temp")]
-    pub humidity: Option<String>,
+    /// Air properties.
+    #[command(flatten)]
+    pub air: FluidArgs,
     /// Collective blade-angle change [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub dbeta: f64,
@@ -76,6 +61,30 @@ pub struct PredictArgs {
     /// are included in the JSON as well.
     #[arg(long)]
     pub stations: Option<PathBuf>,
+}
+
+/// Air properties from flags: --rho/--mu/--a (QPROP's defaults), or --temp/--pressure
+/// [--humidity] through the atmosphere model.
+#[derive(Debug, Args)]
+pub struct FluidArgs {
+    /// Air density [kg/m^3] (default 1.225, QPROP's).
+    #[arg(long, conflicts_with_all = ["temp", "pressure"], allow_negative_numbers = true)]
+    pub rho: Option<f64>,
+    /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub mu: Option<f64>,
+    /// Speed of sound [m/s] (default 340, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
+    pub a: Option<f64>,
+    /// Air temperature with unit (20C, 293.15K, 68F); sets rho, mu and a.
+    #[arg(long, requires = "pressure")]
+    pub temp: Option<String>,
+    /// Air pressure (Pa unless suffixed: hPa, mbar, kPa, inHg, psi).
+    #[arg(long, requires = "temp")]
+    pub pressure: Option<String>,
+    /// Relative humidity in percent (with --temp and --pressure).
+    #[arg(long, requires = "temp")]
+    pub humidity: Option<String>,
 }
 
 /// A prop file read and checked, with its warnings printed.
@@ -136,7 +145,14 @@ pub fn load_rotor(path: &Path, units: Option<&str>, qprop_compat: bool) -> Resul
     Ok((loaded, rotor))
 }
 
-fn fluid(args: &PredictArgs) -> Result<(Fluid, String)> {
+impl FluidArgs {
+    /// The fluid, and a note of where it came from.
+    pub fn fluid(&self) -> Result<(Fluid, String)> {
+        fluid(self)
+    }
+}
+
+fn fluid(args: &FluidArgs) -> Result<(Fluid, String)> {
     if let (Some(t), Some(p)) = (&args.temp, &args.pressure) {
         let rh = args.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
         let state = AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh)?;
@@ -182,7 +198,7 @@ struct JsonOut<'a> {
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
     let (loaded, rotor) = load_rotor(&args.prop, args.units.as_deref(), args.qprop_compat)?;
-    let (fluid, fluid_source) = fluid(args)?;
+    let (fluid, fluid_source) = args.air.fluid()?;
     let rpms = parse_list("--rpm", &args.rpm)?;
     if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {
         bail!("--rpm: rotation speed must not be negative, found {bad}");

@@ -8,6 +8,7 @@
 //! * [`tabulated`]: a section model that interpolates the polars themselves, with a post-stall
 //!   extension to +-90 deg, usable by the solver instead of the parametric one.
 //! * [`compute`]: polars from XFOIL, in parallel, through a content-addressed cache.
+//! * [`blade`]: the polars of every station of a blade (`propbet polars`), as JSON.
 #![deny(missing_docs)]
 
 pub mod airfoil;
@@ -21,3 +22,5 @@ pub use compute::{PolarCache, PolarEngine, PolarError, PolarJob, Source};
 pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit};
 pub use table::{Polar, PolarPoint};
 pub use tabulated::TabulatedAero;
+pub mod blade;
+pub use blade::{BladePolars, StationPolars};

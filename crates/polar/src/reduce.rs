@@ -168,23 +168,21 @@ pub fn fit_qprop(
         })
         .unwrap_or(0)
         .clamp(1, pts.len() - 2);
-    let (mut i0, mut i1) = (seed - 1, seed + 1);
-    loop {
-        let try_range = |a: usize, b: usize| {
-            let xs: Vec<(f64, f64, f64)> = pts[a..=b].iter().map(|p| (p.alpha_deg, p.cl, 1.0)).collect();
-            let (c0, c1) = line_fit(&xs);
-            xs.iter().map(|&(x, y, _)| (y - c0 - c1 * x).abs()).fold(0.0, f64::max)
-        };
-        let left = (i0 > 0).then(|| try_range(i0 - 1, i1));
-        let right = (i1 + 1 < pts.len()).then(|| try_range(i0, i1 + 1));
-        match (left, right) {
-            (Some(l), Some(r)) if l <= r && l <= LINEAR_RANGE_CL_TOL => i0 -= 1,
-            (_, Some(r)) if r <= LINEAR_RANGE_CL_TOL => i1 += 1,
-            (Some(l), _) if l <= LINEAR_RANGE_CL_TOL => i0 -= 1,
-            _ => break,
+    // Widen the tolerance when XFOIL's curve is too wavy for even five points on a line
+    // (very low Re); the verdict then says so.
+    let mut grown = grow_linear(pts, seed, LINEAR_RANGE_CL_TOL);
+    for tol in [2.0 * LINEAR_RANGE_CL_TOL, 4.0 * LINEAR_RANGE_CL_TOL] {
+        if grown.members.len() >= 5 {
+            break;
+        }
+        let wider = grow_linear(pts, seed, tol);
+        if wider.members.len() > grown.members.len() {
+            grown = wider;
         }
     }
-    let lin = &pts[i0..=i1];
+    let members = grown.members.clone();
+    let lin: Vec<crate::table::PolarPoint> = members.iter().map(|&k| pts[k]).collect();
+    let lin = &lin[..];
     let range = [lin[0].alpha_deg, lin[lin.len() - 1].alpha_deg];
 
     // 2. Lift line, weighted.
@@ -192,7 +190,14 @@ pub fn fit_qprop(
         .iter()
         .map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg)))
         .collect();
-    let (cl0_m, slope_deg) = line_fit(&xs);
+    let (mut cl0_m, mut slope_deg) = line_fit(&xs);
+    if slope_deg <= 0.0 {
+        // No rising line anywhere: take the secant across the attached range.
+        let (a, b) = (pts[0], pts[pts.len() - 1]);
+        slope_deg = (b.cl - a.cl) / (b.alpha_deg - a.alpha_deg);
+        cl0_m = a.cl - slope_deg * a.alpha_deg;
+        unfit.push("XFOIL's lift does not rise with alpha near the working angle; CL_a is the secant across the attached range".into());
+    }
     let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
     let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
 
@@ -268,7 +273,7 @@ pub fn fit_qprop(
             cl_fit: cl_fit(p.alpha_deg),
             cd_xfoil: p.cd,
             cd_fit: cd_fit(p.cl),
-            linear: (i0..=i1).contains(&i),
+            linear: members.contains(&i),
         })
         .collect();
     let in_lin: Vec<&FitResidual> = residuals.iter().filter(|r| r.linear).collect();
@@ -290,6 +295,23 @@ pub fn fit_qprop(
         .sum::<f64>()
         / wsum)
         .sqrt();
+    if grown.tol > LINEAR_RANGE_CL_TOL {
+        unfit.push(format!(
+            "XFOIL's lift curve is straight only within {:.2} in cl near the working angle",
+            grown.tol
+        ));
+    }
+    if !grown.skipped.is_empty() {
+        notes.push(format!(
+            "points at alpha {} deg left out of the lift line as outliers",
+            grown
+                .skipped
+                .iter()
+                .map(|&k| format!("{}", pts[k].alpha_deg))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
     if range[1] - range[0] < 4.0 || lin.len() < 4 {
         unfit.push(format!(
             "the lift curve is straight only over alpha {:.1}..{:.1} deg ({} points)",
@@ -357,6 +379,75 @@ pub fn fit_qprop(
         unfit,
         notes,
     })
+}
+
+/// A linear range: the points on the line, the isolated outliers skipped inside it, the
+/// tolerance used.
+#[derive(Debug, Clone)]
+struct Grown {
+    members: Vec<usize>,
+    skipped: Vec<usize>,
+    tol: f64,
+}
+
+/// Grows a range of points that one straight line fits within `tol`, from the three around
+/// `seed`, a point at a time on the side that fits better. A single point that does not fit,
+/// with the next one beyond it fitting, is skipped as an outlier (XFOIL's odd point on another
+/// solution branch), as long as outliers stay under a fifth of the points.
+fn grow_linear(pts: &[crate::table::PolarPoint], seed: usize, tol: f64) -> Grown {
+    let max_dev = |members: &[usize]| {
+        let xs: Vec<(f64, f64, f64)> = members.iter().map(|&k| (pts[k].alpha_deg, pts[k].cl, 1.0)).collect();
+        let (c0, c1) = line_fit(&xs);
+        xs.iter().map(|&(x, y, _)| (y - c0 - c1 * x).abs()).fold(0.0, f64::max)
+    };
+    let mut members: Vec<usize> = vec![seed - 1, seed, seed + 1];
+    let mut skipped = Vec::new();
+    let (mut lo, mut hi) = (seed - 1, seed + 1);
+    loop {
+        // Candidates: (point added, point skipped, new lo, new hi).
+        let pick = |cands: Vec<(usize, Option<usize>, usize, usize)>| {
+            cands
+                .into_iter()
+                .map(|c| {
+                    let mut m = members.clone();
+                    m.push(c.0);
+                    m.sort_unstable();
+                    let d = max_dev(&m);
+                    (m, c.1, c.2, c.3, d)
+                })
+                .filter(|c| c.4 <= tol)
+                .min_by(|a, b| a.4.total_cmp(&b.4))
+        };
+        let mut near = Vec::new();
+        if lo > 0 {
+            near.push((lo - 1, None, lo - 1, hi));
+        }
+        if hi + 1 < pts.len() {
+            near.push((hi + 1, None, lo, hi + 1));
+        }
+        let mut best = pick(near);
+        let room = (skipped.len() + 1) * 5 <= members.len() + 1;
+        if best.is_none() && room {
+            let mut far = Vec::new();
+            if lo > 1 {
+                far.push((lo - 2, Some(lo - 1), lo - 2, hi));
+            }
+            if hi + 2 < pts.len() {
+                far.push((hi + 2, Some(hi + 1), lo, hi + 2));
+            }
+            best = pick(far);
+        }
+        match best {
+            Some((m, skip, nlo, nhi, _)) => {
+                members = m;
+                skipped.extend(skip);
+                lo = nlo;
+                hi = nhi;
+            }
+            None => break,
+        }
+    }
+    Grown { members, skipped, tol }
 }
 
 /// Weighted least-squares line `y = c0 + c1 x` through `(x, y, w)`.

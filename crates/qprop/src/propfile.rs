@@ -442,6 +442,11 @@ impl PropFile {
         QpropCoefficients::from_array(k)
     }
 
+    /// Gives row `i` all ten coefficients of its own (CL_a per radian, as QPROP reads it).
+    pub fn set_station_coeffs(&mut self, i: usize, c: &QpropCoefficients) {
+        self.rows[i].coeffs = c.to_array().to_vec();
+    }
+
     /// Tip radius [m] under the given reading of line 2 (last station radius when absent).
     pub fn tip_radius(&self, reading: RadiusReading) -> f64 {
         let last = self
