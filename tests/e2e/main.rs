@@ -42,6 +42,8 @@ fn col(header: &[String], name: &str) -> usize {
         .unwrap_or_else(|| panic!("no column {name}"))
 }
 
+mod polars;
+
 #[test]
 fn predict_matches_qprop_static_point() {
     // QPROP 1.22, `qprop cam6x3 null 0 12000`: T = 2.386 N, Q = 0.2248E-01 N m

@@ -51,6 +51,10 @@ pub struct PredictArgs {
     /// Switch the tip-loss factor off.
     #[arg(long)]
     pub no_tip_loss: bool,
+    /// Use the tabulated XFOIL polars of this file (from `propbet polars --out-polars`) as the
+    /// section model, instead of the prop file's QPROP coefficients.
+    #[arg(long)]
+    pub polars: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Csv)]
     pub format: Format,
@@ -197,7 +201,23 @@ struct JsonOut<'a> {
 
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let (loaded, rotor) = load_rotor(&args.prop, args.units.as_deref(), args.qprop_compat)?;
+    let (loaded, mut rotor) = load_rotor(&args.prop, args.units.as_deref(), args.qprop_compat)?;
+    if let Some(path) = &args.polars {
+        let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+        let blade =
+            propbet_polar::BladePolars::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let (r, models) = blade.models().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
+        if r[0] > hi || r[r.len() - 1] < lo {
+            bail!(
+                "{}: its stations (r = {:.4}..{:.4} m) do not overlap the blade (r = {lo:.4}..{hi:.4} m)",
+                path.display(),
+                r[0],
+                r[r.len() - 1]
+            );
+        }
+        propbet_polar::tabulated::apply_to_rotor(&mut rotor, &r, &models);
+    }
     let (fluid, fluid_source) = args.air.fluid()?;
     let rpms = parse_list("--rpm", &args.rpm)?;
     if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {
@@ -257,7 +277,9 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         results.extend(c.results);
         body.push(c.text);
     }
-    let inputs = [args.prop.as_path()];
+    let inputs: Vec<&Path> = std::iter::once(args.prop.as_path())
+        .chain(args.polars.as_deref())
+        .collect();
     if !csv {
         let doc = JsonOut {
             prop: &args.prop.to_string_lossy(),

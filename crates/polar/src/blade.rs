@@ -11,6 +11,9 @@ use crate::reduce::QpropFit;
 use crate::table::Polar;
 use crate::tabulated::TabulatedAero;
 
+/// Section models placed at radii [m], ascending.
+pub type StationModels = (Vec<f64>, Vec<Arc<dyn SectionAero>>);
+
 /// Format tag of the JSON file.
 pub const FORMAT: &str = "propbet-blade-polars-1";
 
@@ -68,7 +71,7 @@ impl BladePolars {
     }
 
     /// Tabulated section models at the stations that have polars: their radii and models.
-    pub fn models(&self) -> Result<(Vec<f64>, Vec<Arc<dyn SectionAero>>), String> {
+    pub fn models(&self) -> Result<StationModels, String> {
         let mut r = Vec::new();
         let mut m: Vec<Arc<dyn SectionAero>> = Vec::new();
         for s in &self.stations {

@@ -530,7 +530,8 @@ fn join(vals: &[f64]) -> String {
 
 /// Writes a prop file that QPROP 1.22 reads as `file` means it: every number in its shortest
 /// exact form, a blank before every `!`, and no line longer than QPROP's 128-character buffer
-/// (a row that would be longer is written with 10 significant digits).
+/// (a row that would be longer is written with the most significant digits, 9 down to 4, that
+/// fit: thirteen numbers share 126 characters).
 ///
 /// Note that QPROP 1.22 reads R on line 2 unscaled; with Rfac != 1 the file means R in r units.
 pub fn write_prop(file: &PropFile) -> String {
@@ -558,11 +559,15 @@ pub fn write_prop(file: &PropFile) -> String {
         let mut vals = vec![row.r, row.chord, row.beta];
         vals.extend(&row.coeffs);
         let mut line = format!(" {}", join(&vals));
-        if line.len() > QPROP_LINE_MAX - 2 {
-            line = format!(
-                " {}",
-                vals.iter().map(|v| format!("{v:.9e}")).collect::<Vec<_>>().join(" ")
-            );
+        for digits in (4..=9).rev() {
+            if line.len() <= QPROP_LINE_MAX - 2 {
+                break;
+            }
+            let rounded: Vec<f64> = vals
+                .iter()
+                .map(|v| format!("{v:.*e}", digits - 1).parse().unwrap_or(*v))
+                .collect();
+            line = format!(" {}", join(&rounded));
         }
         out.push_str(&line);
         out.push('\n');
@@ -579,6 +584,36 @@ mod tests {
 
     fn err(text: &str) -> String {
         parse_prop(text).unwrap_err().to_string()
+    }
+
+    #[test]
+    fn full_precision_rows_are_rounded_to_fit_qprops_line() {
+        let (mut f, _) = parse_prop(CAM).unwrap();
+        let c = QpropCoefficients::from_array([
+            -0.022252612361,
+            3.3356735801,
+            -0.40740000001,
+            0.88450000003,
+            0.12677403261,
+            0.99681726581,
+            0.99681726582,
+            0.56160000001,
+            17668.506671,
+            -0.22529375781,
+        ]);
+        for i in 0..f.rows.len() {
+            f.rows[i].r += 1.0 / 3.0;
+            f.set_station_coeffs(i, &c);
+        }
+        let text = write_prop(&f);
+        assert!(text.lines().all(|l| l.len() <= QPROP_LINE_MAX - 2), "{text}");
+        let (g, _) = parse_prop(&text).unwrap();
+        for i in 0..f.rows.len() {
+            for (a, b) in g.coeffs_at(i).to_array().iter().zip(c.to_array()) {
+                assert!((a / b - 1.0).abs() < 1e-3, "{a} vs {b}");
+            }
+            assert!((g.rows[i].r / f.rows[i].r - 1.0).abs() < 1e-4);
+        }
     }
 
     #[test]
