@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::display::PrivateDisplay;
 use crate::output::{parse_polar_file, XfoilPoint};
-use crate::script::{self, RunSettings};
+use crate::script::{self, RunSettings, Step};
 use crate::XfoilError;
 
 /// Which X display XFOIL gets.
@@ -266,29 +266,34 @@ impl Xfoil {
         let i0 = (0..a.len())
             .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
             .unwrap_or(0);
-        let up: Vec<f64> = a[i0..].to_vec();
-        let down: Vec<f64> = a[..i0].iter().rev().copied().collect();
+        // One process: up from the angle nearest zero, then back to it from a fresh boundary
+        // layer, then down. Then the angles that failed, each from a fresh boundary layer.
+        let mut steps = Step::list(&a[i0..], false, false);
+        let down: Vec<f64> = a[..=i0].iter().rev().copied().collect();
+        if down.len() > 1 {
+            steps.extend(Step::list(&down, true, false));
+        }
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();
-        for (warm_up, angles) in [(None, up), (Some(a[i0]), down)] {
-            if angles.is_empty() {
-                continue;
-            }
-            // Continuation first; then the angles that failed, each from a fresh boundary layer.
-            let failed = self.branch(&airfoil, &settings, warm_up, &angles, false, &mut out, &mut last_tail)?;
-            let still = if failed.is_empty() {
-                failed
-            } else {
-                self.branch(&airfoil, &settings, None, &failed, true, &mut out, &mut last_tail)?
-            };
-            out.unconverged_deg.extend(still);
+        let failed = self.branch(&airfoil, &settings, &steps, &mut out, &mut last_tail)?;
+        let converged =
+            |out: &SweepOutcome, x: f64| out.points.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
+        let mut retry: Vec<f64> = failed.into_iter().filter(|&x| !converged(&out, x)).collect();
+        retry.dedup();
+        if !retry.is_empty() {
+            self.branch(
+                &airfoil,
+                &settings,
+                &Step::list(&retry, false, true),
+                &mut out,
+                &mut last_tail,
+            )?;
         }
         // A drag below 80 % of laminar flat-plate friction on both sides (2 x 1.328 / sqrt(Re))
         // is a spurious XFOIL solution, not a polar point.
         let floor = 0.8 * 2.0 * 1.328 / req.reynolds.sqrt();
-        let (kept, spurious): (Vec<XfoilPoint>, Vec<XfoilPoint>) = out.points.iter().partition(|p| p.cd >= floor);
-        out.points = kept;
-        out.unconverged_deg.extend(spurious.iter().map(|p| p.alpha_deg));
+        out.points.retain(|p| p.cd >= floor);
+        out.unconverged_deg = a.iter().copied().filter(|&x| !converged(&out, x)).collect();
         if out.points.is_empty() && !out.faults.is_empty() {
             let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
             return Err(XfoilError::NoPoints {
@@ -299,37 +304,39 @@ impl Xfoil {
         out.points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
         out.points
             .dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
-        out.unconverged_deg.sort_by(f64::total_cmp);
-        out.unconverged_deg.dedup();
         Ok(out)
     }
 
-    /// One pass over `angles` in order: runs until every angle is converged, failed or given
-    /// up, restarting beyond crashes. Returns the angles that did not converge.
-    #[allow(clippy::too_many_arguments)]
+    /// One pass over `steps` in order: runs until every angle is converged, failed or given
+    /// up, restarting beyond crashes (with a warm-up at the last converged angle). Returns the
+    /// angles that did not converge.
     fn branch(
         &self,
         airfoil: &str,
         settings: &RunSettings,
-        mut warm_up: Option<f64>,
-        angles: &[f64],
-        init_each: bool,
+        steps: &[Step],
         out: &mut SweepOutcome,
         last_tail: &mut String,
     ) -> Result<Vec<f64>, XfoilError> {
+        let mut warm_up: Option<f64> = None;
         let mut failed = Vec::new();
         let mut pos = 0;
         let mut restarts = 0;
-        while pos < angles.len() {
-            let todo = &angles[pos..];
-            let run = self.run_once(airfoil, settings, warm_up, todo, init_each)?;
+        while pos < steps.len() {
+            let todo_steps = &steps[pos..];
+            let todo: Vec<f64> = todo_steps.iter().map(|s| s.alpha_deg).collect();
+            let run = self.run_once(airfoil, settings, warm_up, todo_steps)?;
             out.runs += 1;
             // Match saved points to requested angles; anything else is garbage.
             let mut last_done: Option<usize> = None;
             for p in &run.points {
-                let k = todo
+                // Points come in solving order; an angle may come twice (the return to the
+                // start before the downward branch), so match from the last one on.
+                let from = last_done.map_or(0, |d| d + 1);
+                let k = todo[from..]
                     .iter()
                     .position(|&a| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG)
+                    .map(|k| k + from)
                     .ok_or_else(|| XfoilError::Garbage {
                         detail: format!(
                             "XFOIL saved a point at alpha {} deg, which was not requested",
@@ -396,13 +403,13 @@ impl Xfoil {
                 }
             };
             failed.extend(todo[..=failed_at].iter().copied().filter(|&a| !converged(a)));
-            if let (Some(d), false) = (last_done, init_each) {
+            if let Some(d) = last_done {
                 warm_up = Some(todo[d]);
             }
             pos += failed_at + 1;
             restarts += 1;
             if restarts > self.config.max_restarts {
-                failed.extend_from_slice(&angles[pos..]);
+                failed.extend(steps[pos..].iter().map(|s| s.alpha_deg));
                 return Ok(failed);
             }
         }
@@ -414,8 +421,7 @@ impl Xfoil {
         airfoil: &str,
         settings: &RunSettings,
         warm_up: Option<f64>,
-        angles: &[f64],
-        init_each: bool,
+        steps: &[Step],
     ) -> Result<RunOutput, XfoilError> {
         let dir = tempfile::Builder::new()
             .prefix("propbet-xfoil-")
@@ -443,12 +449,12 @@ impl Xfoil {
         let mut child = cmd
             .spawn()
             .map_err(|e| XfoilError::io(format!("cannot start XFOIL ({})", self.config.executable.display()), e))?;
-        let text = script::sweep_script(settings, warm_up, angles, init_each);
+        let text = script::sweep_script(settings, warm_up, steps);
         if let Some(mut stdin) = child.stdin.take() {
             // XFOIL may die before reading everything; the watchdog below reports that.
             let _ = stdin.write_all(text.as_bytes());
         }
-        let budget = self.config.startup_timeout + self.config.point_timeout * (angles.len() as u32 + 1);
+        let budget = self.config.startup_timeout + self.config.point_timeout * (steps.len() as u32 + 1);
         let ending = watch(&mut child, &log_path, self.config.stall_timeout, budget)?;
         let output = std::fs::read(&log_path).unwrap_or_default();
         let output_tail = tail(&output);

@@ -12,6 +12,29 @@ pub const POLAR_FILE: &str = "polar.txt";
 /// Name line written at the top of the coordinate file.
 pub const AIRFOIL_NAME: &str = "propbet section";
 
+/// One angle of a run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Step {
+    /// Angle of attack [deg].
+    pub alpha_deg: f64,
+    /// Re-initialise the boundary layer before this angle.
+    pub init: bool,
+}
+
+impl Step {
+    /// `alphas` in order, the first of them (or every one, with `init_each`) re-initialised.
+    pub fn list(alphas: &[f64], init_first: bool, init_each: bool) -> Vec<Step> {
+        alphas
+            .iter()
+            .enumerate()
+            .map(|(k, &alpha_deg)| Step {
+                alpha_deg,
+                init: init_each || (init_first && k == 0),
+            })
+            .collect()
+    }
+}
+
 /// Settings of one viscous run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunSettings {
@@ -30,13 +53,13 @@ pub struct RunSettings {
 /// The script for one run: plot window made tiny (graphics must stay on, see
 /// [`crate::display`]), load, repanel, viscous settings, an optional warm-up angle that is
 /// solved but not saved (continuation after a restart), then the angles in order, each saved to
-/// the polar file as soon as it converges. With `init_each`, the boundary layer is
-/// re-initialised before every angle after the first (the retry pass for angles that failed by
-/// continuation). XFOIL's `INIT` is a toggle: after any `ALFA` it means "initialise on the next
-/// point", but in a fresh process it would mean "assume initialised", and the first point dies
-/// in STFIND; hence never before the first angle.
-pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64], init_each: bool) -> String {
-    let mut out = String::with_capacity(256 + 16 * alphas_deg.len());
+/// the polar file as soon as it converges. A step with `init` re-initialises the boundary layer
+/// first (the start of the downward branch, and every angle of the retry pass). XFOIL's `INIT`
+/// is a toggle: after any `ALFA` it means "initialise on the next point", but in a fresh
+/// process it would mean "assume initialised", and the first point dies in STFIND; hence never
+/// before the first angle of a process.
+pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, steps: &[Step]) -> String {
+    let mut out = String::with_capacity(256 + 16 * steps.len());
     // Writing to a String cannot fail.
     let _ = writeln!(out, "PLOP\nW 0.05\n");
     let _ = writeln!(out, "LOAD {AIRFOIL_FILE}");
@@ -50,11 +73,11 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, alphas_deg: &[f64
         let _ = writeln!(out, "ALFA {a:.6}");
     }
     let _ = writeln!(out, "PACC\n{POLAR_FILE}\n");
-    for (k, a) in alphas_deg.iter().enumerate() {
-        if init_each && (k > 0 || warm_up_deg.is_some()) {
+    for (k, step) in steps.iter().enumerate() {
+        if step.init && (k > 0 || warm_up_deg.is_some()) {
             let _ = writeln!(out, "INIT");
         }
-        let _ = writeln!(out, "ALFA {a:.6}");
+        let _ = writeln!(out, "ALFA {:.6}", step.alpha_deg);
     }
     let _ = writeln!(out, "PACC\n\nQUIT");
     out
@@ -83,8 +106,8 @@ mod tests {
             max_iter: 100,
             panels: 160,
         };
-        let text = sweep_script(&s, Some(3.0), &[4.0, 5.0], false);
-        let retry = sweep_script(&s, None, &[4.0, 6.0], true);
+        let text = sweep_script(&s, Some(3.0), &Step::list(&[4.0, 5.0], false, false));
+        let retry = sweep_script(&s, None, &Step::list(&[4.0, 6.0], false, true));
         assert!(retry.contains("\n\nALFA 4.000000\nINIT\nALFA 6.000000\n"), "{retry}");
         let keywords = [
             "PLOP", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "ITER", "INIT", "ALFA", "PACC", "QUIT",

@@ -40,9 +40,12 @@ pub struct XfoilArgs {
     /// Angles of attack [deg]: `start:stop:step`, `start:stop/N` or a list.
     #[arg(long, default_value = "-8:16:1", allow_hyphen_values = true)]
     pub alpha: String,
-    /// XFOIL panel nodes.
-    #[arg(long, default_value_t = 160)]
-    pub panels: u32,
+    /// XFOIL panel nodes (default: XFOIL's 160 for `polar`, 120 for `polars`).
+    #[arg(long)]
+    pub panels: Option<u32>,
+    /// XFOIL's viscous iteration limit per angle.
+    #[arg(long, default_value_t = 100)]
+    pub iter: u32,
 }
 
 impl XfoilArgs {
@@ -158,7 +161,8 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let jobs: Vec<PolarJob> = res
         .iter()
         .map(|&re| PolarJob {
-            panels: args.xfoil.panels,
+            panels: args.xfoil.panels.unwrap_or(160),
+            max_iter: args.xfoil.iter,
             ..PolarJob::new(foil.clone(), re, args.mach, args.xfoil.ncrit, alphas.clone())
         })
         .collect();
@@ -307,6 +311,10 @@ fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
     ]
 }
 
+/// Panels for a blade's polars: 1.9x faster than XFOIL's 160 and within 0.2 % of its cl and cd
+/// (NACA 4412, Re 1e5, 4 deg: cl 0.8893 vs 0.8880, cd 0.01961 vs 0.01965; Debian XFOIL 6.99).
+const BLADE_PANELS: u32 = 120;
+
 /// Arguments of `propbet polars`.
 #[derive(Debug, Args)]
 pub struct PolarsArgs {
@@ -326,7 +334,8 @@ pub struct PolarsArgs {
     /// Operating point: axial speed [m/s].
     #[arg(long, default_value_t = 0.0)]
     pub v: f64,
-    /// Further polars at these multiples of each station's Re, for REexp.
+    /// Further polars at these multiples of each station's Re, for REexp (`none`: one Re per
+    /// station, REexp kept at -0.5).
     #[arg(long, default_value = "0.7,1.4")]
     pub re_factors: String,
     /// Air properties.
@@ -361,7 +370,11 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     if !args.v.is_finite() || args.v < 0.0 {
         bail!("--v: {} must be a non-negative speed", args.v);
     }
-    let factors = parse_list("--re-factors", &args.re_factors)?;
+    let factors = if args.re_factors.trim() == "none" {
+        Vec::new()
+    } else {
+        parse_list("--re-factors", &args.re_factors)?
+    };
     if let Some(bad) = factors.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
         bail!("--re-factors: {bad} must be positive");
     }
@@ -393,7 +406,8 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         if re > 0.0 && chord > 0.0 {
             for f in std::iter::once(1.0).chain(factors.iter().copied()) {
                 jobs.push(PolarJob {
-                    panels: args.xfoil.panels,
+                    panels: args.xfoil.panels.unwrap_or(BLADE_PANELS),
+                    max_iter: args.xfoil.iter,
                     ..PolarJob::new(foil.clone(), re * f, mach, args.xfoil.ncrit, alphas.clone())
                 });
             }
