@@ -235,3 +235,64 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
     assert!(t.elapsed().as_secs_f64() < 2.0, "{:?}", t.elapsed());
     assert_eq!(std::fs::read(dir.path().join("fit2.qprop")).unwrap(), text.as_bytes());
 }
+
+/// Processes whose command line contains all of `words`.
+fn processes_with(words: &[&str]) -> Vec<u32> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir("/proc").unwrap().flatten() {
+        let Ok(pid) = entry.file_name().to_string_lossy().parse::<u32>() else {
+            continue;
+        };
+        let Ok(cmd) = std::fs::read(entry.path().join("cmdline")) else {
+            continue;
+        };
+        let cmd = String::from_utf8_lossy(&cmd).replace('\0', " ");
+        if words.iter().all(|w| cmd.contains(w)) {
+            found.push(pid);
+        }
+    }
+    found
+}
+
+#[test]
+fn killing_propbet_stops_its_private_x_server() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = super::bin()
+        .args([
+            "polars",
+            "--geometry",
+            cam6x3().to_str().unwrap(),
+            "--airfoil",
+            "naca4412",
+            "--rpm",
+            "8000",
+            "--no-cache",
+            "--quiet",
+            "--out-prop",
+            "k.qprop",
+        ])
+        .current_dir(dir.path())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let pid = child.id().to_string();
+    let start = std::time::Instant::now();
+    let watcher = loop {
+        let w = processes_with(&["propbet-xvfb", &pid]);
+        if !w.is_empty() {
+            break w;
+        }
+        assert!(start.elapsed().as_secs() < 20, "no private Xvfb appeared");
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    };
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let start = std::time::Instant::now();
+    while watcher
+        .iter()
+        .any(|p| std::path::Path::new(&format!("/proc/{p}")).exists())
+    {
+        assert!(start.elapsed().as_secs() < 5, "the Xvfb watcher outlived propbet");
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+}

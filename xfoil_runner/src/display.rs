@@ -25,14 +25,16 @@ pub struct PrivateDisplay {
 /// The display shared by every runner of this process while any of them holds it.
 static SHARED: Mutex<Weak<PrivateDisplay>> = Mutex::new(Weak::new());
 
-/// `sh -c WATCHER propbet-xvfb XVFB :N PARENT_PID`: runs Xvfb until the parent dies, Xvfb
-/// dies, or the shell gets SIGTERM.
+/// `sh -c WATCHER propbet-xvfb XVFB :N PARENT_PID`: runs Xvfb until the parent dies (a
+/// zombie counts as dead: `kill -0` would still succeed on it), Xvfb dies, or the shell gets
+/// SIGTERM.
 const WATCHER: &str = r#"
 "$1" "$2" -nolisten tcp -screen 0 640x480x24 -nocursor >/dev/null 2>&1 &
 x=$!
 echo $x
 trap 'kill $x 2>/dev/null; wait $x; exit 0' TERM INT HUP
-while kill -0 $x 2>/dev/null && kill -0 "$3" 2>/dev/null; do sleep 0.2; done
+alive() { s=$(cat /proc/$1/stat 2>/dev/null) || return 1; case "$s" in *") Z "*) return 1;; esac; }
+while kill -0 $x 2>/dev/null && alive "$3"; do sleep 0.2; done
 kill $x 2>/dev/null; wait $x
 exit 1
 "#;
