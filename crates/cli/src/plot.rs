@@ -27,6 +27,8 @@ pub struct Series {
     pub points: Vec<(f64, f64)>,
     /// Line or dots.
     pub mark: Mark,
+    /// Palette index (default: the series' position), so that related series share a colour.
+    pub colour: Option<usize>,
 }
 
 /// One chart of a figure.
@@ -140,7 +142,7 @@ where
             .draw()
             .map_err(err)?;
         for (i, s) in panel.series.iter().enumerate() {
-            let c = colour(i);
+            let c = colour(s.colour.unwrap_or(i));
             let data: Vec<(f64, f64)> = s
                 .points
                 .iter()

@@ -268,31 +268,36 @@ fn fit_summary(re: f64, f: &QpropFit) -> String {
 fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
     let mut lift = Vec::new();
     let mut drag = Vec::new();
-    for p in polars {
+    for (k, p) in polars.iter().enumerate() {
         let label = format!("XFOIL Re {:.0}", p.re);
         lift.push(Series {
             name: label.clone(),
             points: p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(),
             mark: Mark::Dots,
+            colour: Some(k),
         });
         drag.push(Series {
             name: label,
             points: p.points.iter().map(|q| (q.cd, q.cl)).collect(),
             mark: Mark::Dots,
+            colour: Some(k),
         });
     }
     for f in fits {
+        let k = polars.iter().position(|p| p.re == f.coeffs.re_ref);
         let label = format!("QPROP fit Re {:.0}", f.coeffs.re_ref);
         let lin: Vec<_> = f.residuals.iter().filter(|r| r.linear).collect();
         lift.push(Series {
             name: label.clone(),
             points: lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(),
             mark: Mark::Line,
+            colour: k,
         });
         drag.push(Series {
             name: label,
             points: lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(),
             mark: Mark::Line,
+            colour: k,
         });
     }
     vec![
