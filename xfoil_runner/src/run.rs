@@ -374,34 +374,25 @@ impl Xfoil {
                     output_tail: run.output_tail,
                 });
             }
-            let failed_at = match run.ending {
+            let kind = match run.ending {
                 Ending::Finished => {
                     failed.extend(todo.iter().copied().filter(|&a| !converged(a)));
                     return Ok(failed);
                 }
-                Ending::Crashed(status) => {
-                    let k = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
-                    out.faults.push(Fault {
-                        kind: FaultKind::Crash {
-                            status: status.to_string(),
-                        },
-                        alpha_deg: todo[k],
-                        output_tail: run.output_tail,
-                    });
-                    k
-                }
-                Ending::Hung(t) => {
-                    let k = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
-                    out.faults.push(Fault {
-                        kind: FaultKind::Hang {
-                            seconds: t.as_secs_f64(),
-                        },
-                        alpha_deg: todo[k],
-                        output_tail: run.output_tail,
-                    });
-                    k
-                }
+                Ending::Crashed(status) => FaultKind::Crash {
+                    status: status.to_string(),
+                },
+                Ending::Hung(t) => FaultKind::Hang {
+                    seconds: t.as_secs_f64(),
+                },
             };
+            // The angle given up: the first after the last one saved.
+            let failed_at = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
+            out.faults.push(Fault {
+                kind,
+                alpha_deg: todo[failed_at],
+                output_tail: run.output_tail,
+            });
             failed.extend(todo[..=failed_at].iter().copied().filter(|&a| !converged(a)));
             if let Some(d) = last_done {
                 warm_up = Some(todo[d]);

@@ -539,53 +539,34 @@ fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::PolarPoint;
 
     /// A polar made from QPROP's own law (plus a stall) must come back exactly.
     fn synthetic(re: f64, c: &QpropCoefficients) -> Polar {
-        let points = (-6..=16)
-            .map(|a| {
-                let alpha = f64::from(a);
-                let lin = c.cl0 + c.cl_a * alpha.to_radians();
-                let cl = if alpha > 11.0 { lin - 0.15 * (alpha - 11.0) } else { lin };
-                let d = cl - c.clcd0;
-                let cd2 = if d > 0.0 { c.cd2u } else { c.cd2l };
-                let cd = (c.cd0 + cd2 * d * d) * (re / c.re_ref).powf(c.re_exp);
-                PolarPoint {
-                    alpha_deg: alpha,
-                    cl,
-                    cd,
-                    cdp: 0.0,
-                    cm: 0.0,
-                    xtr_top: 0.5,
-                    xtr_bottom: 1.0,
-                }
-            })
-            .collect();
-        Polar {
-            re,
-            mach: 0.0,
-            ncrit: 9.0,
-            points,
-            unconverged_deg: vec![],
-            faults: vec![],
-        }
+        Polar::from_law(re, -6, 16, |alpha| {
+            let lin = c.cl0 + c.cl_a * alpha.to_radians();
+            let cl = if alpha > 11.0 { lin - 0.15 * (alpha - 11.0) } else { lin };
+            let d = cl - c.clcd0;
+            let cd2 = if d > 0.0 { c.cd2u } else { c.cd2l };
+            (cl, (c.cd0 + cd2 * d * d) * (re / c.re_ref).powf(c.re_exp))
+        })
     }
+
+    const TRUTH: QpropCoefficients = QpropCoefficients {
+        cl0: 0.45,
+        cl_a: 5.8,
+        cl_min: -0.3,
+        cl_max: 1.4,
+        cd0: 0.012,
+        cd2u: 0.02,
+        cd2l: 0.035,
+        clcd0: 0.55,
+        re_ref: 1e5,
+        re_exp: -0.4,
+    };
 
     #[test]
     fn qprop_law_is_recovered() {
-        let truth = QpropCoefficients {
-            cl0: 0.45,
-            cl_a: 5.8,
-            cl_min: -0.3,
-            cl_max: 1.4,
-            cd0: 0.012,
-            cd2u: 0.02,
-            cd2l: 0.035,
-            clcd0: 0.55,
-            re_ref: 1e5,
-            re_exp: -0.4,
-        };
+        let truth = TRUTH;
         let polars = [synthetic(5e4, &truth), synthetic(1e5, &truth), synthetic(2e5, &truth)];
         let fit = fit_qprop(&polars, 1e5, &AlphaWeights::Uniform, -0.5).unwrap();
         let c = fit.coeffs;
@@ -602,18 +583,7 @@ mod tests {
 
     #[test]
     fn working_outside_the_linear_range_is_called_unfit() {
-        let truth = QpropCoefficients {
-            cl0: 0.45,
-            cl_a: 5.8,
-            cl_min: -0.3,
-            cl_max: 1.4,
-            cd0: 0.012,
-            cd2u: 0.02,
-            cd2l: 0.035,
-            clcd0: 0.55,
-            re_ref: 1e5,
-            re_exp: -0.4,
-        };
+        let truth = TRUTH;
         let w = AlphaWeights::Around {
             alphas_deg: vec![14.0],
             sigma_deg: 2.0,

@@ -97,6 +97,36 @@ impl Polar {
     }
 }
 
+impl Polar {
+    /// A polar at Ncrit 9 and Mach 0 from a law `alpha [deg] -> (cl, cd)` at whole degrees
+    /// `from..=to`, everything converged (for tests).
+    pub fn from_law(re: f64, from: i32, to: i32, law: impl Fn(f64) -> (f64, f64)) -> Polar {
+        let points = (from..=to)
+            .map(|a| {
+                let alpha_deg = f64::from(a);
+                let (cl, cd) = law(alpha_deg);
+                PolarPoint {
+                    alpha_deg,
+                    cl,
+                    cd,
+                    cdp: 0.0,
+                    cm: 0.0,
+                    xtr_top: 0.5,
+                    xtr_bottom: 1.0,
+                }
+            })
+            .collect();
+        Polar {
+            re,
+            mach: 0.0,
+            ncrit: 9.0,
+            points,
+            unconverged_deg: vec![],
+            faults: vec![],
+        }
+    }
+}
+
 /// Interpolation weights between the polars of a set (sorted by Re) at `re`: linear in ln Re,
 /// clamped to the end polars. Returns `(lower index, upper index, fraction)`.
 pub fn re_bracket(res: &[f64], re: f64) -> (usize, usize, f64) {

@@ -56,32 +56,26 @@ impl Curve {
             )
         };
         let a_lo = first.alpha_deg.to_radians();
-        let mut deg = -180.0;
-        while deg < first.alpha_deg - 0.5 {
-            let a = f64::to_radians(deg);
-            let (l, d) = extension(a_lo, first.cl, first.cd, a);
-            alpha.push(a);
+        let a_hi = last.alpha_deg.to_radians();
+        // Whole degrees beyond the converged range, at least half a degree from its ends.
+        let below = (-180..=179).map(f64::from).filter(|&d| d < first.alpha_deg - 0.5);
+        let above = (-179..=180).map(f64::from).filter(|&d| d > last.alpha_deg + 0.5);
+        for deg in below {
+            let (l, d) = extension(a_lo, first.cl, first.cd, deg.to_radians());
+            alpha.push(deg.to_radians());
             cl.push(l);
             cd.push(d);
-            deg += 1.0;
         }
         for q in &p.points {
             alpha.push(q.alpha_deg.to_radians());
             cl.push(q.cl);
             cd.push(q.cd);
         }
-        let a_hi = last.alpha_deg.to_radians();
-        let mut deg = last.alpha_deg.floor() + 1.0;
-        if deg - last.alpha_deg < 0.5 {
-            deg += 1.0;
-        }
-        while deg <= 180.0 {
-            let a = f64::to_radians(deg);
-            let (l, d) = extension(a_hi, last.cl, last.cd, a);
-            alpha.push(a);
+        for deg in above {
+            let (l, d) = extension(a_hi, last.cl, last.cd, deg.to_radians());
+            alpha.push(deg.to_radians());
             cl.push(l);
             cd.push(d);
-            deg += 1.0;
         }
         Some(Curve {
             re: p.re,
@@ -266,31 +260,11 @@ pub fn apply_to_rotor(rotor: &mut Rotor, r: &[f64], models: &[Arc<dyn SectionAer
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::table::PolarPoint;
 
     fn polar(re: f64, cd_scale: f64) -> Polar {
-        let points = (-6..=12)
-            .map(|a| {
-                let alpha = f64::from(a);
-                PolarPoint {
-                    alpha_deg: alpha,
-                    cl: 0.4 + 0.1 * alpha,
-                    cd: cd_scale * (0.012 + 0.0004 * alpha * alpha),
-                    cdp: 0.0,
-                    cm: 0.0,
-                    xtr_top: 0.5,
-                    xtr_bottom: 1.0,
-                }
-            })
-            .collect();
-        Polar {
-            re,
-            mach: 0.0,
-            ncrit: 9.0,
-            points,
-            unconverged_deg: vec![],
-            faults: vec![],
-        }
+        Polar::from_law(re, -6, 12, |alpha| {
+            (0.4 + 0.1 * alpha, cd_scale * (0.012 + 0.0004 * alpha * alpha))
+        })
     }
 
     #[test]
