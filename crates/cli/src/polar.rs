@@ -466,7 +466,7 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
                     i + 1,
                     fit_summary(re, f)
                 );
-                set_coeffs(&mut file, i, f);
+                file.set_station_coeffs(i, &f.coeffs);
             }
             None => {
                 all_ok = false;
@@ -511,10 +511,4 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     Ok(all_ok)
-}
-
-/// Writes a fit into station `i` of a prop file, in the file's own units (CL_a per radian as
-/// QPROP reads it; REref and the rest are dimensionless).
-fn set_coeffs(file: &mut PropFile, i: usize, f: &QpropFit) {
-    file.set_station_coeffs(i, &f.coeffs);
 }
