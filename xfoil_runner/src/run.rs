@@ -82,7 +82,7 @@ pub struct SweepRequest {
 }
 
 impl SweepRequest {
-    /// A request with XFOIL's usual settings: Ncrit 9, 100 iterations, 160 panels.
+    /// A request with XFOIL's usual settings: Ncrit 9, 160 panels, and 75 iterations per angle (continuation converges in far fewer; an angle that fails costs them all).
     pub fn new(coordinates: Vec<[f64; 2]>, reynolds: f64, mach: f64, alphas_deg: Vec<f64>) -> Self {
         SweepRequest {
             coordinates,
@@ -90,7 +90,7 @@ impl SweepRequest {
             mach,
             ncrit: 9.0,
             alphas_deg,
-            max_iter: 100,
+            max_iter: 75,
             panels: 160,
         }
     }
@@ -215,6 +215,8 @@ struct RunOutput {
 }
 
 const TAIL_BYTES: usize = 3000;
+/// Iteration limit of the retry pass (see [`Xfoil::sweep`]).
+const RETRY_ITER: u32 = 40;
 /// Angles closer than this are the same (XFOIL saves alpha with three decimals).
 const ALPHA_MATCH_DEG: f64 = 2e-3;
 
@@ -281,9 +283,15 @@ impl Xfoil {
         let mut retry: Vec<f64> = failed.into_iter().filter(|&x| !converged(&out, x)).collect();
         retry.dedup();
         if !retry.is_empty() {
+            // A fresh boundary layer converges within RETRY_ITER iterations or, in practice, not
+            // at all; failing angles cost the whole limit, so the retry pass caps it.
+            let retry_settings = RunSettings {
+                max_iter: settings.max_iter.min(RETRY_ITER),
+                ..settings
+            };
             self.branch(
                 &airfoil,
-                &settings,
+                &retry_settings,
                 &Step::list(&retry, false, true),
                 &mut out,
                 &mut last_tail,

@@ -44,7 +44,7 @@ pub struct XfoilArgs {
     #[arg(long)]
     pub panels: Option<u32>,
     /// XFOIL's viscous iteration limit per angle.
-    #[arg(long, default_value_t = 100)]
+    #[arg(long, default_value_t = 75)]
     pub iter: u32,
 }
 
