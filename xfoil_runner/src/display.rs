@@ -71,7 +71,7 @@ impl PrivateDisplay {
             }
             // A small shell keeps watch: it stops Xvfb when this process goes away without
             // dropping the display (killed), and when asked to (SIGTERM from Drop).
-            let child = Command::new("sh")
+            let mut child = Command::new("sh")
                 .args(["-c", WATCHER, "propbet-xvfb"])
                 .arg(xvfb)
                 .arg(format!(":{number}"))
@@ -81,7 +81,6 @@ impl PrivateDisplay {
                 .stderr(Stdio::null())
                 .spawn()
                 .map_err(|e| XfoilError::Display(format!("cannot start {}: {e}", xvfb.display())))?;
-            let mut child = child;
             let mut line = String::new();
             if let Some(out) = child.stdout.take() {
                 let _ = BufReader::new(out).read_line(&mut line);

@@ -18,7 +18,9 @@ pub mod script;
 
 pub use find::{find_xfoil, FindXfoilError};
 pub use output::{parse_polar_file, XfoilPoint};
-pub use run::{DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig};
+pub use run::{
+    DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig, DEFAULT_MAX_ITER, DEFAULT_PANELS,
+};
 
 use thiserror::Error;
 

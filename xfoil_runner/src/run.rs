@@ -82,7 +82,7 @@ pub struct SweepRequest {
 }
 
 impl SweepRequest {
-    /// A request with XFOIL's usual settings: Ncrit 9, 160 panels, and 75 iterations per angle (continuation converges in far fewer; an angle that fails costs them all).
+    /// A request with Ncrit 9, [`DEFAULT_PANELS`] and [`DEFAULT_MAX_ITER`].
     pub fn new(coordinates: Vec<[f64; 2]>, reynolds: f64, mach: f64, alphas_deg: Vec<f64>) -> Self {
         SweepRequest {
             coordinates,
@@ -90,8 +90,8 @@ impl SweepRequest {
             mach,
             ncrit: 9.0,
             alphas_deg,
-            max_iter: 75,
-            panels: 160,
+            max_iter: DEFAULT_MAX_ITER,
+            panels: DEFAULT_PANELS,
         }
     }
 
@@ -206,6 +206,21 @@ enum Ending {
     Hung(Duration),
 }
 
+impl Ending {
+    /// The fault this ending is, if any.
+    fn fault(&self) -> Option<FaultKind> {
+        match self {
+            Ending::Finished => None,
+            Ending::Crashed(status) => Some(FaultKind::Crash {
+                status: status.to_string(),
+            }),
+            Ending::Hung(t) => Some(FaultKind::Hang {
+                seconds: t.as_secs_f64(),
+            }),
+        }
+    }
+}
+
 struct RunOutput {
     ending: Ending,
     /// XFOIL got as far as the sweep (its log says "Polar accumulation enabled").
@@ -215,6 +230,11 @@ struct RunOutput {
 }
 
 const TAIL_BYTES: usize = 3000;
+/// Viscous iterations per angle: continuation converges in far fewer, and an angle that fails
+/// costs them all.
+pub const DEFAULT_MAX_ITER: u32 = 75;
+/// Panel nodes: XFOIL's own default.
+pub const DEFAULT_PANELS: u32 = 160;
 /// Iteration limit of the retry pass (see [`Xfoil::sweep`]).
 const RETRY_ITER: u32 = 40;
 /// Angles closer than this are the same (XFOIL saves alpha with three decimals).
@@ -352,22 +372,20 @@ impl Xfoil {
                         ),
                         output_tail: run.output_tail.clone(),
                     })?;
-                last_done = Some(last_done.map_or(k, |d: usize| d.max(k)));
+                last_done = Some(k);
                 out.points.push(*p);
             }
             let converged = |a: f64| run.points.iter().any(|p| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG);
             *last_tail = run.output_tail.clone();
-            if !matches!(run.ending, Ending::Finished) && !run.reached_sweep {
+            let Some(kind) = run.ending.fault() else {
+                failed.extend(todo.iter().copied().filter(|&a| !converged(a)));
+                return Ok(failed);
+            };
+            if !run.reached_sweep {
                 if let Some(w) = warm_up.take() {
                     // The warm-up angle itself failed: note it, go on without one.
                     out.faults.push(Fault {
-                        kind: match run.ending {
-                            Ending::Hung(t) => FaultKind::Hang {
-                                seconds: t.as_secs_f64(),
-                            },
-                            Ending::Crashed(s) => FaultKind::Crash { status: s.to_string() },
-                            Ending::Finished => unreachable!("checked above"),
-                        },
+                        kind,
                         alpha_deg: w,
                         output_tail: run.output_tail,
                     });
@@ -375,25 +393,13 @@ impl Xfoil {
                     continue;
                 }
                 return Err(XfoilError::Startup {
-                    status: match run.ending {
-                        Ending::Crashed(s) => s.to_string(),
-                        _ => "hung".into(),
+                    status: match kind {
+                        FaultKind::Crash { status } => status,
+                        FaultKind::Hang { .. } => "hung".into(),
                     },
                     output_tail: run.output_tail,
                 });
             }
-            let kind = match run.ending {
-                Ending::Finished => {
-                    failed.extend(todo.iter().copied().filter(|&a| !converged(a)));
-                    return Ok(failed);
-                }
-                Ending::Crashed(status) => FaultKind::Crash {
-                    status: status.to_string(),
-                },
-                Ending::Hung(t) => FaultKind::Hang {
-                    seconds: t.as_secs_f64(),
-                },
-            };
             // The angle given up: the first after the last one saved.
             let failed_at = last_done.map_or(0, |d| d + 1).min(todo.len() - 1);
             out.faults.push(Fault {

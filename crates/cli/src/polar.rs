@@ -44,7 +44,7 @@ pub struct XfoilArgs {
     #[arg(long)]
     pub panels: Option<u32>,
     /// XFOIL's viscous iteration limit per angle.
-    #[arg(long, default_value_t = 75)]
+    #[arg(long, default_value_t = xfoil_runner::DEFAULT_MAX_ITER)]
     pub iter: u32,
 }
 
@@ -161,7 +161,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let jobs: Vec<PolarJob> = res
         .iter()
         .map(|&re| PolarJob {
-            panels: args.xfoil.panels.unwrap_or(160),
+            panels: args.xfoil.panels.unwrap_or(xfoil_runner::DEFAULT_PANELS),
             max_iter: args.xfoil.iter,
             ..PolarJob::new(foil.clone(), re, args.mach, args.xfoil.ncrit, alphas.clone())
         })
@@ -194,14 +194,9 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         }
     }
     let inputs = input_paths(&args.section);
-    let mut csv = String::from("re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom\n");
+    let mut csv = format!("{}\n", propbet_polar::table::CSV_HEADER);
     for p in &polars {
-        csv.extend(
-            p.to_csv()
-                .lines()
-                .filter(|l| !l.starts_with('#') && !l.starts_with("re,"))
-                .map(|l| format!("{l}\n")),
-        );
+        csv.push_str(&p.csv_rows());
     }
     emit(args.out.as_deref(), &[csv.as_bytes()], &inputs)?;
     if let Some(path) = &args.fit_out {

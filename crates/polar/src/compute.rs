@@ -16,7 +16,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use thiserror::Error;
-use xfoil_runner::{SweepRequest, Xfoil, XfoilError};
+use xfoil_runner::{SweepRequest, Xfoil, XfoilError, DEFAULT_MAX_ITER, DEFAULT_PANELS};
 
 use crate::airfoil::{Airfoil, AirfoilError};
 use crate::table::Polar;
@@ -44,7 +44,7 @@ pub struct PolarJob {
 }
 
 impl PolarJob {
-    /// A job with XFOIL's default panels (160) and 75 iterations per angle (continuation converges in far fewer; an angle that fails costs them all).
+    /// A job with the runner's defaults ([`DEFAULT_PANELS`], [`DEFAULT_MAX_ITER`]).
     pub fn new(airfoil: Airfoil, re: f64, mach: f64, ncrit: f64, alphas_deg: Vec<f64>) -> Self {
         PolarJob {
             airfoil,
@@ -52,8 +52,8 @@ impl PolarJob {
             mach,
             ncrit,
             alphas_deg,
-            panels: 160,
-            max_iter: 75,
+            panels: DEFAULT_PANELS,
+            max_iter: DEFAULT_MAX_ITER,
         }
     }
 

@@ -6,6 +6,9 @@ use std::fmt::Write;
 use serde::{Deserialize, Serialize};
 pub use xfoil_runner::{Fault, XfoilPoint as PolarPoint};
 
+/// Columns of a polar CSV.
+pub const CSV_HEADER: &str = "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom";
+
 /// One polar: the points XFOIL converged, ascending in alpha, and what failed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Polar {
@@ -30,12 +33,10 @@ impl Polar {
         if p.is_empty() || alpha_deg < p[0].alpha_deg || alpha_deg > p[p.len() - 1].alpha_deg {
             return None;
         }
-        let i = p
-            .partition_point(|q| q.alpha_deg <= alpha_deg)
-            .clamp(1, p.len().max(2) - 1);
         if p.len() == 1 {
             return Some(p[0]);
         }
+        let i = p.partition_point(|q| q.alpha_deg <= alpha_deg).clamp(1, p.len() - 1);
         let (a, b) = (p[i - 1], p[i]);
         let t = (alpha_deg - a.alpha_deg) / (b.alpha_deg - a.alpha_deg);
         let mix = |x: f64, y: f64| x + t * (y - x);
@@ -74,30 +75,6 @@ impl Polar {
         (lo < hi).then_some((lo, hi))
     }
 
-    /// CSV: a comment header with Re, Mach, Ncrit and the failed angles, then one row per point.
-    pub fn to_csv(&self) -> String {
-        let mut out = String::new();
-        let _ = writeln!(out, "# Re = {}, Mach = {}, Ncrit = {}", self.re, self.mach, self.ncrit);
-        if !self.unconverged_deg.is_empty() {
-            let list: Vec<String> = self.unconverged_deg.iter().map(|a| a.to_string()).collect();
-            let _ = writeln!(out, "# not converged at alpha [deg]: {}", list.join(" "));
-        }
-        for f in &self.faults {
-            let _ = writeln!(out, "# {f}");
-        }
-        let _ = writeln!(out, "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom");
-        for p in &self.points {
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{},{},{},{},{},{}",
-                self.re, self.mach, self.ncrit, p.alpha_deg, p.cl, p.cd, p.cdp, p.cm, p.xtr_top, p.xtr_bottom
-            );
-        }
-        out
-    }
-}
-
-impl Polar {
     /// A polar at Ncrit 9 and Mach 0 from a law `alpha [deg] -> (cl, cd)` at whole degrees
     /// `from..=to`, everything converged (for tests).
     pub fn from_law(re: f64, from: i32, to: i32, law: impl Fn(f64) -> (f64, f64)) -> Polar {
@@ -124,6 +101,35 @@ impl Polar {
             unconverged_deg: vec![],
             faults: vec![],
         }
+    }
+
+    /// CSV: a comment header with Re, Mach, Ncrit and the failed angles, then one row per point.
+    pub fn to_csv(&self) -> String {
+        let mut out = String::new();
+        let _ = writeln!(out, "# Re = {}, Mach = {}, Ncrit = {}", self.re, self.mach, self.ncrit);
+        if !self.unconverged_deg.is_empty() {
+            let list: Vec<String> = self.unconverged_deg.iter().map(|a| a.to_string()).collect();
+            let _ = writeln!(out, "# not converged at alpha [deg]: {}", list.join(" "));
+        }
+        for f in &self.faults {
+            let _ = writeln!(out, "# {f}");
+        }
+        let _ = writeln!(out, "{CSV_HEADER}");
+        out.push_str(&self.csv_rows());
+        out
+    }
+
+    /// The CSV rows alone (columns of [`CSV_HEADER`]), one per point.
+    pub fn csv_rows(&self) -> String {
+        let mut out = String::new();
+        for p in &self.points {
+            let _ = writeln!(
+                out,
+                "{},{},{},{},{},{},{},{},{},{}",
+                self.re, self.mach, self.ncrit, p.alpha_deg, p.cl, p.cd, p.cdp, p.cm, p.xtr_top, p.xtr_bottom
+            );
+        }
+        out
     }
 }
 

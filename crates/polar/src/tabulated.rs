@@ -86,6 +86,11 @@ impl Curve {
         })
     }
 
+    /// Indices of the table points XFOIL converged (not the extension).
+    fn converged_indices(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.alpha.len()).filter(|&i| self.alpha[i] >= self.converged[0] && self.alpha[i] <= self.converged[1])
+    }
+
     /// (cl, dcl/dalpha, cd) at `a` in [-pi, pi].
     fn eval(&self, a: f64) -> (f64, f64, f64) {
         let x = &self.alpha;
@@ -128,12 +133,7 @@ impl TabulatedAero {
         let alpha_zero_lift = zero_lift(mid);
         let re_exp_outside = if curves.len() >= 2 {
             let (a, b) = (&curves[0], &curves[curves.len() - 1]);
-            let cd_min = |c: &Curve| {
-                (0..c.alpha.len())
-                    .filter(|&i| c.alpha[i] >= c.converged[0] && c.alpha[i] <= c.converged[1])
-                    .map(|i| c.cd[i])
-                    .fold(f64::INFINITY, f64::min)
-            };
+            let cd_min = |c: &Curve| c.converged_indices().map(|i| c.cd[i]).fold(f64::INFINITY, f64::min);
             (cd_min(b) / cd_min(a)).ln() / (b.re / a.re).ln()
         } else {
             0.0
@@ -209,9 +209,7 @@ impl SectionAero for TabulatedAero {
 /// Zero-lift angle of a curve: the crossing in its converged range, else where its lift line
 /// through the converged points would cross.
 fn zero_lift(c: &Curve) -> f64 {
-    let idx: Vec<usize> = (0..c.alpha.len())
-        .filter(|&i| c.alpha[i] >= c.converged[0] && c.alpha[i] <= c.converged[1])
-        .collect();
+    let idx: Vec<usize> = c.converged_indices().collect();
     for w in idx.windows(2) {
         let (i, j) = (w[0], w[1]);
         if c.cl[i] <= 0.0 && c.cl[j] >= 0.0 && c.cl[j] > c.cl[i] {
