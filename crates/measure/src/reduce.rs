@@ -1,0 +1,489 @@
+//! Samples to steady points: row checks, sign orientation, step detection with transient
+//! removal, or RPM binning for ramps.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::table::Sample;
+use crate::{DropReason, Dropped, Loads, LoggedAir, MeasuredPoint, Speed, Value};
+
+/// How rows became points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reduction {
+    /// ESC steps: transient dropped, steady part averaged.
+    Steps,
+    /// One already-averaged row per step (the RCbenchmark app's step-test summary).
+    AveragedSteps,
+    /// Continuous variation: binned by RPM (and airspeed).
+    Ramp,
+    /// Each row is a point.
+    Rows,
+    /// Published table (UIUC).
+    Table,
+}
+
+/// Settings of the reduction.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ReduceOptions {
+    /// A step has settled when its RPM is within this fraction of the steady RPM.
+    pub settle_tolerance: f64,
+    /// Fewest consecutive samples at one ESC value that make a step.
+    pub min_step_samples: usize,
+    /// Points whose RPM scatter (sd/mean) exceeds this are flagged unsteady.
+    pub unsteady_rpm: f64,
+    /// RPM bin width for ramps [rad/s]; `None`: 1/30 of the RPM range, at least 50 rpm.
+    pub rpm_bin: Option<f64>,
+}
+
+impl Default for ReduceOptions {
+    fn default() -> Self {
+        Self {
+            settle_tolerance: 0.02,
+            min_step_samples: 5,
+            unsteady_rpm: 0.03,
+            rpm_bin: None,
+        }
+    }
+}
+
+const RPM: f64 = std::f64::consts::PI / 30.0;
+
+fn median(xs: &mut [f64]) -> f64 {
+    xs.sort_by(f64::total_cmp);
+    let n = xs.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 {
+        xs[n / 2]
+    } else {
+        0.5 * (xs[n / 2 - 1] + xs[n / 2])
+    }
+}
+
+/// Row checks that do not depend on the reduction: not spinning, negative RPM, duplicate and
+/// stray time stamps. Returns the rows kept.
+fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
+    let mut kept: Vec<Sample> = Vec::with_capacity(samples.len());
+    // A stray row jumps above both neighbours by much more than the sampling interval.
+    let mut dts: Vec<f64> = samples
+        .windows(2)
+        .filter_map(|w| Some(w[1].time? - w[0].time?))
+        .filter(|d| *d > 0.0)
+        .collect();
+    let spike = (10.0 * median(&mut dts)).max(1.0);
+    let drop = |dropped: &mut Vec<Dropped>, s: &Sample, reason, detail: String| {
+        dropped.push(Dropped {
+            line: s.line,
+            reason,
+            detail,
+        })
+    };
+    for (i, s) in samples.iter().enumerate() {
+        if s.omega == 0.0 {
+            drop(dropped, s, DropReason::NotSpinning, "RPM = 0".into());
+            continue;
+        }
+        if s.omega < 0.0 {
+            drop(
+                dropped,
+                s,
+                DropReason::NegativeRpm,
+                format!("RPM = {:.0}", s.omega / RPM),
+            );
+            continue;
+        }
+        if let Some(t) = s.time {
+            if kept.last().and_then(|k| k.time) == Some(t) {
+                drop(
+                    dropped,
+                    s,
+                    DropReason::DuplicateTime,
+                    format!("t = {t} s, as the row before"),
+                );
+                continue;
+            }
+            let prev = i.checked_sub(1).and_then(|j| samples[j].time);
+            let next = samples.get(i + 1).and_then(|n| n.time);
+            if let Some(next) = next {
+                if t > next + spike && prev.is_none_or(|p| t > p + spike) {
+                    drop(
+                        dropped,
+                        s,
+                        DropReason::TimeOutOfOrder,
+                        format!("t = {t} s between {} s and {next} s", prev.unwrap_or(f64::NAN)),
+                    );
+                    continue;
+                }
+            }
+        }
+        kept.push(*s);
+    }
+    kept
+}
+
+/// Orients thrust and torque so that both are positive for a propeller pulling and absorbing
+/// power, then drops rows of negative thrust.
+fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<String>) -> Vec<Sample> {
+    let mut thrusts: Vec<f64> = samples.iter().map(|s| s.thrust).collect();
+    let flip_t = median(&mut thrusts) < 0.0;
+    let mut torques: Vec<f64> = samples.iter().filter_map(|s| s.torque).collect();
+    let flip_q = !torques.is_empty() && median(&mut torques) < 0.0;
+    if flip_t {
+        notes.push(
+            "thrust is logged negative when the propeller pulls (the stand's sign convention): sign flipped".into(),
+        );
+    }
+    if flip_q {
+        notes.push(
+            "torque is logged negative (the stand's sign convention for this rotation direction): sign flipped".into(),
+        );
+    }
+    let mut out = Vec::with_capacity(samples.len());
+    for mut s in samples {
+        if flip_t {
+            s.thrust = -s.thrust;
+        }
+        if flip_q {
+            s.torque = s.torque.map(|q| -q);
+        }
+        if s.thrust < 0.0 {
+            dropped.push(Dropped {
+                line: s.line,
+                reason: DropReason::NegativeThrust,
+                detail: format!("thrust {:.4} N at {:.0} rpm", s.thrust, s.omega / RPM),
+            });
+            continue;
+        }
+        out.push(s);
+    }
+    out
+}
+
+fn mean_of(xs: impl Iterator<Item = Option<f64>>) -> Option<f64> {
+    let (mut sum, mut n) = (0.0, 0usize);
+    for x in xs.flatten() {
+        sum += x;
+        n += 1;
+    }
+    (n > 0).then(|| sum / n as f64)
+}
+
+/// One point from samples (already steady).
+fn point(label: String, s: &[Sample], transient: usize, opts: &ReduceOptions, averaged: bool) -> MeasuredPoint {
+    let col = |f: &dyn Fn(&Sample) -> f64| -> Value {
+        let xs: Vec<f64> = s.iter().map(f).collect();
+        if averaged {
+            Value::single(xs[0])
+        } else {
+            Value::of(&xs)
+        }
+    };
+    let omega = col(&|x| x.omega);
+    let thrust = col(&|x| x.thrust);
+    let torque = s[0].torque.is_some().then(|| col(&|x| x.torque.unwrap_or(f64::NAN)));
+    let airspeed = col(&|x| x.airspeed);
+    let mut flags = Vec::new();
+    if omega.relative_sd() > opts.unsteady_rpm {
+        flags.push(format!(
+            "unsteady RPM: scatter {:.1} % of the mean (limit {:.0} %)",
+            100.0 * omega.relative_sd(),
+            100.0 * opts.unsteady_rpm
+        ));
+    }
+    MeasuredPoint {
+        label,
+        lines: (s[0].line, s[s.len() - 1].line),
+        omega,
+        speed: Speed::Airspeed(airspeed),
+        loads: Loads::Forces { thrust, torque },
+        air: LoggedAir {
+            temperature: mean_of(s.iter().map(|x| x.temperature)),
+            pressure: mean_of(s.iter().map(|x| x.pressure)),
+            humidity: mean_of(s.iter().map(|x| x.humidity)),
+        },
+        transient,
+        nominal_omega: None,
+        flags,
+    }
+}
+
+/// The steady part of one step: leading samples are dropped until the RPM is within the
+/// settle tolerance of the median RPM of the step's second half; then samples whose RPM is
+/// far from the step's median (sensor dropouts) are removed. Returns (steady, dropped count).
+fn steady_part(s: &[Sample], opts: &ReduceOptions) -> (Vec<Sample>, usize, usize) {
+    let mut tail: Vec<f64> = s[s.len() / 2..].iter().map(|x| x.omega).collect();
+    let target = median(&mut tail);
+    let start = s
+        .iter()
+        .position(|x| (x.omega - target).abs() <= opts.settle_tolerance * target)
+        .unwrap_or(s.len() / 2);
+    let settled = &s[start..];
+    let mut om: Vec<f64> = settled.iter().map(|x| x.omega).collect();
+    let med = median(&mut om);
+    let mut dev: Vec<f64> = settled.iter().map(|x| (x.omega - med).abs()).collect();
+    let mad = 1.4826 * median(&mut dev);
+    let limit = (5.0 * mad).max(0.05 * med);
+    let steady: Vec<Sample> = settled
+        .iter()
+        .copied()
+        .filter(|x| (x.omega - med).abs() <= limit)
+        .collect();
+    let outliers = settled.len() - steady.len();
+    (steady, start, outliers)
+}
+
+/// Reduces checked samples of a log to points.
+///
+/// `rows_are_points`: each row is already a steady point (tables, averaged exports).
+pub fn reduce_log(
+    samples: Vec<Sample>,
+    rows_are_points: bool,
+    dropped: &mut Vec<Dropped>,
+    notes: &mut Vec<String>,
+    opts: &ReduceOptions,
+) -> (Reduction, Vec<MeasuredPoint>) {
+    let samples = check_rows(samples, dropped);
+    let samples = orient(samples, dropped, notes);
+    if samples.is_empty() {
+        return (Reduction::Rows, Vec::new());
+    }
+    let rows = |samples: &[Sample]| -> Vec<MeasuredPoint> {
+        samples
+            .iter()
+            .map(|s| point(format!("line {}", s.line), std::slice::from_ref(s), 0, opts, true))
+            .collect()
+    };
+    if rows_are_points {
+        return (Reduction::Rows, rows(&samples));
+    }
+    // Consecutive samples at one ESC command.
+    let mut groups: Vec<&[Sample]> = Vec::new();
+    if samples.iter().all(|s| s.esc.is_some()) {
+        let mut start = 0;
+        for i in 1..=samples.len() {
+            let same = i < samples.len()
+                && samples[i]
+                    .esc
+                    .zip(samples[start].esc)
+                    .is_some_and(|(a, b)| (a - b).abs() < 0.5);
+            if !same {
+                groups.push(&samples[start..i]);
+                start = i;
+            }
+        }
+    }
+    let n = samples.len();
+    let largest = groups.iter().map(|g| g.len()).max().unwrap_or(0);
+    if !groups.is_empty() && largest <= 2 && n <= 200 {
+        notes.push(format!(
+            "one averaged row per ESC step ({n} steps): no scatter is known, the app averaged each step"
+        ));
+        let mut pts = rows(&samples);
+        for (p, s) in pts.iter_mut().zip(&samples) {
+            p.label = format!("ESC {} µs", s.esc.unwrap_or(f64::NAN));
+        }
+        return (Reduction::AveragedSteps, pts);
+    }
+    // Holds: runs of one ESC value. A step test holds each value (and may log the ramps in
+    // between); a ramp or a closed-loop run changes the command nearly every sample.
+    let holds = groups.iter().filter(|g| g.len() >= opts.min_step_samples);
+    let in_steps: usize = holds.clone().map(|g| g.len()).sum();
+    if holds.count() >= 3 && in_steps as f64 >= 0.3 * n as f64 {
+        let mut pts = Vec::new();
+        let (mut transient, mut between, mut outliers, mut short) = (0, 0, 0, 0);
+        for g in &groups {
+            if g.len() < opts.min_step_samples {
+                between += g.len();
+                continue;
+            }
+            let (steady, t, o) = steady_part(g, opts);
+            transient += t;
+            outliers += o;
+            if steady.len() < 3 {
+                short += 1;
+                continue;
+            }
+            let mut escs: Vec<f64> = g.iter().filter_map(|x| x.esc).collect();
+            let esc = median(&mut escs);
+            let mut p = point(
+                format!("ESC {} µs", (esc * 10.0).round() / 10.0),
+                &steady,
+                t,
+                opts,
+                false,
+            );
+            if o > 0 {
+                p.flags
+                    .push(format!("{o} samples with RPM far from the step's median left out"));
+                if o * 4 > steady.len() {
+                    p.flags
+                        .push("RPM sensor dropouts in more than a fifth of the step".into());
+                }
+            }
+            pts.push(p);
+        }
+        notes.push(format!(
+            "{} ESC steps detected; {transient} transient samples dropped at step starts, {outliers} RPM outliers left out, \
+             {between} samples between steps (ESC ramping) not used{}",
+            pts.len(),
+            if short > 0 { format!(", {short} steps too short to average") } else { String::new() }
+        ));
+        return (Reduction::Steps, pts);
+    }
+    // Ramp: bin by RPM and airspeed.
+    let mut om: Vec<f64> = samples.iter().map(|s| s.omega).collect();
+    om.sort_by(f64::total_cmp);
+    let span = om[(n * 95) / 100] - om[n / 20];
+    let width = opts
+        .rpm_bin
+        .unwrap_or_else(|| nice((span / 30.0).max(50.0 * RPM) / RPM) * RPM);
+    let vmax = samples.iter().map(|s| s.airspeed).fold(0.0, f64::max);
+    let vwidth = 0.5;
+    let mut bins: BTreeMap<(i64, i64), Vec<Sample>> = BTreeMap::new();
+    for s in &samples {
+        let key = ((s.omega / width).round() as i64, (s.airspeed / vwidth).round() as i64);
+        bins.entry(key).or_default().push(*s);
+    }
+    let mut pts = Vec::new();
+    let mut sparse = 0;
+    for ((k, _), s) in &bins {
+        if s.len() < 3 {
+            sparse += s.len();
+            continue;
+        }
+        let label = format!("{:.0} ± {:.0} rpm", *k as f64 * width / RPM, 0.5 * width / RPM);
+        pts.push(point(label, s, 0, opts, false));
+    }
+    notes.push(format!(
+        "ESC changes continuously: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
+        width / RPM,
+        if vmax > vwidth { ", and 0.5 m/s airspeed bins" } else { "" },
+        pts.len()
+    ));
+    (Reduction::Ramp, pts)
+}
+
+/// 1, 2, 2.5 or 5 times a power of ten, not below `x`.
+fn nice(x: f64) -> f64 {
+    let p = 10f64.powf(x.log10().floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * p)
+        .find(|&v| v >= x)
+        .unwrap_or(10.0 * p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample(line: usize, t: f64, esc: f64, rpm: f64, thrust: f64) -> Sample {
+        Sample {
+            line,
+            time: Some(t),
+            esc: Some(esc),
+            omega: rpm * RPM,
+            thrust,
+            torque: Some(-thrust * 0.01),
+            airspeed: 0.0,
+            temperature: None,
+            pressure: None,
+            humidity: None,
+        }
+    }
+
+    /// A synthetic step test: each step rises over 3 samples, then holds with noise.
+    fn step_log() -> Vec<Sample> {
+        let mut v = Vec::new();
+        let mut line = 2;
+        let mut t = 0.0;
+        for (k, esc) in [1000.0, 1200.0, 1400.0, 1600.0].into_iter().enumerate() {
+            let target = 3000.0 * k as f64;
+            for i in 0..20 {
+                let rise = if i < 3 { (i as f64 + 1.0) / 4.0 } else { 1.0 };
+                let noise = if i % 2 == 0 { 10.0 } else { -10.0 };
+                let rpm = if k == 0 { 0.0 } else { target * rise + noise };
+                v.push(sample(line, t, esc, rpm, rpm * rpm * 1e-7));
+                line += 1;
+                t += 0.1;
+            }
+        }
+        v
+    }
+
+    #[test]
+    fn steps_drop_transient_and_keep_scatter() {
+        let mut dropped = Vec::new();
+        let mut notes = Vec::new();
+        let (red, pts) = reduce_log(step_log(), false, &mut dropped, &mut notes, &ReduceOptions::default());
+        assert_eq!(red, Reduction::Steps);
+        assert_eq!(pts.len(), 3);
+        assert_eq!(dropped.len(), 20, "idle rows dropped");
+        assert!(dropped.iter().all(|d| d.reason == DropReason::NotSpinning));
+        for (k, p) in pts.iter().enumerate() {
+            let target = 3000.0 * (k + 1) as f64;
+            assert!((p.rpm() - target).abs() < 3.0, "{} vs {target}", p.rpm());
+            assert_eq!(p.transient, 3);
+            assert_eq!(p.omega.n, 17);
+            let sd = p.omega.sd.unwrap() / RPM;
+            assert!((sd - 10.0).abs() < 1.0, "sd {sd}");
+            assert!(p.flags.is_empty());
+        }
+        assert!(notes.iter().any(|n| n.contains("torque is logged negative")));
+        let Loads::Forces { torque: Some(q), .. } = pts[0].loads else {
+            panic!()
+        };
+        assert!(q.mean > 0.0);
+    }
+
+    #[test]
+    fn faulty_rows_are_listed() {
+        let mut log = step_log();
+        log[30].time = log[29].time; // duplicate time
+        log[50].time = Some(400.0); // stray row
+        log[60].thrust = -5.0; // negative thrust
+        log[70].omega = -100.0;
+        let mut dropped = Vec::new();
+        let (_, pts) = reduce_log(log, false, &mut dropped, &mut Vec::new(), &ReduceOptions::default());
+        assert_eq!(pts.len(), 3);
+        let reasons: Vec<(usize, DropReason)> = dropped
+            .iter()
+            .filter(|d| d.reason.is_fault())
+            .map(|d| (d.line, d.reason))
+            .collect();
+        assert_eq!(
+            reasons,
+            vec![
+                (32, DropReason::DuplicateTime),
+                (52, DropReason::TimeOutOfOrder),
+                (72, DropReason::NegativeRpm),
+                (62, DropReason::NegativeThrust),
+            ]
+        );
+    }
+
+    #[test]
+    fn ramps_are_binned() {
+        let log: Vec<Sample> = (0..600)
+            .map(|i| sample(i + 2, i as f64 * 0.05, 1000.0 + i as f64, 2000.0 + 10.0 * i as f64, 1.0))
+            .collect();
+        let mut notes = Vec::new();
+        let (red, pts) = reduce_log(log, false, &mut Vec::new(), &mut notes, &ReduceOptions::default());
+        assert_eq!(red, Reduction::Ramp);
+        // 6000 rpm span / 30 = 200 rpm bins.
+        assert!(notes.iter().any(|n| n.contains("200 rpm bins")), "{notes:?}");
+        assert!(pts.len() >= 29 && pts.len() <= 31, "{}", pts.len());
+        assert!(pts.windows(2).all(|w| w[1].rpm() > w[0].rpm()));
+    }
+
+    #[test]
+    fn nice_widths() {
+        assert_eq!(nice(47.0), 50.0);
+        assert_eq!(nice(180.0), 200.0);
+        assert_eq!(nice(210.0), 250.0);
+        assert_eq!(nice(50.0), 50.0);
+    }
+}

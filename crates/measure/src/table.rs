@@ -1,0 +1,246 @@
+//! CSV text to header and cells, and cells to samples in SI: the part RCbenchmark logs and
+//! generic CSV share.
+
+use crate::units::{conversion, Conversion, Quantity};
+use crate::{DropReason, Dropped, ReadError};
+
+/// A CSV file's header and rows, as text.
+#[derive(Debug, Clone)]
+pub struct CsvTable {
+    /// Header cells, trimmed, without the empty one a trailing comma leaves.
+    pub headers: Vec<String>,
+    /// Data rows.
+    pub rows: Vec<CsvRow>,
+    /// Rows with more cells than the header has names.
+    pub long_rows: Vec<usize>,
+}
+
+/// One data row.
+#[derive(Debug, Clone)]
+pub struct CsvRow {
+    /// Line (1-based).
+    pub line: usize,
+    /// Cells, trimmed.
+    pub cells: Vec<String>,
+}
+
+/// Splits a header into name and unit: `Thrust (gf)`, `speed [m/s]` → (`Thrust`, `gf`).
+pub fn split_header(h: &str) -> (String, Option<String>) {
+    let h = h.trim();
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if h.ends_with(close) {
+            if let Some(i) = h.rfind(open) {
+                let unit = h[i + open.len_utf8()..h.len() - close.len_utf8()].trim().to_string();
+                return (h[..i].trim().to_string(), Some(unit));
+            }
+        }
+    }
+    (h.to_string(), None)
+}
+
+/// Reads CSV text (BOM, trailing commas and rows longer than the header allowed).
+pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut headers: Option<Vec<String>> = None;
+    let mut rows = Vec::new();
+    let mut long_rows = Vec::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(|e| ReadError::Line {
+            line: e.position().map_or(0, |p| p.line() as usize),
+            message: format!("not CSV: {e}"),
+        })?;
+        let line = rec.position().map_or(0, |p| p.line() as usize);
+        if rec.iter().all(|c| c.is_empty()) {
+            continue;
+        }
+        match &headers {
+            None => {
+                let mut h: Vec<String> = rec.iter().map(str::to_string).collect();
+                while h.last().is_some_and(|c| c.is_empty()) {
+                    h.pop();
+                }
+                headers = Some(h);
+            }
+            Some(h) => {
+                let mut cells: Vec<String> = rec.iter().map(str::to_string).collect();
+                if cells.len() > h.len() {
+                    if cells[h.len()..].iter().any(|c| !c.is_empty()) {
+                        long_rows.push(line);
+                    }
+                    cells.truncate(h.len());
+                }
+                rows.push(CsvRow { line, cells });
+            }
+        }
+    }
+    let headers = headers.ok_or_else(|| ReadError::Empty("no header line".into()))?;
+    if rows.is_empty() {
+        return Err(ReadError::Empty("a header and no data rows".into()));
+    }
+    Ok(CsvTable {
+        headers,
+        rows,
+        long_rows,
+    })
+}
+
+/// A column chosen for a quantity, with its conversion to SI.
+#[derive(Debug, Clone)]
+pub struct Column {
+    /// Index in the row.
+    pub index: usize,
+    /// Header as written.
+    pub header: String,
+    /// To SI.
+    pub conv: Conversion,
+}
+
+impl Column {
+    /// The column at `index`, its unit `unit` (or the quantity's default) checked.
+    pub fn new(q: Quantity, index: usize, header: &str, unit: Option<&str>) -> Result<Self, ReadError> {
+        let unit = unit.unwrap_or(q.default_unit());
+        let conv = conversion(q, unit).ok_or_else(|| ReadError::UnknownUnit {
+            column: header.to_string(),
+            unit: unit.to_string(),
+            quantity: q.name(),
+            known: q.known_units(),
+        })?;
+        Ok(Self {
+            index,
+            header: header.to_string(),
+            conv,
+        })
+    }
+}
+
+/// The columns a log is read through.
+#[derive(Debug, Clone, Default)]
+pub struct Columns {
+    /// Time.
+    pub time: Option<Column>,
+    /// ESC command.
+    pub esc: Option<Column>,
+    /// Rotation.
+    pub rotation: Option<Column>,
+    /// Thrust.
+    pub thrust: Option<Column>,
+    /// Torque.
+    pub torque: Option<Column>,
+    /// Airspeed.
+    pub airspeed: Option<Column>,
+    /// Air temperature.
+    pub temperature: Option<Column>,
+    /// Air pressure.
+    pub pressure: Option<Column>,
+    /// Relative humidity.
+    pub humidity: Option<Column>,
+}
+
+/// One row in SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Line (1-based).
+    pub line: usize,
+    /// Time [s].
+    pub time: Option<f64>,
+    /// ESC command [µs].
+    pub esc: Option<f64>,
+    /// Rotation rate [rad/s].
+    pub omega: f64,
+    /// Thrust [N] (as logged; oriented later).
+    pub thrust: f64,
+    /// Torque [N m] (as logged; oriented later).
+    pub torque: Option<f64>,
+    /// Airspeed [m/s] (0 without a column).
+    pub airspeed: f64,
+    /// Air temperature [K].
+    pub temperature: Option<f64>,
+    /// Pressure [Pa].
+    pub pressure: Option<f64>,
+    /// Relative humidity [0..1].
+    pub humidity: Option<f64>,
+}
+
+fn cell(row: &CsvRow, col: &Column) -> Result<f64, (DropReason, String)> {
+    let text = row.cells.get(col.index).map(String::as_str).unwrap_or("");
+    if text.is_empty() {
+        return Err((DropReason::Missing, format!("{} is empty", col.header)));
+    }
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Ok(col.conv.apply(v)),
+        _ => Err((DropReason::NotANumber, format!("{} = '{text}'", col.header))),
+    }
+}
+
+/// Converts rows to samples; rows with an unusable needed cell are dropped with the reason.
+/// `rotation` and `thrust` must be set.
+pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
+    let rot = cols.rotation.as_ref().expect("rotation column chosen");
+    let thr = cols.thrust.as_ref().expect("thrust column chosen");
+    let optional = |row: &CsvRow, c: &Option<Column>| c.as_ref().and_then(|c| cell(row, c).ok());
+    let mut out = Vec::with_capacity(table.rows.len());
+    for row in &table.rows {
+        let needed = (|| {
+            let omega = cell(row, rot)?;
+            let thrust = cell(row, thr)?;
+            let torque = cols.torque.as_ref().map(|c| cell(row, c)).transpose()?;
+            let airspeed = cols.airspeed.as_ref().map(|c| cell(row, c)).transpose()?.unwrap_or(0.0);
+            let time = cols.time.as_ref().map(|c| cell(row, c)).transpose()?;
+            Ok::<_, (DropReason, String)>((omega, thrust, torque, airspeed, time))
+        })();
+        match needed {
+            Ok((omega, thrust, torque, airspeed, time)) => out.push(Sample {
+                line: row.line,
+                time,
+                esc: optional(row, &cols.esc),
+                omega,
+                thrust,
+                torque,
+                airspeed,
+                temperature: optional(row, &cols.temperature),
+                pressure: optional(row, &cols.pressure),
+                humidity: optional(row, &cols.humidity),
+            }),
+            Err((reason, detail)) => dropped.push(Dropped {
+                line: row.line,
+                reason,
+                detail,
+            }),
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn headers_and_units() {
+        assert_eq!(split_header("Thrust (gf)"), ("Thrust".into(), Some("gf".into())));
+        assert_eq!(split_header("Torque (N·m)"), ("Torque".into(), Some("N·m".into())));
+        assert_eq!(split_header(" v [m/s] "), ("v".into(), Some("m/s".into())));
+        assert_eq!(split_header("App message"), ("App message".into(), None));
+    }
+
+    #[test]
+    fn bom_trailing_comma_and_long_rows() {
+        let t = read_csv("\u{feff}a (s),b (N),\n1,2,\n3,4,,5,6\n\n").unwrap();
+        assert_eq!(t.headers, vec!["a (s)", "b (N)"]);
+        assert_eq!(t.rows.len(), 2);
+        assert_eq!(t.rows[1].cells, vec!["3", "4"]);
+        assert_eq!(t.rows[1].line, 3);
+        assert_eq!(t.long_rows, vec![3]);
+    }
+
+    #[test]
+    fn empty_files_are_errors() {
+        assert!(matches!(read_csv(""), Err(ReadError::Empty(_))));
+        assert!(matches!(read_csv("a,b\n"), Err(ReadError::Empty(_))));
+    }
+}
