@@ -6,8 +6,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+mod compare;
 mod output;
-mod plot;
 mod polar;
 mod predict;
 mod prop;
@@ -34,6 +34,9 @@ enum Command {
     Polar(Box<polar::PolarArgs>),
     /// Polars of every station of a blade at its operating Re and Mach, reduced to a QPROP file.
     Polars(Box<polar::PolarsArgs>),
+    /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
+    /// plots and an HTML report.
+    Compare(Box<compare::CompareArgs>),
 }
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
@@ -48,6 +51,7 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
         Command::Prop(a) => prop::run(&a),
         Command::Polar(a) => polar::run_polar(&a),
         Command::Polars(a) => polar::run_polars(&a),
+        Command::Compare(a) => compare::run(&a),
     }
 }
 

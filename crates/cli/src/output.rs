@@ -127,9 +127,26 @@ pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path])
         }
         w.flush().with_context(|| format!("{}: write failed", path.display()))?;
     }
+    // Temporary files are created private (0600); a result is an ordinary file.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let _ = std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o644));
+    }
     tmp.persist(path)
         .with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
     Ok(())
+}
+
+/// Writes a figure to `path` as SVG or PNG (by its extension), atomically.
+pub fn write_figure(path: &Path, fig: &propbet_plot::Figure, inputs: &[&Path]) -> Result<()> {
+    let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let bytes = match ext.as_deref() {
+        Some("svg") => propbet_plot::svg(fig)?.into_bytes(),
+        Some("png") => propbet_plot::png(fig)?,
+        _ => bail!("{}: plots are written as .svg or .png", path.display()),
+    };
+    write_atomic(path, &[bytes], inputs)
 }
 
 /// Writes `chunks` to `path`, or to standard output when `path` is `None` or `-`.

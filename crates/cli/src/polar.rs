@@ -14,7 +14,7 @@ use propbet_qprop::{write_prop, PropFile, RadiusReading};
 use xfoil_runner::{find_xfoil, Xfoil, XfoilConfig};
 
 use crate::output::emit;
-use crate::plot::{self, Mark, Panel, Series};
+use propbet_plot::{Figure, Mark, Panel, Series};
 use crate::predict::{load_prop, FluidArgs};
 use crate::values::parse_list;
 
@@ -204,7 +204,13 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     if let Some(path) = &args.plot {
-        plot::draw(path, &polar_panels(&foil.name, &polars, &fits), 1400, 560, &inputs)?;
+        let fig = Figure {
+            panels: polar_panels(&foil.name, &polars, &fits),
+            columns: 2,
+            width: 1400,
+            height: 560,
+        };
+        crate::output::write_figure(path, &fig, &inputs)?;
     }
     Ok(ok)
 }
@@ -265,35 +271,15 @@ fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
     let mut drag = Vec::new();
     for (k, p) in polars.iter().enumerate() {
         let label = format!("XFOIL Re {:.0}", p.re);
-        lift.push(Series {
-            name: label.clone(),
-            points: p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(),
-            mark: Mark::Dots,
-            colour: Some(k),
-        });
-        drag.push(Series {
-            name: label,
-            points: p.points.iter().map(|q| (q.cd, q.cl)).collect(),
-            mark: Mark::Dots,
-            colour: Some(k),
-        });
+        lift.push(Series::new(label.clone(), p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(), Mark::Dots, Some(k)));
+        drag.push(Series::new(label, p.points.iter().map(|q| (q.cd, q.cl)).collect(), Mark::Dots, Some(k)));
     }
     for f in fits {
         let k = polars.iter().position(|p| p.re == f.coeffs.re_ref);
         let label = format!("QPROP fit Re {:.0}", f.coeffs.re_ref);
         let lin: Vec<_> = f.residuals.iter().filter(|r| r.linear).collect();
-        lift.push(Series {
-            name: label.clone(),
-            points: lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(),
-            mark: Mark::Line,
-            colour: k,
-        });
-        drag.push(Series {
-            name: label,
-            points: lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(),
-            mark: Mark::Line,
-            colour: k,
-        });
+        lift.push(Series::new(label.clone(), lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(), Mark::Line, k));
+        drag.push(Series::new(label, lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(), Mark::Line, k));
     }
     vec![
         Panel {
@@ -301,12 +287,14 @@ fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
             x_label: "angle of attack [deg]".into(),
             y_label: "cl".into(),
             series: lift,
+            zero_line: false,
         },
         Panel {
             title: format!("{name}: drag polar"),
             x_label: "cd".into(),
             y_label: "cl".into(),
             series: drag,
+            zero_line: false,
         },
     ]
 }

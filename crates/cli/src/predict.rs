@@ -24,9 +24,9 @@ pub enum Format {
 /// Arguments of `propbet predict`.
 #[derive(Debug, Args)]
 pub struct PredictArgs {
-    /// QPROP prop file.
-    #[arg(long)]
-    pub prop: PathBuf,
+    /// The propeller model.
+    #[command(flatten)]
+    pub model: ModelArgs,
     /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
     #[arg(long, allow_hyphen_values = true)]
     pub rpm: String,
@@ -39,6 +39,24 @@ pub struct PredictArgs {
     /// Air properties.
     #[command(flatten)]
     pub air: FluidArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Csv)]
+    pub format: Format,
+    /// Output file (default: standard output).
+    #[arg(long, short)]
+    pub out: Option<PathBuf>,
+    /// Also write the per-station table (CSV) to this file; with --format json the stations
+    /// are included in the JSON as well.
+    #[arg(long)]
+    pub stations: Option<PathBuf>,
+}
+
+/// The propeller model: a prop file, how to read it, and what to change in it.
+#[derive(Debug, Args)]
+pub struct ModelArgs {
+    /// QPROP prop file.
+    #[arg(long)]
+    pub prop: PathBuf,
     /// Collective blade-angle change [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub dbeta: f64,
@@ -55,16 +73,69 @@ pub struct PredictArgs {
     /// section model, instead of the prop file's QPROP coefficients.
     #[arg(long)]
     pub polars: Option<PathBuf>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t = Format::Csv)]
-    pub format: Format,
-    /// Output file (default: standard output).
-    #[arg(long, short)]
-    pub out: Option<PathBuf>,
-    /// Also write the per-station table (CSV) to this file; with --format json the stations
-    /// are included in the JSON as well.
-    #[arg(long)]
-    pub stations: Option<PathBuf>,
+}
+
+/// A model ready to solve.
+pub struct Model {
+    /// The prop file as read.
+    pub loaded: LoadedProp,
+    /// The rotor the solver sees.
+    pub rotor: Rotor,
+    /// Solver options from the flags.
+    pub opts: SolverOptions,
+    /// Propeller diameter of the blade as documented (2 x its last station radius, or line 2's R
+    /// in the table's units) [m]: the D of the coefficients even when `--qprop-compat` gives
+    /// the tip-loss factor QPROP's unscaled R.
+    pub diameter: f64,
+}
+
+impl ModelArgs {
+    /// Reads the prop file (and polars) and builds the rotor.
+    pub fn build(&self, keep_stations: bool) -> Result<Model> {
+        let (loaded, mut rotor) = load_rotor(&self.prop, self.units.as_deref(), self.qprop_compat)?;
+        if let Some(path) = &self.polars {
+            apply_polars(&mut rotor, path)?;
+        }
+        if !self.dbeta.is_finite() {
+            bail!("--dbeta: not a finite number");
+        }
+        let opts = SolverOptions {
+            tip_loss: !self.no_tip_loss,
+            dbeta: self.dbeta.to_radians(),
+            keep_stations,
+            ..SolverOptions::default()
+        };
+        let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
+        Ok(Model {
+            loaded,
+            rotor,
+            opts,
+            diameter,
+        })
+    }
+
+    /// The files the model reads (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        std::iter::once(self.prop.as_path()).chain(self.polars.as_deref()).collect()
+    }
+}
+
+/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file.
+fn apply_polars(rotor: &mut Rotor, path: &Path) -> Result<()> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let (r, models) = blade.models().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
+    if r[0] > hi || r[r.len() - 1] < lo {
+        bail!(
+            "{}: its stations (r = {:.4}..{:.4} m) do not overlap the blade (r = {lo:.4}..{hi:.4} m)",
+            path.display(),
+            r[0],
+            r[r.len() - 1]
+        );
+    }
+    propbet_polar::tabulated::apply_to_rotor(rotor, &r, &models);
+    Ok(())
 }
 
 /// Air properties from flags: --rho/--mu/--a (QPROP's defaults), or --temp/--pressure
@@ -201,30 +272,13 @@ struct JsonOut<'a> {
 
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let (loaded, mut rotor) = load_rotor(&args.prop, args.units.as_deref(), args.qprop_compat)?;
-    if let Some(path) = &args.polars {
-        let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-        let blade =
-            propbet_polar::BladePolars::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        let (r, models) = blade.models().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
-        if r[0] > hi || r[r.len() - 1] < lo {
-            bail!(
-                "{}: its stations (r = {:.4}..{:.4} m) do not overlap the blade (r = {lo:.4}..{hi:.4} m)",
-                path.display(),
-                r[0],
-                r[r.len() - 1]
-            );
-        }
-        propbet_polar::tabulated::apply_to_rotor(&mut rotor, &r, &models);
-    }
+    let Model {
+        loaded, rotor, opts, ..
+    } = args.model.build(args.stations.is_some())?;
     let (fluid, fluid_source) = args.air.fluid()?;
     let rpms = parse_list("--rpm", &args.rpm)?;
     if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {
         bail!("--rpm: rotation speed must not be negative, found {bad}");
-    }
-    if !args.dbeta.is_finite() {
-        bail!("--dbeta: not a finite number");
     }
     let points = match (&args.j, &args.v) {
         (Some(j), _) => {
@@ -235,12 +289,6 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         }
         (None, Some(v)) => grid_rpm_v(&rpms, &parse_list("--v", v)?),
         (None, None) => grid_rpm_v(&rpms, &[0.0]),
-    };
-    let opts = SolverOptions {
-        tip_loss: !args.no_tip_loss,
-        dbeta: args.dbeta.to_radians(),
-        keep_stations: args.stations.is_some(),
-        ..SolverOptions::default()
     };
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
@@ -277,20 +325,18 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         results.extend(c.results);
         body.push(c.text);
     }
-    let inputs: Vec<&Path> = std::iter::once(args.prop.as_path())
-        .chain(args.polars.as_deref())
-        .collect();
+    let inputs = args.model.inputs();
     if !csv {
         let doc = JsonOut {
-            prop: &args.prop.to_string_lossy(),
+            prop: &args.model.prop.to_string_lossy(),
             name: &loaded.file.name,
             blades: rotor.blades,
             tip_radius_m: rotor.tip_radius,
             fluid,
             fluid_source: &fluid_source,
-            qprop_compat: args.qprop_compat,
+            qprop_compat: args.model.qprop_compat,
             tip_loss: opts.tip_loss,
-            dbeta_deg: args.dbeta,
+            dbeta_deg: args.model.dbeta,
             warnings: &loaded.warnings,
             points: &results,
         };

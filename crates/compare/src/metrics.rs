@@ -1,0 +1,216 @@
+//! Error metrics per quantity, overall and by group (RPM, advance-ratio band, static vs
+//! forward flight). Only scored (unflagged) points count.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use crate::{ComparedPoint, QUANTITIES};
+
+/// Errors of one quantity over a set of points; error = predicted - measured.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Metric {
+    /// Points with both values.
+    pub n: usize,
+    /// Mean error (SI units of the quantity).
+    pub bias: f64,
+    /// Root-mean-square error.
+    pub rmse: f64,
+    /// Mean relative error (signed).
+    pub mean_rel: f64,
+    /// Mean absolute relative error.
+    pub mean_abs_rel: f64,
+    /// Relative error of largest magnitude (signed).
+    pub max_rel: f64,
+    /// Label of the point where it occurs.
+    pub max_rel_at: String,
+}
+
+/// Metrics of every quantity over one group of points.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MetricGroup {
+    /// "all points", "5000 rpm", "J 0.2-0.4", "static".
+    pub name: String,
+    /// Points in the group.
+    pub points: usize,
+    /// By quantity name ([`crate::QUANTITIES`]); quantities without data are absent.
+    pub metrics: BTreeMap<String, Metric>,
+}
+
+/// All groups.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Every scored point.
+    pub overall: MetricGroup,
+    /// By RPM (the file's nominal RPM, else 1000-rpm bands).
+    pub per_rpm: Vec<MetricGroup>,
+    /// By advance-ratio band (static, then 0.2 wide).
+    pub per_j: Vec<MetricGroup>,
+    /// Static points (J < 0.01).
+    pub static_points: Option<MetricGroup>,
+    /// Forward-flight points.
+    pub forward: Option<MetricGroup>,
+    /// Points left out of the scores (flagged).
+    pub unscored: usize,
+}
+
+fn metric(points: &[&ComparedPoint], q: &str) -> Option<Metric> {
+    let mut n = 0;
+    let (mut sum, mut sum2) = (0.0, 0.0);
+    let mut rels = Vec::new();
+    let mut max: Option<(f64, &str)> = None;
+    for p in points {
+        let (Some(m), Some(pr)) = (p.measured.get(q), p.predicted.get(q)) else {
+            continue;
+        };
+        n += 1;
+        let e = pr - m;
+        sum += e;
+        sum2 += e * e;
+        if let Some(r) = p.relative_error(q) {
+            rels.push(r);
+            if max.is_none_or(|(x, _)| r.abs() > x.abs()) {
+                max = Some((r, p.label.as_str()));
+            }
+        }
+    }
+    if n == 0 {
+        return None;
+    }
+    let nr = rels.len().max(1) as f64;
+    Some(Metric {
+        n,
+        bias: sum / n as f64,
+        rmse: (sum2 / n as f64).sqrt(),
+        mean_rel: if rels.is_empty() { f64::NAN } else { rels.iter().sum::<f64>() / nr },
+        mean_abs_rel: if rels.is_empty() { f64::NAN } else { rels.iter().map(|r| r.abs()).sum::<f64>() / nr },
+        max_rel: max.map_or(f64::NAN, |m| m.0),
+        max_rel_at: max.map_or(String::new(), |m| m.1.to_string()),
+    })
+}
+
+/// Metrics of every quantity over `points`.
+pub fn group(name: impl Into<String>, points: &[&ComparedPoint]) -> MetricGroup {
+    MetricGroup {
+        name: name.into(),
+        points: points.len(),
+        metrics: QUANTITIES
+            .iter()
+            .filter_map(|q| metric(points, q).map(|m| (q.to_string(), m)))
+            .collect(),
+    }
+}
+
+/// The RPM group of a point: its file's nominal RPM, else its 1000-rpm band (as a sort key
+/// and a name).
+pub fn rpm_group(p: &ComparedPoint) -> (i64, String) {
+    match p.nominal_rpm {
+        Some(r) => (r.round() as i64, format!("{r:.0} rpm")),
+        None => {
+            let b = (p.rpm / 1000.0).floor() as i64;
+            (b * 1000, format!("{}-{} rpm", b * 1000, b * 1000 + 1000))
+        }
+    }
+}
+
+fn j_group(p: &ComparedPoint) -> (i64, String) {
+    if p.is_static() {
+        return (-1, "static (J = 0)".into());
+    }
+    let b = (p.j / 0.2).floor() as i64;
+    (b, format!("J {:.1}-{:.1}", b as f64 * 0.2, (b + 1) as f64 * 0.2))
+}
+
+fn grouped(points: &[&ComparedPoint], key: fn(&ComparedPoint) -> (i64, String)) -> Vec<MetricGroup> {
+    let mut by: BTreeMap<i64, (String, Vec<&ComparedPoint>)> = BTreeMap::new();
+    for p in points {
+        let (k, name) = key(p);
+        by.entry(k).or_insert_with(|| (name, Vec::new())).1.push(p);
+    }
+    by.into_values().map(|(name, pts)| group(name, &pts)).collect()
+}
+
+/// Scores the points.
+pub fn metrics(points: &[ComparedPoint]) -> Metrics {
+    let scored: Vec<&ComparedPoint> = points.iter().filter(|p| p.scored()).collect();
+    let stat: Vec<&ComparedPoint> = scored.iter().copied().filter(|p| p.is_static()).collect();
+    let fwd: Vec<&ComparedPoint> = scored.iter().copied().filter(|p| !p.is_static()).collect();
+    Metrics {
+        overall: group("all points", &scored),
+        per_rpm: grouped(&scored, rpm_group),
+        per_j: grouped(&scored, j_group),
+        static_points: (!stat.is_empty()).then(|| group("static", &stat)),
+        forward: (!fwd.is_empty()).then(|| group("forward flight", &fwd)),
+        unscored: points.len() - scored.len(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{PointAir, Quantities};
+    use approx::assert_relative_eq;
+    use propbet_bemt::Fluid;
+
+    fn pt(label: &str, rpm: f64, j: f64, meas: f64, pred: f64) -> ComparedPoint {
+        let q = |t: f64| Quantities {
+            thrust: Some(t),
+            ..Default::default()
+        };
+        ComparedPoint {
+            file: 0,
+            label: label.into(),
+            lines: (1, 1),
+            rpm,
+            rpm_sd: None,
+            nominal_rpm: None,
+            v: 0.0,
+            j,
+            air: PointAir {
+                fluid: Fluid::QPROP_DEFAULT,
+                source: String::new(),
+                standard: true,
+            },
+            measured: q(meas),
+            measured_sd: Quantities::default(),
+            predicted: q(pred),
+            re75: 0.0,
+            mach_tip: 0.0,
+            not_converged: 0,
+            flags: vec![],
+        }
+    }
+
+    #[test]
+    fn bias_rmse_and_relative_errors() {
+        let pts = vec![
+            pt("a", 4100.0, 0.0, 1.0, 1.1),
+            pt("b", 4900.0, 0.0, 2.0, 1.8),
+            pt("c", 5500.0, 0.3, 4.0, 4.0),
+        ];
+        let m = metrics(&pts);
+        let t = &m.overall.metrics["thrust"];
+        assert_eq!(t.n, 3);
+        assert_relative_eq!(t.bias, (0.1 - 0.2) / 3.0, epsilon = 1e-12);
+        assert_relative_eq!(t.rmse, ((0.01 + 0.04) / 3.0f64).sqrt(), epsilon = 1e-12);
+        assert_relative_eq!(t.mean_rel, (0.1 - 0.1 + 0.0) / 3.0, epsilon = 1e-12);
+        assert_relative_eq!(t.mean_abs_rel, 0.2 / 3.0, epsilon = 1e-12);
+        assert_relative_eq!(t.max_rel.abs(), 0.1, epsilon = 1e-12);
+        assert_eq!(m.per_rpm.len(), 2);
+        assert_eq!(m.per_rpm[0].name, "4000-5000 rpm");
+        assert_eq!(m.per_rpm[0].points, 2);
+        assert_eq!(m.per_j[0].name, "static (J = 0)");
+        assert_eq!(m.per_j[1].name, "J 0.2-0.4");
+        assert_eq!(m.static_points.unwrap().points, 2);
+        assert!(!m.overall.metrics.contains_key("torque"));
+    }
+
+    #[test]
+    fn flagged_points_are_not_scored() {
+        let mut bad = pt("bad", 5000.0, 0.0, 1.0, 3.0);
+        bad.flags.push("unsteady".into());
+        let m = metrics(&[pt("a", 5000.0, 0.0, 1.0, 1.0), bad]);
+        assert_eq!(m.unscored, 1);
+        assert_eq!(m.overall.metrics["thrust"].rmse, 0.0);
+    }
+}

@@ -1,0 +1,587 @@
+//! The comparison as people read it: figures (CT, CP and efficiency against J per RPM;
+//! static thrust and torque against RPM; residuals against J, RPM, Re at 0.75 R and tip Mach),
+//! one self-contained HTML page (inline SVG, the font embedded, no script, no network), a
+//! Markdown summary and a JSON document of everything.
+
+use std::fmt::Write as _;
+
+use propbet_measure::{DropReason, Dropped, MeasuredSet};
+use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
+use serde::Serialize;
+
+use crate::metrics::{rpm_group, Metrics, MetricGroup};
+use crate::{predict, ComparedPoint, Setup, QUANTITIES};
+
+/// A measured file as the report names it.
+pub struct FileEntry<'a> {
+    /// Path as given.
+    pub path: String,
+    /// Its points, drops and notes.
+    pub set: &'a MeasuredSet,
+}
+
+/// Everything a report is made of.
+pub struct ReportInput<'a> {
+    /// Prop file path.
+    pub prop: String,
+    /// Notes about how the prop file was read (warnings, compatibility reading).
+    pub prop_notes: Vec<String>,
+    /// Measured files.
+    pub files: Vec<FileEntry<'a>>,
+    /// Compared points.
+    pub points: &'a [ComparedPoint],
+    /// Their scores.
+    pub metrics: &'a Metrics,
+    /// The solver setup (for the predicted curves).
+    pub setup: &'a Setup<'a>,
+    /// The command that made the report.
+    pub command: String,
+}
+
+/// The report in its three forms, and its figures.
+pub struct Report {
+    /// Self-contained HTML page.
+    pub html: String,
+    /// Markdown summary.
+    pub markdown: String,
+    /// Everything, as JSON.
+    pub json: serde_json::Value,
+    /// Figures by file stem ("coefficients", "static", "residuals").
+    pub figures: Vec<(String, Figure)>,
+}
+
+const LABELS: [(&str, &str, &str); 6] = [
+    ("thrust", "thrust", "N"),
+    ("torque", "torque", "N·m"),
+    ("power", "power", "W"),
+    ("ct", "CT", ""),
+    ("cp", "CP", ""),
+    ("eta", "efficiency", ""),
+];
+
+fn label(q: &str) -> (&'static str, &'static str) {
+    LABELS
+        .iter()
+        .find(|l| l.0 == q)
+        .map_or(("?", ""), |l| (l.1, l.2))
+}
+
+/// `x` with 4 significant digits.
+pub fn sig(x: f64) -> String {
+    if !x.is_finite() {
+        return "–".into();
+    }
+    if x == 0.0 {
+        return "0".into();
+    }
+    let e = x.abs().log10().floor() as i32;
+    if (-4..6).contains(&e) {
+        format!("{:.*}", (3 - e).max(0) as usize, x)
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+fn pct(x: f64) -> String {
+    if x.is_finite() {
+        format!("{:+.1} %", 100.0 * x)
+    } else {
+        "–".into()
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// Groups of points by RPM, in order, with a palette index each.
+fn rpm_groups(points: &[ComparedPoint]) -> Vec<(String, Vec<&ComparedPoint>)> {
+    let mut by: std::collections::BTreeMap<i64, (String, Vec<&ComparedPoint>)> = Default::default();
+    for p in points {
+        let (k, name) = rpm_group(p);
+        by.entry(k).or_insert_with(|| (name, Vec::new())).1.push(p);
+    }
+    by.into_values().collect()
+}
+
+fn mean(xs: impl Iterator<Item = f64>) -> f64 {
+    let (s, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
+    s / n.max(1) as f64
+}
+
+fn measured_series(name: String, pts: &[&ComparedPoint], x: impl Fn(&ComparedPoint) -> f64, q: &str, k: usize) -> Series {
+    let mut s = Series::new(
+        name,
+        pts.iter().map(|p| (x(p), p.measured.get(q).unwrap_or(f64::NAN))).collect(),
+        Mark::Dots,
+        Some(k),
+    );
+    s.y_err = pts.iter().map(|p| p.measured_sd.get(q).unwrap_or(0.0)).collect();
+    s
+}
+
+fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
+    let forward: Vec<ComparedPoint> = points.iter().filter(|p| !p.is_static()).cloned().collect();
+    if forward.is_empty() {
+        return None;
+    }
+    // Static points of the same RPM groups belong on the J axis too.
+    let groups = rpm_groups(points);
+    let mut panels: Vec<Panel> = ["ct", "cp", "eta"]
+        .iter()
+        .map(|q| Panel {
+            title: format!("{} vs advance ratio", label(q).0),
+            x_label: "J = V/(nD)".into(),
+            y_label: label(q).0.into(),
+            series: Vec::new(),
+            zero_line: false,
+        })
+        .collect();
+    for (k, (name, pts)) in groups.iter().enumerate() {
+        if pts.iter().all(|p| p.is_static()) {
+            continue;
+        }
+        let rpm = mean(pts.iter().map(|p| p.rpm));
+        let fluid = pts[0].air.fluid;
+        let jmax = pts.iter().map(|p| p.j).fold(0.0, f64::max) * 1.08;
+        let omega = rpm * std::f64::consts::PI / 30.0;
+        let n = omega / (2.0 * std::f64::consts::PI);
+        let curve: Vec<(f64, crate::Quantities)> = (0..=40)
+            .map(|i| {
+                let j = jmax * i as f64 / 40.0;
+                (j, predict(setup, omega, j * n * setup.diameter, &fluid).0)
+            })
+            .collect();
+        for (panel, q) in panels.iter_mut().zip(["ct", "cp", "eta"]) {
+            panel.series.push(measured_series(format!("measured {name}"), pts, |p| p.j, q, k));
+            let line: Vec<(f64, f64)> = curve
+                .iter()
+                .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
+                .collect();
+            panel
+                .series
+                .push(Series::new(format!("predicted {rpm:.0} rpm"), line, Mark::Line, Some(k)));
+        }
+    }
+    Some(Figure {
+        panels,
+        columns: 3,
+        width: 1500,
+        height: 520,
+    })
+}
+
+fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
+    let stat: Vec<&ComparedPoint> = points.iter().filter(|p| p.is_static()).collect();
+    if stat.is_empty() {
+        return None;
+    }
+    let has_torque = stat.iter().any(|p| p.measured.torque.is_some());
+    let (lo, hi) = stat
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.rpm), b.max(p.rpm)));
+    let fluid = stat[0].air.fluid;
+    let curve: Vec<(f64, crate::Quantities)> = (0..=40)
+        .map(|i| {
+            let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / 40.0;
+            (rpm, predict(setup, rpm * std::f64::consts::PI / 30.0, 0.0, &fluid).0)
+        })
+        .collect();
+    let qs: &[&str] = if has_torque { &["thrust", "torque", "ct", "cp"] } else { &["thrust", "ct"] };
+    let panels = qs
+        .iter()
+        .map(|q| {
+            let (name, unit) = label(q);
+            Panel {
+                title: format!("static {name} vs RPM"),
+                x_label: "RPM".into(),
+                y_label: if unit.is_empty() { name.into() } else { format!("{name} [{unit}]") },
+                series: vec![
+                    measured_series("measured".into(), &stat, |p| p.rpm, q, 0),
+                    Series::new(
+                        "predicted",
+                        curve.iter().filter_map(|(r, c)| c.get(q).map(|v| (*r, v))).collect(),
+                        Mark::Line,
+                        Some(1),
+                    ),
+                ],
+                zero_line: false,
+            }
+        })
+        .collect();
+    Some(Figure {
+        panels,
+        columns: 2,
+        width: 1200,
+        height: if has_torque { 900 } else { 450 },
+    })
+}
+
+fn residual_figure(points: &[ComparedPoint]) -> Figure {
+    let axes: [(&str, fn(&ComparedPoint) -> f64); 4] = [
+        ("advance ratio J", |p| p.j),
+        ("RPM", |p| p.rpm),
+        ("Reynolds number at 0.75 R", |p| p.re75),
+        ("tip Mach number", |p| p.mach_tip),
+    ];
+    let scored: Vec<&ComparedPoint> = points.iter().filter(|p| p.scored()).collect();
+    let forward = scored.iter().any(|p| !p.is_static());
+    let panels = axes
+        .iter()
+        .filter(|(name, _)| forward || !name.starts_with("advance"))
+        .map(|(name, x)| Panel {
+            title: format!("relative error vs {name}"),
+            x_label: (*name).into(),
+            y_label: "(predicted − measured)/measured [%]".into(),
+            series: ["thrust", "torque"]
+                .iter()
+                .enumerate()
+                .map(|(k, q)| {
+                    Series::new(
+                        *q,
+                        scored
+                            .iter()
+                            .filter_map(|p| p.relative_error(q).map(|e| (x(p), 100.0 * e)))
+                            .collect(),
+                        Mark::Dots,
+                        Some(k),
+                    )
+                })
+                .filter(|s| !s.points.is_empty())
+                .collect(),
+            zero_line: true,
+        })
+        .collect();
+    let rows = panels.len().div_ceil(2) as u32;
+    Figure {
+        panels,
+        columns: 2,
+        width: 1200,
+        height: 430 * rows,
+    }
+}
+
+/// Consecutive dropped rows of one reason, as line ranges.
+pub fn dropped_ranges(dropped: &[Dropped]) -> Vec<(usize, usize, usize, DropReason, String)> {
+    let mut out: Vec<(usize, usize, usize, DropReason, String)> = Vec::new();
+    for d in dropped {
+        if let Some(last) = out.last_mut() {
+            if last.3 == d.reason && last.1 + 1 == d.line && !d.reason.is_fault() {
+                last.1 = d.line;
+                last.2 += 1;
+                continue;
+            }
+        }
+        out.push((d.line, d.line, 1, d.reason, d.detail.clone()));
+    }
+    out
+}
+
+#[derive(Serialize)]
+struct FileJson<'a> {
+    path: &'a str,
+    #[serde(flatten)]
+    set: &'a MeasuredSet,
+}
+
+#[derive(Serialize)]
+struct Json<'a> {
+    prop: &'a str,
+    prop_notes: &'a [String],
+    diameter_m: f64,
+    command: &'a str,
+    files: Vec<FileJson<'a>>,
+    metrics: &'a Metrics,
+    points: &'a [ComparedPoint],
+}
+
+fn metric_rows(out: &mut String, g: &MetricGroup, html: bool) {
+    for q in QUANTITIES {
+        let Some(m) = g.metrics.get(q) else { continue };
+        let (name, unit) = label(q);
+        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+        let cells = [
+            format!("{name}"),
+            m.n.to_string(),
+            format!("{}{unit}", sig(m.bias)),
+            format!("{}{unit}", sig(m.rmse)),
+            pct(m.mean_rel),
+            pct(m.mean_abs_rel),
+            format!("{} ({})", pct(m.max_rel), m.max_rel_at),
+        ];
+        if html {
+            out.push_str("<tr>");
+            for c in cells {
+                let _ = write!(out, "<td>{}</td>", esc(&c));
+            }
+            out.push_str("</tr>\n");
+        } else {
+            let _ = writeln!(out, "| {} |", cells.join(" | "));
+        }
+    }
+}
+
+const METRIC_HEAD: [&str; 7] = ["quantity", "n", "bias", "RMSE", "mean rel.", "mean |rel.|", "max rel. (at)"];
+
+fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
+    for g in groups {
+        let _ = write!(out, "<h3>{} <small>({} points)</small></h3>\n<table><tr>", esc(&g.name), g.points);
+        for h in METRIC_HEAD {
+            let _ = write!(out, "<th>{h}</th>");
+        }
+        out.push_str("</tr>\n");
+        metric_rows(out, g, true);
+        out.push_str("</table>\n");
+    }
+}
+
+const CSS: &str = "body{font-family:PropbetSans,sans-serif;margin:2em auto;max-width:1500px;color:#222;padding:0 1em}\
+h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #0072b2;padding-bottom:.2em;margin-top:2em}\
+table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:.9em}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}\
+th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\
+.cards{display:flex;gap:1em;flex-wrap:wrap}.card{border:1px solid #ccc;border-radius:6px;padding:.8em 1.2em;min-width:11em}\
+.card b{display:block;font-size:1.6em;color:#0072b2}.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.6em 1em}\
+.note{color:#555}figure{margin:1em 0}figure svg{max-width:100%;height:auto}code{background:#f4f4f4;padding:0 .3em}\
+tr.flagged td{color:#999}";
+
+/// Builds the report.
+pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
+    let pts = input.points;
+    let m = input.metrics;
+    let mut figures = Vec::new();
+    if let Some(f) = coefficient_figure(input.setup, pts) {
+        figures.push(("coefficients".to_string(), f));
+    }
+    if let Some(f) = static_figure(input.setup, pts) {
+        figures.push(("static".to_string(), f));
+    }
+    figures.push(("residuals".to_string(), residual_figure(pts)));
+
+    let standard = pts.iter().filter(|p| p.air.standard).count();
+    let air_sources: std::collections::BTreeSet<&str> = pts.iter().map(|p| p.air.source.as_str()).collect();
+    let rho: Vec<f64> = pts.iter().map(|p| p.air.fluid.rho).collect();
+    let (rho_lo, rho_hi) = rho.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(*r), b.max(*r)));
+    let air_line = if (rho_hi - rho_lo) < 1e-9 {
+        format!("ρ = {:.4} kg/m³", rho_lo)
+    } else {
+        format!("ρ = {:.4}–{:.4} kg/m³", rho_lo, rho_hi)
+    };
+    let mut warnings: Vec<String> = Vec::new();
+    if standard > 0 {
+        warnings.push(format!(
+            "{standard} of {} points: no air temperature or pressure was logged or given, standard air (ISA sea level, 15 °C, 101 325 Pa, dry) was assumed. Give --atmosphere T,P,RH for a real comparison.",
+            pts.len()
+        ));
+    }
+    if m.unscored > 0 {
+        warnings.push(format!("{} flagged points are shown but not scored (see the point table).", m.unscored));
+    }
+    let faults: usize = input.files.iter().map(|f| f.set.faults()).sum();
+    if faults > 0 {
+        warnings.push(format!("{faults} rows were dropped as faulty (listed under Measured files)."));
+    }
+    warnings.extend(input.prop_notes.iter().cloned());
+
+    // ---------- HTML ----------
+    let mut h = String::with_capacity(2_000_000);
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>propbet: {}</title>\n<style>{}\n{}\nsvg text{{font-family:{},sans-serif}}</style></head><body>\n",
+        esc(&input.prop),
+        propbet_plot::font_face_css(),
+        CSS,
+        propbet_plot::FONT_FAMILY
+    );
+    let _ = write!(
+        h,
+        "<h1>Prediction vs measurement</h1>\n<p class=\"note\">prop <code>{}</code> (D = {} m) against {} file(s); {} points ({} scored); air: {}.<br>command: <code>{}</code></p>\n",
+        esc(&input.prop),
+        sig(input.setup.diameter),
+        input.files.len(),
+        pts.len(),
+        pts.len() - m.unscored,
+        air_line,
+        esc(&input.command)
+    );
+    h.push_str("<div class=\"cards\">");
+    for q in ["thrust", "torque", "power", "eta"] {
+        if let Some(x) = m.overall.metrics.get(q) {
+            let _ = write!(
+                h,
+                "<div class=\"card\">{} mean error<b>{}</b>RMSE {} {} · worst {}</div>",
+                label(q).0,
+                pct(x.mean_rel),
+                sig(x.rmse),
+                label(q).1,
+                pct(x.max_rel)
+            );
+        }
+    }
+    h.push_str("</div>\n");
+    for w in &warnings {
+        let _ = writeln!(h, "<p class=\"warn\">{}</p>", esc(w));
+    }
+    h.push_str("<h2>Figures</h2>\n");
+    for (name, f) in &figures {
+        let _ = write!(h, "<figure id=\"fig-{name}\">{}</figure>\n", propbet_plot::svg_inline(f)?);
+    }
+    h.push_str("<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured.</p>\n");
+    let mut top: Vec<&MetricGroup> = vec![&m.overall];
+    top.extend(m.static_points.iter());
+    top.extend(m.forward.iter());
+    html_metric_table(&mut h, &top);
+    h.push_str("<h2>By RPM</h2>\n");
+    html_metric_table(&mut h, &m.per_rpm.iter().collect::<Vec<_>>());
+    h.push_str("<h2>By advance ratio</h2>\n");
+    html_metric_table(&mut h, &m.per_j.iter().collect::<Vec<_>>());
+    h.push_str("<h2>Points</h2>\n<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
+    for p in pts {
+        let pm = |q: &str| {
+            let v = p.measured.get(q).map_or("–".into(), sig);
+            match p.measured_sd.get(q) {
+                Some(s) if s > 0.0 => format!("{v} ± {}", sig(s)),
+                _ => v,
+            }
+        };
+        let _ = writeln!(
+            h,
+            "<tr{}><td>{}</td><td>{}</td><td>{}–{}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.3}</td><td>{}</td></tr>",
+            if p.scored() { "" } else { " class=\"flagged\"" },
+            p.file + 1,
+            esc(&p.label),
+            p.lines.0,
+            p.lines.1,
+            p.rpm,
+            sig(p.v),
+            sig(p.j),
+            p.air.fluid.rho,
+            pm("thrust"),
+            p.predicted.thrust.map_or("–".into(), sig),
+            p.relative_error("thrust").map_or("–".into(), pct),
+            pm("torque"),
+            p.predicted.torque.map_or("–".into(), sig),
+            p.relative_error("torque").map_or("–".into(), pct),
+            pm("ct"),
+            pm("cp"),
+            pm("eta"),
+            p.predicted.eta.map_or("–".into(), sig),
+            p.re75,
+            p.mach_tip,
+            esc(&p.flags.join("; "))
+        );
+    }
+    h.push_str("</table>\n<h2>Measured files</h2>\n");
+    for (i, f) in input.files.iter().enumerate() {
+        let s = f.set;
+        let _ = write!(
+            h,
+            "<h3>{}. <code>{}</code></h3>\n<p>{:?} file, reduced as {:?}: {} rows → {} points; {}.</p>\n<ul>",
+            i + 1,
+            esc(&f.path),
+            s.format,
+            s.reduction,
+            s.rows,
+            s.points.len(),
+            esc(&propbet_measure::summarise_dropped(&s.dropped))
+        );
+        for n in &s.notes {
+            let _ = write!(h, "<li>{}</li>", esc(n));
+        }
+        h.push_str("</ul>\n");
+        if !s.dropped.is_empty() {
+            let _ = write!(
+                h,
+                "<details><summary>{} dropped rows</summary><table><tr><th>lines</th><th>rows</th><th>reason</th><th>detail</th></tr>\n",
+                s.dropped.len()
+            );
+            for (a, b, n, r, d) in dropped_ranges(&s.dropped) {
+                let lines = if a == b { a.to_string() } else { format!("{a}–{b}") };
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{lines}</td><td>{n}</td><td>{}</td><td>{}</td></tr>",
+                    r.text(),
+                    esc(&d)
+                );
+            }
+            h.push_str("</table></details>\n");
+        }
+    }
+    h.push_str("<h2>Air</h2>\n<ul>");
+    for s in &air_sources {
+        let _ = write!(h, "<li>{}</li>", esc(s));
+    }
+    h.push_str("</ul>\n<p class=\"note\">Density of moist air from T, p, RH (ideal-gas mixture, Buck saturation pressure); viscosity by Sutherland's law; speed of sound of dry air.</p>\n</body></html>\n");
+
+    // ---------- Markdown ----------
+    let mut md = String::new();
+    let _ = writeln!(md, "# Prediction vs measurement\n");
+    let _ = writeln!(
+        md,
+        "prop `{}` (D = {} m); {} file(s); {} points, {} scored; air: {}.\n",
+        input.prop,
+        sig(input.setup.diameter),
+        input.files.len(),
+        pts.len(),
+        pts.len() - m.unscored,
+        air_line
+    );
+    for w in &warnings {
+        let _ = writeln!(md, "> {w}\n");
+    }
+    let md_table = |md: &mut String, g: &MetricGroup| {
+        let _ = writeln!(md, "### {} ({} points)\n", g.name, g.points);
+        let _ = writeln!(md, "| {} |", METRIC_HEAD.join(" | "));
+        let _ = writeln!(md, "|{}", "---|".repeat(METRIC_HEAD.len()));
+        metric_rows(md, g, false);
+        md.push('\n');
+    };
+    md.push_str("## Metrics\n\n");
+    for g in &top {
+        md_table(&mut md, g);
+    }
+    md.push_str("## By RPM\n\n");
+    for g in &m.per_rpm {
+        md_table(&mut md, g);
+    }
+    md.push_str("## Measured files\n\n");
+    for (i, f) in input.files.iter().enumerate() {
+        let _ = writeln!(
+            md,
+            "{}. `{}`: {:?}, {:?}; {} rows → {} points; {}.",
+            i + 1,
+            f.path,
+            f.set.format,
+            f.set.reduction,
+            f.set.rows,
+            f.set.points.len(),
+            propbet_measure::summarise_dropped(&f.set.dropped)
+        );
+        for n in &f.set.notes {
+            let _ = writeln!(md, "   - {n}");
+        }
+    }
+
+    let json = serde_json::to_value(Json {
+        prop: &input.prop,
+        prop_notes: &input.prop_notes,
+        diameter_m: input.setup.diameter,
+        command: &input.command,
+        files: input
+            .files
+            .iter()
+            .map(|f| FileJson {
+                path: &f.path,
+                set: f.set,
+            })
+            .collect(),
+        metrics: m,
+        points: pts,
+    })
+    .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
+    Ok(Report {
+        html: h,
+        markdown: md,
+        json,
+        figures,
+    })
+}

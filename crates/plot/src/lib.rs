@@ -1,0 +1,349 @@
+//! Figures: panels of x-y series drawn with plotters, as SVG text or PNG bytes, with the
+//! DejaVu Sans font compiled in (`assets/fonts`) so that text renders the same on every
+//! machine: PNG text is rasterised from it; SVG text names it and a standalone SVG (or an
+//! HTML page, [`font_face_css`]) carries it as an `@font-face`.
+//!
+//! Writing files is the caller's business (the CLI writes atomically).
+#![deny(missing_docs)]
+
+use std::sync::Once;
+
+use base64::Engine;
+use plotters::prelude::*;
+use plotters::style::{register_font, FontStyle};
+use thiserror::Error;
+
+/// How a series is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mark {
+    /// Connected line.
+    Line,
+    /// Connected dashed line.
+    Dashed,
+    /// Separate dots (with vertical error bars when the series has them).
+    Dots,
+}
+
+/// One named series.
+#[derive(Debug, Clone)]
+pub struct Series {
+    /// Legend text (empty: not in the legend).
+    pub name: String,
+    /// Points (x, y); non-finite ones are skipped.
+    pub points: Vec<(f64, f64)>,
+    /// Half-heights of vertical error bars, one per point (empty: none).
+    pub y_err: Vec<f64>,
+    /// Line or dots.
+    pub mark: Mark,
+    /// Palette index (default: the series' position), so that related series share a colour.
+    pub colour: Option<usize>,
+}
+
+impl Series {
+    /// A series without error bars.
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, mark: Mark, colour: Option<usize>) -> Self {
+        Self {
+            name: name.into(),
+            points,
+            y_err: Vec::new(),
+            mark,
+            colour,
+        }
+    }
+}
+
+/// One chart of a figure.
+#[derive(Debug, Clone)]
+pub struct Panel {
+    /// Caption.
+    pub title: String,
+    /// X axis label.
+    pub x_label: String,
+    /// Y axis label.
+    pub y_label: String,
+    /// The data.
+    pub series: Vec<Series>,
+    /// Draw the line y = 0.
+    pub zero_line: bool,
+}
+
+/// Panels on a grid.
+#[derive(Debug, Clone)]
+pub struct Figure {
+    /// Panels, row by row.
+    pub panels: Vec<Panel>,
+    /// Panels per row.
+    pub columns: usize,
+    /// Width [px].
+    pub width: u32,
+    /// Height [px].
+    pub height: u32,
+}
+
+/// Drawing failed.
+#[derive(Debug, Error)]
+#[error("plot: {0}")]
+pub struct PlotError(String);
+
+impl PlotError {
+    /// An error with this message.
+    pub fn from_message(m: String) -> Self {
+        Self(m)
+    }
+}
+
+/// Family name under which the bundled font is registered and embedded.
+pub const FONT_FAMILY: &str = "PropbetSans";
+static FONT: Once = Once::new();
+const FONT_BYTES: &[u8] = include_bytes!("../../../assets/fonts/DejaVuSans.ttf");
+
+fn register() {
+    FONT.call_once(|| {
+        // The font is compiled in; registering it cannot meet a missing file.
+        let _ = register_font(FONT_FAMILY, FontStyle::Normal, FONT_BYTES);
+    });
+}
+
+/// CSS `@font-face` carrying the bundled font (base64), for pages that inline the SVGs.
+pub fn font_face_css() -> String {
+    format!(
+        "@font-face{{font-family:{FONT_FAMILY};src:url(data:font/ttf;base64,{}) format('truetype');}}",
+        base64::engine::general_purpose::STANDARD.encode(FONT_BYTES)
+    )
+}
+
+/// Colour of the i-th series (a colour-blind-safe palette, Okabe-Ito).
+pub fn colour(i: usize) -> RGBColor {
+    const P: [(u8, u8, u8); 7] = [
+        (0, 114, 178),
+        (213, 94, 0),
+        (0, 158, 115),
+        (204, 121, 167),
+        (230, 159, 0),
+        (86, 180, 233),
+        (0, 0, 0),
+    ];
+    let (r, g, b) = P[i % P.len()];
+    RGBColor(r, g, b)
+}
+
+/// The figure as an SVG element (no XML declaration, no embedded font: for inlining in a page
+/// that carries [`font_face_css`]).
+pub fn svg_inline(fig: &Figure) -> Result<String, PlotError> {
+    register();
+    let mut text = String::new();
+    {
+        let root = SVGBackend::with_string(&mut text, (fig.width, fig.height)).into_drawing_area();
+        render(&root, fig)?;
+        root.present().map_err(|e| PlotError(e.to_string()))?;
+    }
+    if let Some(i) = text.find("<svg") {
+        text.drain(..i);
+    }
+    Ok(text)
+}
+
+/// The figure as a standalone SVG file carrying its font.
+pub fn svg(fig: &Figure) -> Result<String, PlotError> {
+    let mut text = svg_inline(fig)?;
+    let close = text.find('>').ok_or_else(|| PlotError("SVG without a root element".into()))?;
+    text.insert_str(close + 1, &format!("<style>{}</style>", font_face_css()));
+    Ok(text)
+}
+
+/// The figure as PNG bytes.
+pub fn png(fig: &Figure) -> Result<Vec<u8>, PlotError> {
+    register();
+    let mut rgb = vec![255u8; (fig.width * fig.height * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (fig.width, fig.height)).into_drawing_area();
+        render(&root, fig)?;
+        root.present().map_err(|e| PlotError(e.to_string()))?;
+    }
+    encode_png(&rgb, fig.width, fig.height)
+}
+
+fn range(panel: &Panel) -> (f64, f64, f64, f64) {
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for s in &panel.series {
+        for (i, p) in s.points.iter().enumerate() {
+            if !(p.0.is_finite() && p.1.is_finite()) {
+                continue;
+            }
+            let e = s.y_err.get(i).copied().filter(|e| e.is_finite()).unwrap_or(0.0);
+            x0 = x0.min(p.0);
+            x1 = x1.max(p.0);
+            y0 = y0.min(p.1 - e);
+            y1 = y1.max(p.1 + e);
+        }
+    }
+    if panel.zero_line && y0.is_finite() {
+        y0 = y0.min(0.0);
+        y1 = y1.max(0.0);
+    }
+    if !x0.is_finite() {
+        return (0.0, 1.0, 0.0, 1.0);
+    }
+    let pad = |a: f64, b: f64| {
+        let d = if b > a { (b - a) * 0.05 } else { a.abs().max(1.0) * 0.05 };
+        (a - d, b + d)
+    };
+    let (x0, x1) = pad(x0, x1);
+    let (y0, y1) = pad(y0, y1);
+    (x0, x1, y0, y1)
+}
+
+fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fig: &Figure) -> Result<(), PlotError> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| PlotError(format!("{e:?}"));
+    root.fill(&WHITE).map_err(err)?;
+    let cols = fig.columns.max(1);
+    let rows = fig.panels.len().div_ceil(cols).max(1);
+    let areas = root.split_evenly((rows, cols));
+    for (panel, area) in fig.panels.iter().zip(areas.iter()) {
+        let (x0, x1, y0, y1) = range(panel);
+        let mut chart = ChartBuilder::on(area)
+            .caption(&panel.title, (FONT_FAMILY, 17))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(64)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .x_desc(&panel.x_label)
+            .y_desc(&panel.y_label)
+            .label_style((FONT_FAMILY, 12))
+            .axis_desc_style((FONT_FAMILY, 13))
+            .light_line_style(RGBColor(235, 235, 235))
+            .draw()
+            .map_err(err)?;
+        if panel.zero_line {
+            chart
+                .draw_series(LineSeries::new(vec![(x0, 0.0), (x1, 0.0)], BLACK.mix(0.5).stroke_width(1)))
+                .map_err(err)?;
+        }
+        let mut legend = false;
+        for (i, s) in panel.series.iter().enumerate() {
+            let c = colour(s.colour.unwrap_or(i));
+            let data: Vec<(usize, (f64, f64))> = s
+                .points
+                .iter()
+                .copied()
+                .enumerate()
+                .filter(|(_, p)| p.0.is_finite() && p.1.is_finite())
+                .collect();
+            let xy = data.iter().map(|d| d.1);
+            let drawn = match s.mark {
+                Mark::Line => chart
+                    .draw_series(LineSeries::new(xy, c.stroke_width(2)))
+                    .map_err(err)?,
+                Mark::Dashed => chart
+                    .draw_series(DashedLineSeries::new(xy, 6, 4, c.stroke_width(2)))
+                    .map_err(err)?,
+                Mark::Dots => {
+                    let bars: Vec<(f64, f64, f64)> = data
+                        .iter()
+                        .filter_map(|(k, p)| s.y_err.get(*k).filter(|e| e.is_finite() && **e > 0.0).map(|e| (p.0, p.1, *e)))
+                        .collect();
+                    chart
+                        .draw_series(
+                            bars.into_iter()
+                                .map(|(x, y, e)| ErrorBar::new_vertical(x, y - e, y, y + e, c.stroke_width(1), 6)),
+                        )
+                        .map_err(err)?;
+                    chart
+                        .draw_series(xy.map(|p| Circle::new(p, 3, c.filled())))
+                        .map_err(err)?
+                }
+            };
+            if !s.name.is_empty() {
+                legend = true;
+                let dots = s.mark == Mark::Dots;
+                drawn.label(s.name.clone()).legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
+                    if dots {
+                        Circle::new((x + 8, y), 3, c.filled()).into_dyn()
+                    } else {
+                        PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)).into_dyn()
+                    }
+                });
+            }
+        }
+        if legend {
+            chart
+                .configure_series_labels()
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.3))
+                .label_font((FONT_FAMILY, 11))
+                .position(SeriesLabelPosition::UpperRight)
+                .draw()
+                .map_err(err)?;
+        }
+    }
+    Ok(())
+}
+
+/// PNG bytes of an RGB8 image (the png crate).
+fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, PlotError> {
+    let mut out = Vec::new();
+    {
+        let mut enc = png::Encoder::new(&mut out, width, height);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().map_err(|e| PlotError(format!("PNG: {e}")))?;
+        w.write_image_data(rgb).map_err(|e| PlotError(format!("PNG: {e}")))?;
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fig() -> Figure {
+        let mut s = Series::new("measured", vec![(0.0, 1.0), (1.0, 2.0), (2.0, f64::NAN)], Mark::Dots, None);
+        s.y_err = vec![0.1, 0.2, 0.3];
+        Figure {
+            panels: vec![
+                Panel {
+                    title: "CT".into(),
+                    x_label: "J".into(),
+                    y_label: "CT".into(),
+                    series: vec![s, Series::new("predicted", vec![(0.0, 1.1), (1.0, 2.1)], Mark::Line, Some(0))],
+                    zero_line: true,
+                },
+                Panel {
+                    title: "empty".into(),
+                    x_label: "x".into(),
+                    y_label: "y".into(),
+                    series: vec![],
+                    zero_line: false,
+                },
+            ],
+            columns: 2,
+            width: 640,
+            height: 320,
+        }
+    }
+
+    #[test]
+    fn svg_names_the_bundled_font_and_carries_it() {
+        let inline = svg_inline(&fig()).unwrap();
+        assert!(inline.starts_with("<svg"));
+        assert!(inline.contains(FONT_FAMILY));
+        assert!(inline.contains("measured") && inline.contains("predicted"));
+        let full = svg(&fig()).unwrap();
+        assert!(full.contains("@font-face"));
+        assert!(full.len() > inline.len() + 500_000, "font embedded");
+    }
+
+    #[test]
+    fn png_is_a_png_with_ink() {
+        let bytes = png(&fig()).unwrap();
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+        let dec = png::Decoder::new(std::io::Cursor::new(bytes));
+        let mut r = dec.read_info().unwrap();
+        let mut buf = vec![0; r.output_buffer_size().unwrap()];
+        r.next_frame(&mut buf).unwrap();
+        assert!(buf.iter().filter(|&&b| b < 128).count() > 1000, "text and lines drawn");
+    }
+}
