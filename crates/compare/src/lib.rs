@@ -84,7 +84,7 @@ pub struct Quantities {
     pub cp: Option<f64>,
     /// CQ = Q/(rho n^2 D^5).
     pub cq: Option<f64>,
-    /// Efficiency T V / P (forward flight only).
+    /// Efficiency T V / P (forward flight with positive thrust and power only).
     pub eta: Option<f64>,
 }
 
@@ -118,7 +118,7 @@ impl Quantities {
             ct: Some(thrust / (rho * n * n * d.powi(4))),
             cp: power.map(|p| p / (rho * n.powi(3) * d.powi(5))),
             cq: torque.map(|q| q / (rho * n * n * d.powi(5))),
-            eta: power.filter(|p| *p > 0.0 && v > 0.0).map(|p| thrust * v / p),
+            eta: power.filter(|p| *p > 0.0 && v > 0.0 && thrust > 0.0).map(|p| thrust * v / p),
         }
     }
 }
@@ -158,14 +158,22 @@ pub struct ComparedPoint {
     pub not_converged: usize,
     /// Reasons not to score the point.
     pub flags: Vec<String>,
+    /// Smallest |measured| value given a relative error, per quantity: 5 % of the largest in
+    /// the comparison (near zero thrust, at the windmill end of a J sweep, a relative error
+    /// says nothing).
+    pub rel_floor: Quantities,
 }
 
+/// Fraction of the largest |measured| value below which no relative error is computed.
+pub const RELATIVE_FLOOR: f64 = 0.05;
+
 impl ComparedPoint {
-    /// Relative error (predicted - measured)/measured of a quantity.
+    /// Relative error (predicted - measured)/measured of a quantity; `None` where the
+    /// measured value is below the floor.
     pub fn relative_error(&self, q: &str) -> Option<f64> {
         let m = self.measured.get(q)?;
         let p = self.predicted.get(q)?;
-        let floor = if q == "eta" { 0.02 } else { 1e-12 };
+        let floor = self.rel_floor.get(q).unwrap_or(0.0).max(1e-12);
         (m.abs() > floor).then(|| (p - m) / m)
     }
 
@@ -257,7 +265,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> ComparedPoint
                 ct: Some(ct),
                 cp: Some(cp),
                 cq: Some(cp / (2.0 * PI)),
-                eta: (v > 0.0 && cp > 0.0).then(|| thrust * v / power),
+                eta: (v > 0.0 && cp > 0.0 && ct > 0.0).then(|| thrust * v / power),
             };
             (m, Quantities::default())
         }
@@ -280,6 +288,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> ComparedPoint
         mach_tip: (omega * tip).hypot(v) / air.fluid.a,
         not_converged: result.not_converged,
         flags: p.flags.clone(),
+        rel_floor: Quantities::default(),
         air,
     }
 }
@@ -291,5 +300,25 @@ pub fn compare(setup: &Setup, sets: &[MeasuredSet]) -> Vec<ComparedPoint> {
         .enumerate()
         .flat_map(|(i, s)| s.points.iter().map(move |p| (i, p)))
         .collect();
-    jobs.par_iter().map(|(i, p)| compare_point(setup, *i, p)).collect()
+    let mut points: Vec<ComparedPoint> = jobs.par_iter().map(|(i, p)| compare_point(setup, *i, p)).collect();
+    let floor = |q: &str| {
+        let max = points
+            .iter()
+            .filter_map(|p| p.measured.get(q))
+            .fold(0.0f64, |a, v| a.max(v.abs()));
+        (max > 0.0).then_some(RELATIVE_FLOOR * max)
+    };
+    let rel_floor = Quantities {
+        thrust: floor("thrust"),
+        torque: floor("torque"),
+        power: floor("power"),
+        ct: floor("ct"),
+        cp: floor("cp"),
+        cq: floor("cq"),
+        eta: floor("eta"),
+    };
+    for p in &mut points {
+        p.rel_floor = rel_floor;
+    }
+    points
 }

@@ -178,6 +178,7 @@ mod tests {
             mach_tip: 0.0,
             not_converged: 0,
             flags: vec![],
+            rel_floor: Quantities::default(),
         }
     }
 

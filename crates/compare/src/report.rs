@@ -226,7 +226,7 @@ fn residual_figure(points: &[ComparedPoint]) -> Figure {
     ];
     let scored: Vec<&ComparedPoint> = points.iter().filter(|p| p.scored()).collect();
     let forward = scored.iter().any(|p| !p.is_static());
-    let panels = axes
+    let panels: Vec<Panel> = axes
         .iter()
         .filter(|(name, _)| forward || !name.starts_with("advance"))
         .map(|(name, x)| Panel {
@@ -425,7 +425,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for (name, f) in &figures {
         let _ = write!(h, "<figure id=\"fig-{name}\">{}</figure>\n", propbet_plot::svg_inline(f)?);
     }
-    h.push_str("<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured.</p>\n");
+    let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * crate::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
     top.extend(m.static_points.iter());
     top.extend(m.forward.iter());
