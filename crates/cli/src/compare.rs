@@ -44,7 +44,7 @@ pub struct CompareArgs {
     #[arg(long)]
     pub atmosphere: Option<String>,
     /// Air density [kg/m^3], overriding the one from any air state (to reproduce a study).
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Column map (TOML) for generic CSV files.
     #[arg(long)]
@@ -65,8 +65,12 @@ pub fn parse_atmosphere(text: &str) -> Result<AirState> {
     } else {
         parts[0].to_string()
     };
-    let state = AirState::new(parse_temperature(&t)?, parse_pressure(parts[1])?, parse_humidity(parts[2])?)
-        .map_err(|e| anyhow::anyhow!("--atmosphere '{text}': {e}"))?;
+    let state = AirState::new(
+        parse_temperature(&t)?,
+        parse_pressure(parts[1])?,
+        parse_humidity(parts[2])?,
+    )
+    .map_err(|e| anyhow::anyhow!("--atmosphere '{text}': {e}"))?;
     Ok(state)
 }
 
@@ -212,7 +216,11 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     json.push(b'\n');
     write_atomic(&args.out.join("metrics.json"), &[json], &inputs)?;
     write_atomic(&args.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    write_atomic(&args.out.join("points.csv"), &[points_csv(&args.measured, &points)], &inputs)?;
+    write_atomic(
+        &args.out.join("points.csv"),
+        &[points_csv(&args.measured, &points)],
+        &inputs,
+    )?;
     write_atomic(&args.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
 
     // A short summary on the terminal.
@@ -236,6 +244,16 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
                 x.max_rel_at
             );
         }
+    }
+    if m.overall.points == 0 {
+        let mut reasons: Vec<&str> = points.iter().flat_map(|p| p.flags.iter().map(String::as_str)).collect();
+        reasons.sort_unstable();
+        reasons.dedup();
+        println!(
+            "no point could be scored: all {} points are flagged ({})",
+            points.len(),
+            reasons.join("; ")
+        );
     }
     println!("report: {}", args.out.join("report.html").display());
     let faults: usize = sets.iter().map(MeasuredSet::faults).sum();

@@ -14,9 +14,9 @@ use propbet_qprop::{write_prop, PropFile, RadiusReading};
 use xfoil_runner::{find_xfoil, Xfoil, XfoilConfig};
 
 use crate::output::emit;
-use propbet_plot::{Figure, Mark, Panel, Series};
 use crate::predict::{load_prop, FluidArgs};
 use crate::values::parse_list;
+use propbet_plot::{Figure, Mark, Panel, Series};
 
 /// How XFOIL runs, and the cache.
 #[derive(Debug, Args)]
@@ -271,15 +271,35 @@ fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
     let mut drag = Vec::new();
     for (k, p) in polars.iter().enumerate() {
         let label = format!("XFOIL Re {:.0}", p.re);
-        lift.push(Series::new(label.clone(), p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(), Mark::Dots, Some(k)));
-        drag.push(Series::new(label, p.points.iter().map(|q| (q.cd, q.cl)).collect(), Mark::Dots, Some(k)));
+        lift.push(Series::new(
+            label.clone(),
+            p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(),
+            Mark::Dots,
+            Some(k),
+        ));
+        drag.push(Series::new(
+            label,
+            p.points.iter().map(|q| (q.cd, q.cl)).collect(),
+            Mark::Dots,
+            Some(k),
+        ));
     }
     for f in fits {
         let k = polars.iter().position(|p| p.re == f.coeffs.re_ref);
         let label = format!("QPROP fit Re {:.0}", f.coeffs.re_ref);
         let lin: Vec<_> = f.residuals.iter().filter(|r| r.linear).collect();
-        lift.push(Series::new(label.clone(), lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(), Mark::Line, k));
-        drag.push(Series::new(label, lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(), Mark::Line, k));
+        lift.push(Series::new(
+            label.clone(),
+            lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(),
+            Mark::Line,
+            k,
+        ));
+        drag.push(Series::new(
+            label,
+            lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(),
+            Mark::Line,
+            k,
+        ));
     }
     vec![
         Panel {

@@ -116,7 +116,9 @@ impl ModelArgs {
 
     /// The files the model reads (never to be overwritten).
     pub fn inputs(&self) -> Vec<&Path> {
-        std::iter::once(self.prop.as_path()).chain(self.polars.as_deref()).collect()
+        std::iter::once(self.prop.as_path())
+            .chain(self.polars.as_deref())
+            .collect()
     }
 }
 

@@ -118,7 +118,9 @@ impl Quantities {
             ct: Some(thrust / (rho * n * n * d.powi(4))),
             cp: power.map(|p| p / (rho * n.powi(3) * d.powi(5))),
             cq: torque.map(|q| q / (rho * n * n * d.powi(5))),
-            eta: power.filter(|p| *p > 0.0 && v > 0.0 && thrust > 0.0).map(|p| thrust * v / p),
+            eta: power
+                .filter(|p| *p > 0.0 && v > 0.0 && thrust > 0.0)
+                .map(|p| thrust * v / p),
         }
     }
 }
@@ -211,7 +213,12 @@ pub fn re_at(result: &PointResult, r: f64) -> f64 {
     if s.is_empty() {
         return f64::NAN;
     }
-    let i = s.iter().position(|x| x.r >= r).unwrap_or(s.len() - 1).max(1).min(s.len() - 1);
+    let i = s
+        .iter()
+        .position(|x| x.r >= r)
+        .unwrap_or(s.len() - 1)
+        .max(1)
+        .min(s.len() - 1);
     let (a, b) = (&s[i - 1], &s[i]);
     let t = ((r - a.r) / (b.r - a.r)).clamp(0.0, 1.0);
     a.re + t * (b.re - a.re)

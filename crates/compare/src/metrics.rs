@@ -82,8 +82,16 @@ fn metric(points: &[&ComparedPoint], q: &str) -> Option<Metric> {
         n,
         bias: sum / n as f64,
         rmse: (sum2 / n as f64).sqrt(),
-        mean_rel: if rels.is_empty() { f64::NAN } else { rels.iter().sum::<f64>() / nr },
-        mean_abs_rel: if rels.is_empty() { f64::NAN } else { rels.iter().map(|r| r.abs()).sum::<f64>() / nr },
+        mean_rel: if rels.is_empty() {
+            f64::NAN
+        } else {
+            rels.iter().sum::<f64>() / nr
+        },
+        mean_abs_rel: if rels.is_empty() {
+            f64::NAN
+        } else {
+            rels.iter().map(|r| r.abs()).sum::<f64>() / nr
+        },
         max_rel: max.map_or(f64::NAN, |m| m.0),
         max_rel_at: max.map_or(String::new(), |m| m.1.to_string()),
     })

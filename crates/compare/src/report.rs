@@ -9,7 +9,7 @@ use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 use serde::Serialize;
 
-use crate::metrics::{rpm_group, Metrics, MetricGroup};
+use crate::metrics::{rpm_group, MetricGroup, Metrics};
 use crate::{predict, ComparedPoint, Setup, QUANTITIES};
 
 /// A measured file as the report names it.
@@ -60,10 +60,7 @@ const LABELS: [(&str, &str, &str); 6] = [
 ];
 
 fn label(q: &str) -> (&'static str, &'static str) {
-    LABELS
-        .iter()
-        .find(|l| l.0 == q)
-        .map_or(("?", ""), |l| (l.1, l.2))
+    LABELS.iter().find(|l| l.0 == q).map_or(("?", ""), |l| (l.1, l.2))
 }
 
 /// `x` with 4 significant digits.
@@ -91,7 +88,10 @@ fn pct(x: f64) -> String {
 }
 
 fn esc(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// Groups of points by RPM, in order, with a palette index each.
@@ -109,10 +109,18 @@ fn mean(xs: impl Iterator<Item = f64>) -> f64 {
     s / n.max(1) as f64
 }
 
-fn measured_series(name: String, pts: &[&ComparedPoint], x: impl Fn(&ComparedPoint) -> f64, q: &str, k: usize) -> Series {
+fn measured_series(
+    name: String,
+    pts: &[&ComparedPoint],
+    x: impl Fn(&ComparedPoint) -> f64,
+    q: &str,
+    k: usize,
+) -> Series {
     let mut s = Series::new(
         name,
-        pts.iter().map(|p| (x(p), p.measured.get(q).unwrap_or(f64::NAN))).collect(),
+        pts.iter()
+            .map(|p| (x(p), p.measured.get(q).unwrap_or(f64::NAN)))
+            .collect(),
         Mark::Dots,
         Some(k),
     );
@@ -153,14 +161,19 @@ fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure>
             })
             .collect();
         for (panel, q) in panels.iter_mut().zip(["ct", "cp", "eta"]) {
-            panel.series.push(measured_series(format!("measured {name}"), pts, |p| p.j, q, k));
+            panel
+                .series
+                .push(measured_series(format!("measured {name}"), pts, |p| p.j, q, k));
             let line: Vec<(f64, f64)> = curve
                 .iter()
                 .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
                 .collect();
-            panel
-                .series
-                .push(Series::new(format!("predicted {rpm:.0} rpm"), line, Mark::Line, Some(k)));
+            panel.series.push(Series::new(
+                format!("predicted {rpm:.0} rpm"),
+                line,
+                Mark::Line,
+                Some(k),
+            ));
         }
     }
     Some(Figure {
@@ -187,7 +200,11 @@ fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
             (rpm, predict(setup, rpm * std::f64::consts::PI / 30.0, 0.0, &fluid).0)
         })
         .collect();
-    let qs: &[&str] = if has_torque { &["thrust", "torque", "ct", "cp"] } else { &["thrust", "ct"] };
+    let qs: &[&str] = if has_torque {
+        &["thrust", "torque", "ct", "cp"]
+    } else {
+        &["thrust", "ct"]
+    };
     let panels = qs
         .iter()
         .map(|q| {
@@ -195,7 +212,11 @@ fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
             Panel {
                 title: format!("static {name} vs RPM"),
                 x_label: "RPM".into(),
-                y_label: if unit.is_empty() { name.into() } else { format!("{name} [{unit}]") },
+                y_label: if unit.is_empty() {
+                    name.into()
+                } else {
+                    format!("{name} [{unit}]")
+                },
                 series: vec![
                     measured_series("measured".into(), &stat, |p| p.rpm, q, 0),
                     Series::new(
@@ -218,7 +239,8 @@ fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
 }
 
 fn residual_figure(points: &[ComparedPoint]) -> Figure {
-    let axes: [(&str, fn(&ComparedPoint) -> f64); 4] = [
+    type Axis = (&'static str, fn(&ComparedPoint) -> f64);
+    let axes: [Axis; 4] = [
         ("advance ratio J", |p| p.j),
         ("RPM", |p| p.rpm),
         ("Reynolds number at 0.75 R", |p| p.re75),
@@ -299,9 +321,13 @@ fn metric_rows(out: &mut String, g: &MetricGroup, html: bool) {
     for q in QUANTITIES {
         let Some(m) = g.metrics.get(q) else { continue };
         let (name, unit) = label(q);
-        let unit = if unit.is_empty() { String::new() } else { format!(" {unit}") };
+        let unit = if unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {unit}")
+        };
         let cells = [
-            format!("{name}"),
+            name.to_string(),
             m.n.to_string(),
             format!("{}{unit}", sig(m.bias)),
             format!("{}{unit}", sig(m.rmse)),
@@ -321,11 +347,24 @@ fn metric_rows(out: &mut String, g: &MetricGroup, html: bool) {
     }
 }
 
-const METRIC_HEAD: [&str; 7] = ["quantity", "n", "bias", "RMSE", "mean rel.", "mean |rel.|", "max rel. (at)"];
+const METRIC_HEAD: [&str; 7] = [
+    "quantity",
+    "n",
+    "bias",
+    "RMSE",
+    "mean rel.",
+    "mean |rel.|",
+    "max rel. (at)",
+];
 
 fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
     for g in groups {
-        let _ = write!(out, "<h3>{} <small>({} points)</small></h3>\n<table><tr>", esc(&g.name), g.points);
+        let _ = write!(
+            out,
+            "<h3>{} <small>({} points)</small></h3>\n<table><tr>",
+            esc(&g.name),
+            g.points
+        );
         for h in METRIC_HEAD {
             let _ = write!(out, "<th>{h}</th>");
         }
@@ -360,7 +399,9 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let standard = pts.iter().filter(|p| p.air.standard).count();
     let air_sources: std::collections::BTreeSet<&str> = pts.iter().map(|p| p.air.source.as_str()).collect();
     let rho: Vec<f64> = pts.iter().map(|p| p.air.fluid.rho).collect();
-    let (rho_lo, rho_hi) = rho.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(*r), b.max(*r)));
+    let (rho_lo, rho_hi) = rho
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(*r), b.max(*r)));
     let air_line = if (rho_hi - rho_lo) < 1e-9 {
         format!("ρ = {:.4} kg/m³", rho_lo)
     } else {
@@ -374,11 +415,16 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         ));
     }
     if m.unscored > 0 {
-        warnings.push(format!("{} flagged points are shown but not scored (see the point table).", m.unscored));
+        warnings.push(format!(
+            "{} flagged points are shown but not scored (see the point table).",
+            m.unscored
+        ));
     }
     let faults: usize = input.files.iter().map(|f| f.set.faults()).sum();
     if faults > 0 {
-        warnings.push(format!("{faults} rows were dropped as faulty (listed under Measured files)."));
+        warnings.push(format!(
+            "{faults} rows were dropped as faulty (listed under Measured files)."
+        ));
     }
     warnings.extend(input.prop_notes.iter().cloned());
 
@@ -423,7 +469,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     }
     h.push_str("<h2>Figures</h2>\n");
     for (name, f) in &figures {
-        let _ = write!(h, "<figure id=\"fig-{name}\">{}</figure>\n", propbet_plot::svg_inline(f)?);
+        let _ = writeln!(h, "<figure id=\"fig-{name}\">{}</figure>", propbet_plot::svg_inline(f)?);
     }
     let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * crate::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
@@ -489,9 +535,9 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         }
         h.push_str("</ul>\n");
         if !s.dropped.is_empty() {
-            let _ = write!(
+            let _ = writeln!(
                 h,
-                "<details><summary>{} dropped rows</summary><table><tr><th>lines</th><th>rows</th><th>reason</th><th>detail</th></tr>\n",
+                "<details><summary>{} dropped rows</summary><table><tr><th>lines</th><th>rows</th><th>reason</th><th>detail</th></tr>",
                 s.dropped.len()
             );
             for (a, b, n, r, d) in dropped_ranges(&s.dropped) {

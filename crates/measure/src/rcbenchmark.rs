@@ -18,7 +18,7 @@ use crate::{Format, MeasuredSet, ReadError, ReadOptions, RpmSource};
 /// True when a header line looks like an RCbenchmark export.
 pub fn looks_like(header: &str) -> bool {
     let h = header.to_ascii_lowercase();
-    h.contains("time (s)") && h.contains("esc") && h.contains("thrust")
+    h.contains("time (s)") && h.contains("esc")
 }
 
 fn find(table: &CsvTable, pred: impl Fn(&str) -> bool) -> Option<(usize, String, Option<String>)> {

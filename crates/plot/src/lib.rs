@@ -146,7 +146,9 @@ pub fn svg_inline(fig: &Figure) -> Result<String, PlotError> {
 /// The figure as a standalone SVG file carrying its font.
 pub fn svg(fig: &Figure) -> Result<String, PlotError> {
     let mut text = svg_inline(fig)?;
-    let close = text.find('>').ok_or_else(|| PlotError("SVG without a root element".into()))?;
+    let close = text
+        .find('>')
+        .ok_or_else(|| PlotError("SVG without a root element".into()))?;
     text.insert_str(close + 1, &format!("<style>{}</style>", font_face_css()));
     Ok(text)
 }
@@ -219,7 +221,10 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
             .map_err(err)?;
         if panel.zero_line {
             chart
-                .draw_series(LineSeries::new(vec![(x0, 0.0), (x1, 0.0)], BLACK.mix(0.5).stroke_width(1)))
+                .draw_series(LineSeries::new(
+                    vec![(x0, 0.0), (x1, 0.0)],
+                    BLACK.mix(0.5).stroke_width(1),
+                ))
                 .map_err(err)?;
         }
         let mut legend = false;
@@ -234,16 +239,19 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
                 .collect();
             let xy = data.iter().map(|d| d.1);
             let drawn = match s.mark {
-                Mark::Line => chart
-                    .draw_series(LineSeries::new(xy, c.stroke_width(2)))
-                    .map_err(err)?,
+                Mark::Line => chart.draw_series(LineSeries::new(xy, c.stroke_width(2))).map_err(err)?,
                 Mark::Dashed => chart
                     .draw_series(DashedLineSeries::new(xy, 6, 4, c.stroke_width(2)))
                     .map_err(err)?,
                 Mark::Dots => {
                     let bars: Vec<(f64, f64, f64)> = data
                         .iter()
-                        .filter_map(|(k, p)| s.y_err.get(*k).filter(|e| e.is_finite() && **e > 0.0).map(|e| (p.0, p.1, *e)))
+                        .filter_map(|(k, p)| {
+                            s.y_err
+                                .get(*k)
+                                .filter(|e| e.is_finite() && **e > 0.0)
+                                .map(|e| (p.0, p.1, *e))
+                        })
                         .collect();
                     chart
                         .draw_series(
@@ -259,13 +267,15 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
             if !s.name.is_empty() {
                 legend = true;
                 let dots = s.mark == Mark::Dots;
-                drawn.label(s.name.clone()).legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
-                    if dots {
-                        Circle::new((x + 8, y), 3, c.filled()).into_dyn()
-                    } else {
-                        PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)).into_dyn()
-                    }
-                });
+                drawn
+                    .label(s.name.clone())
+                    .legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
+                        if dots {
+                            Circle::new((x + 8, y), 3, c.filled()).into_dyn()
+                        } else {
+                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)).into_dyn()
+                        }
+                    });
             }
         }
         if legend {
@@ -300,7 +310,12 @@ mod tests {
     use super::*;
 
     fn fig() -> Figure {
-        let mut s = Series::new("measured", vec![(0.0, 1.0), (1.0, 2.0), (2.0, f64::NAN)], Mark::Dots, None);
+        let mut s = Series::new(
+            "measured",
+            vec![(0.0, 1.0), (1.0, 2.0), (2.0, f64::NAN)],
+            Mark::Dots,
+            None,
+        );
         s.y_err = vec![0.1, 0.2, 0.3];
         Figure {
             panels: vec![
@@ -308,7 +323,10 @@ mod tests {
                     title: "CT".into(),
                     x_label: "J".into(),
                     y_label: "CT".into(),
-                    series: vec![s, Series::new("predicted", vec![(0.0, 1.1), (1.0, 2.1)], Mark::Line, Some(0))],
+                    series: vec![
+                        s,
+                        Series::new("predicted", vec![(0.0, 1.1), (1.0, 2.1)], Mark::Line, Some(0)),
+                    ],
                     zero_line: true,
                 },
                 Panel {

@@ -1,5 +1,6 @@
-//! Every measured file shipped in ../shared loads, with the points and drops its content implies.
-//! Expected values were read from the files themselves (python csv, see each comment).
+//! Every measured file the project ships (copies of ../shared, see their PROVENANCE.md) loads,
+//! with the points and drops its content implies. Expected values were read from the files
+//! themselves (python csv, see each comment).
 
 use std::path::PathBuf;
 
