@@ -6,7 +6,7 @@
 #    each station's Re and Mach at 5000 rpm static, fitted per station by `propbet polars`.
 set -euo pipefail
 here=props/apcsf_10x4.7
-geom=../shared/data/uiuc/apcsf_10x4.7_geom.txt
+geom=$here/apcsf_10x4.7_geom.txt   # copy of ../shared/data/uiuc/apcsf_10x4.7_geom.txt
 {
   echo "APC 10x4.7 Slow Flyer (UIUC measured geometry)"
   echo ""
