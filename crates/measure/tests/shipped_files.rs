@@ -6,10 +6,23 @@ use std::path::PathBuf;
 
 use propbet_measure::{read, DropReason, Format, Loads, ReadOptions, Reduction, RpmSource, Speed};
 
+/// The shipped copy of a ../shared file.
 fn shared(rel: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared")
-        .join(rel)
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let file = rel.rsplit('/').next().unwrap();
+    let copy = if rel.starts_with("data/thrust_stand/") {
+        root.join("tests/data/thrust_stand").join(file)
+    } else if rel.starts_with("data/photofoil/") {
+        root.join("props/photofoil_8x4.5").join(file)
+    } else if rel.starts_with("data/uiuc/apcsf_10x4.7") {
+        root.join("props/apcsf_10x4.7/uiuc").join(file)
+    } else if let Some(r) = rel.strip_prefix("examples/hidden_effects/") {
+        root.join("tests/data/hidden_effects").join(r)
+    } else {
+        panic!("{rel}: not shipped")
+    };
+    assert!(copy.exists(), "{}", copy.display());
+    copy
 }
 
 fn load(rel: &str, opts: ReadOptions) -> propbet_measure::MeasuredSet {
