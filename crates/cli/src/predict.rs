@@ -202,7 +202,17 @@ pub fn load_prop(path: &Path, units: Option<&str>) -> Result<LoadedProp> {
 /// Reads a prop file, prints its warnings and discretises it as QPROP does (or exactly as
 /// QPROP 1.22 reads it, with `qprop_compat`).
 pub fn load_rotor(path: &Path, units: Option<&str>, qprop_compat: bool) -> Result<(LoadedProp, Rotor)> {
-    let loaded = load_prop(path, units)?;
+    let mut loaded = load_prop(path, units)?;
+    let differences: Vec<String> = loaded.file.qprop_differences().into_iter().map(|w| w.message).collect();
+    for w in &mut loaded.warnings {
+        if differences.iter().any(|d| w.ends_with(d.as_str())) {
+            w.push_str(if qprop_compat {
+                " (reproduced as QPROP reads it: --qprop-compat)"
+            } else {
+                " (--qprop-compat reproduces QPROP)"
+            });
+        }
+    }
     for w in &loaded.warnings {
         eprintln!("propbet: warning: {w}");
     }

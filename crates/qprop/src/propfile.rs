@@ -405,8 +405,9 @@ impl PropFile {
         Ok(())
     }
 
-    /// Where QPROP 1.22 reads this file differently from what it means.
-    fn qprop_differences(&self) -> Vec<Warning> {
+    /// Where QPROP 1.22 reads this file differently from what it means (also among the
+    /// warnings of [`parse_prop`]).
+    pub fn qprop_differences(&self) -> Vec<Warning> {
         let mut w = Vec::new();
         if let Some(rad) = self.radius {
             if self.scale[0] != 1.0 || self.offset[0] != 0.0 {
@@ -415,7 +416,7 @@ impl PropFile {
                     line: 0,
                     message: format!(
                         "line 2 gives R = {rad}: QPROP 1.22 takes it unscaled as {rad} m, propbet reads it in the \
-                         units of the r column as {si} m (use the QPROP-compatibility switch to reproduce QPROP)"
+                         units of the r column as {si} m"
                     ),
                 });
             }
@@ -425,8 +426,7 @@ impl PropFile {
             w.push(Warning {
                 line: 0,
                 message: "REref varies along the blade: QPROP 1.22 uses the value at its first station for all \
-                          stations, propbet uses each station's own (use the QPROP-compatibility switch to \
-                          reproduce QPROP)"
+                          stations, propbet uses each station's own"
                     .to_string(),
             });
         }
