@@ -129,13 +129,24 @@ fn j_group(p: &ComparedPoint) -> (i64, String) {
     (b, format!("J {:.1}-{:.1}", b as f64 * 0.2, (b + 1) as f64 * 0.2))
 }
 
-fn grouped(points: &[&ComparedPoint], key: fn(&ComparedPoint) -> (i64, String)) -> Vec<MetricGroup> {
+/// Points grouped by `key` (sort key, name), in key order.
+pub fn group_points<'a>(
+    points: impl IntoIterator<Item = &'a ComparedPoint>,
+    key: fn(&ComparedPoint) -> (i64, String),
+) -> Vec<(String, Vec<&'a ComparedPoint>)> {
     let mut by: BTreeMap<i64, (String, Vec<&ComparedPoint>)> = BTreeMap::new();
     for p in points {
         let (k, name) = key(p);
         by.entry(k).or_insert_with(|| (name, Vec::new())).1.push(p);
     }
-    by.into_values().map(|(name, pts)| group(name, &pts)).collect()
+    by.into_values().collect()
+}
+
+fn grouped(points: &[&ComparedPoint], key: fn(&ComparedPoint) -> (i64, String)) -> Vec<MetricGroup> {
+    group_points(points.iter().copied(), key)
+        .into_iter()
+        .map(|(name, pts)| group(name, &pts))
+        .collect()
 }
 
 /// Scores the points.

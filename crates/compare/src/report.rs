@@ -9,7 +9,7 @@ use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 use serde::Serialize;
 
-use crate::metrics::{rpm_group, MetricGroup, Metrics};
+use crate::metrics::{group_points, rpm_group, MetricGroup, Metrics};
 use crate::{predict, ComparedPoint, Setup, QUANTITIES};
 
 /// A measured file as the report names it.
@@ -94,16 +94,6 @@ fn esc(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// Groups of points by RPM, in order, with a palette index each.
-fn rpm_groups(points: &[ComparedPoint]) -> Vec<(String, Vec<&ComparedPoint>)> {
-    let mut by: std::collections::BTreeMap<i64, (String, Vec<&ComparedPoint>)> = Default::default();
-    for p in points {
-        let (k, name) = rpm_group(p);
-        by.entry(k).or_insert_with(|| (name, Vec::new())).1.push(p);
-    }
-    by.into_values().collect()
-}
-
 fn mean(xs: impl Iterator<Item = f64>) -> f64 {
     let (s, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
     s / n.max(1) as f64
@@ -129,12 +119,11 @@ fn measured_series(
 }
 
 fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
-    let forward: Vec<ComparedPoint> = points.iter().filter(|p| !p.is_static()).cloned().collect();
-    if forward.is_empty() {
+    if points.iter().all(ComparedPoint::is_static) {
         return None;
     }
     // Static points of the same RPM groups belong on the J axis too.
-    let groups = rpm_groups(points);
+    let groups = group_points(points, rpm_group);
     let mut panels: Vec<Panel> = ["ct", "cp", "eta"]
         .iter()
         .map(|q| Panel {

@@ -82,13 +82,13 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     if cols.torque.is_none() {
         notes.push("no torque column: thrust-only comparison".into());
     }
-    for (_, h, _) in table.headers.iter().enumerate().filter_map(|(i, h)| {
+    for h in &table.headers {
         let n = split_header(h).0.to_ascii_lowercase();
-        (n.contains("temp") && !n.contains("air") && !n.contains("ambient")).then(|| (i, h.clone(), ()))
-    }) {
-        notes.push(format!(
-            "column '{h}' is a probe temperature, not air temperature: not used for density"
-        ));
+        if n.contains("temp") && !n.contains("air") && !n.contains("ambient") {
+            notes.push(format!(
+                "column '{h}' is a probe temperature, not air temperature: not used for density"
+            ));
+        }
     }
     let electrical = column(&table, Quantity::Rotation, |n| n.contains("electrical speed"))?;
     let optical = column(&table, Quantity::Rotation, |n| n.contains("optical speed"))?;
