@@ -137,7 +137,7 @@ pub(crate) fn solve_point_prepared(
 ) -> PointResult {
     let ctx = context(rotor, fluid, op, opts);
     match prepared {
-        Some(p) if op.omega > 0.0 => {
+        Some(p) if op.omega > 0.0 && opts.vector_ok() => {
             let mut sums = Sums::default();
             let mut stations: Vec<Option<StationResult>> = if opts.keep_stations {
                 vec![None; rotor.stations.len()]
@@ -270,9 +270,9 @@ fn veval(g: &Group, c: &Ctx, beta: f64x8, ua: f64x8, ut: f64x8, u: f64x8, psi0: 
     let inv_wa = one / wa_s;
     let tsr = wt_s * inv_wa * g.tip_over_r;
     let tsr_p = (wt_p * g.tip_over_r - tsr * wa_p) * inv_wa;
-    let (f, f_p) = if c.opts.tip_loss {
+    let (f, f_p) = if let Some(strength) = c.opts.tip_divisor() {
         let sign = select(tsr.simd_lt(zero), f64x8::splat(-1.0), one);
-        let farg_tsr = g.f_per_tsr * sign;
+        let farg_tsr = g.f_per_tsr * sign / f64x8::splat(strength);
         let farg = (farg_tsr * tsr).min(f64x8::splat(20.0));
         let fexp = (-farg).exp();
         let f = two_pi * fexp.acos();

@@ -56,6 +56,14 @@ pub struct SolverOptions {
     pub tol: f64,
     /// Keep the per-station results in [`PointResult::stations`].
     pub keep_stations: bool,
+    /// Strength of the tip-loss factor: its exponent `f` is divided by it (1 = QPROP's
+    /// modified Prandtl factor; towards 0 the loss vanishes, above 1 it reaches further inboard).
+    pub tip_loss_strength: f64,
+    /// Strength of a Prandtl hub-loss factor, `f_hub = (B/2) (r - r_hub)/r_hub / tan(phi) / s`
+    /// (0 = no hub loss, QPROP's model; 1 = Prandtl's).
+    pub hub_loss_strength: f64,
+    /// Hub radius the hub-loss factor vanishes at [m].
+    pub hub_radius: f64,
 }
 
 impl Default for SolverOptions {
@@ -66,8 +74,40 @@ impl Default for SolverOptions {
             max_newton: 20,
             tol: 1e-6,
             keep_stations: false,
+            tip_loss_strength: 1.0,
+            hub_loss_strength: 0.0,
+            hub_radius: 0.0,
         }
     }
+}
+
+impl SolverOptions {
+    /// True when the vectorised path reproduces these options (it has no hub loss).
+    pub(crate) fn vector_ok(&self) -> bool {
+        self.hub_loss_strength == 0.0
+    }
+
+    /// The tip-loss exponent's divisor, or `None` when there is no tip loss.
+    pub(crate) fn tip_divisor(&self) -> Option<f64> {
+        (self.tip_loss && self.tip_loss_strength > 0.0).then_some(self.tip_loss_strength)
+    }
+}
+
+/// Prandtl's factor `F = (2/pi) acos(exp(-|k tsr|))` (exponent capped at 20) and its derivative
+/// with respect to psi, given `tsr` and d(tsr)/d(psi).
+#[inline]
+fn prandtl(k: f64, tsr: f64, tsr_p: f64) -> (f64, f64) {
+    let sign = if tsr < 0.0 { -1.0 } else { 1.0 };
+    let farg = (k * tsr * sign).min(20.0);
+    let farg_tsr = k * sign;
+    let fexp = (-farg).exp();
+    let f = (2.0 / std::f64::consts::PI) * fexp.acos();
+    let f_tsr = if fexp < 1.0 {
+        (2.0 / std::f64::consts::PI) / (1.0 - fexp * fexp).sqrt() * fexp * farg_tsr
+    } else {
+        0.0
+    };
+    (f, f_tsr * tsr_p)
 }
 
 /// How a station's solution was obtained.
@@ -365,22 +405,17 @@ fn eval(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, u: f64, psi: f64) ->
     let (f_tip, f_p, adw, adw_p) = if wa != 0.0 && wt != 0.0 {
         let tsr = wt / wa * c.tip / st.r;
         let tsr_p = (wt_p * c.tip / st.r - tsr * wa_p) / wa;
-        let (f, f_p) = if c.opts.tip_loss {
-            let k = 0.5 * c.blades * (1.0 - st.r / c.tip);
-            let sign = if tsr < 0.0 { -1.0 } else { 1.0 };
-            let farg = (k * tsr * sign).min(20.0);
-            let farg_tsr = k * sign;
-            let fexp = (-farg).exp();
-            let f = (2.0 / std::f64::consts::PI) * fexp.acos();
-            let f_tsr = if fexp < 1.0 {
-                (2.0 / std::f64::consts::PI) / (1.0 - fexp * fexp).sqrt() * fexp * farg_tsr
-            } else {
-                0.0
-            };
-            (f, f_tsr * tsr_p)
-        } else {
-            (1.0, 0.0)
+        let (mut f, mut f_p) = match c.opts.tip_divisor() {
+            Some(s) => prandtl(0.5 * c.blades * (1.0 - st.r / c.tip) / s, tsr, tsr_p),
+            None => (1.0, 0.0),
         };
+        let (s_h, r_h) = (c.opts.hub_loss_strength, c.opts.hub_radius);
+        if s_h > 0.0 && r_h > 0.0 && st.r > r_h {
+            // 1/tan(phi) = tsr r/R.
+            let k = 0.5 * c.blades * (st.r - r_h) / r_h * st.r / c.tip / s_h;
+            let (h, h_p) = prandtl(k, tsr, tsr_p);
+            (f, f_p) = (f * h, f_p * h + f * h_p);
+        }
         (f, f_p, 1.0 / tsr, -tsr_p / (tsr * tsr))
     } else {
         (1.0, 0.0, 0.0, 0.0)

@@ -39,7 +39,11 @@ impl<'a> Solver<'a> {
     /// Every point is still solved independently (same iteration from the same start).
     pub fn solve_many(&self, ops: &[OperatingPoint]) -> Vec<PointResult> {
         let mut out = Vec::with_capacity(ops.len());
-        let Some(p) = self.prepared.as_ref().filter(|_| !self.opts.keep_stations) else {
+        let Some(p) = self
+            .prepared
+            .as_ref()
+            .filter(|_| !self.opts.keep_stations && self.opts.vector_ok())
+        else {
             out.extend(ops.iter().map(|&op| self.solve(op)));
             return out;
         };

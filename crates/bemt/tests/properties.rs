@@ -210,3 +210,44 @@ fn bad_rotors_are_rejected() {
     r.tip_radius = 0.01;
     assert!(r.validate().unwrap_err().to_string().contains("tip radius"));
 }
+
+/// Tip-loss strength and hub loss: the vectorised and scalar paths agree with a weakened tip
+/// loss; strength towards 0 approaches no tip loss; a hub loss takes thrust off the root only.
+#[test]
+fn loss_factor_strengths() {
+    let rotor = cam6x3();
+    let fluid = Fluid::QPROP_DEFAULT;
+    let op = OperatingPoint::from_rpm(5.0, 8000.0);
+    let solve = |opts: SolverOptions| solve_point(&rotor, &fluid, op, &opts);
+    let base = solve(keep());
+    let weak = SolverOptions {
+        tip_loss_strength: 0.5,
+        ..SolverOptions::default()
+    };
+    let scalar = solve(SolverOptions {
+        keep_stations: true,
+        ..weak
+    });
+    let vector = solve_points(&rotor, &fluid, &[op], &weak).remove(0);
+    assert!((scalar.thrust - vector.thrust).abs() < 1e-9 * scalar.thrust.abs());
+    assert!(scalar.thrust > base.thrust, "weaker tip loss, more thrust");
+    let none = solve(SolverOptions {
+        tip_loss: false,
+        ..keep()
+    });
+    let tiny = solve(SolverOptions {
+        tip_loss_strength: 1e-3,
+        ..keep()
+    });
+    assert!((none.thrust - tiny.thrust).abs() < 1e-6 * none.thrust);
+    let hub = solve(SolverOptions {
+        hub_loss_strength: 1.0,
+        hub_radius: 0.5 * 0.0254,
+        ..keep()
+    });
+    assert!(hub.thrust < base.thrust);
+    let (h0, b0) = (&hub.stations[0], &base.stations[0]);
+    let (hn, bn) = (hub.stations.last().unwrap(), base.stations.last().unwrap());
+    assert!(h0.f_tip < 0.9 * b0.f_tip, "root factor {} vs {}", h0.f_tip, b0.f_tip);
+    assert!((hn.f_tip - bn.f_tip).abs() < 1e-3, "tip factor unchanged");
+}
