@@ -317,6 +317,36 @@ pub(crate) fn point_result(
     let (thrust, torque) = (sums.thrust, sums.torque);
     let rho = fluid.rho;
     let big_r = rotor.tip_radius;
+    loads_result(big_r, rho, op, thrust, torque, sums, stations)
+}
+
+impl PointResult {
+    /// The same solution with other loads at another (logged) rotation rate and density, as a
+    /// measurement chain would report it: power, coefficients, efficiency and the slipstream
+    /// follow the new values; the station states and mean coefficients stay.
+    pub fn with_loads(&self, thrust: f64, torque: f64, omega: f64, rho: f64, tip_radius: f64) -> PointResult {
+        let sums = Sums {
+            thrust,
+            torque,
+            wsum: 1.0,
+            clsum: self.cl_avg,
+            cdsum: self.cd_avg,
+            not_converged: self.not_converged,
+        };
+        let op = OperatingPoint { v: self.v, omega };
+        loads_result(tip_radius, rho, op, thrust, torque, &sums, self.stations.clone())
+    }
+}
+
+fn loads_result(
+    big_r: f64,
+    rho: f64,
+    op: OperatingPoint,
+    thrust: f64,
+    torque: f64,
+    sums: &Sums,
+    stations: Vec<StationResult>,
+) -> PointResult {
     let power = torque * op.omega;
     let eta = if power != 0.0 { thrust * op.v / power } else { 0.0 };
     let disc = std::f64::consts::PI * big_r * big_r;

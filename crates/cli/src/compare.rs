@@ -173,8 +173,9 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
         diameter: model.diameter,
         opts: model.opts,
         air,
+        effects: model.effects.clone(),
     };
-    let points = compare(&setup, &sets);
+    let points = compare(&setup, &sets)?;
     let m = metrics(&points);
     let mut prop_notes = model.loaded.warnings.clone();
     if args.model.qprop_compat {
@@ -182,6 +183,9 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
             "read as QPROP 1.22 does (--qprop-compat): tip-loss radius {} m",
             model.rotor.tip_radius
         ));
+    }
+    if !model.effects.is_empty() {
+        prop_notes.push(format!("model with effects: {}", model.effects.describe()));
     }
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     let rep = report::build(&ReportInput {

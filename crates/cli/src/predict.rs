@@ -6,6 +6,8 @@ use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use propbet_atmosphere::AirState;
 use propbet_bemt::{grid_rpm_j, grid_rpm_v, Discretization, Fluid, PointResult, Rotor, Solver, SolverOptions};
+use propbet_effects::spec::Registry;
+use propbet_effects::{parse_spec, Stack};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 use serde::Serialize;
 
@@ -73,6 +75,14 @@ pub struct ModelArgs {
     /// section model, instead of the prop file's QPROP coefficients.
     #[arg(long)]
     pub polars: Option<PathBuf>,
+    /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
+    /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
+    /// `propbet effects` for the list). Parameters not given take their neutral value.
+    #[arg(long = "effect", value_name = "SPEC")]
+    pub effects: Vec<String>,
+    /// TOML file of user-defined effects (formulas on a hook), usable by `--effect`.
+    #[arg(long)]
+    pub user_effects: Option<PathBuf>,
 }
 
 /// A model ready to solve.
@@ -87,6 +97,10 @@ pub struct Model {
     /// in the table's units) [m]: the D of the coefficients even when `--qprop-compat` gives
     /// the tip-loss factor QPROP's unscaled R.
     pub diameter: f64,
+    /// The effects known (built-in and user-defined).
+    pub registry: Registry,
+    /// The effects added with `--effect`.
+    pub effects: Stack,
 }
 
 impl ModelArgs {
@@ -106,11 +120,27 @@ impl ModelArgs {
             ..SolverOptions::default()
         };
         let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
+        let registry = match &self.user_effects {
+            Some(path) => {
+                let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+                let user = propbet_effects::user::parse(&text, &path.display().to_string())?;
+                Registry::with_user(user)?
+            }
+            None => Registry::default(),
+        };
+        let active = self
+            .effects
+            .iter()
+            .map(|s| registry.resolve(&parse_spec(s)?))
+            .collect::<Result<Vec<_>, _>>()
+            .context("--effect")?;
         Ok(Model {
             loaded,
             rotor,
             opts,
             diameter,
+            registry,
+            effects: Stack { active },
         })
     }
 
@@ -118,6 +148,7 @@ impl ModelArgs {
     pub fn inputs(&self) -> Vec<&Path> {
         std::iter::once(self.prop.as_path())
             .chain(self.polars.as_deref())
+            .chain(self.user_effects.as_deref())
             .collect()
     }
 }
@@ -285,7 +316,12 @@ struct JsonOut<'a> {
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
     let Model {
-        loaded, rotor, opts, ..
+        loaded,
+        rotor,
+        opts,
+        diameter,
+        effects,
+        ..
     } = args.model.build(args.stations.is_some())?;
     let (fluid, fluid_source) = args.air.fluid()?;
     let rpms = parse_list("--rpm", &args.rpm)?;
@@ -319,15 +355,30 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         points
             .par_chunks(128)
             .map(|c| {
-                let r: Vec<PointResult> = solver.solve_many(c);
-                Chunk {
+                let r: Vec<PointResult> = if effects.is_empty() {
+                    solver.solve_many(c)
+                } else {
+                    c.iter()
+                        .map(|&op| {
+                            let p = effects.predict(&rotor, &opts, &fluid, diameter, op)?;
+                            Ok(p.result.with_loads(
+                                p.loads.thrust,
+                                p.loads.torque,
+                                op.omega,
+                                fluid.rho,
+                                rotor.tip_radius,
+                            ))
+                        })
+                        .collect::<Result<_, propbet_effects::EffectError>>()?
+                };
+                Ok(Chunk {
                     text: if csv { summary_rows(&r) } else { Vec::new() },
                     failed: r.iter().map(|p| p.not_converged).sum(),
                     failed_points: r.iter().filter(|p| p.not_converged > 0).count(),
                     results: if keep_results { r } else { Vec::new() },
-                }
+                })
             })
-            .collect()
+            .collect::<Result<_, propbet_effects::EffectError>>()?
     };
     let failed: usize = chunks.iter().map(|c| c.failed).sum();
     let failed_points: usize = chunks.iter().map(|c| c.failed_points).sum();

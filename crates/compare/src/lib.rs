@@ -9,7 +9,8 @@ pub mod report;
 use std::f64::consts::PI;
 
 use propbet_atmosphere::AirState;
-use propbet_bemt::{Fluid, OperatingPoint, PointResult, Rotor, Solver, SolverOptions};
+use propbet_bemt::{Fluid, OperatingPoint, PointResult, Rotor, SolverOptions};
+use propbet_effects::{EffectError, Stack};
 use propbet_measure::{Loads, MeasuredPoint, MeasuredSet, Speed};
 use rayon::prelude::*;
 use serde::Serialize;
@@ -201,6 +202,8 @@ pub struct Setup<'a> {
     pub opts: SolverOptions,
     /// Air.
     pub air: AirChoice,
+    /// Effects added to the model (`--effect`); empty for the baseline.
+    pub effects: Stack,
 }
 
 fn hypot_rel(parts: &[Option<f64>]) -> f64 {
@@ -224,16 +227,26 @@ pub fn re_at(result: &PointResult, r: f64) -> f64 {
     a.re + t * (b.re - a.re)
 }
 
-/// Predicts one operating point and derives the coefficients with the setup's diameter.
-pub fn predict(setup: &Setup, omega: f64, v: f64, fluid: &Fluid) -> (Quantities, PointResult) {
+/// Predicts one operating point (with the setup's effects) and derives the coefficients with
+/// the setup's diameter, the logged `omega` and the assumed density, as the measured ones are.
+pub fn predict(setup: &Setup, omega: f64, v: f64, fluid: &Fluid) -> Result<(Quantities, PointResult), EffectError> {
     let mut opts = setup.opts;
     opts.keep_stations = true;
-    let r = Solver::new(setup.rotor, fluid, &opts).solve(OperatingPoint { v, omega });
-    let q = Quantities::from_forces(r.thrust, Some(r.torque), omega, v, fluid.rho, setup.diameter);
-    (q, r)
+    let p = setup
+        .effects
+        .predict(setup.rotor, &opts, fluid, setup.diameter, OperatingPoint { v, omega })?;
+    let q = Quantities::from_forces(
+        p.loads.thrust,
+        Some(p.loads.torque),
+        omega,
+        v,
+        fluid.rho,
+        setup.diameter,
+    );
+    Ok((q, p.result))
 }
 
-fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> ComparedPoint {
+fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<ComparedPoint, EffectError> {
     let air = point_air(p, &setup.air);
     let rho = air.fluid.rho;
     let d = setup.diameter;
@@ -277,9 +290,9 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> ComparedPoint
             (m, Quantities::default())
         }
     };
-    let (predicted, result) = predict(setup, omega, v, &air.fluid);
+    let (predicted, result) = predict(setup, omega, v, &air.fluid)?;
     let tip = 0.5 * d;
-    ComparedPoint {
+    Ok(ComparedPoint {
         file,
         label: p.label.clone(),
         lines: p.lines,
@@ -297,17 +310,21 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> ComparedPoint
         flags: p.flags.clone(),
         rel_floor: Quantities::default(),
         air,
-    }
+    })
 }
 
-/// Predicts every point of every set (in parallel) and pairs it with its measurement.
-pub fn compare(setup: &Setup, sets: &[MeasuredSet]) -> Vec<ComparedPoint> {
+/// Predicts every point of every set (in parallel) and pairs it with its measurement; fails
+/// only when an effect's formula fails.
+pub fn compare(setup: &Setup, sets: &[MeasuredSet]) -> Result<Vec<ComparedPoint>, EffectError> {
     let jobs: Vec<(usize, &MeasuredPoint)> = sets
         .iter()
         .enumerate()
         .flat_map(|(i, s)| s.points.iter().map(move |p| (i, p)))
         .collect();
-    let mut points: Vec<ComparedPoint> = jobs.par_iter().map(|(i, p)| compare_point(setup, *i, p)).collect();
+    let mut points: Vec<ComparedPoint> = jobs
+        .par_iter()
+        .map(|(i, p)| compare_point(setup, *i, p))
+        .collect::<Result<_, _>>()?;
     let floor = |q: &str| {
         let max = points
             .iter()
@@ -327,5 +344,5 @@ pub fn compare(setup: &Setup, sets: &[MeasuredSet]) -> Vec<ComparedPoint> {
     for p in &mut points {
         p.rel_floor = rel_floor;
     }
-    points
+    Ok(points)
 }

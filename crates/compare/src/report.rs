@@ -146,7 +146,10 @@ fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure>
         let curve: Vec<(f64, crate::Quantities)> = (0..=40)
             .map(|i| {
                 let j = jmax * i as f64 / 40.0;
-                (j, predict(setup, omega, j * n * setup.diameter, &fluid).0)
+                (
+                    j,
+                    predict(setup, omega, j * n * setup.diameter, &fluid).map_or_else(|_| Default::default(), |p| p.0),
+                )
             })
             .collect();
         for (panel, q) in panels.iter_mut().zip(["ct", "cp", "eta"]) {
@@ -186,7 +189,11 @@ fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
     let curve: Vec<(f64, crate::Quantities)> = (0..=40)
         .map(|i| {
             let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / 40.0;
-            (rpm, predict(setup, rpm * std::f64::consts::PI / 30.0, 0.0, &fluid).0)
+            (
+                rpm,
+                predict(setup, rpm * std::f64::consts::PI / 30.0, 0.0, &fluid)
+                    .map_or_else(|_| Default::default(), |p| p.0),
+            )
         })
         .collect();
     let qs: &[&str] = if has_torque {
