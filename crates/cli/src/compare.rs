@@ -29,6 +29,17 @@ pub struct CompareArgs {
     /// The propeller model.
     #[command(flatten)]
     pub model: ModelArgs,
+    /// The measurements.
+    #[command(flatten)]
+    pub data: MeasuredArgs,
+    /// Output directory (created if missing).
+    #[arg(long, short)]
+    pub out: PathBuf,
+}
+
+/// Measured files and how to read them (shared by `compare` and `diagnose`).
+#[derive(Debug, Args)]
+pub struct MeasuredArgs {
     /// Measured files: RCbenchmark/Tyto CSV, UIUC .txt, or generic CSV.
     #[arg(long, required = true, num_args = 1..)]
     pub measured: Vec<PathBuf>,
@@ -49,9 +60,69 @@ pub struct CompareArgs {
     /// Column map (TOML) for generic CSV files.
     #[arg(long)]
     pub columns: Option<PathBuf>,
-    /// Output directory (created if missing).
-    #[arg(long, short)]
-    pub out: PathBuf,
+}
+
+impl MeasuredArgs {
+    /// The air choice and the measured sets, read and checked.
+    pub fn load(&self) -> Result<(AirChoice, Vec<MeasuredSet>)> {
+        let args = self;
+        if let Some(p) = args.poles {
+            if p < 2 || p % 2 != 0 {
+                bail!("--poles {p}: a motor has an even number of poles, at least 2");
+            }
+        }
+        if let Some(r) = args.rho {
+            if !(r.is_finite() && r > 0.0 && r < 20.0) {
+                bail!("--rho {r}: not a plausible air density in kg/m^3");
+            }
+        }
+        let air = AirChoice {
+            given: args.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+            rho: args.rho,
+        };
+        let column_map = args
+            .columns
+            .as_ref()
+            .map(|p| std::fs::read_to_string(p).with_context(|| format!("{}: cannot read the column map", p.display())))
+            .transpose()?;
+        let opts = ReadOptions {
+            poles: args.poles,
+            rpm_source: args.rpm_source.map(|s| match s {
+                RpmSourceArg::Optical => RpmSource::Optical,
+                RpmSourceArg::Electrical => RpmSource::Electrical,
+            }),
+            column_map,
+            ..Default::default()
+        };
+        let sets: Vec<MeasuredSet> = args
+            .measured
+            .iter()
+            .map(|p| read_measured(p, &opts))
+            .collect::<Result<_>>()?;
+        Ok((air, sets))
+    }
+
+    /// The files read (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        self.measured
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(self.columns.as_deref())
+            .collect()
+    }
+
+    /// One line per file: rows, points and what was dropped.
+    pub fn print_summary(&self, sets: &[MeasuredSet]) {
+        for (p, s) in self.measured.iter().zip(sets) {
+            eprintln!(
+                "propbet: {}: {} rows -> {} points; {}",
+                p.display(),
+                s.rows,
+                s.points.len(),
+                propbet_measure::summarise_dropped(&s.dropped)
+            );
+        }
+    }
 }
 
 /// `T,P,RH` with optional units.
@@ -135,39 +206,7 @@ fn points_csv(files: &[PathBuf], pts: &[ComparedPoint]) -> Vec<u8> {
 /// not converge somewhere (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
     let model = args.model.build(false)?;
-    if let Some(p) = args.poles {
-        if p < 2 || p % 2 != 0 {
-            bail!("--poles {p}: a motor has an even number of poles, at least 2");
-        }
-    }
-    if let Some(r) = args.rho {
-        if !(r.is_finite() && r > 0.0 && r < 20.0) {
-            bail!("--rho {r}: not a plausible air density in kg/m^3");
-        }
-    }
-    let air = AirChoice {
-        given: args.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
-        rho: args.rho,
-    };
-    let column_map = args
-        .columns
-        .as_ref()
-        .map(|p| std::fs::read_to_string(p).with_context(|| format!("{}: cannot read the column map", p.display())))
-        .transpose()?;
-    let opts = ReadOptions {
-        poles: args.poles,
-        rpm_source: args.rpm_source.map(|s| match s {
-            RpmSourceArg::Optical => RpmSource::Optical,
-            RpmSourceArg::Electrical => RpmSource::Electrical,
-        }),
-        column_map,
-        ..Default::default()
-    };
-    let sets: Vec<MeasuredSet> = args
-        .measured
-        .iter()
-        .map(|p| read_measured(p, &opts))
-        .collect::<Result<_>>()?;
+    let (air, sets) = args.data.load()?;
     let setup = Setup {
         rotor: &model.rotor,
         diameter: model.diameter,
@@ -192,6 +231,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
         prop: args.model.prop.display().to_string(),
         prop_notes,
         files: args
+            .data
             .measured
             .iter()
             .zip(&sets)
@@ -207,8 +247,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     })?;
 
     let mut inputs = args.model.inputs();
-    inputs.extend(args.measured.iter().map(PathBuf::as_path));
-    inputs.extend(args.columns.as_deref());
+    inputs.extend(args.data.inputs());
     let plots = args.out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {
@@ -222,21 +261,13 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     write_atomic(&args.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(
         &args.out.join("points.csv"),
-        &[points_csv(&args.measured, &points)],
+        &[points_csv(&args.data.measured, &points)],
         &inputs,
     )?;
     write_atomic(&args.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
 
     // A short summary on the terminal.
-    for (p, s) in args.measured.iter().zip(&sets) {
-        eprintln!(
-            "propbet: {}: {} rows -> {} points; {}",
-            p.display(),
-            s.rows,
-            s.points.len(),
-            propbet_measure::summarise_dropped(&s.dropped)
-        );
-    }
+    args.data.print_summary(&sets);
     for q in ["thrust", "torque", "power", "eta"] {
         if let Some(x) = m.overall.metrics.get(q) {
             println!(

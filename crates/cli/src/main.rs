@@ -7,10 +7,12 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 mod compare;
+mod diagnose;
 mod output;
 mod polar;
 mod predict;
 mod prop;
+mod synth;
 mod values;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
@@ -37,6 +39,13 @@ enum Command {
     /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
     /// plots and an HTML report.
     Compare(Box<compare::CompareArgs>),
+    /// Which physical effect is missing: candidate effects fitted to the measurements, ranked
+    /// by held-out error, and the ladder of effects that help.
+    Diagnose(Box<diagnose::DiagnoseArgs>),
+    /// List the effects (built-in and user-defined) with their parameters and physics.
+    Effects(diagnose::EffectsArgs),
+    /// Write synthetic measurements made by the model with hidden effects and noise.
+    Synth(Box<synth::SynthArgs>),
 }
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
@@ -52,6 +61,9 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
         Command::Polar(a) => polar::run_polar(&a),
         Command::Polars(a) => polar::run_polars(&a),
         Command::Compare(a) => compare::run(&a),
+        Command::Diagnose(a) => diagnose::run(&a),
+        Command::Effects(a) => diagnose::list(&a),
+        Command::Synth(a) => synth::run(&a),
     }
 }
 

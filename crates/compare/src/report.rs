@@ -87,7 +87,8 @@ fn pct(x: f64) -> String {
     }
 }
 
-fn esc(s: &str) -> String {
+/// HTML-escapes text.
+pub fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -370,7 +371,8 @@ fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
     }
 }
 
-const CSS: &str = "body{font-family:PropbetSans,sans-serif;margin:2em auto;max-width:1500px;color:#222;padding:0 1em}\
+/// The report pages' stylesheet (shared by the diagnosis report).
+pub const CSS: &str = "body{font-family:PropbetSans,sans-serif;margin:2em auto;max-width:1500px;color:#222;padding:0 1em}\
 h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #0072b2;padding-bottom:.2em;margin-top:2em}\
 table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:.9em}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}\
 th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\

@@ -1,0 +1,469 @@
+//! Which effect is missing: every candidate fitted, scored by held-out error, tested against
+//! the noise, ranked; then the greedy ladder.
+//!
+//! **Held-out error.** k-fold (points shuffled with a fixed seed) and leave-one-RPM-out (when
+//! there are at least three RPM groups). Each fold's parameters are refitted by one
+//! Gauss-Newton step from the all-data fit on the training rows (exact for parameters that act
+//! linearly, such as the tares; first order otherwise), and the held-out points are then
+//! solved at those parameters: the held-out residuals are real predictions.
+//!
+//! **Parsimony and significance.** Candidates are ranked by the BIC form of the held-out error,
+//! `n ln(MSE_heldout) + k ln(n)` (n residual rows, k parameters). A candidate is
+//! *significant* when the nested F test of its residual sum of squares against the current
+//! model's, with the noise variance estimated from its own residuals, gives
+//! p < alpha / (number of candidates) (Bonferroni), and its held-out RMS error falls by at
+//! least [`MIN_GAIN`] of the current one.
+//!
+//! **Ladder.** Starting from the baseline, the best significant candidate is added, all
+//! parameters of the stack are refitted together, and the remaining candidates are tried on
+//! top, until none is significant.
+
+use std::collections::BTreeMap;
+use std::sync::Arc;
+
+use nalgebra::{DMatrix, DVector};
+use propbet_effects::{Effect, Stack};
+use rand::seq::SliceRandom;
+use rand::SeedableRng;
+use serde::Serialize;
+use statrs::distribution::{ContinuousCDF, FisherSnedecor};
+
+use crate::fit::{bounds, fit, stack_at, FitOutcome, FittedParam};
+use crate::signature::{signatures, Signature};
+use crate::{rms, Data, DiagnoseError, Model};
+
+/// Smallest relative fall of the held-out RMS error that counts.
+pub const MIN_GAIN: f64 = 0.03;
+
+/// How a diagnosis is run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Number of folds of the k-fold cross-validation.
+    pub folds: usize,
+    /// Family-wise significance level.
+    pub alpha: f64,
+    /// Most effects the ladder adds.
+    pub max_steps: usize,
+    /// Seed of the fold assignment.
+    pub seed: u64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            folds: 5,
+            alpha: 0.01,
+            max_steps: 3,
+            seed: 7,
+        }
+    }
+}
+
+/// One candidate on top of the current stack, fitted and scored.
+#[derive(Debug, Clone, Serialize)]
+pub struct Scored {
+    /// The candidate's id.
+    pub id: String,
+    /// The physics.
+    pub explanation: String,
+    /// Every fitted parameter of the stack with it (the candidate's last).
+    pub params: Vec<FittedParam>,
+    /// In-sample RMS of the residual rows.
+    pub rms: f64,
+    /// k-fold held-out RMS.
+    pub kfold_rms: f64,
+    /// Leave-one-RPM-out held-out RMS (None with fewer than three RPM groups).
+    pub loro_rms: Option<f64>,
+    /// Relative fall of the k-fold error from the current stack's.
+    pub gain: f64,
+    /// F statistic against the current stack.
+    pub f: f64,
+    /// Its p value.
+    pub p_value: f64,
+    /// Significant (see the module documentation).
+    pub significant: bool,
+    /// Ranking score (lower is better).
+    pub score: f64,
+    /// Why it could not be fitted, if it could not.
+    pub note: Option<String>,
+    /// The fit.
+    #[serde(skip)]
+    pub fit: Option<FitOutcome>,
+}
+
+/// The model at one rung of the ladder.
+#[derive(Debug, Clone, Serialize)]
+pub struct Rung {
+    /// "baseline", then the effect added at this step.
+    pub added: String,
+    /// The whole stack ("pitch-offset:deg=1.2 + ...").
+    pub stack: String,
+    /// Its parameters with intervals.
+    pub params: Vec<FittedParam>,
+    /// In-sample RMS.
+    pub rms: f64,
+    /// k-fold held-out RMS.
+    pub kfold_rms: f64,
+    /// Leave-one-RPM-out RMS.
+    pub loro_rms: Option<f64>,
+    /// p value of the step (None for the baseline).
+    pub p_value: Option<f64>,
+}
+
+/// Everything a diagnosis finds.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diagnosis {
+    /// Residual rows scored (thrust, and torque where measured).
+    pub rows: usize,
+    /// Points scored.
+    pub points: usize,
+    /// The candidates on top of the baseline, best first.
+    pub ranking: Vec<Scored>,
+    /// The ladder, baseline first.
+    pub ladder: Vec<Rung>,
+    /// Where the baseline fails, in words.
+    pub before: Vec<Signature>,
+    /// What is left after the ladder.
+    pub after: Vec<Signature>,
+    /// True when at least one effect is significant.
+    pub found: bool,
+    /// Residual RMS of the final model: the noise level as far as the model can tell.
+    pub noise_estimate: f64,
+    /// The final stack.
+    #[serde(skip)]
+    pub final_stack: Stack,
+    /// Baseline residual rows.
+    #[serde(skip)]
+    pub baseline_residuals: Vec<f64>,
+    /// Final residual rows.
+    #[serde(skip)]
+    pub final_residuals: Vec<f64>,
+}
+
+struct Current {
+    effects: Vec<Arc<dyn Effect>>,
+    fit: FitOutcome,
+    kfold: f64,
+    loro: Option<f64>,
+}
+
+/// Point indices of the k folds and the RPM groups.
+struct Folds {
+    kfold: Vec<Vec<usize>>,
+    loro: Option<Vec<Vec<usize>>>,
+}
+
+fn folds(data: &Data, k: usize, seed: u64) -> Folds {
+    let n = data.obs.len();
+    let mut idx: Vec<usize> = (0..n).collect();
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    idx.shuffle(&mut rng);
+    let k = k.clamp(2, n.max(2));
+    let mut kfold = vec![Vec::new(); k];
+    for (i, p) in idx.into_iter().enumerate() {
+        kfold[i % k].push(p);
+    }
+    kfold.retain(|f| !f.is_empty());
+    let mut groups: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
+    for (i, o) in data.obs.iter().enumerate() {
+        groups.entry(o.rpm_group).or_default().push(i);
+    }
+    let loro = (groups.len() >= 3).then(|| groups.into_values().collect());
+    Folds { kfold, loro }
+}
+
+/// Held-out RMS over `folds`: one Gauss-Newton refit per fold on the other points' rows, then
+/// the held-out points solved at the refitted parameters.
+fn held_out(
+    model: &Model,
+    data: &Data,
+    effects: &[Arc<dyn Effect>],
+    f: &FitOutcome,
+    folds: &[Vec<usize>],
+) -> Result<f64, DiagnoseError> {
+    let rows = data.rows();
+    let k = f.p.len();
+    let (lo, hi, scale) = bounds(effects);
+    let mut held = Vec::with_capacity(rows.len());
+    for fold in folds {
+        let mut out = vec![false; data.obs.len()];
+        for &i in fold {
+            out[i] = true;
+        }
+        if k == 0 {
+            held.extend(
+                rows.iter()
+                    .zip(&f.residuals)
+                    .filter(|(r, _)| out[r.point])
+                    .map(|(_, x)| *x),
+            );
+            continue;
+        }
+        let train: Vec<usize> = (0..rows.len()).filter(|&i| !out[rows[i].point]).collect();
+        let j = DMatrix::from_fn(train.len(), k, |i, c| f.jacobian[(train[i], c)] * scale[c]);
+        let r = DVector::from_iterator(train.len(), train.iter().map(|&i| f.residuals[i]));
+        let a = j.transpose() * &j;
+        let g = j.transpose() * r;
+        let dx = a
+            .svd(true, true)
+            .solve(&(-g), 1e-10)
+            .unwrap_or_else(|_| DVector::zeros(k));
+        let p: Vec<f64> = (0..k)
+            .map(|c| (f.p[c] + dx[c] * scale[c]).clamp(lo[c], hi[c]))
+            .collect();
+        held.extend(model.residuals(data, &stack_at(effects, &p), fold)?);
+    }
+    Ok(rms(&held))
+}
+
+fn score(rows: usize, heldout_rms: f64, k: usize) -> f64 {
+    let n = rows as f64;
+    n * (heldout_rms * heldout_rms).max(1e-300).ln() + k as f64 * n.ln()
+}
+
+fn all_starts(e: &Arc<dyn Effect>) -> Vec<Vec<f64>> {
+    let mut s = vec![e.params().iter().map(|p| p.start).collect::<Vec<_>>()];
+    s.extend(e.extra_starts());
+    s
+}
+
+fn try_candidate(
+    model: &Model,
+    data: &Data,
+    current: &Current,
+    cand: &Arc<dyn Effect>,
+    f: &Folds,
+    m: usize,
+    alpha: f64,
+) -> Result<Scored, DiagnoseError> {
+    let mut effects = current.effects.clone();
+    effects.push(cand.clone());
+    let k_new = cand.params().len();
+    let k = current.fit.p.len() + k_new;
+    let rows = current.fit.residuals.len();
+    let base = Scored {
+        id: cand.id().to_string(),
+        explanation: cand.explanation().to_string(),
+        params: Vec::new(),
+        rms: f64::NAN,
+        kfold_rms: f64::NAN,
+        loro_rms: None,
+        gain: 0.0,
+        f: 0.0,
+        p_value: 1.0,
+        significant: false,
+        score: f64::INFINITY,
+        note: None,
+        fit: None,
+    };
+    if rows < k + 2 || k_new == 0 {
+        let names: Vec<String> = cand.params().iter().map(|p| p.name.clone()).collect();
+        return Ok(Scored {
+            note: Some(format!(
+                "too few points to fit {} ({}): {rows} residual(s) (thrust and torque per point) for {k} parameter(s) in all; \
+                 at least {} are needed",
+                cand.id(),
+                names.join(", "),
+                k + 2
+            )),
+            ..base
+        });
+    }
+    // The best of the candidate's starts by its initial error, then Levenberg-Marquardt.
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    for s in all_starts(cand) {
+        let mut p = current.fit.p.clone();
+        p.extend(s);
+        let r = model.residuals(data, &stack_at(&effects, &p), &all)?;
+        let e = r.iter().map(|x| x * x).sum::<f64>();
+        if best.as_ref().is_none_or(|b| e < b.0) {
+            best = Some((e, p));
+        }
+    }
+    let start = best.map(|b| b.1).unwrap_or_default();
+    let fitted = fit(model, data, &effects, &start)?;
+    let kfold = held_out(model, data, &effects, &fitted, &f.kfold)?;
+    let loro = match &f.loro {
+        Some(g) => Some(held_out(model, data, &effects, &fitted, g)?),
+        None => None,
+    };
+    let (s0, s1) = (current.fit.sse, fitted.sse);
+    let dof = rows - k;
+    let fstat = if s1 > 0.0 {
+        ((s0 - s1) / k_new as f64) / (s1 / dof as f64)
+    } else if s0 > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    };
+    let p_value = if fstat.is_finite() && fstat > 0.0 {
+        FisherSnedecor::new(k_new as f64, dof as f64).map_or(1.0, |d| d.sf(fstat))
+    } else if fstat.is_infinite() {
+        0.0
+    } else {
+        1.0
+    };
+    let gain = if current.kfold > 0.0 {
+        1.0 - kfold / current.kfold
+    } else {
+        0.0
+    };
+    let significant = p_value < alpha / m.max(1) as f64 && gain >= MIN_GAIN;
+    Ok(Scored {
+        params: fitted.params(),
+        rms: rms(&fitted.residuals),
+        kfold_rms: kfold,
+        loro_rms: loro,
+        gain,
+        f: fstat,
+        p_value,
+        significant,
+        score: score(rows, kfold, k),
+        fit: Some(fitted),
+        ..base
+    })
+}
+
+/// Ranks `candidates` on top of the current stack.
+fn rank(
+    model: &Model,
+    data: &Data,
+    current: &Current,
+    candidates: &[Arc<dyn Effect>],
+    f: &Folds,
+    alpha: f64,
+) -> Result<Vec<Scored>, DiagnoseError> {
+    let m = candidates.len();
+    let mut out = candidates
+        .iter()
+        .map(|c| try_candidate(model, data, current, c, f, m, alpha))
+        .collect::<Result<Vec<_>, _>>()?;
+    out.sort_by(|a, b| a.score.total_cmp(&b.score));
+    Ok(out)
+}
+
+/// Checks that the measurements are in the propeller's operating range and of its size.
+fn check_overlap(data: &Data, baseline: &[propbet_effects::Loads]) -> Result<(), DiagnoseError> {
+    let n = data.obs.len();
+    let outside: Vec<usize> = (0..n)
+        .filter(|&i| baseline[i].thrust <= 0.0 && data.obs[i].thrust > 0.0)
+        .collect();
+    if 2 * outside.len() > n {
+        let jmax = data.obs.iter().map(|o| o.j).fold(0.0, f64::max);
+        return Err(DiagnoseError::NoOverlap(format!(
+            "the measurements do not overlap the propeller's operating range: at {} of {n} points (J up to {jmax:.2}) \
+             the model gives no thrust where the stand measured some (first: {}, {:.0} rpm, V = {:.2} m/s). \
+             Wrong prop file, diameter or airspeed units?",
+            outside.len(),
+            data.obs[outside[0]].label,
+            data.obs[outside[0]].rpm(),
+            data.obs[outside[0]].v
+        )));
+    }
+    let mut ratios: Vec<f64> = (0..n)
+        .filter(|&i| baseline[i].thrust > 0.0 && data.obs[i].thrust > 0.0)
+        .map(|i| data.obs[i].thrust / baseline[i].thrust)
+        .collect();
+    ratios.sort_by(f64::total_cmp);
+    if let Some(&med) = ratios.get(ratios.len() / 2) {
+        if !(1.0 / 3.0..=3.0).contains(&med) {
+            return Err(DiagnoseError::NoOverlap(format!(
+                "the measurements do not overlap the propeller's operating range: measured thrust is a median {med:.2} \
+                 times the prediction, beyond what any effect explains. Wrong prop file, units, RPM column or pole count?"
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Runs the diagnosis: ranking on top of the baseline, then the ladder.
+pub fn diagnose(
+    model: &Model,
+    data: &Data,
+    candidates: &[Arc<dyn Effect>],
+    opts: &Options,
+) -> Result<Diagnosis, DiagnoseError> {
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let baseline_loads = model.loads(data, &Stack::baseline(), &all)?;
+    check_overlap(data, &baseline_loads)?;
+    let f = folds(data, opts.folds, opts.seed);
+    let r0 = data.residuals(&all, &baseline_loads);
+    let rows = r0.len();
+    let base_fit = FitOutcome {
+        stack: Stack::baseline(),
+        p: Vec::new(),
+        sse: r0.iter().map(|x| x * x).sum(),
+        jacobian: DMatrix::zeros(rows, 0),
+        residuals: r0.clone(),
+        sd: Vec::new(),
+        evaluations: 1,
+        at_bound: Vec::new(),
+    };
+    let mut current = Current {
+        effects: Vec::new(),
+        kfold: rms(&r0),
+        loro: f.loro.as_ref().map(|_| rms(&r0)),
+        fit: base_fit,
+    };
+    let mut ladder = vec![Rung {
+        added: "baseline".into(),
+        stack: "baseline".into(),
+        params: Vec::new(),
+        rms: rms(&r0),
+        kfold_rms: rms(&r0),
+        loro_rms: current.loro,
+        p_value: None,
+    }];
+    let mut ranking = Vec::new();
+    let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
+    for step in 0..opts.max_steps {
+        if remaining.is_empty() {
+            break;
+        }
+        let ranked = rank(model, data, &current, &remaining, &f, opts.alpha)?;
+        let pick = ranked.iter().find(|s| s.significant).cloned();
+        if step == 0 {
+            ranking = ranked;
+        }
+        let Some(best) = pick else {
+            break;
+        };
+        let Some(fitted) = best.fit.clone() else {
+            break;
+        };
+        remaining.retain(|e| e.id() != best.id);
+        let mut effects = current.effects.clone();
+        effects.extend(fitted.stack.active.last().map(|a| a.effect.clone()));
+        ladder.push(Rung {
+            added: best.id.clone(),
+            stack: fitted.stack.describe(),
+            params: fitted.params(),
+            rms: best.rms,
+            kfold_rms: best.kfold_rms,
+            loro_rms: best.loro_rms,
+            p_value: Some(best.p_value),
+        });
+        current = Current {
+            effects,
+            kfold: best.kfold_rms,
+            loro: best.loro_rms,
+            fit: fitted,
+        };
+    }
+    let final_residuals = current.fit.residuals.clone();
+    let final_loads = model.loads(data, &current.fit.stack, &all)?;
+    Ok(Diagnosis {
+        rows,
+        points: data.obs.len(),
+        before: signatures(data, &baseline_loads),
+        after: signatures(data, &final_loads),
+        found: ladder.len() > 1,
+        noise_estimate: rms(&final_residuals),
+        final_stack: current.fit.stack.clone(),
+        ranking,
+        ladder,
+        baseline_residuals: r0,
+        final_residuals,
+    })
+}

@@ -1,0 +1,219 @@
+//! Model discovery: where the model fails, which physical effect is missing, and by how much
+//! the error falls when it is added.
+//!
+//! - [`Data`]: the scored measured points of a comparison, as residual rows (relative thrust
+//!   and torque errors, with compare's 5 %-of-maximum floor).
+//! - [`fit`]: a bounded Levenberg-Marquardt fit of effect parameters, with confidence intervals.
+//! - [`discover`]: every candidate fitted and scored by held-out error (k-fold and
+//!   leave-one-RPM-out), an F test against the noise, a parsimony penalty, the ranking and the
+//!   greedy ladder.
+//! - [`signature`]: residual patterns in words.
+//! - [`report`]: figures and the HTML page.
+//! - [`synth`]: measurements made by the model with hidden effects and noise.
+#![deny(missing_docs)]
+
+pub mod discover;
+pub mod fit;
+pub mod report;
+pub mod signature;
+pub mod synth;
+
+use propbet_bemt::{Fluid, OperatingPoint, Rotor, SolverOptions};
+use propbet_compare::{metrics::rpm_group, ComparedPoint, RELATIVE_FLOOR};
+use propbet_effects::{EffectError, Loads, Stack};
+use rayon::prelude::*;
+use serde::Serialize;
+use thiserror::Error;
+
+/// What can go wrong in a diagnosis.
+#[derive(Debug, Error)]
+pub enum DiagnoseError {
+    /// An effect failed (a user formula).
+    #[error(transparent)]
+    Effect(#[from] EffectError),
+    /// Not enough data.
+    #[error("{0}")]
+    TooFew(String),
+    /// The measurements do not fit the propeller.
+    #[error("{0}")]
+    NoOverlap(String),
+}
+
+/// The model the effects are added to.
+#[derive(Debug, Clone)]
+pub struct Model<'a> {
+    /// The rotor.
+    pub rotor: &'a Rotor,
+    /// Solver options (baseline).
+    pub opts: SolverOptions,
+    /// Propeller diameter [m].
+    pub diameter: f64,
+    /// Effects always applied (the user's `--effect`s), before the ones being fitted.
+    pub fixed: Stack,
+}
+
+/// One scored measured point.
+#[derive(Debug, Clone, Serialize)]
+pub struct Observation {
+    /// Index in the comparison's points.
+    pub index: usize,
+    /// Label ("line 12", "ESC 1300 µs").
+    pub label: String,
+    /// Logged rotation rate [rad/s].
+    pub omega: f64,
+    /// Airspeed [m/s].
+    pub v: f64,
+    /// Advance ratio (logged RPM).
+    pub j: f64,
+    /// Air assumed.
+    #[serde(skip)]
+    pub fluid: Fluid,
+    /// Measured thrust [N].
+    pub thrust: f64,
+    /// Measured torque [N m], if measured.
+    pub torque: Option<f64>,
+    /// RPM group key (compare's grouping).
+    pub rpm_group: i64,
+    /// Its name ("6000 rpm").
+    pub rpm_name: String,
+    /// Tip Mach number.
+    pub mach_tip: f64,
+}
+
+impl Observation {
+    /// RPM as logged.
+    pub fn rpm(&self) -> f64 {
+        self.omega * 30.0 / std::f64::consts::PI
+    }
+}
+
+/// The scored points and how their residuals are scaled.
+#[derive(Debug, Clone)]
+pub struct Data {
+    /// The points.
+    pub obs: Vec<Observation>,
+    /// Thrust residual floor [N] (5 % of the largest |thrust|).
+    pub thrust_floor: f64,
+    /// Torque residual floor [N m].
+    pub torque_floor: f64,
+}
+
+/// The residual rows of one point: (point, is_torque).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Row {
+    /// Index in [`Data::obs`].
+    pub point: usize,
+    /// Torque (else thrust).
+    pub torque: bool,
+}
+
+impl Data {
+    /// The scored points of a comparison (points flagged by the reader are left out).
+    pub fn from_points(points: &[ComparedPoint]) -> Result<Self, DiagnoseError> {
+        let mut obs = Vec::new();
+        for (index, p) in points.iter().enumerate() {
+            let Some(thrust) = p.measured.thrust.filter(|_| p.scored()) else {
+                continue;
+            };
+            let (key, name) = rpm_group(p);
+            obs.push(Observation {
+                index,
+                label: p.label.clone(),
+                omega: p.rpm * std::f64::consts::PI / 30.0,
+                v: p.v,
+                j: p.j,
+                fluid: p.air.fluid,
+                thrust,
+                torque: p.measured.torque,
+                rpm_group: key,
+                rpm_name: name,
+                mach_tip: p.mach_tip,
+            });
+        }
+        if obs.len() < 3 {
+            return Err(DiagnoseError::TooFew(format!(
+                "only {} scored point(s) in the measurements: a diagnosis needs at least 3 (more than the parameters it fits)",
+                obs.len()
+            )));
+        }
+        let max_t = obs.iter().fold(0.0f64, |a, o| a.max(o.thrust.abs()));
+        let max_q = obs.iter().filter_map(|o| o.torque).fold(0.0f64, |a, q| a.max(q.abs()));
+        Ok(Self {
+            obs,
+            thrust_floor: (RELATIVE_FLOOR * max_t).max(1e-12),
+            torque_floor: (RELATIVE_FLOOR * max_q).max(1e-12),
+        })
+    }
+
+    /// The residual rows, in order.
+    pub fn rows(&self) -> Vec<Row> {
+        let mut rows = Vec::with_capacity(2 * self.obs.len());
+        for (i, o) in self.obs.iter().enumerate() {
+            rows.push(Row {
+                point: i,
+                torque: false,
+            });
+            if o.torque.is_some() {
+                rows.push(Row { point: i, torque: true });
+            }
+        }
+        rows
+    }
+
+    /// Residual rows of the points `which` given their predicted loads (same order).
+    pub fn residuals(&self, which: &[usize], loads: &[Loads]) -> Vec<f64> {
+        let mut r = Vec::with_capacity(2 * which.len());
+        for (&i, l) in which.iter().zip(loads) {
+            let o = &self.obs[i];
+            r.push((l.thrust - o.thrust) / o.thrust.abs().max(self.thrust_floor));
+            if let Some(q) = o.torque {
+                r.push((l.torque - q) / q.abs().max(self.torque_floor));
+            }
+        }
+        r
+    }
+}
+
+impl Model<'_> {
+    /// Predicted loads of the points `which` with the effects of `stack` (in parallel).
+    pub fn loads(&self, data: &Data, stack: &Stack, which: &[usize]) -> Result<Vec<Loads>, EffectError> {
+        let combined;
+        let stack = if self.fixed.is_empty() {
+            stack
+        } else {
+            let mut active = self.fixed.active.clone();
+            active.extend(stack.active.iter().cloned());
+            combined = Stack { active };
+            &combined
+        };
+        which
+            .par_iter()
+            .map(|&i| {
+                let o = &data.obs[i];
+                stack
+                    .predict(
+                        self.rotor,
+                        &self.opts,
+                        &o.fluid,
+                        self.diameter,
+                        OperatingPoint { v: o.v, omega: o.omega },
+                    )
+                    .map(|p| p.loads)
+            })
+            .collect()
+    }
+
+    /// Residual rows of the points `which` with `stack`.
+    pub fn residuals(&self, data: &Data, stack: &Stack, which: &[usize]) -> Result<Vec<f64>, EffectError> {
+        Ok(data.residuals(which, &self.loads(data, stack, which)?))
+    }
+}
+
+/// Root mean square.
+pub fn rms(r: &[f64]) -> f64 {
+    if r.is_empty() {
+        0.0
+    } else {
+        (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt()
+    }
+}

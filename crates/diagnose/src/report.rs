@@ -1,0 +1,326 @@
+//! The diagnosis as people read it: the verdict, where the baseline fails in words, the
+//! ranking with fitted values and intervals, the ladder with its falling error, before/after
+//! residual plots; one self-contained HTML page, a Markdown summary and JSON.
+
+use std::fmt::Write as _;
+
+use propbet_compare::report::{esc, sig, CSS};
+use propbet_effects::fmt_value;
+use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
+use serde::Serialize;
+
+use crate::discover::{Diagnosis, Scored};
+use crate::fit::FittedParam;
+use crate::{Data, Row};
+
+/// The report in its forms.
+pub struct Report {
+    /// Self-contained HTML page.
+    pub html: String,
+    /// Markdown summary.
+    pub markdown: String,
+    /// Figures by file stem.
+    pub figures: Vec<(String, Figure)>,
+}
+
+/// What the JSON file holds.
+#[derive(Serialize)]
+pub struct JsonOut<'a> {
+    /// Prop file.
+    pub prop: &'a str,
+    /// Measured files.
+    pub measured: &'a [String],
+    /// The command.
+    pub command: &'a str,
+    /// The diagnosis.
+    pub diagnosis: &'a Diagnosis,
+    /// The final model's parameters.
+    pub final_params: Vec<FittedParam>,
+    /// The final model as `--effect` arguments.
+    pub final_effects: Vec<String>,
+}
+
+fn pct(x: f64) -> String {
+    format!("{:.2} %", 100.0 * x)
+}
+
+fn params_text(ps: &[FittedParam], only: Option<&str>) -> String {
+    ps.iter()
+        .filter(|p| only.is_none_or(|id| p.effect == id))
+        .map(|p| {
+            let ci = match p.ci95 {
+                Some(c) => format!(" ± {}", fmt_value(c)),
+                None => " (not determined by the data)".into(),
+            };
+            let bound = if p.at_bound { " [at bound]" } else { "" };
+            let unit = if p.unit.is_empty() || p.unit == "-" {
+                String::new()
+            } else {
+                format!(" {}", p.unit)
+            };
+            format!("{} = {}{ci}{unit}{bound}", p.name, fmt_value(p.value))
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The one-paragraph verdict.
+pub fn verdict(d: &Diagnosis) -> String {
+    let base = &d.ladder[0];
+    if !d.found {
+        let best = d.ranking.first().map_or(String::new(), |s| {
+            format!(
+                " The best candidate, {}, lowers the held-out error only from {} to {} (p = {}).",
+                s.id,
+                pct(base.kfold_rms),
+                pct(s.kfold_rms),
+                sig(s.p_value)
+            )
+        });
+        return format!(
+            "No effect is significant: the model agrees with the measurements within their noise (residual RMS {}).{best}",
+            pct(base.rms)
+        );
+    }
+    let last = d.ladder.last().expect("found implies a rung");
+    let steps: Vec<String> = d.ladder[1..].iter().map(|r| r.added.clone()).collect();
+    let top = &d.ranking[0];
+    format!(
+        "Most likely missing: {} ({}). With {} the held-out error falls from {} to {} ({:.0} % less); \
+         what is left, {} RMS, is the noise as far as the model can tell.",
+        top.id,
+        params_text(&top.params, Some(&top.id)),
+        steps.join(" + "),
+        pct(base.kfold_rms),
+        pct(last.kfold_rms),
+        100.0 * (1.0 - last.kfold_rms / base.kfold_rms.max(1e-300)),
+        pct(d.noise_estimate)
+    )
+}
+
+fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
+    let rows = data.rows();
+    let mut panels = Vec::new();
+    for torque in [false, true] {
+        if !rows.iter().any(|r| r.torque == torque) {
+            continue;
+        }
+        let q = if torque { "torque" } else { "thrust" };
+        for (x_name, x_of) in [
+            ("J", (|o: &crate::Observation| o.j) as fn(&crate::Observation) -> f64),
+            ("RPM", |o: &crate::Observation| o.rpm()),
+        ] {
+            let pts = |res: &[f64]| -> Vec<(f64, f64)> {
+                rows.iter()
+                    .zip(res)
+                    .filter(|(r, _)| r.torque == torque)
+                    .map(|(r, e): (&Row, &f64)| (x_of(&data.obs[r.point]), 100.0 * e))
+                    .collect()
+            };
+            panels.push(Panel {
+                title: format!("{q} error against {x_name}"),
+                x_label: x_name.into(),
+                y_label: format!("{q} error [%]"),
+                series: vec![
+                    Series::new("baseline", pts(&d.baseline_residuals), Mark::Dots, Some(0)),
+                    Series::new(
+                        "with the ladder's effects",
+                        pts(&d.final_residuals),
+                        Mark::Dots,
+                        Some(1),
+                    ),
+                ],
+                zero_line: true,
+            });
+        }
+    }
+    panels
+}
+
+fn ladder_figure(d: &Diagnosis) -> Figure {
+    let k: Vec<(f64, f64)> = d
+        .ladder
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (i as f64, 100.0 * r.kfold_rms))
+        .collect();
+    let s: Vec<(f64, f64)> = d
+        .ladder
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (i as f64, 100.0 * r.rms))
+        .collect();
+    let mut series = vec![
+        Series::new("held-out (k-fold)", k, Mark::Line, Some(0)),
+        Series::new("in-sample", s, Mark::Dashed, Some(1)),
+    ];
+    if d.ladder.iter().all(|r| r.loro_rms.is_some()) {
+        let l = d
+            .ladder
+            .iter()
+            .enumerate()
+            .map(|(i, r)| (i as f64, 100.0 * r.loro_rms.unwrap_or(f64::NAN)))
+            .collect();
+        series.push(Series::new("held-out (leave one RPM out)", l, Mark::Dots, Some(2)));
+    }
+    Figure {
+        panels: vec![Panel {
+            title: format!(
+                "error after each step: {}",
+                d.ladder
+                    .iter()
+                    .map(|r| r.added.as_str())
+                    .collect::<Vec<_>>()
+                    .join(" → ")
+            ),
+            x_label: "step".into(),
+            y_label: "RMS relative error [%]".into(),
+            series,
+            zero_line: true,
+        }],
+        columns: 1,
+        width: 900,
+        height: 420,
+    }
+}
+
+fn ranking_row(i: usize, s: &Scored) -> String {
+    let loro = s.loro_rms.map_or("–".into(), pct);
+    match &s.note {
+        Some(n) => format!("<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\">{}</td></tr>\n", i + 1, esc(&s.id), esc(n)),
+        None => format!(
+            "<tr class=\"{}\"><td>{}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:+.0} %</td><td>{}</td><td>{}</td></tr>\n\
+             <tr><td></td><td colspan=\"8\" class=\"note\">{}</td></tr>\n",
+            if s.significant { "sig" } else { "" },
+            i + 1,
+            esc(&s.id),
+            esc(&params_text(&s.params, Some(&s.id))),
+            pct(s.rms),
+            pct(s.kfold_rms),
+            loro,
+            100.0 * s.gain,
+            sig(s.p_value),
+            if s.significant { "yes" } else { "no" },
+            esc(&s.explanation)
+        ),
+    }
+}
+
+/// Builds the report.
+pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], command: &str) -> Result<Report, PlotError> {
+    let residuals = Figure {
+        panels: residual_panels(data, d),
+        columns: 2,
+        width: 1400,
+        height: 900,
+    };
+    let ladder = ladder_figure(d);
+    let verdict = verdict(d);
+    let mut h = String::new();
+    let _ = write!(
+        h,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>propbet diagnosis: {}</title>\n<style>{}\n{}\n\
+         tr.sig td{{background:#eef7ee}} svg text{{font-family:{},sans-serif}}</style></head><body>\n\
+         <h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
+         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n<p><b>{}</b></p>\n",
+        esc(prop),
+        propbet_plot::font_face_css(),
+        CSS,
+        propbet_plot::FONT_FAMILY,
+        esc(prop),
+        esc(&measured.join(", ")),
+        d.points,
+        d.rows,
+        esc(command),
+        esc(&verdict)
+    );
+    h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
+    for s in &d.before {
+        let _ = writeln!(h, "<li>{}</li>", esc(&s.text));
+    }
+    h.push_str("</ul>\n<h2>Candidate effects, ranked</h2>\n<p class=\"note\">Each effect fitted on its own on top of the baseline \
+        (Levenberg-Marquardt; ± is the 95 % interval). Held-out errors: 5-fold and leave-one-RPM-out. Ranked by \
+        n ln(held-out MSE) + k ln(n); significant: F test p &lt; 0.01/(number of candidates) and the held-out error falls by at least 3 %.</p>\n\
+        <table><tr><th>#</th><th>effect</th><th>fitted</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>gain</th><th>p</th><th>significant</th></tr>\n");
+    for (i, s) in d.ranking.iter().enumerate() {
+        h.push_str(&ranking_row(i, s));
+    }
+    h.push_str("</table>\n<h2>Ladder: effects added while they help</h2>\n<table><tr><th>step</th><th>added</th><th>model</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>p</th></tr>\n");
+    for (i, r) in d.ladder.iter().enumerate() {
+        let _ = writeln!(
+            h,
+            "<tr><td>{i}</td><td>{}</td><td>{}<br><span class=\"note\">{}</span></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&r.added),
+            esc(&r.stack),
+            esc(&params_text(&r.params, None)),
+            pct(r.rms),
+            pct(r.kfold_rms),
+            r.loro_rms.map_or("–".into(), pct),
+            r.p_value.map_or("–".into(), sig)
+        );
+    }
+    h.push_str("</table>\n");
+    h.push_str(&propbet_plot::svg_inline(&ladder)?);
+    h.push_str("\n<h2>Before and after</h2>\n");
+    h.push_str(&propbet_plot::svg_inline(&residuals)?);
+    h.push_str("\n<h3>What is left</h3>\n<ul>\n");
+    for s in &d.after {
+        let _ = writeln!(h, "<li>{}</li>", esc(&s.text));
+    }
+    let last = d.ladder.last().map(|r| r.stack.clone()).unwrap_or_default();
+    let _ = write!(
+        h,
+        "</ul>\n<h2>Use it</h2>\n<p>Add the effects to any prediction or comparison: <code>{}</code></p>\n</body></html>\n",
+        esc(&effect_args(d).join(" "))
+    );
+    let _ = last;
+
+    let mut md = format!("# Diagnosis\n\n{verdict}\n\n## Where the model fails\n\n");
+    for s in &d.before {
+        let _ = writeln!(md, "- {}", s.text);
+    }
+    md.push_str("\n## Ranking\n\n| # | effect | fitted | RMS | held-out | leave-RPM-out | p | significant |\n|---|---|---|---|---|---|---|---|\n");
+    for (i, s) in d.ranking.iter().enumerate() {
+        match &s.note {
+            Some(n) => {
+                let _ = writeln!(md, "| {} | {} | {n} | | | | | |", i + 1, s.id);
+            }
+            None => {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                    i + 1,
+                    s.id,
+                    params_text(&s.params, Some(&s.id)),
+                    pct(s.rms),
+                    pct(s.kfold_rms),
+                    s.loro_rms.map_or("–".into(), pct),
+                    sig(s.p_value),
+                    if s.significant { "yes" } else { "no" }
+                );
+            }
+        }
+    }
+    md.push_str("\n## Ladder\n\n| step | model | RMS | held-out |\n|---|---|---|---|\n");
+    for (i, r) in d.ladder.iter().enumerate() {
+        let _ = writeln!(md, "| {i} | {} | {} | {} |", r.stack, pct(r.rms), pct(r.kfold_rms));
+    }
+    md.push_str("\n## What is left\n\n");
+    for s in &d.after {
+        let _ = writeln!(md, "- {}", s.text);
+    }
+    Ok(Report {
+        html: h,
+        markdown: md,
+        figures: vec![("ladder".into(), ladder), ("residuals".into(), residuals)],
+    })
+}
+
+/// The final model as `--effect` arguments.
+pub fn effect_args(d: &Diagnosis) -> Vec<String> {
+    d.final_stack
+        .active
+        .iter()
+        .map(|a| format!("--effect {}", a.describe()))
+        .collect()
+}

@@ -1,0 +1,183 @@
+//! Synthetic measurements: the model with hidden effects, plus noise, written as a generic
+//! CSV, UIUC files or an RCbenchmark log, with an answer key. For tests, and for users
+//! learning what each effect looks like.
+
+use std::f64::consts::PI;
+use std::fmt::Write as _;
+
+use propbet_bemt::{Fluid, OperatingPoint};
+use propbet_effects::{EffectError, Stack};
+use rand::SeedableRng;
+use rand_distr::{Distribution, Normal};
+use serde::Serialize;
+
+use crate::Model;
+
+/// What to measure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// Rotation speeds [rpm] (logged).
+    pub rpms: Vec<f64>,
+    /// Advance ratios per RPM (J = 0: static).
+    pub js: Vec<f64>,
+    /// Relative noise (one standard deviation) on thrust and torque.
+    pub noise: f64,
+    /// Random seed.
+    pub seed: u64,
+    /// The true air (as logged).
+    pub fluid: Fluid,
+    /// Logged air temperature [degC] and pressure [Pa] written with the generic format.
+    pub logged: (f64, f64),
+}
+
+/// One synthetic measured point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Point {
+    /// Logged RPM.
+    pub rpm: f64,
+    /// Airspeed [m/s].
+    pub v: f64,
+    /// Advance ratio with the logged RPM.
+    pub j: f64,
+    /// Thrust [N].
+    pub thrust: f64,
+    /// Torque [N m].
+    pub torque: f64,
+}
+
+/// The default RPMs: four from 40 % to 100 % of the RPM that gives a 150 m/s tip speed.
+pub fn default_rpms(diameter: f64) -> Vec<f64> {
+    let top = 150.0 / (PI * diameter) * 60.0;
+    [0.4, 0.6, 0.8, 1.0]
+        .iter()
+        .map(|f| (f * top / 100.0).round() * 100.0)
+        .collect()
+}
+
+/// The advance ratio where the baseline's thrust reaches zero at `rpm` (searched to J = 3).
+pub fn zero_thrust_j(model: &Model, fluid: &Fluid, rpm: f64) -> Option<f64> {
+    let omega = rpm * PI / 30.0;
+    let nd = omega / (2.0 * PI) * model.diameter;
+    let mut j = 0.0;
+    while j < 3.0 {
+        j += 0.02;
+        let p = model
+            .fixed
+            .predict(
+                model.rotor,
+                &model.opts,
+                fluid,
+                model.diameter,
+                OperatingPoint { v: j * nd, omega },
+            )
+            .ok()?;
+        if p.loads.thrust <= 0.0 {
+            return Some(j);
+        }
+    }
+    None
+}
+
+/// Nine advance ratios from 0 to 80 % of the zero-thrust J at `rpm`.
+pub fn default_js(model: &Model, fluid: &Fluid, rpm: f64) -> Vec<f64> {
+    let j0 = zero_thrust_j(model, fluid, rpm).unwrap_or(0.8);
+    (0..9)
+        .map(|k| (0.8 * j0 * k as f64 / 8.0 * 1000.0).round() / 1000.0)
+        .collect()
+}
+
+/// Measures the plan on the model with `stack` (the hidden effects) and adds the noise.
+pub fn generate(model: &Model, stack: &Stack, plan: &Plan) -> Result<Vec<Point>, EffectError> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(plan.seed);
+    let normal = Normal::new(0.0, plan.noise.max(0.0)).unwrap_or_else(|_| Normal::new(0.0, 0.0).expect("sd 0"));
+    let mut out = Vec::new();
+    for &rpm in &plan.rpms {
+        let omega = rpm * PI / 30.0;
+        let nd = omega / (2.0 * PI) * model.diameter;
+        for &j in &plan.js {
+            let v = j * nd;
+            let p = stack.predict(
+                model.rotor,
+                &model.opts,
+                &plan.fluid,
+                model.diameter,
+                OperatingPoint { v, omega },
+            )?;
+            let thrust = p.loads.thrust * (1.0 + normal.sample(&mut rng));
+            let torque = p.loads.torque * (1.0 + normal.sample(&mut rng));
+            out.push(Point {
+                rpm,
+                v,
+                j,
+                thrust,
+                torque,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Generic CSV, self-describing header (`rpm,airspeed_m_s,thrust_N,torque_Nm,air_temp_C,pressure_Pa`).
+pub fn write_generic(points: &[Point], plan: &Plan) -> String {
+    let mut s = String::from("rpm,airspeed_m_s,thrust_N,torque_Nm,air_temp_C,pressure_Pa\n");
+    for p in points {
+        let _ = writeln!(
+            s,
+            "{:.1},{:.4},{:.6},{:.7},{:.2},{:.0}",
+            p.rpm, p.v, p.thrust, p.torque, plan.logged.0, plan.logged.1
+        );
+    }
+    s
+}
+
+/// UIUC files: one `J CT CP eta` sweep per RPM, named `{stem}_{rpm}.txt` (the readers take
+/// the RPM from the name); coefficients with the plan's density.
+pub fn write_uiuc(points: &[Point], plan: &Plan, diameter: f64, stem: &str) -> Vec<(String, String)> {
+    let mut files = Vec::new();
+    for &rpm in &plan.rpms {
+        let n = rpm / 60.0;
+        let rho = plan.fluid.rho;
+        let mut s = String::from("J       CT       CP       eta\n");
+        for p in points.iter().filter(|p| p.rpm == rpm) {
+            let ct = p.thrust / (rho * n * n * diameter.powi(4));
+            let cp = p.torque * 2.0 * PI * n / (rho * n.powi(3) * diameter.powi(5));
+            let eta = if cp > 0.0 { p.j * ct / cp } else { 0.0 };
+            let _ = writeln!(s, "{:.3}   {:.5}   {:.5}   {:.3}", p.j, ct, cp, eta);
+        }
+        files.push((format!("{stem}_{rpm:.0}.txt"), s));
+    }
+    files
+}
+
+/// An RCbenchmark step log of the static points: one ESC step per RPM, eight samples 0.5 s
+/// apart, each with its own noise (RPM scatter 0.2 %).
+pub fn write_rcbenchmark(points: &[Point], plan: &Plan) -> String {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(plan.seed ^ 0x5eed);
+    let rel = Normal::new(0.0, plan.noise.max(0.0)).unwrap_or_else(|_| Normal::new(0.0, 0.0).expect("sd 0"));
+    let rpm_noise = Normal::new(0.0, 0.002).expect("positive sd");
+    let mut s = String::from(
+        "Time (s),ESC signal (µs),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Electrical Speed (RPM),\
+         Motor Optical Speed (RPM),Electrical Power (W),Mechanical Power (W),Motor Efficiency (%),\
+         Propeller Mech. Efficiency (N/W),Overall Efficiency (N/W),App message,\n",
+    );
+    let mut t = 0.0;
+    for (k, p) in points.iter().filter(|p| p.v == 0.0).enumerate() {
+        let esc = 1100 + 100 * k;
+        for _ in 0..8 {
+            let rpm = p.rpm * (1.0 + rpm_noise.sample(&mut rng));
+            let q = p.torque * (1.0 + rel.sample(&mut rng));
+            let th = p.thrust * (1.0 + rel.sample(&mut rng));
+            let mech = q * rpm * PI / 30.0;
+            let elec = mech / 0.75;
+            let _ = writeln!(
+                s,
+                "{t:.2},{esc},{q:.5},{th:.4},11.10,{:.3},{rpm:.0},{rpm:.0},{elec:.3},{mech:.3},75.00,{:.4},{:.4},,",
+                elec / 11.1,
+                if mech > 0.0 { th / mech } else { 0.0 },
+                if elec > 0.0 { th / elec } else { 0.0 },
+            );
+            t += 0.5;
+        }
+    }
+    s
+}
