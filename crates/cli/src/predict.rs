@@ -79,7 +79,7 @@ pub struct ModelArgs {
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
     /// `propbet effects` for the list). Parameters not given take their neutral value.
     #[arg(long = "effect", value_name = "SPEC")]
-    pub effects: Vec<String>,
+    pub effect: Vec<String>,
     /// TOML file of user-defined effects (formulas on a hook), usable by `--effect`.
     #[arg(long)]
     pub user_effects: Option<PathBuf>,
@@ -129,7 +129,7 @@ impl ModelArgs {
             None => Registry::default(),
         };
         let active = self
-            .effects
+            .effect
             .iter()
             .map(|s| registry.resolve(&parse_spec(s)?))
             .collect::<Result<Vec<_>, _>>()

@@ -33,7 +33,7 @@ use crate::signature::{signatures, Signature};
 use crate::{rms, Data, DiagnoseError, Model};
 
 /// Smallest relative fall of the held-out RMS error that counts.
-pub const MIN_GAIN: f64 = 0.03;
+pub const MIN_GAIN: f64 = 0.10;
 
 /// How a diagnosis is run.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -240,7 +240,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], comman
     }
     h.push_str("</ul>\n<h2>Candidate effects, ranked</h2>\n<p class=\"note\">Each effect fitted on its own on top of the baseline \
         (Levenberg-Marquardt; ± is the 95 % interval). Held-out errors: 5-fold and leave-one-RPM-out. Ranked by \
-        n ln(held-out MSE) + k ln(n); significant: F test p &lt; 0.01/(number of candidates) and the held-out error falls by at least 3 %.</p>\n\
+        n ln(held-out MSE) + k ln(n); significant: F test p &lt; 0.01/(number of candidates) and the held-out error falls by at least 10 %.</p>\n\
         <table><tr><th>#</th><th>effect</th><th>fitted</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>gain</th><th>p</th><th>significant</th></tr>\n");
     for (i, s) in d.ranking.iter().enumerate() {
         h.push_str(&ranking_row(i, s));

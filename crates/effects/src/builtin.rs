@@ -81,7 +81,7 @@ fn make(kind: Kind) -> Builtin {
                 "strength",
                 "-",
                 0.0,
-                (0.0, 4.0),
+                (0.0, 10.0),
                 0.2,
                 "0 = no hub loss (the baseline), 1 = Prandtl's hub factor",
             )],
