@@ -43,6 +43,7 @@ fn col(header: &[String], name: &str) -> usize {
 }
 
 mod compare;
+mod diagnose;
 mod polars;
 
 #[test]

@@ -83,7 +83,7 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
         Some(r) => parse_list("--rpm", r)?,
         None => synth::default_rpms(m.diameter),
     };
-    if let Some(bad) = rpms.iter().find(|&&r| !(r > 0.0)) {
+    if let Some(bad) = rpms.iter().find(|&&r| r.is_nan() || r <= 0.0) {
         bail!("--rpm: rotation speeds must be positive, found {bad}");
     }
     let js = match (&args.j, args.format) {

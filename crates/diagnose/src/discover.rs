@@ -227,6 +227,94 @@ fn all_starts(e: &Arc<dyn Effect>) -> Vec<Vec<f64>> {
     s
 }
 
+/// A set of effects fitted together and scored.
+#[derive(Clone)]
+struct Evaluated {
+    effects: Vec<Arc<dyn Effect>>,
+    fit: FitOutcome,
+    kfold: f64,
+    loro: Option<f64>,
+    score: f64,
+}
+
+/// Fits `effects` together: parameters of effects in `warm` start from their values there; the
+/// one effect that is not starts from the best of its start vectors (by the initial error).
+fn evaluate(
+    model: &Model,
+    data: &Data,
+    effects: Vec<Arc<dyn Effect>>,
+    warm: &Stack,
+    f: &Folds,
+) -> Result<Evaluated, DiagnoseError> {
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let mut starts: Vec<Vec<f64>> = vec![Vec::new()];
+    for e in &effects {
+        let options = match warm.active.iter().find(|a| a.effect.id() == e.id()) {
+            Some(a) => vec![a.values.clone()],
+            None => all_starts(e),
+        };
+        starts = starts
+            .iter()
+            .flat_map(|s| {
+                options.iter().map(move |o| {
+                    let mut v = s.clone();
+                    v.extend(o);
+                    v
+                })
+            })
+            .collect();
+    }
+    let mut best: Option<(f64, Vec<f64>)> = None;
+    if starts.len() == 1 {
+        best = starts.pop().map(|s| (0.0, s));
+    } else {
+        for s in starts {
+            let r = model.residuals(data, &stack_at(&effects, &s), &all)?;
+            let e = r.iter().map(|x| x * x).sum::<f64>();
+            if best.as_ref().is_none_or(|b| e < b.0) {
+                best = Some((e, s));
+            }
+        }
+    }
+    let start = best.map(|b| b.1).unwrap_or_default();
+    let fitted = fit(model, data, &effects, &start)?;
+    let kfold = held_out(model, data, &effects, &fitted, &f.kfold)?;
+    let loro = match &f.loro {
+        Some(g) => Some(held_out(model, data, &effects, &fitted, g)?),
+        None => None,
+    };
+    let score = score(fitted.residuals.len(), kfold, fitted.p.len());
+    Ok(Evaluated {
+        effects,
+        fit: fitted,
+        kfold,
+        loro,
+        score,
+    })
+}
+
+/// p value of the nested F test of `full` against `reduced` (which lacks `k` parameters).
+fn f_test(reduced_sse: f64, full: &FitOutcome, k: usize) -> (f64, f64) {
+    let rows = full.residuals.len();
+    let dof = rows.saturating_sub(full.p.len()).max(1);
+    let s1 = full.sse;
+    let fstat = if s1 > 0.0 {
+        ((reduced_sse - s1) / k.max(1) as f64) / (s1 / dof as f64)
+    } else if reduced_sse > 0.0 {
+        f64::INFINITY
+    } else {
+        0.0
+    };
+    let p = if fstat.is_infinite() {
+        0.0
+    } else if fstat > 0.0 {
+        FisherSnedecor::new(k.max(1) as f64, dof as f64).map_or(1.0, |d| d.sf(fstat))
+    } else {
+        1.0
+    };
+    (fstat, p)
+}
+
 fn try_candidate(
     model: &Model,
     data: &Data,
@@ -269,58 +357,25 @@ fn try_candidate(
             ..base
         });
     }
-    // The best of the candidate's starts by its initial error, then Levenberg-Marquardt.
-    let all: Vec<usize> = (0..data.obs.len()).collect();
-    let mut best: Option<(f64, Vec<f64>)> = None;
-    for s in all_starts(cand) {
-        let mut p = current.fit.p.clone();
-        p.extend(s);
-        let r = model.residuals(data, &stack_at(&effects, &p), &all)?;
-        let e = r.iter().map(|x| x * x).sum::<f64>();
-        if best.as_ref().is_none_or(|b| e < b.0) {
-            best = Some((e, p));
-        }
-    }
-    let start = best.map(|b| b.1).unwrap_or_default();
-    let fitted = fit(model, data, &effects, &start)?;
-    let kfold = held_out(model, data, &effects, &fitted, &f.kfold)?;
-    let loro = match &f.loro {
-        Some(g) => Some(held_out(model, data, &effects, &fitted, g)?),
-        None => None,
-    };
-    let (s0, s1) = (current.fit.sse, fitted.sse);
-    let dof = rows - k;
-    let fstat = if s1 > 0.0 {
-        ((s0 - s1) / k_new as f64) / (s1 / dof as f64)
-    } else if s0 > 0.0 {
-        f64::INFINITY
-    } else {
-        0.0
-    };
-    let p_value = if fstat.is_finite() && fstat > 0.0 {
-        FisherSnedecor::new(k_new as f64, dof as f64).map_or(1.0, |d| d.sf(fstat))
-    } else if fstat.is_infinite() {
-        0.0
-    } else {
-        1.0
-    };
+    let ev = evaluate(model, data, effects, &current.fit.stack, f)?;
+    let (fstat, p_value) = f_test(current.fit.sse, &ev.fit, k_new);
     let gain = if current.kfold > 0.0 {
-        1.0 - kfold / current.kfold
+        1.0 - ev.kfold / current.kfold
     } else {
         0.0
     };
     let significant = p_value < alpha / m.max(1) as f64 && gain >= MIN_GAIN;
     Ok(Scored {
-        params: fitted.params(),
-        rms: rms(&fitted.residuals),
-        kfold_rms: kfold,
-        loro_rms: loro,
+        params: ev.fit.params(),
+        rms: rms(&ev.fit.residuals),
+        kfold_rms: ev.kfold,
+        loro_rms: ev.loro,
         gain,
         f: fstat,
         p_value,
         significant,
-        score: score(rows, kfold, k),
-        fit: Some(fitted),
+        score: ev.score,
+        fit: Some(ev.fit),
         ..base
     })
 }
@@ -341,6 +396,66 @@ fn rank(
         .collect::<Result<Vec<_>, _>>()?;
     out.sort_by(|a, b| a.score.total_cmp(&b.score));
     Ok(out)
+}
+
+/// Improves a greedy selection: swaps a chosen effect for an unchosen one while that lowers
+/// the score (greedy forward selection can pick an effect that mimics two others), then drops
+/// any effect whose removal the F test does not reject.
+fn refine(
+    model: &Model,
+    data: &Data,
+    mut chosen: Evaluated,
+    candidates: &[Arc<dyn Effect>],
+    f: &Folds,
+    alpha: f64,
+) -> Result<Evaluated, DiagnoseError> {
+    for _pass in 0..3 {
+        let mut improved = false;
+        'swap: for i in 0..chosen.effects.len() {
+            for c in candidates {
+                if chosen.effects.iter().any(|e| e.id() == c.id()) {
+                    continue;
+                }
+                let mut effects = chosen.effects.clone();
+                effects[i] = c.clone();
+                let k: usize = effects.iter().map(|e| e.params().len()).sum();
+                if chosen.fit.residuals.len() < k + 2 {
+                    continue;
+                }
+                let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
+                if ev.score < chosen.score - 1e-9 * chosen.score.abs() && ev.fit.sse < chosen.fit.sse {
+                    chosen = ev;
+                    improved = true;
+                    break 'swap;
+                }
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    // Backward: drop effects the data does not need once the others are in.
+    loop {
+        if chosen.effects.len() < 2 {
+            break;
+        }
+        let mut drop = None;
+        for i in 0..chosen.effects.len() {
+            let mut effects = chosen.effects.clone();
+            let gone = effects.remove(i);
+            let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
+            let (_, p) = f_test(ev.fit.sse, &chosen.fit, gone.params().len());
+            if p >= alpha / chosen.effects.len() as f64 || ev.kfold <= chosen.kfold {
+                drop = Some(ev);
+                break;
+            }
+        }
+        match drop {
+            Some(ev) => chosen = ev,
+            None => break,
+        }
+    }
+    Ok(chosen)
 }
 
 /// Checks that the measurements are in the propeller's operating range and of its size.
@@ -417,6 +532,13 @@ pub fn diagnose(
     }];
     let mut ranking = Vec::new();
     let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
+    let baseline_current = Current {
+        effects: Vec::new(),
+        kfold: current.kfold,
+        loro: current.loro,
+        fit: current.fit.clone(),
+    };
+    // Forward: add the best significant candidate while there is one.
     for step in 0..opts.max_steps {
         if remaining.is_empty() {
             break;
@@ -435,21 +557,79 @@ pub fn diagnose(
         remaining.retain(|e| e.id() != best.id);
         let mut effects = current.effects.clone();
         effects.extend(fitted.stack.active.last().map(|a| a.effect.clone()));
-        ladder.push(Rung {
-            added: best.id.clone(),
-            stack: fitted.stack.describe(),
-            params: fitted.params(),
-            rms: best.rms,
-            kfold_rms: best.kfold_rms,
-            loro_rms: best.loro_rms,
-            p_value: Some(best.p_value),
-        });
         current = Current {
             effects,
             kfold: best.kfold_rms,
             loro: best.loro_rms,
             fit: fitted,
         };
+    }
+    // Swaps and backward elimination, then the ladder rebuilt along the final set: at each
+    // rung the effect of the set that helps most.
+    if current.effects.len() > 1 {
+        let chosen = Evaluated {
+            effects: current.effects.clone(),
+            score: score(current.fit.residuals.len(), current.kfold, current.fit.p.len()),
+            fit: current.fit.clone(),
+            kfold: current.kfold,
+            loro: current.loro,
+        };
+        let refined = refine(model, data, chosen, candidates, &f, opts.alpha)?;
+        let mut set = refined.effects.clone();
+        let mut cur = baseline_current;
+        while !set.is_empty() {
+            let mut best: Option<(usize, Evaluated)> = None;
+            for (i, e) in set.iter().enumerate() {
+                let mut effects = cur.effects.clone();
+                effects.push(e.clone());
+                let warm = if set.len() == 1 {
+                    &refined.fit.stack
+                } else {
+                    &cur.fit.stack
+                };
+                let ev = evaluate(model, data, effects, warm, &f)?;
+                if best.as_ref().is_none_or(|b| ev.score < b.1.score) {
+                    best = Some((i, ev));
+                }
+            }
+            let Some((i, ev)) = best else {
+                break;
+            };
+            set.remove(i);
+            let k_new = ev.effects.last().map_or(0, |e| e.params().len());
+            let (_, p) = f_test(cur.fit.sse, &ev.fit, k_new);
+            ladder.push(Rung {
+                added: ev.effects.last().map_or(String::new(), |e| e.id().to_string()),
+                stack: ev.fit.stack.describe(),
+                params: ev.fit.params(),
+                rms: rms(&ev.fit.residuals),
+                kfold_rms: ev.kfold,
+                loro_rms: ev.loro,
+                p_value: Some(p),
+            });
+            cur = Current {
+                effects: ev.effects,
+                kfold: ev.kfold,
+                loro: ev.loro,
+                fit: ev.fit,
+            };
+        }
+        current = cur;
+    } else if let Some(a) = current.fit.stack.active.first() {
+        let (_, p) = f_test(
+            ladder[0].rms.powi(2) * current.fit.residuals.len() as f64,
+            &current.fit,
+            a.values.len(),
+        );
+        ladder.push(Rung {
+            added: a.effect.id().to_string(),
+            stack: current.fit.stack.describe(),
+            params: current.fit.params(),
+            rms: rms(&current.fit.residuals),
+            kfold_rms: current.kfold,
+            loro_rms: current.loro,
+            p_value: Some(p),
+        });
     }
     let final_residuals = current.fit.residuals.clone();
     let final_loads = model.loads(data, &current.fit.stack, &all)?;
