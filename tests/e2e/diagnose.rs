@@ -220,7 +220,14 @@ fn every_builtin_effect_is_found_on_two_props() {
         let data = dir.path().join(format!("case{k}.csv"));
         let mut sargs = model_args.to_vec();
         sargs.extend_from_slice(synth_args);
-        synth(&props[prop], std::slice::from_ref(&spec), &sargs, 100 + k as u64, &data, dir.path());
+        synth(
+            &props[prop],
+            std::slice::from_ref(&spec),
+            &sargs,
+            100 + k as u64,
+            &data,
+            dir.path(),
+        );
         let mut dargs = model_args.to_vec();
         dargs.extend(["--max-steps", "1"]);
         let (_, j) = diagnose(&props[prop], &[&data], &dargs, dir.path());

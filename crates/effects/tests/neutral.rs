@@ -1,0 +1,114 @@
+//! Every built-in effect at its neutral values leaves the model as it is, and away from them
+//! moves the loads the way its physics says.
+
+use propbet_bemt::{Discretization, Fluid, OperatingPoint, QpropBlade, QpropCoefficients, Rotor, SolverOptions};
+use propbet_effects::spec::Registry;
+use propbet_effects::{builtin, parse_spec, Stack};
+
+fn cam6x3() -> Rotor {
+    // props/cam6x3/cam6x3.qprop: r, chord [in], beta [deg]; global coefficients.
+    let rows: [(f64, f64, f64); 7] = [
+        (0.75, 0.66, 27.5),
+        (1.00, 0.69, 22.0),
+        (1.50, 0.63, 15.2),
+        (2.00, 0.55, 10.2),
+        (2.50, 0.44, 6.5),
+        (2.875, 0.30, 4.6),
+        (3.00, 0.19, 4.2),
+    ];
+    let k = QpropCoefficients::from_array([0.5, 5.8, -0.3, 1.2, 0.028, 0.05, 0.05, 0.5, 70000.0, -0.7]);
+    QpropBlade {
+        blades: 2.0,
+        tip_radius: 3.0 * 0.0254,
+        r: rows.iter().map(|r| r.0 * 0.0254).collect(),
+        chord: rows.iter().map(|r| r.1 * 0.0254).collect(),
+        beta: rows.iter().map(|r| r.2.to_radians()).collect(),
+        coeffs: vec![k; rows.len()],
+    }
+    .to_rotor(Discretization::default())
+    .unwrap()
+}
+
+fn loads(stack: &Stack, op: OperatingPoint) -> (f64, f64) {
+    let rotor = cam6x3();
+    let p = stack
+        .predict(
+            &rotor,
+            &SolverOptions::default(),
+            &Fluid::QPROP_DEFAULT,
+            6.0 * 0.0254,
+            op,
+        )
+        .unwrap();
+    (p.loads.thrust, p.loads.torque)
+}
+
+#[test]
+fn neutral_values_change_nothing() {
+    let r = Registry::default();
+    for op in [
+        OperatingPoint::from_rpm(0.0, 9000.0),
+        OperatingPoint::from_rpm(6.0, 9000.0),
+    ] {
+        let base = loads(&Stack::baseline(), op);
+        for id in builtin::ids() {
+            let Ok(active) = r.resolve(&parse_spec(id).unwrap()) else {
+                assert_eq!(id, "post-stall", "only post-stall has no neutral value");
+                continue;
+            };
+            let l = loads(&Stack { active: vec![active] }, op);
+            assert!(
+                (l.0 - base.0).abs() <= 1e-9 * base.0.abs() && (l.1 - base.1).abs() <= 1e-9 * base.1.abs(),
+                "{id}: {l:?} vs {base:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn effects_move_loads_the_physical_way() {
+    let r = Registry::default();
+    let at = |spec: &str, op| {
+        let a = r.resolve(&parse_spec(spec).unwrap()).unwrap();
+        loads(&Stack { active: vec![a] }, op)
+    };
+    let op = OperatingPoint::from_rpm(5.0, 9000.0);
+    let (t0, q0) = loads(&Stack::baseline(), op);
+    let more = |x: (f64, f64)| x.0 > t0 && x.1 > q0;
+    assert!(more(at("pitch-offset:deg=1", op)));
+    assert!(more(at("chord-scale:factor=1.1", op)));
+    assert!(more(at("tip-loss:strength=0.3", op)));
+    assert!(!more(at("hub-loss:strength=1", op)));
+    // Density scales thrust and torque nearly together (Re changes a little).
+    let (t, q) = at("density:ratio=0.9", op);
+    assert!(
+        (t / t0 - 0.9).abs() < 0.02 && (q / q0 - 0.9).abs() < 0.03,
+        "{} {}",
+        t / t0,
+        q / q0
+    );
+    // True RPM 5 % low: loads fall by about 10 % (and J rises).
+    let (t, _) = at("rpm-scale:factor=0.95", op);
+    assert!(t < 0.92 * t0);
+    // Elastic untwist grows with RPM^2: negligible at 1000 rpm.
+    let slow = OperatingPoint::from_rpm(0.0, 1000.0);
+    let (ts, _) = loads(&Stack::baseline(), slow);
+    assert!((at("elastic-twist:k=2", slow).0 / ts - 1.0).abs() < 0.01);
+    assert!(at("elastic-twist:k=2", op).0 < 0.95 * t0);
+    // Tares: torque shifted exactly, thrust reduced.
+    let (t, q) = at("torque-tare:q0=0.001,q1=1e-6", op);
+    assert_eq!(t, t0);
+    assert!((q - q0 - 0.001 - 1e-6 * op.omega).abs() < 1e-12);
+    assert!(at("thrust-tare:k=0.05", op).0 < t0);
+    // Lower drag-rise Mach: more torque once the tip is above it (20,000 rpm: tip M ~ 0.47).
+    let fast = OperatingPoint::from_rpm(0.0, 20000.0);
+    let (_, qf) = loads(&Stack::baseline(), fast);
+    assert!(at("compressibility:mcrit=0.3", fast).1 > 1.02 * qf);
+    assert!(
+        (at("compressibility:mcrit=0.5", op).1 / q0 - 1.0).abs() < 1e-9,
+        "below the drag-rise Mach"
+    );
+    // A more negative Reynolds exponent: drag falls where Re is above REref (70,000; the
+    // outer stations at 9000 rpm are above it), so torque falls.
+    assert!(at("re-scaling:dexp=-0.5", op).1 < q0);
+}
