@@ -149,12 +149,15 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
         }
         None => propbet_effects::spec::Registry::default(),
     };
+    use std::fmt::Write as _;
+    let mut out = String::new();
     for e in &registry.effects {
         let hooks: Vec<String> = e.hooks().iter().map(|h| format!("{h:?}").to_lowercase()).collect();
-        println!("{} ({})", e.id(), hooks.join(", "));
+        let _ = writeln!(out, "{} ({})", e.id(), hooks.join(", "));
         for p in e.params() {
             let neutral = p.neutral.map_or("none".to_string(), propbet_effects::fmt_value);
-            println!(
+            let _ = writeln!(
+                out,
                 "    {} [{}]  neutral {neutral}, bounds [{}, {}]: {}",
                 p.name,
                 p.unit,
@@ -163,10 +166,13 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
                 p.doc
             );
         }
-        println!(
+        let _ = writeln!(
+            out,
             "    {}",
             e.explanation().split_whitespace().collect::<Vec<_>>().join(" ")
         );
     }
+    // A closed pipe (`propbet effects | head`) is not an error.
+    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
     Ok(true)
 }
