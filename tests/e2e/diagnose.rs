@@ -244,6 +244,66 @@ fn every_builtin_effect_is_found_on_two_props() {
     assert!(seen.values().all(|&n| n >= 2));
 }
 
+/// The UIUC and RCbenchmark writers: files the readers take back, and the effect found in them.
+#[test]
+fn synth_writes_uiuc_and_rcbenchmark_that_diagnose_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = apc8x6();
+    let prop = p.to_str().unwrap();
+    let o = super::run(
+        &[
+            "synth",
+            "--prop",
+            prop,
+            "--effect",
+            "pitch-offset:deg=1.5",
+            "--format",
+            "uiuc",
+            "--out",
+            "tunnel",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.path().join("tunnel"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "txt"))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 4, "one J sweep per RPM");
+    assert!(dir.path().join("tunnel/answer.json").exists());
+    let refs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    let (_, j) = diagnose(&p, &refs, &[], dir.path());
+    assert_eq!(top(&j), "pitch-offset");
+    let (deg, ci) = param(&j, "pitch-offset", "deg");
+    assert!((deg - 1.5).abs() <= 2.0 * ci.max(0.02), "deg = {deg} ± {ci}");
+
+    let c = cam6x3();
+    let o = super::run(
+        &[
+            "synth",
+            "--prop",
+            c.to_str().unwrap(),
+            "--effect",
+            "torque-tare:q0=0.003,q1=2e-6",
+            "--format",
+            "rcbenchmark",
+            "--rpm",
+            "3000:15000/7",
+            "--out",
+            "steps.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let answer = json(&dir.path().join("steps.csv.answer.json"));
+    assert_eq!(answer["effects"]["torque-tare"]["q0"], 0.003);
+    let (_, j) = diagnose(&c, &[&dir.path().join("steps.csv")], &[], dir.path());
+    assert_eq!(top(&j), "torque-tare", "{}", j["diagnosis"]["ranking"]);
+    assert_eq!(j["diagnosis"]["points"], 7, "seven steps");
+}
+
 #[test]
 fn pure_noise_reports_nothing_significant() {
     let dir = tempfile::tempdir().unwrap();

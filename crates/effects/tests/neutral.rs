@@ -114,3 +114,61 @@ fn effects_move_loads_the_physical_way() {
     assert!(at("re-scaling:dexp=-0.5", op).1 > q0);
     assert!(at("re-scaling:dexp=0.5", op).1 < q0);
 }
+
+#[test]
+fn user_formulas_on_section_and_geometry_hooks() {
+    let text = r#"
+[[effect]]
+id = "lift-gain"
+hook = "cl"
+formula = "cl * f"
+[[effect.param]]
+name = "f"
+neutral = 1.0
+lower = 0.5
+upper = 1.5
+
+[[effect]]
+id = "twist-user"
+hook = "beta"
+formula = "beta + d * x"
+[[effect.param]]
+name = "d"
+neutral = 0.0
+lower = -5.0
+upper = 5.0
+
+[[effect]]
+id = "drag-user"
+hook = "cd"
+formula = "cd + dc"
+[[effect.param]]
+name = "dc"
+neutral = 0.0
+lower = -0.01
+upper = 0.05
+"#;
+    let user = propbet_effects::user::parse(text, "inline.toml").unwrap();
+    let r = Registry::with_user(user).unwrap();
+    let at = |spec: &str, op| {
+        let a = r.resolve(&parse_spec(spec).unwrap()).unwrap();
+        loads(&Stack { active: vec![a] }, op)
+    };
+    let op = OperatingPoint::from_rpm(5.0, 9000.0);
+    let (t0, q0) = loads(&Stack::baseline(), op);
+    for id in ["lift-gain", "twist-user", "drag-user"] {
+        let (t, q) = at(id, op);
+        assert!(
+            (t / t0 - 1.0).abs() < 1e-9 && (q / q0 - 1.0).abs() < 1e-9,
+            "{id} at neutral"
+        );
+    }
+    assert!(at("lift-gain:f=1.1", op).0 > 1.03 * t0);
+    // beta + d x with d = 1 deg is a twist change of up to 1 deg at the tip: between no change
+    // and a 1 deg collective offset.
+    let twist = at("twist-user:d=1", op).0;
+    let collective = at("pitch-offset:deg=1", op).0;
+    assert!(twist > t0 && twist < collective, "{t0} < {twist} < {collective}");
+    let (t, q) = at("drag-user:dc=0.01", op);
+    assert!(q > 1.05 * q0 && t < t0);
+}
