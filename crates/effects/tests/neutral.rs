@@ -1,32 +1,18 @@
 //! Every built-in effect at its neutral values leaves the model as it is, and away from them
 //! moves the loads the way its physics says.
 
-use propbet_bemt::{Discretization, Fluid, OperatingPoint, QpropBlade, QpropCoefficients, Rotor, SolverOptions};
+use propbet_bemt::{Discretization, Fluid, OperatingPoint, Rotor, SolverOptions};
 use propbet_effects::spec::Registry;
 use propbet_effects::{builtin, parse_spec, Stack};
+use propbet_qprop::RadiusReading;
 
+/// QPROP's example propeller, read from the shipped prop file.
 fn cam6x3() -> Rotor {
-    // props/cam6x3/cam6x3.qprop: r, chord [in], beta [deg]; global coefficients.
-    let rows: [(f64, f64, f64); 7] = [
-        (0.75, 0.66, 27.5),
-        (1.00, 0.69, 22.0),
-        (1.50, 0.63, 15.2),
-        (2.00, 0.55, 10.2),
-        (2.50, 0.44, 6.5),
-        (2.875, 0.30, 4.6),
-        (3.00, 0.19, 4.2),
-    ];
-    let k = QpropCoefficients::from_array([0.5, 5.8, -0.3, 1.2, 0.028, 0.05, 0.05, 0.5, 70000.0, -0.7]);
-    QpropBlade {
-        blades: 2.0,
-        tip_radius: 3.0 * 0.0254,
-        r: rows.iter().map(|r| r.0 * 0.0254).collect(),
-        chord: rows.iter().map(|r| r.1 * 0.0254).collect(),
-        beta: rows.iter().map(|r| r.2.to_radians()).collect(),
-        coeffs: vec![k; rows.len()],
-    }
-    .to_rotor(Discretization::default())
-    .unwrap()
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../props/cam6x3/cam6x3.qprop");
+    let (file, _) = propbet_qprop::parse_prop(&std::fs::read_to_string(path).unwrap()).unwrap();
+    file.to_blade(RadiusReading::Documented)
+        .to_rotor(Discretization::default())
+        .unwrap()
 }
 
 fn loads(stack: &Stack, op: OperatingPoint) -> (f64, f64) {
