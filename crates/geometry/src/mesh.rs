@@ -79,7 +79,10 @@ impl Mesh {
         b.extend_from_slice(&(self.triangles.len() as u32).to_le_bytes());
         for i in 0..self.triangles.len() {
             let [p, q, r] = self.corners(i);
-            let n = (q - p).cross(&(r - p)).try_normalize(0.0).unwrap_or_else(Vector3::zeros);
+            let n = (q - p)
+                .cross(&(r - p))
+                .try_normalize(0.0)
+                .unwrap_or_else(Vector3::zeros);
             for v in [n, p, q, r] {
                 for c in v.iter() {
                     b.extend_from_slice(&(*c as f32).to_le_bytes());
@@ -95,7 +98,8 @@ impl Mesh {
 pub fn read_stl(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
     let ascii = bytes.len() >= 5
         && bytes[..5].eq_ignore_ascii_case(b"solid")
-        && std::str::from_utf8(&bytes[..bytes.len().min(1000)]).is_ok_and(|s| s.contains("facet") || s.trim().len() < 1000);
+        && std::str::from_utf8(&bytes[..bytes.len().min(1000)])
+            .is_ok_and(|s| s.contains("facet") || s.trim().len() < 1000);
     let binary_consistent = bytes.len() >= 84 && {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         bytes.len() == 84 + 50 * n
@@ -140,7 +144,9 @@ fn read_binary(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
             let o = base + 4 * k;
             f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]) as f64
         };
-        let v: Vec<Vector3<f64>> = (0..3).map(|c| Vector3::new(f(3 * c), f(3 * c + 1), f(3 * c + 2))).collect();
+        let v: Vec<Vector3<f64>> = (0..3)
+            .map(|c| Vector3::new(f(3 * c), f(3 * c + 1), f(3 * c + 2)))
+            .collect();
         if v.iter().any(|p| !p.iter().all(|x| x.is_finite())) {
             return Err(MeshError::NotFinite {
                 name: name.to_string(),
@@ -161,11 +167,14 @@ fn read_ascii(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
         if w.next() != Some("vertex") {
             continue;
         }
-        let vals: Vec<f64> = w.map(|x| x.parse::<f64>()).collect::<Result<_, _>>().map_err(|_| MeshError::Syntax {
-            name: name.to_string(),
-            line: i + 1,
-            message: format!("`{}` is not `vertex x y z`", line.trim()),
-        })?;
+        let vals: Vec<f64> = w
+            .map(|x| x.parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| MeshError::Syntax {
+                name: name.to_string(),
+                line: i + 1,
+                message: format!("`{}` is not `vertex x y z`", line.trim()),
+            })?;
         if vals.len() != 3 {
             return Err(MeshError::Syntax {
                 name: name.to_string(),
@@ -204,7 +213,11 @@ mod tests {
 
     fn tri() -> Mesh {
         let mut m = Mesh::default();
-        m.push_triangle(Vector3::new(0.0, 0.0, 0.0), Vector3::new(1.0, 0.0, 0.0), Vector3::new(0.0, 1.0, 0.5));
+        m.push_triangle(
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(1.0, 0.0, 0.0),
+            Vector3::new(0.0, 1.0, 0.5),
+        );
         m
     }
 
@@ -224,13 +237,22 @@ mod tests {
         let mut b = tri().to_stl();
         b.truncate(100);
         let e = read_stl(&b, "t.stl").unwrap_err().to_string();
-        assert!(e.contains("t.stl: truncated binary STL: the header announces 1 triangles"), "{e}");
+        assert!(
+            e.contains("t.stl: truncated binary STL: the header announces 1 triangles"),
+            "{e}"
+        );
         let nan = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex nan 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n";
         let e = read_stl(nan.as_bytes(), "n.stl").unwrap_err().to_string();
-        assert!(e.contains("n.stl: line 5: a vertex coordinate is not a finite number"), "{e}");
+        assert!(
+            e.contains("n.stl: line 5: a vertex coordinate is not a finite number"),
+            "{e}"
+        );
         let cut = "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n";
         let e = read_stl(cut.as_bytes(), "c.stl").unwrap_err().to_string();
         assert!(e.contains("ends inside a facet"), "{e}");
-        assert!(matches!(read_stl(b"solid x\nendsolid x\n", "e.stl"), Err(MeshError::Empty(_))));
+        assert!(matches!(
+            read_stl(b"solid x\nendsolid x\n", "e.stl"),
+            Err(MeshError::Empty(_))
+        ));
     }
 }

@@ -1,1 +1,175 @@
-//! x
+//! Cylindrical sections: the mesh cut by the cylinder r = const (exact triangle-edge
+//! intersections), points split by blade, and each section measured on the unrolled cylinder
+//! (u = r theta, w = z).
+
+use nalgebra::Vector3;
+
+use crate::mesh::Mesh;
+
+/// A point on a cylinder: angle [rad] and height.
+pub type CylPoint = (f64, f64);
+
+/// Intersections of the mesh's edges with the cylinder of radius `r` about z.
+pub fn cut_points(m: &Mesh, r: f64) -> Vec<CylPoint> {
+    let mut out = Vec::new();
+    let r2 = r * r;
+    for i in 0..m.triangles.len() {
+        let c = m.corners(i);
+        for k in 0..3 {
+            let (a, b) = (c[k], c[(k + 1) % 3]);
+            crossing(a, b, r2, &mut out);
+        }
+    }
+    out
+}
+
+fn crossing(a: Vector3<f64>, b: Vector3<f64>, r2: f64, out: &mut Vec<CylPoint>) {
+    let d = b - a;
+    let (qa, qb, qc) = (
+        d.x * d.x + d.y * d.y,
+        2.0 * (a.x * d.x + a.y * d.y),
+        a.x * a.x + a.y * a.y - r2,
+    );
+    if qa <= 0.0 {
+        return;
+    }
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc < 0.0 {
+        return;
+    }
+    let s = disc.sqrt();
+    for t in [(-qb - s) / (2.0 * qa), (-qb + s) / (2.0 * qa)] {
+        if (0.0..1.0).contains(&t) {
+            let p = a + t * d;
+            out.push((p.y.atan2(p.x), p.z));
+        }
+    }
+}
+
+/// Splits cut points into `n` blades by angle: blade k holds the points nearest the angle
+/// 2 pi k / n (blade 0 along +x).
+pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
+    let mut out = vec![Vec::new(); n.max(1)];
+    let step = 2.0 * std::f64::consts::PI / n.max(1) as f64;
+    for &(th, z) in pts {
+        let k = ((th / step).round() as i64).rem_euclid(n.max(1) as i64) as usize;
+        // Angle relative to the blade's own axis, in (-pi/n, pi/n].
+        let rel = th - k as f64 * step;
+        let rel = (rel + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
+        out[k].push((rel, z));
+    }
+    out
+}
+
+/// The vector from the trailing to the leading edge on the unrolled cylinder (du, dw), with
+/// the leading edge told from the trailing edge by thickness (a rounded nose is thicker near
+/// its end than a sharp tail).
+pub fn unrolled_chord(pts: &[CylPoint], r: f64) -> Option<(f64, f64)> {
+    let s = measure(pts, r)?;
+    Some((s.le.0 - s.te.0, s.le.1 - s.te.1))
+}
+
+/// A measured section on the unrolled cylinder.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionShape {
+    /// Radius.
+    pub r: f64,
+    /// Leading edge (u, w).
+    pub le: (f64, f64),
+    /// Trailing edge (u, w).
+    pub te: (f64, f64),
+    /// Chord length.
+    pub chord: f64,
+    /// Blade angle: the chord line against the rotation plane [rad], positive with the leading
+    /// edge at higher z.
+    pub beta: f64,
+    /// Maximum thickness / chord.
+    pub t_c: f64,
+    /// Its chord position (0 at the leading edge).
+    pub t_pos: f64,
+    /// Maximum camber / chord (signed, towards the suction side +n).
+    pub camber: f64,
+    /// Its chord position.
+    pub camber_pos: f64,
+    /// Number of points.
+    pub points: usize,
+}
+
+/// Measures one blade's section from its cut points (angle relative to the blade axis, z).
+pub fn measure(pts: &[CylPoint], r: f64) -> Option<SectionShape> {
+    if pts.len() < 8 {
+        return None;
+    }
+    let uw: Vec<(f64, f64)> = pts.iter().map(|&(th, z)| (r * th, z)).collect();
+    // Farthest pair: from an extreme point, the farthest; then the farthest from that.
+    let far = |p: (f64, f64)| {
+        uw.iter()
+            .copied()
+            .max_by(|a, b| {
+                let d = |q: &(f64, f64)| (q.0 - p.0).powi(2) + (q.1 - p.1).powi(2);
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap_or(p)
+    };
+    let mut a = far(uw[0]);
+    let mut b = far(a);
+    for _ in 0..3 {
+        a = far(b);
+        b = far(a);
+    }
+    let chord = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
+    if chord <= 0.0 {
+        return None;
+    }
+    // Chordwise profile from a: thickness bins.
+    let (ex, ey) = ((b.0 - a.0) / chord, (b.1 - a.1) / chord);
+    const BINS: usize = 50;
+    let mut hi = [f64::NEG_INFINITY; BINS];
+    let mut lo = [f64::INFINITY; BINS];
+    for &(u, w) in &uw {
+        let s = ((u - a.0) * ex + (w - a.1) * ey) / chord;
+        let n = (-(u - a.0) * ey + (w - a.1) * ex) / chord;
+        let k = ((s * BINS as f64) as isize).clamp(0, BINS as isize - 1) as usize;
+        hi[k] = hi[k].max(n);
+        lo[k] = lo[k].min(n);
+    }
+    let thick: Vec<f64> = (0..BINS)
+        .map(|k| if hi[k] >= lo[k] { hi[k] - lo[k] } else { 0.0 })
+        .collect();
+    // The nose is the thicker end (10 % of chord from each end).
+    let (from_a, from_b) = (thick[BINS / 10], thick[BINS - 1 - BINS / 10]);
+    let (le, te, flip) = if from_a >= from_b { (a, b, false) } else { (b, a, true) };
+    let at = |k: usize| if flip { BINS - 1 - k } else { k };
+    let mut best_t: (f64, f64) = (0.0, 0.0);
+    let mut best_c: (f64, f64) = (0.0, 0.0);
+    // Normal pointing to the suction side: +90 deg from the TE->LE direction.
+    let sign = if flip { -1.0 } else { 1.0 };
+    for k in 0..BINS {
+        let i = at(k);
+        let t = thick[i];
+        let pos = (k as f64 + 0.5) / BINS as f64;
+        if t > best_t.0 {
+            best_t = (t, pos);
+        }
+        if hi[i] >= lo[i] {
+            // a->b direction has normal (-ey, ex); TE->LE is the opposite when a is the LE.
+            let c = -sign * 0.5 * (hi[i] + lo[i]);
+            if c.abs() > best_c.0.abs() {
+                best_c = (c, pos);
+            }
+        }
+    }
+    let beta = (le.1 - te.1).atan2(le.0 - te.0);
+    Some(SectionShape {
+        r,
+        le,
+        te,
+        chord,
+        beta,
+        t_c: best_t.0,
+        t_pos: best_t.1,
+        camber: best_c.0,
+        camber_pos: best_c.1,
+        points: pts.len(),
+    })
+}

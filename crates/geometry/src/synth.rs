@@ -55,14 +55,21 @@ pub fn naca4(x: f64, t: f64, m: f64, p: f64) -> ((f64, f64), (f64, f64)) {
         )
     };
     let th = dyc.atan();
-    ((x - yt * th.sin(), yc + yt * th.cos()), (x + yt * th.sin(), yc - yt * th.cos()))
+    (
+        (x - yt * th.sin(), yc + yt * th.cos()),
+        (x + yt * th.sin(), yc - yt * th.cos()),
+    )
 }
 
 impl BladeDef {
     /// The definition interpolated linearly at radius `r`.
     pub fn at(&self, r: f64) -> StationDef {
         let s = &self.stations;
-        let i = s.iter().position(|x| x.r >= r).unwrap_or(s.len() - 1).clamp(1, s.len() - 1);
+        let i = s
+            .iter()
+            .position(|x| x.r >= r)
+            .unwrap_or(s.len() - 1)
+            .clamp(1, s.len() - 1);
         let (a, b) = (s[i - 1], s[i]);
         let f = ((r - a.r) / (b.r - a.r)).clamp(0.0, 1.0);
         let l = |x: f64, y: f64| x + f * (y - x);
@@ -88,7 +95,9 @@ impl BladeDef {
             let th = theta_b + u / st.r;
             Vector3::new(st.r * th.cos(), st.r * th.sin(), w)
         };
-        let xs: Vec<f64> = (0..=n).map(|k| 0.5 * (1.0 - (PI * k as f64 / n as f64).cos())).collect();
+        let xs: Vec<f64> = (0..=n)
+            .map(|k| 0.5 * (1.0 - (PI * k as f64 / n as f64).cos()))
+            .collect();
         let mut pts = Vec::with_capacity(2 * n);
         for &x in xs.iter().rev() {
             let ((xu, yu), _) = naca4(x, st.t_c, st.camber, st.camber_pos);
