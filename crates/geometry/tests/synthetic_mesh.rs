@@ -71,3 +71,27 @@ fn frame_and_sections_of_a_posed_mesh() {
         assert!(rms(&e_chord) <= 0.005, "chord RMSE {}", rms(&e_chord));
     }
 }
+
+#[test]
+fn not_a_propeller_has_no_rotational_symmetry() {
+    // One blade alone.
+    let one = apce_like(1).to_mesh(20, 20);
+    let e = auto_align(&one).unwrap_err().to_string();
+    assert!(e.starts_with("no rotational symmetry"), "{e}");
+    // A cube: no axis stands out.
+    let mut cube = propbet_geometry::Mesh::default();
+    let v = |x: f64, y: f64, z: f64| Vector3::new(x, y, z);
+    for (a, b, c, d) in [
+        (v(0., 0., 0.), v(1., 0., 0.), v(1., 1., 0.), v(0., 1., 0.)),
+        (v(0., 0., 1.), v(1., 0., 1.), v(1., 1., 1.), v(0., 1., 1.)),
+        (v(0., 0., 0.), v(1., 0., 0.), v(1., 0., 1.), v(0., 0., 1.)),
+        (v(0., 1., 0.), v(1., 1., 0.), v(1., 1., 1.), v(0., 1., 1.)),
+        (v(0., 0., 0.), v(0., 1., 0.), v(0., 1., 1.), v(0., 0., 1.)),
+        (v(1., 0., 0.), v(1., 1., 0.), v(1., 1., 1.), v(1., 0., 1.)),
+    ] {
+        cube.push_triangle(a, b, c);
+        cube.push_triangle(a, c, d);
+    }
+    let e = auto_align(&cube).unwrap_err().to_string();
+    assert!(e.contains("no rotational symmetry") && e.contains("not flat"), "{e}");
+}
