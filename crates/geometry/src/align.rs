@@ -96,6 +96,36 @@ fn blade_arcs(m: &Mesh, lo: f64, hi: f64) -> Vec<(f64, f64)> {
     arcs
 }
 
+/// Largest relative L1 difference between the blades' radial area profiles (10 bands from
+/// 20 % to 100 % of the tip radius), each blade taking the sector around its arc.
+fn radial_mismatch(m: &Mesh, arcs: &[(f64, f64)], tip: f64) -> f64 {
+    let n = arcs.len();
+    let mut prof = vec![[0.0f64; 10]; n];
+    for i in 0..m.triangles.len() {
+        let [a, b, c] = m.corners(i);
+        let g = (a + b + c) / 3.0;
+        let r = g.x.hypot(g.y) / tip;
+        if !(0.2..1.0).contains(&r) {
+            continue;
+        }
+        let th = g.y.atan2(g.x).to_degrees();
+        let k = (0..n)
+            .min_by(|&p, &q| {
+                let d = |j: usize| ((th - arcs[j].1 + 540.0).rem_euclid(360.0) - 180.0).abs();
+                d(p).total_cmp(&d(q))
+            })
+            .unwrap_or(0);
+        prof[k][(((r - 0.2) / 0.08) as usize).min(9)] += 0.5 * (b - a).cross(&(c - a)).norm();
+    }
+    let mut worst: f64 = 0.0;
+    for p in &prof[1..] {
+        let diff: f64 = p.iter().zip(&prof[0]).map(|(x, y)| (x - y).abs()).sum();
+        let tot: f64 = prof[0].iter().sum::<f64>().max(1e-300);
+        worst = worst.max(diff / tot);
+    }
+    worst
+}
+
 /// Finds the propeller frame of a mesh (millimetres or any unit).
 pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
     let (area, centroid, second) = moments(m);
@@ -138,6 +168,10 @@ pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
             let d = (w[1].1 - w[0].1).rem_euclid(360.0);
             (d - 360.0 / n as f64).abs() < 6.0
         });
+    // Each blade must carry the same area at every radius (a single blade about its own middle
+    // also shows two arcs, but its root half and tip half differ).
+    let profile_mismatch = if even { radial_mismatch(&local, &arcs, tip) } else { 0.0 };
+    let even = even && profile_mismatch < 0.3;
     if !even {
         return Err(AlignError::NoSymmetry(format!(
             "the area at 45-75 % of the largest radius ({tip:.3}) forms {n} arc(s) that are not alike and evenly spaced \
