@@ -65,7 +65,7 @@ pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
 /// the leading edge told from the trailing edge by thickness (a rounded nose is thicker near
 /// its end than a sharp tail).
 pub fn unrolled_chord(pts: &[CylPoint], r: f64) -> Option<(f64, f64)> {
-    let s = measure(pts, r)?;
+    let s = measure_with(pts, r, Nose::Thicker)?;
     Some((s.le.0 - s.te.0, s.le.1 - s.te.1))
 }
 
@@ -95,8 +95,22 @@ pub struct SectionShape {
     pub points: usize,
 }
 
-/// Measures one blade's section from its cut points (angle relative to the blade axis, z).
+/// How the leading edge is told from the trailing edge.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Nose {
+    /// The end that is thicker at 10 % of the chord (before the frame is known).
+    Thicker,
+    /// The end at larger theta (the propeller frame's convention).
+    PlusTheta,
+}
+
+/// Measures one blade's section in the propeller frame (leading edge at +theta).
 pub fn measure(pts: &[CylPoint], r: f64) -> Option<SectionShape> {
+    measure_with(pts, r, Nose::PlusTheta)
+}
+
+/// Measures one blade's section from its cut points (angle relative to the blade axis, z).
+pub fn measure_with(pts: &[CylPoint], r: f64, nose: Nose) -> Option<SectionShape> {
     if pts.len() < 8 {
         return None;
     }
@@ -138,7 +152,11 @@ pub fn measure(pts: &[CylPoint], r: f64) -> Option<SectionShape> {
         .collect();
     // The nose is the thicker end (10 % of chord from each end).
     let (from_a, from_b) = (thick[BINS / 10], thick[BINS - 1 - BINS / 10]);
-    let (le, te, flip) = if from_a >= from_b { (a, b, false) } else { (b, a, true) };
+    let a_is_le = match nose {
+        Nose::Thicker => from_a >= from_b,
+        Nose::PlusTheta => a.0 >= b.0,
+    };
+    let (le, te, flip) = if a_is_le { (a, b, false) } else { (b, a, true) };
     let at = |k: usize| if flip { BINS - 1 - k } else { k };
     let mut best_t: (f64, f64) = (0.0, 0.0);
     let mut best_c: (f64, f64) = (0.0, 0.0);
