@@ -140,13 +140,6 @@ pub struct Diagnosis {
     pub final_residuals: Vec<f64>,
 }
 
-struct Current {
-    effects: Vec<Arc<dyn Effect>>,
-    fit: FitOutcome,
-    kfold: f64,
-    loro: Option<f64>,
-}
-
 /// Point indices of the k folds and the RPM groups.
 struct Folds {
     kfold: Vec<Vec<usize>>,
@@ -227,14 +220,42 @@ fn all_starts(e: &Arc<dyn Effect>) -> Vec<Vec<f64>> {
     s
 }
 
-/// A set of effects fitted together and scored.
+/// A set of effects fitted together, with its held-out errors.
 #[derive(Clone)]
 struct Evaluated {
-    effects: Vec<Arc<dyn Effect>>,
     fit: FitOutcome,
     kfold: f64,
     loro: Option<f64>,
-    score: f64,
+}
+
+impl Evaluated {
+    /// The effects of the fitted stack, in order.
+    fn effects(&self) -> Vec<Arc<dyn Effect>> {
+        self.fit.stack.active.iter().map(|a| a.effect.clone()).collect()
+    }
+
+    /// Ranking score (lower is better).
+    fn score(&self) -> f64 {
+        score(self.fit.residuals.len(), self.kfold, self.fit.p.len())
+    }
+
+    /// The ladder's rung for this model ("baseline" when it has no effect).
+    fn rung(&self, p_value: Option<f64>) -> Rung {
+        Rung {
+            added: self
+                .fit
+                .stack
+                .active
+                .last()
+                .map_or("baseline".into(), |a| a.effect.id().to_string()),
+            stack: self.fit.stack.describe(),
+            params: self.fit.params(),
+            rms: rms(&self.fit.residuals),
+            kfold_rms: self.kfold,
+            loro_rms: self.loro,
+            p_value,
+        }
+    }
 }
 
 /// Fits `effects` together: parameters of effects in `warm` start from their values there; the
@@ -283,13 +304,10 @@ fn evaluate(
         Some(g) => Some(held_out(model, data, &effects, &fitted, g)?),
         None => None,
     };
-    let score = score(fitted.residuals.len(), kfold, fitted.p.len());
     Ok(Evaluated {
-        effects,
         fit: fitted,
         kfold,
         loro,
-        score,
     })
 }
 
@@ -318,13 +336,13 @@ fn f_test(reduced_sse: f64, full: &FitOutcome, k: usize) -> (f64, f64) {
 fn try_candidate(
     model: &Model,
     data: &Data,
-    current: &Current,
+    current: &Evaluated,
     cand: &Arc<dyn Effect>,
     f: &Folds,
     m: usize,
     alpha: f64,
 ) -> Result<Scored, DiagnoseError> {
-    let mut effects = current.effects.clone();
+    let mut effects = current.effects();
     effects.push(cand.clone());
     let k_new = cand.params().len();
     let k = current.fit.p.len() + k_new;
@@ -374,7 +392,7 @@ fn try_candidate(
         f: fstat,
         p_value,
         significant,
-        score: ev.score,
+        score: ev.score(),
         fit: Some(ev.fit),
         ..base
     })
@@ -384,7 +402,7 @@ fn try_candidate(
 fn rank(
     model: &Model,
     data: &Data,
-    current: &Current,
+    current: &Evaluated,
     candidates: &[Arc<dyn Effect>],
     f: &Folds,
     alpha: f64,
@@ -411,19 +429,20 @@ fn refine(
 ) -> Result<Evaluated, DiagnoseError> {
     for _pass in 0..3 {
         let mut improved = false;
-        'swap: for i in 0..chosen.effects.len() {
+        let current = chosen.effects();
+        'swap: for i in 0..current.len() {
             for c in candidates {
-                if chosen.effects.iter().any(|e| e.id() == c.id()) {
+                if current.iter().any(|e| e.id() == c.id()) {
                     continue;
                 }
-                let mut effects = chosen.effects.clone();
+                let mut effects = current.clone();
                 effects[i] = c.clone();
                 let k: usize = effects.iter().map(|e| e.params().len()).sum();
                 if chosen.fit.residuals.len() < k + 2 {
                     continue;
                 }
                 let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
-                if ev.score < chosen.score - 1e-9 * chosen.score.abs() && ev.fit.sse < chosen.fit.sse {
+                if ev.score() < chosen.score() - 1e-9 * chosen.score().abs() && ev.fit.sse < chosen.fit.sse {
                     chosen = ev;
                     improved = true;
                     break 'swap;
@@ -436,16 +455,17 @@ fn refine(
     }
     // Backward: drop effects the data does not need once the others are in.
     loop {
-        if chosen.effects.len() < 2 {
+        let current = chosen.effects();
+        if current.len() < 2 {
             break;
         }
         let mut drop = None;
-        for i in 0..chosen.effects.len() {
-            let mut effects = chosen.effects.clone();
+        for i in 0..current.len() {
+            let mut effects = current.clone();
             let gone = effects.remove(i);
             let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
             let (_, p) = f_test(ev.fit.sse, &chosen.fit, gone.params().len());
-            if p >= alpha / chosen.effects.len() as f64 || ev.kfold <= chosen.kfold {
+            if p >= alpha / current.len() as f64 || ev.kfold <= chosen.kfold {
                 drop = Some(ev);
                 break;
             }
@@ -515,29 +535,16 @@ pub fn diagnose(
         evaluations: 1,
         at_bound: Vec::new(),
     };
-    let mut current = Current {
-        effects: Vec::new(),
+    let baseline = Evaluated {
         kfold: rms(&r0),
         loro: f.loro.as_ref().map(|_| rms(&r0)),
         fit: base_fit,
     };
-    let mut ladder = vec![Rung {
-        added: "baseline".into(),
-        stack: "baseline".into(),
-        params: Vec::new(),
-        rms: rms(&r0),
-        kfold_rms: rms(&r0),
-        loro_rms: current.loro,
-        p_value: None,
-    }];
+    let mut ladder = vec![baseline.rung(None)];
     let mut ranking = Vec::new();
     let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
-    let baseline_current = Current {
-        effects: Vec::new(),
-        kfold: current.kfold,
-        loro: current.loro,
-        fit: current.fit.clone(),
-    };
+    let mut current = baseline.clone();
+    let mut last_p = None;
     // Forward: add the best significant candidate while there is one.
     for step in 0..opts.max_steps {
         if remaining.is_empty() {
@@ -548,96 +555,66 @@ pub fn diagnose(
         if step == 0 {
             ranking = ranked;
         }
-        let Some(best) = pick else {
+        let Some(Scored {
+            id,
+            fit: Some(fit),
+            kfold_rms,
+            loro_rms,
+            p_value,
+            ..
+        }) = pick
+        else {
             break;
         };
-        let Some(fitted) = best.fit.clone() else {
-            break;
-        };
-        remaining.retain(|e| e.id() != best.id);
-        let mut effects = current.effects.clone();
-        effects.extend(fitted.stack.active.last().map(|a| a.effect.clone()));
-        current = Current {
-            effects,
-            kfold: best.kfold_rms,
-            loro: best.loro_rms,
-            fit: fitted,
+        remaining.retain(|e| e.id() != id);
+        last_p = Some(p_value);
+        current = Evaluated {
+            fit,
+            kfold: kfold_rms,
+            loro: loro_rms,
         };
     }
-    // Swaps and backward elimination, then the ladder rebuilt along the final set: at each
-    // rung the effect of the set that helps most.
-    if current.effects.len() > 1 {
-        let chosen = Evaluated {
-            effects: current.effects.clone(),
-            score: score(current.fit.residuals.len(), current.kfold, current.fit.p.len()),
-            fit: current.fit.clone(),
-            kfold: current.kfold,
-            loro: current.loro,
-        };
-        let refined = refine(model, data, chosen, candidates, &f, opts.alpha)?;
-        let mut set = refined.effects.clone();
-        let mut cur = baseline_current;
-        while !set.is_empty() {
-            let mut best: Option<(usize, Evaluated)> = None;
-            for (i, e) in set.iter().enumerate() {
-                let mut effects = cur.effects.clone();
-                effects.push(e.clone());
-                let warm = if set.len() == 1 {
-                    &refined.fit.stack
-                } else {
-                    &cur.fit.stack
-                };
-                let ev = evaluate(model, data, effects, warm, &f)?;
-                if best.as_ref().is_none_or(|b| ev.score < b.1.score) {
-                    best = Some((i, ev));
+    match current.fit.stack.active.len() {
+        0 => {}
+        1 => ladder.push(current.rung(last_p)),
+        _ => {
+            // Swaps and backward elimination, then the ladder rebuilt along the final set: at
+            // each rung the effect of the set that helps most.
+            let refined = refine(model, data, current, candidates, &f, opts.alpha)?;
+            let mut set = refined.effects();
+            let mut cur = baseline;
+            while !set.is_empty() {
+                let mut best: Option<(usize, Evaluated)> = None;
+                for (i, e) in set.iter().enumerate() {
+                    let mut effects = cur.effects();
+                    effects.push(e.clone());
+                    let warm = if set.len() == 1 {
+                        &refined.fit.stack
+                    } else {
+                        &cur.fit.stack
+                    };
+                    let ev = evaluate(model, data, effects, warm, &f)?;
+                    if best.as_ref().is_none_or(|b| ev.score() < b.1.score()) {
+                        best = Some((i, ev));
+                    }
                 }
+                let Some((i, ev)) = best else {
+                    break;
+                };
+                let gone = set.remove(i);
+                let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
+                ladder.push(ev.rung(Some(p)));
+                cur = ev;
             }
-            let Some((i, ev)) = best else {
-                break;
-            };
-            set.remove(i);
-            let k_new = ev.effects.last().map_or(0, |e| e.params().len());
-            let (_, p) = f_test(cur.fit.sse, &ev.fit, k_new);
-            ladder.push(Rung {
-                added: ev.effects.last().map_or(String::new(), |e| e.id().to_string()),
-                stack: ev.fit.stack.describe(),
-                params: ev.fit.params(),
-                rms: rms(&ev.fit.residuals),
-                kfold_rms: ev.kfold,
-                loro_rms: ev.loro,
-                p_value: Some(p),
-            });
-            cur = Current {
-                effects: ev.effects,
-                kfold: ev.kfold,
-                loro: ev.loro,
-                fit: ev.fit,
-            };
+            current = cur;
         }
-        current = cur;
-    } else if let Some(a) = current.fit.stack.active.first() {
-        let (_, p) = f_test(
-            ladder[0].rms.powi(2) * current.fit.residuals.len() as f64,
-            &current.fit,
-            a.values.len(),
-        );
-        ladder.push(Rung {
-            added: a.effect.id().to_string(),
-            stack: current.fit.stack.describe(),
-            params: current.fit.params(),
-            rms: rms(&current.fit.residuals),
-            kfold_rms: current.kfold,
-            loro_rms: current.loro,
-            p_value: Some(p),
-        });
     }
     let final_residuals = current.fit.residuals.clone();
-    let final_loads = model.loads(data, &current.fit.stack, &all)?;
     Ok(Diagnosis {
         rows,
         points: data.obs.len(),
-        before: signatures(data, &baseline_loads),
-        after: signatures(data, &final_loads),
+        before: signatures(data, &r0),
+        after: signatures(data, &final_residuals),
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         final_stack: current.fit.stack.clone(),

@@ -5,7 +5,6 @@
 
 use std::collections::BTreeMap;
 
-use propbet_effects::Loads;
 use serde::Serialize;
 
 use crate::Data;
@@ -34,23 +33,21 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
-/// The residual patterns of `loads` against `data`.
-pub fn signatures(data: &Data, loads: &[Loads]) -> Vec<Signature> {
+/// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
+/// relative errors with the floors).
+pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
     let mut out: Vec<Signature> = Vec::new();
     for torque in [false, true] {
         let name = if torque { "torque" } else { "thrust" };
         // (J, rpm, group, relative error)
         let pts: Vec<(f64, f64, i64, f64)> = data
-            .obs
+            .rows()
             .iter()
-            .zip(loads)
-            .filter_map(|(o, l)| {
-                let (m, p, floor) = if torque {
-                    (o.torque?, l.torque, data.torque_floor)
-                } else {
-                    (o.thrust, l.thrust, data.thrust_floor)
-                };
-                Some((o.j, o.rpm(), o.rpm_group, (p - m) / m.abs().max(floor)))
+            .zip(residuals)
+            .filter(|(row, _)| row.torque == torque)
+            .map(|(row, &e)| {
+                let o = &data.obs[row.point];
+                (o.j, o.rpm(), o.rpm_group, e)
             })
             .collect();
         if pts.is_empty() {
