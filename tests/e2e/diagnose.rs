@@ -24,6 +24,26 @@ fn diagnose(prop: &Path, measured: &[&Path], extra: &[&str], dir: &Path) -> (std
     (o, j)
 }
 
+/// `propbet compare` with `extra` flags: the mean |relative error| of `quantity`.
+fn compare_error(prop: &Path, measured: &Path, extra: &[&str], quantity: &str, dir: &Path) -> f64 {
+    let mut args = vec![
+        "compare",
+        "--prop",
+        prop.to_str().unwrap(),
+        "--measured",
+        measured.to_str().unwrap(),
+        "--out",
+        "c",
+    ];
+    args.extend_from_slice(extra);
+    let o = run(&args, dir);
+    assert!(o.status.code() != Some(2), "{}", stderr(&o));
+    let m = json(&dir.join("c/metrics.json"));
+    m["metrics"]["overall"]["metrics"][quantity]["mean_abs_rel"]
+        .as_f64()
+        .unwrap()
+}
+
 fn top(d: &serde_json::Value) -> String {
     d["diagnosis"]["ranking"][0]["id"].as_str().unwrap().to_string()
 }
@@ -368,27 +388,13 @@ fn user_defined_effect_is_fitted_and_ranked() {
     let (c, ci) = param(&j, "windage", "c");
     assert!((c - 2.5e-8).abs() <= 2.0 * ci && ci < 0.2 * c, "c = {c} ± {ci}");
     // --effect with the user effect applies it in compare: the error vanishes.
-    let o = run(
-        &[
-            "compare",
-            "--prop",
-            cam6x3().to_str().unwrap(),
-            "--measured",
-            data.to_str().unwrap(),
-            "--user-effects",
-            u,
-            "--effect",
-            "windage:c=2.5e-8",
-            "--out",
-            "c",
-        ],
+    let e = compare_error(
+        &cam6x3(),
+        &data,
+        &["--user-effects", u, "--effect", "windage:c=2.5e-8"],
+        "torque",
         dir.path(),
     );
-    assert!(o.status.code() != Some(2), "{}", stderr(&o));
-    let m = json(&dir.path().join("c/metrics.json"));
-    let e = m["metrics"]["overall"]["metrics"]["torque"]["mean_abs_rel"]
-        .as_f64()
-        .unwrap();
     assert!(e < 0.015, "torque error with the effect {e}");
 }
 
@@ -421,25 +427,13 @@ fn effect_flag_on_predict_and_compare() {
     assert_eq!(pred(&["--effect", "pitch-offset:deg=2"]), pred(&["--dbeta", "2"]));
     // The shipped pitch-offset example is matched within its noise once the effect is added.
     let d = repo().join("tests/data/hidden_effects/pitch_offset");
-    let o = run(
-        &[
-            "compare",
-            "--prop",
-            d.join("apc8x6.qprop").to_str().unwrap(),
-            "--measured",
-            d.join("apc8x6_tunnel.csv").to_str().unwrap(),
-            "--effect",
-            "pitch-offset:deg=1.2",
-            "--out",
-            "c",
-        ],
+    let e = compare_error(
+        &d.join("apc8x6.qprop"),
+        &d.join("apc8x6_tunnel.csv"),
+        &["--effect", "pitch-offset:deg=1.2"],
+        "thrust",
         dir.path(),
     );
-    assert!(o.status.code() != Some(2), "{}", stderr(&o));
-    let m = json(&dir.path().join("c/metrics.json"));
-    let e = m["metrics"]["overall"]["metrics"]["thrust"]["mean_abs_rel"]
-        .as_f64()
-        .unwrap();
     assert!(e < 0.01, "thrust error with the effect {e}");
     // Bad specs.
     for (spec, msg) in [

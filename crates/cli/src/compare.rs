@@ -65,36 +65,35 @@ pub struct MeasuredArgs {
 impl MeasuredArgs {
     /// The air choice and the measured sets, read and checked.
     pub fn load(&self) -> Result<(AirChoice, Vec<MeasuredSet>)> {
-        let args = self;
-        if let Some(p) = args.poles {
+        if let Some(p) = self.poles {
             if p < 2 || p % 2 != 0 {
                 bail!("--poles {p}: a motor has an even number of poles, at least 2");
             }
         }
-        if let Some(r) = args.rho {
+        if let Some(r) = self.rho {
             if !(r.is_finite() && r > 0.0 && r < 20.0) {
                 bail!("--rho {r}: not a plausible air density in kg/m^3");
             }
         }
         let air = AirChoice {
-            given: args.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
-            rho: args.rho,
+            given: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+            rho: self.rho,
         };
-        let column_map = args
+        let column_map = self
             .columns
             .as_ref()
             .map(|p| std::fs::read_to_string(p).with_context(|| format!("{}: cannot read the column map", p.display())))
             .transpose()?;
         let opts = ReadOptions {
-            poles: args.poles,
-            rpm_source: args.rpm_source.map(|s| match s {
+            poles: self.poles,
+            rpm_source: self.rpm_source.map(|s| match s {
                 RpmSourceArg::Optical => RpmSource::Optical,
                 RpmSourceArg::Electrical => RpmSource::Electrical,
             }),
             column_map,
             ..Default::default()
         };
-        let sets: Vec<MeasuredSet> = args
+        let sets: Vec<MeasuredSet> = self
             .measured
             .iter()
             .map(|p| read_measured(p, &opts))

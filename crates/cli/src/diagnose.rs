@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_compare::{compare, AirChoice, Setup};
+use propbet_compare::{compare, Setup};
 use propbet_diagnose::discover::{diagnose, Options};
 use propbet_diagnose::report::{self, JsonOut};
 use propbet_diagnose::{Data, Model};
@@ -59,7 +59,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
         rotor: &model.rotor,
         diameter: model.diameter,
         opts: model.opts,
-        air: AirChoice { ..air },
+        air,
         effects: Stack::baseline(),
     };
     let points = compare(&setup, &sets)?;

@@ -86,10 +86,16 @@ pub fn default_js(model: &Model, fluid: &Fluid, rpm: f64) -> Vec<f64> {
         .collect()
 }
 
+/// Zero-mean normal noise of standard deviation `sd` (none for a negative or non-finite `sd`).
+fn normal(sd: f64) -> Normal<f64> {
+    let sd = if sd.is_finite() { sd.max(0.0) } else { 0.0 };
+    Normal::new(0.0, sd).expect("a finite, non-negative standard deviation")
+}
+
 /// Measures the plan on the model with `stack` (the hidden effects) and adds the noise.
 pub fn generate(model: &Model, stack: &Stack, plan: &Plan) -> Result<Vec<Point>, EffectError> {
     let mut rng = rand::rngs::StdRng::seed_from_u64(plan.seed);
-    let normal = Normal::new(0.0, plan.noise.max(0.0)).unwrap_or_else(|_| Normal::new(0.0, 0.0).expect("sd 0"));
+    let normal = normal(plan.noise);
     let mut out = Vec::new();
     for &rpm in &plan.rpms {
         let omega = rpm * PI / 30.0;
@@ -153,8 +159,8 @@ pub fn write_uiuc(points: &[Point], plan: &Plan, diameter: f64, stem: &str) -> V
 /// apart, each with its own noise (RPM scatter 0.2 %).
 pub fn write_rcbenchmark(points: &[Point], plan: &Plan) -> String {
     let mut rng = rand::rngs::StdRng::seed_from_u64(plan.seed ^ 0x5eed);
-    let rel = Normal::new(0.0, plan.noise.max(0.0)).unwrap_or_else(|_| Normal::new(0.0, 0.0).expect("sd 0"));
-    let rpm_noise = Normal::new(0.0, 0.002).expect("positive sd");
+    let rel = normal(plan.noise);
+    let rpm_noise = normal(0.002);
     let mut s = String::from(
         "Time (s),ESC signal (µs),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Electrical Speed (RPM),\
          Motor Optical Speed (RPM),Electrical Power (W),Mechanical Power (W),Motor Efficiency (%),\
