@@ -13,6 +13,8 @@
 #![deny(missing_docs)]
 
 pub mod align;
+pub mod cloud;
+pub mod fit;
 pub mod mesh;
 pub mod section;
 pub mod synth;

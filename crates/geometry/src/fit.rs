@@ -1,0 +1,409 @@
+//! Airfoil fits of one section's points on the unrolled cylinder (or a plane).
+//!
+//! - [`fit_naca`]: the NACA 4-digit fit of the published photogrammetry method: 7 parameters
+//!   (leading-edge position u, w; chord; blade angle; thickness, camber and its position)
+//!   found by minimising the point-to-panel distances (Huber loss, so stray points do not
+//!   pull), with argmin's Nelder-Mead from the seed that [`crate::section::measure`] gives.
+//!   Its chord line (leading edge → trailing edge of the NACA shape) is the section's chord
+//!   and blade angle: the farthest-point chord of a cambered section sits off it by the camber
+//!   slope at the nose (0.2° at 5 % camber).
+//! - [`fit_cst`]: a general shape (Kulfan CST, class function x^0.5 (1 − x), order-5
+//!   Bernstein polynomials per surface plus a trailing-edge thickness term) in the NACA fit's
+//!   chord frame: blunt trailing edges and non-NACA sections such as E63. Linear least squares.
+//!
+//! Both report the RMS normal distance of the points to the fitted contour [same unit as
+//! the points]. [`Cst::selig`] writes the normalised coordinates XFOIL reads (Selig order:
+//! upper trailing edge → leading edge → lower trailing edge, cosine spacing).
+
+use argmin::core::{CostFunction, Executor};
+use argmin::solver::neldermead::NelderMead;
+use nalgebra::{DMatrix, DVector};
+use serde::Serialize;
+
+use crate::section::SectionShape;
+use crate::synth::naca4;
+
+/// Panels per surface of the NACA contour used for distances.
+const PANELS: usize = 80;
+
+/// A fitted NACA 4-digit section.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct NacaFit {
+    /// Leading edge (u, w).
+    pub le: (f64, f64),
+    /// Chord.
+    pub chord: f64,
+    /// Blade angle of the chord line [rad] (leading edge at +u and higher w when positive).
+    pub beta: f64,
+    /// Thickness ratio t/c.
+    pub t_c: f64,
+    /// Maximum camber / chord.
+    pub camber: f64,
+    /// Chord position of the maximum camber.
+    pub camber_pos: f64,
+    /// RMS normal distance of the points to the fitted contour.
+    pub rms: f64,
+    /// Points used.
+    pub points: usize,
+}
+
+impl NacaFit {
+    /// Normalised section coordinates (x along the chord from the leading edge, y towards the
+    /// suction side) of a point (u, w).
+    pub fn to_section(&self, p: (f64, f64)) -> (f64, f64) {
+        to_section(&[self.le.0, self.le.1, self.chord, self.beta], p)
+    }
+
+    /// The 4-digit designation, rounded ("4410").
+    pub fn designation(&self) -> String {
+        format!(
+            "{}{}{:02}",
+            (self.camber.abs() * 100.0).round() as i64,
+            (self.camber_pos * 10.0).round() as i64,
+            (self.t_c * 100.0).round() as i64
+        )
+    }
+}
+
+fn to_section(frame: &[f64], p: (f64, f64)) -> (f64, f64) {
+    let (le_u, le_w, c, beta) = (frame[0], frame[1], frame[2], frame[3]);
+    let (s, co) = beta.sin_cos();
+    let (du, dw) = (p.0 - le_u, p.1 - le_w);
+    // Chord direction LE -> TE is (-cos, -sin); suction normal (-sin, cos).
+    ((-du * co - dw * s) / c, (-du * s + dw * co) / c)
+}
+
+/// The closed NACA contour, upper then lower, each from the leading edge to the trailing edge
+/// (PANELS + 1 points, cosine spacing).
+fn naca_contour(t: f64, m: f64, p: f64) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let (mut up, mut lo) = (Vec::with_capacity(PANELS + 1), Vec::with_capacity(PANELS + 1));
+    for k in 0..=PANELS {
+        let x = cosine(k, PANELS);
+        let (a, b) = naca4(x, t, m, p);
+        up.push(a);
+        lo.push(b);
+    }
+    (up, lo)
+}
+
+/// Cosine spacing: 0 at k = 0, 1 at k = n.
+fn cosine(k: usize, n: usize) -> f64 {
+    0.5 * (1.0 - (std::f64::consts::PI * k as f64 / n as f64).cos())
+}
+
+fn seg_dist2(p: (f64, f64), a: (f64, f64), b: (f64, f64)) -> f64 {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let l2 = dx * dx + dy * dy;
+    let t = if l2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dy) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let (x, y) = (a.0 + t * dx - p.0, a.1 + t * dy - p.1);
+    x * x + y * y
+}
+
+/// Squared distance from a point to two polylines that run from x = 0 to x = 1 with cosine
+/// spacing, looking only at the panels near the point's chord position.
+fn contour_dist2(p: (f64, f64), sides: [&[(f64, f64)]; 2]) -> f64 {
+    let n = sides[0].len() - 1;
+    let x = p.0.clamp(0.0, 1.0);
+    let k = ((1.0 - 2.0 * x).clamp(-1.0, 1.0).acos() / std::f64::consts::PI * n as f64) as usize;
+    let (lo, hi) = (k.saturating_sub(4), (k + 5).min(n));
+    let mut best = f64::INFINITY;
+    for side in sides {
+        for i in lo..hi {
+            best = best.min(seg_dist2(p, side[i], side[i + 1]));
+        }
+        if k < 10 {
+            // Near the nose the nearest panel may belong to the other end of the window.
+            for i in 0..10.min(n) {
+                best = best.min(seg_dist2(p, side[i], side[i + 1]));
+            }
+        }
+    }
+    best
+}
+
+struct NacaCost<'a> {
+    pts: &'a [(f64, f64)],
+    /// Seed chord, for the Huber threshold and the scaling of the unknowns.
+    c0: f64,
+}
+
+impl NacaCost<'_> {
+    /// Unknowns scaled to order one: u/c0, w/c0, c/c0, beta, t, m, p.
+    fn unpack(&self, x: &[f64]) -> [f64; 7] {
+        [x[0] * self.c0, x[1] * self.c0, x[2] * self.c0, x[3], x[4], x[5], x[6]]
+    }
+
+    fn distances(&self, q: &[f64; 7]) -> impl Iterator<Item = f64> + '_ {
+        let (up, lo) = naca_contour(q[4], q[5], q[6]);
+        let q = *q;
+        self.pts.iter().map(move |&p| {
+            let s = to_section(&q[..4], p);
+            contour_dist2(s, [&up, &lo]).sqrt() * q[2]
+        })
+    }
+}
+
+impl CostFunction for NacaCost<'_> {
+    type Param = Vec<f64>;
+    type Output = f64;
+
+    fn cost(&self, x: &Vec<f64>) -> Result<f64, argmin::core::Error> {
+        let q = self.unpack(x);
+        if q[2] <= 0.0 || !(0.003..0.6).contains(&q[4]) || q[5].abs() > 0.15 || !(0.05..0.95).contains(&q[6]) {
+            return Ok(f64::INFINITY);
+        }
+        let delta = 0.005 * self.c0;
+        let sum: f64 = self
+            .distances(&q)
+            .map(|d| if d < delta { d * d } else { delta * (2.0 * d - delta) })
+            .sum();
+        Ok(sum / self.pts.len() as f64)
+    }
+}
+
+/// Fits a NACA 4-digit section to points (u, w), seeded by the measured shape.
+pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
+    if pts.len() < 8 || seed.chord <= 0.0 {
+        return None;
+    }
+    let c0 = seed.chord;
+    let x0 = vec![
+        seed.le.0 / c0,
+        seed.le.1 / c0,
+        1.0,
+        seed.beta,
+        seed.t_c.clamp(0.01, 0.4),
+        seed.camber.clamp(-0.1, 0.1),
+        seed.camber_pos.clamp(0.2, 0.8),
+    ];
+    let steps = [0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.05];
+    let mut simplex = vec![x0.clone()];
+    for (i, s) in steps.iter().enumerate() {
+        let mut v = x0.clone();
+        v[i] += s;
+        simplex.push(v);
+    }
+    let cost = NacaCost { pts, c0 };
+    let mut best = x0;
+    // Two restarts from the best point shake Nelder-Mead out of a collapsed simplex.
+    for round in 0..3 {
+        let mut simplex = simplex.clone();
+        if round > 0 {
+            simplex = std::iter::once(best.clone())
+                .chain(steps.iter().enumerate().map(|(i, s)| {
+                    let mut v = best.clone();
+                    v[i] += s * 0.2;
+                    v
+                }))
+                .collect();
+        }
+        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-13).ok()?;
+        let res = Executor::new(NacaCost { pts, c0 }, solver)
+            .configure(|s| s.max_iters(3000))
+            .run()
+            .ok()?;
+        best = res.state.best_param.clone()?;
+    }
+    let q = cost.unpack(&best);
+    let rms = (cost.distances(&q).map(|d| d * d).sum::<f64>() / pts.len() as f64).sqrt();
+    Some(NacaFit {
+        le: (q[0], q[1]),
+        chord: q[2],
+        beta: q[3],
+        t_c: q[4],
+        camber: q[5],
+        camber_pos: q[6],
+        rms,
+        points: pts.len(),
+    })
+}
+
+/// Bernstein order of each CST surface.
+pub const CST_ORDER: usize = 5;
+
+/// A CST (Kulfan) section in a chord frame.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Cst {
+    /// Upper-surface Bernstein weights.
+    pub upper: Vec<f64>,
+    /// Lower-surface weights.
+    pub lower: Vec<f64>,
+    /// Trailing-edge ordinates of the upper and lower surface (/chord).
+    pub te: (f64, f64),
+    /// RMS normal distance of the points to the contour [point units].
+    pub rms: f64,
+    /// Points on the upper and lower surface.
+    pub points: (usize, usize),
+}
+
+fn binom(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+fn cst_row(x: f64) -> Vec<f64> {
+    let class = x.max(0.0).sqrt() * (1.0 - x);
+    (0..=CST_ORDER)
+        .map(|i| class * binom(CST_ORDER, i) * x.powi(i as i32) * (1.0 - x).powi((CST_ORDER - i) as i32))
+        .collect()
+}
+
+impl Cst {
+    fn surface(w: &[f64], te: f64, x: f64) -> f64 {
+        cst_row(x).iter().zip(w).map(|(a, b)| a * b).sum::<f64>() + x * te
+    }
+
+    /// Upper and lower ordinate at chord fraction x.
+    pub fn at(&self, x: f64) -> (f64, f64) {
+        (
+            Self::surface(&self.upper, self.te.0, x),
+            Self::surface(&self.lower, self.te.1, x),
+        )
+    }
+
+    /// Normalised coordinates in Selig order, `n` points per surface (cosine spacing).
+    pub fn selig(&self, n: usize) -> Vec<(f64, f64)> {
+        let n = n.max(4);
+        let mut out = Vec::with_capacity(2 * n + 1);
+        for k in (0..=n).rev() {
+            let x = cosine(k, n);
+            out.push((x, self.at(x).0));
+        }
+        for k in 1..=n {
+            let x = cosine(k, n);
+            out.push((x, self.at(x).1));
+        }
+        out
+    }
+
+    /// Maximum thickness / chord and its position; maximum camber / chord and its position.
+    pub fn thickness_camber(&self) -> ((f64, f64), (f64, f64)) {
+        let (mut t, mut c) = ((0.0, 0.0), (0.0f64, 0.0));
+        for k in 1..400 {
+            let x = k as f64 / 400.0;
+            let (u, l) = self.at(x);
+            if u - l > t.0 {
+                t = (u - l, x);
+            }
+            let m = 0.5 * (u + l);
+            if m.abs() > c.0.abs() {
+                c = (m, x);
+            }
+        }
+        (t, c)
+    }
+}
+
+/// Fits the CST shape to points (u, w) in the chord frame of a NACA fit.
+pub fn fit_cst(pts: &[(f64, f64)], frame: &NacaFit) -> Option<Cst> {
+    let (up_ref, lo_ref) = naca_contour(frame.t_c, frame.camber, frame.camber_pos);
+    let mid = |x: f64| {
+        // Camber line of the NACA fit: the middle of the two surfaces at x.
+        let k = up_ref.partition_point(|p| p.0 < x).min(PANELS);
+        let j = lo_ref.partition_point(|p| p.0 < x).min(PANELS);
+        0.5 * (up_ref[k].1 + lo_ref[j].1)
+    };
+    let (mut up, mut lo) = (Vec::new(), Vec::new());
+    for &p in pts {
+        let s = frame.to_section(p);
+        if !(0.0..=1.0).contains(&s.0) {
+            continue;
+        }
+        if s.1 >= mid(s.0) {
+            up.push(s);
+        } else {
+            lo.push(s);
+        }
+    }
+    let solve = |side: &[(f64, f64)]| -> Option<(Vec<f64>, f64)> {
+        if side.len() < CST_ORDER + 3 {
+            return None;
+        }
+        let cols = CST_ORDER + 2;
+        let mut a = DMatrix::zeros(side.len(), cols);
+        let mut b = DVector::zeros(side.len());
+        for (i, &(x, y)) in side.iter().enumerate() {
+            for (j, v) in cst_row(x).into_iter().enumerate() {
+                a[(i, j)] = v;
+            }
+            a[(i, cols - 1)] = x;
+            b[i] = y;
+        }
+        let sol = a.svd(true, true).solve(&b, 1e-12).ok()?;
+        let w: Vec<f64> = sol.iter().take(cols - 1).copied().collect();
+        Some((w, sol[cols - 1]))
+    };
+    let (wu, teu) = solve(&up)?;
+    let (wl, tel) = solve(&lo)?;
+    let mut cst = Cst {
+        upper: wu,
+        lower: wl,
+        te: (teu, tel),
+        rms: 0.0,
+        points: (up.len(), lo.len()),
+    };
+    let contour = cst.selig(PANELS);
+    let (u_side, l_side): (Vec<_>, Vec<_>) = (
+        contour[..=PANELS].iter().rev().copied().collect(),
+        contour[PANELS..].to_vec(),
+    );
+    let n = (up.len() + lo.len()) as f64;
+    let ss: f64 = up
+        .iter()
+        .chain(&lo)
+        .map(|&p| contour_dist2(p, [&u_side, &l_side]))
+        .sum();
+    cst.rms = (ss / n).sqrt() * frame.chord;
+    Some(cst)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn naca_points(t: f64, m: f64, p: f64, c: f64, beta: f64, le: (f64, f64)) -> Vec<(f64, f64)> {
+        let (s, co) = beta.sin_cos();
+        let mut out = Vec::new();
+        for k in 0..=60 {
+            let x = cosine(k, 60);
+            let (a, b) = naca4(x, t, m, p);
+            for (xs, ys) in [a, b] {
+                out.push((le.0 - c * (xs * co + ys * s), le.1 + c * (-xs * s + ys * co)));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn naca_fit_recovers_the_section() {
+        let pts = naca_points(0.09, 0.04, 0.4, 25.0, 0.35, (7.0, 3.0));
+        let seed = SectionShape {
+            r: 50.0,
+            le: (7.3, 3.2),
+            te: (-15.0, -5.0),
+            chord: 24.0,
+            beta: 0.33,
+            t_c: 0.1,
+            t_pos: 0.3,
+            camber: 0.03,
+            camber_pos: 0.5,
+            points: pts.len(),
+        };
+        let f = fit_naca(&pts, &seed).unwrap();
+        assert!((f.beta - 0.35).abs().to_degrees() < 0.01, "{f:?}");
+        assert!((f.chord / 25.0 - 1.0).abs() < 1e-3, "{f:?}");
+        assert!((f.t_c - 0.09).abs() < 1e-3 && (f.camber - 0.04).abs() < 1e-3, "{f:?}");
+        assert!(f.rms < 0.01, "{f:?}");
+        assert_eq!(f.designation(), "4409");
+        let cst = fit_cst(&pts, &f).unwrap();
+        assert!(cst.rms < 0.02, "{cst:?}");
+        let ((t, _), (m, xm)) = cst.thickness_camber();
+        assert!((t - 0.09).abs() < 2e-3 && (m - 0.04).abs() < 2e-3 && (xm - 0.4).abs() < 0.05, "{t} {m} {xm}");
+        let sel = cst.selig(80);
+        assert_eq!(sel.len(), 161);
+        assert!((sel[0].0 - 1.0).abs() < 1e-12 && sel[80].0.abs() < 1e-12 && (sel[160].0 - 1.0).abs() < 1e-12);
+    }
+}
