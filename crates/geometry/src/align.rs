@@ -8,7 +8,7 @@ use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use thiserror::Error;
 
 use crate::mesh::Mesh;
-use crate::section::{cut_points, split_blades, unrolled_chord};
+use crate::section::{cut_points, slab_points, split_blades, unrolled_chord, CylPoint};
 
 /// Why a mesh cannot be aligned.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -18,72 +18,153 @@ pub enum AlignError {
     NoSymmetry(String),
 }
 
-/// Where the propeller frame sits in the input coordinates.
+/// Where the propeller frame sits in the input coordinates:
+/// `p_frame = scale * rot * (p - origin)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
     /// Hub centre in input coordinates.
     pub origin: Vector3<f64>,
-    /// Rows: the frame's x, y, z axes in input coordinates (`p_frame = rot (p - origin)`).
+    /// Rows: the frame's x, y, z axes in input coordinates.
     pub rot: Matrix3<f64>,
+    /// Input units → millimetres in the frame (1 for meshes unless `--units` says otherwise;
+    /// found by the reference box for clouds).
+    pub scale: f64,
     /// Blade count.
     pub blades: usize,
-    /// Tip radius (largest vertex distance from the axis).
+    /// Tip radius in the frame (largest distance of the surface from the axis).
     pub tip_radius: f64,
     /// What was decided and why.
     pub notes: Vec<String>,
 }
 
-fn moments(m: &Mesh) -> (f64, Vector3<f64>, Matrix3<f64>) {
-    let (mut area, mut first) = (0.0, Vector3::zeros());
-    for i in 0..m.triangles.len() {
-        let [a, b, c] = m.corners(i);
-        let ar = 0.5 * (b - a).cross(&(c - a)).norm();
-        area += ar;
-        first += ar * (a + b + c) / 3.0;
+impl Frame {
+    /// The identity frame (input already in the propeller frame).
+    pub fn identity() -> Self {
+        Self {
+            origin: Vector3::zeros(),
+            rot: Matrix3::identity(),
+            scale: 1.0,
+            blades: 0,
+            tip_radius: 0.0,
+            notes: Vec::new(),
+        }
     }
+
+    /// A point in the frame.
+    pub fn apply(&self, p: &Vector3<f64>) -> Vector3<f64> {
+        self.scale * (self.rot * (p - self.origin))
+    }
+}
+
+/// A scanned surface: a mesh, or the points of a cloud.
+pub trait Surface: Sized {
+    /// Weighted samples of the surface (triangle centroids by area, or points by 1).
+    fn samples(&self) -> Vec<(Vector3<f64>, f64)>;
+    /// The surface in a frame.
+    fn in_frame(&self, f: &Frame) -> Self;
+    /// The section by the cylinder of radius `r` about z (surface already in the frame).
+    fn cylinder_cut(&self, r: f64) -> Vec<CylPoint>;
+    /// Largest distance from the z axis.
+    fn max_radius(&self) -> f64;
+}
+
+impl Surface for Mesh {
+    fn samples(&self) -> Vec<(Vector3<f64>, f64)> {
+        (0..self.triangles.len())
+            .map(|i| {
+                let [a, b, c] = self.corners(i);
+                ((a + b + c) / 3.0, 0.5 * (b - a).cross(&(c - a)).norm())
+            })
+            .collect()
+    }
+    fn in_frame(&self, f: &Frame) -> Self {
+        Mesh {
+            vertices: self.vertices.iter().map(|v| f.apply(v)).collect(),
+            triangles: self.triangles.clone(),
+        }
+    }
+    fn cylinder_cut(&self, r: f64) -> Vec<CylPoint> {
+        cut_points(self, r)
+    }
+    fn max_radius(&self) -> f64 {
+        self.vertices.iter().map(|v| v.x.hypot(v.y)).fold(0.0, f64::max)
+    }
+}
+
+/// The points of a cloud, cut by slabs `slab` thick (same unit as the points).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Points {
+    /// Positions.
+    pub points: Vec<Vector3<f64>>,
+    /// Slab thickness of a cylindrical section.
+    pub slab: f64,
+}
+
+impl Surface for Points {
+    fn samples(&self) -> Vec<(Vector3<f64>, f64)> {
+        self.points.iter().map(|p| (*p, 1.0)).collect()
+    }
+    fn in_frame(&self, f: &Frame) -> Self {
+        Points {
+            points: self.points.iter().map(|p| f.apply(p)).collect(),
+            slab: self.slab * f.scale,
+        }
+    }
+    fn cylinder_cut(&self, r: f64) -> Vec<CylPoint> {
+        slab_points(&self.points, r, self.slab)
+    }
+    fn max_radius(&self) -> f64 {
+        // The 99.98th percentile: a stray point must not set the tip.
+        let mut r: Vec<f64> = self.points.iter().map(|v| v.x.hypot(v.y)).collect();
+        if r.is_empty() {
+            return 0.0;
+        }
+        let k = ((r.len() as f64 * 0.9998) as usize).min(r.len() - 1);
+        *r.select_nth_unstable_by(k, f64::total_cmp).1
+    }
+}
+
+fn moments(samples: &[(Vector3<f64>, f64)]) -> (f64, Vector3<f64>, Matrix3<f64>) {
+    let area: f64 = samples.iter().map(|s| s.1).sum();
+    let first: Vector3<f64> = samples.iter().map(|s| s.0 * s.1).sum();
     let centroid = first / area.max(f64::MIN_POSITIVE);
     let mut second = Matrix3::zeros();
-    for i in 0..m.triangles.len() {
-        let [a, b, c] = m.corners(i).map(|p| p - centroid);
-        let ar = 0.5 * (b - a).cross(&(c - a)).norm();
-        let s = a + b + c;
-        second += ar / 12.0 * (a * a.transpose() + b * b.transpose() + c * c.transpose() + s * s.transpose());
+    for (p, w) in samples {
+        let d = p - centroid;
+        second += *w * d * d.transpose();
     }
     (area, centroid, second)
 }
 
 /// Transforms a mesh into a frame.
 pub fn to_frame(m: &Mesh, f: &Frame) -> Mesh {
-    Mesh {
-        vertices: m.vertices.iter().map(|v| f.rot * (v - f.origin)).collect(),
-        triangles: m.triangles.clone(),
-    }
+    m.in_frame(f)
 }
 
-/// Blade count from the angular distribution of triangle area in the ring `lo..hi` (radii in
-/// the frame): contiguous occupied arcs of a 360-bin histogram.
-fn blade_arcs(m: &Mesh, lo: f64, hi: f64) -> Vec<(f64, f64)> {
+/// Blade count from the angular distribution of sample weight in the ring `lo..hi` (radii in
+/// the frame): contiguous occupied arcs of a 360-bin histogram (bins under 1 % of the fullest
+/// count as empty, so that a few stray points do not bridge two blades).
+fn blade_arcs(samples: &[(Vector3<f64>, f64)], lo: f64, hi: f64) -> Vec<(f64, f64)> {
     let mut bins = vec![0.0; 360];
-    for i in 0..m.triangles.len() {
-        let [a, b, c] = m.corners(i);
-        let g = (a + b + c) / 3.0;
+    for (g, w) in samples {
         let r = g.x.hypot(g.y);
         if r >= lo && r <= hi {
             let th = g.y.atan2(g.x).to_degrees().rem_euclid(360.0);
-            bins[(th as usize).min(359)] += 0.5 * (b - a).cross(&(c - a)).norm();
+            bins[(th as usize).min(359)] += w;
         }
     }
-    let start = match bins.iter().position(|&x| x == 0.0) {
+    let floor = 0.01 * bins.iter().copied().fold(0.0, f64::max);
+    let start = match bins.iter().position(|&x| x <= floor) {
         Some(s) => s,
         None => return Vec::new(),
     };
-    // Arcs: (area, mean angle in degrees), walking from an empty bin.
+    // Arcs: (weight, mean angle in degrees), walking from an empty bin.
     let mut arcs = Vec::new();
-    let mut cur: Option<(f64, f64, f64)> = None; // area, sum sin, sum cos
+    let mut cur: Option<(f64, f64, f64)> = None; // weight, sum sin, sum cos
     for k in 0..=360 {
         let i = (start + k) % 360;
         let w = bins[i];
-        if w > 0.0 {
+        if w > floor {
             let t = (i as f64 + 0.5).to_radians();
             let e = cur.get_or_insert((0.0, 0.0, 0.0));
             e.0 += w;
@@ -96,14 +177,12 @@ fn blade_arcs(m: &Mesh, lo: f64, hi: f64) -> Vec<(f64, f64)> {
     arcs
 }
 
-/// Largest relative L1 difference between the blades' radial area profiles (10 bands from
+/// Largest relative L1 difference between the blades' radial weight profiles (10 bands from
 /// 20 % to 100 % of the tip radius), each blade taking the sector around its arc.
-fn radial_mismatch(m: &Mesh, arcs: &[(f64, f64)], tip: f64) -> f64 {
+fn radial_mismatch(samples: &[(Vector3<f64>, f64)], arcs: &[(f64, f64)], tip: f64) -> f64 {
     let n = arcs.len();
     let mut prof = vec![[0.0f64; 10]; n];
-    for i in 0..m.triangles.len() {
-        let [a, b, c] = m.corners(i);
-        let g = (a + b + c) / 3.0;
+    for (g, w) in samples {
         let r = g.x.hypot(g.y) / tip;
         if !(0.2..1.0).contains(&r) {
             continue;
@@ -115,7 +194,7 @@ fn radial_mismatch(m: &Mesh, arcs: &[(f64, f64)], tip: f64) -> f64 {
                 d(p).total_cmp(&d(q))
             })
             .unwrap_or(0);
-        prof[k][(((r - 0.2) / 0.08) as usize).min(9)] += 0.5 * (b - a).cross(&(c - a)).norm();
+        prof[k][(((r - 0.2) / 0.08) as usize).min(9)] += w;
     }
     let mut worst: f64 = 0.0;
     for p in &prof[1..] {
@@ -126,28 +205,17 @@ fn radial_mismatch(m: &Mesh, arcs: &[(f64, f64)], tip: f64) -> f64 {
     worst
 }
 
-/// Finds the propeller frame of a mesh (millimetres or any unit).
-pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
-    let (area, centroid, second) = moments(m);
+/// Finds the propeller frame of a surface: axis and hub centre from its second moments.
+pub fn auto_align<S: Surface>(m: &S) -> Result<Frame, AlignError> {
+    let samples = m.samples();
+    let (area, centroid, second) = moments(&samples);
     if area.is_nan() || area <= 0.0 {
-        return Err(AlignError::NoSymmetry("the mesh has no area".into()));
+        return Err(AlignError::NoSymmetry("the surface has no area (or no point)".into()));
     }
     let eig = SymmetricEigen::new(second);
     let mut order = [0usize, 1, 2];
     order.sort_by(|&a, &b| eig.eigenvalues[a].total_cmp(&eig.eigenvalues[b]));
     let ev = |k: usize| eig.eigenvectors.column(order[k]).into_owned();
-    let (z, x0) = (ev(0), ev(2));
-    let y0 = z.cross(&x0);
-    let mut rot = Matrix3::from_rows(&[x0.transpose(), y0.transpose(), z.transpose()]);
-    let mut frame = Frame {
-        origin: centroid,
-        rot,
-        blades: 0,
-        tip_radius: 0.0,
-        notes: Vec::new(),
-    };
-    let local = to_frame(m, &frame);
-    let tip = local.vertices.iter().map(|v| v.x.hypot(v.y)).fold(0.0, f64::max);
     let (l0, l1, l2) = (
         eig.eigenvalues[order[0]],
         eig.eigenvalues[order[1]],
@@ -155,11 +223,38 @@ pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
     );
     if l1 < 4.0 * l0 {
         return Err(AlignError::NoSymmetry(format!(
-            "the mesh is not flat like a propeller disc (second moments {:.3e}, {:.3e}, {:.3e}: no axis stands out)",
+            "the shape is not flat like a propeller disc (second moments {:.3e}, {:.3e}, {:.3e}: no axis stands out)",
             l0, l1, l2
         )));
     }
-    let arcs = blade_arcs(&local, 0.45 * tip, 0.75 * tip);
+    align_about(m, centroid, ev(0), ev(2), 1.0)
+}
+
+/// The frame for a known axis `z` through `origin` (`x0` any direction across it), with the
+/// input scaled by `scale`: blade count and symmetry check, blade 0 along +x, thrust direction.
+pub fn align_about<S: Surface>(
+    m: &S,
+    origin: Vector3<f64>,
+    z: Vector3<f64>,
+    x0: Vector3<f64>,
+    scale: f64,
+) -> Result<Frame, AlignError> {
+    let z = z.normalize();
+    let x0 = (x0 - z * z.dot(&x0)).normalize();
+    let y0 = z.cross(&x0);
+    let rot = Matrix3::from_rows(&[x0.transpose(), y0.transpose(), z.transpose()]);
+    let mut frame = Frame {
+        origin,
+        rot,
+        scale,
+        blades: 0,
+        tip_radius: 0.0,
+        notes: Vec::new(),
+    };
+    let local = m.in_frame(&frame);
+    let tip = local.max_radius();
+    let samples = local.samples();
+    let arcs = blade_arcs(&samples, 0.45 * tip, 0.75 * tip);
     let n = arcs.len();
     let total: f64 = arcs.iter().map(|a| a.0).sum();
     let even = n >= 2
@@ -170,25 +265,24 @@ pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
         });
     // Each blade must carry the same area at every radius (a single blade about its own middle
     // also shows two arcs, but its root half and tip half differ).
-    let profile_mismatch = if even { radial_mismatch(&local, &arcs, tip) } else { 0.0 };
+    let profile_mismatch = if even { radial_mismatch(&samples, &arcs, tip) } else { 0.0 };
     let even = even && profile_mismatch < 0.3;
     if !even {
         return Err(AlignError::NoSymmetry(format!(
-            "the area at 45-75 % of the largest radius ({tip:.3}) forms {n} arc(s) that are not alike and evenly spaced \
-             (areas {:?}); is this a propeller, cropped to it?",
+            "the surface at 45-75 % of the largest radius ({tip:.3}) forms {n} arc(s) that are not alike and evenly spaced \
+             (weights {:?}); is this a propeller, cropped to it?",
             arcs.iter().map(|a| format!("{:.3}", a.0)).collect::<Vec<_>>()
         )));
     }
     // Blade 0 along +x.
     let a0 = arcs[0].1.to_radians();
     let rz = Matrix3::new(a0.cos(), a0.sin(), 0.0, -a0.sin(), a0.cos(), 0.0, 0.0, 0.0, 1.0);
-    rot = rz * rot;
-    frame.rot = rot;
+    frame.rot = rz * frame.rot;
     frame.blades = n;
     frame.tip_radius = tip;
     // Thrust direction: the leading edge at +theta and higher z at mid-span of blade 0.
-    let local = to_frame(m, &frame);
-    let pts = cut_points(&local, 0.6 * tip);
+    let local = m.in_frame(&frame);
+    let pts = local.cylinder_cut(0.6 * tip);
     let blades = split_blades(&pts, n);
     if let Some((du, dw)) = blades.first().and_then(|b| unrolled_chord(b, 0.6 * tip)) {
         if du < 0.0 && dw < 0.0 {
@@ -196,7 +290,7 @@ pub fn auto_align(m: &Mesh) -> Result<Frame, AlignError> {
             frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0)) * frame.rot;
             frame
                 .notes
-                .push("thrust direction: the other way along the axis of least spread".into());
+                .push("thrust direction: the other way along the axis".into());
         } else if du * dw < 0.0 {
             // A left-handed propeller: mirror y so that it reads as the documented hand.
             frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, 1.0)) * frame.rot;

@@ -23,6 +23,18 @@ pub fn cut_points(m: &Mesh, r: f64) -> Vec<CylPoint> {
     out
 }
 
+/// Points of a cloud within `slab / 2` of the cylinder of radius `r` about z, projected on it.
+pub fn slab_points(pts: &[Vector3<f64>], r: f64, slab: f64) -> Vec<CylPoint> {
+    let (lo, hi) = ((r - 0.5 * slab).max(0.0).powi(2), (r + 0.5 * slab).powi(2));
+    pts.iter()
+        .filter(|p| {
+            let q = p.x * p.x + p.y * p.y;
+            q >= lo && q <= hi
+        })
+        .map(|p| (p.y.atan2(p.x), p.z))
+        .collect()
+}
+
 fn crossing(a: Vector3<f64>, b: Vector3<f64>, r2: f64, out: &mut Vec<CylPoint>) {
     let d = b - a;
     let (qa, qb, qc) = (
