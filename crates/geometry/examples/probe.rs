@@ -1,49 +1,64 @@
-//! Aligns an STL and prints chord and blade angle at r/R = 0.2..0.95:
-//! `cargo run --release -p propbet-geometry --example probe -- FILE.stl`.
+//! Runs the scan pipeline on a file and prints the stations:
+//! `cargo run --release -p propbet-geometry --example probe -- FILE [box]`
+//! (`box`: the synthetic scan's colours and 50.8 x 48.26 x 50.8 mm box at z = -40 mm).
 
-use propbet_geometry::align::{auto_align, to_frame};
+use propbet_geometry::cloud::{parse_colour, read_cloud};
 use propbet_geometry::mesh::read_stl;
-use propbet_geometry::section::{cut_points, measure, split_blades};
+use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, ScanOptions};
 
 fn main() {
-    let Some(path) = std::env::args().nth(1) else {
-        eprintln!("usage: probe FILE.stl");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let Some(path) = args.first() else {
+        eprintln!("usage: probe FILE [box]");
         std::process::exit(2);
     };
-    let bytes = std::fs::read(&path).unwrap_or_else(|e| {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| {
         eprintln!("{path}: {e}");
         std::process::exit(2)
     });
-    let mesh = match read_stl(&bytes, &path) {
-        Ok(m) => m,
-        Err(e) => {
-            eprintln!("{e}");
-            std::process::exit(2)
+    let mut opts = ScanOptions::default();
+    let t0 = std::time::Instant::now();
+    let geo = if path.ends_with(".stl") {
+        read_stl(&bytes, path).map_err(|e| e.to_string()).and_then(|m| scan_mesh(&m, &opts).map_err(|e| e.to_string()))
+    } else {
+        if args.iter().any(|a| a == "box") {
+            let c = |s: &str| parse_colour(s).unwrap_or([0, 0, 0]);
+            opts.blade_colours = vec![c("orange"), c("black")];
+            opts.reference_box = Some(BoxSpec {
+                dims: [50.8, 48.26, 50.8],
+                offset: [0.0, 0.0, -40.0],
+                colours: vec![c("grey"), c("blue")],
+            });
         }
+        read_cloud(&bytes, path).map_err(|e| e.to_string()).and_then(|m| scan_cloud(&m, &opts).map_err(|e| e.to_string()))
     };
-    let frame = match auto_align(&mesh) {
-        Ok(f) => f,
-        Err(e) => {
-            eprintln!("{path}: {e}");
-            std::process::exit(2)
-        }
-    };
-    println!("{} triangles; {:?}", mesh.triangles.len(), frame.notes);
-    let local = to_frame(&mesh, &frame);
-    println!("r/R     r       chord   beta    t/c     camber");
-    for k in 0..16 {
-        let x = 0.2 + 0.05 * k as f64;
-        let r = x * frame.tip_radius;
-        let pts = cut_points(&local, r);
-        match measure(&split_blades(&pts, frame.blades)[0], r) {
-            Some(s) => println!(
-                "{x:.2}  {r:7.2}  {:6.2}  {:6.2}  {:.4}  {:.4}",
-                s.chord,
-                s.beta.to_degrees(),
-                s.t_c,
-                s.camber
-            ),
-            None => println!("{x:.2}  {r:7.2}  (too few points)"),
-        }
+    let geo = geo.unwrap_or_else(|e| {
+        eprintln!("{e}");
+        std::process::exit(2)
+    });
+    println!("{:.3} s; {} blades, tip {:.3} mm, hub {:?}, root {:.2}", t0.elapsed().as_secs_f64(), geo.blades, geo.tip_radius, geo.hub_radius, geo.root_radius);
+    for n in &geo.notes {
+        println!("  {n}");
+    }
+    println!("r/R     r       chord   beta    t/c  t_pos   camber c_pos naca  rms_naca rms_cst spread");
+    for s in &geo.stations {
+        println!(
+            "{:.3}  {:7.2}  {:6.2}  {:6.2}  {:.4} {:.2} {:.4} {:.2} {}  {:.4}  {:.4}  {:.2}",
+            s.r_r,
+            s.r,
+            s.chord,
+            s.beta_deg,
+            s.t_c,
+            s.t_pos,
+            s.camber,
+            s.camber_pos,
+            s.naca.designation(),
+            s.naca.rms,
+            s.cst.as_ref().map_or(f64::NAN, |c| c.rms),
+            s.blade_spread_deg
+        );
+    }
+    for f in &geo.failed {
+        println!("{:.3}  {}", f.r_r, f.reason);
     }
 }

@@ -8,7 +8,7 @@ use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use thiserror::Error;
 
 use crate::mesh::Mesh;
-use crate::section::{cut_points, slab_points, split_blades, unrolled_chord, CylPoint};
+use crate::section::{cut_points, measure, slab_points, split_blades, unrolled_chord, CylPoint};
 
 /// Why a mesh cannot be aligned.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -298,6 +298,24 @@ pub fn align_about<S: Surface>(
                 .notes
                 .push("left-handed (pusher) propeller: mirrored in y to the right-handed frame".into());
         }
+    }
+    // Check at four radii: the maximum thickness sits ahead of mid-chord and the section is
+    // cambered towards the suction side (+z); if most say the other end is the nose, turn.
+    let local = m.in_frame(&frame);
+    let (mut agree, mut disagree) = (0, 0);
+    for x in [0.4, 0.5, 0.6, 0.7] {
+        let pts = local.cylinder_cut(x * tip);
+        if let Some(s) = split_blades(&pts, n).first().and_then(|b| measure(b, x * tip)) {
+            agree += usize::from(s.t_pos < 0.5) + usize::from(s.camber > 0.005);
+            disagree += usize::from(s.t_pos > 0.5) + usize::from(s.camber < -0.005);
+        }
+    }
+    if disagree > agree {
+        frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0)) * frame.rot;
+        frame.notes.push(format!(
+            "nose and thrust turned: {disagree} of {} thickness-position and camber signs put the leading edge at the other end",
+            agree + disagree
+        ));
     }
     frame.notes.push(format!("{n} blades, tip radius {tip:.3}"));
     Ok(frame)

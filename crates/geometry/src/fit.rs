@@ -157,11 +157,25 @@ impl CostFunction for NacaCost<'_> {
             return Ok(f64::INFINITY);
         }
         let delta = 0.005 * self.c0;
-        let sum: f64 = self
-            .distances(&q)
-            .map(|d| if d < delta { d * d } else { delta * (2.0 * d - delta) })
+        let huber = |d: f64| if d < delta { d * d } else { delta * (2.0 * d - delta) };
+        let sum: f64 = self.distances(&q).map(huber).sum();
+        // The other way round at the two ends: the model's leading and trailing edge must sit
+        // on the points, or the contour could run past them at no cost. Each end weighs as
+        // 5 % of the points.
+        let (s, c) = q[3].sin_cos();
+        let ends = [(q[0], q[1]), (q[0] - q[2] * c, q[1] - q[2] * s)];
+        let end_cost: f64 = ends
+            .iter()
+            .map(|e| {
+                let d2 = self
+                    .pts
+                    .iter()
+                    .map(|p| (p.0 - e.0).powi(2) + (p.1 - e.1).powi(2))
+                    .fold(f64::INFINITY, f64::min);
+                huber(d2.sqrt())
+            })
             .sum();
-        Ok(sum / self.pts.len() as f64)
+        Ok((sum + 0.05 * self.pts.len() as f64 * end_cost) / self.pts.len() as f64)
     }
 }
 
@@ -201,9 +215,9 @@ pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
                 }))
                 .collect();
         }
-        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-13).ok()?;
+        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-11).ok()?;
         let res = Executor::new(NacaCost { pts, c0 }, solver)
-            .configure(|s| s.max_iters(3000))
+            .configure(|s| s.max_iters(1500))
             .run()
             .ok()?;
         best = res.state.best_param.clone()?;
@@ -323,14 +337,21 @@ pub fn fit_cst(pts: &[(f64, f64)], frame: &NacaFit) -> Option<Cst> {
             return None;
         }
         let cols = CST_ORDER + 2;
-        let mut a = DMatrix::zeros(side.len(), cols);
-        let mut b = DVector::zeros(side.len());
+        // Smoothing rows (neighbouring weights alike, weight 0.01 per point's worth) keep
+        // the shape sane where the points leave a gap.
+        let lam = 0.01 * (side.len() as f64).sqrt();
+        let mut a = DMatrix::zeros(side.len() + CST_ORDER, cols);
+        let mut b = DVector::zeros(side.len() + CST_ORDER);
         for (i, &(x, y)) in side.iter().enumerate() {
             for (j, v) in cst_row(x).into_iter().enumerate() {
                 a[(i, j)] = v;
             }
             a[(i, cols - 1)] = x;
             b[i] = y;
+        }
+        for j in 0..CST_ORDER {
+            a[(side.len() + j, j)] = lam;
+            a[(side.len() + j, j + 1)] = -lam;
         }
         let sol = a.svd(true, true).solve(&b, 1e-12).ok()?;
         let w: Vec<f64> = sol.iter().take(cols - 1).copied().collect();

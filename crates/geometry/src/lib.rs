@@ -13,9 +13,11 @@
 #![deny(missing_docs)]
 
 pub mod align;
+pub mod boxfit;
 pub mod cloud;
 pub mod fit;
 pub mod mesh;
+pub mod scan;
 pub mod section;
 pub mod synth;
 

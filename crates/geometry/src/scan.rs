@@ -1,0 +1,595 @@
+//! The scan pipeline: a mesh or a cloud → the propeller frame → sections at chosen r/R →
+//! NACA and CST fits → per-station geometry, hub and tip radius.
+//!
+//! Clouds: units → colour filter (blade colours kept, box colours set aside; thresholds by
+//! Otsu unless given) → region-of-interest crop → statistical outlier removal → reference box
+//! registration (scale, pose, hub at the known offset) or automatic alignment → slab sections.
+
+use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
+use serde::Serialize;
+use thiserror::Error;
+
+use crate::align::{align_about, auto_align, AlignError, Frame, Points, Surface};
+use crate::boxfit::{register_box, BoxError, BoxFit};
+use crate::cloud::{colour_distances, crop, outlier_mask, Cloud, Histogram};
+use crate::fit::{fit_cst, fit_naca, Cst, NacaFit};
+use crate::mesh::Mesh;
+use crate::section::{measure, split_blades, CylPoint};
+
+/// Fewest points a blade section needs.
+pub const MIN_SECTION_POINTS: usize = 24;
+
+/// How sections are cut.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum SectionKind {
+    /// r = const (what blade-element theory needs).
+    Cylindrical,
+    /// The plane x = r across blade 0 (the published methods).
+    Planar,
+}
+
+/// Manual alignment: a root and a tip point of blade 0 (input units) give the blade axis and
+/// the hub (the root point projected on the axis unless `origin` is given); the rotation axis
+/// is the direction of least spread across the blade axis; then rotations about the frame's
+/// x, y, z [deg]; `scale` input units → mm (e.g. from a known length).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Manual {
+    /// A point at the blade root.
+    pub root: Vector3<f64>,
+    /// A point at the blade tip.
+    pub tip: Vector3<f64>,
+    /// The hub centre, if not the root point.
+    pub origin: Option<Vector3<f64>>,
+    /// Corrections about x, y, z [deg], applied in that order.
+    pub rotate_deg: [f64; 3],
+    /// Input units → mm.
+    pub scale: f64,
+}
+
+/// Reference box.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BoxSpec {
+    /// Edge lengths along the propeller frame's x, y, z [mm].
+    pub dims: [f64; 3],
+    /// The box centre in the propeller frame [mm] (the box is fixed to the hub).
+    pub offset: [f64; 3],
+    /// Colours of its faces.
+    pub colours: Vec<[u8; 3]>,
+}
+
+/// What the pipeline does.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScanOptions {
+    /// Input units → mm (1 for mm, 1000 for m, 25.4 for inches).
+    pub units: f64,
+    /// Stations as r/R.
+    pub stations: Vec<f64>,
+    /// Section kind.
+    pub kind: SectionKind,
+    /// Slab thickness for clouds [mm].
+    pub slab: f64,
+    /// Blade colours to keep (empty: keep every point).
+    pub blade_colours: Vec<[u8; 3]>,
+    /// Colour distance threshold (None: Otsu's suggestion).
+    pub colour_threshold: Option<f64>,
+    /// Reference box.
+    pub reference_box: Option<BoxSpec>,
+    /// Region of interest (input units): keep points / triangles with all corners inside.
+    pub crop: Option<(Vector3<f64>, Vector3<f64>)>,
+    /// Statistical outlier removal: neighbours and standard deviations (None: off).
+    pub outliers: Option<(usize, f64)>,
+    /// Manual alignment instead of automatic.
+    pub manual: Option<Manual>,
+}
+
+impl Default for ScanOptions {
+    fn default() -> Self {
+        Self {
+            units: 1.0,
+            stations: default_stations(),
+            kind: SectionKind::Cylindrical,
+            slab: 0.25,
+            blade_colours: Vec::new(),
+            colour_threshold: None,
+            reference_box: None,
+            crop: None,
+            outliers: Some((8, 2.5)),
+            manual: None,
+        }
+    }
+}
+
+/// 25 stations from r/R 0.15 to 0.97.
+pub fn default_stations() -> Vec<f64> {
+    (0..25).map(|k| 0.15 + 0.82 * k as f64 / 24.0).collect()
+}
+
+/// Why a scan cannot be processed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ScanError {
+    /// Alignment.
+    #[error(transparent)]
+    Align(#[from] AlignError),
+    /// Reference box.
+    #[error(transparent)]
+    Box(#[from] BoxError),
+    /// Nothing left after filtering, or a bad option.
+    #[error("{0}")]
+    Input(String),
+}
+
+/// One measured station.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Station {
+    /// r/R.
+    pub r_r: f64,
+    /// Radius [mm].
+    pub r: f64,
+    /// Chord [mm].
+    pub chord: f64,
+    /// Blade angle to the rotation plane [deg].
+    pub beta_deg: f64,
+    /// Maximum thickness / chord and its position (CST shape).
+    pub t_c: f64,
+    /// Chord position of the maximum thickness.
+    pub t_pos: f64,
+    /// Maximum camber / chord (CST shape).
+    pub camber: f64,
+    /// Its chord position.
+    pub camber_pos: f64,
+    /// Leading edge's circumferential offset from the blade axis [mm] (sweep).
+    pub le_offset: f64,
+    /// Angular position of the mid-chord point [deg] (skew).
+    pub skew_deg: f64,
+    /// Axial position of the mid-chord point [mm] (rake, positive towards thrust).
+    pub rake: f64,
+    /// The NACA 4-digit fit.
+    pub naca: NacaFit,
+    /// The CST fit.
+    pub cst: Option<Cst>,
+    /// Points of blade 0 in the section.
+    pub points: usize,
+    /// Spread of the blade angle between blades [deg] (max − min of the quick measure).
+    pub blade_spread_deg: f64,
+    /// The section's points (u, w) [mm], for plots.
+    #[serde(skip)]
+    pub uw: Vec<(f64, f64)>,
+}
+
+/// A station that could not be measured.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Failed {
+    /// r/R.
+    pub r_r: f64,
+    /// Why.
+    pub reason: String,
+}
+
+/// What the colour filter did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColourReport {
+    /// Histogram of distances to the blade colours.
+    pub histogram: Histogram,
+    /// The threshold used.
+    pub threshold: f64,
+    /// Otsu's suggestion.
+    pub suggested: f64,
+    /// Points kept as blade.
+    pub kept: usize,
+    /// Points in all.
+    pub total: usize,
+}
+
+/// The geometry found in a scan.
+#[derive(Debug, Clone)]
+pub struct Geometry {
+    /// The frame.
+    pub frame: Frame,
+    /// Blade count.
+    pub blades: usize,
+    /// Tip radius [mm].
+    pub tip_radius: f64,
+    /// Hub radius [mm]: the largest radius where the surface goes all round the axis (None: no
+    /// hub in the scan).
+    pub hub_radius: Option<f64>,
+    /// Where the blades begin [mm].
+    pub root_radius: f64,
+    /// Measured stations.
+    pub stations: Vec<Station>,
+    /// Stations that failed.
+    pub failed: Vec<Failed>,
+    /// The reference box registration.
+    pub box_fit: Option<BoxFit>,
+    /// The colour filter.
+    pub colour: Option<ColourReport>,
+    /// Points or triangles used, after cleaning.
+    pub samples: usize,
+    /// What was decided, in order.
+    pub notes: Vec<String>,
+    /// Section kind.
+    pub kind: SectionKind,
+}
+
+/// Propeller sizes this tool expects [mm]: a warning outside.
+pub const PLAUSIBLE_DIAMETER_MM: (f64, f64) = (25.0, 3000.0);
+
+fn plausibility(tip: f64, notes: &mut Vec<String>) {
+    let d = 2.0 * tip;
+    if d < PLAUSIBLE_DIAMETER_MM.0 || d > PLAUSIBLE_DIAMETER_MM.1 {
+        notes.push(format!(
+            "warning: diameter {d:.1} mm is implausible for a propeller ({:.0}-{:.0} mm); are the units right (--units)?",
+            PLAUSIBLE_DIAMETER_MM.0, PLAUSIBLE_DIAMETER_MM.1
+        ));
+    }
+}
+
+/// Processes a mesh.
+pub fn scan_mesh(mesh: &Mesh, opts: &ScanOptions) -> Result<Geometry, ScanError> {
+    let mut mesh = mesh.clone();
+    if let Some((lo, hi)) = opts.crop {
+        let inside = |v: &Vector3<f64>| (0..3).all(|k| v[k] >= lo[k] && v[k] <= hi[k]);
+        let before = mesh.triangles.len();
+        mesh.triangles.retain(|t| t.iter().all(|&i| inside(&mesh.vertices[i as usize])));
+        if mesh.triangles.is_empty() {
+            return Err(ScanError::Input(format!("the crop box keeps none of the {before} triangles")));
+        }
+    }
+    let mut notes = Vec::new();
+    let frame = match &opts.manual {
+        Some(m) => manual_frame(&mesh, m)?,
+        None => {
+            let mut f = auto_align(&mesh)?;
+            if opts.units != 1.0 {
+                f.scale = opts.units;
+                f.tip_radius *= opts.units;
+            }
+            f
+        }
+    };
+    let samples = mesh.triangles.len();
+    let local = mesh.in_frame(&frame);
+    notes.extend(frame.notes.iter().cloned());
+    finish(&local, frame, opts, notes, samples, None, None)
+}
+
+/// Processes a cloud.
+pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanError> {
+    let mut notes = Vec::new();
+    let total = cloud.points.len();
+    let mut blade = cloud.clone();
+    let mut colour = None;
+    let mut box_pts = Vec::new();
+    if let Some(spec) = &opts.reference_box {
+        if cloud.colors.is_none() {
+            return Err(ScanError::Input("the reference box is found by its colours, and the cloud has none".into()));
+        }
+        let d = colour_distances(cloud, &spec.colours);
+        let t = opts.colour_threshold.unwrap_or_else(|| Histogram::of(&d).otsu());
+        box_pts = cloud.points.iter().zip(&d).filter(|(_, &x)| x <= t).map(|(p, _)| *p).collect();
+        notes.push(format!("{} box points (colour distance <= {t:.0})", box_pts.len()));
+    }
+    if !opts.blade_colours.is_empty() {
+        if cloud.colors.is_none() {
+            return Err(ScanError::Input("blade colours were given, but the cloud has no colours".into()));
+        }
+        let d = colour_distances(cloud, &opts.blade_colours);
+        let histogram = Histogram::of(&d);
+        let suggested = histogram.otsu();
+        let threshold = opts.colour_threshold.unwrap_or(suggested);
+        let keep: Vec<bool> = d.iter().map(|&x| x <= threshold).collect();
+        blade.retain(&keep);
+        notes.push(format!(
+            "colour filter: {} of {total} points within {threshold:.0} of the blade colours (Otsu suggests {suggested:.0})",
+            blade.points.len()
+        ));
+        colour = Some(ColourReport {
+            histogram,
+            threshold,
+            suggested,
+            kept: blade.points.len(),
+            total,
+        });
+    }
+    if let Some((lo, hi)) = opts.crop {
+        let keep = crop(&blade, lo, hi);
+        blade.retain(&keep);
+        notes.push(format!("crop: {} points inside", blade.points.len()));
+    }
+    if let Some((k, sig)) = opts.outliers {
+        let keep = outlier_mask(&blade.points, k, sig);
+        let before = blade.points.len();
+        blade.retain(&keep);
+        notes.push(format!(
+            "outlier removal ({k} neighbours, {sig} sd): {} of {before} points dropped",
+            before - blade.points.len()
+        ));
+    }
+    if blade.points.len() < 100 {
+        return Err(ScanError::Input(format!(
+            "only {} points left after filtering (of {total}): check the colours and the crop",
+            blade.points.len()
+        )));
+    }
+    let pts = Points {
+        points: blade.points.clone(),
+        slab: opts.slab / opts.units,
+    };
+    let (frame, box_fit) = match (&opts.reference_box, &opts.manual) {
+        (_, Some(m)) => (manual_frame(&pts, m)?, None),
+        (Some(spec), None) => {
+            let centre: Vector3<f64> = pts.points.iter().sum::<Vector3<f64>>() / pts.points.len() as f64;
+            let offset = Vector3::from(spec.offset);
+            let scaled: Vec<Vector3<f64>> = box_pts.iter().map(|p| p * opts.units).collect();
+            let fit = register_box(&scaled, spec.dims, Some((centre * opts.units, offset)))?;
+            // Cloud → box frame (mm) → propeller frame: p = s R u p_in + t + offset.
+            let s = fit.scale * opts.units;
+            let origin = -(fit.rot.transpose() * (fit.trans + offset)) / s;
+            // Axis: the box's z; blade azimuth and thrust from the blades.
+            let z = fit.rot.row(2).transpose();
+            let x0 = fit.rot.row(0).transpose();
+            let mut f = align_about(&pts, origin, z, x0, s)?;
+            f.notes.insert(0, "frame from the reference box (its z is the shaft)".into());
+            (f, Some(fit))
+        }
+        (None, None) => {
+            let mut f = auto_align(&pts)?;
+            f.scale = opts.units;
+            f.tip_radius *= opts.units;
+            (f, None)
+        }
+    };
+    if let Some(b) = &box_fit {
+        notes.extend(b.notes.iter().cloned());
+    }
+    notes.extend(frame.notes.iter().cloned());
+    let mut local = pts.in_frame(&frame);
+    local.slab = opts.slab;
+    let samples = local.points.len();
+    finish(&local, frame, opts, notes, samples, box_fit, colour)
+}
+
+/// The frame from a manual alignment.
+fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
+    let x = man.tip - man.root;
+    if x.norm() == 0.0 {
+        return Err(ScanError::Input("manual alignment: root and tip are the same point".into()));
+    }
+    let x = x.normalize();
+    // Rotation axis: least spread across the blade axis.
+    let samples = m.samples();
+    let c: Vector3<f64> = samples.iter().map(|s| s.0 * s.1).sum::<Vector3<f64>>() / samples.iter().map(|s| s.1).sum::<f64>();
+    let mut cov = Matrix3::zeros();
+    for (p, w) in &samples {
+        let d = p - c;
+        let d = d - x * x.dot(&d);
+        cov += *w * d * d.transpose();
+    }
+    let e = nalgebra::SymmetricEigen::new(cov);
+    // The smallest eigenvalue across x (the one along x is ~0 by construction).
+    let mut best = (f64::INFINITY, Vector3::z());
+    for k in 0..3 {
+        let v = e.eigenvectors.column(k).into_owned();
+        if v.dot(&x).abs() < 0.5 && e.eigenvalues[k] < best.0 {
+            best = (e.eigenvalues[k], v);
+        }
+    }
+    let z = (best.1 - x * x.dot(&best.1)).normalize();
+    let y = z.cross(&x);
+    let base = Matrix3::from_rows(&[x.transpose(), y.transpose(), z.transpose()]);
+    let [ax, ay, az] = man.rotate_deg.map(f64::to_radians);
+    let corr = nalgebra::Rotation3::from_euler_angles(ax, ay, az);
+    let origin = man.origin.unwrap_or_else(|| {
+        // The hub: the root point moved onto the rotation axis... taken as the root point
+        // projected along the blade axis to the centroid's station.
+        man.root + x * x.dot(&(c - man.root))
+    });
+    let mut f = Frame {
+        origin,
+        rot: corr.matrix() * base,
+        scale: man.scale,
+        blades: 0,
+        tip_radius: 0.0,
+        notes: vec!["manual alignment".into()],
+    };
+    let local = m.in_frame(&f);
+    f.tip_radius = local.max_radius();
+    // Blade count from the automatic check about this axis (the blades must still be alike).
+    let auto = align_about(m, f.origin, f.rot.row(2).transpose(), f.rot.row(0).transpose(), f.scale)?;
+    f.blades = auto.blades;
+    Ok(f)
+}
+
+/// Hub radius: the largest radius below `limit` where the cut goes all round the axis (no
+/// angular gap over 20°), by a scan in `step` then bisection.
+fn hub_radius<S: Surface>(s: &S, limit: f64, step: f64) -> Option<f64> {
+    let full = |r: f64| {
+        let mut th: Vec<f64> = s.cylinder_cut(r).iter().map(|p| p.0).collect();
+        if th.len() < 18 {
+            return false;
+        }
+        th.sort_by(f64::total_cmp);
+        let gap = th.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+        let wrap = th[0] + 2.0 * std::f64::consts::PI - th[th.len() - 1];
+        gap.max(wrap) < 20f64.to_radians()
+    };
+    let mut r = step;
+    let mut last = None;
+    while r < limit {
+        if full(r) {
+            last = Some(r);
+        } else if last.is_some() {
+            break;
+        }
+        r += step;
+    }
+    let (mut lo, mut hi) = (last?, last? + step);
+    for _ in 0..20 {
+        let m = 0.5 * (lo + hi);
+        if full(m) {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    Some(lo)
+}
+
+/// The section of blade 0 at radius r in the frame, for either kind.
+fn section_at<S: Surface + PlanarCut>(s: &S, r: f64, kind: SectionKind, blades: usize) -> Vec<Vec<CylPoint>> {
+    match kind {
+        SectionKind::Cylindrical => split_blades(&s.cylinder_cut(r), blades),
+        SectionKind::Planar => vec![s.planar_cut(r, blades)],
+    }
+}
+
+fn finish<S: Surface + Sync + PlanarCut>(
+    local: &S,
+    frame: Frame,
+    opts: &ScanOptions,
+    mut notes: Vec<String>,
+    samples: usize,
+    box_fit: Option<BoxFit>,
+    colour: Option<ColourReport>,
+) -> Result<Geometry, ScanError> {
+    let tip = local.max_radius();
+    plausibility(tip, &mut notes);
+    let blades = frame.blades;
+    let hub = hub_radius(local, 0.5 * tip, 0.25);
+    // Root: the first radius beyond the hub where blade 0 has a section.
+    let mut root = hub.unwrap_or(0.0);
+    {
+        let mut r = root + 0.25;
+        while r < tip {
+            if split_blades(&local.cylinder_cut(r), blades)[0].len() >= 8 {
+                root = r;
+                break;
+            }
+            r += 0.25;
+        }
+    }
+    let results: Vec<Result<Station, Failed>> = opts
+        .stations
+        .par_iter()
+        .map(|&x| {
+            let r = x * tip;
+            let fail = |reason: String| Failed { r_r: x, reason };
+            if r <= root {
+                return Err(fail(format!("r = {r:.2} mm is inside the hub / root (blades begin at {root:.2} mm)")));
+            }
+            let secs = section_at(local, r, opts.kind, blades);
+            let pts = &secs[0];
+            if pts.len() < MIN_SECTION_POINTS {
+                return Err(fail(format!(
+                    "only {} points in the section at r = {r:.2} mm (at least {MIN_SECTION_POINTS} needed): the scan is too sparse here",
+                    pts.len()
+                )));
+            }
+            let shape = measure(pts, r).ok_or_else(|| fail("the section could not be measured".into()))?;
+            let uw: Vec<(f64, f64)> = pts.iter().map(|&(t, z)| (r * t, z)).collect();
+            let naca = fit_naca(&uw, &shape).ok_or_else(|| fail("the NACA fit failed".into()))?;
+            let cst = fit_cst(&uw, &naca);
+            let ((t_c, t_pos), (camber, camber_pos)) = match &cst {
+                Some(c) => c.thickness_camber(),
+                None => ((naca.t_c, 0.3), (naca.camber, naca.camber_pos)),
+            };
+            let spread = {
+                let b: Vec<f64> = secs
+                    .iter()
+                    .filter_map(|p| measure(p, r))
+                    .map(|s| s.beta.to_degrees())
+                    .collect();
+                b.iter().copied().fold(f64::NEG_INFINITY, f64::max) - b.iter().copied().fold(f64::INFINITY, f64::min)
+            };
+            let (sb, cb) = naca.beta.sin_cos();
+            let mid = (naca.le.0 - 0.5 * naca.chord * cb, naca.le.1 - 0.5 * naca.chord * sb);
+            Ok(Station {
+                r_r: x,
+                r,
+                chord: naca.chord,
+                beta_deg: naca.beta.to_degrees(),
+                t_c,
+                t_pos,
+                camber,
+                camber_pos,
+                le_offset: naca.le.0,
+                skew_deg: (mid.0 / r).to_degrees(),
+                rake: mid.1,
+                naca,
+                cst,
+                points: pts.len(),
+                blade_spread_deg: spread,
+                uw,
+            })
+        })
+        .collect();
+    let (mut stations, mut failed) = (Vec::new(), Vec::new());
+    for r in results {
+        match r {
+            Ok(s) => stations.push(s),
+            Err(f) => failed.push(f),
+        }
+    }
+    if stations.is_empty() {
+        return Err(ScanError::Input(format!(
+            "no station could be measured: {}",
+            failed.iter().map(|f| format!("r/R {:.3}: {}", f.r_r, f.reason)).collect::<Vec<_>>().join("; ")
+        )));
+    }
+    Ok(Geometry {
+        frame,
+        blades,
+        tip_radius: tip,
+        hub_radius: hub,
+        root_radius: root,
+        stations,
+        failed,
+        box_fit,
+        colour,
+        samples,
+        notes,
+        kind: opts.kind,
+    })
+}
+
+/// Planar sections: the plane x = r across blade 0, as (y / r, z) so that the unrolled
+/// measures apply unchanged (u = y).
+pub trait PlanarCut {
+    /// Points of the plane x = r within blade 0's sector.
+    fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint>;
+}
+
+fn in_sector(p: &Vector3<f64>, blades: usize) -> bool {
+    p.y.atan2(p.x).abs() < std::f64::consts::PI / blades.max(1) as f64
+}
+
+impl PlanarCut for Mesh {
+    fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint> {
+        let mut out = Vec::new();
+        for i in 0..self.triangles.len() {
+            let c = self.corners(i);
+            for k in 0..3 {
+                let (a, b) = (c[k], c[(k + 1) % 3]);
+                let (da, db) = (a.x - r, b.x - r);
+                if (da < 0.0) != (db < 0.0) {
+                    let t = da / (da - db);
+                    let p = a + t * (b - a);
+                    if in_sector(&p, blades) {
+                        out.push((p.y / r, p.z));
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+impl PlanarCut for Points {
+    fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint> {
+        self.points
+            .iter()
+            .filter(|p| (p.x - r).abs() <= 0.5 * self.slab && in_sector(p, blades))
+            .map(|p| (p.y / r, p.z))
+            .collect()
+    }
+}
