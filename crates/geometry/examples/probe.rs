@@ -19,7 +19,9 @@ fn main() {
     let mut opts = ScanOptions::default();
     let t0 = std::time::Instant::now();
     let geo = if path.ends_with(".stl") {
-        read_stl(&bytes, path).map_err(|e| e.to_string()).and_then(|m| scan_mesh(&m, &opts).map_err(|e| e.to_string()))
+        read_stl(&bytes, path)
+            .map_err(|e| e.to_string())
+            .and_then(|m| scan_mesh(&m, &opts).map_err(|e| e.to_string()))
     } else {
         if args.iter().any(|a| a == "box") {
             let c = |s: &str| parse_colour(s).unwrap_or([0, 0, 0]);
@@ -30,13 +32,22 @@ fn main() {
                 colours: vec![c("grey"), c("blue")],
             });
         }
-        read_cloud(&bytes, path).map_err(|e| e.to_string()).and_then(|m| scan_cloud(&m, &opts).map_err(|e| e.to_string()))
+        read_cloud(&bytes, path)
+            .map_err(|e| e.to_string())
+            .and_then(|m| scan_cloud(&m, &opts).map_err(|e| e.to_string()))
     };
     let geo = geo.unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(2)
     });
-    println!("{:.3} s; {} blades, tip {:.3} mm, hub {:?}, root {:.2}", t0.elapsed().as_secs_f64(), geo.blades, geo.tip_radius, geo.hub_radius, geo.root_radius);
+    println!(
+        "{:.3} s; {} blades, tip {:.3} mm, hub {:?}, root {:.2}",
+        t0.elapsed().as_secs_f64(),
+        geo.blades,
+        geo.tip_radius,
+        geo.hub_radius,
+        geo.root_radius
+    );
     for n in &geo.notes {
         println!("  {n}");
     }

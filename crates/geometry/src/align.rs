@@ -221,7 +221,7 @@ pub fn auto_align<S: Surface>(m: &S) -> Result<Frame, AlignError> {
         eig.eigenvalues[order[1]],
         eig.eigenvalues[order[2]],
     );
-    if l1 < 4.0 * l0 {
+    if l1 < 1.5 * l0 {
         return Err(AlignError::NoSymmetry(format!(
             "the shape is not flat like a propeller disc (second moments {:.3e}, {:.3e}, {:.3e}: no axis stands out)",
             l0, l1, l2
@@ -265,7 +265,11 @@ pub fn align_about<S: Surface>(
         });
     // Each blade must carry the same area at every radius (a single blade about its own middle
     // also shows two arcs, but its root half and tip half differ).
-    let profile_mismatch = if even { radial_mismatch(&samples, &arcs, tip) } else { 0.0 };
+    let profile_mismatch = if even {
+        radial_mismatch(&samples, &arcs, tip)
+    } else {
+        0.0
+    };
     let even = even && profile_mismatch < 0.3;
     if !even {
         return Err(AlignError::NoSymmetry(format!(

@@ -110,7 +110,11 @@ pub fn ransac_planes(pts: &[Vector3<f64>], tol: f64, max: usize, min_inliers: us
             let d = n.dot(&a);
             // Count on a stride of the free points: cheap and enough to rank.
             let step = (free.len() / 4000).max(1);
-            let cnt = free.iter().step_by(step).filter(|&&i| (n.dot(&pts[i]) - d).abs() < tol).count();
+            let cnt = free
+                .iter()
+                .step_by(step)
+                .filter(|&&i| (n.dot(&pts[i]) - d).abs() < tol)
+                .count();
             if cnt > best.0 {
                 best = (cnt, n, d);
             }
@@ -118,7 +122,11 @@ pub fn ransac_planes(pts: &[Vector3<f64>], tol: f64, max: usize, min_inliers: us
         let (_, mut n, mut d) = best;
         let mut inl: Vec<usize> = Vec::new();
         for _ in 0..3 {
-            inl = free.iter().copied().filter(|&i| (n.dot(&pts[i]) - d).abs() < tol).collect();
+            inl = free
+                .iter()
+                .copied()
+                .filter(|&i| (n.dot(&pts[i]) - d).abs() < tol)
+                .collect();
             if inl.len() < 3 {
                 break;
             }
@@ -143,7 +151,10 @@ pub fn register_box(
     hub_hint: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Result<BoxFit, BoxError> {
     if pts.len() < 60 {
-        return Err(BoxError::Faces(format!("only {} box points after the colour filter", pts.len())));
+        return Err(BoxError::Faces(format!(
+            "only {} box points after the colour filter",
+            pts.len()
+        )));
     }
     let (lo, hi) = pts.iter().fold(
         (Vector3::repeat(f64::INFINITY), Vector3::repeat(f64::NEG_INFINITY)),
@@ -174,7 +185,15 @@ pub fn register_box(
     let describe = || {
         planes
             .iter()
-            .map(|p| format!("{} points normal ({:.2}, {:.2}, {:.2})", p.inliers.len(), p.n.x, p.n.y, p.n.z))
+            .map(|p| {
+                format!(
+                    "{} points normal ({:.2}, {:.2}, {:.2})",
+                    p.inliers.len(),
+                    p.n.x,
+                    p.n.y,
+                    p.n.z
+                )
+            })
             .collect::<Vec<_>>()
             .join("; ")
     };
@@ -205,7 +224,9 @@ pub fn register_box(
                 h += e * planes[grp[0]].n.transpose();
             }
             let svd = h.svd(true, true);
-            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else { continue };
+            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
+                continue;
+            };
             let rot = u * vt;
             if rot.determinant() < 0.0 {
                 continue;
@@ -272,14 +293,19 @@ pub fn register_box(
             d(a).total_cmp(&d(b))
         });
         let d0 = (kept[0].apply(&prop_centre) + offset).norm();
-        notes.push(format!("orientation chosen with the propeller {d0:.2} mm from the expected hub"));
+        notes.push(format!(
+            "orientation chosen with the propeller {d0:.2} mm from the expected hub"
+        ));
     } else {
         kept.sort_by(|a, b| a.rms.total_cmp(&b.rms));
     }
     let mut fit = kept.swap_remove(0);
     fit.faces = planes.len();
     fit.notes = notes;
-    fit.notes.push(format!("scale {:.6} (cloud units to mm), RMS {:.4} mm", fit.scale, fit.rms));
+    fit.notes.push(format!(
+        "scale {:.6} (cloud units to mm), RMS {:.4} mm",
+        fit.scale, fit.rms
+    ));
     Ok(fit)
 }
 
@@ -326,7 +352,9 @@ fn refine(
         }
         rms = (ss / n.max(1) as f64).sqrt();
         used = n;
-        let Some(x) = ata.cholesky().map(|c| c.solve(&atb)) else { break };
+        let Some(x) = ata.cholesky().map(|c| c.solve(&atb)) else {
+            break;
+        };
         let w = Vector3::new(x[0], x[1], x[2]);
         let dr = nalgebra::Rotation3::new(w);
         // q' = (1 + ds) dR v + t + dt

@@ -127,7 +127,9 @@ pub fn read_ply(bytes: &[u8], name: &str) -> Result<Cloud, CloudError> {
     };
     let parser = Parser::<PlyVertex>::new();
     let mut reader = ply_rs_bw::parser::Reader::new(std::io::BufReader::new(bytes));
-    let header = parser.read_header(&mut reader).map_err(|e| err(format!("header: {e}")))?;
+    let header = parser
+        .read_header(&mut reader)
+        .map_err(|e| err(format!("header: {e}")))?;
     let mut verts = Vec::new();
     for element in header.elements.values() {
         if element.name == "vertex" {
@@ -182,7 +184,10 @@ pub fn read_text(text: &str, name: &str, colmap: bool) -> Result<Cloud, CloudErr
             line: i + 1,
             message: m,
         };
-        let f: Vec<&str> = line.split(|c: char| c.is_whitespace() || c == ',').filter(|s| !s.is_empty()).collect();
+        let f: Vec<&str> = line
+            .split(|c: char| c.is_whitespace() || c == ',')
+            .filter(|s| !s.is_empty())
+            .collect();
         let skip = usize::from(colmap);
         let need = if colmap { 7 } else { 3 };
         if f.len() < need {
@@ -191,7 +196,9 @@ pub fn read_text(text: &str, name: &str, colmap: bool) -> Result<Cloud, CloudErr
         let w = *width.get_or_insert(if colmap || f.len() >= 6 { 6 } else { 3 });
         let mut v = [0.0; 6];
         for (k, slot) in v.iter_mut().enumerate().take(w) {
-            let s = f.get(skip + k).ok_or_else(|| syntax(format!("column {} is missing", skip + k + 1)))?;
+            let s = f
+                .get(skip + k)
+                .ok_or_else(|| syntax(format!("column {} is missing", skip + k + 1)))?;
             *slot = s
                 .parse::<f64>()
                 .map_err(|_| syntax(format!("column {}: '{s}' is not a number", skip + k + 1)))?;
@@ -201,7 +208,11 @@ pub fn read_text(text: &str, name: &str, colmap: bool) -> Result<Cloud, CloudErr
         }
         cloud.points.push(Vector3::new(v[0], v[1], v[2]));
         if w == 6 {
-            let scale = if v[3..].iter().all(|&c| c <= 1.0) && !colmap { 255.0 } else { 1.0 };
+            let scale = if v[3..].iter().all(|&c| c <= 1.0) && !colmap {
+                255.0
+            } else {
+                1.0
+            };
             colors.push([3, 4, 5].map(|k| (v[k] * scale).round().clamp(0.0, 255.0) as u8));
         }
     }
@@ -259,12 +270,7 @@ pub fn colour_distances(cloud: &Cloud, colours: &[[u8; 3]]) -> Vec<f64> {
             .map(|p| {
                 colours
                     .iter()
-                    .map(|q| {
-                        (0..3)
-                            .map(|k| (p[k] as f64 - q[k] as f64).powi(2))
-                            .sum::<f64>()
-                            .sqrt()
-                    })
+                    .map(|q| (0..3).map(|k| (p[k] as f64 - q[k] as f64).powi(2)).sum::<f64>().sqrt())
                     .fold(f64::INFINITY, f64::min)
             })
             .collect(),
@@ -408,7 +414,10 @@ mod tests {
         assert!(e.contains("b.xyz: line 2") && e.contains("'x'"), "{e}");
         let e = read_text("1 2 nan\n", "n.xyz", false).unwrap_err().to_string();
         assert!(e.contains("line 1") && e.contains("finite"), "{e}");
-        assert!(matches!(read_text("# nothing\n", "e.xyz", false), Err(CloudError::Empty(_))));
+        assert!(matches!(
+            read_text("# nothing\n", "e.xyz", false),
+            Err(CloudError::Empty(_))
+        ));
     }
 
     #[test]
@@ -428,7 +437,10 @@ mod tests {
 
     #[test]
     fn otsu_splits_two_groups() {
-        let d: Vec<f64> = (0..100).map(|i| (i % 20) as f64).chain((0..50).map(|i| 150.0 + i as f64)).collect();
+        let d: Vec<f64> = (0..100)
+            .map(|i| (i % 20) as f64)
+            .chain((0..50).map(|i| 150.0 + i as f64))
+            .collect();
         let t = Histogram::of(&d).otsu();
         assert!(t > 20.0 && t < 150.0, "{t}");
         assert_eq!(parse_colour("#E6640A").unwrap(), [230, 100, 10]);

@@ -23,6 +23,9 @@ use serde::Serialize;
 use crate::section::SectionShape;
 use crate::synth::naca4;
 
+/// Weight of each end term of the NACA fit, as a fraction of the points.
+const END_WEIGHT: f64 = 0.01;
+
 /// Panels per surface of the NACA contour used for distances.
 const PANELS: usize = 80;
 
@@ -161,7 +164,7 @@ impl CostFunction for NacaCost<'_> {
         let sum: f64 = self.distances(&q).map(huber).sum();
         // The other way round at the two ends: the model's leading and trailing edge must sit
         // on the points, or the contour could run past them at no cost. Each end weighs as
-        // 5 % of the points.
+        // END_WEIGHT of the points.
         let (s, c) = q[3].sin_cos();
         let ends = [(q[0], q[1]), (q[0] - q[2] * c, q[1] - q[2] * s)];
         let end_cost: f64 = ends
@@ -175,7 +178,7 @@ impl CostFunction for NacaCost<'_> {
                 huber(d2.sqrt())
             })
             .sum();
-        Ok((sum + 0.05 * self.pts.len() as f64 * end_cost) / self.pts.len() as f64)
+        Ok((sum + END_WEIGHT * self.pts.len() as f64 * end_cost) / self.pts.len() as f64)
     }
 }
 
@@ -422,7 +425,10 @@ mod tests {
         let cst = fit_cst(&pts, &f).unwrap();
         assert!(cst.rms < 0.02, "{cst:?}");
         let ((t, _), (m, xm)) = cst.thickness_camber();
-        assert!((t - 0.09).abs() < 2e-3 && (m - 0.04).abs() < 2e-3 && (xm - 0.4).abs() < 0.05, "{t} {m} {xm}");
+        assert!(
+            (t - 0.09).abs() < 2e-3 && (m - 0.04).abs() < 2e-3 && (xm - 0.4).abs() < 0.05,
+            "{t} {m} {xm}"
+        );
         let sel = cst.selig(80);
         assert_eq!(sel.len(), 161);
         assert!((sel[0].0 - 1.0).abs() < 1e-12 && sel[80].0.abs() < 1e-12 && (sel[160].0 - 1.0).abs() < 1e-12);

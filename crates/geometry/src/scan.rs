@@ -230,9 +230,12 @@ pub fn scan_mesh(mesh: &Mesh, opts: &ScanOptions) -> Result<Geometry, ScanError>
     if let Some((lo, hi)) = opts.crop {
         let inside = |v: &Vector3<f64>| (0..3).all(|k| v[k] >= lo[k] && v[k] <= hi[k]);
         let before = mesh.triangles.len();
-        mesh.triangles.retain(|t| t.iter().all(|&i| inside(&mesh.vertices[i as usize])));
+        mesh.triangles
+            .retain(|t| t.iter().all(|&i| inside(&mesh.vertices[i as usize])));
         if mesh.triangles.is_empty() {
-            return Err(ScanError::Input(format!("the crop box keeps none of the {before} triangles")));
+            return Err(ScanError::Input(format!(
+                "the crop box keeps none of the {before} triangles"
+            )));
         }
     }
     let mut notes = Vec::new();
@@ -262,16 +265,26 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
     let mut box_pts = Vec::new();
     if let Some(spec) = &opts.reference_box {
         if cloud.colors.is_none() {
-            return Err(ScanError::Input("the reference box is found by its colours, and the cloud has none".into()));
+            return Err(ScanError::Input(
+                "the reference box is found by its colours, and the cloud has none".into(),
+            ));
         }
         let d = colour_distances(cloud, &spec.colours);
         let t = opts.colour_threshold.unwrap_or_else(|| Histogram::of(&d).otsu());
-        box_pts = cloud.points.iter().zip(&d).filter(|(_, &x)| x <= t).map(|(p, _)| *p).collect();
+        box_pts = cloud
+            .points
+            .iter()
+            .zip(&d)
+            .filter(|(_, &x)| x <= t)
+            .map(|(p, _)| *p)
+            .collect();
         notes.push(format!("{} box points (colour distance <= {t:.0})", box_pts.len()));
     }
     if !opts.blade_colours.is_empty() {
         if cloud.colors.is_none() {
-            return Err(ScanError::Input("blade colours were given, but the cloud has no colours".into()));
+            return Err(ScanError::Input(
+                "blade colours were given, but the cloud has no colours".into(),
+            ));
         }
         let d = colour_distances(cloud, &opts.blade_colours);
         let histogram = Histogram::of(&d);
@@ -329,7 +342,8 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
             let z = fit.rot.row(2).transpose();
             let x0 = fit.rot.row(0).transpose();
             let mut f = align_about(&pts, origin, z, x0, s)?;
-            f.notes.insert(0, "frame from the reference box (its z is the shaft)".into());
+            f.notes
+                .insert(0, "frame from the reference box (its z is the shaft)".into());
             (f, Some(fit))
         }
         (None, None) => {
@@ -353,12 +367,15 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
 fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
     let x = man.tip - man.root;
     if x.norm() == 0.0 {
-        return Err(ScanError::Input("manual alignment: root and tip are the same point".into()));
+        return Err(ScanError::Input(
+            "manual alignment: root and tip are the same point".into(),
+        ));
     }
     let x = x.normalize();
     // Rotation axis: least spread across the blade axis.
     let samples = m.samples();
-    let c: Vector3<f64> = samples.iter().map(|s| s.0 * s.1).sum::<Vector3<f64>>() / samples.iter().map(|s| s.1).sum::<f64>();
+    let c: Vector3<f64> =
+        samples.iter().map(|s| s.0 * s.1).sum::<Vector3<f64>>() / samples.iter().map(|s| s.1).sum::<f64>();
     let mut cov = Matrix3::zeros();
     for (p, w) in &samples {
         let d = p - c;
@@ -533,7 +550,11 @@ fn finish<S: Surface + Sync + PlanarCut>(
     if stations.is_empty() {
         return Err(ScanError::Input(format!(
             "no station could be measured: {}",
-            failed.iter().map(|f| format!("r/R {:.3}: {}", f.r_r, f.reason)).collect::<Vec<_>>().join("; ")
+            failed
+                .iter()
+                .map(|f| format!("r/R {:.3}: {}", f.r_r, f.reason))
+                .collect::<Vec<_>>()
+                .join("; ")
         )));
     }
     Ok(Geometry {

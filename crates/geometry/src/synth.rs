@@ -9,7 +9,7 @@
 
 use std::f64::consts::PI;
 
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 
 use crate::mesh::Mesh;
 
@@ -39,6 +39,8 @@ pub struct BladeDef {
     pub stations: Vec<StationDef>,
     /// Chord fraction of the stacking (pitch) axis.
     pub pitch_axis: f64,
+    /// A hub cylinder (radius, length) [mm] about the axis, apart from the blades.
+    pub hub: Option<(f64, f64)>,
 }
 
 /// NACA 4-digit upper and lower surface at chord fraction `x`: ((xu, yu), (xl, yl)).
@@ -142,6 +144,180 @@ impl BladeDef {
                 }
             }
         }
+        if let Some((r, len)) = self.hub {
+            // A closed cylinder of 96 facets with fan caps.
+            let n = 96;
+            let at = |k: usize, z: f64| {
+                let t = 2.0 * PI * k as f64 / n as f64;
+                Vector3::new(r * t.cos(), r * t.sin(), z)
+            };
+            let (lo, hi) = (-0.5 * len, 0.5 * len);
+            for k in 0..n {
+                let (a0, a1, b0, b1) = (at(k, lo), at(k + 1, lo), at(k, hi), at(k + 1, hi));
+                m.push_triangle(a0, a1, b1);
+                m.push_triangle(a0, b1, b0);
+                m.push_triangle(Vector3::new(0.0, 0.0, lo), a1, a0);
+                m.push_triangle(Vector3::new(0.0, 0.0, hi), b0, b1);
+            }
+        }
         m
     }
+}
+
+/// How a synthetic coloured cloud is made from a blade definition.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CloudSpec {
+    /// Points on the propeller.
+    pub blade_points: usize,
+    /// Gaussian noise along each coordinate [mm].
+    pub noise: f64,
+    /// Fraction of all points that are background (green table plane and halo).
+    pub background: f64,
+    /// Reference box: edge lengths [mm], its centre in the propeller frame [mm], points on it.
+    pub reference_box: Option<([f64; 3], [f64; 3], usize)>,
+    /// Pose: rotation and translation [mm] (x_posed = R x + t).
+    pub rotation: Matrix3<f64>,
+    /// Translation [mm].
+    pub translation: Vector3<f64>,
+    /// Unknown scale applied last (x_cloud = s (R x + t)).
+    pub scale: f64,
+    /// Random seed.
+    pub seed: u64,
+}
+
+/// Colours of the generated cloud: orange blade with black speckle, grey and blue box faces,
+/// green background.
+pub const SYNTH_COLOURS: [(&str, [u8; 3]); 5] = [
+    ("orange", [230, 100, 10]),
+    ("black", [0, 0, 0]),
+    ("grey", [200, 200, 200]),
+    ("blue", [20, 20, 200]),
+    ("green", [30, 150, 40]),
+];
+
+impl BladeDef {
+    /// A noisy coloured point cloud of the propeller (sampled on its mesh), with a reference
+    /// box, background points, a pose and a scale.
+    pub fn to_cloud(&self, spec: &CloudSpec) -> crate::cloud::Cloud {
+        use rand::{RngExt, SeedableRng};
+        use rand_distr::{Distribution, Normal};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(spec.seed);
+        let noise = Normal::new(0.0, spec.noise.max(0.0)).unwrap_or_else(|_| Normal::new(0.0, 0.0).expect("zero sd"));
+        let mesh = self.to_mesh(80, 60);
+        let areas: Vec<f64> = (0..mesh.triangles.len())
+            .map(|i| {
+                let [a, b, c] = mesh.corners(i);
+                0.5 * (b - a).cross(&(c - a)).norm()
+            })
+            .collect();
+        let mut cum = Vec::with_capacity(areas.len());
+        let mut acc = 0.0;
+        for a in &areas {
+            acc += a;
+            cum.push(acc);
+        }
+        let jitter = |rng: &mut rand::rngs::StdRng, c: [u8; 3]| {
+            c.map(|x| (x as f64 + rng.random_range(-12.0..12.0)).clamp(0.0, 255.0) as u8)
+        };
+        let (mut pts, mut cols) = (Vec::new(), Vec::new());
+        for _ in 0..spec.blade_points {
+            let pick = rng.random_range(0.0..acc);
+            let k = cum.partition_point(|&c| c < pick).min(areas.len() - 1);
+            let [a, b, c] = mesh.corners(k);
+            let (mut u, mut v) = (rng.random_range(0.0..1.0), rng.random_range(0.0..1.0));
+            if u + v > 1.0 {
+                (u, v) = (1.0 - u, 1.0 - v);
+            }
+            let p = a + u * (b - a) + v * (c - a);
+            let p = p + Vector3::new(noise.sample(&mut rng), noise.sample(&mut rng), noise.sample(&mut rng));
+            // Speckle: black dots on a 2 mm grid.
+            let speck = ((p.x / 2.0).floor() as i64 + (p.y / 2.0).floor() as i64 + (p.z / 2.0).floor() as i64) % 3 == 0;
+            pts.push(p);
+            cols.push(jitter(
+                &mut rng,
+                if speck { SYNTH_COLOURS[1].1 } else { SYNTH_COLOURS[0].1 },
+            ));
+        }
+        if let Some((dims, centre, n)) = spec.reference_box {
+            let c = Vector3::from(centre);
+            let d = Vector3::from(dims);
+            for i in 0..n {
+                let axis = i % 3;
+                let side = if (i / 3) % 2 == 0 { -0.5 } else { 0.5 };
+                let mut p = Vector3::new(
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                    rng.random_range(-0.5..0.5),
+                );
+                p[axis] = side;
+                let p = c
+                    + p.component_mul(&d)
+                    + Vector3::new(noise.sample(&mut rng), noise.sample(&mut rng), noise.sample(&mut rng));
+                pts.push(p);
+                cols.push(jitter(
+                    &mut rng,
+                    if axis == 2 {
+                        SYNTH_COLOURS[3].1
+                    } else {
+                        SYNTH_COLOURS[2].1
+                    },
+                ));
+            }
+        }
+        // Background: a table plane below the box and a halo near the blades.
+        let fg = pts.len();
+        let n_bg = (spec.background / (1.0 - spec.background).max(1e-9) * fg as f64) as usize;
+        let tip = self.stations.last().map_or(100.0, |s| s.r);
+        for i in 0..n_bg {
+            let p = if i % 2 == 0 {
+                Vector3::new(
+                    rng.random_range(-1.2..1.2) * tip,
+                    rng.random_range(-1.2..1.2) * tip,
+                    -0.55 * tip,
+                )
+            } else {
+                let q = pts[rng.random_range(0..fg)];
+                q + Vector3::new(
+                    rng.random_range(-5.0..5.0),
+                    rng.random_range(-5.0..5.0),
+                    rng.random_range(-5.0..5.0),
+                )
+            };
+            pts.push(p);
+            cols.push(jitter(&mut rng, SYNTH_COLOURS[4].1));
+        }
+        let points = pts
+            .into_iter()
+            .map(|p| spec.scale * (spec.rotation * p + spec.translation))
+            .collect();
+        crate::cloud::Cloud {
+            points,
+            colors: Some(cols),
+        }
+    }
+}
+
+/// Writes a binary little-endian PLY with float coordinates and uchar colours.
+pub fn to_ply(cloud: &crate::cloud::Cloud) -> Vec<u8> {
+    let has_c = cloud.colors.is_some();
+    let mut out = format!(
+        "ply\nformat binary_little_endian 1.0\ncomment propbet synthetic cloud\nelement vertex {}\n\
+         property float x\nproperty float y\nproperty float z\n{}end_header\n",
+        cloud.points.len(),
+        if has_c {
+            "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+        } else {
+            ""
+        }
+    )
+    .into_bytes();
+    for (i, p) in cloud.points.iter().enumerate() {
+        for k in 0..3 {
+            out.extend((p[k] as f32).to_le_bytes());
+        }
+        if let Some(c) = &cloud.colors {
+            out.extend(c[i]);
+        }
+    }
+    out
 }

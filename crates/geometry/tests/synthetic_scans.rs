@@ -1,0 +1,188 @@
+//! Generated propellers (meshes and noisy coloured clouds with a reference box, random pose
+//! and scale): the pipeline recovers the geometry they were made with (issue 4's acceptance).
+
+use nalgebra::{Rotation3, Vector3};
+use propbet_geometry::align::auto_align;
+use propbet_geometry::cloud::read_cloud;
+use propbet_geometry::mesh::read_stl;
+use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, ScanOptions};
+use propbet_geometry::synth::{to_ply, BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
+
+/// An APC-E-10x5-like blade (R = 127 mm): chord and angle of the UIUC style table, NACA
+/// sections 10 % -> 7 % thick, 5 % -> 4 % camber at 45 %.
+pub fn apce_like(blades: usize) -> BladeDef {
+    let rows = [
+        (0.15, 0.138, 37.9),
+        (0.25, 0.167, 36.0),
+        (0.35, 0.185, 30.6),
+        (0.45, 0.190, 26.2),
+        (0.55, 0.184, 22.6),
+        (0.65, 0.168, 19.8),
+        (0.75, 0.144, 17.6),
+        (0.85, 0.112, 15.8),
+        (0.95, 0.075, 14.3),
+        (1.00, 0.050, 13.6),
+    ];
+    let big_r = 127.0;
+    BladeDef {
+        blades,
+        pitch_axis: 0.3,
+        hub: Some((7.0, 16.0)),
+        stations: rows
+            .iter()
+            .map(|&(x, c, b)| StationDef {
+                r: x * big_r,
+                chord: c * big_r,
+                beta: b,
+                t_c: 0.10 - 0.03 * (x - 0.15) / 0.85,
+                camber: 0.05 - 0.01 * (x - 0.15) / 0.85,
+                camber_pos: 0.45,
+            })
+            .collect(),
+    }
+}
+
+fn rms(v: &[f64]) -> f64 {
+    (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
+}
+
+/// Errors against the definition: (beta deg, chord relative, t/c absolute) per station.
+fn errors(geo: &Geometry, def: &BladeDef) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let (mut b, mut c, mut t) = (Vec::new(), Vec::new(), Vec::new());
+    for s in &geo.stations {
+        let truth = def.at(s.r);
+        b.push(s.beta_deg - truth.beta);
+        c.push(s.chord / truth.chord - 1.0);
+        t.push(s.t_c - truth.t_c);
+    }
+    (b, c, t)
+}
+
+fn stations() -> Vec<f64> {
+    (0..15).map(|k| 0.2 + 0.05 * k as f64).collect()
+}
+
+#[test]
+fn posed_meshes_give_the_geometry_they_were_made_with() {
+    for (blades, seed) in [(2usize, 1.0f64), (3, 2.0)] {
+        let def = apce_like(blades);
+        let mut mesh = def.to_mesh(60, 60);
+        let axis = nalgebra::Unit::new_normalize(Vector3::new(0.3 * seed, 1.0, -0.4));
+        let rot = Rotation3::from_axis_angle(&axis, 0.7 * seed);
+        mesh.transform(rot.matrix(), &Vector3::new(12.0, -40.0, 7.5), 1.0);
+        let mesh = read_stl(&mesh.to_stl(), "synthetic.stl").unwrap();
+        let opts = ScanOptions {
+            stations: stations(),
+            ..ScanOptions::default()
+        };
+        let geo = scan_mesh(&mesh, &opts).unwrap();
+        assert_eq!(geo.blades, blades);
+        assert!(geo.failed.is_empty(), "{:?}", geo.failed);
+        let (e_beta, e_chord, e_tc) = errors(&geo, &def);
+        eprintln!(
+            "{blades} blades: twist RMSE {:.4} deg, chord RMSE {:.4} %, t/c max error {:.5}, hub {:?} (7), tip {:.4} (127)",
+            rms(&e_beta),
+            100.0 * rms(&e_chord),
+            e_tc.iter().map(|x| x.abs()).fold(0.0, f64::max),
+            geo.hub_radius,
+            geo.tip_radius
+        );
+        // Issue 4's acceptance numbers.
+        assert!(rms(&e_beta) <= 0.1, "twist RMSE {} deg: {e_beta:?}", rms(&e_beta));
+        assert!(rms(&e_chord) <= 0.005, "chord RMSE {}: {e_chord:?}", rms(&e_chord));
+        assert!(e_tc.iter().all(|x| x.abs() <= 0.002), "t/c errors {e_tc:?}");
+        assert!((geo.hub_radius.unwrap() - 7.0).abs() <= 0.2, "hub {:?}", geo.hub_radius);
+        assert!((geo.tip_radius - 127.0).abs() <= 0.2, "tip {}", geo.tip_radius);
+    }
+}
+
+fn cloud_spec(points: usize, seed: u64) -> CloudSpec {
+    let axis = nalgebra::Unit::new_normalize(Vector3::new(0.2, -1.0, 0.7));
+    CloudSpec {
+        blade_points: points,
+        noise: 0.05,
+        background: 0.2,
+        reference_box: Some(([50.8, 48.26, 50.8], [0.0, 0.0, -40.0], points / 4)),
+        rotation: *Rotation3::from_axis_angle(&axis, 2.1).matrix(),
+        translation: Vector3::new(-160.0, 190.0, 105.0),
+        scale: 0.756,
+        seed,
+    }
+}
+
+fn colour(name: &str) -> [u8; 3] {
+    SYNTH_COLOURS.iter().find(|c| c.0 == name).unwrap().1
+}
+
+fn cloud_options() -> ScanOptions {
+    ScanOptions {
+        stations: stations(),
+        blade_colours: vec![colour("orange"), colour("black")],
+        reference_box: Some(BoxSpec {
+            dims: [50.8, 48.26, 50.8],
+            offset: [0.0, 0.0, -40.0],
+            colours: vec![colour("grey"), colour("blue")],
+        }),
+        ..ScanOptions::default()
+    }
+}
+
+#[test]
+fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
+    let def = apce_like(2);
+    let cloud = def.to_cloud(&cloud_spec(400_000, 7));
+    // Through the PLY writer and reader, as a user's file would come.
+    let cloud = read_cloud(&to_ply(&cloud), "synthetic.ply").unwrap();
+    let geo = scan_cloud(&cloud, &cloud_options()).unwrap();
+    let scale = geo.box_fit.as_ref().unwrap().scale;
+    let (e_beta, e_chord, _) = errors(&geo, &def);
+    eprintln!(
+        "cloud: scale error {:.4} %, twist max {:.3} deg, chord max {:.3} %, notes {:?}",
+        100.0 * (scale * 0.756 - 1.0),
+        e_beta.iter().map(|x| x.abs()).fold(0.0, f64::max),
+        100.0 * e_chord.iter().map(|x| x.abs()).fold(0.0, f64::max),
+        geo.notes
+    );
+    assert!(geo.failed.is_empty(), "{:?}", geo.failed);
+    assert!((scale * 0.756 - 1.0).abs() <= 0.002, "scale {scale}");
+    assert!(e_beta.iter().all(|x| x.abs() <= 0.3), "twist errors {e_beta:?}");
+    assert!(e_chord.iter().all(|x| x.abs() <= 0.01), "chord errors {e_chord:?}");
+    let c = geo.colour.as_ref().unwrap();
+    assert!(c.kept < c.total && c.threshold > 20.0 && c.threshold < 150.0, "{c:?}");
+}
+
+#[test]
+fn a_sparse_station_is_reported_and_the_others_kept() {
+    let def = apce_like(2);
+    let cloud = def.to_cloud(&cloud_spec(40_000, 3));
+    let mut opts = cloud_options();
+    opts.stations = vec![0.3, 0.5, 0.7, 0.99];
+    let geo = scan_cloud(&cloud, &opts).unwrap();
+    assert_eq!(geo.stations.len(), 3, "{:?}", geo.failed);
+    assert_eq!(geo.failed.len(), 1);
+    assert!(geo.failed[0].reason.contains("too sparse"), "{:?}", geo.failed);
+}
+
+#[test]
+fn not_a_propeller_has_no_rotational_symmetry() {
+    // One blade alone.
+    let one = apce_like(1).to_mesh(20, 20);
+    let e = auto_align(&one).unwrap_err().to_string();
+    assert!(e.starts_with("no rotational symmetry"), "{e}");
+    // A cube: no axis stands out.
+    let mut cube = propbet_geometry::Mesh::default();
+    let v = |x: f64, y: f64, z: f64| Vector3::new(x, y, z);
+    for (a, b, c, d) in [
+        (v(0., 0., 0.), v(1., 0., 0.), v(1., 1., 0.), v(0., 1., 0.)),
+        (v(0., 0., 1.), v(1., 0., 1.), v(1., 1., 1.), v(0., 1., 1.)),
+        (v(0., 0., 0.), v(1., 0., 0.), v(1., 0., 1.), v(0., 0., 1.)),
+        (v(0., 1., 0.), v(1., 1., 0.), v(1., 1., 1.), v(0., 1., 1.)),
+        (v(0., 0., 0.), v(0., 1., 0.), v(0., 1., 1.), v(0., 0., 1.)),
+        (v(1., 0., 0.), v(1., 1., 0.), v(1., 1., 1.), v(1., 0., 1.)),
+    ] {
+        cube.push_triangle(a, b, c);
+        cube.push_triangle(a, c, d);
+    }
+    let e = auto_align(&cube).unwrap_err().to_string();
+    assert!(e.contains("no rotational symmetry") && e.contains("not flat"), "{e}");
+}
