@@ -12,6 +12,7 @@ mod output;
 mod polar;
 mod predict;
 mod prop;
+mod scan;
 mod synth;
 mod values;
 
@@ -46,6 +47,9 @@ enum Command {
     Effects(diagnose::EffectsArgs),
     /// Write synthetic measurements made by the model with hidden effects and noise.
     Synth(Box<synth::SynthArgs>),
+    /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
+    /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
+    Scan(Box<scan::ScanArgs>),
 }
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
@@ -64,6 +68,7 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
         Command::Diagnose(a) => diagnose::run(&a),
         Command::Effects(a) => diagnose::list(&a),
         Command::Synth(a) => synth::run(&a),
+        Command::Scan(a) => scan::run(&a),
     }
 }
 

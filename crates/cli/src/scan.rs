@@ -1,0 +1,544 @@
+//! `propbet scan`: a mesh (STL) or a cloud (PLY, COLMAP points3D.txt, XYZ/XYZRGB) → the
+//! propeller frame → sections → NACA and CST fits → geometry CSV, UIUC-style geom.txt, QPROP
+//! prop file, per-station airfoil files (Selig), plots, and a JSON summary.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use nalgebra::Vector3;
+use propbet_bemt::QpropCoefficients;
+use propbet_geometry::cloud::{parse_colour, read_cloud};
+use propbet_geometry::mesh::read_stl;
+use propbet_geometry::scan::{
+    default_stations, scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
+};
+use propbet_geometry::synth::naca4;
+use propbet_plot::{Figure, Mark, Panel, Series};
+use propbet_qprop::{write_prop, PropFile, PropRow};
+use serde_json::json;
+
+use crate::output::{write_atomic, write_figure};
+use crate::values::{parse_length_unit, parse_list};
+
+/// Arguments of `propbet scan`.
+#[derive(Debug, Args)]
+pub struct ScanArgs {
+    /// The scan: .stl (ASCII or binary), .ply (ASCII or binary, colours), COLMAP
+    /// points3D.txt, or .xyz / .txt (XYZ or XYZRGB rows).
+    pub input: PathBuf,
+    /// Length unit of the file: mm (default), cm, m, in.
+    #[arg(long, default_value = "mm")]
+    pub units: String,
+    /// Stations as r/R: a list, start:stop:step or start:stop/N (default 0.15:0.97/25).
+    #[arg(long)]
+    pub stations: Option<String>,
+    /// Planar sections (the plane x = r across the blade) instead of cylindrical (r = const).
+    #[arg(long)]
+    pub planar: bool,
+    /// Slab thickness of a cloud's sections [mm].
+    #[arg(long, default_value_t = 0.25)]
+    pub slab: f64,
+    /// Blade colours to keep (clouds): names (orange, black, ...), #rrggbb or r/g/b, comma-separated.
+    #[arg(long)]
+    pub blade_colour: Option<String>,
+    /// Colour-distance threshold (default: Otsu's suggestion from the histogram).
+    #[arg(long)]
+    pub colour_threshold: Option<f64>,
+    /// Reference box edge lengths along the propeller's x, y, z [mm]: 50.8x48.26x50.8.
+    #[arg(long = "box")]
+    pub box_dims: Option<String>,
+    /// The box centre in the propeller frame [mm]: x,y,z (the box is fixed to the hub).
+    #[arg(long, default_value = "0,0,-40", allow_hyphen_values = true)]
+    pub box_offset: String,
+    /// Colours of the box faces.
+    #[arg(long, default_value = "grey,blue")]
+    pub box_colour: String,
+    /// Region of interest in file units: xmin,ymin,zmin,xmax,ymax,zmax.
+    #[arg(long, allow_hyphen_values = true)]
+    pub crop: Option<String>,
+    /// Statistical outlier removal for clouds: neighbours,sigmas, or `off`.
+    #[arg(long, default_value = "8,2.5")]
+    pub outliers: String,
+    /// Manual alignment: a point at the root of blade 0 (file units) x,y,z.
+    #[arg(long, allow_hyphen_values = true, requires = "tip_point")]
+    pub root_point: Option<String>,
+    /// Manual alignment: a point at the tip of blade 0.
+    #[arg(long, allow_hyphen_values = true, requires = "root_point")]
+    pub tip_point: Option<String>,
+    /// Manual alignment: the hub centre (default: the root point).
+    #[arg(long, allow_hyphen_values = true)]
+    pub origin: Option<String>,
+    /// Manual alignment: rotations about the frame's x, y, z [deg].
+    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
+    pub rotate: String,
+    /// Manual scale from a known length: `x1,y1,z1,x2,y2,z2,L` (two points in file units and
+    /// their true distance in mm).
+    #[arg(long, allow_hyphen_values = true)]
+    pub known_length: Option<String>,
+    /// A UIUC-style geometry table (r/R c/R beta) to compare with.
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
+    /// Name written in the prop file.
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Output directory.
+    #[arg(long, short)]
+    pub out: PathBuf,
+}
+
+fn numbers(flag: &str, text: &str, n: usize) -> Result<Vec<f64>> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|s| {
+            s.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .with_context(|| format!("{flag} '{text}': '{}' is not a number", s.trim()))
+        })
+        .collect::<Result<_>>()?;
+    if v.len() != n {
+        bail!("{flag} '{text}': expected {n} numbers, found {}", v.len());
+    }
+    Ok(v)
+}
+
+fn vec3(flag: &str, text: &str) -> Result<Vector3<f64>> {
+    let v = numbers(flag, text, 3)?;
+    Ok(Vector3::new(v[0], v[1], v[2]))
+}
+
+fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
+    text.split(',')
+        .map(|s| parse_colour(s).map_err(|e| anyhow::anyhow!("{flag}: {e}")))
+        .collect()
+}
+
+/// Builds the pipeline's options from the flags.
+pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
+    let units = parse_length_unit(&a.units)? * 1000.0;
+    let stations = match &a.stations {
+        Some(s) => parse_list("--stations", s)?,
+        None => default_stations(),
+    };
+    if let Some(x) = stations.iter().find(|&&x| !(x > 0.0 && x <= 1.0)) {
+        bail!("--stations: r/R {x} is outside (0, 1]");
+    }
+    if !(a.slab > 0.0 && a.slab.is_finite()) {
+        bail!("--slab {}: must be a positive thickness in mm", a.slab);
+    }
+    let reference_box = match &a.box_dims {
+        None => None,
+        Some(d) => {
+            let v: Vec<f64> = d
+                .split(['x', 'X', ','])
+                .map(|s| s.trim().parse::<f64>().ok().filter(|x| *x > 0.0))
+                .collect::<Option<_>>()
+                .with_context(|| format!("--box '{d}': expected three positive lengths, e.g. 50.8x48.26x50.8"))?;
+            if v.len() != 3 {
+                bail!("--box '{d}': expected three lengths, e.g. 50.8x48.26x50.8");
+            }
+            let o = vec3("--box-offset", &a.box_offset)?;
+            Some(BoxSpec {
+                dims: [v[0], v[1], v[2]],
+                offset: [o.x, o.y, o.z],
+                colours: colours("--box-colour", &a.box_colour)?,
+            })
+        }
+    };
+    let crop = match &a.crop {
+        None => None,
+        Some(c) => {
+            let v = numbers("--crop", c, 6)?;
+            Some((Vector3::new(v[0], v[1], v[2]), Vector3::new(v[3], v[4], v[5])))
+        }
+    };
+    let outliers = if a.outliers == "off" {
+        None
+    } else {
+        let v = numbers("--outliers", &a.outliers, 2)?;
+        if v[0] < 1.0 || v[1] <= 0.0 {
+            bail!("--outliers '{}': neighbours >= 1 and sigmas > 0, or 'off'", a.outliers);
+        }
+        Some((v[0] as usize, v[1]))
+    };
+    let mut scale = units;
+    if let Some(k) = &a.known_length {
+        let v = numbers("--known-length", k, 7)?;
+        let d = (Vector3::new(v[0], v[1], v[2]) - Vector3::new(v[3], v[4], v[5])).norm();
+        if d <= 0.0 || v[6] <= 0.0 {
+            bail!("--known-length '{k}': two distinct points and a positive length are needed");
+        }
+        scale = v[6] / d;
+    }
+    let manual = match (&a.root_point, &a.tip_point) {
+        (Some(r), Some(t)) => {
+            let rot = vec3("--rotate", &a.rotate)?;
+            Some(Manual {
+                root: vec3("--root-point", r)?,
+                tip: vec3("--tip-point", t)?,
+                origin: a.origin.as_deref().map(|o| vec3("--origin", o)).transpose()?,
+                rotate_deg: [rot.x, rot.y, rot.z],
+                scale,
+            })
+        }
+        _ => None,
+    };
+    Ok(ScanOptions {
+        units: scale,
+        stations,
+        kind: if a.planar { SectionKind::Planar } else { SectionKind::Cylindrical },
+        slab: a.slab,
+        blade_colours: a.blade_colour.as_deref().map(|c| colours("--blade-colour", c)).transpose()?.unwrap_or_default(),
+        colour_threshold: a.colour_threshold,
+        reference_box,
+        crop,
+        outliers,
+        manual,
+    })
+}
+
+/// Reads a scan file and runs the pipeline.
+pub fn process(path: &Path, opts: &ScanOptions) -> Result<Geometry> {
+    let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let name = path.display().to_string();
+    let is_stl = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+    let geo = if is_stl {
+        let mesh = read_stl(&bytes, &name)?;
+        scan_mesh(&mesh, opts)
+    } else {
+        let cloud = read_cloud(&bytes, &name)?;
+        scan_cloud(&cloud, opts)
+    };
+    geo.map_err(|e| anyhow::anyhow!("{name}: {e}"))
+}
+
+/// A UIUC-style geometry table: rows `r/R c/R beta` (a header line is skipped).
+pub fn read_reference(path: &Path) -> Result<Vec<[f64; 3]>> {
+    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if f.is_empty() || f[0].parse::<f64>().is_err() {
+            continue;
+        }
+        if f.len() < 3 {
+            bail!("{}: line {}: expected r/R c/R beta", path.display(), i + 1);
+        }
+        let v: Vec<f64> = f[..3]
+            .iter()
+            .map(|s| s.parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()
+            .with_context(|| format!("{}: line {}: '{}' is not three numbers", path.display(), i + 1, line.trim()))?;
+        rows.push([v[0], v[1], v[2]]);
+    }
+    if rows.len() < 2 {
+        bail!("{}: fewer than two rows of r/R c/R beta", path.display());
+    }
+    Ok(rows)
+}
+
+/// Linear interpolation in a table's column `k` at r/R `x` (None outside).
+pub fn interp(table: &[[f64; 3]], x: f64, k: usize) -> Option<f64> {
+    let i = table.windows(2).position(|w| w[0][0] <= x && x <= w[1][0])?;
+    let (a, b) = (table[i], table[i + 1]);
+    let f = if b[0] > a[0] { (x - a[0]) / (b[0] - a[0]) } else { 0.0 };
+    Some(a[k] + f * (b[k] - a[k]))
+}
+
+/// Thin-airfoil zero-lift angle [rad] of a NACA 4-digit camber line (negative for positive
+/// camber): α_L0 = −(1/π) ∫ dyc/dx (cos θ − 1) dθ.
+fn alpha_zero_lift(m: f64, p: f64) -> f64 {
+    let n = 400;
+    let mut s = 0.0;
+    for k in 0..n {
+        let th = std::f64::consts::PI * (k as f64 + 0.5) / n as f64;
+        let x = 0.5 * (1.0 - th.cos());
+        // Slope of the mean line from the upper/lower surfaces at zero thickness.
+        let h = 1e-5;
+        let (a, _) = naca4((x + h).min(1.0), 0.0, m, p);
+        let (b, _) = naca4((x - h).max(0.0), 0.0, m, p);
+        let dyc = (a.1 - b.1) / (a.0 - b.0);
+        s += dyc * (th.cos() - 1.0) * std::f64::consts::PI / n as f64;
+    }
+    -s / std::f64::consts::PI
+}
+
+/// The prop file: radii and chords in metres, β in degrees; CL0 from thin-airfoil theory on
+/// the fitted camber, the rest QPROP's generic low-Re values until `propbet polars` (XFOIL at
+/// each station's Re) replaces them.
+pub fn prop_file(name: &str, g: &Geometry) -> PropFile {
+    let generic = QpropCoefficients {
+        cl0: 0.5,
+        cl_a: 5.8,
+        cl_min: -0.4,
+        cl_max: 1.2,
+        cd0: 0.028,
+        cd2u: 0.05,
+        cd2l: 0.05,
+        clcd0: 0.5,
+        re_ref: 70000.0,
+        re_exp: -0.7,
+    };
+    let rows = g
+        .stations
+        .iter()
+        .map(|s| {
+            let cl0 = -2.0 * std::f64::consts::PI * alpha_zero_lift(s.naca.camber, s.naca.camber_pos);
+            let c = QpropCoefficients {
+                cl0,
+                clcd0: cl0,
+                ..generic
+            };
+            PropRow {
+                r: s.r / 1000.0,
+                chord: s.chord / 1000.0,
+                beta: s.beta_deg,
+                coeffs: c.to_array().to_vec(),
+            }
+        })
+        .collect();
+    PropFile {
+        name: name.to_string(),
+        blades: g.blades as f64,
+        radius: Some(g.tip_radius / 1000.0),
+        global: generic.to_array(),
+        scale: [1.0, 1.0, 1.0],
+        offset: [0.0, 0.0, 0.0],
+        rows,
+        row_lines: Vec::new(),
+    }
+}
+
+/// Runs `propbet scan`.
+pub fn run(a: &ScanArgs) -> Result<bool> {
+    let opts = options(a)?;
+    let g = process(&a.input, &opts)?;
+    std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    let inputs = [a.input.as_path()];
+    let reference = a.reference.as_deref().map(read_reference).transpose()?;
+    let big_r = g.tip_radius;
+    // Geometry CSV.
+    let mut csv = String::from(
+        "r_mm,r_R,chord_mm,c_R,beta_deg,t_c,t_pos,camber,camber_pos,le_offset_mm,skew_deg,rake_mm,naca,naca_t_c,naca_camber,naca_camber_pos,rms_naca_mm,rms_cst_mm,points,blade_spread_deg",
+    );
+    if reference.is_some() {
+        csv.push_str(",ref_c_R,ref_beta_deg");
+    }
+    csv.push('\n');
+    for s in &g.stations {
+        csv.push_str(&format!(
+            "{:.4},{:.5},{:.4},{:.5},{:.3},{:.5},{:.3},{:.5},{:.3},{:.4},{:.3},{:.4},{},{:.5},{:.5},{:.3},{:.5},{:.5},{},{:.3}",
+            s.r,
+            s.r_r,
+            s.chord,
+            s.chord / big_r,
+            s.beta_deg,
+            s.t_c,
+            s.t_pos,
+            s.camber,
+            s.camber_pos,
+            s.le_offset,
+            s.skew_deg,
+            s.rake,
+            s.naca.designation(),
+            s.naca.t_c,
+            s.naca.camber,
+            s.naca.camber_pos,
+            s.naca.rms,
+            s.cst.as_ref().map_or(f64::NAN, |c| c.rms),
+            s.points,
+            s.blade_spread_deg
+        ));
+        if let Some(t) = &reference {
+            let f = |k| interp(t, s.r_r, k).map_or(String::new(), |v| format!("{v:.4}"));
+            csv.push_str(&format!(",{},{}", f(1), f(2)));
+        }
+        csv.push('\n');
+    }
+    write_atomic(&a.out.join("geometry.csv"), &[csv], &inputs)?;
+    // UIUC-style table.
+    let mut geom = String::from("r/R    c/R     beta\n");
+    for s in &g.stations {
+        geom.push_str(&format!("{:.4} {:.4} {:.2}\n", s.r_r, s.chord / big_r, s.beta_deg));
+    }
+    write_atomic(&a.out.join("geom.txt"), &[geom], &inputs)?;
+    // QPROP prop file.
+    let name = a.name.clone().unwrap_or_else(|| {
+        a.input.file_stem().map_or("scan".into(), |s| s.to_string_lossy().into_owned())
+    });
+    write_atomic(&a.out.join("prop.qprop"), &[write_prop(&prop_file(&name, &g))], &inputs)?;
+    // Airfoils, Selig order.
+    for (i, s) in g.stations.iter().enumerate() {
+        if let Some(c) = &s.cst {
+            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, c.rms);
+            for (x, y) in c.selig(80) {
+                t.push_str(&format!("{x:.6} {y:.6}\n"));
+            }
+            write_atomic(&a.out.join("airfoils").join(format!("station_{i:02}.dat")), &[t], &inputs)?;
+        }
+    }
+    // Plots.
+    write_figure(&a.out.join("plots/sections.svg"), &sections_figure(&g), &inputs)?;
+    write_figure(&a.out.join("plots/distributions.svg"), &distributions_figure(&g, reference.as_deref()), &inputs)?;
+    if let Some(c) = &g.colour {
+        let pts: Vec<(f64, f64)> = c
+            .histogram
+            .counts
+            .iter()
+            .enumerate()
+            .map(|(i, &n)| ((i as f64 + 0.5) * c.histogram.width, n as f64))
+            .collect();
+        let top = pts.iter().map(|p| p.1).fold(1.0, f64::max);
+        let fig = Figure {
+            panels: vec![Panel {
+                title: format!(
+                    "Colour distance to the blade colours: {} of {} points kept (threshold {:.0}, Otsu {:.0})",
+                    c.kept, c.total, c.threshold, c.suggested
+                ),
+                x_label: "RGB distance".into(),
+                y_label: "points".into(),
+                series: vec![
+                    Series::new("points", pts, Mark::Line, Some(0)),
+                    Series::new("threshold", vec![(c.threshold, 0.0), (c.threshold, top)], Mark::Dashed, Some(1)),
+                ],
+                zero_line: false,
+            }],
+            columns: 1,
+            width: 900,
+            height: 450,
+        };
+        write_figure(&a.out.join("plots/colour_histogram.svg"), &fig, &inputs)?;
+    }
+    // Summary.
+    let summary = json!({
+        "input": a.input.display().to_string(),
+        "blades": g.blades,
+        "tip_radius_mm": g.tip_radius,
+        "hub_radius_mm": g.hub_radius,
+        "root_radius_mm": g.root_radius,
+        "section_kind": g.kind,
+        "samples": g.samples,
+        "box": g.box_fit.as_ref().map(|b| json!({"scale": b.scale, "rms_mm": b.rms, "faces": b.faces})),
+        "notes": g.notes,
+        "stations": g.stations,
+        "failed": g.failed,
+    });
+    write_atomic(&a.out.join("scan.json"), &[serde_json::to_string_pretty(&summary)?], &inputs)?;
+    print_summary(&g, reference.as_deref());
+    println!("wrote {}", a.out.display());
+    Ok(true)
+}
+
+fn print_summary(g: &Geometry, reference: Option<&[[f64; 3]]>) {
+    println!(
+        "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
+        g.blades,
+        g.tip_radius,
+        g.hub_radius.map_or("none".into(), |h| format!("{h:.2} mm")),
+        g.root_radius,
+        g.stations.len(),
+        g.failed.len()
+    );
+    for n in &g.notes {
+        println!("  {n}");
+    }
+    for f in &g.failed {
+        println!("  r/R {:.3}: {}", f.r_r, f.reason);
+    }
+    if let Some(t) = reference {
+        let (mut db, mut dc) = (Vec::new(), Vec::new());
+        for s in g.stations.iter().filter(|s| (0.3..=0.7).contains(&s.r_r)) {
+            if let (Some(c), Some(b)) = (interp(t, s.r_r, 1), interp(t, s.r_r, 2)) {
+                db.push(s.beta_deg - b);
+                dc.push(s.chord / g.tip_radius / c - 1.0);
+            }
+        }
+        let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
+        let max = |v: &[f64]| v.iter().map(|x| x.abs()).fold(0.0, f64::max);
+        println!(
+            "against the reference at r/R 0.3-0.7 ({} stations): twist RMSE {:.2} deg (max {:.2}), chord RMSE {:.1} % (max {:.1} %)",
+            db.len(),
+            rms(&db),
+            max(&db),
+            100.0 * rms(&dc),
+            100.0 * max(&dc)
+        );
+    }
+}
+
+fn sections_figure(g: &Geometry) -> Figure {
+    let panels = g
+        .stations
+        .iter()
+        .map(|s| {
+            let step = (s.uw.len() / 300).max(1);
+            let pts: Vec<(f64, f64)> = s.uw.iter().step_by(step).map(|&p| s.naca.to_section(p)).collect();
+            let mut series = vec![Series::new("points", pts, Mark::Dots, Some(0))];
+            if let Some(c) = &s.cst {
+                series.push(Series::new("CST fit", c.selig(60), Mark::Line, Some(1)));
+            }
+            Panel {
+                title: format!("r/R {:.3}: c {:.2} mm, β {:.2}°, NACA {}", s.r_r, s.chord, s.beta_deg, s.naca.designation()),
+                x_label: "x/c".into(),
+                y_label: "y/c".into(),
+                series,
+                zero_line: false,
+            }
+        })
+        .collect::<Vec<_>>();
+    let rows = panels.len().div_ceil(4).max(1) as u32;
+    Figure {
+        panels,
+        columns: 4,
+        width: 1600,
+        height: 260 * rows,
+    }
+}
+
+fn distributions_figure(g: &Geometry, reference: Option<&[[f64; 3]]>) -> Figure {
+    let col = |f: &dyn Fn(&propbet_geometry::scan::Station) -> f64| -> Vec<(f64, f64)> {
+        g.stations.iter().map(|s| (s.r_r, f(s))).collect()
+    };
+    let r = g.tip_radius;
+    let mut chord = vec![Series::new("scan", col(&|s| s.chord / r), Mark::Line, Some(0))];
+    let mut beta = vec![Series::new("scan", col(&|s| s.beta_deg), Mark::Line, Some(0))];
+    if let Some(t) = reference {
+        chord.push(Series::new("reference", t.iter().map(|x| (x[0], x[1])).collect(), Mark::Dots, Some(1)));
+        beta.push(Series::new("reference", t.iter().map(|x| (x[0], x[2])).collect(), Mark::Dots, Some(1)));
+    }
+    let panel = |title: &str, y: &str, series: Vec<Series>| Panel {
+        title: title.into(),
+        x_label: "r/R".into(),
+        y_label: y.into(),
+        series,
+        zero_line: false,
+    };
+    Figure {
+        panels: vec![
+            panel("Chord", "c/R", chord),
+            panel("Blade angle", "β [deg]", beta),
+            panel(
+                "Thickness and camber",
+                "/ chord",
+                vec![
+                    Series::new("t/c", col(&|s| s.t_c), Mark::Line, Some(0)),
+                    Series::new("camber", col(&|s| s.camber), Mark::Line, Some(2)),
+                ],
+            ),
+            panel(
+                "Skew and rake",
+                "deg, mm",
+                vec![
+                    Series::new("skew [deg]", col(&|s| s.skew_deg), Mark::Line, Some(0)),
+                    Series::new("rake [mm]", col(&|s| s.rake), Mark::Line, Some(2)),
+                ],
+            ),
+        ],
+        columns: 2,
+        width: 1200,
+        height: 800,
+    }
+}
