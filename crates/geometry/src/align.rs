@@ -66,6 +66,19 @@ pub trait Surface: Sized {
     fn cylinder_cut(&self, r: f64) -> Vec<CylPoint>;
     /// Largest distance from the z axis.
     fn max_radius(&self) -> f64;
+    /// How much of the surface lies at each whole degree of azimuth in the ring `lo..hi`
+    /// (surface already in the frame).
+    fn ring_weights(&self, lo: f64, hi: f64) -> Vec<f64> {
+        let mut bins = vec![0.0; 360];
+        for (g, w) in self.samples() {
+            let r = g.x.hypot(g.y);
+            if r >= lo && r <= hi {
+                let th = g.y.atan2(g.x).to_degrees().rem_euclid(360.0);
+                bins[(th as usize).min(359)] += w;
+            }
+        }
+        bins
+    }
 }
 
 impl Surface for Mesh {
@@ -88,6 +101,35 @@ impl Surface for Mesh {
     }
     fn max_radius(&self) -> f64 {
         self.vertices.iter().map(|v| v.x.hypot(v.y)).fold(0.0, f64::max)
+    }
+    /// Exact cuts at seven radii: every degree a cut segment spans counts, so that large
+    /// triangles leave no false gaps.
+    fn ring_weights(&self, lo: f64, hi: f64) -> Vec<f64> {
+        let mut bins = vec![0.0; 360];
+        for k in 0..7 {
+            let r = lo + (hi - lo) * k as f64 / 6.0;
+            for i in 0..self.triangles.len() {
+                let c = self.corners(i);
+                let mut th = Vec::with_capacity(2);
+                let mut pts = Vec::new();
+                for e in 0..3 {
+                    pts.clear();
+                    crate::section::crossing_points(c[e], c[(e + 1) % 3], r, &mut pts);
+                    th.extend(pts.iter().map(|p| p.0));
+                }
+                if th.len() < 2 {
+                    continue;
+                }
+                let (a, b) = (th[0].to_degrees(), th[1].to_degrees());
+                let span = (b - a + 540.0).rem_euclid(360.0) - 180.0;
+                let n = span.abs().ceil().max(1.0) as usize;
+                for j in 0..=n {
+                    let t = (a + span * j as f64 / n as f64).rem_euclid(360.0);
+                    bins[(t as usize).min(359)] += 1.0;
+                }
+            }
+        }
+        bins
     }
 }
 
@@ -141,18 +183,10 @@ pub fn to_frame(m: &Mesh, f: &Frame) -> Mesh {
     m.in_frame(f)
 }
 
-/// Blade count from the angular distribution of sample weight in the ring `lo..hi` (radii in
-/// the frame): contiguous occupied arcs of a 360-bin histogram (bins under 1 % of the fullest
+/// Blade count from the angular distribution of the surface in a ring ([`Surface::ring_weights`]):
+/// contiguous occupied arcs of a 360-bin histogram (bins under 1 % of the fullest
 /// count as empty, so that a few stray points do not bridge two blades).
-fn blade_arcs(samples: &[(Vector3<f64>, f64)], lo: f64, hi: f64) -> Vec<(f64, f64)> {
-    let mut bins = vec![0.0; 360];
-    for (g, w) in samples {
-        let r = g.x.hypot(g.y);
-        if r >= lo && r <= hi {
-            let th = g.y.atan2(g.x).to_degrees().rem_euclid(360.0);
-            bins[(th as usize).min(359)] += w;
-        }
-    }
+fn blade_arcs(bins: &[f64]) -> Vec<(f64, f64)> {
     let floor = 0.01 * bins.iter().copied().fold(0.0, f64::max);
     let start = match bins.iter().position(|&x| x <= floor) {
         Some(s) => s,
@@ -254,7 +288,7 @@ pub fn align_about<S: Surface>(
     let local = m.in_frame(&frame);
     let tip = local.max_radius();
     let samples = local.samples();
-    let arcs = blade_arcs(&samples, 0.45 * tip, 0.75 * tip);
+    let arcs = blade_arcs(&local.ring_weights(0.45 * tip, 0.75 * tip));
     let n = arcs.len();
     let total: f64 = arcs.iter().map(|a| a.0).sum();
     let even = n >= 2

@@ -35,6 +35,11 @@ pub fn slab_points(pts: &[Vector3<f64>], r: f64, slab: f64) -> Vec<CylPoint> {
         .collect()
 }
 
+/// Where the segment a-b crosses the cylinder of radius `r` about z.
+pub fn crossing_points(a: Vector3<f64>, b: Vector3<f64>, r: f64, out: &mut Vec<CylPoint>) {
+    crossing(a, b, r * r, out)
+}
+
 fn crossing(a: Vector3<f64>, b: Vector3<f64>, r2: f64, out: &mut Vec<CylPoint>) {
     let d = b - a;
     let (qa, qb, qc) = (
@@ -58,17 +63,42 @@ fn crossing(a: Vector3<f64>, b: Vector3<f64>, r2: f64, out: &mut Vec<CylPoint>) 
     }
 }
 
-/// Splits cut points into `n` blades by angle: blade k holds the points nearest the angle
-/// 2 pi k / n (blade 0 along +x).
+/// Splits cut points into `n` blades: the section's points sorted by angle are cut at the `n`
+/// widest angular gaps (wide, skewed blades can reach past the half-way angle to the next
+/// blade's axis, so nearest-axis assignment would mix them); each group goes to the blade whose
+/// axis (2 pi k / n, blade 0 along +x) is nearest its middle. Angles come back relative to that
+/// axis.
 pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
-    let mut out = vec![Vec::new(); n.max(1)];
-    let step = 2.0 * std::f64::consts::PI / n.max(1) as f64;
-    for &(th, z) in pts {
-        let k = ((th / step).round() as i64).rem_euclid(n.max(1) as i64) as usize;
-        // Angle relative to the blade's own axis, in (-pi/n, pi/n].
-        let rel = th - k as f64 * step;
-        let rel = (rel + std::f64::consts::PI).rem_euclid(2.0 * std::f64::consts::PI) - std::f64::consts::PI;
-        out[k].push((rel, z));
+    use std::f64::consts::PI;
+    let n = n.max(1);
+    let mut out = vec![Vec::new(); n];
+    let step = 2.0 * PI / n as f64;
+    let rel = |th: f64, k: usize| (th - k as f64 * step + PI).rem_euclid(2.0 * PI) - PI;
+    let nearest = |th: f64| ((th / step).round() as i64).rem_euclid(n as i64) as usize;
+    if pts.len() < 2 * n || n == 1 {
+        for &(th, z) in pts {
+            let k = nearest(th);
+            out[k].push((rel(th, k), z));
+        }
+        return out;
+    }
+    let mut order: Vec<usize> = (0..pts.len()).collect();
+    order.sort_by(|&a, &b| pts[a].0.total_cmp(&pts[b].0));
+    let ang = |i: usize| pts[order[i]].0;
+    let m = order.len();
+    // Gap after sorted position i (the last one wraps round).
+    let gap = |i: usize| if i + 1 < m { ang(i + 1) - ang(i) } else { ang(0) + 2.0 * PI - ang(m - 1) };
+    let mut gaps: Vec<usize> = (0..m).collect();
+    gaps.sort_by(|&a, &b| gap(b).total_cmp(&gap(a)));
+    let mut cuts: Vec<usize> = gaps[..n].to_vec();
+    cuts.sort_unstable();
+    for g in 0..n {
+        // Group: from after cut g to cut g+1 (wrapping).
+        let (from, to) = (cuts[g] + 1, if g + 1 < n { cuts[g + 1] } else { cuts[0] + m });
+        let idx: Vec<usize> = (from..=to).map(|i| order[i % m]).collect();
+        let (s, c) = idx.iter().fold((0.0, 0.0), |(s, c), &i| (s + pts[i].0.sin(), c + pts[i].0.cos()));
+        let k = nearest(s.atan2(c));
+        out[k].extend(idx.iter().map(|&i| (rel(pts[i].0, k), pts[i].1)));
     }
     out
 }
