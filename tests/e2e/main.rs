@@ -45,6 +45,7 @@ fn col(header: &[String], name: &str) -> usize {
 mod compare;
 mod diagnose;
 mod polars;
+mod scan;
 
 #[test]
 fn predict_matches_qprop_static_point() {

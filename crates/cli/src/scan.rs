@@ -39,6 +39,10 @@ pub struct ScanArgs {
     /// Slab thickness of a cloud's sections [mm].
     #[arg(long, default_value_t = 0.25)]
     pub slab: f64,
+    /// Widen a sparse cloud's slab (up to 4 times) until a section holds this many points per
+    /// blade (0: keep the slab as given).
+    #[arg(long, default_value_t = 400)]
+    pub slab_points: usize,
     /// Blade colours to keep (clouds): names (orange, black, ...), #rrggbb or r/g/b, comma-separated.
     #[arg(long)]
     pub blade_colour: Option<String>,
@@ -188,9 +192,19 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
     Ok(ScanOptions {
         units: scale,
         stations,
-        kind: if a.planar { SectionKind::Planar } else { SectionKind::Cylindrical },
+        kind: if a.planar {
+            SectionKind::Planar
+        } else {
+            SectionKind::Cylindrical
+        },
         slab: a.slab,
-        blade_colours: a.blade_colour.as_deref().map(|c| colours("--blade-colour", c)).transpose()?.unwrap_or_default(),
+        slab_points: a.slab_points,
+        blade_colours: a
+            .blade_colour
+            .as_deref()
+            .map(|c| colours("--blade-colour", c))
+            .transpose()?
+            .unwrap_or_default(),
         colour_threshold: a.colour_threshold,
         reference_box,
         crop,
@@ -203,7 +217,10 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
 pub fn process(path: &Path, opts: &ScanOptions) -> Result<Geometry> {
     let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
     let name = path.display().to_string();
-    let is_stl = path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+    let is_stl = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     let geo = if is_stl {
         let mesh = read_stl(&bytes, &name)?;
         scan_mesh(&mesh, opts)
@@ -230,7 +247,14 @@ pub fn read_reference(path: &Path) -> Result<Vec<[f64; 3]>> {
             .iter()
             .map(|s| s.parse::<f64>().ok().filter(|x| x.is_finite()))
             .collect::<Option<_>>()
-            .with_context(|| format!("{}: line {}: '{}' is not three numbers", path.display(), i + 1, line.trim()))?;
+            .with_context(|| {
+                format!(
+                    "{}: line {}: '{}' is not three numbers",
+                    path.display(),
+                    i + 1,
+                    line.trim()
+                )
+            })?;
         rows.push([v[0], v[1], v[2]]);
     }
     if rows.len() < 2 {
@@ -367,7 +391,9 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
     write_atomic(&a.out.join("geom.txt"), &[geom], &inputs)?;
     // QPROP prop file.
     let name = a.name.clone().unwrap_or_else(|| {
-        a.input.file_stem().map_or("scan".into(), |s| s.to_string_lossy().into_owned())
+        a.input
+            .file_stem()
+            .map_or("scan".into(), |s| s.to_string_lossy().into_owned())
     });
     write_atomic(&a.out.join("prop.qprop"), &[write_prop(&prop_file(&name, &g))], &inputs)?;
     // Airfoils, Selig order.
@@ -377,12 +403,20 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
             for (x, y) in c.selig(80) {
                 t.push_str(&format!("{x:.6} {y:.6}\n"));
             }
-            write_atomic(&a.out.join("airfoils").join(format!("station_{i:02}.dat")), &[t], &inputs)?;
+            write_atomic(
+                &a.out.join("airfoils").join(format!("station_{i:02}.dat")),
+                &[t],
+                &inputs,
+            )?;
         }
     }
     // Plots.
     write_figure(&a.out.join("plots/sections.svg"), &sections_figure(&g), &inputs)?;
-    write_figure(&a.out.join("plots/distributions.svg"), &distributions_figure(&g, reference.as_deref()), &inputs)?;
+    write_figure(
+        &a.out.join("plots/distributions.svg"),
+        &distributions_figure(&g, reference.as_deref()),
+        &inputs,
+    )?;
     if let Some(c) = &g.colour {
         let pts: Vec<(f64, f64)> = c
             .histogram
@@ -402,7 +436,12 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
                 y_label: "points".into(),
                 series: vec![
                     Series::new("points", pts, Mark::Line, Some(0)),
-                    Series::new("threshold", vec![(c.threshold, 0.0), (c.threshold, top)], Mark::Dashed, Some(1)),
+                    Series::new(
+                        "threshold",
+                        vec![(c.threshold, 0.0), (c.threshold, top)],
+                        Mark::Dashed,
+                        Some(1),
+                    ),
                 ],
                 zero_line: false,
             }],
@@ -426,7 +465,11 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
         "stations": g.stations,
         "failed": g.failed,
     });
-    write_atomic(&a.out.join("scan.json"), &[serde_json::to_string_pretty(&summary)?], &inputs)?;
+    write_atomic(
+        &a.out.join("scan.json"),
+        &[serde_json::to_string_pretty(&summary)?],
+        &inputs,
+    )?;
     print_summary(&g, reference.as_deref());
     println!("wrote {}", a.out.display());
     Ok(true)
@@ -481,7 +524,13 @@ fn sections_figure(g: &Geometry) -> Figure {
                 series.push(Series::new("CST fit", c.selig(60), Mark::Line, Some(1)));
             }
             Panel {
-                title: format!("r/R {:.3}: c {:.2} mm, β {:.2}°, NACA {}", s.r_r, s.chord, s.beta_deg, s.naca.designation()),
+                title: format!(
+                    "r/R {:.3}: c {:.2} mm, β {:.2}°, NACA {}",
+                    s.r_r,
+                    s.chord,
+                    s.beta_deg,
+                    s.naca.designation()
+                ),
                 x_label: "x/c".into(),
                 y_label: "y/c".into(),
                 series,
@@ -506,8 +555,18 @@ fn distributions_figure(g: &Geometry, reference: Option<&[[f64; 3]]>) -> Figure 
     let mut chord = vec![Series::new("scan", col(&|s| s.chord / r), Mark::Line, Some(0))];
     let mut beta = vec![Series::new("scan", col(&|s| s.beta_deg), Mark::Line, Some(0))];
     if let Some(t) = reference {
-        chord.push(Series::new("reference", t.iter().map(|x| (x[0], x[1])).collect(), Mark::Dots, Some(1)));
-        beta.push(Series::new("reference", t.iter().map(|x| (x[0], x[2])).collect(), Mark::Dots, Some(1)));
+        chord.push(Series::new(
+            "reference",
+            t.iter().map(|x| (x[0], x[1])).collect(),
+            Mark::Dots,
+            Some(1),
+        ));
+        beta.push(Series::new(
+            "reference",
+            t.iter().map(|x| (x[0], x[2])).collect(),
+            Mark::Dots,
+            Some(1),
+        ));
     }
     let panel = |title: &str, y: &str, series: Vec<Series>| Panel {
         title: title.into(),

@@ -255,13 +255,20 @@ pub fn auto_align<S: Surface>(m: &S) -> Result<Frame, AlignError> {
         eig.eigenvalues[order[1]],
         eig.eigenvalues[order[2]],
     );
-    if l1 < 1.5 * l0 {
+    if l2 < 3.0 * l1 && l1 < 1.5 * l0 {
         return Err(AlignError::NoSymmetry(format!(
             "the shape is not flat like a propeller disc (second moments {:.3e}, {:.3e}, {:.3e}: no axis stands out)",
             l0, l1, l2
         )));
     }
-    align_about(m, centroid, ev(0), ev(2), 1.0)
+    // The axis is the direction of least spread; for two slender blades the chordwise spread
+    // can come close, so the second direction is tried when the blades are not alike about
+    // the first.
+    match align_about(m, centroid, ev(0), ev(2), 1.0) {
+        Ok(f) => Ok(f),
+        Err(e) if l1 < 2.0 * l0 => align_about(m, centroid, ev(1), ev(2), 1.0).map_err(|_| e),
+        Err(e) => Err(e),
+    }
 }
 
 /// The frame for a known axis `z` through `origin` (`x0` any direction across it), with the

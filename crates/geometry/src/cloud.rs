@@ -130,17 +130,15 @@ pub fn read_ply(bytes: &[u8], name: &str) -> Result<Cloud, CloudError> {
     let header = parser
         .read_header(&mut reader)
         .map_err(|e| err(format!("header: {e}")))?;
-    let mut verts = Vec::new();
-    for element in header.elements.values() {
-        if element.name == "vertex" {
-            verts = parser
-                .read_payload_for_element(&mut reader, element, &header)
-                .map_err(|e| err(format!("vertex data ({} announced): {e}", element.count)))?;
-            break;
-        }
-        // Elements before the vertices would have to be skipped; PLY writers put vertices first.
-        return Err(err(format!("the first element is '{}', not 'vertex'", element.name)));
-    }
+    // PLY writers put the vertices first; anything before them would have to be skipped.
+    let element = match header.elements.values().next() {
+        Some(e) if e.name == "vertex" => e,
+        Some(e) => return Err(err(format!("the first element is '{}', not 'vertex'", e.name))),
+        None => return Err(CloudError::Empty(name.to_string())),
+    };
+    let verts = parser
+        .read_payload_for_element(&mut reader, element, &header)
+        .map_err(|e| err(format!("vertex data ({} announced): {e}", element.count)))?;
     let has_c = verts.first().is_some_and(|v| v.has_c);
     let mut cloud = Cloud {
         points: Vec::with_capacity(verts.len()),

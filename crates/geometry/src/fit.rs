@@ -26,6 +26,9 @@ use crate::synth::naca4;
 /// Weight of each end term of the NACA fit, as a fraction of the points.
 const END_WEIGHT: f64 = 0.01;
 
+/// Points (x, y) of one surface from the leading to the trailing edge.
+type Polyline = Vec<(f64, f64)>;
+
 /// Panels per surface of the NACA contour used for distances.
 const PANELS: usize = 80;
 
@@ -78,7 +81,7 @@ fn to_section(frame: &[f64], p: (f64, f64)) -> (f64, f64) {
 
 /// The closed NACA contour, upper then lower, each from the leading edge to the trailing edge
 /// (PANELS + 1 points, cosine spacing).
-fn naca_contour(t: f64, m: f64, p: f64) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+fn naca_contour(t: f64, m: f64, p: f64) -> (Polyline, Polyline) {
     let (mut up, mut lo) = (Vec::with_capacity(PANELS + 1), Vec::with_capacity(PANELS + 1));
     for k in 0..=PANELS {
         let x = cosine(k, PANELS);

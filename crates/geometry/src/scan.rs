@@ -69,6 +69,9 @@ pub struct ScanOptions {
     pub kind: SectionKind,
     /// Slab thickness for clouds [mm].
     pub slab: f64,
+    /// A cloud's slab is widened (up to 4 times) until a section at 0.6 R holds this many
+    /// points per blade (0: never widened).
+    pub slab_points: usize,
     /// Blade colours to keep (empty: keep every point).
     pub blade_colours: Vec<[u8; 3]>,
     /// Colour distance threshold (None: Otsu's suggestion).
@@ -90,6 +93,7 @@ impl Default for ScanOptions {
             stations: default_stations(),
             kind: SectionKind::Cylindrical,
             slab: 0.25,
+            slab_points: 400,
             blade_colours: Vec::new(),
             colour_threshold: None,
             reference_box: None,
@@ -359,6 +363,17 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
     notes.extend(frame.notes.iter().cloned());
     let mut local = pts.in_frame(&frame);
     local.slab = opts.slab;
+    if opts.slab_points > 0 && frame.blades > 0 {
+        let per_blade = local.cylinder_cut(0.6 * local.max_radius()).len() / frame.blades;
+        if per_blade < opts.slab_points {
+            let f = (opts.slab_points as f64 / per_blade.max(1) as f64).min(4.0);
+            local.slab *= f;
+            notes.push(format!(
+                "sparse cloud: {per_blade} points per blade in a {} mm slab at 0.6 R; slab widened to {:.2} mm",
+                opts.slab, local.slab
+            ));
+        }
+    }
     let samples = local.points.len();
     finish(&local, frame, opts, notes, samples, box_fit, colour)
 }

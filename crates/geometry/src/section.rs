@@ -87,7 +87,13 @@ pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
     let ang = |i: usize| pts[order[i]].0;
     let m = order.len();
     // Gap after sorted position i (the last one wraps round).
-    let gap = |i: usize| if i + 1 < m { ang(i + 1) - ang(i) } else { ang(0) + 2.0 * PI - ang(m - 1) };
+    let gap = |i: usize| {
+        if i + 1 < m {
+            ang(i + 1) - ang(i)
+        } else {
+            ang(0) + 2.0 * PI - ang(m - 1)
+        }
+    };
     let mut gaps: Vec<usize> = (0..m).collect();
     gaps.sort_by(|&a, &b| gap(b).total_cmp(&gap(a)));
     let mut cuts: Vec<usize> = gaps[..n].to_vec();
@@ -96,7 +102,9 @@ pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
         // Group: from after cut g to cut g+1 (wrapping).
         let (from, to) = (cuts[g] + 1, if g + 1 < n { cuts[g + 1] } else { cuts[0] + m });
         let idx: Vec<usize> = (from..=to).map(|i| order[i % m]).collect();
-        let (s, c) = idx.iter().fold((0.0, 0.0), |(s, c), &i| (s + pts[i].0.sin(), c + pts[i].0.cos()));
+        let (s, c) = idx
+            .iter()
+            .fold((0.0, 0.0), |(s, c), &i| (s + pts[i].0.sin(), c + pts[i].0.cos()));
         let k = nearest(s.atan2(c));
         out[k].extend(idx.iter().map(|&i| (rel(pts[i].0, k), pts[i].1)));
     }
