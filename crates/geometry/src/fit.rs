@@ -209,8 +209,8 @@ pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
     }
     let cost = NacaCost { pts, c0 };
     let mut best = x0;
-    // Two restarts from the best point shake Nelder-Mead out of a collapsed simplex.
-    for round in 0..3 {
+    // A restart from the best point shakes Nelder-Mead out of a collapsed simplex.
+    for round in 0..2 {
         let mut simplex = simplex.clone();
         if round > 0 {
             simplex = std::iter::once(best.clone())

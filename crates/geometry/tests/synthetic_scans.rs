@@ -157,6 +157,7 @@ fn a_sparse_station_is_reported_and_the_others_kept() {
     let cloud = def.to_cloud(&cloud_spec(40_000, 3));
     let mut opts = cloud_options();
     opts.stations = vec![0.3, 0.5, 0.7, 0.99];
+    opts.slab_points = 0;
     let geo = scan_cloud(&cloud, &opts).unwrap();
     assert_eq!(geo.stations.len(), 3, "{:?}", geo.failed);
     assert_eq!(geo.failed.len(), 1);
