@@ -416,19 +416,12 @@ fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
         // projected along the blade axis to the centroid's station.
         man.root + x * x.dot(&(c - man.root))
     });
-    let mut f = Frame {
-        origin,
-        rot: corr.matrix() * base,
-        scale: man.scale,
-        blades: 0,
-        tip_radius: 0.0,
-        notes: vec!["manual alignment".into()],
-    };
-    let local = m.in_frame(&f);
-    f.tip_radius = local.max_radius();
-    // Blade count from the automatic check about this axis (the blades must still be alike).
-    let auto = align_about(m, f.origin, f.rot.row(2).transpose(), f.rot.row(0).transpose(), f.scale)?;
-    f.blades = auto.blades;
+    // Blade count, blade 0's azimuth and the nose / thrust checks about this axis (the blades
+    // must still be alike); then the user's corrections.
+    let mut f = align_about(m, origin, base.row(2).transpose(), base.row(0).transpose(), man.scale)?;
+    f.rot = corr.matrix() * f.rot;
+    f.notes.insert(0, "manual alignment (root and tip points)".into());
+    f.tip_radius = m.in_frame(&f).max_radius();
     Ok(f)
 }
 

@@ -5,7 +5,7 @@ use nalgebra::{Rotation3, Vector3};
 use propbet_geometry::align::auto_align;
 use propbet_geometry::cloud::read_cloud;
 use propbet_geometry::mesh::read_stl;
-use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, ScanOptions};
+use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
 use propbet_geometry::synth::{to_ply, BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
 
 /// An APC-E-10x5-like blade (R = 127 mm): chord and angle of the UIUC style table, NACA
@@ -186,4 +186,56 @@ fn not_a_propeller_has_no_rotational_symmetry() {
     }
     let e = auto_align(&cube).unwrap_err().to_string();
     assert!(e.contains("no rotational symmetry") && e.contains("not flat"), "{e}");
+}
+
+#[test]
+fn manual_alignment_and_planar_sections() {
+    let def = apce_like(2);
+    // In its own frame, then scaled to centimetres: the manual scale brings it back to mm.
+    let mut mesh = def.to_mesh(60, 60);
+    mesh.transform(&nalgebra::Matrix3::identity(), &Vector3::zeros(), 0.1);
+    let opts = ScanOptions {
+        stations: vec![0.4, 0.6, 0.8],
+        manual: Some(Manual {
+            root: Vector3::new(2.0, 0.0, 0.0),
+            tip: Vector3::new(12.7, 0.0, 0.0),
+            origin: Some(Vector3::zeros()),
+            rotate_deg: [0.0, 0.0, 0.0],
+            scale: 10.0,
+        }),
+        ..ScanOptions::default()
+    };
+    let geo = scan_mesh(&mesh, &opts).unwrap();
+    assert_eq!(geo.blades, 2);
+    assert!((geo.tip_radius - 127.0).abs() < 0.2, "{}", geo.tip_radius);
+    let (e_beta, e_chord, _) = errors(&geo, &def);
+    assert!(
+        e_beta.iter().all(|x| x.abs() < 0.1) && e_chord.iter().all(|x| x.abs() < 0.005),
+        "{e_beta:?} {e_chord:?}"
+    );
+    // Planar sections (x = r) of the same blade: the chord line seen in the plane is longer
+    // than on the cylinder and its angle smaller; both close where the blade is narrow
+    // against the radius.
+    let planar = scan_mesh(
+        &mesh,
+        &ScanOptions {
+            kind: SectionKind::Planar,
+            ..opts
+        },
+    )
+    .unwrap();
+    for (p, c) in planar.stations.iter().zip(&geo.stations) {
+        assert!(
+            p.chord >= c.chord * 0.99 && p.chord < c.chord * 1.1,
+            "{} vs {}",
+            p.chord,
+            c.chord
+        );
+        assert!(
+            (p.beta_deg - c.beta_deg).abs() < 3.0,
+            "{} vs {}",
+            p.beta_deg,
+            c.beta_deg
+        );
+    }
 }
