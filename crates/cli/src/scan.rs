@@ -58,6 +58,10 @@ pub struct ScanArgs {
     /// Colours of the box faces.
     #[arg(long, default_value = "grey,blue")]
     pub box_colour: String,
+    /// One point on each visible box face (file units), `x,y,z;x,y,z;...`, instead of finding
+    /// the faces automatically.
+    #[arg(long, allow_hyphen_values = true)]
+    pub box_seeds: Option<String>,
     /// Region of interest in file units: xmin,ymin,zmin,xmax,ymax,zmax.
     #[arg(long, allow_hyphen_values = true)]
     pub crop: Option<String>,
@@ -148,6 +152,10 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
                 dims: [v[0], v[1], v[2]],
                 offset: [o.x, o.y, o.z],
                 colours: colours("--box-colour", &a.box_colour)?,
+                seeds: match &a.box_seeds {
+                    None => Vec::new(),
+                    Some(t) => t.split(';').map(|p| vec3("--box-seeds", p)).collect::<Result<_>>()?,
+                },
             })
         }
     };

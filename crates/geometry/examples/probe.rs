@@ -30,6 +30,7 @@ fn main() {
                 dims: [50.8, 48.26, 50.8],
                 offset: [0.0, 0.0, -40.0],
                 colours: vec![c("grey"), c("blue")],
+                seeds: Vec::new(),
             });
         }
         read_cloud(&bytes, path)

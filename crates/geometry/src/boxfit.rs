@@ -142,13 +142,43 @@ pub fn ransac_planes(pts: &[Vector3<f64>], tol: f64, max: usize, min_inliers: us
     out
 }
 
+/// Faces from seed points: the box points within `reach` of each seed give a first plane, then
+/// the box points within `tol` of that plane a refined one.
+fn seeded_planes(pts: &[Vector3<f64>], seeds: &[Vector3<f64>], tol: f64, reach: f64) -> Result<Vec<Plane>, BoxError> {
+    let mut out = Vec::new();
+    for (k, s) in seeds.iter().enumerate() {
+        let near: Vec<usize> = (0..pts.len()).filter(|&i| (pts[i] - s).norm() < reach).collect();
+        if near.len() < 10 {
+            return Err(BoxError::Faces(format!(
+                "seed {} ({:.3}, {:.3}, {:.3}) has only {} box points within {reach:.3}",
+                k + 1,
+                s.x,
+                s.y,
+                s.z,
+                near.len()
+            )));
+        }
+        let (mut n, mut d) = fit_plane(pts, &near);
+        let mut inl = near;
+        for _ in 0..2 {
+            inl = (0..pts.len()).filter(|&i| (n.dot(&pts[i]) - d).abs() < tol).collect();
+            (n, d) = fit_plane(pts, &inl);
+        }
+        out.push(Plane { n, d, inliers: inl });
+    }
+    Ok(out)
+}
+
 /// Registers box points to a box of `dims` [mm]. `hub_hint`: the centre of the propeller's
 /// points in cloud coordinates and the box centre's position in the propeller frame [mm]; the
 /// mapping that puts the propeller nearest the hub is kept.
+/// `seeds`: one point on each visible face (cloud units) instead of RANSAC: each face is the
+/// plane fitted to the box points near its seed, then every box point within the tolerance.
 pub fn register_box(
     pts: &[Vector3<f64>],
     dims: [f64; 3],
     hub_hint: Option<(Vector3<f64>, Vector3<f64>)>,
+    seeds: &[Vector3<f64>],
 ) -> Result<BoxFit, BoxError> {
     if pts.len() < 60 {
         return Err(BoxError::Faces(format!(
@@ -161,7 +191,12 @@ pub fn register_box(
         |(lo, hi), p| (lo.inf(p), hi.sup(p)),
     );
     let diag = (hi - lo).norm();
-    let planes = ransac_planes(pts, 0.006 * diag, 6, (pts.len() / 40).max(20));
+    let tol = 0.006 * diag;
+    let planes = if seeds.is_empty() {
+        ransac_planes(pts, tol, 6, (pts.len() / 40).max(20))
+    } else {
+        seeded_planes(pts, seeds, tol, 0.08 * diag)?
+    };
     let centre: Vector3<f64> = pts.iter().sum::<Vector3<f64>>() / pts.len() as f64;
     // Outward normals.
     let planes: Vec<Plane> = planes

@@ -56,6 +56,8 @@ pub struct BoxSpec {
     pub offset: [f64; 3],
     /// Colours of its faces.
     pub colours: Vec<[u8; 3]>,
+    /// One point on each visible face (input units); empty: faces found by RANSAC.
+    pub seeds: Vec<Vector3<f64>>,
 }
 
 /// What the pipeline does.
@@ -338,7 +340,8 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
             let centre: Vector3<f64> = pts.points.iter().sum::<Vector3<f64>>() / pts.points.len() as f64;
             let offset = Vector3::from(spec.offset);
             let scaled: Vec<Vector3<f64>> = box_pts.iter().map(|p| p * opts.units).collect();
-            let fit = register_box(&scaled, spec.dims, Some((centre * opts.units, offset)))?;
+            let seeds: Vec<Vector3<f64>> = spec.seeds.iter().map(|p| p * opts.units).collect();
+            let fit = register_box(&scaled, spec.dims, Some((centre * opts.units, offset)), &seeds)?;
             // Cloud → box frame (mm) → propeller frame: p = s R u p_in + t + offset.
             let s = fit.scale * opts.units;
             let origin = -(fit.rot.transpose() * (fit.trans + offset)) / s;

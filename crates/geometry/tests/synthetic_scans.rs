@@ -122,6 +122,7 @@ fn cloud_options() -> ScanOptions {
             dims: [50.8, 48.26, 50.8],
             offset: [0.0, 0.0, -40.0],
             colours: vec![colour("grey"), colour("blue")],
+            seeds: Vec::new(),
         }),
         ..ScanOptions::default()
     }
@@ -149,6 +150,22 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
     assert!(e_chord.iter().all(|x| x.abs() <= 0.01), "chord errors {e_chord:?}");
     let c = geo.colour.as_ref().unwrap();
     assert!(c.kept < c.total && c.threshold > 20.0 && c.threshold < 150.0, "{c:?}");
+    // The same with the faces given by one seed point each (face centres, posed and scaled).
+    let spec = cloud_spec(400_000, 7);
+    let mut opts = cloud_options();
+    let seeds: Vec<Vector3<f64>> = (0..6)
+        .map(|k| {
+            let mut p = Vector3::new(0.0, 0.0, -40.0);
+            p[k % 3] += if k < 3 { 25.0 } else { -24.0 };
+            spec.scale * (spec.rotation * p + spec.translation)
+        })
+        .collect();
+    if let Some(b) = opts.reference_box.as_mut() {
+        b.seeds = seeds;
+    }
+    let seeded = scan_cloud(&cloud, &opts).unwrap();
+    let s2 = seeded.box_fit.as_ref().unwrap().scale;
+    assert!((s2 * 0.756 - 1.0).abs() <= 0.002, "seeded scale {s2}");
 }
 
 #[test]
