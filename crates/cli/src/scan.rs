@@ -74,7 +74,8 @@ pub struct ScanArgs {
     /// Manual alignment: a point at the tip of blade 0.
     #[arg(long, allow_hyphen_values = true, requires = "root_point")]
     pub tip_point: Option<String>,
-    /// Manual alignment: the hub centre (default: the root point).
+    /// Manual alignment: the hub centre (default: the root point moved along the blade axis to
+    /// the station of the scan's centroid).
     #[arg(long, allow_hyphen_values = true)]
     pub origin: Option<String>,
     /// Manual alignment: rotations about the frame's x, y, z [deg].

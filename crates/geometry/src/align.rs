@@ -38,18 +38,6 @@ pub struct Frame {
 }
 
 impl Frame {
-    /// The identity frame (input already in the propeller frame).
-    pub fn identity() -> Self {
-        Self {
-            origin: Vector3::zeros(),
-            rot: Matrix3::identity(),
-            scale: 1.0,
-            blades: 0,
-            tip_radius: 0.0,
-            notes: Vec::new(),
-        }
-    }
-
     /// A point in the frame.
     pub fn apply(&self, p: &Vector3<f64>) -> Vector3<f64> {
         self.scale * (self.rot * (p - self.origin))
@@ -166,7 +154,8 @@ impl Surface for Points {
     }
 }
 
-fn moments(samples: &[(Vector3<f64>, f64)]) -> (f64, Vector3<f64>, Matrix3<f64>) {
+/// Total weight, centroid and second-moment tensor about the centroid of weighted samples.
+pub(crate) fn moments(samples: &[(Vector3<f64>, f64)]) -> (f64, Vector3<f64>, Matrix3<f64>) {
     let area: f64 = samples.iter().map(|s| s.1).sum();
     let first: Vector3<f64> = samples.iter().map(|s| s.0 * s.1).sum();
     let centroid = first / area.max(f64::MIN_POSITIVE);
@@ -176,11 +165,6 @@ fn moments(samples: &[(Vector3<f64>, f64)]) -> (f64, Vector3<f64>, Matrix3<f64>)
         second += *w * d * d.transpose();
     }
     (area, centroid, second)
-}
-
-/// Transforms a mesh into a frame.
-pub fn to_frame(m: &Mesh, f: &Frame) -> Mesh {
-    m.in_frame(f)
 }
 
 /// Blade count from the angular distribution of the surface in a ring ([`Surface::ring_weights`]):
@@ -325,27 +309,27 @@ pub fn align_about<S: Surface>(
     frame.rot = rz * frame.rot;
     frame.blades = n;
     frame.tip_radius = tip;
-    // Thrust direction: the leading edge at +theta and higher z at mid-span of blade 0.
+    // Hand: the chord line at mid-span of blade 0 must rise towards +theta (the sign of
+    // du dw does not depend on which end is the nose); a left-handed propeller is mirrored in y.
     let local = m.in_frame(&frame);
-    let pts = local.cylinder_cut(0.6 * tip);
-    let blades = split_blades(&pts, n);
-    if let Some((du, dw)) = blades.first().and_then(|b| unrolled_chord(b, 0.6 * tip)) {
-        if du < 0.0 && dw < 0.0 {
-            // Rotate 180 deg about x: theta and z change sign.
-            frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0)) * frame.rot;
-            frame
-                .notes
-                .push("thrust direction: the other way along the axis".into());
-        } else if du * dw < 0.0 {
-            // A left-handed propeller: mirror y so that it reads as the documented hand.
+    let mid = split_blades(&local.cylinder_cut(0.6 * tip), n)
+        .first()
+        .and_then(|b| unrolled_chord(b, 0.6 * tip));
+    let mut thicker_end_behind = false;
+    if let Some((du, dw)) = mid {
+        if du * dw < 0.0 {
             frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, 1.0)) * frame.rot;
             frame
                 .notes
                 .push("left-handed (pusher) propeller: mirrored in y to the right-handed frame".into());
         }
+        // After the mirror du has dw's sign: the thicker end is at -theta when dw < 0.
+        thicker_end_behind = dw < 0.0;
     }
-    // Check at four radii: the maximum thickness sits ahead of mid-chord and the section is
-    // cambered towards the suction side (+z); if most say the other end is the nose, turn.
+    // Nose and thrust: at four radii the maximum thickness sits ahead of mid-chord and the
+    // section is cambered towards the suction side (+z); the majority decides, and on a tie
+    // the end that is thicker at 10 % of the chord. Turning is 180 deg about x (theta and z
+    // change sign).
     let local = m.in_frame(&frame);
     let (mut agree, mut disagree) = (0, 0);
     for x in [0.4, 0.5, 0.6, 0.7] {
@@ -355,12 +339,16 @@ pub fn align_about<S: Surface>(
             disagree += usize::from(s.t_pos > 0.5) + usize::from(s.camber < -0.005);
         }
     }
-    if disagree > agree {
+    if disagree > agree || (disagree == agree && thicker_end_behind) {
         frame.rot = Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0)) * frame.rot;
-        frame.notes.push(format!(
-            "nose and thrust turned: {disagree} of {} thickness-position and camber signs put the leading edge at the other end",
-            agree + disagree
-        ));
+        frame.notes.push(if disagree > agree {
+            format!(
+                "thrust the other way along the axis: {disagree} of {} thickness-position and camber signs put the leading edge there",
+                agree + disagree
+            )
+        } else {
+            "thrust the other way along the axis: the thicker end (the nose) is there".into()
+        });
     }
     frame.notes.push(format!("{n} blades, tip radius {tip:.3}"));
     Ok(frame)

@@ -335,7 +335,6 @@ pub fn register_box(
         kept.sort_by(|a, b| a.rms.total_cmp(&b.rms));
     }
     let mut fit = kept.swap_remove(0);
-    fit.faces = planes.len();
     fit.notes = notes;
     fit.notes.push(format!(
         "scale {:.6} (cloud units to mm), RMS {:.4} mm",

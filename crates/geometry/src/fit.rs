@@ -131,6 +131,7 @@ fn contour_dist2(p: (f64, f64), sides: [&[(f64, f64)]; 2]) -> f64 {
     best
 }
 
+#[derive(Clone, Copy)]
 struct NacaCost<'a> {
     pts: &'a [(f64, f64)],
     /// Seed chord, for the Huber threshold and the scaling of the unknowns.
@@ -222,7 +223,7 @@ pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
                 .collect();
         }
         let solver = NelderMead::new(simplex).with_sd_tolerance(1e-11).ok()?;
-        let res = Executor::new(NacaCost { pts, c0 }, solver)
+        let res = Executor::new(cost, solver)
             .configure(|s| s.max_iters(1500))
             .run()
             .ok()?;

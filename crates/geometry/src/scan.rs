@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use thiserror::Error;
 
-use crate::align::{align_about, auto_align, AlignError, Frame, Points, Surface};
+use crate::align::{align_about, auto_align, moments, AlignError, Frame, Points, Surface};
 use crate::boxfit::{register_box, BoxError, BoxFit};
 use crate::cloud::{colour_distances, crop, outlier_mask, Cloud, Histogram};
 use crate::fit::{fit_cst, fit_naca, Cst, NacaFit};
@@ -30,7 +30,8 @@ pub enum SectionKind {
 }
 
 /// Manual alignment: a root and a tip point of blade 0 (input units) give the blade axis and
-/// the hub (the root point projected on the axis unless `origin` is given); the rotation axis
+/// the hub (unless `origin` is given: the root point moved along the blade axis to the
+/// station of the surface's centroid); the rotation axis
 /// is the direction of least spread across the blade axis; then rotations about the frame's
 /// x, y, z [deg]; `scale` input units → mm (e.g. from a known length).
 #[derive(Debug, Clone, PartialEq)]
@@ -39,7 +40,7 @@ pub struct Manual {
     pub root: Vector3<f64>,
     /// A point at the blade tip.
     pub tip: Vector3<f64>,
-    /// The hub centre, if not the root point.
+    /// The hub centre (default: the root point moved along the blade axis to the centroid).
     pub origin: Option<Vector3<f64>>,
     /// Corrections about x, y, z [deg], applied in that order.
     pub rotate_deg: [f64; 3],
@@ -249,10 +250,7 @@ pub fn scan_mesh(mesh: &Mesh, opts: &ScanOptions) -> Result<Geometry, ScanError>
         Some(m) => manual_frame(&mesh, m)?,
         None => {
             let mut f = auto_align(&mesh)?;
-            if opts.units != 1.0 {
-                f.scale = opts.units;
-                f.tip_radius *= opts.units;
-            }
+            f.scale = opts.units;
             f
         }
     };
@@ -260,6 +258,36 @@ pub fn scan_mesh(mesh: &Mesh, opts: &ScanOptions) -> Result<Geometry, ScanError>
     let local = mesh.in_frame(&frame);
     notes.extend(frame.notes.iter().cloned());
     finish(&local, frame, opts, notes, samples, None, None)
+}
+
+/// The points within a colour distance of some colours.
+struct ColourSelection {
+    keep: Vec<bool>,
+    histogram: Histogram,
+    suggested: f64,
+    threshold: f64,
+}
+
+/// Selects by RGB distance to `colours`: the given threshold, or Otsu's suggestion.
+fn colour_select(
+    cloud: &Cloud,
+    colours: &[[u8; 3]],
+    given: Option<f64>,
+    no_colours: &str,
+) -> Result<ColourSelection, ScanError> {
+    if cloud.colors.is_none() {
+        return Err(ScanError::Input(no_colours.into()));
+    }
+    let d = colour_distances(cloud, colours);
+    let histogram = Histogram::of(&d);
+    let suggested = histogram.otsu();
+    let threshold = given.unwrap_or(suggested);
+    Ok(ColourSelection {
+        keep: d.iter().map(|&x| x <= threshold).collect(),
+        histogram,
+        suggested,
+        threshold,
+    })
 }
 
 /// Processes a cloud.
@@ -270,42 +298,43 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
     let mut colour = None;
     let mut box_pts = Vec::new();
     if let Some(spec) = &opts.reference_box {
-        if cloud.colors.is_none() {
-            return Err(ScanError::Input(
-                "the reference box is found by its colours, and the cloud has none".into(),
-            ));
-        }
-        let d = colour_distances(cloud, &spec.colours);
-        let t = opts.colour_threshold.unwrap_or_else(|| Histogram::of(&d).otsu());
+        let sel = colour_select(
+            cloud,
+            &spec.colours,
+            opts.colour_threshold,
+            "the reference box is found by its colours, and the cloud has none",
+        )?;
         box_pts = cloud
             .points
             .iter()
-            .zip(&d)
-            .filter(|(_, &x)| x <= t)
+            .zip(&sel.keep)
+            .filter(|(_, &k)| k)
             .map(|(p, _)| *p)
             .collect();
-        notes.push(format!("{} box points (colour distance <= {t:.0})", box_pts.len()));
+        notes.push(format!(
+            "{} box points (colour distance <= {:.0})",
+            box_pts.len(),
+            sel.threshold
+        ));
     }
     if !opts.blade_colours.is_empty() {
-        if cloud.colors.is_none() {
-            return Err(ScanError::Input(
-                "blade colours were given, but the cloud has no colours".into(),
-            ));
-        }
-        let d = colour_distances(cloud, &opts.blade_colours);
-        let histogram = Histogram::of(&d);
-        let suggested = histogram.otsu();
-        let threshold = opts.colour_threshold.unwrap_or(suggested);
-        let keep: Vec<bool> = d.iter().map(|&x| x <= threshold).collect();
-        blade.retain(&keep);
+        let sel = colour_select(
+            cloud,
+            &opts.blade_colours,
+            opts.colour_threshold,
+            "blade colours were given, but the cloud has no colours",
+        )?;
+        blade.retain(&sel.keep);
         notes.push(format!(
-            "colour filter: {} of {total} points within {threshold:.0} of the blade colours (Otsu suggests {suggested:.0})",
-            blade.points.len()
+            "colour filter: {} of {total} points within {:.0} of the blade colours (Otsu suggests {:.0})",
+            blade.points.len(),
+            sel.threshold,
+            sel.suggested
         ));
         colour = Some(ColourReport {
-            histogram,
-            threshold,
-            suggested,
+            histogram: sel.histogram,
+            threshold: sel.threshold,
+            suggested: sel.suggested,
             kept: blade.points.len(),
             total,
         });
@@ -356,7 +385,6 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
         (None, None) => {
             let mut f = auto_align(&pts)?;
             f.scale = opts.units;
-            f.tip_radius *= opts.units;
             (f, None)
         }
     };
@@ -390,17 +418,11 @@ fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
         ));
     }
     let x = x.normalize();
-    // Rotation axis: least spread across the blade axis.
-    let samples = m.samples();
-    let c: Vector3<f64> =
-        samples.iter().map(|s| s.0 * s.1).sum::<Vector3<f64>>() / samples.iter().map(|s| s.1).sum::<f64>();
-    let mut cov = Matrix3::zeros();
-    for (p, w) in &samples {
-        let d = p - c;
-        let d = d - x * x.dot(&d);
-        cov += *w * d * d.transpose();
-    }
-    let e = nalgebra::SymmetricEigen::new(cov);
+    // Rotation axis: the direction of least spread across the blade axis (the second-moment
+    // tensor projected off x).
+    let (_, c, second) = moments(&m.samples());
+    let across = Matrix3::identity() - x * x.transpose();
+    let e = nalgebra::SymmetricEigen::new(across * second * across);
     // The smallest eigenvalue across x (the one along x is ~0 by construction).
     let mut best = (f64::INFINITY, Vector3::z());
     for k in 0..3 {
@@ -409,22 +431,16 @@ fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
             best = (e.eigenvalues[k], v);
         }
     }
-    let z = (best.1 - x * x.dot(&best.1)).normalize();
-    let y = z.cross(&x);
-    let base = Matrix3::from_rows(&[x.transpose(), y.transpose(), z.transpose()]);
+    let z = best.1 - x * x.dot(&best.1);
     let [ax, ay, az] = man.rotate_deg.map(f64::to_radians);
     let corr = nalgebra::Rotation3::from_euler_angles(ax, ay, az);
-    let origin = man.origin.unwrap_or_else(|| {
-        // The hub: the root point moved onto the rotation axis... taken as the root point
-        // projected along the blade axis to the centroid's station.
-        man.root + x * x.dot(&(c - man.root))
-    });
+    // The hub: the root point moved along the blade axis to the station of the centroid.
+    let origin = man.origin.unwrap_or_else(|| man.root + x * x.dot(&(c - man.root)));
     // Blade count, blade 0's azimuth and the nose / thrust checks about this axis (the blades
     // must still be alike); then the user's corrections.
-    let mut f = align_about(m, origin, base.row(2).transpose(), base.row(0).transpose(), man.scale)?;
+    let mut f = align_about(m, origin, z, x, man.scale)?;
     f.rot = corr.matrix() * f.rot;
     f.notes.insert(0, "manual alignment (root and tip points)".into());
-    f.tip_radius = m.in_frame(&f).max_radius();
     Ok(f)
 }
 
@@ -473,14 +489,16 @@ fn section_at<S: Surface + PlanarCut>(s: &S, r: f64, kind: SectionKind, blades: 
 
 fn finish<S: Surface + Sync + PlanarCut>(
     local: &S,
-    frame: Frame,
+    mut frame: Frame,
     opts: &ScanOptions,
     mut notes: Vec<String>,
     samples: usize,
     box_fit: Option<BoxFit>,
     colour: Option<ColourReport>,
 ) -> Result<Geometry, ScanError> {
+    // The tip in mm, whatever unit the frame was found in.
     let tip = local.max_radius();
+    frame.tip_radius = tip;
     plausibility(tip, &mut notes);
     let blades = frame.blades;
     let hub = hub_radius(local, 0.5 * tip, 0.25);
