@@ -45,9 +45,20 @@ fn apc_10x4_7_stl_against_the_uiuc_table() {
         "plots/sections.svg",
         "plots/distributions.svg",
         "airfoils/station_00.dat",
+        "blades/hub.stl",
     ] {
         assert!(out.join(f).is_file(), "{f} missing");
     }
+    // Triangles by blade: one binary STL per blade, the two blades of an APC alike.
+    let tri = |f: &str| {
+        let b = std::fs::read(out.join(f)).unwrap();
+        let n = u32::from_le_bytes(b[80..84].try_into().unwrap()) as usize;
+        assert_eq!(b.len(), 84 + 50 * n, "{f}: not a binary STL");
+        n
+    };
+    let (b0, b1) = (tri("blades/blade_0.stl"), tri("blades/blade_1.stl"));
+    eprintln!("APC triangles by blade: {b0}, {b1}, hub {}", tri("blades/hub.stl"));
+    assert!((b0 as f64 / b1 as f64 - 1.0).abs() < 0.1, "blade triangles {b0} vs {b1}");
     let (h, rows) = read_csv(&out.join("geometry.csv"));
     let (cr, b, rc, rb) = (
         col(&h, "c_R"),
@@ -181,6 +192,17 @@ fn shared_synthetic_cloud_with_box_against_its_truth() {
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/scan.json")).unwrap()).unwrap();
     let scale = summary["box"]["scale"].as_f64().unwrap();
+    // Points by blade: a PLY with a `blade` property, and the two blades alike in the counts.
+    let ply = std::fs::read(dir.path().join("out/blades/labelled.ply")).unwrap();
+    let head = String::from_utf8_lossy(&ply[..ply.len().min(400)]).into_owned();
+    assert!(head.contains("property int blade"), "{head}");
+    let per: Vec<f64> = summary["labels"]["per_blade"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert!(per.len() == 2 && (per[0] / per[1] - 1.0).abs() < 0.1, "points by blade {per:?}");
     let true_scale = 1.0 / truth["cloud_scale"].as_f64().unwrap();
     assert!(
         (scale / true_scale - 1.0).abs() <= 0.002,

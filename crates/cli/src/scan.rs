@@ -1,6 +1,7 @@
 //! `propbet scan`: a mesh (STL) or a cloud (PLY, COLMAP points3D.txt, XYZ/XYZRGB) → the
 //! propeller frame → sections → NACA and CST fits → geometry CSV, UIUC-style geom.txt, QPROP
-//! prop file, per-station airfoil files (Selig), plots, and a JSON summary.
+//! prop file, per-station airfoil files (Selig), plots, the cleaned surface split by blade
+//! (STL per blade for meshes, a PLY with a `blade` property for clouds), and a JSON summary.
 
 use std::path::{Path, PathBuf};
 
@@ -8,10 +9,10 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use nalgebra::Vector3;
 use propbet_bemt::QpropCoefficients;
-use propbet_geometry::cloud::{parse_colour, read_cloud};
+use propbet_geometry::cloud::{parse_colour, read_cloud, to_ply};
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{
-    default_stations, scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
+    default_stations, scan_cloud, Aligned, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
 };
 use propbet_geometry::synth::naca4;
 use propbet_plot::{Figure, Mark, Panel, Series};
@@ -460,8 +461,32 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
         };
         write_figure(&a.out.join("plots/colour_histogram.svg"), &fig, &inputs)?;
     }
+    // The cleaned surface in the propeller frame, by blade.
+    std::fs::create_dir_all(a.out.join("blades")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    let lab = &g.labelled;
+    match &lab.surface {
+        Aligned::Mesh(m) => {
+            for k in 0..g.blades {
+                let part = m.subset(|i| lab.blade[i] == Some(k as u8));
+                write_atomic(&a.out.join(format!("blades/blade_{k}.stl")), &[part.to_stl()], &inputs)?;
+            }
+            let hub = m.subset(|i| lab.blade[i].is_none());
+            if !hub.triangles.is_empty() {
+                write_atomic(&a.out.join("blades/hub.stl"), &[hub.to_stl()], &inputs)?;
+            }
+        }
+        Aligned::Cloud(c) => {
+            write_atomic(&a.out.join("blades/labelled.ply"), &[to_ply(c, Some(&lab.blade))], &inputs)?;
+        }
+    }
+    let (per_blade, hub_elements) = lab.counts(g.blades);
     // Summary.
     let summary = json!({
+        "labels": {
+            "elements": if matches!(lab.surface, Aligned::Mesh(_)) { "triangles" } else { "points" },
+            "per_blade": per_blade,
+            "hub": hub_elements,
+        },
         "input": a.input.display().to_string(),
         "blades": g.blades,
         "tip_radius_mm": g.tip_radius,

@@ -1,7 +1,8 @@
 //! Writes a synthetic coloured cloud for the benchmark: `gencloud OUT.ply [BLADE_POINTS]`
 //! (plus a quarter as many box points and 20 % background).
 use nalgebra::{Rotation3, Vector3};
-use propbet_geometry::synth::{to_ply, BladeDef, CloudSpec, StationDef};
+use propbet_geometry::cloud::to_ply;
+use propbet_geometry::synth::{BladeDef, CloudSpec, StationDef};
 fn main() {
     let out = std::env::args().nth(1).unwrap_or_else(|| "cloud.ply".into());
     let n: usize = std::env::args().nth(2).and_then(|s| s.parse().ok()).unwrap_or(400_000);
@@ -38,5 +39,5 @@ fn main() {
         scale: 0.756,
         seed: 7,
     };
-    std::fs::write(out, to_ply(&def.to_cloud(&spec))).unwrap();
+    std::fs::write(out, to_ply(&def.to_cloud(&spec), None)).unwrap();
 }

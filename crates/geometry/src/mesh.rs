@@ -63,6 +63,17 @@ impl Mesh {
         self.triangles[i].map(|k| self.vertices[k as usize])
     }
 
+    /// The triangles where `keep(i)` holds, sharing the vertex list.
+    pub fn subset(&self, keep: impl Fn(usize) -> bool) -> Mesh {
+        Mesh {
+            vertices: self.vertices.clone(),
+            triangles: (0..self.triangles.len())
+                .filter(|&i| keep(i))
+                .map(|i| self.triangles[i])
+                .collect(),
+        }
+    }
+
     /// Applies `x -> s (R x + t)`.
     pub fn transform(&mut self, rot: &nalgebra::Matrix3<f64>, t: &Vector3<f64>, s: f64) {
         for v in &mut self.vertices {

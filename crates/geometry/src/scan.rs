@@ -216,6 +216,99 @@ pub struct Geometry {
     pub notes: Vec<String>,
     /// Section kind.
     pub kind: SectionKind,
+    /// The cleaned surface in the propeller frame [mm], each triangle or point labelled by blade.
+    pub labelled: Labelled,
+}
+
+/// The cleaned surface in the propeller frame [mm].
+#[derive(Debug, Clone)]
+pub enum Aligned {
+    /// A mesh: labels are per triangle.
+    Mesh(Mesh),
+    /// A cloud (with its colours when it had them): labels are per point.
+    Cloud(Cloud),
+}
+
+/// The surface and, for each triangle or point, its blade (0 along +x, counted towards
+/// +theta) or `None` for the hub (inside the blade root radius).
+#[derive(Debug, Clone)]
+pub struct Labelled {
+    /// The surface in the frame.
+    pub surface: Aligned,
+    /// One entry per triangle or point.
+    pub blade: Vec<Option<u8>>,
+}
+
+impl Labelled {
+    /// How many elements each blade holds, and the hub last.
+    pub fn counts(&self, blades: usize) -> (Vec<usize>, usize) {
+        let mut n = vec![0; blades];
+        let mut hub = 0;
+        for b in &self.blade {
+            match b {
+                Some(k) => n[*k as usize] += 1,
+                None => hub += 1,
+            }
+        }
+        (n, hub)
+    }
+}
+
+/// Labels each sample of the surface (in the frame) by blade: the sections at 48 radii from
+/// the root to the tip give each blade's middle angle there (skew included), and an element
+/// goes to the blade whose middle, interpolated at its radius, is nearest in angle. Elements
+/// inside `root` are hub (`None`).
+pub fn blade_labels<S: Surface + Sync>(s: &S, blades: usize, root: f64, tip: f64) -> Vec<Option<u8>> {
+    use std::f64::consts::PI;
+    let n = blades.max(1);
+    let step = 2.0 * PI / n as f64;
+    let wrap = |a: f64| (a + PI).rem_euclid(2.0 * PI) - PI;
+    const RINGS: usize = 48;
+    // (radius, each blade's middle angle offset from its axis, when the ring found it).
+    let table: Vec<(f64, Vec<Option<f64>>)> = (0..RINGS)
+        .into_par_iter()
+        .map(|i| {
+            let r = root + (tip - root) * (i as f64 + 0.5) / RINGS as f64;
+            let mids = split_blades(&s.cylinder_cut(r), n)
+                .iter()
+                .map(|p| {
+                    (!p.is_empty()).then(|| {
+                        let (sn, cs) = p.iter().fold((0.0, 0.0), |(a, b), &(t, _)| (a + t.sin(), b + t.cos()));
+                        sn.atan2(cs)
+                    })
+                })
+                .collect();
+            (r, mids)
+        })
+        .collect();
+    // A blade's middle at radius r: linear between the nearest rings that found it.
+    let middle = |k: usize, r: f64| -> f64 {
+        let below = table.iter().rev().find(|(rr, m)| *rr <= r && m[k].is_some());
+        let above = table.iter().find(|(rr, m)| *rr >= r && m[k].is_some());
+        match (below, above) {
+            (Some((ra, ma)), Some((rb, mb))) if rb > ra => {
+                let f = (r - ra) / (rb - ra);
+                let (a, b) = (ma[k].unwrap_or(0.0), mb[k].unwrap_or(0.0));
+                a + f * wrap(b - a)
+            }
+            (Some((_, m)), _) | (None, Some((_, m))) => m[k].unwrap_or(0.0),
+            (None, None) => 0.0,
+        }
+    };
+    s.samples()
+        .par_iter()
+        .map(|(g, _)| {
+            let r = g.x.hypot(g.y);
+            if r < root {
+                return None;
+            }
+            let th = g.y.atan2(g.x);
+            (0..n)
+                .map(|k| (k, wrap(th - k as f64 * step - middle(k, r)).abs()))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map(|(k, _)| k as u8)
+        })
+        .collect()
 }
 
 /// Propeller sizes this tool expects [mm]: a warning outside.
@@ -406,7 +499,11 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
         }
     }
     let samples = local.points.len();
-    finish(&local, frame, opts, notes, samples, box_fit, colour)
+    let mut g = finish(&local, frame, opts, notes, samples, box_fit, colour)?;
+    if let Aligned::Cloud(c) = &mut g.labelled.surface {
+        c.colors = blade.colors;
+    }
+    Ok(g)
 }
 
 /// The frame from a manual alignment.
@@ -480,14 +577,14 @@ fn hub_radius<S: Surface>(s: &S, limit: f64, step: f64) -> Option<f64> {
 }
 
 /// The section of blade 0 at radius r in the frame, for either kind.
-fn section_at<S: Surface + PlanarCut>(s: &S, r: f64, kind: SectionKind, blades: usize) -> Vec<Vec<CylPoint>> {
+fn section_at<S: Surface + ScanSurface>(s: &S, r: f64, kind: SectionKind, blades: usize) -> Vec<Vec<CylPoint>> {
     match kind {
         SectionKind::Cylindrical => split_blades(&s.cylinder_cut(r), blades),
         SectionKind::Planar => vec![s.planar_cut(r, blades)],
     }
 }
 
-fn finish<S: Surface + Sync + PlanarCut>(
+fn finish<S: Surface + Sync + ScanSurface>(
     local: &S,
     mut frame: Frame,
     opts: &ScanOptions,
@@ -599,21 +696,27 @@ fn finish<S: Surface + Sync + PlanarCut>(
         samples,
         notes,
         kind: opts.kind,
+        labelled: Labelled {
+            surface: local.aligned(),
+            blade: blade_labels(local, blades, root, tip),
+        },
     })
 }
 
-/// Planar sections: the plane x = r across blade 0, as (y / r, z) so that the unrolled
-/// measures apply unchanged (u = y).
-pub trait PlanarCut {
-    /// Points of the plane x = r within blade 0's sector.
+/// What a scanned surface offers beyond [`Surface`].
+pub trait ScanSurface {
+    /// Planar sections: the points of the plane x = r within blade 0's sector, as (y / r, z)
+    /// so that the unrolled measures apply unchanged (u = y).
     fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint>;
+    /// The surface as kept for export.
+    fn aligned(&self) -> Aligned;
 }
 
 fn in_sector(p: &Vector3<f64>, blades: usize) -> bool {
     p.y.atan2(p.x).abs() < std::f64::consts::PI / blades.max(1) as f64
 }
 
-impl PlanarCut for Mesh {
+impl ScanSurface for Mesh {
     fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint> {
         let mut out = Vec::new();
         for i in 0..self.triangles.len() {
@@ -632,14 +735,23 @@ impl PlanarCut for Mesh {
         }
         out
     }
+    fn aligned(&self) -> Aligned {
+        Aligned::Mesh(self.clone())
+    }
 }
 
-impl PlanarCut for Points {
+impl ScanSurface for Points {
     fn planar_cut(&self, r: f64, blades: usize) -> Vec<CylPoint> {
         self.points
             .iter()
             .filter(|p| (p.x - r).abs() <= 0.5 * self.slab && in_sector(p, blades))
             .map(|p| (p.y / r, p.z))
             .collect()
+    }
+    fn aligned(&self) -> Aligned {
+        Aligned::Cloud(Cloud {
+            points: self.points.clone(),
+            colors: None,
+        })
     }
 }

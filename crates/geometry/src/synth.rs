@@ -296,28 +296,3 @@ impl BladeDef {
         }
     }
 }
-
-/// Writes a binary little-endian PLY with float coordinates and uchar colours.
-pub fn to_ply(cloud: &crate::cloud::Cloud) -> Vec<u8> {
-    let has_c = cloud.colors.is_some();
-    let mut out = format!(
-        "ply\nformat binary_little_endian 1.0\ncomment propbet synthetic cloud\nelement vertex {}\n\
-         property float x\nproperty float y\nproperty float z\n{}end_header\n",
-        cloud.points.len(),
-        if has_c {
-            "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-        } else {
-            ""
-        }
-    )
-    .into_bytes();
-    for (i, p) in cloud.points.iter().enumerate() {
-        for k in 0..3 {
-            out.extend((p[k] as f32).to_le_bytes());
-        }
-        if let Some(c) = &cloud.colors {
-            out.extend(c[i]);
-        }
-    }
-    out
-}

@@ -6,7 +6,8 @@ use propbet_geometry::align::auto_align;
 use propbet_geometry::cloud::read_cloud;
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
-use propbet_geometry::synth::{to_ply, BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
+use propbet_geometry::cloud::to_ply;
+use propbet_geometry::synth::{BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
 
 /// An APC-E-10x5-like blade (R = 127 mm): chord and angle of the UIUC style table, NACA
 /// sections 10 % -> 7 % thick, 5 % -> 4 % camber at 45 %.
@@ -93,7 +94,36 @@ fn posed_meshes_give_the_geometry_they_were_made_with() {
         assert!(e_tc.iter().all(|x| x.abs() <= 0.002), "t/c errors {e_tc:?}");
         assert!((geo.hub_radius.unwrap() - 7.0).abs() <= 0.2, "hub {:?}", geo.hub_radius);
         assert!((geo.tip_radius - 127.0).abs() <= 0.2, "tip {}", geo.tip_radius);
+        blade_labels_match_the_construction(&geo, &mesh, blades);
     }
+}
+
+/// `to_mesh` writes the blades one after the other and the hub last: every blade's triangles
+/// must share one label, distinct blades distinct labels, and the hub must be hub.
+fn blade_labels_match_the_construction(geo: &Geometry, mesh: &propbet_geometry::Mesh, blades: usize) {
+    let hub_triangles = 96 * 4;
+    let per_blade = (mesh.triangles.len() - hub_triangles) / blades;
+    let labels = &geo.labelled.blade;
+    assert_eq!(labels.len(), mesh.triangles.len());
+    let mut seen = Vec::new();
+    for b in 0..blades {
+        let part = &labels[b * per_blade..(b + 1) * per_blade];
+        let mut count = vec![0usize; blades];
+        for k in part.iter().flatten() {
+            count[*k as usize] += 1;
+        }
+        let (best, n) = count.iter().enumerate().max_by_key(|c| c.1).unwrap();
+        let wrong = part.iter().filter(|l| l.is_some_and(|k| k as usize != best)).count();
+        eprintln!("  blade {b}: label {best} on {n} of {per_blade} triangles, {wrong} on other blades");
+        assert_eq!(wrong, 0, "blade {b}: {wrong} triangles labelled as another blade");
+        assert!(*n as f64 >= 0.97 * per_blade as f64, "blade {b}: only {n} of {per_blade} labelled");
+        seen.push(best);
+    }
+    seen.sort_unstable();
+    seen.dedup();
+    assert_eq!(seen.len(), blades, "two blades got the same label");
+    let hub = &labels[blades * per_blade..];
+    assert!(hub.iter().all(|l| l.is_none()), "hub triangles labelled as blade");
 }
 
 fn cloud_spec(points: usize, seed: u64) -> CloudSpec {
@@ -133,7 +163,7 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
     let def = apce_like(2);
     let cloud = def.to_cloud(&cloud_spec(400_000, 7));
     // Through the PLY writer and reader, as a user's file would come.
-    let cloud = read_cloud(&to_ply(&cloud), "synthetic.ply").unwrap();
+    let cloud = read_cloud(&to_ply(&cloud, None), "synthetic.ply").unwrap();
     let geo = scan_cloud(&cloud, &cloud_options()).unwrap();
     let scale = geo.box_fit.as_ref().unwrap().scale;
     let (e_beta, e_chord, _) = errors(&geo, &def);
@@ -148,6 +178,12 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
     assert!((scale * 0.756 - 1.0).abs() <= 0.002, "scale {scale}");
     assert!(e_beta.iter().all(|x| x.abs() <= 0.3), "twist errors {e_beta:?}");
     assert!(e_chord.iter().all(|x| x.abs() <= 0.01), "chord errors {e_chord:?}");
+    // Points by blade: the two blades are alike, so their counts must be too.
+    let (per_blade, hub) = geo.labelled.counts(2);
+    eprintln!("cloud labels: {per_blade:?} per blade, {hub} hub");
+    let ratio = per_blade[0] as f64 / per_blade[1] as f64;
+    assert!((ratio - 1.0).abs() < 0.05, "blade point counts {per_blade:?}");
+    assert!(hub < per_blade[0] / 5, "hub {hub} of {per_blade:?}");
     let c = geo.colour.as_ref().unwrap();
     assert!(c.kept < c.total && c.threshold > 20.0 && c.threshold < 150.0, "{c:?}");
     // The same with the faces given by one seed point each (face centres, posed and scaled).
