@@ -58,7 +58,10 @@ fn apc_10x4_7_stl_against_the_uiuc_table() {
     };
     let (b0, b1) = (tri("blades/blade_0.stl"), tri("blades/blade_1.stl"));
     eprintln!("APC triangles by blade: {b0}, {b1}, hub {}", tri("blades/hub.stl"));
-    assert!((b0 as f64 / b1 as f64 - 1.0).abs() < 0.1, "blade triangles {b0} vs {b1}");
+    assert!(
+        (b0 as f64 / b1 as f64 - 1.0).abs() < 0.1,
+        "blade triangles {b0} vs {b1}"
+    );
     let (h, rows) = read_csv(&out.join("geometry.csv"));
     let (cr, b, rc, rb) = (
         col(&h, "c_R"),
@@ -202,7 +205,10 @@ fn shared_synthetic_cloud_with_box_against_its_truth() {
         .iter()
         .map(|v| v.as_f64().unwrap())
         .collect();
-    assert!(per.len() == 2 && (per[0] / per[1] - 1.0).abs() < 0.1, "points by blade {per:?}");
+    assert!(
+        per.len() == 2 && (per[0] / per[1] - 1.0).abs() < 0.1,
+        "points by blade {per:?}"
+    );
     let true_scale = 1.0 / truth["cloud_scale"].as_f64().unwrap();
     assert!(
         (scale / true_scale - 1.0).abs() <= 0.002,

@@ -12,7 +12,7 @@ use propbet_bemt::QpropCoefficients;
 use propbet_geometry::cloud::{parse_colour, read_cloud, to_ply};
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{
-    default_stations, scan_cloud, Aligned, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
+    default_stations, scan_cloud, scan_mesh, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
 };
 use propbet_geometry::synth::naca4;
 use propbet_plot::{Figure, Mark, Panel, Series};
@@ -476,7 +476,11 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
             }
         }
         Aligned::Cloud(c) => {
-            write_atomic(&a.out.join("blades/labelled.ply"), &[to_ply(c, Some(&lab.blade))], &inputs)?;
+            write_atomic(
+                &a.out.join("blades/labelled.ply"),
+                &[to_ply(c, Some(&lab.blade))],
+                &inputs,
+            )?;
         }
     }
     let (per_blade, hub_elements) = lab.counts(g.blades);

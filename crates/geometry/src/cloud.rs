@@ -391,6 +391,37 @@ pub fn parse_colour(s: &str) -> Result<[u8; 3], String> {
     ))
 }
 
+/// Writes a binary little-endian PLY with float coordinates, uchar colours when the cloud has
+/// them, and, given `blade` labels, an int property `blade` per point (−1 for the hub).
+pub fn to_ply(cloud: &Cloud, blade: Option<&[Option<u8>]>) -> Vec<u8> {
+    let has_c = cloud.colors.is_some();
+    let mut out = format!(
+        "ply\nformat binary_little_endian 1.0\ncomment propbet\nelement vertex {}\n\
+         property float x\nproperty float y\nproperty float z\n{}{}end_header\n",
+        cloud.points.len(),
+        if has_c {
+            "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+        } else {
+            ""
+        },
+        if blade.is_some() { "property int blade\n" } else { "" }
+    )
+    .into_bytes();
+    for (i, p) in cloud.points.iter().enumerate() {
+        for k in 0..3 {
+            out.extend((p[k] as f32).to_le_bytes());
+        }
+        if let Some(c) = &cloud.colors {
+            out.extend(c[i]);
+        }
+        if let Some(b) = blade {
+            let v = b.get(i).copied().flatten().map_or(-1, i32::from);
+            out.extend(v.to_le_bytes());
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -444,35 +475,4 @@ mod tests {
         assert_eq!(parse_colour("#E6640A").unwrap(), [230, 100, 10]);
         assert!(parse_colour("purple-ish").unwrap_err().contains("not a colour"));
     }
-}
-
-/// Writes a binary little-endian PLY with float coordinates, uchar colours when the cloud has
-/// them, and, given `blade` labels, an int property `blade` per point (−1 for the hub).
-pub fn to_ply(cloud: &Cloud, blade: Option<&[Option<u8>]>) -> Vec<u8> {
-    let has_c = cloud.colors.is_some();
-    let mut out = format!(
-        "ply\nformat binary_little_endian 1.0\ncomment propbet\nelement vertex {}\n\
-         property float x\nproperty float y\nproperty float z\n{}{}end_header\n",
-        cloud.points.len(),
-        if has_c {
-            "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-        } else {
-            ""
-        },
-        if blade.is_some() { "property int blade\n" } else { "" }
-    )
-    .into_bytes();
-    for (i, p) in cloud.points.iter().enumerate() {
-        for k in 0..3 {
-            out.extend((p[k] as f32).to_le_bytes());
-        }
-        if let Some(c) = &cloud.colors {
-            out.extend(c[i]);
-        }
-        if let Some(b) = blade {
-            let v = b.get(i).copied().flatten().map_or(-1, i32::from);
-            out.extend(v.to_le_bytes());
-        }
-    }
-    out
 }

@@ -51,9 +51,16 @@ pub struct NacaFit {
     pub rms: f64,
     /// Points used.
     pub points: usize,
+    /// The fit's objective (Huber point-to-contour plus end terms, per point).
+    pub cost: f64,
 }
 
 impl NacaFit {
+    /// The section shape (t/c, camber, camber position), as a seed for a neighbouring station.
+    pub fn shape(&self) -> [f64; 3] {
+        [self.t_c, self.camber, self.camber_pos]
+    }
+
     /// Normalised section coordinates (x along the chord from the leading edge, y towards the
     /// suction side) of a point (u, w).
     pub fn to_section(&self, p: (f64, f64)) -> (f64, f64) {
@@ -188,47 +195,58 @@ impl CostFunction for NacaCost<'_> {
 
 /// Fits a NACA 4-digit section to points (u, w), seeded by the measured shape.
 pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
+    let own = [seed.t_c, seed.camber, seed.camber_pos];
+    fit_naca_from(pts, seed, &[own])
+}
+
+/// The same fit started from each of `shapes` (t/c, camber, camber position) in turn, with the
+/// position, chord and angle from the measured `seed`; the lowest objective wins. The
+/// photogrammetry method seeds each station with its neighbour's fit: a section whose own
+/// measure is poor (thin, noisy edges) starts where the blade's shape already is.
+pub fn fit_naca_from(pts: &[(f64, f64)], seed: &SectionShape, shapes: &[[f64; 3]]) -> Option<NacaFit> {
     if pts.len() < 8 || seed.chord <= 0.0 {
         return None;
     }
     let c0 = seed.chord;
-    let x0 = vec![
-        seed.le.0 / c0,
-        seed.le.1 / c0,
-        1.0,
-        seed.beta,
-        seed.t_c.clamp(0.01, 0.4),
-        seed.camber.clamp(-0.1, 0.1),
-        seed.camber_pos.clamp(0.2, 0.8),
-    ];
-    let steps = [0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.05];
-    let mut simplex = vec![x0.clone()];
-    for (i, s) in steps.iter().enumerate() {
-        let mut v = x0.clone();
-        v[i] += s;
-        simplex.push(v);
-    }
     let cost = NacaCost { pts, c0 };
-    let mut best = x0;
-    // A restart from the best point shakes Nelder-Mead out of a collapsed simplex.
-    for round in 0..2 {
-        let mut simplex = simplex.clone();
-        if round > 0 {
-            simplex = std::iter::once(best.clone())
-                .chain(steps.iter().enumerate().map(|(i, s)| {
-                    let mut v = best.clone();
-                    v[i] += s * 0.2;
-                    v
-                }))
-                .collect();
+    let steps = [0.01, 0.01, 0.01, 0.01, 0.01, 0.01, 0.05];
+    let simplex_at = |x: &[f64], f: f64| -> Vec<Vec<f64>> {
+        std::iter::once(x.to_vec())
+            .chain(steps.iter().enumerate().map(|(i, s)| {
+                let mut v = x.to_vec();
+                v[i] += s * f;
+                v
+            }))
+            .collect()
+    };
+    let mut winner: Option<(f64, Vec<f64>)> = None;
+    for shape in shapes {
+        let mut best = vec![
+            seed.le.0 / c0,
+            seed.le.1 / c0,
+            1.0,
+            seed.beta,
+            shape[0].clamp(0.01, 0.4),
+            shape[1].clamp(-0.1, 0.1),
+            shape[2].clamp(0.2, 0.8),
+        ];
+        let mut value = f64::INFINITY;
+        // A restart from the best point shakes Nelder-Mead out of a collapsed simplex.
+        for round in 0..2 {
+            let simplex = simplex_at(&best, if round == 0 { 1.0 } else { 0.2 });
+            let solver = NelderMead::new(simplex).with_sd_tolerance(1e-9).ok()?;
+            let res = Executor::new(cost, solver)
+                .configure(|s| s.max_iters(1500))
+                .run()
+                .ok()?;
+            best = res.state.best_param.clone()?;
+            value = res.state.best_cost;
         }
-        let solver = NelderMead::new(simplex).with_sd_tolerance(1e-11).ok()?;
-        let res = Executor::new(cost, solver)
-            .configure(|s| s.max_iters(1500))
-            .run()
-            .ok()?;
-        best = res.state.best_param.clone()?;
+        if winner.as_ref().is_none_or(|w| value < w.0) {
+            winner = Some((value, best));
+        }
     }
+    let (value, best) = winner?;
     let q = cost.unpack(&best);
     let rms = (cost.distances(&q).map(|d| d * d).sum::<f64>() / pts.len() as f64).sqrt();
     Some(NacaFit {
@@ -240,6 +258,7 @@ pub fn fit_naca(pts: &[(f64, f64)], seed: &SectionShape) -> Option<NacaFit> {
         camber_pos: q[6],
         rms,
         points: pts.len(),
+        cost: value,
     })
 }
 
@@ -436,5 +455,29 @@ mod tests {
         let sel = cst.selig(80);
         assert_eq!(sel.len(), 161);
         assert!((sel[0].0 - 1.0).abs() < 1e-12 && sel[80].0.abs() < 1e-12 && (sel[160].0 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_lowest_objective_of_several_starts_wins() {
+        // A thin, strongly cambered section measured as a thick symmetric one.
+        let pts = naca_points(0.06, 0.06, 0.4, 25.0, 0.35, (7.0, 3.0));
+        let seed = SectionShape {
+            r: 50.0,
+            le: (7.3, 3.2),
+            te: (-15.0, -5.0),
+            chord: 24.0,
+            beta: 0.33,
+            t_c: 0.2,
+            t_pos: 0.3,
+            camber: -0.05,
+            camber_pos: 0.7,
+            points: pts.len(),
+        };
+        let own = fit_naca(&pts, &seed).unwrap();
+        let neighbour = [0.065, 0.055, 0.42];
+        let both = fit_naca_from(&pts, &seed, &[[0.2, -0.05, 0.7], neighbour]).unwrap();
+        assert!(both.cost <= own.cost, "{} > {}", both.cost, own.cost);
+        assert_eq!(both.designation(), "6406", "{both:?}");
+        assert!((both.chord / 25.0 - 1.0).abs() < 1e-3, "{both:?}");
     }
 }

@@ -4,9 +4,9 @@
 use nalgebra::{Rotation3, Vector3};
 use propbet_geometry::align::auto_align;
 use propbet_geometry::cloud::read_cloud;
+use propbet_geometry::cloud::to_ply;
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
-use propbet_geometry::cloud::to_ply;
 use propbet_geometry::synth::{BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
 
 /// An APC-E-10x5-like blade (R = 127 mm): chord and angle of the UIUC style table, NACA
@@ -116,7 +116,10 @@ fn blade_labels_match_the_construction(geo: &Geometry, mesh: &propbet_geometry::
         let wrong = part.iter().filter(|l| l.is_some_and(|k| k as usize != best)).count();
         eprintln!("  blade {b}: label {best} on {n} of {per_blade} triangles, {wrong} on other blades");
         assert_eq!(wrong, 0, "blade {b}: {wrong} triangles labelled as another blade");
-        assert!(*n as f64 >= 0.97 * per_blade as f64, "blade {b}: only {n} of {per_blade} labelled");
+        assert!(
+            *n as f64 >= 0.97 * per_blade as f64,
+            "blade {b}: only {n} of {per_blade} labelled"
+        );
         seen.push(best);
     }
     seen.sort_unstable();
