@@ -368,10 +368,6 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     for w in &loaded.warnings {
         eprintln!("propbet: warning: {w}");
     }
-    let blade = loaded.file.to_blade(RadiusReading::Documented);
-    let rotor = blade
-        .to_rotor(propbet_bemt::Discretization::default())
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.geometry.display()))?;
     let (fluid, _) = args.air.fluid()?;
     if !(args.rpm.is_finite() && args.rpm > 0.0) {
         bail!("--rpm: {} must be positive", args.rpm);
@@ -388,14 +384,76 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         bail!("--re-factors: {bad} must be positive");
     }
     let foil = args.section.load()?;
-    let alphas = args.xfoil.alphas()?;
+    let engine = args.xfoil.engine()?;
+    let req = BladeRequest {
+        file: &loaded.file,
+        geometry: &args.geometry,
+        foils: std::slice::from_ref(&foil),
+        rpm: args.rpm,
+        v: args.v,
+        factors,
+        fluid,
+        engine: &engine,
+        xfoil: &args.xfoil,
+    };
+    let (mut file, b, all_ok) = blade_polars(&req)?;
+    let inputs: Vec<&Path> = std::iter::once(args.geometry.as_path())
+        .chain(input_paths(&args.section))
+        .collect();
+    file.name = format!(
+        "{} / {} polars at {:.0} rpm, {} m/s",
+        file.name, foil.name, args.rpm, args.v
+    );
+    crate::output::write_atomic(&args.out_prop, &[write_prop(&file).as_bytes()], &inputs)?;
+    if let Some(path) = &args.out_polars {
+        let json = serde_json::to_vec(&b)?;
+        crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
+    }
+    Ok(all_ok)
+}
+
+/// What [`blade_polars`] needs.
+pub struct BladeRequest<'a> {
+    /// The blade (radii, chords, twists; its coefficients give the first inflow estimate).
+    pub file: &'a PropFile,
+    /// Where it came from (for messages).
+    pub geometry: &'a Path,
+    /// One section for every station, or one per input station.
+    pub foils: &'a [Airfoil],
+    /// Operating point [rpm].
+    pub rpm: f64,
+    /// Operating point [m/s].
+    pub v: f64,
+    /// Further multiples of each station's Re.
+    pub factors: Vec<f64>,
+    /// Air.
+    pub fluid: propbet_bemt::Fluid,
+    /// XFOIL and the cache.
+    pub engine: &'a PolarEngine,
+    /// Angles, panels, iterations, Ncrit, progress.
+    pub xfoil: &'a XfoilArgs,
+}
+
+/// Polars of every input station at its Re and Mach at the operating point, fitted to QPROP's
+/// coefficients: the prop file with the fitted coefficients, every station's polars, and false
+/// when a station has no fit (its coefficients are kept, and it is reported).
+pub fn blade_polars(q: &BladeRequest) -> Result<(PropFile, BladePolars, bool)> {
+    let blade = q.file.to_blade(RadiusReading::Documented);
+    let rotor = blade
+        .to_rotor(propbet_bemt::Discretization::default())
+        .map_err(|e| anyhow::anyhow!("{}: {e}", q.geometry.display()))?;
+    let fluid = q.fluid;
+    if q.foils.is_empty() {
+        bail!("{}: no section given", q.geometry.display());
+    }
+    let alphas = q.xfoil.alphas()?;
 
     // Each input station's inflow at the operating point, from the solver on the file's model.
     let opts = SolverOptions {
         keep_stations: true,
         ..SolverOptions::default()
     };
-    let point = Solver::new(&rotor, &fluid, &opts).solve(OperatingPoint::from_rpm(args.v, args.rpm));
+    let point = Solver::new(&rotor, &fluid, &opts).solve(OperatingPoint::from_rpm(q.v, q.rpm));
     let st = &point.stations;
     let at = |r: f64, f: &dyn Fn(&propbet_bemt::StationResult) -> f64| -> f64 {
         let i = st.partition_point(|s| s.r <= r).clamp(1, st.len() - 1);
@@ -413,24 +471,24 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         let alpha_deg = at(r, &|s| s.alpha).to_degrees();
         let first = jobs.len();
         if re > 0.0 && chord > 0.0 {
-            for f in std::iter::once(1.0).chain(factors.iter().copied()) {
+            let foil = &q.foils[i.min(q.foils.len() - 1)];
+            for f in std::iter::once(1.0).chain(q.factors.iter().copied()) {
                 jobs.push(PolarJob {
-                    panels: args.xfoil.panels.unwrap_or(BLADE_PANELS),
-                    max_iter: args.xfoil.iter,
-                    ..PolarJob::new(foil.clone(), re * f, mach, args.xfoil.ncrit, alphas.clone())
+                    panels: q.xfoil.panels.unwrap_or(BLADE_PANELS),
+                    max_iter: q.xfoil.iter,
+                    ..PolarJob::new(foil.clone(), re * f, mach, q.xfoil.ncrit, alphas.clone())
                 });
             }
         }
         stations.push((r, chord, re, mach, alpha_deg, first..jobs.len()));
     }
-    let engine = args.xfoil.engine()?;
-    let results = engine.compute_all(&jobs, !args.xfoil.quiet);
+    let results = q.engine.compute_all(&jobs, !q.xfoil.quiet);
     let mut results: Vec<Option<Result<Polar, String>>> = results
         .into_iter()
         .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))
         .collect();
 
-    let mut file: PropFile = loaded.file.clone();
+    let mut file: PropFile = q.file.clone();
     let mut out_stations = Vec::new();
     let mut all_ok = true;
     for (i, (r, chord, re, mach, alpha_deg, range)) in stations.into_iter().enumerate() {
@@ -476,7 +534,7 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
                 eprintln!(
                     "propbet: station {} (r = {r:.4} m): no fit, coefficients kept from {}: {}",
                     i + 1,
-                    args.geometry.display(),
+                    q.geometry.display(),
                     problems.join("; ")
                 );
             }
@@ -492,26 +550,16 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
             problem: (!problems.is_empty()).then(|| problems.join("; ")),
         });
     }
-    let inputs: Vec<&Path> = std::iter::once(args.geometry.as_path())
-        .chain(input_paths(&args.section))
-        .collect();
-    file.name = format!(
-        "{} / {} polars at {:.0} rpm, {} m/s",
-        file.name, foil.name, args.rpm, args.v
-    );
-    crate::output::write_atomic(&args.out_prop, &[write_prop(&file).as_bytes()], &inputs)?;
-    if let Some(path) = &args.out_polars {
-        let b = BladePolars {
-            format: propbet_polar::blade::FORMAT.into(),
-            geometry: args.geometry.display().to_string(),
-            airfoil: foil.name.clone(),
-            rpm: args.rpm,
-            v: args.v,
-            air: [fluid.rho, fluid.mu, fluid.a],
-            stations: out_stations,
-        };
-        let json = serde_json::to_vec(&b)?;
-        crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
-    }
-    Ok(all_ok)
+    let names: Vec<&str> = q.foils.iter().map(|f| f.name.as_str()).collect();
+    let b = BladePolars {
+        format: propbet_polar::blade::FORMAT.into(),
+        geometry: q.geometry.display().to_string(),
+        airfoil: if names.len() == 1 { names[0].to_string() } else { format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1]) },
+        rpm: q.rpm,
+        v: q.v,
+        air: [fluid.rho, fluid.mu, fluid.a],
+        stations: out_stations,
+    };
+    Ok((file, b, all_ok))
 }
+
