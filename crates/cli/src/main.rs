@@ -12,6 +12,7 @@ mod output;
 mod polar;
 mod predict;
 mod prop;
+mod run;
 mod scan;
 mod synth;
 mod values;
@@ -19,16 +20,16 @@ mod values;
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
 #[derive(Debug, Parser)]
 #[command(name = "propbet", version, about)]
-struct Cli {
+pub(crate) struct Cli {
     /// Worker threads for sweeps (default: all cores).
     #[arg(long, global = true)]
     threads: Option<usize>,
     #[command(subcommand)]
-    command: Command,
+    pub(crate) command: Command,
 }
 
 #[derive(Debug, Subcommand)]
-enum Command {
+pub(crate) enum Command {
     /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
     Predict(Box<predict::PredictArgs>),
     /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
@@ -47,6 +48,9 @@ enum Command {
     Effects(diagnose::EffectsArgs),
     /// Write synthetic measurements made by the model with hidden effects and noise.
     Synth(Box<synth::SynthArgs>),
+    /// The main job: a case directory (case.toml) from scan to report — scan, XFOIL polars,
+    /// sweeps, comparison with the measurements, diagnosis, one HTML report.
+    Run(Box<run::RunArgs>),
     /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
     /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
     Scan(Box<scan::ScanArgs>),
@@ -59,7 +63,13 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
         }
         rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?;
     }
-    match cli.command {
+    dispatch(cli.command)
+}
+
+/// Runs one command (also the stages of `propbet run`).
+pub(crate) fn dispatch(command: Command) -> anyhow::Result<bool> {
+    match command {
+        Command::Run(a) => run::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
         Command::Polar(a) => polar::run_polar(&a),

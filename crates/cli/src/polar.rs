@@ -337,6 +337,11 @@ pub struct PolarsArgs {
     /// The section used at every station.
     #[command(flatten)]
     pub section: AirfoilArgs,
+    /// Per-station sections: a directory of `station_NN.dat` (NN = 00, 01, ... in the
+    /// geometry's station order, as `propbet scan` writes them); a station without its file
+    /// uses `--airfoil`.
+    #[arg(long)]
+    pub station_airfoils: Option<PathBuf>,
     /// Operating point: rotation speed [rpm].
     #[arg(long)]
     pub rpm: f64,
@@ -384,11 +389,15 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         bail!("--re-factors: {bad} must be positive");
     }
     let foil = args.section.load()?;
+    let mut foils = vec![foil.clone()];
+    if let Some(dir) = &args.station_airfoils {
+        foils = station_foils(dir, loaded.file.rows.len(), &foil)?;
+    }
     let engine = args.xfoil.engine()?;
     let req = BladeRequest {
         file: &loaded.file,
         geometry: &args.geometry,
-        foils: std::slice::from_ref(&foil),
+        foils: &foils,
         rpm: args.rpm,
         v: args.v,
         factors,
@@ -410,6 +419,35 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     Ok(all_ok)
+}
+
+/// The sections `station_NN.dat` of a directory, one per station; `fallback` where missing.
+fn station_foils(dir: &Path, n: usize, fallback: &Airfoil) -> Result<Vec<Airfoil>> {
+    if !dir.is_dir() {
+        bail!("--station-airfoils {}: not a directory", dir.display());
+    }
+    let mut missing = Vec::new();
+    let foils = (0..n)
+        .map(|i| {
+            let path = dir.join(format!("station_{i:02}.dat"));
+            if !path.exists() {
+                missing.push(i);
+                return Ok(fallback.clone());
+            }
+            let text = std::fs::read_to_string(&path).with_context(|| format!("{}: cannot read", path.display()))?;
+            let (mut foil, _) = Airfoil::parse(&text, &path.display().to_string())?;
+            foil.normalise();
+            Ok(foil)
+        })
+        .collect::<Result<Vec<_>>>()?;
+    if !missing.is_empty() {
+        eprintln!(
+            "propbet: {}: no section file for station(s) {missing:?}: {} used there",
+            dir.display(),
+            fallback.name
+        );
+    }
+    Ok(foils)
 }
 
 /// What [`blade_polars`] needs.
