@@ -45,6 +45,7 @@ fn col(header: &[String], name: &str) -> usize {
 mod compare;
 mod diagnose;
 mod polars;
+mod run;
 mod scan;
 
 #[test]

@@ -592,7 +592,11 @@ pub fn blade_polars(q: &BladeRequest) -> Result<(PropFile, BladePolars, bool)> {
     let b = BladePolars {
         format: propbet_polar::blade::FORMAT.into(),
         geometry: q.geometry.display().to_string(),
-        airfoil: if names.len() == 1 { names[0].to_string() } else { format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1]) },
+        airfoil: if names.len() == 1 {
+            names[0].to_string()
+        } else {
+            format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1])
+        },
         rpm: q.rpm,
         v: q.v,
         air: [fluid.rho, fluid.mu, fluid.a],
@@ -600,4 +604,3 @@ pub fn blade_polars(q: &BladeRequest) -> Result<(PropFile, BladePolars, bool)> {
     };
     Ok((file, b, all_ok))
 }
-

@@ -159,10 +159,17 @@ pub fn read_case(dir: &Path) -> Result<Case> {
     }
     if let Some(p) = &case.polars {
         if p.sections != "scan" && p.sections != "airfoil" {
-            bail!("{}: [polars] sections = {:?}: `scan` or `airfoil`", path.display(), p.sections);
+            bail!(
+                "{}: [polars] sections = {:?}: `scan` or `airfoil`",
+                path.display(),
+                p.sections
+            );
         }
         if p.sections == "scan" && g.scan.is_none() {
-            bail!("{}: [polars] sections = \"scan\" needs a [geometry] scan", path.display());
+            bail!(
+                "{}: [polars] sections = \"scan\" needs a [geometry] scan",
+                path.display()
+            );
         }
         if !(p.rpm.is_finite() && p.rpm > 0.0) {
             bail!("{}: [polars] rpm = {}: must be positive", path.display(), p.rpm);
@@ -172,7 +179,11 @@ pub fn read_case(dir: &Path) -> Result<Case> {
     let named = [g.scan.as_ref(), g.prop.as_ref(), g.reference.as_ref()]
         .into_iter()
         .flatten()
-        .chain(case.measured.iter().flat_map(|m| m.files.iter().chain(m.columns.as_ref())));
+        .chain(
+            case.measured
+                .iter()
+                .flat_map(|m| m.files.iter().chain(m.columns.as_ref())),
+        );
     for f in named {
         if !dir.join(f).is_file() {
             bail!("{}: names {f}, which is not in {}", path.display(), dir.display());
@@ -200,7 +211,11 @@ fn default_case() -> Result<PathBuf> {
     }
     bail!(
         "no case directory given and the default case is not at {}",
-        tried.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ")
+        tried
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
     )
 }
 
@@ -273,14 +288,20 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     };
     if let (Ok(o), Ok(d)) = (out.canonicalize(), dir.canonicalize()) {
         if o == d || d.starts_with(&o) {
-            bail!("{}: the output directory would hold the case's own files", out.display());
+            bail!(
+                "{}: the output directory would hold the case's own files",
+                out.display()
+            );
         }
     }
     std::fs::create_dir_all(&out).with_context(|| format!("{}: cannot create", out.display()))?;
     let f = |rel: &str| path_str(&dir.join(rel));
     let o = |rel: &str| path_str(&out.join(rel));
     let g = &case.geometry;
-    let total = 2 + usize::from(g.scan.is_some()) + usize::from(case.polars.is_some()) + 2 * usize::from(case.measured.is_some());
+    let total = 2
+        + usize::from(g.scan.is_some())
+        + usize::from(case.polars.is_some())
+        + 2 * usize::from(case.measured.is_some());
     let mut n = 0;
     let mut stages = Vec::new();
     let mut next = || {
@@ -291,7 +312,14 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // 1. Geometry.
     let mut prop = match (&g.scan, &g.prop) {
         (Some(scan), _) => {
-            let mut argv = vec!["scan".to_string(), f(scan), "-o".into(), o("scan"), "--name".into(), case.name.clone()];
+            let mut argv = vec![
+                "scan".to_string(),
+                f(scan),
+                "-o".into(),
+                o("scan"),
+                "--name".into(),
+                case.name.clone(),
+            ];
             if let Some(u) = &g.units {
                 argv.extend(["--units".into(), u.clone()]);
             }
@@ -347,7 +375,11 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         v
     };
     if let Some(p) = &case.polars {
-        let airfoil = if naca_name(&p.airfoil) { p.airfoil.clone() } else { f(&p.airfoil) };
+        let airfoil = if naca_name(&p.airfoil) {
+            p.airfoil.clone()
+        } else {
+            f(&p.airfoil)
+        };
         let mut argv = vec!["polars".into(), "--geometry".into(), prop.clone()];
         argv.extend(units_flag.iter().cloned());
         argv.extend(["--airfoil".into(), airfoil]);
@@ -379,16 +411,17 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         prop = o("polars/prop.qprop");
     }
     // The fitted prop file is in metres; a case's own prop file keeps its units flag.
-    let model_units = if case.polars.is_some() { Vec::new() } else { units_flag.clone() };
+    let model_units = if case.polars.is_some() {
+        Vec::new()
+    } else {
+        units_flag.clone()
+    };
 
     // 3. Sweeps.
     std::fs::create_dir_all(out.join("predict"))?;
     let mut argv = vec!["predict".into(), "--prop".into(), prop.clone()];
     argv.extend(model_units.iter().cloned());
-    argv.extend([
-        format!("--rpm={}", case.sweep.rpm),
-        format!("--j={}", case.sweep.j),
-    ]);
+    argv.extend([format!("--rpm={}", case.sweep.rpm), format!("--j={}", case.sweep.j)]);
     argv.extend(air_flags_predict(&case.atmosphere)?);
     argv.extend(["--out".into(), o("predict/sweep.csv")]);
     stages.push(stage("predict", argv, next(), total)?);
@@ -509,13 +542,7 @@ fn inline_svg(path: &Path) -> Option<String> {
     Some(s[start..].to_string())
 }
 
-fn report(
-    case: &Case,
-    dir: &Path,
-    out: &Path,
-    stages: &[Stage],
-    scan: Option<&serde_json::Value>,
-) -> Result<String> {
+fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&serde_json::Value>) -> Result<String> {
     let font = propbet_plot::font_face_css();
     let mut styles = vec![font.clone()];
     let mut bodies = Vec::new();
@@ -674,7 +701,11 @@ fn report(
 fn sweep_figure(csv: &str) -> Result<Figure> {
     let mut lines = csv.lines();
     let head: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |n: &str| head.iter().position(|h| *h == n).with_context(|| format!("sweep.csv: no column {n}"));
+    let col = |n: &str| {
+        head.iter()
+            .position(|h| *h == n)
+            .with_context(|| format!("sweep.csv: no column {n}"))
+    };
     let (ci, cj, cct, ccp, ceta) = (col("rpm")?, col("j")?, col("ct")?, col("cp")?, col("eta")?);
     let mut by_rpm: Vec<(String, [Vec<(f64, f64)>; 3])> = Vec::new();
     for l in lines {

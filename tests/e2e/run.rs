@@ -1,0 +1,161 @@
+//! `propbet run`: the main job on the shipped cases (issue 7), from scan to report, and bad
+//! case files.
+
+use super::*;
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+#[test]
+fn default_case_from_scan_to_report() {
+    // No case argument, from a directory outside the repository: the shipped default case is
+    // found beside the executable. A private cache keeps the run cold.
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&["run", "-o", "out", "--cache", "cache", "--quiet"], dir.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = dir.path().join("out");
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(text.contains("APC 10x4.7 Slow Flyer: 6 stages"), "{text}");
+    // Every stage's outputs.
+    for f in [
+        "scan/geometry.csv",
+        "scan/plots/sections.svg",
+        "polars/prop.qprop",
+        "polars/polars.json",
+        "predict/sweep.csv",
+        "compare/points.csv",
+        "diagnose/diagnosis.json",
+        "report.html",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    // The geometry: 20 stations, against the UIUC table within the scan issue's bounds.
+    let (h, rows) = read_csv(&out.join("scan/geometry.csv"));
+    assert_eq!(rows.len(), 20);
+    let (b, rb) = (col(&h, "beta_deg"), col(&h, "ref_beta_deg"));
+    for r in rows.iter().filter(|r| !r[rb].is_empty()) {
+        let d: f64 = r[b].parse::<f64>().unwrap() - r[rb].parse::<f64>().unwrap();
+        assert!(d.abs() < 1.5, "twist {d} deg off the UIUC table: {r:?}");
+    }
+    // Polars: a fit at (nearly) every station.
+    let pol: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("polars/polars.json")).unwrap()).unwrap();
+    let st = pol["stations"].as_array().unwrap();
+    let fitted = st.iter().filter(|s| !s["fit"].is_null()).count();
+    assert!(fitted >= 18, "{fitted} of {} stations fitted", st.len());
+    // Prediction against UIUC's static test: the right size (a unit or frame mistake would be
+    // off by far more).
+    let (h, rows) = read_csv(&out.join("compare/points.csv"));
+    let (j, ct, ctp, cp, cpp) = (
+        col(&h, "j"),
+        col(&h, "ct"),
+        col(&h, "ct_pred"),
+        col(&h, "cp"),
+        col(&h, "cp_pred"),
+    );
+    let num = |r: &Vec<String>, k: usize| r[k].parse::<f64>().unwrap();
+    let stat: Vec<&Vec<String>> = rows.iter().filter(|r| num(r, j) == 0.0).collect();
+    assert_eq!(stat.len(), 16);
+    let e_ct = median(stat.iter().map(|r| num(r, ctp) / num(r, ct) - 1.0).collect());
+    let e_cp = median(stat.iter().map(|r| num(r, cpp) / num(r, cp) - 1.0).collect());
+    eprintln!(
+        "default case, static: median CT error {:.1} %, CP error {:.1} %",
+        100.0 * e_ct,
+        100.0 * e_cp
+    );
+    assert!(e_ct.abs() < 0.25 && e_cp.abs() < 0.35, "static CT {e_ct}, CP {e_cp}");
+    // The diagnosis: the ladder's held-out error falls.
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("diagnose/diagnosis.json")).unwrap()).unwrap();
+    let ladder: Vec<f64> = d["diagnosis"]["ladder"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| r["kfold_rms"].as_f64().unwrap())
+        .collect();
+    eprintln!("default case, ladder held-out RMS: {ladder:.4?}");
+    assert!(
+        ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
+        "{ladder:?}"
+    );
+    // One report with every part.
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for part in [
+        "id=\"geometry\"",
+        "id=\"polars\"",
+        "id=\"prediction\"",
+        "id=\"compare\"",
+        "id=\"diagnose\"",
+        "Which effect is missing?",
+        "propbet scan",
+        "<svg",
+    ] {
+        assert!(html.contains(part), "report lacks {part}");
+    }
+    // The case directory is untouched: nothing written into it.
+    let case = repo().join("props/apcsf_10x4.7");
+    assert!(!case.join("scan").exists() && !case.join("report.html").exists());
+}
+
+#[test]
+fn shipped_cases_without_a_scan() {
+    let dir = tempfile::tempdir().unwrap();
+    for (case, parts) in [
+        ("photofoil_8x4.5", vec!["id=\"compare\"", "id=\"diagnose\""]),
+        ("cam6x3", vec!["id=\"prediction\""]),
+    ] {
+        let o = run(
+            &["run", repo().join("props").join(case).to_str().unwrap(), "-o", case],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{case}: {}", stderr(&o));
+        let html = std::fs::read_to_string(dir.path().join(case).join("report.html")).unwrap();
+        for p in parts {
+            assert!(html.contains(p), "{case}: report lacks {p}");
+        }
+        let (_, rows) = read_csv(&dir.path().join(case).join("predict/sweep.csv"));
+        assert!(rows.len() >= 60, "{case}: {} sweep rows", rows.len());
+    }
+    // No measurements: no comparison in the report.
+    let html = std::fs::read_to_string(dir.path().join("cam6x3/report.html")).unwrap();
+    assert!(!html.contains("id=\"compare\""));
+}
+
+#[test]
+fn bad_cases_get_clear_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case");
+    std::fs::create_dir(&case).unwrap();
+    std::fs::copy(cam6x3(), case.join("cam6x3.qprop")).unwrap();
+    let good = "name = \"x\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"5000\"\nj = \"0:0.5:0.1\"\n";
+    for (toml, expect) in [
+        (good.replace("cam6x3.qprop", "missing.qprop"), "names missing.qprop"),
+        (
+            good.replace("prop = ", "scan = \"cam6x3.qprop\"\nprop = "),
+            "exactly one of `scan` and `prop`",
+        ),
+        (format!("{good}colour = 3\n"), "unknown field"),
+        (good.replace("j = ", "jj = "), "unknown field `jj`"),
+        (good.replace("j = \"0:0.5:0.1\"\n", ""), "missing field `j`"),
+        (
+            format!("{good}[polars]\nairfoil = \"naca4412\"\nrpm = 5000\n"),
+            "needs a [geometry] scan",
+        ),
+    ] {
+        std::fs::write(case.join("case.toml"), &toml).unwrap();
+        let o = run(&["run", "case", "-o", "out"], dir.path());
+        assert_eq!(o.status.code(), Some(2), "{toml}");
+        let e = stderr(&o);
+        assert!(e.contains("case.toml") && e.contains(expect), "{toml}: {e}");
+    }
+    // A case that is not there, and an output directory that would hold the case.
+    let o = run(&["run", "nowhere"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("nowhere"), "{}", stderr(&o));
+    std::fs::write(case.join("case.toml"), good).unwrap();
+    let o = run(&["run", "case", "-o", "case"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("would hold the case"), "{}", stderr(&o));
+}
