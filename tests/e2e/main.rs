@@ -44,6 +44,7 @@ fn col(header: &[String], name: &str) -> usize {
 
 mod compare;
 mod diagnose;
+mod docs;
 mod polars;
 mod run;
 mod scan;
