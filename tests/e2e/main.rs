@@ -48,6 +48,7 @@ mod docs;
 mod polars;
 mod run;
 mod scan;
+mod validate;
 
 #[test]
 fn predict_matches_qprop_static_point() {

@@ -15,6 +15,7 @@ mod prop;
 mod run;
 mod scan;
 mod synth;
+mod validate;
 mod values;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
@@ -51,6 +52,9 @@ pub(crate) enum Command {
     /// The main job: a case directory (case.toml) from scan to report — scan, XFOIL polars,
     /// sweeps, comparison with the measurements, diagnosis, one HTML report.
     Run(Box<run::RunArgs>),
+    /// Validation on real data: every UIUC propeller with a geometry file and an APC PE0 file,
+    /// predicted and compared with its static and J-sweep files, before and after calibration.
+    Validate(Box<validate::ValidateArgs>),
     /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
     /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
     Scan(Box<scan::ScanArgs>),
@@ -70,6 +74,7 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
 pub(crate) fn dispatch(command: Command) -> anyhow::Result<bool> {
     match command {
         Command::Run(a) => run::run(&a),
+        Command::Validate(a) => validate::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
         Command::Polar(a) => polar::run_polar(&a),

@@ -220,23 +220,24 @@ fn default_case() -> Result<PathBuf> {
 }
 
 /// One stage: the command it is equivalent to, how long it took, whether it ran clean.
-struct Stage {
+pub(crate) struct Stage {
     name: &'static str,
     argv: Vec<String>,
     seconds: f64,
-    clean: bool,
+    /// Ran without reported problems.
+    pub(crate) clean: bool,
 }
 
 /// Runs one `propbet` command line in this process.
-fn stage(name: &'static str, argv: Vec<String>, n: usize, total: usize) -> Result<Stage> {
-    eprintln!("propbet run [{n}/{total}] {name}: propbet {}", shell_words(&argv));
+pub(crate) fn stage(name: &'static str, argv: Vec<String>, n: usize, total: usize) -> Result<Stage> {
+    eprintln!("propbet [{n}/{total}] {name}: propbet {}", shell_words(&argv));
     let t0 = Instant::now();
     let cli = crate::Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
         .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
     let clean = crate::dispatch(cli.command).with_context(|| format!("{name} stage"))?;
     let seconds = t0.elapsed().as_secs_f64();
     eprintln!(
-        "propbet run [{n}/{total}] {name}: {seconds:.1} s{}",
+        "propbet [{n}/{total}] {name}: {seconds:.1} s{}",
         if clean { "" } else { " (with reported problems)" }
     );
     Ok(Stage {
@@ -470,7 +471,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
     let n_report = next();
     eprintln!(
-        "propbet run [{n_report}/{total}] report: {:.1} s",
+        "propbet [{n_report}/{total}] report: {:.1} s",
         t0.elapsed().as_secs_f64()
     );
     println!(

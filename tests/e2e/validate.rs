@@ -1,0 +1,97 @@
+//! `propbet validate` on a shipped subset of the UIUC and APC data (tests/data/validate): one
+//! APC prop predicted from UIUC geometry and PE0 sections, compared before and after the
+//! ladder; a prop without a PE0 file listed as not validated; bad directories.
+
+use super::*;
+
+#[test]
+fn validation_table_on_the_shipped_subset() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = repo().join("tests/data/validate");
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            data.join("uiuc").to_str().unwrap(),
+            "--pe0",
+            data.join("pe0").to_str().unwrap(),
+            "--airfoils",
+            repo().join("props/airfoils").to_str().unwrap(),
+            "--cache",
+            "cache",
+            "--quiet",
+            "-o",
+            "val",
+        ],
+        dir.path(),
+    );
+    // Exit 0 or 1 (a station solution that did not converge near windmilling is reported).
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let md = std::fs::read_to_string(dir.path().join("val/validation.md")).unwrap();
+    eprintln!("{md}");
+    assert!(md.contains("gwsdd_9x5: not an APC propeller"), "{md}");
+    let (h, rows) = read_csv(&dir.path().join("val/validation.csv"));
+    assert_eq!(rows.len(), 1);
+    let r = &rows[0];
+    assert_eq!(r[col(&h, "prop")], "apcsf_9x4.7");
+    let v = |n: &str| r[col(&h, n)].parse::<f64>().unwrap();
+    // Static (16 points) and the 6029 rpm sweep (17) below 85 % of its zero-thrust J (all of
+    // it when the sweep stops before zero thrust).
+    assert!(v("points") >= 20.0 && v("points") <= 33.0, "{r:?}");
+    // The prediction is of the right size, and calibration does not make it worse.
+    assert!(v("ct_median") < 0.3 && v("cp_median") < 0.3, "{r:?}");
+    assert!(v("ct_median_after") <= v("ct_median") + 1e-9, "{r:?}");
+    // Every stage's outputs for the prop.
+    for f in [
+        "prop.qprop",
+        "airfoils/station_00.dat",
+        "compare/report.html",
+        "diagnose/diagnosis.json",
+        "calibrated/points.csv",
+    ] {
+        assert!(dir.path().join("val/apcsf_9x4.7").join(f).is_file(), "{f} missing");
+    }
+    // The sections are APC's: E63 inboard scaled to the PE0 thickness (20.9 % at 0.96 in is
+    // beyond r/R 0.15 = 0.675 in, so the first station takes the first PE0 row).
+    let first = std::fs::read_to_string(dir.path().join("val/apcsf_9x4.7/airfoils/station_00.dat")).unwrap();
+    assert!(first.lines().next().unwrap().contains("t/c"), "{first}");
+}
+
+#[test]
+fn validate_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "empty",
+            "--pe0",
+            "empty",
+            "--airfoils",
+            "empty",
+            "-o",
+            "v",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no propeller could be validated"), "{}", stderr(&o));
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "missing",
+            "--pe0",
+            "empty",
+            "--airfoils",
+            "empty",
+            "-o",
+            "v",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("missing"), "{}", stderr(&o));
+}
