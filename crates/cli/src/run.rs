@@ -571,8 +571,7 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
     }
     let _ = writeln!(
         h,
-        "<nav>{}<a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}</nav>",
-        "",
+        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}</nav>",
         if bodies.is_empty() {
             String::new()
         } else {
@@ -708,7 +707,9 @@ fn sweep_figure(csv: &str) -> Result<Figure> {
             .with_context(|| format!("sweep.csv: no column {n}"))
     };
     let (ci, cj, cct, ccp, ceta) = (col("rpm")?, col("j")?, col("ct")?, col("cp")?, col("eta")?);
-    let mut by_rpm: Vec<(String, [Vec<(f64, f64)>; 3])> = Vec::new();
+    // Per RPM: (CT, CP, efficiency) against J.
+    type Curves = [Vec<(f64, f64)>; 3];
+    let mut by_rpm: Vec<(String, Curves)> = Vec::new();
     for l in lines {
         let v: Vec<&str> = l.split(',').collect();
         let num = |k: usize| v.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN);

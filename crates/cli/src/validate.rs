@@ -354,7 +354,7 @@ fn validate_one(a: &ValidateArgs, prop: &str, pe0_path: &Path) -> Result<(Row, b
     if measured.is_empty() {
         bail!("no static or J-sweep file");
     }
-    let model = vec!["--prop".to_string(), p(&dir.join("prop.qprop"))];
+    let model = ["--prop".to_string(), p(&dir.join("prop.qprop"))];
     let data: Vec<String> = std::iter::once("--measured".to_string()).chain(measured).collect();
     let compare = |name: &str, extra: &[String]| -> Result<bool> {
         let mut argv = vec!["compare".to_string()];
