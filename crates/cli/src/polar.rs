@@ -18,9 +18,10 @@ use crate::predict::{load_prop, FluidArgs};
 use crate::values::parse_list;
 use propbet_plot::{Figure, Mark, Panel, Series};
 
-/// How XFOIL runs, and the cache.
+/// The XFOIL executable, the polar cache and the progress bar (shared by every command that
+/// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
 #[derive(Debug, Args)]
-pub struct XfoilArgs {
+pub struct XfoilProcess {
     /// XFOIL executable (default: `xfoil` on PATH).
     #[arg(long)]
     pub xfoil: Option<PathBuf>,
@@ -34,6 +35,34 @@ pub struct XfoilArgs {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+}
+
+impl XfoilProcess {
+    /// The same settings as command-line flags, for a stage's command.
+    pub fn flags(&self) -> Vec<String> {
+        let mut v = Vec::new();
+        if let Some(x) = &self.xfoil {
+            v.extend(["--xfoil".into(), x.display().to_string()]);
+        }
+        if let Some(c) = &self.cache {
+            v.extend(["--cache".into(), c.display().to_string()]);
+        }
+        if self.no_cache {
+            v.push("--no-cache".into());
+        }
+        if self.quiet {
+            v.push("--quiet".into());
+        }
+        v
+    }
+}
+
+/// How XFOIL runs, and the cache.
+#[derive(Debug, Args)]
+pub struct XfoilArgs {
+    /// Executable, cache, progress.
+    #[command(flatten)]
+    pub process: XfoilProcess,
     /// Transition amplification ratio Ncrit (9: average wind tunnel; 5-7 for turbulent air).
     #[arg(long, default_value_t = 9.0)]
     pub ncrit: f64,
@@ -50,12 +79,13 @@ pub struct XfoilArgs {
 
 impl XfoilArgs {
     fn engine(&self) -> Result<PolarEngine> {
-        let exe = find_xfoil(self.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
+        let p = &self.process;
+        let exe = find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
         let xfoil = Xfoil::new(XfoilConfig::new(exe))?;
-        let cache = if self.no_cache {
+        let cache = if p.no_cache {
             None
         } else {
-            match self.cache.clone().or_else(PolarCache::default_dir) {
+            match p.cache.clone().or_else(PolarCache::default_dir) {
                 Some(dir) => Some(PolarCache::open(&dir)?),
                 None => None,
             }
@@ -168,7 +198,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         .collect();
     let mut ok = true;
     let mut polars: Vec<Polar> = Vec::new();
-    for (job, r) in jobs.iter().zip(engine.compute_all(&jobs, !args.xfoil.quiet)) {
+    for (job, r) in jobs.iter().zip(engine.compute_all(&jobs, !args.xfoil.process.quiet)) {
         match r {
             Ok((p, _)) => {
                 report_failures(&format!("Re {:.0}", job.re), &p);
@@ -520,7 +550,7 @@ pub fn blade_polars(q: &BladeRequest) -> Result<(PropFile, BladePolars, bool)> {
         }
         stations.push((r, chord, re, mach, alpha_deg, first..jobs.len()));
     }
-    let results = q.engine.compute_all(&jobs, !q.xfoil.quiet);
+    let results = q.engine.compute_all(&jobs, !q.xfoil.process.quiet);
     let mut results: Vec<Option<Result<Polar, String>>> = results
         .into_iter()
         .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))

@@ -15,6 +15,7 @@ use propbet_plot::{Figure, Mark, Panel, Series};
 use serde::Deserialize;
 
 use crate::output::write_atomic;
+use crate::polar::XfoilProcess;
 
 /// Arguments of `propbet run`.
 #[derive(Debug, Args)]
@@ -24,18 +25,9 @@ pub struct RunArgs {
     /// Output directory (default: `run_<case directory name>` in the current directory).
     #[arg(long, short)]
     pub out: Option<PathBuf>,
-    /// XFOIL executable (default: `xfoil` on PATH).
-    #[arg(long)]
-    pub xfoil: Option<PathBuf>,
-    /// Polar cache directory (default: the polar commands' default cache).
-    #[arg(long, conflicts_with = "no_cache")]
-    pub cache: Option<PathBuf>,
-    /// Compute every polar afresh and store nothing.
-    #[arg(long)]
-    pub no_cache: bool,
-    /// No progress bars.
-    #[arg(long)]
-    pub quiet: bool,
+    /// XFOIL executable, polar cache, progress bars (passed on to the polars stage).
+    #[command(flatten)]
+    pub xfoil: XfoilProcess,
 }
 
 /// `case.toml`.
@@ -359,22 +351,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     };
 
     // 2. Polars.
-    let xfoil_flags = {
-        let mut v = Vec::new();
-        if let Some(x) = &a.xfoil {
-            v.extend(["--xfoil".into(), path_str(x)]);
-        }
-        if let Some(c) = &a.cache {
-            v.extend(["--cache".into(), path_str(c)]);
-        }
-        if a.no_cache {
-            v.push("--no-cache".into());
-        }
-        if a.quiet {
-            v.push("--quiet".into());
-        }
-        v
-    };
+    let xfoil_flags = a.xfoil.flags();
     if let Some(p) = &case.polars {
         let airfoil = if naca_name(&p.airfoil) {
             p.airfoil.clone()

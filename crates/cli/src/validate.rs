@@ -13,6 +13,7 @@ use clap::Args;
 use propbet_polar::{naca4_from_name, Airfoil};
 
 use crate::output::write_atomic;
+use crate::polar::XfoilProcess;
 use crate::run::stage;
 
 /// Arguments of `propbet validate`.
@@ -36,15 +37,9 @@ pub struct ValidateArgs {
     /// Output directory.
     #[arg(long, short)]
     pub out: PathBuf,
-    /// XFOIL executable.
-    #[arg(long)]
-    pub xfoil: Option<PathBuf>,
-    /// Polar cache directory.
-    #[arg(long)]
-    pub cache: Option<PathBuf>,
-    /// No progress bars.
-    #[arg(long)]
-    pub quiet: bool,
+    /// XFOIL executable, polar cache, progress bars (passed on to the polars stages).
+    #[command(flatten)]
+    pub xfoil: XfoilProcess,
 }
 
 /// A UIUC name's PE0 file name: `apcsf_10x4.7` → `10x47SF-PERF.PE0`, `apce_10x5` → `10x5E`,
@@ -313,16 +308,6 @@ fn validate_one(a: &ValidateArgs, prop: &str, pe0_path: &Path) -> Result<(Row, b
     let geometry = dir.join("geometry.qprop");
     write_atomic(&geometry, &[qp.as_bytes()], &[])?;
     let p = |x: &Path| x.display().to_string();
-    let mut xf = Vec::new();
-    if let Some(x) = &a.xfoil {
-        xf.extend(["--xfoil".to_string(), p(x)]);
-    }
-    if let Some(c) = &a.cache {
-        xf.extend(["--cache".to_string(), p(c)]);
-    }
-    if a.quiet {
-        xf.push("--quiet".into());
-    }
     let mut argv = vec![
         "polars".to_string(),
         "--geometry".into(),
@@ -334,7 +319,7 @@ fn validate_one(a: &ValidateArgs, prop: &str, pe0_path: &Path) -> Result<(Row, b
         "--rpm".into(),
         a.rpm.to_string(),
     ];
-    argv.extend(xf);
+    argv.extend(a.xfoil.flags());
     argv.extend([
         "--out-prop".into(),
         p(&dir.join("prop.qprop")),
