@@ -124,8 +124,8 @@ impl MeasuredArgs {
     }
 }
 
-/// `T,P,RH` with optional units.
-pub fn parse_atmosphere(text: &str) -> Result<AirState> {
+/// `T,P,RH` split into its three parts, a bare temperature given its unit (°C).
+pub fn split_atmosphere(text: &str) -> Result<[String; 3]> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     if parts.len() != 3 {
         bail!("--atmosphere '{text}': give temperature, pressure and humidity, for example 22,1009hPa,40");
@@ -135,12 +135,14 @@ pub fn parse_atmosphere(text: &str) -> Result<AirState> {
     } else {
         parts[0].to_string()
     };
-    let state = AirState::new(
-        parse_temperature(&t)?,
-        parse_pressure(parts[1])?,
-        parse_humidity(parts[2])?,
-    )
-    .map_err(|e| anyhow::anyhow!("--atmosphere '{text}': {e}"))?;
+    Ok([t, parts[1].to_string(), parts[2].to_string()])
+}
+
+/// `T,P,RH` with optional units.
+pub fn parse_atmosphere(text: &str) -> Result<AirState> {
+    let [t, p, rh] = split_atmosphere(text)?;
+    let state = AirState::new(parse_temperature(&t)?, parse_pressure(&p)?, parse_humidity(&rh)?)
+        .map_err(|e| anyhow::anyhow!("--atmosphere '{text}': {e}"))?;
     Ok(state)
 }
 

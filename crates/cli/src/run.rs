@@ -469,22 +469,8 @@ fn naca_name(s: &str) -> bool {
 fn air_flags_predict(a: &AtmosphereSpec) -> Result<Vec<String>> {
     let mut v = Vec::new();
     if let Some(air) = &a.air {
-        let parts: Vec<&str> = air.split(',').map(str::trim).collect();
-        if parts.len() != 3 {
-            bail!("[atmosphere] air = {air:?}: give T,P,RH, for example \"22,1009hPa,40\"");
-        }
-        let t = if parts[0].parse::<f64>().is_ok() {
-            format!("{}C", parts[0])
-        } else {
-            parts[0].to_string()
-        };
-        v.extend([
-            format!("--temp={t}"),
-            "--pressure".into(),
-            parts[1].to_string(),
-            "--humidity".into(),
-            parts[2].to_string(),
-        ]);
+        let [t, p, rh] = crate::compare::split_atmosphere(air).context("[atmosphere] air")?;
+        v.extend([format!("--temp={t}"), "--pressure".into(), p, "--humidity".into(), rh]);
     }
     if let Some(rho) = a.rho {
         v.extend(["--rho".into(), rho.to_string()]);
