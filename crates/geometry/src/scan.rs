@@ -15,7 +15,7 @@ use crate::boxfit::{register_box, BoxError, BoxFit};
 use crate::cloud::{colour_distances, crop, outlier_mask, Cloud, Histogram};
 use crate::fit::{fit_cst, fit_naca, fit_naca_from, Cst, NacaFit};
 use crate::mesh::Mesh;
-use crate::section::{measure, split_blades, CylPoint, SectionShape};
+use crate::section::{circular_mean, measure, split_blades, CylPoint, SectionShape};
 
 /// Fewest points a blade section needs.
 pub const MIN_SECTION_POINTS: usize = 24;
@@ -271,27 +271,22 @@ pub fn blade_labels<S: Surface + Sync>(s: &S, blades: usize, root: f64, tip: f64
             let r = root + (tip - root) * (i as f64 + 0.5) / RINGS as f64;
             let mids = split_blades(&s.cylinder_cut(r), n)
                 .iter()
-                .map(|p| {
-                    (!p.is_empty()).then(|| {
-                        let (sn, cs) = p.iter().fold((0.0, 0.0), |(a, b), &(t, _)| (a + t.sin(), b + t.cos()));
-                        sn.atan2(cs)
-                    })
-                })
+                .map(|p| (!p.is_empty()).then(|| circular_mean(p.iter().map(|&(t, _)| t))))
                 .collect();
             (r, mids)
         })
         .collect();
+    // Per blade, the rings that found it (ascending radius).
+    let found: Vec<Vec<(f64, f64)>> = (0..n)
+        .map(|k| table.iter().filter_map(|(r, m)| Some((*r, m[k]?))).collect())
+        .collect();
     // A blade's middle at radius r: linear between the nearest rings that found it.
     let middle = |k: usize, r: f64| -> f64 {
-        let below = table.iter().rev().find(|(rr, m)| *rr <= r && m[k].is_some());
-        let above = table.iter().find(|(rr, m)| *rr >= r && m[k].is_some());
-        match (below, above) {
-            (Some((ra, ma)), Some((rb, mb))) if rb > ra => {
-                let f = (r - ra) / (rb - ra);
-                let (a, b) = (ma[k].unwrap_or(0.0), mb[k].unwrap_or(0.0));
-                a + f * wrap(b - a)
-            }
-            (Some((_, m)), _) | (None, Some((_, m))) => m[k].unwrap_or(0.0),
+        let f = &found[k];
+        let i = f.partition_point(|(rr, _)| *rr < r);
+        match (i.checked_sub(1).map(|j| f[j]), f.get(i)) {
+            (Some((ra, a)), Some(&(rb, b))) if rb > ra => a + (r - ra) / (rb - ra) * wrap(b - a),
+            (_, Some(&(_, m))) | (Some((_, m)), None) => m,
             (None, None) => 0.0,
         }
     };

@@ -63,6 +63,12 @@ fn crossing(a: Vector3<f64>, b: Vector3<f64>, r2: f64, out: &mut Vec<CylPoint>) 
     }
 }
 
+/// The mean direction of angles [rad] (the angle of the summed unit vectors).
+pub fn circular_mean(angles: impl Iterator<Item = f64>) -> f64 {
+    let (s, c) = angles.fold((0.0, 0.0), |(s, c), a| (s + a.sin(), c + a.cos()));
+    s.atan2(c)
+}
+
 /// Splits cut points into `n` blades: the section's points sorted by angle are cut at the `n`
 /// widest angular gaps (wide, skewed blades can reach past the half-way angle to the next
 /// blade's axis, so nearest-axis assignment would mix them); each group goes to the blade whose
@@ -102,10 +108,7 @@ pub fn split_blades(pts: &[CylPoint], n: usize) -> Vec<Vec<CylPoint>> {
         // Group: from after cut g to cut g+1 (wrapping).
         let (from, to) = (cuts[g] + 1, if g + 1 < n { cuts[g + 1] } else { cuts[0] + m });
         let idx: Vec<usize> = (from..=to).map(|i| order[i % m]).collect();
-        let (s, c) = idx
-            .iter()
-            .fold((0.0, 0.0), |(s, c), &i| (s + pts[i].0.sin(), c + pts[i].0.cos()));
-        let k = nearest(s.atan2(c));
+        let k = nearest(circular_mean(idx.iter().map(|&i| pts[i].0)));
         out[k].extend(idx.iter().map(|&i| (rel(pts[i].0, k), pts[i].1)));
     }
     out
