@@ -14,7 +14,7 @@ use propbet_compare::report::esc;
 use propbet_plot::{Figure, Mark, Panel, Series};
 use serde::Deserialize;
 
-use crate::output::write_atomic;
+use crate::output::{write_atomic, CsvTable};
 use crate::polar::XfoilProcess;
 
 /// Arguments of `propbet run`.
@@ -662,20 +662,13 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
 
 /// CT, CP and efficiency against J, one line per RPM, from `propbet predict`'s CSV.
 fn sweep_figure(csv: &str) -> Result<Figure> {
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |n: &str| {
-        head.iter()
-            .position(|h| *h == n)
-            .with_context(|| format!("sweep.csv: no column {n}"))
-    };
-    let (ci, cj, cct, ccp, ceta) = (col("rpm")?, col("j")?, col("ct")?, col("cp")?, col("eta")?);
+    let t = CsvTable::parse(csv, "sweep.csv");
+    let (ci, cj, cct, ccp, ceta) = (t.col("rpm")?, t.col("j")?, t.col("ct")?, t.col("cp")?, t.col("eta")?);
     // Per RPM: (CT, CP, efficiency) against J.
     type Curves = [Vec<(f64, f64)>; 3];
     let mut by_rpm: Vec<(String, Curves)> = Vec::new();
-    for l in lines {
-        let v: Vec<&str> = l.split(',').collect();
-        let num = |k: usize| v.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    for v in &t.rows {
+        let num = |k: usize| CsvTable::num(v, k);
         let rpm = format!("{:.0} rpm", num(ci));
         if by_rpm.last().is_none_or(|b| b.0 != rpm) {
             by_rpm.push((rpm.clone(), Default::default()));

@@ -12,7 +12,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use propbet_polar::{naca4_from_name, Airfoil};
 
-use crate::output::write_atomic;
+use crate::output::{write_atomic, CsvTable};
 use crate::polar::XfoilProcess;
 use crate::run::stage;
 
@@ -154,23 +154,17 @@ fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
 /// their file's zero-thrust J (measured; every point when the sweep never reaches zero thrust).
 fn errors(points_csv: &Path) -> Result<(Vec<f64>, Vec<f64>)> {
     let text = std::fs::read_to_string(points_csv).with_context(|| format!("{}: cannot read", points_csv.display()))?;
-    let mut lines = text.lines();
-    let head: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |n: &str| {
-        head.iter()
-            .position(|h| *h == n)
-            .with_context(|| format!("points.csv: no {n}"))
-    };
+    let t = CsvTable::parse(&text, "points.csv");
     let (cf, cj, ct, ctp, cp, cpp) = (
-        col("file")?,
-        col("j")?,
-        col("ct")?,
-        col("ct_pred")?,
-        col("cp")?,
-        col("cp_pred")?,
+        t.col("file")?,
+        t.col("j")?,
+        t.col("ct")?,
+        t.col("ct_pred")?,
+        t.col("cp")?,
+        t.col("cp_pred")?,
     );
-    let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(String::from).collect()).collect();
-    let num = |r: &Vec<String>, k: usize| r.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    let rows = &t.rows;
+    let num = |r: &Vec<String>, k: usize| CsvTable::num(r, k);
     let mut files: Vec<&str> = rows.iter().map(|r| r[cf].as_str()).collect();
     files.dedup();
     let (mut ect, mut ecp) = (Vec::new(), Vec::new());
