@@ -119,25 +119,35 @@ impl AirfoilArgs {
     /// The section, normalised (and scaled), with what was repaired in the file.
     pub fn load(&self) -> Result<Airfoil> {
         let mut foil = match naca4_from_name(&self.airfoil) {
-            Some(r) => r.map_err(|e| anyhow::anyhow!("--airfoil {}: {e}", self.airfoil))?,
+            Some(r) => {
+                let mut foil = r.map_err(|e| anyhow::anyhow!("--airfoil {}: {e}", self.airfoil))?;
+                foil.normalise();
+                foil
+            }
             None => {
                 let path = Path::new(&self.airfoil);
-                let text = std::fs::read_to_string(path)
-                    .with_context(|| format!("{}: cannot read the airfoil file", path.display()))?;
-                let (foil, repairs) = Airfoil::parse(&text, &path.display().to_string())?;
+                let (foil, repairs) = read_airfoil(path)?;
                 for r in repairs {
                     eprintln!("propbet: {}: {}", path.display(), r.0);
                 }
                 foil
             }
         };
-        foil.normalise();
         if let Some(t) = &self.thickness {
             let v = parse_fraction(t).with_context(|| format!("--thickness {t}"))?;
             foil = foil.scale_thickness(v)?;
         }
         Ok(foil)
     }
+}
+
+/// An airfoil coordinate file, parsed and normalised, with what was repaired in it.
+pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<propbet_polar::airfoil::Repair>)> {
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("{}: cannot read the airfoil file", path.display()))?;
+    let (mut foil, repairs) = Airfoil::parse(&text, &path.display().to_string())?;
+    foil.normalise();
+    Ok((foil, repairs))
 }
 
 fn parse_fraction(text: &str) -> Result<f64> {
@@ -464,10 +474,7 @@ fn station_foils(dir: &Path, n: usize, fallback: &Airfoil) -> Result<Vec<Airfoil
                 missing.push(i);
                 return Ok(fallback.clone());
             }
-            let text = std::fs::read_to_string(&path).with_context(|| format!("{}: cannot read", path.display()))?;
-            let (mut foil, _) = Airfoil::parse(&text, &path.display().to_string())?;
-            foil.normalise();
-            Ok(foil)
+            Ok(read_airfoil(&path)?.0)
         })
         .collect::<Result<Vec<_>>>()?;
     if !missing.is_empty() {

@@ -13,7 +13,7 @@ use clap::Args;
 use propbet_polar::{naca4_from_name, Airfoil};
 
 use crate::output::{write_atomic, CsvTable};
-use crate::polar::XfoilProcess;
+use crate::polar::{read_airfoil, XfoilProcess};
 use crate::run::stage;
 
 /// Arguments of `propbet validate`.
@@ -126,11 +126,7 @@ fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
         "CLARK-Y" | "CLARKY" => "clarky.dat",
         other => bail!("APC airfoil {other}: no coordinates known (E63, CLARK-Y, APC12)"),
     };
-    let path = dir.join(file);
-    let text = std::fs::read_to_string(&path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let (mut a, _) = Airfoil::parse(&text, &path.display().to_string())?;
-    a.normalise();
-    Ok(a)
+    Ok(read_airfoil(&dir.join(file))?.0)
 }
 
 /// One row of the table.
