@@ -424,21 +424,27 @@ mod tests {
         out
     }
 
-    #[test]
-    fn naca_fit_recovers_the_section() {
-        let pts = naca_points(0.09, 0.04, 0.4, 25.0, 0.35, (7.0, 3.0));
-        let seed = SectionShape {
+    /// A measured seed near the sections of `naca_points(.., 25.0, 0.35, (7.0, 3.0))`, with
+    /// the given shape.
+    fn measured(t_c: f64, camber: f64, camber_pos: f64, points: usize) -> SectionShape {
+        SectionShape {
             r: 50.0,
             le: (7.3, 3.2),
             te: (-15.0, -5.0),
             chord: 24.0,
             beta: 0.33,
-            t_c: 0.1,
+            t_c,
             t_pos: 0.3,
-            camber: 0.03,
-            camber_pos: 0.5,
-            points: pts.len(),
-        };
+            camber,
+            camber_pos,
+            points,
+        }
+    }
+
+    #[test]
+    fn naca_fit_recovers_the_section() {
+        let pts = naca_points(0.09, 0.04, 0.4, 25.0, 0.35, (7.0, 3.0));
+        let seed = measured(0.1, 0.03, 0.5, pts.len());
         let f = fit_naca(&pts, &seed).unwrap();
         assert!((f.beta - 0.35).abs().to_degrees() < 0.01, "{f:?}");
         assert!((f.chord / 25.0 - 1.0).abs() < 1e-3, "{f:?}");
@@ -461,18 +467,7 @@ mod tests {
     fn the_lowest_objective_of_several_starts_wins() {
         // A thin, strongly cambered section measured as a thick symmetric one.
         let pts = naca_points(0.06, 0.06, 0.4, 25.0, 0.35, (7.0, 3.0));
-        let seed = SectionShape {
-            r: 50.0,
-            le: (7.3, 3.2),
-            te: (-15.0, -5.0),
-            chord: 24.0,
-            beta: 0.33,
-            t_c: 0.2,
-            t_pos: 0.3,
-            camber: -0.05,
-            camber_pos: 0.7,
-            points: pts.len(),
-        };
+        let seed = measured(0.2, -0.05, 0.7, pts.len());
         let own = fit_naca(&pts, &seed).unwrap();
         let neighbour = [0.065, 0.055, 0.42];
         let both = fit_naca_from(&pts, &seed, &[[0.2, -0.05, 0.7], neighbour]).unwrap();
