@@ -203,10 +203,9 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
         (tabulated / fitted - 1.0).abs() < 0.15,
         "fitted {fitted} N, tabulated {tabulated} N"
     );
-    // The second run comes from the cache.
-    let t = std::time::Instant::now();
+    // The second run comes from the cache, byte for byte (its time is measured in
+    // benchsuite/polars_blade.sh, not here).
     polars(&["--out-prop", "fit2.qprop"]);
-    assert!(t.elapsed().as_secs_f64() < 2.0, "{:?}", t.elapsed());
     assert_eq!(std::fs::read(dir.path().join("fit2.qprop")).unwrap(), text.as_bytes());
 }
 

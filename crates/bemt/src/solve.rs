@@ -38,7 +38,7 @@ impl OperatingPoint {
     pub fn from_rpm(v: f64, rpm: f64) -> Self {
         Self {
             v,
-            omega: rpm * std::f64::consts::PI / 30.0,
+            omega: crate::units::rpm_to_omega(rpm),
         }
     }
 }

@@ -66,21 +66,34 @@ pub fn solve_points(rotor: &Rotor, fluid: &Fluid, points: &[OperatingPoint], opt
 
 /// The grid `rpm x v` in QPROP's nesting order (outer RPM, inner V).
 pub fn grid_rpm_v(rpms: &[f64], speeds: &[f64]) -> Vec<OperatingPoint> {
-    rpms.iter()
-        .flat_map(|&rpm| speeds.iter().map(move |&v| OperatingPoint::from_rpm(v, rpm)))
+    let omegas: Vec<f64> = rpms.iter().map(|&r| crate::units::rpm_to_omega(r)).collect();
+    grid_omega_v(&omegas, speeds)
+}
+
+/// The grid `omega x V` [rad/s] x [m/s] (outer omega, inner V).
+pub fn grid_omega_v(omegas: &[f64], speeds: &[f64]) -> Vec<OperatingPoint> {
+    omegas
+        .iter()
+        .flat_map(|&omega| speeds.iter().map(move |&v| OperatingPoint { v, omega }))
         .collect()
 }
 
 /// The grid `rpm x J` (outer RPM, inner J), V = J n D with D = 2 `tip_radius` [m].
 pub fn grid_rpm_j(rpms: &[f64], advance_ratios: &[f64], tip_radius: f64) -> Vec<OperatingPoint> {
-    rpms.iter()
-        .flat_map(|&rpm| {
+    let omegas: Vec<f64> = rpms.iter().map(|&r| crate::units::rpm_to_omega(r)).collect();
+    grid_omega_j(&omegas, advance_ratios, tip_radius)
+}
+
+/// The grid `omega x J` [rad/s] (outer omega, inner J), V = J n D with D = 2 `tip_radius` [m].
+pub fn grid_omega_j(omegas: &[f64], advance_ratios: &[f64], tip_radius: f64) -> Vec<OperatingPoint> {
+    omegas
+        .iter()
+        .flat_map(|&omega| {
             advance_ratios.iter().map(move |&j| {
-                let op = OperatingPoint::from_rpm(0.0, rpm);
-                let n = op.omega / (2.0 * std::f64::consts::PI);
+                let n = omega / (2.0 * std::f64::consts::PI);
                 OperatingPoint {
                     v: j * n * 2.0 * tip_radius,
-                    omega: op.omega,
+                    omega,
                 }
             })
         })

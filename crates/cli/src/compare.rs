@@ -1,18 +1,20 @@
 //! `propbet compare`: measured files against the model's prediction; writes the report
 //! directory (report.html, metrics.json, summary.md, points.csv, plots/*.svg and *.png).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use propbet_atmosphere::AirState;
 use propbet_compare::report::{self, FileEntry, ReportInput};
-use propbet_compare::{compare, metrics::metrics, AirChoice, ComparedPoint, Setup};
-use propbet_measure::{MeasuredSet, ReadOptions, RpmSource};
+use propbet_compare::ComparedPoint;
+use propbet_measure::{MeasuredSet, RpmSource};
+use propbet_pipeline::model::Model;
+use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
+use propbet_pipeline::stages::{self, Compared};
+use propbet_pipeline::values::parse_atmosphere;
 
 use crate::output::{push_num, write_atomic, write_figure};
-use crate::predict::ModelArgs;
-use crate::values::{parse_humidity, parse_pressure, parse_temperature};
+use crate::predict::{load_model, ModelArgs};
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -63,108 +65,49 @@ pub struct MeasuredArgs {
 }
 
 impl MeasuredArgs {
-    /// The air choice and the measured sets, read and checked.
-    pub fn load(&self) -> Result<(AirChoice, Vec<MeasuredSet>)> {
-        if let Some(p) = self.poles {
-            if p < 2 || p % 2 != 0 {
-                bail!("--poles {p}: a motor has an even number of poles, at least 2");
-            }
-        }
-        if let Some(r) = self.rho {
-            if !(r.is_finite() && r > 0.0 && r < 20.0) {
-                bail!("--rho {r}: not a plausible air density in kg/m^3");
-            }
-        }
-        let air = AirChoice {
-            given: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
-            rho: self.rho,
-        };
-        let column_map = self
-            .columns
-            .as_ref()
-            .map(|p| std::fs::read_to_string(p).with_context(|| format!("{}: cannot read the column map", p.display())))
-            .transpose()?;
-        let opts = ReadOptions {
+    /// The measurements' spec (flags in SI).
+    pub fn spec(&self) -> Result<MeasuredSpec> {
+        Ok(MeasuredSpec {
+            files: self.measured.clone(),
             poles: self.poles,
             rpm_source: self.rpm_source.map(|s| match s {
                 RpmSourceArg::Optical => RpmSource::Optical,
                 RpmSourceArg::Electrical => RpmSource::Electrical,
             }),
-            column_map,
-            ..Default::default()
-        };
-        let sets: Vec<MeasuredSet> = self
-            .measured
-            .iter()
-            .map(|p| read_measured(p, &opts))
-            .collect::<Result<_>>()?;
-        Ok((air, sets))
-    }
-
-    /// The files read (never to be overwritten).
-    pub fn inputs(&self) -> Vec<&Path> {
-        self.measured
-            .iter()
-            .map(PathBuf::as_path)
-            .chain(self.columns.as_deref())
-            .collect()
-    }
-
-    /// One line per file: rows, points and what was dropped.
-    pub fn print_summary(&self, sets: &[MeasuredSet]) {
-        for (p, s) in self.measured.iter().zip(sets) {
-            eprintln!(
-                "propbet: {}: {} rows -> {} points; {}",
-                p.display(),
-                s.rows,
-                s.points.len(),
-                propbet_measure::summarise_dropped(&s.dropped)
-            );
-        }
+            atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+            rho: self.rho,
+            columns: self.columns.clone(),
+        })
     }
 }
 
-/// `T,P,RH` split into its three parts, a bare temperature given its unit (°C).
-pub fn split_atmosphere(text: &str) -> Result<[String; 3]> {
-    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-    if parts.len() != 3 {
-        bail!("--atmosphere '{text}': give temperature, pressure and humidity, for example 22,1009hPa,40");
+/// One line per file: rows, points and what was dropped.
+pub fn print_measured(spec: &MeasuredSpec, sets: &[MeasuredSet]) {
+    for (p, s) in spec.files.iter().zip(sets) {
+        eprintln!(
+            "propbet: {}: {} rows -> {} points; {}",
+            p.display(),
+            s.rows,
+            s.points.len(),
+            propbet_measure::summarise_dropped(&s.dropped)
+        );
     }
-    let t = if parts[0].parse::<f64>().is_ok() {
-        format!("{}C", parts[0])
-    } else {
-        parts[0].to_string()
-    };
-    Ok([t, parts[1].to_string(), parts[2].to_string()])
 }
 
-/// `T,P,RH` with optional units.
-pub fn parse_atmosphere(text: &str) -> Result<AirState> {
-    let [t, p, rh] = split_atmosphere(text)?;
-    let state = AirState::new(parse_temperature(&t)?, parse_pressure(&p)?, parse_humidity(&rh)?)
-        .map_err(|e| anyhow::anyhow!("--atmosphere '{text}': {e}"))?;
-    Ok(state)
-}
-
-fn read_measured(path: &Path, opts: &ReadOptions) -> Result<MeasuredSet> {
-    let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        anyhow::anyhow!(
-            "{}: not UTF-8 text (byte {}); export the log as CSV",
-            path.display(),
-            e.utf8_error().valid_up_to()
-        )
-    })?;
-    let opts = ReadOptions {
-        name: path.file_name().map(|n| n.to_string_lossy().into_owned()),
-        ..opts.clone()
-    };
-    propbet_measure::read(&text, &opts).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
+impl CompareArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<CompareSpec> {
+        Ok(CompareSpec {
+            model: self.model.spec()?,
+            measured: self.data.spec()?,
+            out: self.out.clone(),
+        })
+    }
 }
 
 const POINTS_HEADER: &str = "file,label,line_first,line_last,rpm,rpm_sd,v_m_s,j,rho,thrust_n,thrust_sd,thrust_pred,torque_nm,torque_sd,torque_pred,power_w,power_pred,ct,ct_sd,ct_pred,cp,cp_sd,cp_pred,eta,eta_pred,re75,mach_tip,scored";
 
-fn points_csv(files: &[PathBuf], pts: &[ComparedPoint]) -> Vec<u8> {
+fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Vec<u8> {
     let mut s = format!("{POINTS_HEADER}\n").into_bytes();
     for p in pts {
         let name = files[p.file].display().to_string().replace(',', ";");
@@ -206,19 +149,20 @@ fn points_csv(files: &[PathBuf], pts: &[ComparedPoint]) -> Vec<u8> {
 /// Runs `propbet compare`; returns false when rows were dropped as faulty or the solver did
 /// not converge somewhere (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
-    let model = args.model.build(false)?;
-    let (air, sets) = args.data.load()?;
-    let setup = Setup {
-        rotor: &model.rotor,
-        diameter: model.diameter,
-        opts: model.opts,
-        air,
-        effects: model.effects.clone(),
-    };
-    let points = compare(&setup, &sets)?;
-    let m = metrics(&points);
+    let spec = args.spec()?;
+    let model = load_model(&spec.model, false)?;
+    let c = stages::compare(&model, &spec.measured)?;
+    write(&spec, &model, &c)?;
+    print(&spec, &c);
+    Ok(c.problems() == (0, 0))
+}
+
+/// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
+/// plots) into the spec's directory; returns the report page.
+pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> {
+    let setup = stages::setup(model, c.air.clone(), model.effects.clone());
     let mut prop_notes = model.loaded.warnings.clone();
-    if args.model.qprop_compat {
+    if spec.model.qprop_compat {
         prop_notes.push(format!(
             "read as QPROP 1.22 does (--qprop-compat): tip-loss radius {} m",
             model.rotor.tip_radius
@@ -227,29 +171,28 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     if !model.effects.is_empty() {
         prop_notes.push(format!("model with effects: {}", model.effects.describe()));
     }
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
     let rep = report::build(&ReportInput {
-        prop: args.model.prop.display().to_string(),
+        prop: spec.model.prop.display().to_string(),
         prop_notes,
-        files: args
-            .data
+        files: spec
             .measured
+            .files
             .iter()
-            .zip(&sets)
+            .zip(&c.sets)
             .map(|(p, set)| FileEntry {
                 path: p.display().to_string(),
                 set,
             })
             .collect(),
-        points: &points,
-        metrics: &m,
+        points: &c.points,
+        metrics: &c.metrics,
         setup: &setup,
-        command,
+        command: propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command(),
     })?;
-
-    let mut inputs = args.model.inputs();
-    inputs.extend(args.data.inputs());
-    let plots = args.out.join("plots");
+    let out = &spec.out;
+    let mut inputs = spec.model.inputs();
+    inputs.extend(spec.measured.inputs());
+    let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {
         for ext in ["svg", "png"] {
@@ -258,17 +201,21 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     }
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
-    write_atomic(&args.out.join("metrics.json"), &[json], &inputs)?;
-    write_atomic(&args.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
+    write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
+    write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(
-        &args.out.join("points.csv"),
-        &[points_csv(&args.data.measured, &points)],
+        &out.join("points.csv"),
+        &[points_csv(&spec.measured.files, &c.points)],
         &inputs,
     )?;
-    write_atomic(&args.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    Ok(rep.html)
+}
 
-    // A short summary on the terminal.
-    args.data.print_summary(&sets);
+/// A short summary on the terminal.
+pub fn print(spec: &CompareSpec, c: &Compared) {
+    print_measured(&spec.measured, &c.sets);
+    let m = &c.metrics;
     for q in ["thrust", "torque", "power", "eta"] {
         if let Some(x) = m.overall.metrics.get(q) {
             println!(
@@ -282,23 +229,25 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
         }
     }
     if m.overall.points == 0 {
-        let mut reasons: Vec<&str> = points.iter().flat_map(|p| p.flags.iter().map(String::as_str)).collect();
+        let mut reasons: Vec<&str> = c
+            .points
+            .iter()
+            .flat_map(|p| p.flags.iter().map(String::as_str))
+            .collect();
         reasons.sort_unstable();
         reasons.dedup();
         println!(
             "no point could be scored: all {} points are flagged ({})",
-            points.len(),
+            c.points.len(),
             reasons.join("; ")
         );
     }
-    println!("report: {}", args.out.join("report.html").display());
-    let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
-    let unconverged: usize = points.iter().map(|p| p.not_converged).sum();
+    println!("report: {}", spec.out.join("report.html").display());
+    let (faults, unconverged) = c.problems();
     if faults > 0 {
         eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
     }
     if unconverged > 0 {
         eprintln!("propbet: {unconverged} station solutions did not converge");
     }
-    Ok(faults == 0 && unconverged == 0)
 }

@@ -3,17 +3,15 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
-use propbet_compare::{compare, Setup};
-use propbet_diagnose::discover::{diagnose, Options};
 use propbet_diagnose::report::{self, JsonOut};
-use propbet_diagnose::{Data, Model};
-use propbet_effects::Stack;
+use propbet_pipeline::spec::{DiagnoseSpec, StageSpec};
+use propbet_pipeline::stages::{self, Diagnosed};
 
-use crate::compare::MeasuredArgs;
+use crate::compare::{print_measured, MeasuredArgs};
 use crate::output::{write_atomic, write_figure};
-use crate::predict::ModelArgs;
+use crate::predict::{load_model, ModelArgs};
 
 /// Arguments of `propbet diagnose`.
 #[derive(Debug, Args)]
@@ -28,62 +26,51 @@ pub struct DiagnoseArgs {
     #[arg(long, default_value = "all")]
     pub effects: String,
     /// Folds of the k-fold cross-validation.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_FOLDS)]
     pub folds: usize,
     /// Most effects the ladder adds.
-    #[arg(long, default_value_t = 3)]
+    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_MAX_STEPS)]
     pub max_steps: usize,
     /// Output directory (created if missing).
     #[arg(long, short)]
     pub out: PathBuf,
 }
 
+impl DiagnoseArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<DiagnoseSpec> {
+        Ok(DiagnoseSpec {
+            model: self.model.spec()?,
+            measured: self.data.spec()?,
+            effects: self.effects.split(',').map(|s| s.trim().to_string()).collect(),
+            folds: self.folds,
+            max_steps: self.max_steps,
+            out: self.out.clone(),
+        })
+    }
+}
+
 /// Runs `propbet diagnose`.
 pub fn run(args: &DiagnoseArgs) -> Result<bool> {
-    let model = args.model.build(false)?;
-    if args.folds < 2 {
-        bail!("--folds {}: at least 2", args.folds);
-    }
-    let list: Vec<String> = args
-        .effects
-        .split(',')
-        .map(|s| s.trim().to_string())
-        .filter(|s| !s.is_empty())
-        .collect();
-    let mut candidates = model.registry.select(&list)?;
-    // Effects already in the baseline (--effect) are not candidates.
-    candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
-    let (air, sets) = args.data.load()?;
-    args.data.print_summary(&sets);
-    let setup = Setup {
-        rotor: &model.rotor,
-        diameter: model.diameter,
-        opts: model.opts,
-        air,
-        effects: Stack::baseline(),
-    };
-    let points = compare(&setup, &sets)?;
-    let data = Data::from_points(&points)?;
-    // The user's --effect stack stays in the model, under the candidates.
-    let dmodel = Model {
-        rotor: &model.rotor,
-        opts: model.opts,
-        diameter: model.diameter,
-        fixed: model.effects.clone(),
-    };
-    let opts = Options {
-        folds: args.folds,
-        max_steps: args.max_steps,
-        ..Options::default()
-    };
-    let d = diagnose(&dmodel, &data, &candidates, &opts)?;
-    let prop = args.model.prop.display().to_string();
-    let measured: Vec<String> = args.data.measured.iter().map(|p| p.display().to_string()).collect();
-    let command = std::env::args().collect::<Vec<_>>().join(" ");
-    let rep = report::build(&data, &d, &prop, &measured, &command)?;
-    let mut inputs = args.model.inputs();
-    inputs.extend(args.data.inputs());
-    let plots = args.out.join("plots");
+    let spec = args.spec()?;
+    let model = load_model(&spec.model, false)?;
+    let d = stages::diagnose(&model, &spec)?;
+    write(&spec, &d)?;
+    print(&spec, &d);
+    Ok(true)
+}
+
+/// Writes the diagnose stage's outputs (diagnosis.json, summary.md, report.html, plots);
+/// returns the report page.
+pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
+    let prop = spec.model.prop.display().to_string();
+    let measured: Vec<String> = spec.measured.files.iter().map(|p| p.display().to_string()).collect();
+    let command = StageSpec::Diagnose(spec.clone()).command();
+    let dg = &d.diagnosis;
+    let rep = report::build(&d.data, dg, &prop, &measured, &command)?;
+    let mut inputs = spec.model.inputs();
+    inputs.extend(spec.measured.inputs());
+    let plots = spec.out.join("plots");
     std::fs::create_dir_all(&plots)
         .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", plots.display()))?;
     for (name, fig) in &rep.figures {
@@ -95,17 +82,23 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
         prop: &prop,
         measured: &measured,
         command: &command,
-        diagnosis: &d,
-        final_params: d.ladder.last().map(|r| r.params.clone()).unwrap_or_default(),
-        final_effects: d.final_stack.active.iter().map(|a| a.describe()).collect(),
+        diagnosis: dg,
+        final_params: dg.ladder.last().map(|r| r.params.clone()).unwrap_or_default(),
+        final_effects: dg.final_stack.active.iter().map(|a| a.describe()).collect(),
     };
     let mut bytes = serde_json::to_vec_pretty(&json)?;
     bytes.push(b'\n');
-    write_atomic(&args.out.join("diagnosis.json"), &[bytes], &inputs)?;
-    write_atomic(&args.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    write_atomic(&args.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    write_atomic(&spec.out.join("diagnosis.json"), &[bytes], &inputs)?;
+    write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
+    write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    Ok(rep.html)
+}
 
-    println!("{}", report::verdict(&d));
+/// The diagnosis on the terminal.
+pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
+    print_measured(&spec.measured, &d.sets);
+    let d = &d.diagnosis;
+    println!("{}", report::verdict(d));
     println!("where the baseline fails:");
     for s in &d.before {
         println!("  {}", s.text);
@@ -128,8 +121,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     for r in &d.ladder {
         println!("  {:<60} held-out {:>6.2} %", r.stack, 100.0 * r.kfold_rms);
     }
-    println!("report: {}", args.out.join("report.html").display());
-    Ok(true)
+    println!("report: {}", spec.out.join("report.html").display());
 }
 
 /// Arguments of `propbet effects`.

@@ -16,7 +16,6 @@ mod run;
 mod scan;
 mod synth;
 mod validate;
-mod values;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
 #[derive(Debug, Parser)]
@@ -70,8 +69,8 @@ fn run(cli: Cli) -> anyhow::Result<bool> {
     dispatch(cli.command)
 }
 
-/// Runs one command (also the stages of `propbet run`).
-pub(crate) fn dispatch(command: Command) -> anyhow::Result<bool> {
+/// Runs one command.
+fn dispatch(command: Command) -> anyhow::Result<bool> {
     match command {
         Command::Run(a) => run::run(&a),
         Command::Validate(a) => validate::run(&a),
@@ -102,6 +101,192 @@ fn main() -> ExitCode {
         Err(e) => {
             eprintln!("propbet: error: {e:#}");
             ExitCode::from(2)
+        }
+    }
+}
+
+/// The stage spec a stage's command line means (the commands `propbet run` and `propbet
+/// validate` print for their stages).
+pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_pipeline::spec::StageSpec>> {
+    use propbet_pipeline::spec::StageSpec;
+    Ok(Some(match command {
+        Command::Scan(a) => StageSpec::Scan(a.spec()?),
+        Command::Polars(a) => StageSpec::Polars(a.spec()?),
+        Command::Predict(a) => StageSpec::Predict(a.spec()?),
+        Command::Compare(a) => StageSpec::Compare(a.spec()?),
+        Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
+        _ => return Ok(None),
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use clap::Parser;
+    use propbet_pipeline::spec::StageSpec;
+
+    use super::*;
+
+    /// A spec's printed command line parses back to the same spec.
+    fn check(spec: &StageSpec) {
+        let argv = spec.argv();
+        let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
+            .unwrap_or_else(|e| panic!("{}: {e}", spec.command()));
+        let back = stage_spec(&cli.command).unwrap().expect("a stage");
+        assert_eq!(&back, spec, "{}", spec.command());
+    }
+
+    fn repo() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    }
+
+    #[test]
+    fn every_stage_of_the_shipped_cases_is_a_command_that_parses_back() {
+        let xfoil = polar::XfoilProcess {
+            xfoil: Some("/usr/bin/xfoil".into()),
+            cache: Some("/tmp/cache dir".into()),
+            no_cache: false,
+            quiet: true,
+        };
+        let mut n = 0;
+        for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {
+            let plan = run::plan(&repo().join("props").join(case), Path::new("out"), &xfoil).unwrap();
+            for s in plan.stages() {
+                check(&s);
+                n += 1;
+            }
+        }
+        assert_eq!(n, 5 + 3 + 1);
+    }
+
+    #[test]
+    fn specs_with_every_flag_parse_back() {
+        let parse = |line: &[&str]| -> StageSpec {
+            let cli = Cli::try_parse_from(std::iter::once("propbet").chain(line.iter().copied())).unwrap();
+            stage_spec(&cli.command).unwrap().unwrap()
+        };
+        for line in [
+            &[
+                "predict",
+                "--prop",
+                "p.qprop",
+                "--rpm",
+                "2400,6512",
+                "--v",
+                "0:20/7",
+                "--temp",
+                "22C",
+                "--pressure",
+                "1009hPa",
+                "--humidity",
+                "40",
+                "--dbeta=-1.5",
+                "--units",
+                "in",
+                "--qprop-compat",
+                "--no-tip-loss",
+                "--effect",
+                "pitch-offset:deg=1.2",
+                "--format",
+                "json",
+                "--stations",
+                "s.csv",
+            ][..],
+            &[
+                "compare",
+                "--prop",
+                "p.qprop",
+                "--measured",
+                "a.csv",
+                "b.txt",
+                "--poles",
+                "14",
+                "--rpm-source",
+                "electrical",
+                "--atmosphere",
+                "22,1009hPa,40",
+                "--rho",
+                "1.1648",
+                "--columns",
+                "c.toml",
+                "-o",
+                "o",
+            ],
+            &[
+                "diagnose",
+                "--prop",
+                "p.qprop",
+                "--measured",
+                "a.csv",
+                "--effects",
+                "pitch-offset,torque-tare",
+                "--folds",
+                "4",
+                "--max-steps",
+                "2",
+                "-o",
+                "o",
+            ],
+            &[
+                "polars",
+                "--geometry",
+                "g.qprop",
+                "--units",
+                "mm",
+                "--airfoil",
+                "naca4412",
+                "--thickness",
+                "8%",
+                "--rpm",
+                "6000",
+                "--v",
+                "3",
+                "--re-factors",
+                "none",
+                "--ncrit",
+                "6",
+                "--alpha=-4:12:0.5",
+                "--panels",
+                "160",
+                "--iter",
+                "50",
+                "--no-cache",
+                "--out-prop",
+                "o.qprop",
+            ],
+            &[
+                "scan",
+                "x.ply",
+                "-o",
+                "o",
+                "--units",
+                "in",
+                "--stations",
+                "0.2:0.9/8",
+                "--planar",
+                "--slab",
+                "0.5",
+                "--slab-points",
+                "0",
+                "--blade-colour",
+                "orange,#102030",
+                "--colour-threshold",
+                "40",
+                "--box",
+                "50.8x48.26x50.8",
+                "--box-seeds=1,2,3;4,5,6",
+                "--crop=-80,-200,-200,200,200,200",
+                "--outliers",
+                "10,3",
+                "--root-point=1,2,3",
+                "--tip-point=4,5,6",
+                "--rotate=0,1,2",
+                "--known-length",
+                "0,0,0,2,0,0,25",
+            ],
+        ] {
+            check(&parse(line));
         }
     }
 }

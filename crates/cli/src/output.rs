@@ -163,40 +163,6 @@ pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path])
     }
 }
 
-/// A CSV table propbet itself wrote (plain commas, no quoting), read back by a later stage.
-pub struct CsvTable {
-    name: String,
-    head: Vec<String>,
-    /// The data rows, split at the commas.
-    pub rows: Vec<Vec<String>>,
-}
-
-impl CsvTable {
-    /// Splits the text; `name` is for messages.
-    pub fn parse(text: &str, name: &str) -> Self {
-        let mut lines = text.lines();
-        let split = |l: &str| l.split(',').map(String::from).collect::<Vec<_>>();
-        CsvTable {
-            name: name.to_string(),
-            head: lines.next().map(split).unwrap_or_default(),
-            rows: lines.map(split).collect(),
-        }
-    }
-
-    /// The index of column `n`.
-    pub fn col(&self, n: &str) -> Result<usize> {
-        self.head
-            .iter()
-            .position(|h| h == n)
-            .with_context(|| format!("{}: no column {n}", self.name))
-    }
-
-    /// Cell `k` of a row as a number (NaN when empty or missing).
-    pub fn num(row: &[String], k: usize) -> f64 {
-        row.get(k).and_then(|s| s.parse::<f64>().ok()).unwrap_or(f64::NAN)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,20 +3,19 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::Args;
-use propbet_bemt::{OperatingPoint, Solver, SolverOptions};
-use propbet_polar::{
-    fit_qprop, naca4_from_name, Airfoil, AlphaWeights, BladePolars, Polar, PolarCache, PolarEngine, PolarJob, QpropFit,
-    StationPolars,
-};
-use propbet_qprop::{write_prop, PropFile, RadiusReading};
-use xfoil_runner::{find_xfoil, Xfoil, XfoilConfig};
+use propbet_bemt::units::rpm_to_omega;
+use propbet_pipeline::case::parse_fraction;
+use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
+use propbet_pipeline::stages::{self, Polars, PolarsInput};
+use propbet_pipeline::values::parse_list;
+use propbet_plot::{Figure, Mark, Panel, Series};
+use propbet_polar::{fit_qprop, Airfoil, AlphaWeights, Polar, PolarJob, QpropFit};
+use propbet_qprop::write_prop;
 
 use crate::output::emit;
-use crate::predict::{load_prop, FluidArgs};
-use crate::values::parse_list;
-use propbet_plot::{Figure, Mark, Panel, Series};
+use crate::predict::FluidArgs;
 
 /// The XFOIL executable, the polar cache and the progress bar (shared by every command that
 /// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
@@ -38,22 +37,43 @@ pub struct XfoilProcess {
 }
 
 impl XfoilProcess {
-    /// The same settings as command-line flags, for a stage's command.
-    pub fn flags(&self) -> Vec<String> {
-        let mut v = Vec::new();
-        if let Some(x) = &self.xfoil {
-            v.extend(["--xfoil".into(), x.display().to_string()]);
+    /// The same settings as a spec.
+    pub fn spec(&self) -> XfoilProcessSpec {
+        XfoilProcessSpec {
+            xfoil: self.xfoil.clone(),
+            cache: self.cache.clone(),
+            no_cache: self.no_cache,
+            quiet: self.quiet,
         }
-        if let Some(c) = &self.cache {
-            v.extend(["--cache".into(), c.display().to_string()]);
+    }
+}
+
+/// A progress bar on stderr for XFOIL jobs (drawn only when stderr is a terminal), hidden
+/// with `quiet`.
+pub struct Bar(indicatif::ProgressBar);
+
+impl Bar {
+    /// A bar; hidden when `quiet`.
+    pub fn new(quiet: bool) -> Self {
+        if quiet {
+            return Bar(indicatif::ProgressBar::hidden());
         }
-        if self.no_cache {
-            v.push("--no-cache".into());
+        let b = indicatif::ProgressBar::new(0);
+        if let Ok(style) = indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} polars, {eta} left")
+        {
+            b.set_style(style.progress_chars("=> "));
         }
-        if self.quiet {
-            v.push("--quiet".into());
+        b.set_prefix("XFOIL");
+        Bar(b)
+    }
+
+    /// The callback the polar engine calls.
+    pub fn tick(&self, done: usize, total: usize) {
+        self.0.set_length(total as u64);
+        self.0.set_position(done as u64);
+        if done == total {
+            self.0.finish_and_clear();
         }
-        v
     }
 }
 
@@ -78,29 +98,21 @@ pub struct XfoilArgs {
 }
 
 impl XfoilArgs {
-    fn engine(&self) -> Result<PolarEngine> {
-        let p = &self.process;
-        let exe = find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
-        let xfoil = Xfoil::new(XfoilConfig::new(exe))?;
-        let cache = if p.no_cache {
-            None
-        } else {
-            match p.cache.clone().or_else(PolarCache::default_dir) {
-                Some(dir) => Some(PolarCache::open(&dir)?),
-                None => None,
-            }
-        };
-        Ok(PolarEngine::new(xfoil, cache))
-    }
-
-    fn alphas(&self) -> Result<Vec<f64>> {
+    /// The spec (flags in SI).
+    pub fn spec(&self) -> Result<XfoilSpec> {
         let mut a = parse_list("--alpha", &self.alpha)?;
         a.sort_by(f64::total_cmp);
         a.dedup();
         if let Some(bad) = a.iter().find(|x| x.abs() > 90.0) {
             bail!("--alpha: {bad} deg is outside -90..90");
         }
-        Ok(a)
+        Ok(XfoilSpec {
+            process: self.process.spec(),
+            ncrit: self.ncrit,
+            alphas_deg: a,
+            panels: self.panels,
+            iter: self.iter,
+        })
     }
 }
 
@@ -116,48 +128,15 @@ pub struct AirfoilArgs {
 }
 
 impl AirfoilArgs {
-    /// The section, normalised (and scaled), with what was repaired in the file.
+    /// The section, normalised (and scaled), printing what was repaired in the file.
     pub fn load(&self) -> Result<Airfoil> {
-        let mut foil = match naca4_from_name(&self.airfoil) {
-            Some(r) => {
-                let mut foil = r.map_err(|e| anyhow::anyhow!("--airfoil {}: {e}", self.airfoil))?;
-                foil.normalise();
-                foil
-            }
-            None => {
-                let path = Path::new(&self.airfoil);
-                let (foil, repairs) = read_airfoil(path)?;
-                for r in repairs {
-                    eprintln!("propbet: {}: {}", path.display(), r.0);
-                }
-                foil
-            }
-        };
-        if let Some(t) = &self.thickness {
-            let v = parse_fraction(t).with_context(|| format!("--thickness {t}"))?;
-            foil = foil.scale_thickness(v)?;
+        let t = self.thickness.as_deref().map(parse_fraction).transpose()?;
+        let (foil, notes) = stages::load_airfoil(&self.airfoil, t)?;
+        for n in notes {
+            eprintln!("propbet: {n}");
         }
         Ok(foil)
     }
-}
-
-/// An airfoil coordinate file, parsed and normalised, with what was repaired in it.
-pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<propbet_polar::airfoil::Repair>)> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("{}: cannot read the airfoil file", path.display()))?;
-    let (mut foil, repairs) = Airfoil::parse(&text, &path.display().to_string())?;
-    foil.normalise();
-    Ok((foil, repairs))
-}
-
-fn parse_fraction(text: &str) -> Result<f64> {
-    let t = text.trim();
-    let (num, scale) = match t.strip_suffix('%') {
-        Some(n) => (n, 0.01),
-        None => (t, 1.0),
-    };
-    let v: f64 = num.trim().parse().with_context(|| format!("{t:?} is not a number"))?;
-    Ok(v * scale)
 }
 
 /// Arguments of `propbet polar`.
@@ -196,8 +175,10 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     if !(args.mach.is_finite() && (0.0..0.9).contains(&args.mach)) {
         bail!("--mach: {} must be in [0, 0.9)", args.mach);
     }
-    let alphas = args.xfoil.alphas()?;
-    let engine = args.xfoil.engine()?;
+    let xs = args.xfoil.spec()?;
+    let alphas = xs.alphas_deg.clone();
+    let engine = stages::polar_engine(&xs.process)?;
+    let bar = Bar::new(xs.process.quiet);
     let jobs: Vec<PolarJob> = res
         .iter()
         .map(|&re| PolarJob {
@@ -208,7 +189,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         .collect();
     let mut ok = true;
     let mut polars: Vec<Polar> = Vec::new();
-    for (job, r) in jobs.iter().zip(engine.compute_all(&jobs, !args.xfoil.process.quiet)) {
+    for (job, r) in jobs.iter().zip(engine.compute_all(&jobs, &|d, t| bar.tick(d, t))) {
         match r {
             Ok((p, _)) => {
                 report_failures(&format!("Re {:.0}", job.re), &p);
@@ -359,11 +340,6 @@ fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
     ]
 }
 
-/// Panels for a blade's polars: 1.9x faster than XFOIL's 160, and close to it (NACA 4412 at
-/// 4 deg, Debian XFOIL 6.99: Re 1e5 cl 0.8896 vs 0.8880, cd 0.0196 vs 0.01965; Re 5e4 cl 0.6062
-/// vs 0.6108, cd 0.04977 vs 0.04952 — at Re 5e4 XFOIL itself moves by 3 % between 100 and 160).
-const BLADE_PANELS: u32 = 120;
-
 /// Arguments of `propbet polars`.
 #[derive(Debug, Args)]
 pub struct PolarsArgs {
@@ -406,238 +382,90 @@ pub struct PolarsArgs {
     pub out_polars: Option<PathBuf>,
 }
 
+impl PolarsArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<PolarsSpec> {
+        let re_factors = if self.re_factors.trim() == "none" {
+            Vec::new()
+        } else {
+            parse_list("--re-factors", &self.re_factors)?
+        };
+        Ok(PolarsSpec {
+            geometry: self.geometry.clone(),
+            units: self
+                .units
+                .as_deref()
+                .map(propbet_pipeline::values::parse_length_unit)
+                .transpose()?,
+            airfoil: self.section.airfoil.clone(),
+            thickness: self.section.thickness.as_deref().map(parse_fraction).transpose()?,
+            station_airfoils: self.station_airfoils.clone(),
+            omega: rpm_to_omega(self.rpm),
+            v: self.v,
+            re_factors,
+            air: self.air.spec()?,
+            xfoil: self.xfoil.spec()?,
+            out_prop: self.out_prop.clone(),
+            out_polars: self.out_polars.clone(),
+        })
+    }
+}
+
 /// Runs `propbet polars`; false when a station has no fit (its coefficients are kept from the
 /// geometry file, and it is reported).
 pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
-    let loaded = load_prop(&args.geometry, args.units.as_deref())?;
-    for w in &loaded.warnings {
+    let spec = args.spec()?;
+    let input = stages::polars_input(&spec)?;
+    for w in &input.geometry.warnings {
         eprintln!("propbet: warning: {w}");
     }
-    let (fluid, _) = args.air.fluid()?;
-    if !(args.rpm.is_finite() && args.rpm > 0.0) {
-        bail!("--rpm: {} must be positive", args.rpm);
+    let engine = stages::polar_engine(&spec.xfoil.process)?;
+    let bar = Bar::new(spec.xfoil.process.quiet);
+    let p = stages::polars(&spec, &input, &engine, &|d, t| bar.tick(d, t))?;
+    print_polars(&spec, &input, &p);
+    write_polars(&spec, &p)?;
+    Ok(p.all_fitted())
+}
+
+/// Every station's polar faults and fit on the terminal.
+pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
+    for n in &input.notes {
+        eprintln!("propbet: {n}");
     }
-    if !args.v.is_finite() || args.v < 0.0 {
-        bail!("--v: {} must be a non-negative speed", args.v);
+    for (i, s) in p.blade.stations.iter().enumerate() {
+        for pol in &s.polars {
+            report_failures(&format!("station r = {:.4} m, Re {:.0}", s.r, pol.re), pol);
+        }
+        match &s.fit {
+            Some(f) => eprintln!(
+                "station {} (r = {:.4} m, alpha {:.1} deg): {}",
+                i + 1,
+                s.r,
+                s.alpha_deg,
+                fit_summary(s.re, f)
+            ),
+            None => eprintln!(
+                "propbet: station {} (r = {:.4} m): no fit, coefficients kept from {}: {}",
+                i + 1,
+                s.r,
+                spec.geometry.display(),
+                s.problem.as_deref().unwrap_or_default()
+            ),
+        }
     }
-    let factors = if args.re_factors.trim() == "none" {
-        Vec::new()
-    } else {
-        parse_list("--re-factors", &args.re_factors)?
-    };
-    if let Some(bad) = factors.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
-        bail!("--re-factors: {bad} must be positive");
+}
+
+/// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).
+pub fn write_polars(spec: &PolarsSpec, p: &Polars) -> Result<()> {
+    let mut inputs: Vec<&Path> = vec![spec.geometry.as_path()];
+    let foil = Path::new(&spec.airfoil);
+    if foil.exists() {
+        inputs.push(foil);
     }
-    let foil = args.section.load()?;
-    let mut foils = vec![foil.clone()];
-    if let Some(dir) = &args.station_airfoils {
-        foils = station_foils(dir, loaded.file.rows.len(), &foil)?;
-    }
-    let engine = args.xfoil.engine()?;
-    let req = BladeRequest {
-        file: &loaded.file,
-        geometry: &args.geometry,
-        foils: &foils,
-        rpm: args.rpm,
-        v: args.v,
-        factors,
-        fluid,
-        engine: &engine,
-        xfoil: &args.xfoil,
-    };
-    let (mut file, b, all_ok) = blade_polars(&req)?;
-    let inputs: Vec<&Path> = std::iter::once(args.geometry.as_path())
-        .chain(input_paths(&args.section))
-        .collect();
-    file.name = format!(
-        "{} / {} polars at {:.0} rpm, {} m/s",
-        file.name, foil.name, args.rpm, args.v
-    );
-    crate::output::write_atomic(&args.out_prop, &[write_prop(&file).as_bytes()], &inputs)?;
-    if let Some(path) = &args.out_polars {
-        let json = serde_json::to_vec(&b)?;
+    crate::output::write_atomic(&spec.out_prop, &[write_prop(&p.prop.file).as_bytes()], &inputs)?;
+    if let Some(path) = &spec.out_polars {
+        let json = serde_json::to_vec(&p.blade)?;
         crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
-    Ok(all_ok)
-}
-
-/// The sections `station_NN.dat` of a directory, one per station; `fallback` where missing.
-fn station_foils(dir: &Path, n: usize, fallback: &Airfoil) -> Result<Vec<Airfoil>> {
-    if !dir.is_dir() {
-        bail!("--station-airfoils {}: not a directory", dir.display());
-    }
-    let mut missing = Vec::new();
-    let foils = (0..n)
-        .map(|i| {
-            let path = dir.join(format!("station_{i:02}.dat"));
-            if !path.exists() {
-                missing.push(i);
-                return Ok(fallback.clone());
-            }
-            Ok(read_airfoil(&path)?.0)
-        })
-        .collect::<Result<Vec<_>>>()?;
-    if !missing.is_empty() {
-        eprintln!(
-            "propbet: {}: no section file for station(s) {missing:?}: {} used there",
-            dir.display(),
-            fallback.name
-        );
-    }
-    Ok(foils)
-}
-
-/// What [`blade_polars`] needs.
-pub struct BladeRequest<'a> {
-    /// The blade (radii, chords, twists; its coefficients give the first inflow estimate).
-    pub file: &'a PropFile,
-    /// Where it came from (for messages).
-    pub geometry: &'a Path,
-    /// One section for every station, or one per input station.
-    pub foils: &'a [Airfoil],
-    /// Operating point [rpm].
-    pub rpm: f64,
-    /// Operating point [m/s].
-    pub v: f64,
-    /// Further multiples of each station's Re.
-    pub factors: Vec<f64>,
-    /// Air.
-    pub fluid: propbet_bemt::Fluid,
-    /// XFOIL and the cache.
-    pub engine: &'a PolarEngine,
-    /// Angles, panels, iterations, Ncrit, progress.
-    pub xfoil: &'a XfoilArgs,
-}
-
-/// Polars of every input station at its Re and Mach at the operating point, fitted to QPROP's
-/// coefficients: the prop file with the fitted coefficients, every station's polars, and false
-/// when a station has no fit (its coefficients are kept, and it is reported).
-pub fn blade_polars(q: &BladeRequest) -> Result<(PropFile, BladePolars, bool)> {
-    let blade = q.file.to_blade(RadiusReading::Documented);
-    let rotor = blade
-        .to_rotor(propbet_bemt::Discretization::default())
-        .map_err(|e| anyhow::anyhow!("{}: {e}", q.geometry.display()))?;
-    let fluid = q.fluid;
-    if q.foils.is_empty() {
-        bail!("{}: no section given", q.geometry.display());
-    }
-    let alphas = q.xfoil.alphas()?;
-
-    // Each input station's inflow at the operating point, from the solver on the file's model.
-    let opts = SolverOptions {
-        keep_stations: true,
-        ..SolverOptions::default()
-    };
-    let point = Solver::new(&rotor, &fluid, &opts).solve(OperatingPoint::from_rpm(q.v, q.rpm));
-    let st = &point.stations;
-    let at = |r: f64, f: &dyn Fn(&propbet_bemt::StationResult) -> f64| -> f64 {
-        let i = st.partition_point(|s| s.r <= r).clamp(1, st.len() - 1);
-        let (a, b) = (&st[i - 1], &st[i]);
-        let t = ((r - a.r) / (b.r - a.r)).clamp(-0.5, 1.5);
-        f(a) + t * (f(b) - f(a))
-    };
-    let mut jobs = Vec::new();
-    let mut stations = Vec::new();
-    for (i, &r) in blade.r.iter().enumerate() {
-        let w = at(r, &|s| s.w);
-        let chord = blade.chord[i];
-        let re = fluid.rho * w * chord / fluid.mu;
-        let mach = (w / fluid.a).min(0.85);
-        let alpha_deg = at(r, &|s| s.alpha).to_degrees();
-        let first = jobs.len();
-        if re > 0.0 && chord > 0.0 {
-            let foil = &q.foils[i.min(q.foils.len() - 1)];
-            for f in std::iter::once(1.0).chain(q.factors.iter().copied()) {
-                jobs.push(PolarJob {
-                    panels: q.xfoil.panels.unwrap_or(BLADE_PANELS),
-                    max_iter: q.xfoil.iter,
-                    ..PolarJob::new(foil.clone(), re * f, mach, q.xfoil.ncrit, alphas.clone())
-                });
-            }
-        }
-        stations.push((r, chord, re, mach, alpha_deg, first..jobs.len()));
-    }
-    let results = q.engine.compute_all(&jobs, !q.xfoil.process.quiet);
-    let mut results: Vec<Option<Result<Polar, String>>> = results
-        .into_iter()
-        .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))
-        .collect();
-
-    let mut file: PropFile = q.file.clone();
-    let mut out_stations = Vec::new();
-    let mut all_ok = true;
-    for (i, (r, chord, re, mach, alpha_deg, range)) in stations.into_iter().enumerate() {
-        let mut polars = Vec::new();
-        let mut problems = Vec::new();
-        for k in range {
-            match results[k].take() {
-                Some(Ok(p)) => {
-                    report_failures(&format!("station r = {r:.4} m, Re {:.0}", p.re), &p);
-                    polars.push(p);
-                }
-                Some(Err(e)) => problems.push(e),
-                None => {}
-            }
-        }
-        let weights = AlphaWeights::Around {
-            alphas_deg: vec![alpha_deg],
-            sigma_deg: 3.0,
-        };
-        let fit = if polars.is_empty() {
-            problems.push(format!("no polar at r = {r:.4} m (Re {re:.0})"));
-            None
-        } else {
-            match fit_qprop(&polars, re, &weights, -0.5) {
-                Ok(f) => Some(f),
-                Err(e) => {
-                    problems.push(e.to_string());
-                    None
-                }
-            }
-        };
-        match &fit {
-            Some(f) => {
-                eprintln!(
-                    "station {} (r = {r:.4} m, alpha {alpha_deg:.1} deg): {}",
-                    i + 1,
-                    fit_summary(re, f)
-                );
-                file.set_station_coeffs(i, &f.coeffs);
-            }
-            None => {
-                all_ok = false;
-                eprintln!(
-                    "propbet: station {} (r = {r:.4} m): no fit, coefficients kept from {}: {}",
-                    i + 1,
-                    q.geometry.display(),
-                    problems.join("; ")
-                );
-            }
-        }
-        out_stations.push(StationPolars {
-            r,
-            chord,
-            re,
-            mach,
-            alpha_deg,
-            polars,
-            fit,
-            problem: (!problems.is_empty()).then(|| problems.join("; ")),
-        });
-    }
-    let names: Vec<&str> = q.foils.iter().map(|f| f.name.as_str()).collect();
-    let b = BladePolars {
-        format: propbet_polar::blade::FORMAT.into(),
-        geometry: q.geometry.display().to_string(),
-        airfoil: if names.len() == 1 {
-            names[0].to_string()
-        } else {
-            format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1])
-        },
-        rpm: q.rpm,
-        v: q.v,
-        air: [fluid.rho, fluid.mu, fluid.a],
-        stations: out_stations,
-    };
-    Ok((file, b, all_ok))
+    Ok(())
 }

@@ -1,18 +1,18 @@
 //! `propbet predict`: performance of a QPROP prop file over RPM x (J or V).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 use propbet_atmosphere::AirState;
-use propbet_bemt::{grid_rpm_j, grid_rpm_v, Discretization, Fluid, PointResult, Rotor, Solver, SolverOptions};
-use propbet_effects::spec::Registry;
-use propbet_effects::{parse_spec, Stack};
-use propbet_qprop::{parse_prop, PropFile, RadiusReading};
+use propbet_bemt::units::rpm_to_omega;
+use propbet_bemt::{Fluid, PointResult};
+use propbet_pipeline::model::Model;
+use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
+use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 use serde::Serialize;
 
 use crate::output::{emit, push_num};
-use crate::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -85,98 +85,37 @@ pub struct ModelArgs {
     pub user_effects: Option<PathBuf>,
 }
 
-/// A model ready to solve.
-pub struct Model {
-    /// The prop file as read.
-    pub loaded: LoadedProp,
-    /// The rotor the solver sees.
-    pub rotor: Rotor,
-    /// Solver options from the flags.
-    pub opts: SolverOptions,
-    /// Propeller diameter of the blade as documented (2 x its last station radius, or line 2's R
-    /// in the table's units) [m]: the D of the coefficients even when `--qprop-compat` gives
-    /// the tip-loss factor QPROP's unscaled R.
-    pub diameter: f64,
-    /// The effects known (built-in and user-defined).
-    pub registry: Registry,
-    /// The effects added with `--effect`.
-    pub effects: Stack,
-}
-
 impl ModelArgs {
-    /// Reads the prop file (and polars) and builds the rotor.
-    pub fn build(&self, keep_stations: bool) -> Result<Model> {
-        let (loaded, mut rotor) = load_rotor(&self.prop, self.units.as_deref(), self.qprop_compat)?;
-        if let Some(path) = &self.polars {
-            apply_polars(&mut rotor, path)?;
-        }
-        if !self.dbeta.is_finite() {
-            bail!("--dbeta: not a finite number");
-        }
-        let opts = SolverOptions {
-            tip_loss: !self.no_tip_loss,
+    /// The model's spec (flags in SI).
+    pub fn spec(&self) -> Result<ModelSpec> {
+        Ok(ModelSpec {
+            prop: self.prop.clone(),
             dbeta: self.dbeta.to_radians(),
-            keep_stations,
-            ..SolverOptions::default()
-        };
-        let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
-        let registry = match &self.user_effects {
-            Some(path) => {
-                let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-                let user = propbet_effects::user::parse(&text, &path.display().to_string())?;
-                Registry::with_user(user)?
-            }
-            None => Registry::default(),
-        };
-        let active = self
-            .effect
-            .iter()
-            .map(|s| registry.resolve(&parse_spec(s)?))
-            .collect::<Result<Vec<_>, _>>()
-            .context("--effect")?;
-        Ok(Model {
-            loaded,
-            rotor,
-            opts,
-            diameter,
-            registry,
-            effects: Stack { active },
+            units: self.units.as_deref().map(parse_length_unit).transpose()?,
+            qprop_compat: self.qprop_compat,
+            no_tip_loss: self.no_tip_loss,
+            polars: self.polars.clone(),
+            effects: self.effect.clone(),
+            user_effects: self.user_effects.clone(),
         })
     }
-
-    /// The files the model reads (never to be overwritten).
-    pub fn inputs(&self) -> Vec<&Path> {
-        std::iter::once(self.prop.as_path())
-            .chain(self.polars.as_deref())
-            .chain(self.user_effects.as_deref())
-            .collect()
-    }
 }
 
-/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file.
-fn apply_polars(rotor: &mut Rotor, path: &Path) -> Result<()> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let (r, models) = blade.models().map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
-    if r[0] > hi || r[r.len() - 1] < lo {
-        bail!(
-            "{}: its stations (r = {:.4}..{:.4} m) do not overlap the blade (r = {lo:.4}..{hi:.4} m)",
-            path.display(),
-            r[0],
-            r[r.len() - 1]
-        );
+/// Reads the model a spec names, printing the prop file's warnings.
+pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
+    let m = Model::load(spec, keep_stations)?;
+    for w in &m.loaded.warnings {
+        eprintln!("propbet: warning: {w}");
     }
-    propbet_polar::tabulated::apply_to_rotor(rotor, &r, &models);
-    Ok(())
+    Ok(m)
 }
 
 /// Air properties from flags: --rho/--mu/--a (QPROP's defaults), or --temp/--pressure
 /// [--humidity] through the atmosphere model.
 #[derive(Debug, Args)]
 pub struct FluidArgs {
-    /// Air density [kg/m^3] (default 1.225, QPROP's).
-    #[arg(long, conflicts_with_all = ["temp", "pressure"], allow_negative_numbers = true)]
+    /// Air density [kg/m^3] (default 1.225, QPROP's; with --temp, overrides its density).
+    #[arg(long, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
     #[arg(long, allow_negative_numbers = true)]
@@ -195,107 +134,23 @@ pub struct FluidArgs {
     pub humidity: Option<String>,
 }
 
-/// A prop file read and checked, with its warnings printed.
-pub struct LoadedProp {
-    /// The file as written.
-    pub file: PropFile,
-    /// Warnings for the user.
-    pub warnings: Vec<String>,
-}
-
-/// Reads a prop file, naming the file in every error.
-pub fn load_prop(path: &Path, units: Option<&str>) -> Result<LoadedProp> {
-    let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|_| anyhow::anyhow!("{}: not UTF-8 text (is it a QPROP prop file?)", path.display()))?;
-    let (mut file, warnings) = parse_prop(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let mut warnings: Vec<String> = warnings
-        .into_iter()
-        .map(|w| match w.line {
-            0 => format!("{}: {}", path.display(), w.message),
-            l => format!("{}: line {l}: {}", path.display(), w.message),
-        })
-        .collect();
-    if let Some(u) = units {
-        let f = parse_length_unit(u)?;
-        warnings.push(format!(
-            "{}: --units {u} replaces the file's Rfac = {} and Cfac = {} with {f}",
-            path.display(),
-            file.scale[0],
-            file.scale[1]
-        ));
-        file.scale[0] = f;
-        file.scale[1] = f;
-    }
-    Ok(LoadedProp { file, warnings })
-}
-
-/// Reads a prop file, prints its warnings and discretises it as QPROP does (or exactly as
-/// QPROP 1.22 reads it, with `qprop_compat`).
-pub fn load_rotor(path: &Path, units: Option<&str>, qprop_compat: bool) -> Result<(LoadedProp, Rotor)> {
-    let mut loaded = load_prop(path, units)?;
-    let differences: Vec<String> = loaded.file.qprop_differences().into_iter().map(|w| w.message).collect();
-    for w in &mut loaded.warnings {
-        if differences.iter().any(|d| w.ends_with(d.as_str())) {
-            w.push_str(if qprop_compat {
-                " (reproduced as QPROP reads it: --qprop-compat)"
-            } else {
-                " (--qprop-compat reproduces QPROP)"
-            });
-        }
-    }
-    for w in &loaded.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    let reading = if qprop_compat {
-        RadiusReading::Qprop122
-    } else {
-        RadiusReading::Documented
-    };
-    let rotor = loaded
-        .file
-        .to_blade(reading)
-        .to_rotor(Discretization {
-            stations: 25,
-            qprop_reref_quirk: qprop_compat,
-        })
-        .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    Ok((loaded, rotor))
-}
-
 impl FluidArgs {
-    /// The fluid, and a note of where it came from.
-    pub fn fluid(&self) -> Result<(Fluid, String)> {
-        fluid(self)
+    /// The air's spec (flags in SI).
+    pub fn spec(&self) -> Result<AirSpec> {
+        let state = match (&self.temp, &self.pressure) {
+            (Some(t), Some(p)) => {
+                let rh = self.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
+                Some(AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh)?)
+            }
+            _ => None,
+        };
+        Ok(AirSpec {
+            rho: self.rho,
+            mu: self.mu,
+            a: self.a,
+            state,
+        })
     }
-}
-
-fn fluid(args: &FluidArgs) -> Result<(Fluid, String)> {
-    if let (Some(t), Some(p)) = (&args.temp, &args.pressure) {
-        let rh = args.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
-        let state = AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh)?;
-        let mut f = state.fluid();
-        if let Some(mu) = args.mu {
-            f.mu = mu;
-        }
-        if let Some(a) = args.a {
-            f.a = a;
-        }
-        return Ok((f, format!("from T = {t}, p = {p}, RH = {:.0} %", rh * 100.0)));
-    }
-    let d = Fluid::QPROP_DEFAULT;
-    let f = Fluid {
-        rho: args.rho.unwrap_or(d.rho),
-        mu: args.mu.unwrap_or(d.mu),
-        a: args.a.unwrap_or(d.a),
-    };
-    f.validate().map_err(|e| anyhow::anyhow!("air: {e}"))?;
-    let source = if args.rho.is_none() && args.mu.is_none() && args.a.is_none() {
-        "QPROP defaults (standard air, not measured)".to_string()
-    } else {
-        "given".to_string()
-    };
-    Ok((f, source))
 }
 
 #[derive(Serialize)]
@@ -313,37 +168,41 @@ struct JsonOut<'a> {
     points: &'a [PointResult],
 }
 
+impl PredictArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<PredictSpec> {
+        let rpms = parse_list("--rpm", &self.rpm)?;
+        let axis = match (&self.j, &self.v) {
+            (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
+            (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
+            (None, None) => SweepAxis::V(vec![0.0]),
+        };
+        Ok(PredictSpec {
+            model: self.model.spec()?,
+            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+            axis,
+            air: self.air.spec()?,
+            format: match self.format {
+                Format::Csv => TableFormat::Csv,
+                Format::Json => TableFormat::Json,
+            },
+            out: self.out.clone(),
+            stations: self.stations.clone(),
+        })
+    }
+}
+
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let Model {
-        loaded,
-        rotor,
-        opts,
-        diameter,
-        effects,
-        ..
-    } = args.model.build(args.stations.is_some())?;
-    let (fluid, fluid_source) = args.air.fluid()?;
-    let rpms = parse_list("--rpm", &args.rpm)?;
-    if let Some(bad) = rpms.iter().find(|&&r| r < 0.0) {
-        bail!("--rpm: rotation speed must not be negative, found {bad}");
-    }
-    let points = match (&args.j, &args.v) {
-        (Some(j), _) => {
-            if rpms.contains(&0.0) {
-                bail!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
-            }
-            grid_rpm_j(&rpms, &parse_list("--j", j)?, rotor.tip_radius)
-        }
-        (None, Some(v)) => grid_rpm_v(&rpms, &parse_list("--v", v)?),
-        (None, None) => grid_rpm_v(&rpms, &[0.0]),
-    };
+    let spec = args.spec()?;
+    let model = load_model(&spec.model, spec.stations.is_some())?;
+    let (fluid, fluid_source) = spec.air.fluid()?;
+    let points = propbet_pipeline::stages::operating_points(&spec, model.rotor.tip_radius)?;
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
     // needs them (JSON, the station table).
-    let solver = Solver::new(&rotor, &fluid, &opts);
-    let csv = args.format == Format::Csv;
-    let keep_results = !csv || args.stations.is_some();
+    let csv = spec.format == TableFormat::Csv;
+    let keep_results = !csv || spec.stations.is_some();
     struct Chunk {
         results: Vec<PointResult>,
         text: Vec<u8>,
@@ -355,22 +214,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         points
             .par_chunks(128)
             .map(|c| {
-                let r: Vec<PointResult> = if effects.is_empty() {
-                    solver.solve_many(c)
-                } else {
-                    c.iter()
-                        .map(|&op| {
-                            let p = effects.predict(&rotor, &opts, &fluid, diameter, op)?;
-                            Ok(p.result.with_loads(
-                                p.loads.thrust,
-                                p.loads.torque,
-                                op.omega,
-                                fluid.rho,
-                                rotor.tip_radius,
-                            ))
-                        })
-                        .collect::<Result<_, propbet_effects::EffectError>>()?
-                };
+                let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
                     text: if csv { summary_rows(&r) } else { Vec::new() },
                     failed: r.iter().map(|p| p.not_converged).sum(),
@@ -378,37 +222,23 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
                     results: if keep_results { r } else { Vec::new() },
                 })
             })
-            .collect::<Result<_, propbet_effects::EffectError>>()?
+            .collect::<Result<_, propbet_pipeline::Error>>()?
     };
-    let failed: usize = chunks.iter().map(|c| c.failed).sum();
-    let failed_points: usize = chunks.iter().map(|c| c.failed_points).sum();
     let mut results = Vec::with_capacity(if keep_results { points.len() } else { 0 });
     let mut body = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
+    let (mut failed, mut failed_points) = (0, 0);
     for c in chunks {
+        failed += c.failed;
+        failed_points += c.failed_points;
         results.extend(c.results);
         body.push(c.text);
     }
-    let inputs = args.model.inputs();
+    let inputs = spec.model.inputs();
     if !csv {
-        let doc = JsonOut {
-            prop: &args.model.prop.to_string_lossy(),
-            name: &loaded.file.name,
-            blades: rotor.blades,
-            tip_radius_m: rotor.tip_radius,
-            fluid,
-            fluid_source: &fluid_source,
-            qprop_compat: args.model.qprop_compat,
-            tip_loss: opts.tip_loss,
-            dbeta_deg: args.model.dbeta,
-            warnings: &loaded.warnings,
-            points: &results,
-        };
-        let mut s = serde_json::to_vec_pretty(&doc)?;
-        s.push(b'\n');
-        body = vec![s];
+        body = vec![json_doc(&spec, &model, &fluid, &fluid_source, &results)?];
     }
-    emit(args.out.as_deref(), &body, &inputs)?;
-    if let Some(path) = &args.stations {
+    emit(spec.out.as_deref(), &body, &inputs)?;
+    if let Some(path) = &spec.stations {
         emit(Some(path), &[stations_csv(&results)], &inputs)?;
     }
     if failed > 0 {
@@ -418,6 +248,38 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         );
     }
     Ok(failed == 0)
+}
+
+fn json_doc(
+    spec: &PredictSpec,
+    model: &Model,
+    fluid: &Fluid,
+    source: &str,
+    results: &[PointResult],
+) -> Result<Vec<u8>> {
+    let doc = JsonOut {
+        prop: &spec.model.prop.to_string_lossy(),
+        name: &model.loaded.file.name,
+        blades: model.rotor.blades,
+        tip_radius_m: model.rotor.tip_radius,
+        fluid: *fluid,
+        fluid_source: source,
+        qprop_compat: spec.model.qprop_compat,
+        tip_loss: model.opts.tip_loss,
+        dbeta_deg: spec.model.dbeta.to_degrees(),
+        warnings: &model.loaded.warnings,
+        points: results,
+    };
+    let mut s = serde_json::to_vec_pretty(&doc)?;
+    s.push(b'\n');
+    Ok(s)
+}
+
+/// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage).
+pub fn write_sweep(spec: &PredictSpec, points: &[PointResult]) -> Result<()> {
+    let body = [format!("{SUMMARY_HEADER}\n").into_bytes(), summary_rows(points)];
+    emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
+    Ok(())
 }
 
 /// Column header of the summary CSV.

@@ -7,7 +7,9 @@ use clap::Args;
 use propbet_qprop::write_prop;
 
 use crate::output::emit;
-use crate::predict::load_rotor;
+use propbet_pipeline::spec::ModelSpec;
+
+use crate::predict::load_model;
 
 /// Arguments of `propbet prop`.
 #[derive(Debug, Args)]
@@ -27,7 +29,17 @@ pub struct PropArgs {
 
 /// Runs `propbet prop`.
 pub fn run(args: &PropArgs) -> Result<bool> {
-    let (loaded, rotor) = load_rotor(&args.file, args.units.as_deref(), args.qprop_compat)?;
+    let spec = ModelSpec {
+        units: args
+            .units
+            .as_deref()
+            .map(propbet_pipeline::values::parse_length_unit)
+            .transpose()?,
+        qprop_compat: args.qprop_compat,
+        ..ModelSpec::prop(args.file.clone())
+    };
+    let model = load_model(&spec, false)?;
+    let (loaded, rotor) = (&model.loaded, &model.rotor);
     println!("name: {}", loaded.file.name);
     println!("blades: {}", rotor.blades);
     println!("tip radius: {:.6} m", rotor.tip_radius);

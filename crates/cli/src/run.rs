@@ -1,21 +1,24 @@
 //! `propbet run CASE_DIR`: the main job. A case directory's `case.toml` names a scan (or a
 //! prop file), the sections, the operating points, the measurements and the air; the run
 //! chains scan → XFOIL polars at each station's Reynolds number → BEMT sweeps → comparison →
-//! diagnosis, each stage as the documented command it is equivalent to, and writes one HTML
-//! report that holds them all.
+//! diagnosis in memory (`propbet_pipeline::run::run_case`), each stage the documented command
+//! it is equivalent to, then writes every stage's outputs and one HTML report that holds them.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use clap::{Args, Parser};
+use propbet_bemt::PointResult;
 use propbet_compare::report::esc;
+use propbet_pipeline::case::{read_case, RunPlan};
+use propbet_pipeline::run::{run_case, Event, Finished, RunOutcome, StageRecord};
+use propbet_pipeline::spec::StageSpec;
 use propbet_plot::{Figure, Mark, Panel, Series};
-use serde::Deserialize;
 
-use crate::output::{write_atomic, CsvTable};
-use crate::polar::XfoilProcess;
+use crate::output::write_atomic;
+use crate::polar::{Bar, XfoilProcess};
 
 /// Arguments of `propbet run`.
 #[derive(Debug, Args)]
@@ -28,160 +31,6 @@ pub struct RunArgs {
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stage).
     #[command(flatten)]
     pub xfoil: XfoilProcess,
-}
-
-/// `case.toml`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Case {
-    /// What the case is.
-    pub name: String,
-    /// A sentence or two on where it comes from.
-    #[serde(default)]
-    pub description: String,
-    /// Blade count, checked against the scan when given.
-    pub blades: Option<usize>,
-    /// The blade.
-    pub geometry: GeometrySpec,
-    /// XFOIL polars (without: the prop file's coefficients are used).
-    pub polars: Option<PolarSpec>,
-    /// Prediction sweeps.
-    pub sweep: SweepSpec,
-    /// Measurements (without: no comparison, no diagnosis).
-    pub measured: Option<MeasuredSpec>,
-    /// Air of the measurements and sweeps.
-    #[serde(default)]
-    pub atmosphere: AtmosphereSpec,
-}
-
-/// `[geometry]`: a scan or a prop file.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct GeometrySpec {
-    /// A scan (STL, PLY, points3D.txt, XYZ) for `propbet scan`.
-    pub scan: Option<String>,
-    /// Or a QPROP prop file.
-    pub prop: Option<String>,
-    /// Length unit of the scan or prop file.
-    pub units: Option<String>,
-    /// Stations as r/R (`propbet scan --stations`).
-    pub stations: Option<String>,
-    /// A UIUC-style table (r/R c/R beta) to set the scan against.
-    pub reference: Option<String>,
-    /// Further `propbet scan` flags, for example `["--crop=-80,-200,-200,200,200,200"]`.
-    #[serde(default)]
-    pub scan_args: Vec<String>,
-}
-
-/// `[polars]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PolarSpec {
-    /// `scan`: each station's section as the scan fitted it (the airfoil where the scan gave
-    /// none); `airfoil`: the airfoil at every station.
-    #[serde(default = "default_sections")]
-    pub sections: String,
-    /// Coordinate file (relative to the case) or a NACA 4-digit name: the airfoil hint.
-    pub airfoil: String,
-    /// Scale the airfoil to this thickness ratio.
-    pub thickness: Option<String>,
-    /// Operating point whose Reynolds numbers the polars are computed at [rpm].
-    pub rpm: f64,
-    /// Its axial speed [m/s].
-    #[serde(default)]
-    pub v: f64,
-    /// Transition amplification ratio.
-    pub ncrit: Option<f64>,
-    /// Angles of attack (`propbet polars --alpha`).
-    pub alpha: Option<String>,
-    /// Multiples of each station's Re for REexp.
-    pub re_factors: Option<String>,
-}
-
-fn default_sections() -> String {
-    "scan".into()
-}
-
-/// `[sweep]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SweepSpec {
-    /// Rotation speeds [rpm]: a list or a range.
-    pub rpm: String,
-    /// Advance ratios: a list or a range.
-    pub j: String,
-}
-
-/// `[measured]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MeasuredSpec {
-    /// Files relative to the case directory.
-    pub files: Vec<String>,
-    /// Motor poles (electrical RPM of thrust-stand logs).
-    pub poles: Option<u32>,
-    /// `optical` or `electrical`.
-    pub rpm_source: Option<String>,
-    /// Column map of generic CSV files.
-    pub columns: Option<String>,
-    /// Diagnosis: folds and ladder steps.
-    pub folds: Option<usize>,
-    /// Most effects the ladder adds.
-    pub max_steps: Option<usize>,
-}
-
-/// `[atmosphere]`.
-#[derive(Debug, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AtmosphereSpec {
-    /// `T,P,RH` as `--atmosphere` takes it (overrides what the logs say).
-    pub air: Option<String>,
-    /// Air density [kg/m^3] (overrides everything).
-    pub rho: Option<f64>,
-}
-
-/// Reads and checks `case.toml`.
-pub fn read_case(dir: &Path) -> Result<Case> {
-    let path = dir.join("case.toml");
-    let text = std::fs::read_to_string(&path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let case: Case = toml::from_str(&text).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-    let g = &case.geometry;
-    if g.scan.is_some() == g.prop.is_some() {
-        bail!("{}: [geometry] needs exactly one of `scan` and `prop`", path.display());
-    }
-    if let Some(p) = &case.polars {
-        if p.sections != "scan" && p.sections != "airfoil" {
-            bail!(
-                "{}: [polars] sections = {:?}: `scan` or `airfoil`",
-                path.display(),
-                p.sections
-            );
-        }
-        if p.sections == "scan" && g.scan.is_none() {
-            bail!(
-                "{}: [polars] sections = \"scan\" needs a [geometry] scan",
-                path.display()
-            );
-        }
-        if !(p.rpm.is_finite() && p.rpm > 0.0) {
-            bail!("{}: [polars] rpm = {}: must be positive", path.display(), p.rpm);
-        }
-    }
-    // Every file the case names must be there before anything runs.
-    let named = [g.scan.as_ref(), g.prop.as_ref(), g.reference.as_ref()]
-        .into_iter()
-        .flatten()
-        .chain(
-            case.measured
-                .iter()
-                .flat_map(|m| m.files.iter().chain(m.columns.as_ref())),
-        );
-    for f in named {
-        if !dir.join(f).is_file() {
-            bail!("{}: names {f}, which is not in {}", path.display(), dir.display());
-        }
-    }
-    Ok(case)
 }
 
 /// The shipped default case: `props/apcsf_10x4.7` under the current directory or beside the
@@ -211,50 +60,27 @@ fn default_case() -> Result<PathBuf> {
     )
 }
 
-/// One stage: the command it is equivalent to, how long it took, whether it ran clean.
-pub(crate) struct Stage {
-    name: &'static str,
-    argv: Vec<String>,
-    seconds: f64,
-    /// Ran without reported problems.
-    pub(crate) clean: bool,
+/// The scan flags of a case (`--units`, `--stations`, its `scan_args`) as the geometry
+/// pipeline's options, read as `propbet scan` reads them.
+fn scan_options(flags: &[String]) -> propbet_pipeline::Result<propbet_geometry::scan::ScanOptions> {
+    let argv = ["propbet", "scan", "scan.stl", "-o", "out"]
+        .into_iter()
+        .map(String::from)
+        .chain(flags.iter().cloned());
+    let cli =
+        crate::Cli::try_parse_from(argv).map_err(|e| propbet_pipeline::Error::Invalid(format!("scan_args: {e}")))?;
+    match cli.command {
+        crate::Command::Scan(a) => {
+            crate::scan::options(&a).map_err(|e| propbet_pipeline::Error::Invalid(format!("{e:#}")))
+        }
+        _ => unreachable!("parsed as scan"),
+    }
 }
 
-/// Runs one `propbet` command line in this process.
-pub(crate) fn stage(name: &'static str, argv: Vec<String>, n: usize, total: usize) -> Result<Stage> {
-    eprintln!("propbet [{n}/{total}] {name}: propbet {}", shell_words(&argv));
-    let t0 = Instant::now();
-    let cli = crate::Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
-        .map_err(|e| anyhow::anyhow!("{name}: {e}"))?;
-    let clean = crate::dispatch(cli.command).with_context(|| format!("{name} stage"))?;
-    let seconds = t0.elapsed().as_secs_f64();
-    eprintln!(
-        "propbet [{n}/{total}] {name}: {seconds:.1} s{}",
-        if clean { "" } else { " (with reported problems)" }
-    );
-    Ok(Stage {
-        name,
-        argv,
-        seconds,
-        clean,
-    })
-}
-
-fn shell_words(argv: &[String]) -> String {
-    argv.iter()
-        .map(|a| {
-            if a.is_empty() || a.contains(|c: char| c.is_whitespace() || "'\"$`\\*?;&|<>()".contains(c)) {
-                format!("'{}'", a.replace('\'', "'\\''"))
-            } else {
-                a.clone()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
-}
-
-fn path_str(p: &Path) -> String {
-    p.display().to_string()
+/// The plan of a case directory, writing under `out`.
+pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcess) -> Result<RunPlan> {
+    let case = read_case(dir)?;
+    Ok(case.plan(dir, out, &xfoil.spec(), &scan_options)?)
 }
 
 /// Runs `propbet run`.
@@ -267,7 +93,6 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     if !dir.is_dir() {
         bail!("{}: not a case directory", dir.display());
     }
-    let case = read_case(&dir)?;
     let out = match &a.out {
         Some(o) => o.clone(),
         None => {
@@ -279,6 +104,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             PathBuf::from(format!("run_{name}"))
         }
     };
+    let plan = plan(&dir, &out, &a.xfoil)?;
     if let (Ok(o), Ok(d)) = (out.canonicalize(), dir.canonicalize()) {
         if o == d || d.starts_with(&o) {
             bail!(
@@ -287,195 +113,93 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             );
         }
     }
-    std::fs::create_dir_all(&out).with_context(|| format!("{}: cannot create", out.display()))?;
-    let f = |rel: &str| path_str(&dir.join(rel));
-    let o = |rel: &str| path_str(&out.join(rel));
-    let g = &case.geometry;
-    let total = 2
-        + usize::from(g.scan.is_some())
-        + usize::from(case.polars.is_some())
-        + 2 * usize::from(case.measured.is_some());
-    let mut n = 0;
-    let mut stages = Vec::new();
-    let mut next = || {
-        n += 1;
-        n
-    };
-
-    // 1. Geometry.
-    let mut prop = match (&g.scan, &g.prop) {
-        (Some(scan), _) => {
-            let mut argv = vec![
-                "scan".to_string(),
-                f(scan),
-                "-o".into(),
-                o("scan"),
-                "--name".into(),
-                case.name.clone(),
-            ];
-            if let Some(u) = &g.units {
-                argv.extend(["--units".into(), u.clone()]);
+    std::fs::create_dir_all(&out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))?;
+    let bar = Bar::new(a.xfoil.quiet);
+    let mut pages: Vec<(&'static str, String)> = Vec::new();
+    let mut write_err: Option<anyhow::Error> = None;
+    let outcome = run_case(&plan, &|d, t| bar.tick(d, t), &mut |e| match e {
+        Event::Start { n, total, spec } => {
+            eprintln!("propbet [{n}/{total}] {}: {}", spec.name(), spec.command());
+        }
+        Event::Done { n, total, record, made } => {
+            if write_err.is_none() {
+                match write_stage(record, &made) {
+                    Ok(Some(page)) => pages.push((record.spec.name(), page)),
+                    Ok(None) => {}
+                    Err(e) => write_err = Some(e),
+                }
             }
-            if let Some(s) = &g.stations {
-                argv.extend(["--stations".into(), s.clone()]);
-            }
-            if let Some(r) = &g.reference {
-                argv.extend(["--reference".into(), f(r)]);
-            }
-            argv.extend(g.scan_args.iter().cloned());
-            let s = stage("scan", argv, next(), total)?;
-            stages.push(s);
-            o("scan/prop.qprop")
+            eprintln!(
+                "propbet [{n}/{total}] {}: {:.1} s{}",
+                record.spec.name(),
+                record.seconds,
+                if record.clean { "" } else { " (with reported problems)" }
+            );
         }
-        (None, Some(p)) => f(p),
-        (None, None) => unreachable!("read_case checks the geometry"),
-    };
-    let units_flag: Vec<String> = match (&g.prop, &g.units) {
-        (Some(_), Some(u)) => vec!["--units".into(), u.clone()],
-        _ => Vec::new(),
-    };
-    let scan_summary: Option<serde_json::Value> = if g.scan.is_some() {
-        let text = std::fs::read_to_string(out.join("scan/scan.json")).context("scan.json")?;
-        let v: serde_json::Value = serde_json::from_str(&text)?;
-        if let (Some(want), Some(got)) = (case.blades, v["blades"].as_u64()) {
-            if want as u64 != got {
-                bail!(
-                    "{}: case.toml says {want} blades, the scan found {got}",
-                    dir.join("case.toml").display()
-                );
-            }
-        }
-        Some(v)
-    } else {
-        None
-    };
-
-    // 2. Polars.
-    let xfoil_flags = a.xfoil.flags();
-    if let Some(p) = &case.polars {
-        let airfoil = if naca_name(&p.airfoil) {
-            p.airfoil.clone()
-        } else {
-            f(&p.airfoil)
-        };
-        let mut argv = vec!["polars".into(), "--geometry".into(), prop.clone()];
-        argv.extend(units_flag.iter().cloned());
-        argv.extend(["--airfoil".into(), airfoil]);
-        if let Some(t) = &p.thickness {
-            argv.extend(["--thickness".into(), t.clone()]);
-        }
-        if p.sections == "scan" {
-            argv.extend(["--station-airfoils".into(), o("scan/airfoils")]);
-        }
-        argv.extend(["--rpm".into(), p.rpm.to_string(), "--v".into(), p.v.to_string()]);
-        if let Some(x) = p.ncrit {
-            argv.extend(["--ncrit".into(), x.to_string()]);
-        }
-        if let Some(x) = &p.alpha {
-            argv.push(format!("--alpha={x}"));
-        }
-        if let Some(x) = &p.re_factors {
-            argv.extend(["--re-factors".into(), x.clone()]);
-        }
-        argv.extend(xfoil_flags.iter().cloned());
-        argv.extend([
-            "--out-prop".into(),
-            o("polars/prop.qprop"),
-            "--out-polars".into(),
-            o("polars/polars.json"),
-        ]);
-        std::fs::create_dir_all(out.join("polars"))?;
-        stages.push(stage("polars", argv, next(), total)?);
-        prop = o("polars/prop.qprop");
-    }
-    // The fitted prop file is in metres; a case's own prop file keeps its units flag.
-    let model_units = if case.polars.is_some() {
-        Vec::new()
-    } else {
-        units_flag.clone()
-    };
-
-    // 3. Sweeps.
-    std::fs::create_dir_all(out.join("predict"))?;
-    let mut argv = vec!["predict".into(), "--prop".into(), prop.clone()];
-    argv.extend(model_units.iter().cloned());
-    argv.extend([format!("--rpm={}", case.sweep.rpm), format!("--j={}", case.sweep.j)]);
-    argv.extend(air_flags_predict(&case.atmosphere)?);
-    argv.extend(["--out".into(), o("predict/sweep.csv")]);
-    stages.push(stage("predict", argv, next(), total)?);
-
-    // 4-5. Comparison and diagnosis.
-    if let Some(m) = &case.measured {
-        let mut data = vec!["--measured".to_string()];
-        data.extend(m.files.iter().map(|x| f(x)));
-        if let Some(p) = m.poles {
-            data.extend(["--poles".into(), p.to_string()]);
-        }
-        if let Some(s) = &m.rpm_source {
-            data.extend(["--rpm-source".into(), s.clone()]);
-        }
-        if let Some(c) = &m.columns {
-            data.extend(["--columns".into(), f(c)]);
-        }
-        if let Some(air) = &case.atmosphere.air {
-            data.extend(["--atmosphere".into(), air.clone()]);
-        }
-        if let Some(rho) = case.atmosphere.rho {
-            data.extend(["--rho".into(), rho.to_string()]);
-        }
-        let mut argv = vec!["compare".into(), "--prop".into(), prop.clone()];
-        argv.extend(model_units.iter().cloned());
-        argv.extend(data.iter().cloned());
-        argv.extend(["--out".into(), o("compare")]);
-        stages.push(stage("compare", argv, next(), total)?);
-        let mut argv = vec!["diagnose".into(), "--prop".into(), prop.clone()];
-        argv.extend(model_units.iter().cloned());
-        argv.extend(data);
-        if let Some(k) = m.folds {
-            argv.extend(["--folds".into(), k.to_string()]);
-        }
-        if let Some(k) = m.max_steps {
-            argv.extend(["--max-steps".into(), k.to_string()]);
-        }
-        argv.extend(["--out".into(), o("diagnose")]);
-        stages.push(stage("diagnose", argv, next(), total)?);
+    })?;
+    if let Some(e) = write_err {
+        return Err(e);
     }
 
-    // 6. The report.
+    // The report.
     let t0 = Instant::now();
-    let html = report(&case, &dir, &out, &stages, scan_summary.as_ref())?;
+    let total = outcome.stages.len() + 1;
+    let html = report(&plan, &outcome, &pages)?;
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
-    let n_report = next();
-    eprintln!(
-        "propbet [{n_report}/{total}] report: {:.1} s",
-        t0.elapsed().as_secs_f64()
-    );
+    eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
     println!(
         "{}: {} stages in {:.1} s; report: {}",
-        case.name,
-        stages.len() + 1,
+        plan.name,
+        total,
         t_all.elapsed().as_secs_f64(),
         report_path.display()
     );
-    Ok(stages.iter().all(|s| s.clean))
+    Ok(outcome.clean())
 }
 
-fn naca_name(s: &str) -> bool {
-    propbet_polar::naca4_from_name(s).is_some()
+fn create_parent(path: &Path) -> Result<()> {
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", d.display()))?;
+    }
+    Ok(())
 }
 
-/// `[atmosphere] air = "T,P,RH"` as `propbet predict`'s air flags.
-fn air_flags_predict(a: &AtmosphereSpec) -> Result<Vec<String>> {
-    let mut v = Vec::new();
-    if let Some(air) = &a.air {
-        let [t, p, rh] = crate::compare::split_atmosphere(air).context("[atmosphere] air")?;
-        v.extend([format!("--temp={t}"), "--pressure".into(), p, "--humidity".into(), rh]);
+/// Writes a finished stage's outputs and prints its summary, as its own command does; the
+/// compare and diagnose pages come back for the report.
+fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> {
+    match (&record.spec, made) {
+        (StageSpec::Scan(spec), Finished::Scan(s)) => {
+            crate::scan::write(spec, s)?;
+            crate::scan::print_summary(s);
+        }
+        (StageSpec::Polars(spec), Finished::Polars(p, input)) => {
+            crate::polar::print_polars(spec, input, p);
+            create_parent(&spec.out_prop)?;
+            crate::polar::write_polars(spec, p)?;
+        }
+        (StageSpec::Predict(spec), Finished::Predict(points, model)) => {
+            for w in &model.loaded.warnings {
+                eprintln!("propbet: warning: {w}");
+            }
+            if let Some(o) = &spec.out {
+                create_parent(o)?;
+            }
+            crate::predict::write_sweep(spec, points)?;
+        }
+        (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
+            let page = crate::compare::write(spec, model, c)?;
+            crate::compare::print(spec, c);
+            return Ok(Some(page));
+        }
+        (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {
+            let page = crate::diagnose::write(spec, d)?;
+            crate::diagnose::print(spec, d);
+            return Ok(Some(page));
+        }
+        _ => unreachable!("a stage's record and artifact match"),
     }
-    if let Some(rho) = a.rho {
-        v.extend(["--rho".into(), rho.to_string()]);
-    }
-    Ok(v)
+    Ok(None)
 }
 
 /// `<style>` and `<body>` of a report page written by another stage.
@@ -499,23 +223,14 @@ fn parts_of(page: &str) -> (String, String) {
     (style, body)
 }
 
-/// An SVG file's markup without its XML declaration, for inlining.
-fn inline_svg(path: &Path) -> Option<String> {
-    let s = std::fs::read_to_string(path).ok()?;
-    let start = s.find("<svg")?;
-    Some(s[start..].to_string())
-}
-
-fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&serde_json::Value>) -> Result<String> {
+fn report(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) -> Result<String> {
     let font = propbet_plot::font_face_css();
     let mut styles = vec![font.clone()];
     let mut bodies = Vec::new();
-    for (id, file) in [("compare", "compare/report.html"), ("diagnose", "diagnose/report.html")] {
-        if let Ok(page) = std::fs::read_to_string(out.join(file)) {
-            let (style, body) = parts_of(&page);
-            styles.push(style.replace(&font, ""));
-            bodies.push((id, body));
-        }
+    for (id, page) in pages {
+        let (style, body) = parts_of(page);
+        styles.push(style.replace(&font, ""));
+        bodies.push((*id, body));
     }
     let mut h = String::with_capacity(4_000_000);
     let _ = write!(
@@ -524,13 +239,13 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
          body{{max-width:1200px;margin:auto;font-family:sans-serif}} nav a{{margin-right:1em}} \
          section{{border-top:2px solid #888;margin-top:2em}} svg{{max-width:100%;height:auto}} \
          svg text{{font-family:{},sans-serif}}</style></head><body>\n",
-        esc(&case.name),
+        esc(&plan.name),
         styles.join("\n"),
         propbet_plot::FONT_FAMILY
     );
-    let _ = writeln!(h, "<h1>{}</h1>", esc(&case.name));
-    if !case.description.is_empty() {
-        let _ = writeln!(h, "<p>{}</p>", esc(&case.description));
+    let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
+    if !plan.description.is_empty() {
+        let _ = writeln!(h, "<p>{}</p>", esc(&plan.description));
     }
     let _ = writeln!(
         h,
@@ -543,67 +258,56 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
     );
     // Stages.
     h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
-    for s in stages {
+    for s in &run.stages {
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td><code>propbet {}</code></td></tr>",
-            s.name,
+            "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td><code>{}</code></td></tr>",
+            s.spec.name(),
             s.seconds,
             if s.clean { "ok" } else { "problems reported (see below)" },
-            esc(&shell_words(&s.argv))
+            esc(&s.spec.command())
         );
     }
     let _ = writeln!(
         h,
         "</table>\n<p class=\"note\">case directory <code>{}</code>; outputs of each stage beside this report.</p>",
-        esc(&dir.display().to_string())
+        esc(&plan.dir.display().to_string())
     );
 
     // Geometry.
     h.push_str("<section id=\"geometry\"><h2>Geometry</h2>\n");
-    match scan {
-        Some(v) => {
+    match &run.scanned {
+        Some(sc) => {
+            let g = &sc.geometry;
             let _ = writeln!(
                 h,
                 "<p>{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed.</p>",
-                v["blades"],
-                v["tip_radius_mm"].as_f64().unwrap_or(f64::NAN),
-                v["hub_radius_mm"].as_f64().map_or("none".into(), |x| format!("{x:.2} mm")),
-                v["root_radius_mm"].as_f64().unwrap_or(f64::NAN),
-                v["stations"].as_array().map_or(0, Vec::len),
-                v["failed"].as_array().map_or(0, Vec::len),
+                g.blades,
+                g.tip_radius,
+                g.hub_radius.map_or("none".into(), |x| format!("{x:.2} mm")),
+                g.root_radius,
+                g.stations.len(),
+                g.failed.len(),
             );
-            if let Some(notes) = v["notes"].as_array() {
-                h.push_str("<ul>");
-                for n in notes {
-                    let _ = write!(h, "<li>{}</li>", esc(n.as_str().unwrap_or_default()));
-                }
-                h.push_str("</ul>\n");
+            h.push_str("<ul>");
+            for n in &g.notes {
+                let _ = write!(h, "<li>{}</li>", esc(n));
             }
-            if let Some(failed) = v["failed"].as_array() {
-                for f in failed {
-                    let _ = writeln!(
-                        h,
-                        "<p class=\"note\">r/R {:.3}: {}</p>",
-                        f["r_r"].as_f64().unwrap_or(f64::NAN),
-                        esc(f["reason"].as_str().unwrap_or_default())
-                    );
-                }
+            h.push_str("</ul>\n");
+            for f in &g.failed {
+                let _ = writeln!(h, "<p class=\"note\">r/R {:.3}: {}</p>", f.r_r, esc(&f.reason));
             }
             h.push_str("<h3>Along the radius (with the reference table where the case has one)</h3>\n");
-            if let Some(svg) = inline_svg(&out.join("scan/plots/distributions.svg")) {
-                h.push_str(&svg);
-            }
+            let svg = |f: &Figure| propbet_plot::svg_inline(f).map_err(|e| anyhow::anyhow!("{e}"));
+            h.push_str(&svg(&crate::scan::distributions_figure(g, sc.reference.as_deref()))?);
             h.push_str("<h3>The sections: scan points and fits</h3>\n");
-            if let Some(svg) = inline_svg(&out.join("scan/plots/sections.svg")) {
-                h.push_str(&svg);
-            }
+            h.push_str(&svg(&crate::scan::sections_figure(g))?);
         }
         None => {
             let _ = writeln!(
                 h,
                 "<p>From the prop file <code>{}</code> (no scan in this case).</p>",
-                esc(case.geometry.prop.as_deref().unwrap_or_default())
+                esc(&plan.predict.model.prop.display().to_string())
             );
         }
     }
@@ -611,9 +315,9 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
 
     // Polars.
     h.push_str("<section id=\"polars\"><h2>Section polars</h2>\n");
-    match std::fs::read(out.join("polars/polars.json")) {
-        Ok(bytes) => {
-            let b: propbet_polar::BladePolars = serde_json::from_slice(&bytes).context("polars.json")?;
+    match &run.polars {
+        Some(p) => {
+            let b = &p.blade;
             let _ = writeln!(
                 h,
                 "<p>XFOIL at each station's Reynolds and Mach numbers at {:.0} rpm, {} m/s; sections: {}.</p>",
@@ -643,14 +347,13 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
             }
             h.push_str("</table>\n");
         }
-        Err(_) => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
+        None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
     }
     h.push_str("</section>\n");
 
     // Prediction.
     h.push_str("<section id=\"prediction\"><h2>Prediction</h2>\n");
-    let sweep = std::fs::read_to_string(out.join("predict/sweep.csv")).context("sweep.csv")?;
-    h.push_str(&propbet_plot::svg_inline(&sweep_figure(&sweep)?).map_err(|e| anyhow::anyhow!("{e}"))?);
+    h.push_str(&propbet_plot::svg_inline(&sweep_figure(&run.sweep)).map_err(|e| anyhow::anyhow!("{e}"))?);
     h.push_str("</section>\n");
 
     for (id, body) in bodies {
@@ -660,25 +363,24 @@ fn report(case: &Case, dir: &Path, out: &Path, stages: &[Stage], scan: Option<&s
     Ok(h)
 }
 
-/// CT, CP and efficiency against J, one line per RPM, from `propbet predict`'s CSV.
-fn sweep_figure(csv: &str) -> Result<Figure> {
-    let t = CsvTable::parse(csv, "sweep.csv");
-    let (ci, cj, cct, ccp, ceta) = (t.col("rpm")?, t.col("j")?, t.col("ct")?, t.col("cp")?, t.col("eta")?);
+/// CT, CP and efficiency against J, one line per RPM.
+fn sweep_figure(points: &[PointResult]) -> Figure {
     // Per RPM: (CT, CP, efficiency) against J.
     type Curves = [Vec<(f64, f64)>; 3];
     let mut by_rpm: Vec<(String, Curves)> = Vec::new();
-    for v in &t.rows {
-        let num = |k: usize| CsvTable::num(v, k);
-        let rpm = format!("{:.0} rpm", num(ci));
+    let nan = f64::NAN;
+    for p in points {
+        // The label as the sweep table prints the speed (7 significant digits).
+        let rpm = format!("{:.0} rpm", p.rpm);
         if by_rpm.last().is_none_or(|b| b.0 != rpm) {
             by_rpm.push((rpm.clone(), Default::default()));
         }
         let e = &mut by_rpm.last_mut().expect("pushed").1;
-        let j = num(cj);
-        e[0].push((j, num(cct)));
-        e[1].push((j, num(ccp)));
-        if num(cct) > 0.0 {
-            e[2].push((j, num(ceta)));
+        let (j, ct, cp) = (p.j.unwrap_or(nan), p.ct.unwrap_or(nan), p.cp.unwrap_or(nan));
+        e[0].push((j, ct));
+        e[1].push((j, cp));
+        if ct > 0.0 {
+            e[2].push((j, p.eta));
         }
     }
     let panel = |k: usize, title: &str, y: &str| Panel {
@@ -692,7 +394,7 @@ fn sweep_figure(csv: &str) -> Result<Figure> {
             .collect(),
         zero_line: true,
     };
-    Ok(Figure {
+    Figure {
         panels: vec![
             panel(0, "Thrust coefficient CT = T/(ρn²D⁴)", "CT"),
             panel(1, "Power coefficient CP = P/(ρn³D⁵)", "CP"),
@@ -701,5 +403,5 @@ fn sweep_figure(csv: &str) -> Result<Figure> {
         columns: 3,
         width: 1200,
         height: 400,
-    })
+    }
 }

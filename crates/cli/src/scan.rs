@@ -3,24 +3,22 @@
 //! prop file, per-station airfoil files (Selig), plots, the cleaned surface split by blade
 //! (STL per blade for meshes, a PLY with a `blade` property for clouds), and a JSON summary.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use nalgebra::Vector3;
-use propbet_bemt::QpropCoefficients;
-use propbet_geometry::cloud::{parse_colour, read_cloud, to_ply};
-use propbet_geometry::mesh::read_stl;
-use propbet_geometry::scan::{
-    default_stations, scan_cloud, scan_mesh, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
-};
-use propbet_geometry::synth::naca4;
+use propbet_geometry::cloud::{parse_colour, to_ply};
+use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
+use propbet_measure::uiuc::{geometry_at, GeometryRow};
+use propbet_pipeline::spec::ScanSpec;
+use propbet_pipeline::stages::{self, Scanned};
+use propbet_pipeline::values::{parse_length_unit, parse_list};
 use propbet_plot::{Figure, Mark, Panel, Series};
-use propbet_qprop::{write_prop, PropFile, PropRow};
+use propbet_qprop::write_prop;
 use serde_json::json;
 
 use crate::output::{write_atomic, write_figure};
-use crate::values::{parse_length_unit, parse_list};
 
 /// Arguments of `propbet scan`.
 #[derive(Debug, Args)]
@@ -125,6 +123,19 @@ fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
         .collect()
 }
 
+impl ScanArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<ScanSpec> {
+        Ok(ScanSpec {
+            input: self.input.clone(),
+            options: options(self)?,
+            reference: self.reference.clone(),
+            name: self.name.clone(),
+            out: self.out.clone(),
+        })
+    }
+}
+
 /// Builds the pipeline's options from the flags.
 pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
     let units = parse_length_unit(&a.units)? * 1000.0;
@@ -223,136 +234,29 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
     })
 }
 
-/// Reads a scan file and runs the pipeline.
-pub fn process(path: &Path, opts: &ScanOptions) -> Result<Geometry> {
-    let bytes = std::fs::read(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let name = path.display().to_string();
-    let is_stl = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
-    let geo = if is_stl {
-        let mesh = read_stl(&bytes, &name)?;
-        scan_mesh(&mesh, opts)
-    } else {
-        let cloud = read_cloud(&bytes, &name)?;
-        scan_cloud(&cloud, opts)
-    };
-    geo.map_err(|e| anyhow::anyhow!("{name}: {e}"))
-}
-
-/// A UIUC-style geometry table: rows `r/R c/R beta` (a header line is skipped).
-pub fn read_reference(path: &Path) -> Result<Vec<[f64; 3]>> {
-    let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read", path.display()))?;
-    let mut rows = Vec::new();
-    for (i, line) in text.lines().enumerate() {
-        let f: Vec<&str> = line.split_whitespace().collect();
-        if f.is_empty() || f[0].parse::<f64>().is_err() {
-            continue;
-        }
-        if f.len() < 3 {
-            bail!("{}: line {}: expected r/R c/R beta", path.display(), i + 1);
-        }
-        let v: Vec<f64> = f[..3]
-            .iter()
-            .map(|s| s.parse::<f64>().ok().filter(|x| x.is_finite()))
-            .collect::<Option<_>>()
-            .with_context(|| {
-                format!(
-                    "{}: line {}: '{}' is not three numbers",
-                    path.display(),
-                    i + 1,
-                    line.trim()
-                )
-            })?;
-        rows.push([v[0], v[1], v[2]]);
-    }
-    if rows.len() < 2 {
-        bail!("{}: fewer than two rows of r/R c/R beta", path.display());
-    }
-    Ok(rows)
-}
-
-/// Linear interpolation in a table's column `k` at r/R `x` (None outside).
-pub fn interp(table: &[[f64; 3]], x: f64, k: usize) -> Option<f64> {
-    let i = table.windows(2).position(|w| w[0][0] <= x && x <= w[1][0])?;
-    let (a, b) = (table[i], table[i + 1]);
-    let f = if b[0] > a[0] { (x - a[0]) / (b[0] - a[0]) } else { 0.0 };
-    Some(a[k] + f * (b[k] - a[k]))
-}
-
-/// Thin-airfoil zero-lift angle [rad] of a NACA 4-digit camber line (negative for positive
-/// camber): α_L0 = −(1/π) ∫ dyc/dx (cos θ − 1) dθ.
-fn alpha_zero_lift(m: f64, p: f64) -> f64 {
-    let n = 400;
-    let mut s = 0.0;
-    for k in 0..n {
-        let th = std::f64::consts::PI * (k as f64 + 0.5) / n as f64;
-        let x = 0.5 * (1.0 - th.cos());
-        // Slope of the mean line from the upper/lower surfaces at zero thickness.
-        let h = 1e-5;
-        let (a, _) = naca4((x + h).min(1.0), 0.0, m, p);
-        let (b, _) = naca4((x - h).max(0.0), 0.0, m, p);
-        let dyc = (a.1 - b.1) / (a.0 - b.0);
-        s += dyc * (th.cos() - 1.0) * std::f64::consts::PI / n as f64;
-    }
-    -s / std::f64::consts::PI
-}
-
-/// The prop file: radii and chords in metres, β in degrees; CL0 from thin-airfoil theory on
-/// the fitted camber, the rest QPROP's generic low-Re values until `propbet polars` (XFOIL at
-/// each station's Re) replaces them.
-pub fn prop_file(name: &str, g: &Geometry) -> PropFile {
-    let generic = QpropCoefficients {
-        cl0: 0.5,
-        cl_a: 5.8,
-        cl_min: -0.4,
-        cl_max: 1.2,
-        cd0: 0.028,
-        cd2u: 0.05,
-        cd2l: 0.05,
-        clcd0: 0.5,
-        re_ref: 70000.0,
-        re_exp: -0.7,
-    };
-    let rows = g
-        .stations
-        .iter()
-        .map(|s| {
-            let cl0 = -2.0 * std::f64::consts::PI * alpha_zero_lift(s.naca.camber, s.naca.camber_pos);
-            let c = QpropCoefficients {
-                cl0,
-                clcd0: cl0,
-                ..generic
-            };
-            PropRow {
-                r: s.r / 1000.0,
-                chord: s.chord / 1000.0,
-                beta: s.beta_deg,
-                coeffs: c.to_array().to_vec(),
-            }
-        })
-        .collect();
-    PropFile {
-        name: name.to_string(),
-        blades: g.blades as f64,
-        radius: Some(g.tip_radius / 1000.0),
-        global: generic.to_array(),
-        scale: [1.0, 1.0, 1.0],
-        offset: [0.0, 0.0, 0.0],
-        rows,
-        row_lines: Vec::new(),
-    }
+/// Linear interpolation in a reference table at r/R `x`: column 1 c/R, 2 β [deg] (None outside).
+fn interp(table: &[GeometryRow], x: f64, k: usize) -> Option<f64> {
+    geometry_at(table, x).map(|(c, b)| if k == 1 { c } else { b.to_degrees() })
 }
 
 /// Runs `propbet scan`.
 pub fn run(a: &ScanArgs) -> Result<bool> {
-    let opts = options(a)?;
-    let g = process(&a.input, &opts)?;
+    let spec = a.spec()?;
+    let s = stages::scan(&spec)?;
+    write(&spec, &s)?;
+    print_summary(&s);
+    println!("wrote {}", spec.out.display());
+    Ok(true)
+}
+
+/// Writes the scan stage's outputs: geometry.csv, geom.txt, prop.qprop, airfoils/,
+/// plots/, blades/, scan.json.
+pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
+    let g = &sc.geometry;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     let inputs = [a.input.as_path()];
-    let reference = a.reference.as_deref().map(read_reference).transpose()?;
+    let reference = sc.reference.as_deref();
     let big_r = g.tip_radius;
     // Geometry CSV.
     let mut csv = String::from(
@@ -386,7 +290,7 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
             s.points,
             s.blade_spread_deg
         ));
-        if let Some(t) = &reference {
+        if let Some(t) = reference {
             let f = |k| interp(t, s.r_r, k).map_or(String::new(), |v| format!("{v:.4}"));
             csv.push_str(&format!(",{},{}", f(1), f(2)));
         }
@@ -400,31 +304,20 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
     }
     write_atomic(&a.out.join("geom.txt"), &[geom], &inputs)?;
     // QPROP prop file.
-    let name = a.name.clone().unwrap_or_else(|| {
-        a.input
-            .file_stem()
-            .map_or("scan".into(), |s| s.to_string_lossy().into_owned())
-    });
-    write_atomic(&a.out.join("prop.qprop"), &[write_prop(&prop_file(&name, &g))], &inputs)?;
+    write_atomic(&a.out.join("prop.qprop"), &[write_prop(&sc.prop.file)], &inputs)?;
     // Airfoils, Selig order.
-    for (i, s) in g.stations.iter().enumerate() {
-        if let Some(c) = &s.cst {
-            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, c.rms);
-            for (x, y) in c.selig(80) {
-                t.push_str(&format!("{x:.6} {y:.6}\n"));
-            }
-            write_atomic(
-                &a.out.join("airfoils").join(format!("station_{i:02}.dat")),
-                &[t],
-                &inputs,
-            )?;
-        }
+    for (i, t) in &sc.airfoils {
+        write_atomic(
+            &a.out.join("airfoils").join(format!("station_{i:02}.dat")),
+            &[t],
+            &inputs,
+        )?;
     }
     // Plots.
-    write_figure(&a.out.join("plots/sections.svg"), &sections_figure(&g), &inputs)?;
+    write_figure(&a.out.join("plots/sections.svg"), &sections_figure(g), &inputs)?;
     write_figure(
         &a.out.join("plots/distributions.svg"),
-        &distributions_figure(&g, reference.as_deref()),
+        &distributions_figure(g, reference),
         &inputs,
     )?;
     if let Some(c) = &g.colour {
@@ -508,12 +401,12 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
         &[serde_json::to_string_pretty(&summary)?],
         &inputs,
     )?;
-    print_summary(&g, reference.as_deref());
-    println!("wrote {}", a.out.display());
-    Ok(true)
+    Ok(())
 }
 
-fn print_summary(g: &Geometry, reference: Option<&[[f64; 3]]>) {
+/// The scan on the terminal.
+pub fn print_summary(sc: &Scanned) {
+    let (g, reference) = (&sc.geometry, sc.reference.as_deref());
     println!(
         "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
         g.blades,
@@ -550,7 +443,8 @@ fn print_summary(g: &Geometry, reference: Option<&[[f64; 3]]>) {
     }
 }
 
-fn sections_figure(g: &Geometry) -> Figure {
+/// Every section's points and fits.
+pub fn sections_figure(g: &Geometry) -> Figure {
     let panels = g
         .stations
         .iter()
@@ -585,7 +479,8 @@ fn sections_figure(g: &Geometry) -> Figure {
     }
 }
 
-fn distributions_figure(g: &Geometry, reference: Option<&[[f64; 3]]>) -> Figure {
+/// Chord, blade angle, thickness and camber, skew and rake along the radius.
+pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> Figure {
     let col = |f: &dyn Fn(&propbet_geometry::scan::Station) -> f64| -> Vec<(f64, f64)> {
         g.stations.iter().map(|s| (s.r_r, f(s))).collect()
     };
@@ -595,13 +490,13 @@ fn distributions_figure(g: &Geometry, reference: Option<&[[f64; 3]]>) -> Figure 
     if let Some(t) = reference {
         chord.push(Series::new(
             "reference",
-            t.iter().map(|x| (x[0], x[1])).collect(),
+            t.iter().map(|x| (x.r_r, x.c_r)).collect(),
             Mark::Dots,
             Some(1),
         ));
         beta.push(Series::new(
             "reference",
-            t.iter().map(|x| (x[0], x[2])).collect(),
+            t.iter().map(|x| (x.r_r, x.beta.to_degrees())).collect(),
             Mark::Dots,
             Some(1),
         ));

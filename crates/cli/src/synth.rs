@@ -12,8 +12,9 @@ use propbet_effects::Stack;
 use serde_json::json;
 
 use crate::output::write_atomic;
-use crate::predict::ModelArgs;
-use crate::values::parse_list;
+use propbet_pipeline::values::parse_list;
+
+use crate::predict::{load_model, ModelArgs};
 
 /// Output format of `propbet synth`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -68,7 +69,8 @@ fn parse_noise(s: &str) -> Result<f64> {
 
 /// Runs `propbet synth`.
 pub fn run(args: &SynthArgs) -> Result<bool> {
-    let m = args.model.build(false)?;
+    let mspec = args.model.spec()?;
+    let m = load_model(&mspec, false)?;
     let noise = parse_noise(&args.noise)?;
     let state = AirState::ISA;
     let fluid = state.fluid();
@@ -103,7 +105,7 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
         logged: (state.temperature - 273.15, state.pressure),
     };
     let points = synth::generate(&base, &m.effects, &plan)?;
-    let inputs = args.model.inputs();
+    let inputs = mspec.inputs();
     let mut key = serde_json::Map::new();
     for a in &m.effects.active {
         let params: serde_json::Map<String, serde_json::Value> = a

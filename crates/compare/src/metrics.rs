@@ -164,6 +164,55 @@ pub fn metrics(points: &[ComparedPoint]) -> Metrics {
     }
 }
 
+/// Fraction of a sweep's measured zero-thrust J below which the validation scores a point:
+/// near zero thrust a relative error says nothing, and the last points of a sweep are there.
+pub const VALIDATION_J_WINDOW: f64 = 0.85;
+
+/// The validation metric's samples: |predicted/measured − 1| of CT and of CP at every point
+/// below `window` times its file's measured zero-thrust J (linear between the last positive
+/// and the first non-positive measured CT; every point of a file whose CT never crosses zero,
+/// static files included). Points without a measured or predicted value are left out.
+pub fn window_errors(points: &[ComparedPoint], window: f64) -> (Vec<f64>, Vec<f64>) {
+    let nan = f64::NAN;
+    let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
+    files.dedup();
+    let (mut ect, mut ecp) = (Vec::new(), Vec::new());
+    for f in files {
+        let mut pts: Vec<&ComparedPoint> = points.iter().filter(|p| p.file == f).collect();
+        pts.sort_by(|a, b| a.j.total_cmp(&b.j));
+        let ct = |p: &ComparedPoint| p.measured.ct.unwrap_or(nan);
+        let j0 = pts.windows(2).find(|w| ct(w[0]) > 0.0 && ct(w[1]) <= 0.0).map(|w| {
+            let (a, b) = (ct(w[0]), ct(w[1]));
+            w[0].j + a / (a - b) * (w[1].j - w[0].j)
+        });
+        for p in pts {
+            if j0.is_some_and(|j0| p.j >= window * j0) {
+                continue;
+            }
+            let pairs = [
+                (p.measured.ct, p.predicted.ct, &mut ect),
+                (p.measured.cp, p.predicted.cp, &mut ecp),
+            ];
+            for (m, q, out) in pairs {
+                let (m, q) = (m.unwrap_or(nan), q.unwrap_or(nan));
+                if m.is_finite() && q.is_finite() && m > 0.0 {
+                    out.push((q / m - 1.0).abs());
+                }
+            }
+        }
+    }
+    (ect, ecp)
+}
+
+/// The `q`-quantile of `v` (the sample nearest to rank q (n − 1)); NaN for no samples.
+pub fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[((v.len() - 1) as f64 * q).round() as usize]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -199,6 +248,31 @@ mod tests {
             flags: vec![],
             rel_floor: Quantities::default(),
         }
+    }
+
+    #[test]
+    fn window_errors_stop_below_85_percent_of_the_zero_thrust_j() {
+        // Measured CT crosses zero at J = 0.5: J 0.45 (>= 0.425) is left out.
+        let mk = |j: f64, ct: f64, ctp: f64, cp: f64, cpp: f64| {
+            let mut p = pt("x", 5000.0, j, 1.0, 1.0);
+            p.measured.ct = Some(ct);
+            p.predicted.ct = Some(ctp);
+            p.measured.cp = Some(cp);
+            p.predicted.cp = Some(cpp);
+            p
+        };
+        let pts = vec![
+            mk(0.2, 0.08, 0.08, 0.04, 0.044),
+            mk(0.0, 0.1, 0.11, 0.05, 0.05),
+            mk(0.45, 0.01, 0.02, 0.02, 0.02),
+            mk(0.55, -0.01, 0.0, 0.01, 0.01),
+        ];
+        let (ct, cp) = window_errors(&pts, VALIDATION_J_WINDOW);
+        assert_eq!(ct.len(), 2);
+        assert!((ct[0] - 0.1).abs() < 1e-12 && ct[1].abs() < 1e-12, "{ct:?}");
+        assert!((cp[1] - 0.1).abs() < 1e-12, "{cp:?}");
+        assert_eq!(quantile(vec![3.0, 1.0, 2.0], 0.5), 2.0);
+        assert!(quantile(vec![], 0.5).is_nan());
     }
 
     #[test]

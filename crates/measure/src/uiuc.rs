@@ -150,8 +150,76 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
     })
 }
 
+/// One row of a UIUC geometry file (`<prop>_geom.txt`): blade station, chord and blade angle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GeometryRow {
+    /// Radius over tip radius r/R [-].
+    pub r_r: f64,
+    /// Chord over tip radius c/R [-].
+    pub c_r: f64,
+    /// Blade angle β [rad] (the file gives degrees).
+    pub beta: f64,
+}
+
+/// A UIUC-style geometry table: rows `r/R c/R beta[deg]`; header lines (a first word that is not
+/// a number) are skipped. At least two rows.
+pub fn read_geometry(text: &str) -> Result<Vec<GeometryRow>, ReadError> {
+    let mut rows = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        if f.is_empty() || f[0].parse::<f64>().is_err() {
+            continue;
+        }
+        let bad = |message: String| ReadError::Line { line: i + 1, message };
+        if f.len() < 3 {
+            return Err(bad("expected r/R c/R beta".into()));
+        }
+        let v: Vec<f64> = f[..3]
+            .iter()
+            .map(|s| s.parse::<f64>().ok().filter(|x| x.is_finite()))
+            .collect::<Option<_>>()
+            .ok_or_else(|| bad(format!("'{}' is not three numbers", line.trim())))?;
+        rows.push(GeometryRow {
+            r_r: v[0],
+            c_r: v[1],
+            beta: v[2].to_radians(),
+        });
+    }
+    if rows.len() < 2 {
+        return Err(ReadError::Empty("fewer than two rows of r/R c/R beta".into()));
+    }
+    Ok(rows)
+}
+
+/// Linear interpolation of a geometry table at r/R `x`: (c/R, β [rad]); None outside the table.
+pub fn geometry_at(table: &[GeometryRow], x: f64) -> Option<(f64, f64)> {
+    let i = table.windows(2).position(|w| w[0].r_r <= x && x <= w[1].r_r)?;
+    let (a, b) = (table[i], table[i + 1]);
+    let f = if b.r_r > a.r_r {
+        (x - a.r_r) / (b.r_r - a.r_r)
+    } else {
+        0.0
+    };
+    Some((a.c_r + f * (b.c_r - a.c_r), a.beta + f * (b.beta - a.beta)))
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn geometry_tables_and_bad_rows() {
+        let t = super::read_geometry("r/R c/R beta\n0.15 0.12 30\n0.2 0.14 28\n").unwrap();
+        assert_eq!(t.len(), 2);
+        assert!((t[1].beta - 28f64.to_radians()).abs() < 1e-15);
+        let (c, b) = super::geometry_at(&t, 0.175).unwrap();
+        assert!((c - 0.13).abs() < 1e-12 && (b - 29f64.to_radians()).abs() < 1e-12);
+        assert_eq!(super::geometry_at(&t, 0.3), None);
+        let e = super::read_geometry("0.1 0.2\n").unwrap_err().to_string();
+        assert!(e.contains("line 1"), "{e}");
+        let e = super::read_geometry("0.1 0.2 x\n0.2 0.1 3\n").unwrap_err().to_string();
+        assert!(e.contains("line 1") && e.contains("not three numbers"), "{e}");
+        assert!(super::read_geometry("0.1 0.2 3\n").is_err());
+    }
+
     use super::*;
 
     #[test]

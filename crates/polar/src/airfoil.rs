@@ -413,6 +413,36 @@ pub enum NacaStyle {
     },
 }
 
+/// Thin-airfoil lift coefficient at zero angle of attack of a NACA 4-digit mean line with
+/// maximum camber `camber` at `camber_pos` (fractions of the chord): CL0 = −2π α_L0 with
+/// α_L0 = −(1/π) ∫₀^π dy_c/dx (cos θ − 1) dθ, x = (1 − cos θ)/2 (Abbott & von Doenhoff,
+/// *Theory of Wing Sections*, eq. 4.31), by the midpoint rule on 400 intervals with the slope
+/// from central differences of the mean line.
+pub fn naca4_cl0(camber: f64, camber_pos: f64) -> f64 {
+    let (m, p) = (camber, camber_pos);
+    let yc = |x: f64| {
+        if m <= 0.0 || p <= 0.0 {
+            0.0
+        } else if x < p {
+            m / (p * p) * (2.0 * p * x - x * x)
+        } else {
+            m / ((1.0 - p) * (1.0 - p)) * (1.0 - 2.0 * p + 2.0 * p * x - x * x)
+        }
+    };
+    let n = 400;
+    let mut s = 0.0;
+    for k in 0..n {
+        let th = std::f64::consts::PI * (k as f64 + 0.5) / n as f64;
+        let x = 0.5 * (1.0 - th.cos());
+        let h = 1e-5;
+        let (a, b) = ((x + h).min(1.0), (x - h).max(0.0));
+        let dyc = (yc(a) - yc(b)) / (a - b);
+        s += dyc * (th.cos() - 1.0) * std::f64::consts::PI / n as f64;
+    }
+    let alpha_l0 = -s / std::f64::consts::PI;
+    -2.0 * std::f64::consts::PI * alpha_l0
+}
+
 /// A NACA 4-digit section `m p tt` (max camber m/100 at p/10 chord, thickness tt/100), with
 /// `per_side` points per surface, cosine spaced.
 pub fn naca4(
@@ -585,6 +615,19 @@ fn segments_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn thin_airfoil_cl0_of_naca_mean_lines() {
+        // NACA 2412: alpha_L0 = -2.077 deg by thin-airfoil theory (Anderson, Fundamentals of
+        // Aerodynamics, example 4.6), CL0 = 2 pi x 0.03625 rad.
+        let cl0 = super::naca4_cl0(0.02, 0.4);
+        assert!(
+            (cl0 - 2.0 * std::f64::consts::PI * 2.077f64.to_radians()).abs() < 2e-3,
+            "{cl0}"
+        );
+        assert_eq!(super::naca4_cl0(0.0, 0.0), 0.0);
+        assert!(super::naca4_cl0(0.04, 0.4) > cl0);
+    }
+
     use super::*;
 
     const E63: &str = include_str!("../../../props/airfoils/e63.dat");

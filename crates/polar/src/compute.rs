@@ -1,5 +1,5 @@
 //! Polars from XFOIL: one job per (airfoil, Re, Mach, Ncrit, alpha grid), run in parallel
-//! (rayon) with a progress bar (indicatif), through a content-addressed cache.
+//! (rayon) reporting progress through a callback, through a content-addressed cache.
 //!
 //! The cache key is the SHA-256 of everything that decides XFOIL's answer: the coordinates as
 //! sent (shortest round-trip decimal of each f64), Re, Mach, Ncrit, the angles, the iteration
@@ -11,7 +11,6 @@
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
@@ -260,31 +259,26 @@ impl PolarEngine {
         Ok((polar, source))
     }
 
-    /// Every job, in parallel on rayon's pool, with a progress bar on stderr when `progress`
-    /// (and stderr is a terminal). Results come back in job order.
-    pub fn compute_all(&self, jobs: &[PolarJob], progress: bool) -> Vec<Result<(Polar, Source), PolarError>> {
-        let bar = if progress {
-            let b = ProgressBar::new(jobs.len() as u64);
-            if let Ok(style) = ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} polars, {eta} left") {
-                b.set_style(style.progress_chars("=> "));
-            }
-            b.set_prefix("XFOIL");
-            b
-        } else {
-            ProgressBar::hidden()
-        };
-        let out: Vec<_> = jobs
-            .par_iter()
+    /// Every job, in parallel on rayon's pool; `progress(done, total)` is called after each
+    /// job (from any thread). Results come back in job order.
+    pub fn compute_all(&self, jobs: &[PolarJob], progress: &Progress<'_>) -> Vec<Result<(Polar, Source), PolarError>> {
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        jobs.par_iter()
             .map(|j| {
                 let r = self.compute(j);
-                bar.inc(1);
+                let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+                progress(n, jobs.len());
                 r
             })
-            .collect();
-        bar.finish_and_clear();
-        out
+            .collect()
     }
 }
+
+/// A progress callback: `(jobs done, jobs in all)`, called from worker threads.
+pub type Progress<'a> = dyn Fn(usize, usize) + Sync + 'a;
+
+/// A progress callback that does nothing.
+pub fn no_progress(_: usize, _: usize) {}
 
 fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()

@@ -18,7 +18,7 @@ pub mod table;
 pub mod tabulated;
 
 pub use airfoil::{naca4, naca4_from_name, Airfoil, AirfoilError, NacaStyle};
-pub use compute::{PolarCache, PolarEngine, PolarError, PolarJob, Source};
+pub use compute::{no_progress, PolarCache, PolarEngine, PolarError, PolarJob, Progress, Source};
 pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit};
 pub use table::{Polar, PolarPoint};
 pub use tabulated::TabulatedAero;

@@ -62,7 +62,11 @@ fn qprop_fit_reproduces_xfoil_over_the_linear_range() {
         .iter()
         .map(|&re| PolarJob::new(foil.clone(), re, 0.0, 9.0, grid(-6.0, 14.0, 1.0)))
         .collect();
-    let polars: Vec<_> = e.compute_all(&jobs, false).into_iter().map(|r| r.unwrap().0).collect();
+    let polars: Vec<_> = e
+        .compute_all(&jobs, &propbet_polar::compute::no_progress)
+        .into_iter()
+        .map(|r| r.unwrap().0)
+        .collect();
     let fit = fit_qprop(&polars, 1e5, &AlphaWeights::Uniform, -0.5).unwrap();
     // Drag falls with Re; at Re 7e4-1.4e5 laminar bubbles make it steeper than laminar
     // friction's -0.5 (XFOIL gives about -1 for this section here).
@@ -130,7 +134,10 @@ fn apc_sections_give_polars_at_low_re() {
             jobs.push(PolarJob::new(foil.clone(), re, 0.0, 9.0, grid(-6.0, 12.0, 1.0)));
         }
     }
-    for (job, r) in jobs.iter().zip(e.compute_all(&jobs, false)) {
+    for (job, r) in jobs
+        .iter()
+        .zip(e.compute_all(&jobs, &propbet_polar::compute::no_progress))
+    {
         let (p, _) = r.unwrap_or_else(|e| panic!("{} at Re {}: {e}", job.airfoil.name, job.re));
         assert!(
             p.points.len() >= 6,

@@ -1,0 +1,408 @@
+//! Case files (`case.toml`): what a case directory holds and asks for, checked before anything
+//! runs, and the plan of stages it turns into.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use propbet_bemt::units::rpm_to_omega;
+use propbet_geometry::scan::ScanOptions;
+use propbet_measure::RpmSource;
+
+use crate::spec::{
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PredictSpec, ScanSpec, StageSpec,
+    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec, DEFAULT_RE_FACTORS,
+};
+use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
+use crate::{read_text, Error, Result};
+
+/// `case.toml`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Case {
+    /// What the case is.
+    pub name: String,
+    /// A sentence or two on where it comes from.
+    #[serde(default)]
+    pub description: String,
+    /// Blade count, checked against the scan when given.
+    pub blades: Option<usize>,
+    /// The blade.
+    pub geometry: GeometrySection,
+    /// XFOIL polars (without: the prop file's coefficients are used).
+    pub polars: Option<PolarSection>,
+    /// Prediction sweeps.
+    pub sweep: SweepSection,
+    /// Measurements (without: no comparison, no diagnosis).
+    pub measured: Option<MeasuredSection>,
+    /// Air of the measurements and sweeps.
+    #[serde(default)]
+    pub atmosphere: AtmosphereSection,
+}
+
+/// `[geometry]`: a scan or a prop file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GeometrySection {
+    /// A scan (STL, PLY, points3D.txt, XYZ) for `propbet scan`.
+    pub scan: Option<String>,
+    /// Or a QPROP prop file.
+    pub prop: Option<String>,
+    /// Length unit of the scan or prop file.
+    pub units: Option<String>,
+    /// Stations as r/R (`propbet scan --stations`).
+    pub stations: Option<String>,
+    /// A UIUC-style table (r/R c/R beta) to set the scan against.
+    pub reference: Option<String>,
+    /// Further `propbet scan` flags, for example `["--crop=-80,-200,-200,200,200,200"]`.
+    #[serde(default)]
+    pub scan_args: Vec<String>,
+}
+
+/// `[polars]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PolarSection {
+    /// `scan`: each station's section as the scan fitted it (the airfoil where the scan gave
+    /// none); `airfoil`: the airfoil at every station.
+    #[serde(default = "default_sections")]
+    pub sections: String,
+    /// Coordinate file (relative to the case) or a NACA 4-digit name: the airfoil hint.
+    pub airfoil: String,
+    /// Scale the airfoil to this thickness ratio.
+    pub thickness: Option<String>,
+    /// Operating point whose Reynolds numbers the polars are computed at [rpm].
+    pub rpm: f64,
+    /// Its axial speed [m/s].
+    #[serde(default)]
+    pub v: f64,
+    /// Transition amplification ratio.
+    pub ncrit: Option<f64>,
+    /// Angles of attack (`propbet polars --alpha`).
+    pub alpha: Option<String>,
+    /// Multiples of each station's Re for REexp.
+    pub re_factors: Option<String>,
+}
+
+fn default_sections() -> String {
+    "scan".into()
+}
+
+/// `[sweep]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SweepSection {
+    /// Rotation speeds [rpm]: a list or a range.
+    pub rpm: String,
+    /// Advance ratios: a list or a range.
+    pub j: String,
+}
+
+/// `[measured]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeasuredSection {
+    /// Files relative to the case directory.
+    pub files: Vec<String>,
+    /// Motor poles (electrical RPM of thrust-stand logs).
+    pub poles: Option<u32>,
+    /// `optical` or `electrical`.
+    pub rpm_source: Option<String>,
+    /// Column map of generic CSV files.
+    pub columns: Option<String>,
+    /// Diagnosis: folds and ladder steps.
+    pub folds: Option<usize>,
+    /// Most effects the ladder adds.
+    pub max_steps: Option<usize>,
+}
+
+/// `[atmosphere]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereSection {
+    /// `T,P,RH` as `--atmosphere` takes it (overrides what the logs say).
+    pub air: Option<String>,
+    /// Air density [kg/m^3] (overrides everything).
+    pub rho: Option<f64>,
+}
+
+/// Reads and checks `case.toml`.
+pub fn read_case(dir: &Path) -> Result<Case> {
+    let path = dir.join("case.toml");
+    let text = read_text(&path)?;
+    let case: Case = toml::from_str(&text).map_err(|e| Error::input(&path, e))?;
+    let g = &case.geometry;
+    if g.scan.is_some() == g.prop.is_some() {
+        return Err(Error::input(&path, "[geometry] needs exactly one of `scan` and `prop`"));
+    }
+    if let Some(p) = &case.polars {
+        if p.sections != "scan" && p.sections != "airfoil" {
+            return Err(Error::input(
+                &path,
+                format!("[polars] sections = {:?}: `scan` or `airfoil`", p.sections),
+            ));
+        }
+        if p.sections == "scan" && g.scan.is_none() {
+            return Err(Error::input(
+                &path,
+                "[polars] sections = \"scan\" needs a [geometry] scan",
+            ));
+        }
+        if !(p.rpm.is_finite() && p.rpm > 0.0) {
+            return Err(Error::input(
+                &path,
+                format!("[polars] rpm = {}: must be positive", p.rpm),
+            ));
+        }
+    }
+    // Every file the case names must be there before anything runs.
+    let named = [g.scan.as_ref(), g.prop.as_ref(), g.reference.as_ref()]
+        .into_iter()
+        .flatten()
+        .chain(
+            case.measured
+                .iter()
+                .flat_map(|m| m.files.iter().chain(m.columns.as_ref())),
+        );
+    for f in named {
+        if !dir.join(f).is_file() {
+            return Err(Error::input(
+                &path,
+                format!("names {f}, which is not in {}", dir.display()),
+            ));
+        }
+    }
+    Ok(case)
+}
+
+/// The stages a case asks for, as specs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunPlan {
+    /// The case's name.
+    pub name: String,
+    /// Its description.
+    pub description: String,
+    /// The case directory.
+    pub dir: PathBuf,
+    /// The output directory.
+    pub out: PathBuf,
+    /// Blade count the scan must find.
+    pub blades: Option<usize>,
+    /// Geometry from a scan (None: the case's prop file).
+    pub scan: Option<ScanSpec>,
+    /// XFOIL polars; `true` with each station's scanned section.
+    pub polars: Option<(PolarsSpec, bool)>,
+    /// Sweeps.
+    pub predict: PredictSpec,
+    /// Comparison and diagnosis.
+    pub compare: Option<(CompareSpec, DiagnoseSpec)>,
+}
+
+impl RunPlan {
+    /// The specs in the order they run.
+    pub fn stages(&self) -> Vec<StageSpec> {
+        let mut v = Vec::new();
+        if let Some(s) = &self.scan {
+            v.push(StageSpec::Scan(s.clone()));
+        }
+        if let Some((p, _)) = &self.polars {
+            v.push(StageSpec::Polars(p.clone()));
+        }
+        v.push(StageSpec::Predict(self.predict.clone()));
+        if let Some((c, d)) = &self.compare {
+            v.push(StageSpec::Compare(c.clone()));
+            v.push(StageSpec::Diagnose(d.clone()));
+        }
+        v
+    }
+}
+
+impl Case {
+    /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
+    /// `scan_options` turns the scan's flags (`--units`, `--stations` and the case's
+    /// `scan_args`) into the geometry pipeline's options: flags are the CLI's to read.
+    pub fn plan(
+        &self,
+        dir: &Path,
+        out: &Path,
+        xfoil: &XfoilProcessSpec,
+        scan_options: &dyn Fn(&[String]) -> Result<ScanOptions>,
+    ) -> Result<RunPlan> {
+        let g = &self.geometry;
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let units = match (&g.prop, &g.units) {
+            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
+            _ => None,
+        };
+        let scan = match &g.scan {
+            Some(file) => {
+                let mut flags = Vec::new();
+                if let Some(u) = &g.units {
+                    flags.extend(["--units".to_string(), u.clone()]);
+                }
+                if let Some(s) = &g.stations {
+                    flags.extend(["--stations".to_string(), s.clone()]);
+                }
+                flags.extend(g.scan_args.iter().cloned());
+                Some(ScanSpec {
+                    input: f(file),
+                    options: scan_options(&flags).map_err(|e| at("[geometry]", e))?,
+                    reference: g.reference.as_deref().map(f),
+                    name: Some(self.name.clone()),
+                    out: out.join("scan"),
+                })
+            }
+            None => None,
+        };
+        let geometry = match &g.scan {
+            Some(_) => out.join("scan/prop.qprop"),
+            None => f(g.prop.as_deref().unwrap_or_default()),
+        };
+        let polars = match &self.polars {
+            None => None,
+            Some(p) => {
+                let airfoil = if propbet_polar::naca4_from_name(&p.airfoil).is_some() {
+                    p.airfoil.clone()
+                } else {
+                    f(&p.airfoil).display().to_string()
+                };
+                let alpha = p.alpha.as_deref().unwrap_or(crate::spec::DEFAULT_ALPHA);
+                let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
+                alphas.sort_by(f64::total_cmp);
+                alphas.dedup();
+                let re_factors = match p.re_factors.as_deref() {
+                    None => DEFAULT_RE_FACTORS.to_vec(),
+                    Some("none") => Vec::new(),
+                    Some(t) => parse_list("--re-factors", t).map_err(|e| at("[polars] re_factors", e))?,
+                };
+                let thickness = p
+                    .thickness
+                    .as_deref()
+                    .map(parse_fraction)
+                    .transpose()
+                    .map_err(|e| at("[polars] thickness", e))?;
+                let scanned = p.sections == "scan";
+                Some((
+                    PolarsSpec {
+                        geometry: geometry.clone(),
+                        units,
+                        airfoil,
+                        thickness,
+                        station_airfoils: scanned.then(|| out.join("scan/airfoils")),
+                        omega: rpm_to_omega(p.rpm),
+                        v: p.v,
+                        re_factors,
+                        air: AirSpec::default(),
+                        xfoil: XfoilSpec {
+                            process: xfoil.clone(),
+                            ncrit: p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT),
+                            alphas_deg: alphas,
+                            panels: None,
+                            iter: xfoil_runner::DEFAULT_MAX_ITER,
+                        },
+                        out_prop: out.join("polars/prop.qprop"),
+                        out_polars: Some(out.join("polars/polars.json")),
+                    },
+                    scanned,
+                ))
+            }
+        };
+        // The fitted prop file is in metres; a case's own prop file keeps its units.
+        let (prop, model_units) = match &polars {
+            Some(_) => (out.join("polars/prop.qprop"), None),
+            None => (geometry, units),
+        };
+        let model = ModelSpec {
+            units: model_units,
+            ..ModelSpec::prop(prop)
+        };
+        let a = &self.atmosphere;
+        let state = a
+            .air
+            .as_deref()
+            .map(parse_atmosphere)
+            .transpose()
+            .map_err(|e| at("[atmosphere] air", e))?;
+        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
+        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
+        let predict = PredictSpec {
+            model: model.clone(),
+            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+            axis: SweepAxis::J(js),
+            air: AirSpec {
+                rho: a.rho,
+                state,
+                ..AirSpec::default()
+            },
+            format: TableFormat::Csv,
+            out: Some(out.join("predict/sweep.csv")),
+            stations: None,
+        };
+        let compare = match &self.measured {
+            None => None,
+            Some(m) => {
+                let rpm_source = match m.rpm_source.as_deref() {
+                    None => None,
+                    Some("optical") => Some(RpmSource::Optical),
+                    Some("electrical") => Some(RpmSource::Electrical),
+                    Some(x) => {
+                        return Err(Error::input(
+                            &case_file,
+                            format!("[measured] rpm_source = {x:?}: `optical` or `electrical`"),
+                        ))
+                    }
+                };
+                let measured = MeasuredSpec {
+                    files: m.files.iter().map(|x| f(x)).collect(),
+                    poles: m.poles,
+                    rpm_source,
+                    atmosphere: state,
+                    rho: a.rho,
+                    columns: m.columns.as_deref().map(f),
+                };
+                Some((
+                    CompareSpec {
+                        model: model.clone(),
+                        measured: measured.clone(),
+                        out: out.join("compare"),
+                    },
+                    DiagnoseSpec {
+                        model,
+                        measured,
+                        effects: vec!["all".into()],
+                        folds: m.folds.unwrap_or(crate::spec::DEFAULT_FOLDS),
+                        max_steps: m.max_steps.unwrap_or(crate::spec::DEFAULT_MAX_STEPS),
+                        out: out.join("diagnose"),
+                    },
+                ))
+            }
+        };
+        Ok(RunPlan {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            dir: dir.to_path_buf(),
+            out: out.to_path_buf(),
+            blades: self.blades,
+            scan,
+            polars,
+            predict,
+            compare,
+        })
+    }
+}
+
+/// A fraction written as `0.06` or `6%`.
+pub fn parse_fraction(text: &str) -> Result<f64> {
+    let t = text.trim();
+    let (num, scale) = match t.strip_suffix('%') {
+        Some(n) => (n, 0.01),
+        None => (t, 1.0),
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| Error::Invalid(format!("{t:?} is not a number")))?;
+    Ok(v * scale)
+}

@@ -1,0 +1,70 @@
+//! The pipeline's error: what failed, with the file or setting it concerns.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+/// A stage or an input that failed.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// A file could not be read.
+    #[error("{}: cannot read: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file's content is wrong (the parser's message, with its line where it has one).
+    #[error("{}: {message}", path.display())]
+    Input {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A setting is wrong (the flag or key it came from is named in the text).
+    #[error("{0}")]
+    Invalid(String),
+    /// An effect failed while predicting.
+    #[error(transparent)]
+    Effect(#[from] propbet_effects::EffectError),
+    /// XFOIL or the polar cache could not be set up.
+    #[error(transparent)]
+    Polar(#[from] propbet_polar::PolarError),
+    /// The XFOIL executable could not be found.
+    #[error(transparent)]
+    FindXfoil(#[from] xfoil_runner::FindXfoilError),
+    /// The XFOIL executable could not be started.
+    #[error(transparent)]
+    Xfoil(#[from] xfoil_runner::XfoilError),
+}
+
+impl Error {
+    /// A file's content error.
+    pub fn input(path: impl Into<PathBuf>, message: impl std::fmt::Display) -> Self {
+        Error::Input {
+            path: path.into(),
+            message: message.to_string(),
+        }
+    }
+}
+
+/// The pipeline's result.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// `Err(Error::Invalid(format!(...)))`.
+#[macro_export]
+macro_rules! invalid {
+    ($($t:tt)*) => { return Err($crate::Error::Invalid(format!($($t)*))) };
+}
+
+/// Reads a file as text, naming it in the error.
+pub fn read_text(path: &std::path::Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    String::from_utf8(bytes)
+        .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))
+}

@@ -1,0 +1,24 @@
+//! propbet's stages as typed functions, under the `propbet` command.
+//!
+//! * [`spec`]: what each stage is asked ([`spec::StageSpec`]), in SI, printing the equivalent
+//!   `propbet` command line.
+//! * [`case`]: case files (`case.toml`) and the plan of stages they ask for.
+//! * [`stages`]: scan, polars, predict, compare, diagnose as functions returning artifacts.
+//! * [`run`]: a case's plan run in memory ([`run::run_case`]).
+//! * [`validate`]: one UIUC propeller predicted and scored ([`validate::validate_prop`]).
+//! * [`model`]: a prop file turned into the model a stage solves; the air.
+//! * [`values`]: lists, ranges and quantities with units as users write them.
+//!
+//! Inputs are read here; outputs are written by the caller. Progress goes through callbacks.
+#![deny(missing_docs)]
+
+pub mod case;
+mod error;
+pub mod model;
+pub mod run;
+pub mod spec;
+pub mod stages;
+pub mod validate;
+pub mod values;
+
+pub use error::{read_text, Error, Result};

@@ -1,0 +1,230 @@
+//! The propeller model a stage solves: a prop file read and discretised, optionally with
+//! tabulated polars as the section model and effects on top, and the air.
+
+use std::path::{Path, PathBuf};
+
+use propbet_atmosphere::AirState;
+use propbet_bemt::{Discretization, Fluid, Rotor, SolverOptions};
+use propbet_effects::spec::Registry;
+use propbet_effects::{parse_spec, Stack};
+use propbet_qprop::{parse_prop, PropFile, RadiusReading};
+
+use crate::spec::{AirSpec, ModelSpec};
+use crate::{invalid, read_text, Error, Result};
+
+/// A prop file read and checked, with its warnings (each naming the file).
+#[derive(Debug, Clone)]
+pub struct LoadedProp {
+    /// The file as written.
+    pub file: PropFile,
+    /// Warnings for the user.
+    pub warnings: Vec<String>,
+}
+
+/// Reads a prop file, naming the file in every error; `units` [m per unit] replaces its Rfac
+/// and Cfac.
+pub fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
+    let text = read_text(path).map_err(|e| match e {
+        Error::Input { path, .. } => Error::input(path, "not UTF-8 text (is it a QPROP prop file?)"),
+        e => e,
+    })?;
+    prop_from_text(&text, path, units)
+}
+
+/// A prop file's text, read as [`load_prop`] reads the file `path`.
+pub fn prop_from_text(text: &str, path: &Path, units: Option<f64>) -> Result<LoadedProp> {
+    let (mut file, warnings) = parse_prop(text).map_err(|e| Error::input(path, e))?;
+    let mut warnings: Vec<String> = warnings
+        .into_iter()
+        .map(|w| match w.line {
+            0 => format!("{}: {}", path.display(), w.message),
+            l => format!("{}: line {l}: {}", path.display(), w.message),
+        })
+        .collect();
+    if let Some(f) = units {
+        warnings.push(format!(
+            "{}: --units {} replaces the file's Rfac = {} and Cfac = {} with {f}",
+            path.display(),
+            crate::values::length_unit_name(f).unwrap_or("?"),
+            file.scale[0],
+            file.scale[1]
+        ));
+        file.scale[0] = f;
+        file.scale[1] = f;
+    }
+    Ok(LoadedProp { file, warnings })
+}
+
+/// A prop file as the file `propbet` writes for it holds it: written and read back, so that
+/// a stage that passes it on in memory computes exactly what the equivalent command, reading
+/// the file, computes.
+pub fn as_written(file: &PropFile, path: &Path) -> Result<LoadedProp> {
+    prop_from_text(&propbet_qprop::write_prop(file), path, None)
+}
+
+/// A model ready to solve.
+pub struct Model {
+    /// The prop file as read.
+    pub loaded: LoadedProp,
+    /// The rotor the solver sees.
+    pub rotor: Rotor,
+    /// Solver options.
+    pub opts: SolverOptions,
+    /// Propeller diameter of the blade as documented (2 x its last station radius, or line 2's
+    /// R in the table's units) [m]: the D of the coefficients even when `qprop_compat` gives
+    /// the tip-loss factor QPROP's unscaled R.
+    pub diameter: f64,
+    /// The effects known (built-in and user-defined).
+    pub registry: Registry,
+    /// The effects added to the model.
+    pub effects: Stack,
+}
+
+impl Model {
+    /// Reads the spec's prop file (and polars, user effects) and builds the rotor.
+    pub fn load(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
+        let loaded = load_prop(&spec.prop, spec.units)?;
+        Model::from_loaded(spec, loaded, keep_stations)
+    }
+
+    /// Builds the model from a prop file already read (the spec's `prop` names it in messages).
+    pub fn from_loaded(spec: &ModelSpec, mut loaded: LoadedProp, keep_stations: bool) -> Result<Model> {
+        let differences: Vec<String> = loaded.file.qprop_differences().into_iter().map(|w| w.message).collect();
+        for w in &mut loaded.warnings {
+            if differences.iter().any(|d| w.ends_with(d.as_str())) {
+                w.push_str(if spec.qprop_compat {
+                    " (reproduced as QPROP reads it: --qprop-compat)"
+                } else {
+                    " (--qprop-compat reproduces QPROP)"
+                });
+            }
+        }
+        let reading = if spec.qprop_compat {
+            RadiusReading::Qprop122
+        } else {
+            RadiusReading::Documented
+        };
+        let mut rotor = loaded
+            .file
+            .to_blade(reading)
+            .to_rotor(Discretization {
+                stations: 25,
+                qprop_reref_quirk: spec.qprop_compat,
+            })
+            .map_err(|e| Error::input(&spec.prop, e))?;
+        if let Some(path) = &spec.polars {
+            apply_polars(&mut rotor, path)?;
+        }
+        if !spec.dbeta.is_finite() {
+            invalid!("--dbeta: not a finite number");
+        }
+        let opts = SolverOptions {
+            tip_loss: !spec.no_tip_loss,
+            dbeta: spec.dbeta,
+            keep_stations,
+            ..SolverOptions::default()
+        };
+        let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
+        let registry = match &spec.user_effects {
+            Some(path) => {
+                let text = read_text(path)?;
+                let user = propbet_effects::user::parse(&text, &path.display().to_string())
+                    .map_err(|e| Error::Invalid(e.to_string()))?;
+                Registry::with_user(user).map_err(|e| Error::Invalid(e.to_string()))?
+            }
+            None => Registry::default(),
+        };
+        let active = spec
+            .effects
+            .iter()
+            .map(|s| registry.resolve(&parse_spec(s)?))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|e| Error::Invalid(format!("--effect: {e}")))?;
+        Ok(Model {
+            loaded,
+            rotor,
+            opts,
+            diameter,
+            registry,
+            effects: Stack { active },
+        })
+    }
+}
+
+impl ModelSpec {
+    /// The files the model reads (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        std::iter::once(self.prop.as_path())
+            .chain(self.polars.as_deref())
+            .chain(self.user_effects.as_deref())
+            .collect()
+    }
+}
+
+/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file.
+fn apply_polars(rotor: &mut Rotor, path: &PathBuf) -> Result<()> {
+    let text = read_text(path)?;
+    let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| Error::input(path, e))?;
+    let (r, models) = blade.models().map_err(|e| Error::input(path, e))?;
+    let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
+    if r[0] > hi || r[r.len() - 1] < lo {
+        return Err(Error::input(
+            path,
+            format!(
+                "its stations (r = {:.4}..{:.4} m) do not overlap the blade (r = {lo:.4}..{hi:.4} m)",
+                r[0],
+                r[r.len() - 1]
+            ),
+        ));
+    }
+    propbet_polar::tabulated::apply_to_rotor(rotor, &r, &models);
+    Ok(())
+}
+
+impl AirSpec {
+    /// The fluid, and a note of where it came from.
+    pub fn fluid(&self) -> Result<(Fluid, String)> {
+        if let Some(state) = &self.state {
+            let mut f = state.fluid();
+            if let Some(rho) = self.rho {
+                f.rho = rho;
+            }
+            if let Some(mu) = self.mu {
+                f.mu = mu;
+            }
+            if let Some(a) = self.a {
+                f.a = a;
+            }
+            return Ok((
+                f,
+                format!(
+                    "from T = {:.2} K, p = {:.0} Pa, RH = {:.0} %",
+                    state.temperature,
+                    state.pressure,
+                    state.relative_humidity * 100.0
+                ),
+            ));
+        }
+        let d = Fluid::QPROP_DEFAULT;
+        let f = Fluid {
+            rho: self.rho.unwrap_or(d.rho),
+            mu: self.mu.unwrap_or(d.mu),
+            a: self.a.unwrap_or(d.a),
+        };
+        f.validate().map_err(|e| Error::Invalid(format!("air: {e}")))?;
+        let source = if self.rho.is_none() && self.mu.is_none() && self.a.is_none() {
+            "QPROP defaults (standard air, not measured)".to_string()
+        } else {
+            "given".to_string()
+        };
+        Ok((f, source))
+    }
+
+    /// Air from a temperature, pressure and humidity.
+    pub fn state(state: AirState) -> Self {
+        AirSpec {
+            state: Some(state),
+            ..AirSpec::default()
+        }
+    }
+}

@@ -1,0 +1,597 @@
+//! Stage specs: what each stage of the data flow is asked to do, in SI and typed, as the
+//! command-line flags of the `propbet` command that does the same. Every spec prints that
+//! command line ([`StageSpec::argv`]); the CLI maps its flags back to the same spec (a test in
+//! the CLI holds this), so every stage of `propbet run` and `propbet validate` is a command a
+//! user can re-run by hand.
+
+use std::path::PathBuf;
+
+use propbet_atmosphere::AirState;
+use propbet_bemt::units::{omega_to_rpm, rpm_to_omega};
+use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
+use propbet_measure::RpmSource;
+
+use crate::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
+
+/// The `propbet` command line of one stage (without the program name).
+pub type Argv = Vec<String>;
+
+fn path(p: &std::path::Path) -> String {
+    p.display().to_string()
+}
+
+fn push(v: &mut Argv, flag: &str, value: impl Into<String>) {
+    v.push(flag.to_string());
+    v.push(value.into());
+}
+
+/// `--flag=value`, for values that may begin with a minus sign.
+fn push_eq(v: &mut Argv, flag: &str, value: impl AsRef<str>) {
+    v.push(format!("{flag}={}", value.as_ref()));
+}
+
+/// Degrees as text that reads back to exactly `rad`.
+fn deg_text(rad: f64) -> String {
+    scaled_text(rad, f64::to_degrees, f64::to_radians)
+}
+
+/// The XFOIL executable, the polar cache and progress.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct XfoilProcessSpec {
+    /// XFOIL executable (None: `xfoil` on PATH).
+    pub xfoil: Option<PathBuf>,
+    /// Polar cache directory (None: the default one).
+    pub cache: Option<PathBuf>,
+    /// Compute every polar afresh and store nothing.
+    pub no_cache: bool,
+    /// No progress bar.
+    pub quiet: bool,
+}
+
+impl XfoilProcessSpec {
+    fn push_argv(&self, v: &mut Argv) {
+        if let Some(x) = &self.xfoil {
+            push(v, "--xfoil", path(x));
+        }
+        if let Some(c) = &self.cache {
+            push(v, "--cache", path(c));
+        }
+        if self.no_cache {
+            v.push("--no-cache".into());
+        }
+        if self.quiet {
+            v.push("--quiet".into());
+        }
+    }
+}
+
+/// Default Ncrit of the polar commands (XFOIL's: an average wind tunnel).
+pub const DEFAULT_NCRIT: f64 = 9.0;
+
+/// Default angles of attack of the polar commands [deg].
+pub const DEFAULT_ALPHA: &str = "-8:16:1";
+
+/// How XFOIL is asked: transition, angles, panels, iterations, and the process.
+#[derive(Debug, Clone, PartialEq)]
+pub struct XfoilSpec {
+    /// Executable, cache, progress.
+    pub process: XfoilProcessSpec,
+    /// Transition amplification ratio Ncrit [-].
+    pub ncrit: f64,
+    /// Angles of attack [deg] (XFOIL's unit), ascending, no duplicates.
+    pub alphas_deg: Vec<f64>,
+    /// Panel nodes (None: the command's default).
+    pub panels: Option<u32>,
+    /// Viscous iteration limit per angle.
+    pub iter: u32,
+}
+
+impl XfoilSpec {
+    fn push_argv(&self, v: &mut Argv) {
+        self.process.push_argv(v);
+        if self.ncrit != DEFAULT_NCRIT {
+            push(v, "--ncrit", format!("{}", self.ncrit));
+        }
+        let default = crate::values::parse_list("", DEFAULT_ALPHA).unwrap_or_default();
+        if self.alphas_deg != default {
+            push_eq(v, "--alpha", list_text(&self.alphas_deg));
+        }
+        if let Some(p) = self.panels {
+            push(v, "--panels", p.to_string());
+        }
+        if self.iter != xfoil_runner::DEFAULT_MAX_ITER {
+            push(v, "--iter", self.iter.to_string());
+        }
+    }
+}
+
+/// Air for the solver: QPROP's defaults, given values, or a measured state.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AirSpec {
+    /// Density [kg/m^3] (None: QPROP's 1.225 or the state's).
+    pub rho: Option<f64>,
+    /// Dynamic viscosity [Pa s].
+    pub mu: Option<f64>,
+    /// Speed of sound [m/s].
+    pub a: Option<f64>,
+    /// Temperature, pressure, humidity.
+    pub state: Option<AirState>,
+}
+
+impl AirSpec {
+    fn push_argv(&self, v: &mut Argv) {
+        if let Some(s) = &self.state {
+            push_eq(v, "--temp", format!("{}K", s.temperature));
+            push(v, "--pressure", format!("{}", s.pressure));
+            if s.relative_humidity != 0.0 {
+                push(
+                    v,
+                    "--humidity",
+                    scaled_text(s.relative_humidity, |x| 100.0 * x, |x| x / 100.0),
+                );
+            }
+        }
+        for (flag, x) in [("--rho", self.rho), ("--mu", self.mu), ("--a", self.a)] {
+            if let Some(x) = x {
+                push_eq(v, flag, format!("{x}"));
+            }
+        }
+    }
+}
+
+/// The propeller model: a prop file, how to read it, and what to change in it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelSpec {
+    /// QPROP prop file.
+    pub prop: PathBuf,
+    /// Collective blade-angle change [rad].
+    pub dbeta: f64,
+    /// Length unit of the radii and chords [m per unit], replacing the file's Rfac and Cfac.
+    pub units: Option<f64>,
+    /// Read as QPROP 1.22 does.
+    pub qprop_compat: bool,
+    /// No tip-loss factor.
+    pub no_tip_loss: bool,
+    /// Tabulated polars (`propbet polars --out-polars`) as the section model.
+    pub polars: Option<PathBuf>,
+    /// Effects added to the model (`id:param=value,...`).
+    pub effects: Vec<String>,
+    /// TOML file of user-defined effects.
+    pub user_effects: Option<PathBuf>,
+}
+
+impl ModelSpec {
+    /// A prop file as it is.
+    pub fn prop(prop: PathBuf) -> Self {
+        ModelSpec {
+            prop,
+            dbeta: 0.0,
+            units: None,
+            qprop_compat: false,
+            no_tip_loss: false,
+            polars: None,
+            effects: Vec::new(),
+            user_effects: None,
+        }
+    }
+
+    fn push_argv(&self, v: &mut Argv) {
+        push(v, "--prop", path(&self.prop));
+        if self.dbeta != 0.0 {
+            push_eq(v, "--dbeta", deg_text(self.dbeta));
+        }
+        if let Some(u) = self.units {
+            push(v, "--units", length_unit_name(u).unwrap_or("m"));
+        }
+        if self.qprop_compat {
+            v.push("--qprop-compat".into());
+        }
+        if self.no_tip_loss {
+            v.push("--no-tip-loss".into());
+        }
+        if let Some(p) = &self.polars {
+            push(v, "--polars", path(p));
+        }
+        for e in &self.effects {
+            push(v, "--effect", e.clone());
+        }
+        if let Some(p) = &self.user_effects {
+            push(v, "--user-effects", path(p));
+        }
+    }
+}
+
+/// What a sweep varies besides the rotation speed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SweepAxis {
+    /// Advance ratios J = V/(nD) [-].
+    J(Vec<f64>),
+    /// Axial speeds [m/s].
+    V(Vec<f64>),
+}
+
+/// Output format of `propbet predict`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TableFormat {
+    /// One row per operating point.
+    Csv,
+    /// All results, with the inputs, as one JSON document.
+    Json,
+}
+
+/// `propbet predict`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PredictSpec {
+    /// The model.
+    pub model: ModelSpec,
+    /// Rotation speeds [rad/s].
+    pub omegas: Vec<f64>,
+    /// J or V values.
+    pub axis: SweepAxis,
+    /// Air.
+    pub air: AirSpec,
+    /// Output format.
+    pub format: TableFormat,
+    /// Output file (None: standard output).
+    pub out: Option<PathBuf>,
+    /// Per-station table.
+    pub stations: Option<PathBuf>,
+}
+
+/// Measured files and how to read them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredSpec {
+    /// The files.
+    pub files: Vec<PathBuf>,
+    /// Motor poles.
+    pub poles: Option<u32>,
+    /// RPM column of thrust-stand logs.
+    pub rpm_source: Option<RpmSource>,
+    /// Air state overriding what the files log.
+    pub atmosphere: Option<AirState>,
+    /// Air density overriding everything [kg/m^3].
+    pub rho: Option<f64>,
+    /// Column map of generic CSV files.
+    pub columns: Option<PathBuf>,
+}
+
+impl MeasuredSpec {
+    /// Files read as they are.
+    pub fn files(files: Vec<PathBuf>) -> Self {
+        MeasuredSpec {
+            files,
+            poles: None,
+            rpm_source: None,
+            atmosphere: None,
+            rho: None,
+            columns: None,
+        }
+    }
+
+    fn push_argv(&self, v: &mut Argv) {
+        v.push("--measured".into());
+        v.extend(self.files.iter().map(|f| path(f)));
+        if let Some(p) = self.poles {
+            push(v, "--poles", p.to_string());
+        }
+        if let Some(s) = self.rpm_source {
+            push(
+                v,
+                "--rpm-source",
+                match s {
+                    RpmSource::Optical => "optical",
+                    RpmSource::Electrical => "electrical",
+                },
+            );
+        }
+        if let Some(s) = &self.atmosphere {
+            push(
+                v,
+                "--atmosphere",
+                format!(
+                    "{}K,{},{}",
+                    s.temperature,
+                    s.pressure,
+                    scaled_text(s.relative_humidity, |x| 100.0 * x, |x| x / 100.0)
+                ),
+            );
+        }
+        if let Some(r) = self.rho {
+            push_eq(v, "--rho", format!("{r}"));
+        }
+        if let Some(c) = &self.columns {
+            push(v, "--columns", path(c));
+        }
+    }
+}
+
+/// `propbet compare`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CompareSpec {
+    /// The model.
+    pub model: ModelSpec,
+    /// The measurements.
+    pub measured: MeasuredSpec,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+/// Default folds of the diagnosis' cross-validation.
+pub const DEFAULT_FOLDS: usize = 5;
+/// Default most effects of the diagnosis' ladder.
+pub const DEFAULT_MAX_STEPS: usize = 3;
+
+/// `propbet diagnose`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiagnoseSpec {
+    /// The model (its effects are part of the baseline).
+    pub model: ModelSpec,
+    /// The measurements.
+    pub measured: MeasuredSpec,
+    /// Candidate effects (`all` or ids).
+    pub effects: Vec<String>,
+    /// Folds of the k-fold cross-validation.
+    pub folds: usize,
+    /// Most effects the ladder adds.
+    pub max_steps: usize,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+/// Default multiples of each station's Re of `propbet polars`.
+pub const DEFAULT_RE_FACTORS: [f64; 2] = [0.7, 1.4];
+
+/// `propbet polars`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PolarsSpec {
+    /// Blade geometry (QPROP prop file).
+    pub geometry: PathBuf,
+    /// Its length unit [m per unit].
+    pub units: Option<f64>,
+    /// The section at every station: a coordinate file or a NACA 4-digit name.
+    pub airfoil: String,
+    /// Thickness ratio the section is scaled to [-].
+    pub thickness: Option<f64>,
+    /// Per-station sections (`station_NN.dat`).
+    pub station_airfoils: Option<PathBuf>,
+    /// Operating point: rotation speed [rad/s].
+    pub omega: f64,
+    /// Operating point: axial speed [m/s].
+    pub v: f64,
+    /// Further multiples of each station's Re (empty: one Re per station).
+    pub re_factors: Vec<f64>,
+    /// Air.
+    pub air: AirSpec,
+    /// XFOIL.
+    pub xfoil: XfoilSpec,
+    /// Output prop file with the fitted coefficients.
+    pub out_prop: PathBuf,
+    /// Output polars (JSON).
+    pub out_polars: Option<PathBuf>,
+}
+
+/// `propbet scan`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScanSpec {
+    /// The scan file.
+    pub input: PathBuf,
+    /// What the geometry pipeline does.
+    pub options: ScanOptions,
+    /// A UIUC-style geometry table to compare with.
+    pub reference: Option<PathBuf>,
+    /// Name written in the prop file.
+    pub name: Option<String>,
+    /// Output directory.
+    pub out: PathBuf,
+}
+
+fn colour_text(c: &[[u8; 3]]) -> String {
+    c.iter()
+        .map(|c| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+fn vec_text(v: &nalgebra::Vector3<f64>) -> String {
+    format!("{},{},{}", v.x, v.y, v.z)
+}
+
+impl ScanSpec {
+    fn push_argv(&self, v: &mut Argv) {
+        let o = &self.options;
+        v.push(path(&self.input));
+        push(v, "-o", path(&self.out));
+        if let Some(n) = &self.name {
+            push(v, "--name", n.clone());
+        }
+        // The scale: a named unit, or a known length of one file unit.
+        let unit = [("mm", 1.0), ("cm", 10.0), ("m", 1000.0), ("in", 25.4)]
+            .into_iter()
+            .find(|u| u.1 == o.units);
+        match unit {
+            Some(("mm", _)) => {}
+            Some((name, _)) => push(v, "--units", name),
+            None => push_eq(v, "--known-length", format!("0,0,0,1,0,0,{}", o.units)),
+        }
+        if o.stations != default_stations() {
+            push(v, "--stations", list_text(&o.stations));
+        }
+        if let Some(r) = &self.reference {
+            push(v, "--reference", path(r));
+        }
+        if o.kind == SectionKind::Planar {
+            v.push("--planar".into());
+        }
+        if o.slab != 0.25 {
+            push(v, "--slab", format!("{}", o.slab));
+        }
+        if o.slab_points != 400 {
+            push(v, "--slab-points", o.slab_points.to_string());
+        }
+        if !o.blade_colours.is_empty() {
+            push(v, "--blade-colour", colour_text(&o.blade_colours));
+        }
+        if let Some(t) = o.colour_threshold {
+            push(v, "--colour-threshold", format!("{t}"));
+        }
+        if let Some(b) = &o.reference_box {
+            push(v, "--box", format!("{}x{}x{}", b.dims[0], b.dims[1], b.dims[2]));
+            push_eq(
+                v,
+                "--box-offset",
+                format!("{},{},{}", b.offset[0], b.offset[1], b.offset[2]),
+            );
+            push(v, "--box-colour", colour_text(&b.colours));
+            if !b.seeds.is_empty() {
+                push_eq(
+                    v,
+                    "--box-seeds",
+                    b.seeds.iter().map(vec_text).collect::<Vec<_>>().join(";"),
+                );
+            }
+        }
+        if let Some((lo, hi)) = &o.crop {
+            push_eq(v, "--crop", format!("{},{}", vec_text(lo), vec_text(hi)));
+        }
+        match o.outliers {
+            None => push(v, "--outliers", "off"),
+            Some((8, s)) if s == 2.5 => {}
+            Some((n, s)) => push(v, "--outliers", format!("{n},{s}")),
+        }
+        if let Some(m) = &o.manual {
+            push_eq(v, "--root-point", vec_text(&m.root));
+            push_eq(v, "--tip-point", vec_text(&m.tip));
+            if let Some(c) = &m.origin {
+                push_eq(v, "--origin", vec_text(c));
+            }
+            if m.rotate_deg != [0.0; 3] {
+                let r = m.rotate_deg;
+                push_eq(v, "--rotate", format!("{},{},{}", r[0], r[1], r[2]));
+            }
+        }
+    }
+}
+
+/// One stage of the data flow.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StageSpec {
+    /// Geometry from a scan.
+    Scan(ScanSpec),
+    /// XFOIL polars of every station.
+    Polars(PolarsSpec),
+    /// Sweeps.
+    Predict(PredictSpec),
+    /// Measured against predicted.
+    Compare(CompareSpec),
+    /// What is missing.
+    Diagnose(DiagnoseSpec),
+}
+
+impl StageSpec {
+    /// The stage's name (the subcommand).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StageSpec::Scan(_) => "scan",
+            StageSpec::Polars(_) => "polars",
+            StageSpec::Predict(_) => "predict",
+            StageSpec::Compare(_) => "compare",
+            StageSpec::Diagnose(_) => "diagnose",
+        }
+    }
+
+    /// The equivalent `propbet` command line (without the program name).
+    pub fn argv(&self) -> Argv {
+        let mut v = vec![self.name().to_string()];
+        match self {
+            StageSpec::Scan(s) => s.push_argv(&mut v),
+            StageSpec::Polars(s) => {
+                push(&mut v, "--geometry", path(&s.geometry));
+                if let Some(u) = s.units {
+                    push(&mut v, "--units", length_unit_name(u).unwrap_or("m"));
+                }
+                push(&mut v, "--airfoil", s.airfoil.clone());
+                if let Some(t) = s.thickness {
+                    push(&mut v, "--thickness", format!("{t}"));
+                }
+                if let Some(d) = &s.station_airfoils {
+                    push(&mut v, "--station-airfoils", path(d));
+                }
+                push_eq(&mut v, "--rpm", scaled_text(s.omega, omega_to_rpm, rpm_to_omega));
+                if s.v != 0.0 {
+                    push_eq(&mut v, "--v", format!("{}", s.v));
+                }
+                if s.re_factors.is_empty() {
+                    push(&mut v, "--re-factors", "none");
+                } else if s.re_factors != DEFAULT_RE_FACTORS {
+                    push(&mut v, "--re-factors", list_text(&s.re_factors));
+                }
+                s.air.push_argv(&mut v);
+                s.xfoil.push_argv(&mut v);
+                push(&mut v, "--out-prop", path(&s.out_prop));
+                if let Some(p) = &s.out_polars {
+                    push(&mut v, "--out-polars", path(p));
+                }
+            }
+            StageSpec::Predict(s) => {
+                s.model.push_argv(&mut v);
+                push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
+                match &s.axis {
+                    SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
+                    SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
+                }
+                s.air.push_argv(&mut v);
+                if s.format == TableFormat::Json {
+                    push(&mut v, "--format", "json");
+                }
+                if let Some(o) = &s.out {
+                    push(&mut v, "--out", path(o));
+                }
+                if let Some(o) = &s.stations {
+                    push(&mut v, "--stations", path(o));
+                }
+            }
+            StageSpec::Compare(s) => {
+                s.model.push_argv(&mut v);
+                s.measured.push_argv(&mut v);
+                push(&mut v, "--out", path(&s.out));
+            }
+            StageSpec::Diagnose(s) => {
+                s.model.push_argv(&mut v);
+                s.measured.push_argv(&mut v);
+                if s.effects != ["all"] {
+                    push(&mut v, "--effects", s.effects.join(","));
+                }
+                if s.folds != DEFAULT_FOLDS {
+                    push(&mut v, "--folds", s.folds.to_string());
+                }
+                if s.max_steps != DEFAULT_MAX_STEPS {
+                    push(&mut v, "--max-steps", s.max_steps.to_string());
+                }
+                push(&mut v, "--out", path(&s.out));
+            }
+        }
+        v
+    }
+
+    /// The command line as a shell would take it.
+    pub fn command(&self) -> String {
+        std::iter::once("propbet".to_string())
+            .chain(self.argv().iter().map(|a| shell_word(a)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+/// One argument quoted for a POSIX shell where it needs it.
+pub fn shell_word(a: &str) -> String {
+    if a.is_empty() || a.contains(|c: char| c.is_whitespace() || "'\"$`\\*?;&|<>()#".contains(c)) {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    } else {
+        a.to_string()
+    }
+}
+
+/// Revolutions per minute of `omega` [rad/s], as text that reads back exactly.
+pub fn rpm_text(omega: f64) -> String {
+    scaled_text(omega, omega_to_rpm, rpm_to_omega)
+}

@@ -1,0 +1,541 @@
+//! The stages as functions: each takes its spec (and, inside `run`, the artifact of the stage
+//! before it, in memory) and returns typed artifacts. Files are read here when a spec names an
+//! input; nothing is written here: the CLI writes the outputs.
+
+use std::path::{Path, PathBuf};
+
+use propbet_bemt::{grid_omega_j, grid_omega_v, Fluid, OperatingPoint, PointResult, Solver};
+use propbet_compare::metrics::{metrics, Metrics};
+use propbet_compare::{AirChoice, ComparedPoint, Setup};
+use propbet_diagnose::discover::{diagnose as discover, Diagnosis, Options};
+use propbet_diagnose::Data;
+use propbet_effects::Stack;
+use propbet_geometry::cloud::read_cloud;
+use propbet_geometry::mesh::read_stl;
+use propbet_geometry::scan::{scan_cloud, scan_mesh, Geometry};
+use propbet_measure::uiuc::GeometryRow;
+use propbet_measure::{MeasuredSet, ReadOptions};
+use propbet_polar::blade::{compute_blade, BladeJob, XfoilSettings, BLADE_PANELS};
+use propbet_polar::{naca4_from_name, Airfoil, BladePolars, PolarCache, PolarEngine, Progress};
+use propbet_qprop::{PropFile, PropRow};
+use rayon::prelude::*;
+
+use crate::model::{as_written, load_prop, LoadedProp, Model};
+use crate::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec};
+use crate::{invalid, read_text, Error, Result};
+
+// ---------------------------------------------------------------------------------------
+// scan
+
+/// What `propbet scan` makes.
+pub struct Scanned {
+    /// The geometry.
+    pub geometry: Geometry,
+    /// The reference table, when the spec names one.
+    pub reference: Option<Vec<GeometryRow>>,
+    /// Name of the propeller (prop file, airfoils).
+    pub name: String,
+    /// The prop file, as the file written for it holds it.
+    pub prop: LoadedProp,
+    /// Each station's fitted section as a Selig file: (station index, text).
+    pub airfoils: Vec<(usize, String)>,
+}
+
+/// Reads a UIUC-style geometry table (r/R c/R β).
+pub fn read_geometry_table(path: &Path) -> Result<Vec<GeometryRow>> {
+    propbet_measure::uiuc::read_geometry(&read_text(path)?).map_err(|e| Error::input(path, e))
+}
+
+/// Runs the scan stage.
+pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
+    let o = &spec.options;
+    if let Some(x) = o.stations.iter().find(|&&x| !(x > 0.0 && x <= 1.0)) {
+        invalid!("--stations: r/R {x} is outside (0, 1]");
+    }
+    if !(o.slab > 0.0 && o.slab.is_finite()) {
+        invalid!("--slab {}: must be a positive thickness in mm", o.slab);
+    }
+    let path = &spec.input;
+    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+        path: path.clone(),
+        source,
+    })?;
+    let label = path.display().to_string();
+    let is_stl = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+    let geometry = if is_stl {
+        let mesh = read_stl(&bytes, &label).map_err(|e| Error::Invalid(e.to_string()))?;
+        scan_mesh(&mesh, o)
+    } else {
+        let cloud = read_cloud(&bytes, &label).map_err(|e| Error::Invalid(e.to_string()))?;
+        scan_cloud(&cloud, o)
+    }
+    .map_err(|e| Error::input(path, e))?;
+    let reference = spec.reference.as_deref().map(read_geometry_table).transpose()?;
+    let name = spec.name.clone().unwrap_or_else(|| {
+        path.file_stem()
+            .map_or("scan".into(), |s| s.to_string_lossy().into_owned())
+    });
+    let prop = as_written(&scan_prop_file(&name, &geometry), &spec.out.join("prop.qprop"))?;
+    let airfoils = station_airfoils(&name, &geometry);
+    Ok(Scanned {
+        geometry,
+        reference,
+        name,
+        prop,
+        airfoils,
+    })
+}
+
+/// The scan's prop file: radii and chords in metres, β in degrees; CL0 from thin-airfoil theory
+/// on the fitted camber, the rest [`propbet_qprop::GENERIC`] until `propbet polars` (XFOIL at
+/// each station's Re) replaces them.
+pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
+    let generic = propbet_qprop::GENERIC;
+    let rows = g
+        .stations
+        .iter()
+        .map(|s| {
+            let cl0 = propbet_polar::airfoil::naca4_cl0(s.naca.camber, s.naca.camber_pos);
+            let c = propbet_bemt::QpropCoefficients {
+                cl0,
+                clcd0: cl0,
+                ..generic
+            };
+            PropRow {
+                r: s.r / 1000.0,
+                chord: s.chord / 1000.0,
+                beta: s.beta_deg,
+                coeffs: c.to_array().to_vec(),
+            }
+        })
+        .collect();
+    PropFile {
+        name: name.to_string(),
+        blades: g.blades as f64,
+        radius: Some(g.tip_radius / 1000.0),
+        global: generic.to_array(),
+        scale: [1.0, 1.0, 1.0],
+        offset: [0.0, 0.0, 0.0],
+        rows,
+        row_lines: Vec::new(),
+    }
+}
+
+/// Each station's CST section as a Selig file (`airfoils/station_NN.dat`).
+pub fn station_airfoils(name: &str, g: &Geometry) -> Vec<(usize, String)> {
+    g.stations
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| {
+            let c = s.cst.as_ref()?;
+            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, c.rms);
+            for (x, y) in c.selig(80) {
+                t.push_str(&format!("{x:.6} {y:.6}\n"));
+            }
+            Some((i, t))
+        })
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------
+// polars
+
+/// An airfoil file, parsed and normalised, with what was repaired in it.
+pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
+    let text = read_text(path)?;
+    parse_airfoil(&text, path)
+}
+
+/// An airfoil file's text, parsed and normalised, with what was repaired in it.
+pub fn parse_airfoil(text: &str, path: &Path) -> Result<(Airfoil, Vec<String>)> {
+    let (mut foil, repairs) =
+        Airfoil::parse(text, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    foil.normalise();
+    Ok((
+        foil,
+        repairs
+            .into_iter()
+            .map(|r| format!("{}: {}", path.display(), r.0))
+            .collect(),
+    ))
+}
+
+/// A section: a NACA 4-digit name or a coordinate file, optionally scaled to a thickness ratio;
+/// with the file's repairs.
+pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<String>)> {
+    let (mut foil, notes) = match naca4_from_name(name) {
+        Some(r) => {
+            let mut foil = r.map_err(|e| Error::Invalid(format!("--airfoil {name}: {e}")))?;
+            foil.normalise();
+            (foil, Vec::new())
+        }
+        None => read_airfoil(Path::new(name))?,
+    };
+    if let Some(t) = thickness {
+        foil = foil
+            .scale_thickness(t)
+            .map_err(|e| Error::Invalid(format!("--thickness {t}: {e}")))?;
+    }
+    Ok((foil, notes))
+}
+
+/// XFOIL and the polar cache, as the spec says.
+pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
+    let exe = xfoil_runner::find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
+    let xfoil = xfoil_runner::Xfoil::new(xfoil_runner::XfoilConfig::new(exe))?;
+    let cache = if p.no_cache {
+        None
+    } else {
+        match p.cache.clone().or_else(PolarCache::default_dir) {
+            Some(dir) => Some(PolarCache::open(&dir)?),
+            None => None,
+        }
+    };
+    Ok(PolarEngine::new(xfoil, cache))
+}
+
+/// What the polars stage reads: the blade and its sections.
+pub struct PolarsInput {
+    /// The blade.
+    pub geometry: LoadedProp,
+    /// One section for every station, or one per input station.
+    pub foils: Vec<Airfoil>,
+    /// The section at every station (the hint).
+    pub foil_name: String,
+    /// Notes for the user (repairs, stations without their own section).
+    pub notes: Vec<String>,
+}
+
+/// Reads the polars stage's inputs from the files its spec names.
+pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
+    let geometry = load_prop(&spec.geometry, spec.units)?;
+    let (foil, mut notes) = load_airfoil(&spec.airfoil, spec.thickness)?;
+    let foils = match &spec.station_airfoils {
+        None => vec![foil.clone()],
+        Some(dir) => {
+            if !dir.is_dir() {
+                invalid!("--station-airfoils {}: not a directory", dir.display());
+            }
+            let n = geometry.file.rows.len();
+            let texts = (0..n)
+                .map(|i| {
+                    let path = dir.join(format!("station_{i:02}.dat"));
+                    path.exists().then(|| read_text(&path).map(|t| (path, t))).transpose()
+                })
+                .collect::<Result<Vec<_>>>()?;
+            station_foils(dir, texts, &foil, &mut notes)?
+        }
+    };
+    Ok(PolarsInput {
+        geometry,
+        foils,
+        foil_name: foil.name.clone(),
+        notes,
+    })
+}
+
+/// One section per station from the texts of `station_NN.dat` files (None: `fallback`).
+pub fn station_foils(
+    dir: &Path,
+    texts: Vec<Option<(PathBuf, String)>>,
+    fallback: &Airfoil,
+    notes: &mut Vec<String>,
+) -> Result<Vec<Airfoil>> {
+    let mut missing = Vec::new();
+    let mut foils = Vec::new();
+    for (i, t) in texts.into_iter().enumerate() {
+        match t {
+            None => {
+                missing.push(i);
+                foils.push(fallback.clone());
+            }
+            Some((path, text)) => {
+                let (f, repairs) = parse_airfoil(&text, &path)?;
+                notes.extend(repairs);
+                foils.push(f);
+            }
+        }
+    }
+    if !missing.is_empty() {
+        notes.push(format!(
+            "{}: no section file for station(s) {missing:?}: {} used there",
+            dir.display(),
+            fallback.name
+        ));
+    }
+    Ok(foils)
+}
+
+/// What the polars stage makes.
+pub struct Polars {
+    /// The prop file with each station's fitted coefficients (a station without a fit keeps
+    /// the geometry's), as the file written for it holds it.
+    pub prop: LoadedProp,
+    /// Every station's polars and fit.
+    pub blade: BladePolars,
+}
+
+impl Polars {
+    /// Every station has a fit.
+    pub fn all_fitted(&self) -> bool {
+        self.blade.stations.iter().all(|s| s.fit.is_some())
+    }
+}
+
+/// Runs the polars stage: XFOIL at every station's Re and Mach at the operating point, each
+/// reduced to QPROP's coefficients.
+pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, progress: &Progress<'_>) -> Result<Polars> {
+    let (fluid, _) = spec.air.fluid()?;
+    if !(spec.omega.is_finite() && spec.omega > 0.0) {
+        invalid!("--rpm: {} must be positive", crate::spec::rpm_text(spec.omega));
+    }
+    if !spec.v.is_finite() || spec.v < 0.0 {
+        invalid!("--v: {} must be a non-negative speed", spec.v);
+    }
+    if let Some(bad) = spec.re_factors.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
+        invalid!("--re-factors: {bad} must be positive");
+    }
+    if let Some(bad) = spec.xfoil.alphas_deg.iter().find(|x| x.abs() > 90.0) {
+        invalid!("--alpha: {bad} deg is outside -90..90");
+    }
+    let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
+    let settings = XfoilSettings {
+        ncrit: spec.xfoil.ncrit,
+        alphas_deg: spec.xfoil.alphas_deg.clone(),
+        panels: spec.xfoil.panels.unwrap_or(BLADE_PANELS),
+        max_iter: spec.xfoil.iter,
+    };
+    let job = BladeJob {
+        blade: &blade,
+        geometry: spec.geometry.display().to_string(),
+        foils: &input.foils,
+        omega: spec.omega,
+        v: spec.v,
+        factors: &spec.re_factors,
+        fluid,
+        settings: &settings,
+    };
+    let b = compute_blade(&job, engine, progress).map_err(|e| Error::input(&spec.geometry, e))?;
+    let mut file = input.geometry.file.clone();
+    for (i, s) in b.stations.iter().enumerate() {
+        if let Some(f) = &s.fit {
+            file.set_station_coeffs(i, &f.coeffs);
+        }
+    }
+    file.name = format!(
+        "{} / {} polars at {:.0} rpm, {} m/s",
+        file.name,
+        input.foil_name,
+        propbet_bemt::units::omega_to_rpm(spec.omega),
+        spec.v
+    );
+    Ok(Polars {
+        prop: as_written(&file, &spec.out_prop)?,
+        blade: b,
+    })
+}
+
+// ---------------------------------------------------------------------------------------
+// predict
+
+/// The operating points of a predict spec, for a rotor of tip radius `tip_radius` [m].
+pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
+    if let Some(bad) = spec.omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
+        invalid!(
+            "--rpm: rotation speed must not be negative, found {}",
+            crate::spec::rpm_text(*bad)
+        );
+    }
+    Ok(match &spec.axis {
+        SweepAxis::J(j) => {
+            if spec.omegas.contains(&0.0) {
+                invalid!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
+            }
+            grid_omega_j(&spec.omegas, j, tip_radius)
+        }
+        SweepAxis::V(v) => grid_omega_v(&spec.omegas, v),
+    })
+}
+
+/// Solves `points` with the model (its effects included), in order.
+pub fn solve(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
+    if model.effects.is_empty() {
+        return Ok(Solver::new(&model.rotor, fluid, &model.opts).solve_many(points));
+    }
+    points
+        .iter()
+        .map(|&op| {
+            let p = model
+                .effects
+                .predict(&model.rotor, &model.opts, fluid, model.diameter, op)?;
+            Ok(p.result.with_loads(
+                p.loads.thrust,
+                p.loads.torque,
+                op.omega,
+                fluid.rho,
+                model.rotor.tip_radius,
+            ))
+        })
+        .collect()
+}
+
+/// Solves `points` in parallel chunks of 128 (in order).
+pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
+    let chunks: Vec<Vec<PointResult>> = points
+        .par_chunks(128)
+        .map(|c| solve(model, fluid, c))
+        .collect::<Result<_>>()?;
+    Ok(chunks.into_iter().flatten().collect())
+}
+
+// ---------------------------------------------------------------------------------------
+// measurements, compare, diagnose
+
+/// Reads the measured files of a spec: the air choice and the measured sets.
+pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
+    if let Some(p) = spec.poles {
+        if p < 2 || p % 2 != 0 {
+            invalid!("--poles {p}: a motor has an even number of poles, at least 2");
+        }
+    }
+    if let Some(r) = spec.rho {
+        if !(r.is_finite() && r > 0.0 && r < 20.0) {
+            invalid!("--rho {r}: not a plausible air density in kg/m^3");
+        }
+    }
+    let air = AirChoice {
+        given: spec.atmosphere,
+        rho: spec.rho,
+    };
+    let column_map = spec.columns.as_deref().map(read_text).transpose()?;
+    let opts = ReadOptions {
+        poles: spec.poles,
+        rpm_source: spec.rpm_source,
+        column_map,
+        ..Default::default()
+    };
+    let sets = spec
+        .files
+        .iter()
+        .map(|p| read_measured(p, &opts))
+        .collect::<Result<_>>()?;
+    Ok((air, sets))
+}
+
+fn read_measured(path: &Path, opts: &ReadOptions) -> Result<MeasuredSet> {
+    let text = read_text(path).map_err(|e| match e {
+        Error::Input { path, message } => Error::input(path, format!("{message}; export the log as CSV")),
+        e => e,
+    })?;
+    let opts = ReadOptions {
+        name: path.file_name().map(|n| n.to_string_lossy().into_owned()),
+        ..opts.clone()
+    };
+    propbet_measure::read(&text, &opts).map_err(|e| Error::input(path, e))
+}
+
+impl MeasuredSpec {
+    /// The files read (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        self.files
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(self.columns.as_deref())
+            .collect()
+    }
+}
+
+/// What the compare stage makes.
+pub struct Compared {
+    /// The measured sets as read.
+    pub sets: Vec<MeasuredSet>,
+    /// The air choice.
+    pub air: AirChoice,
+    /// Every point, measured and predicted.
+    pub points: Vec<ComparedPoint>,
+    /// Metrics by group.
+    pub metrics: Metrics,
+}
+
+impl Compared {
+    /// Rows dropped as faulty and stations that did not converge (all reported).
+    pub fn problems(&self) -> (usize, usize) {
+        (
+            self.sets.iter().map(MeasuredSet::faults).sum(),
+            self.points.iter().map(|p| p.not_converged).sum(),
+        )
+    }
+}
+
+/// The solver setup of a model for the comparison (with the model's effects or without).
+pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> {
+    Setup {
+        rotor: &model.rotor,
+        diameter: model.diameter,
+        opts: model.opts,
+        air,
+        effects,
+    }
+}
+
+/// Runs the compare stage.
+pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
+    let (air, sets) = load_measured(measured)?;
+    let points = propbet_compare::compare(&setup(model, air.clone(), model.effects.clone()), &sets)?;
+    let metrics = metrics(&points);
+    Ok(Compared {
+        sets,
+        air,
+        points,
+        metrics,
+    })
+}
+
+/// What the diagnose stage makes.
+pub struct Diagnosed {
+    /// The measured sets as read.
+    pub sets: Vec<MeasuredSet>,
+    /// The residual rows.
+    pub data: Data,
+    /// The diagnosis.
+    pub diagnosis: Diagnosis,
+}
+
+/// Runs the diagnose stage.
+pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
+    if spec.folds < 2 {
+        invalid!("--folds {}: at least 2", spec.folds);
+    }
+    let list: Vec<String> = spec
+        .effects
+        .iter()
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .collect();
+    let mut candidates = model
+        .registry
+        .select(&list)
+        .map_err(|e| Error::Invalid(e.to_string()))?;
+    // Effects already in the baseline are not candidates.
+    candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
+    let (air, sets) = load_measured(&spec.measured)?;
+    let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
+    let data = Data::from_points(&points).map_err(|e| Error::Invalid(e.to_string()))?;
+    // The model's own effects stay in the model, under the candidates.
+    let dmodel = propbet_diagnose::Model {
+        rotor: &model.rotor,
+        opts: model.opts,
+        diameter: model.diameter,
+        fixed: model.effects.clone(),
+    };
+    let opts = Options {
+        folds: spec.folds,
+        max_steps: spec.max_steps,
+        ..Options::default()
+    };
+    let diagnosis = discover(&dmodel, &data, &candidates, &opts).map_err(|e| Error::Invalid(e.to_string()))?;
+    Ok(Diagnosed { sets, data, diagnosis })
+}

@@ -1,0 +1,323 @@
+//! `validate_prop`: one UIUC propeller predicted from its UIUC geometry with APC's sections
+//! (PE0 file: airfoils blended across APC's transition, scaled to the PE0 thickness ratio),
+//! XFOIL polars at each station's Re, compared with every static and J-sweep file of it,
+//! diagnosed, and compared again with the diagnosis' ladder of effects.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use propbet_compare::metrics::{quantile, window_errors, VALIDATION_J_WINDOW};
+use propbet_polar::{naca4_from_name, Airfoil};
+use propbet_qprop::apc::{read_pe0, uiuc_diameter};
+use propbet_qprop::{PropFile, PropRow};
+
+use crate::model::{as_written, LoadedProp, Model};
+use crate::run::StageRecord;
+use crate::spec::{
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilProcessSpec, XfoilSpec,
+    DEFAULT_RE_FACTORS,
+};
+use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
+use crate::{read_text, Error, Result};
+
+/// Where validate reads and what it asks.
+#[derive(Debug, Clone)]
+pub struct ValidateSpec {
+    /// UIUC directory: `<prop>_geom.txt` and the prop's static and J-sweep files.
+    pub uiuc: PathBuf,
+    /// APC PE0 directory.
+    pub pe0: PathBuf,
+    /// Airfoil coordinates (`e63.dat`, `clarky.dat`).
+    pub airfoils: PathBuf,
+    /// Operating point of the polars' Reynolds numbers [rad/s].
+    pub omega: f64,
+    /// Output directory (one directory per prop below it).
+    pub out: PathBuf,
+    /// XFOIL executable, cache, progress.
+    pub xfoil: XfoilProcessSpec,
+}
+
+/// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
+pub fn uiuc_props(uiuc: &Path) -> Result<Vec<String>> {
+    let mut geoms: Vec<String> = std::fs::read_dir(uiuc)
+        .map_err(|source| Error::Read {
+            path: uiuc.to_path_buf(),
+            source,
+        })?
+        .filter_map(|e| {
+            e.ok()?
+                .file_name()
+                .to_str()?
+                .strip_suffix("_geom.txt")
+                .map(String::from)
+        })
+        .collect();
+    geoms.sort();
+    Ok(geoms)
+}
+
+/// APC's airfoil name → a section: E63 and CLARK-Y from the directory, APC12 = NACA 4412.
+fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
+    let file = match name.to_ascii_uppercase().as_str() {
+        "APC12" => {
+            return naca4_from_name("naca4412")
+                .expect("a NACA name")
+                .map_err(|e| Error::Invalid(e.to_string()))
+        }
+        "E63" => "e63.dat",
+        "CLARK-Y" | "CLARKY" => "clarky.dat",
+        other => {
+            return Err(Error::Invalid(format!(
+                "APC airfoil {other}: no coordinates known (E63, CLARK-Y, APC12)"
+            )))
+        }
+    };
+    Ok(stages::read_airfoil(&dir.join(file))?.0)
+}
+
+/// One row of the validation table: |pred/meas − 1| of CT and CP below 85 % of each sweep's
+/// zero-thrust J, before and after calibration.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Row {
+    /// The UIUC name.
+    pub prop: String,
+    /// Points scored.
+    pub points: usize,
+    /// CT (median, p90) before and after.
+    pub ct: [(f64, f64); 2],
+    /// CP (median, p90) before and after.
+    pub cp: [(f64, f64); 2],
+    /// The ladder's effects.
+    pub ladder: String,
+}
+
+/// Everything one prop's validation made.
+pub struct Validated {
+    /// The geometry's prop file (UIUC stations, generic coefficients), as written.
+    pub geometry: LoadedProp,
+    /// Each station's section as a Selig file: (station, text).
+    pub airfoils: Vec<(usize, String)>,
+    /// The polars and their inputs.
+    pub polars: (Polars, PolarsInput),
+    /// The prediction against the measurements.
+    pub compared: Compared,
+    /// The diagnosis.
+    pub diagnosed: Diagnosed,
+    /// The ladder's effects (as `--effect` takes them).
+    pub effects: Vec<String>,
+    /// The prediction with them.
+    pub calibrated: Compared,
+    /// The stages.
+    pub stages: Vec<StageRecord>,
+    /// The table's row.
+    pub row: Row,
+}
+
+impl Validated {
+    /// Every stage ran clean.
+    pub fn clean(&self) -> bool {
+        self.stages.iter().all(|s| s.clean)
+    }
+}
+
+/// Validates one prop; `pe0` is its PE0 file.
+pub fn validate_prop(
+    spec: &ValidateSpec,
+    prop: &str,
+    pe0: &Path,
+    progress: &propbet_polar::Progress<'_>,
+) -> Result<Validated> {
+    let dir = spec.out.join(prop);
+    let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
+    let table = stages::read_geometry_table(&geom_path)?;
+    let d = uiuc_diameter(prop).ok_or_else(|| Error::Invalid(format!("{prop}: no diameter in the name")))?;
+    let big_r = 0.5 * d;
+    let pe0 = read_pe0(&read_text(pe0)?, &pe0.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    let (f1, f2) = (
+        apc_airfoil(&pe0.airfoils[0].1, &spec.airfoils)?,
+        apc_airfoil(&pe0.airfoils[1].1, &spec.airfoils)?,
+    );
+    // The blade (metres) and each station's section scaled to the PE0 thickness there.
+    let generic = propbet_qprop::GENERIC;
+    let mut rows = Vec::new();
+    let mut airfoils = Vec::new();
+    for (i, row) in table.iter().enumerate() {
+        let r = row.r_r * big_r;
+        rows.push(PropRow {
+            r,
+            chord: row.c_r * big_r,
+            beta: row.beta.to_degrees(),
+            coeffs: Vec::new(),
+        });
+        let frac = pe0.blend_at(r);
+        let base = if frac <= 0.0 {
+            f1.clone()
+        } else if frac >= 1.0 {
+            f2.clone()
+        } else {
+            f1.blend(&f2, frac, 80).map_err(|e| Error::Invalid(e.to_string()))?
+        };
+        let tc = pe0.thickness_at(r);
+        let mut foil = base.scale_thickness(tc).map_err(|e| Error::Invalid(e.to_string()))?;
+        foil.name = format!("{} t/c {:.3}", base.name, tc);
+        airfoils.push((i, foil.to_selig()));
+    }
+    let file = PropFile {
+        name: format!("{prop} (UIUC geometry, APC PE0 sections)"),
+        blades: 2.0,
+        radius: Some(big_r),
+        global: generic.to_array(),
+        scale: [1.0, 1.0, 1.0],
+        offset: [0.0, 0.0, 0.0],
+        rows,
+        row_lines: Vec::new(),
+    };
+    let geometry_path = dir.join("geometry.qprop");
+    let geometry = as_written(&file, &geometry_path)?;
+    let foil_dir = dir.join("airfoils");
+    let texts: Vec<Option<(PathBuf, String)>> = airfoils
+        .iter()
+        .map(|(i, t)| Some((foil_dir.join(format!("station_{i:02}.dat")), t.clone())))
+        .collect();
+    let mut notes = Vec::new();
+    let first = stages::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
+    let foils = stages::station_foils(&foil_dir, texts, &first, &mut notes)?;
+    let mut records = Vec::new();
+
+    // Polars.
+    let polars_spec = PolarsSpec {
+        geometry: geometry_path,
+        units: None,
+        airfoil: foil_dir.join("station_00.dat").display().to_string(),
+        thickness: None,
+        station_airfoils: Some(foil_dir),
+        omega: spec.omega,
+        v: 0.0,
+        re_factors: DEFAULT_RE_FACTORS.to_vec(),
+        air: AirSpec::default(),
+        xfoil: XfoilSpec {
+            process: spec.xfoil.clone(),
+            ncrit: crate::spec::DEFAULT_NCRIT,
+            alphas_deg: crate::values::parse_list("", crate::spec::DEFAULT_ALPHA)?,
+            panels: None,
+            iter: xfoil_runner::DEFAULT_MAX_ITER,
+        },
+        out_prop: dir.join("prop.qprop"),
+        out_polars: Some(dir.join("polars.json")),
+    };
+    let t0 = Instant::now();
+    let input = PolarsInput {
+        geometry: geometry.clone(),
+        foils,
+        foil_name: first.name.clone(),
+        notes,
+    };
+    let engine = stages::polar_engine(&spec.xfoil)?;
+    let polars = stages::polars(&polars_spec, &input, &engine, progress)?;
+    records.push(StageRecord {
+        spec: StageSpec::Polars(polars_spec),
+        seconds: t0.elapsed().as_secs_f64(),
+        clean: polars.all_fitted(),
+    });
+
+    // The measurements: every file of this prop but the geometry.
+    let mut measured: Vec<PathBuf> = std::fs::read_dir(&spec.uiuc)
+        .map_err(|source| Error::Read {
+            path: spec.uiuc.clone(),
+            source,
+        })?
+        .filter_map(|e| {
+            let n = e.ok()?.file_name().to_str()?.to_string();
+            (n.starts_with(&format!("{prop}_")) && n.ends_with(".txt") && !n.ends_with("_geom.txt")).then_some(n)
+        })
+        .map(|n| spec.uiuc.join(n))
+        .collect();
+    measured.sort();
+    if measured.is_empty() {
+        return Err(Error::Invalid("no static or J-sweep file".into()));
+    }
+    let measured = MeasuredSpec::files(measured);
+    let model_spec = ModelSpec::prop(dir.join("prop.qprop"));
+    let model = Model::from_loaded(&model_spec, polars.prop.clone(), false)?;
+    let compare_stage = |spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>| -> Result<Compared> {
+        let t0 = Instant::now();
+        let c = stages::compare(model, &spec.measured)?;
+        records.push(StageRecord {
+            spec: StageSpec::Compare(spec),
+            seconds: t0.elapsed().as_secs_f64(),
+            clean: c.problems() == (0, 0),
+        });
+        Ok(c)
+    };
+    let compared = compare_stage(
+        CompareSpec {
+            model: model_spec.clone(),
+            measured: measured.clone(),
+            out: dir.join("compare"),
+        },
+        &model,
+        &mut records,
+    )?;
+    let dspec = DiagnoseSpec {
+        model: model_spec.clone(),
+        measured: measured.clone(),
+        effects: vec!["all".into()],
+        folds: crate::spec::DEFAULT_FOLDS,
+        max_steps: crate::spec::DEFAULT_MAX_STEPS,
+        out: dir.join("diagnose"),
+    };
+    let t0 = Instant::now();
+    let diagnosed = stages::diagnose(&model, &dspec)?;
+    records.push(StageRecord {
+        spec: StageSpec::Diagnose(dspec),
+        seconds: t0.elapsed().as_secs_f64(),
+        clean: true,
+    });
+    // Calibrated: the ladder's effects as the command line gives them.
+    let effects: Vec<String> = diagnosed
+        .diagnosis
+        .final_stack
+        .active
+        .iter()
+        .map(|a| a.describe())
+        .collect();
+    let cal_spec = ModelSpec {
+        effects: effects.clone(),
+        ..model_spec
+    };
+    let cal_model = Model::from_loaded(&cal_spec, polars.prop.clone(), false)?;
+    let calibrated = compare_stage(
+        CompareSpec {
+            model: cal_spec,
+            measured,
+            out: dir.join("calibrated"),
+        },
+        &cal_model,
+        &mut records,
+    )?;
+    let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
+    let (ct1, cp1) = window_errors(&calibrated.points, VALIDATION_J_WINDOW);
+    let q = |v: &Vec<f64>| (quantile(v.clone(), 0.5), quantile(v.clone(), 0.9));
+    let row = Row {
+        prop: prop.to_string(),
+        points: ct0.len(),
+        ct: [q(&ct0), q(&ct1)],
+        cp: [q(&cp0), q(&cp1)],
+        ladder: if effects.is_empty() {
+            "none".into()
+        } else {
+            effects.join(" + ")
+        },
+    };
+    Ok(Validated {
+        geometry,
+        airfoils,
+        polars: (polars, input),
+        compared,
+        diagnosed,
+        effects,
+        calibrated,
+        stages: records,
+        row,
+    })
+}

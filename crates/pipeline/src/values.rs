@@ -1,0 +1,293 @@
+//! Values as users write them (flags and case files): number lists and ranges, and quantities
+//! with units, converted to SI here, once; and back to text for a stage's command line.
+
+use crate::{invalid, Error, Result};
+
+/// `Option` → `Result` with an [`Error::Invalid`] message.
+trait OrInvalid<T> {
+    fn with_context(self, f: impl FnOnce() -> String) -> Result<T>;
+}
+
+impl<T, E> OrInvalid<T> for std::result::Result<T, E> {
+    fn with_context(self, f: impl FnOnce() -> String) -> Result<T> {
+        self.map_err(|_| Error::Invalid(f()))
+    }
+}
+
+impl<T> OrInvalid<T> for Option<T> {
+    fn with_context(self, f: impl FnOnce() -> String) -> Result<T> {
+        self.ok_or_else(|| Error::Invalid(f()))
+    }
+}
+
+/// Parses a comma-separated list whose items are numbers, `start:stop:step` (inclusive) or
+/// `start:stop/N` (N points).
+pub fn parse_list(flag: &str, text: &str) -> Result<Vec<f64>> {
+    let mut out = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        if item.is_empty() {
+            invalid!("{flag} '{text}': empty item");
+        }
+        let num = |s: &str| -> Result<f64> {
+            let v: f64 = s
+                .trim()
+                .parse()
+                .with_context(|| format!("{flag} '{text}': '{s}' is not a number"))?;
+            if !v.is_finite() {
+                invalid!("{flag} '{text}': '{s}' is not a finite number");
+            }
+            Ok(v)
+        };
+        if let Some((a, rest)) = item.split_once(':') {
+            let start = num(a)?;
+            if let Some((b, n)) = rest.split_once('/') {
+                let stop = num(b)?;
+                let n: usize = n
+                    .trim()
+                    .parse()
+                    .with_context(|| format!("{flag} '{text}': '{n}' is not a whole number of points"))?;
+                if n == 0 || n > 1_000_000 {
+                    invalid!("{flag} '{text}': the number of points must be 1..1000000, found {n}");
+                }
+                if n == 1 {
+                    out.push(start);
+                } else {
+                    out.extend((0..n).map(|i| start + (stop - start) * i as f64 / (n - 1) as f64));
+                }
+            } else {
+                let (b, step) = rest
+                    .split_once(':')
+                    .with_context(|| format!("{flag} '{text}': use start:stop:step or start:stop/N"))?;
+                let stop = num(b)?;
+                let step = num(step)?;
+                if step <= 0.0 {
+                    invalid!("{flag} '{text}': the step must be positive, found {step}");
+                }
+                let count = ((stop - start) / step + 1e-9).floor();
+                if count < 0.0 {
+                    invalid!("{flag} '{text}': stop {stop} is below start {start}");
+                }
+                if count > 1e6 {
+                    invalid!("{flag} '{text}': more than a million points");
+                }
+                out.extend((0..=count as usize).map(|i| start + step * i as f64));
+            }
+        } else {
+            out.push(num(item)?);
+        }
+    }
+    Ok(out)
+}
+
+/// Splits `12.5hPa` into (12.5, "hPa").
+fn split_unit(text: &str) -> Option<(f64, &str)> {
+    let t = text.trim();
+    let k = t
+        .find(|c: char| !(c.is_ascii_digit() || matches!(c, '.' | '-' | '+' | 'e' | 'E')))
+        .unwrap_or(t.len());
+    // An exponent marker followed by letters is a unit, not an exponent ("5e" never occurs).
+    let (num, unit) = t.split_at(k);
+    num.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .map(|v| (v, unit.trim()))
+}
+
+/// A temperature with a unit suffix (`15C`, `288.15K`, `59F`) [K].
+pub fn parse_temperature(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--temp '{text}': not a number with a unit"))?;
+    Ok(match unit {
+        "C" | "degC" | "°C" | "ºC" => v + 273.15,
+        "K" => v,
+        "F" | "degF" | "°F" => (v - 32.0) * 5.0 / 9.0 + 273.15,
+        "" => invalid!("--temp '{text}': give a unit: C, K or F (for example 20C)"),
+        u => invalid!("--temp '{text}': unknown temperature unit '{u}' (use C, K or F)"),
+    })
+}
+
+/// A pressure, Pa unless suffixed (`Pa`, `hPa`, `mbar`, `kPa`, `bar`, `inHg`, `psi`) [Pa].
+pub fn parse_pressure(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--pressure '{text}': not a number"))?;
+    Ok(v * match unit {
+        "" | "Pa" => 1.0,
+        "hPa" | "mbar" => 100.0,
+        "kPa" => 1000.0,
+        "bar" => 1e5,
+        "inHg" => 3386.389,
+        "psi" => 6894.757,
+        u => invalid!("--pressure '{text}': unknown pressure unit '{u}' (use Pa, hPa, mbar, kPa, bar, inHg or psi)"),
+    })
+}
+
+/// Relative humidity in percent (`45%` or `45`) or as a fraction below 1 with no suffix is
+/// ambiguous, so a bare number is read as percent [-, 0..1].
+pub fn parse_humidity(text: &str) -> Result<f64> {
+    let (v, unit) = split_unit(text).with_context(|| format!("--humidity '{text}': not a number"))?;
+    match unit {
+        "" | "%" => Ok(v / 100.0),
+        u => invalid!("--humidity '{text}': unknown unit '{u}' (give percent, for example 45%)"),
+    }
+}
+
+/// A length unit for prop-file radii and chords: metres per unit.
+pub fn parse_length_unit(text: &str) -> Result<f64> {
+    Ok(match text {
+        "m" => 1.0,
+        "cm" => 0.01,
+        "mm" => 0.001,
+        "in" | "inch" => 0.0254,
+        u => invalid!("--units '{u}': unknown length unit (use m, cm, mm or in)"),
+    })
+}
+
+/// The name of a length unit of [`parse_length_unit`] from its metres per unit.
+pub fn length_unit_name(metres: f64) -> Option<&'static str> {
+    [("m", 1.0), ("cm", 0.01), ("mm", 0.001), ("in", 0.0254)]
+        .into_iter()
+        .find(|u| u.1 == metres)
+        .map(|u| u.0)
+}
+
+/// `T,P,RH` split into its three parts, a bare temperature given its unit (°C).
+pub fn split_atmosphere(text: &str) -> Result<[String; 3]> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        invalid!("--atmosphere '{text}': give temperature, pressure and humidity, for example 22,1009hPa,40");
+    }
+    let t = if parts[0].parse::<f64>().is_ok() {
+        format!("{}C", parts[0])
+    } else {
+        parts[0].to_string()
+    };
+    Ok([t, parts[1].to_string(), parts[2].to_string()])
+}
+
+/// `T,P,RH` with optional units (temperature °C unless suffixed K or F; pressure Pa unless
+/// suffixed; humidity %).
+pub fn parse_atmosphere(text: &str) -> Result<propbet_atmosphere::AirState> {
+    let [t, p, rh] = split_atmosphere(text)?;
+    propbet_atmosphere::AirState::new(parse_temperature(&t)?, parse_pressure(&p)?, parse_humidity(&rh)?)
+        .map_err(|e| Error::Invalid(format!("--atmosphere '{text}': {e}")))
+}
+
+/// The shortest decimal text of a value in the user's unit that converts back to exactly
+/// `si` (`from_user(text) == si`): 5000 rpm prints as `5000`, not `5000.000000000001`.
+pub fn scaled_text(si: f64, to_user: impl Fn(f64) -> f64, from_user: impl Fn(f64) -> f64) -> String {
+    let user = to_user(si);
+    for digits in 1..=17 {
+        let text = format!("{:.*e}", digits - 1, user);
+        if let Ok(v) = text.parse::<f64>() {
+            if from_user(v) == si {
+                return format!("{v}");
+            }
+        }
+    }
+    format!("{user}")
+}
+
+/// A list as [`parse_list`] reads it back exactly: `start:stop:step` where that gives the
+/// same numbers, else the numbers separated by commas.
+pub fn list_text(v: &[f64]) -> String {
+    if v.len() >= 3 {
+        let step = format!("{}", v[1] - v[0]);
+        let range = format!("{}:{}:{step}", v[0], v[v.len() - 1]);
+        if parse_list("", &range).is_ok_and(|r| r == v) {
+            return range;
+        }
+        // The step as the user would write it (0.025, not 0.025000000000000001).
+        if let Ok(s) = format!("{:.6e}", v[1] - v[0]).parse::<f64>() {
+            let range = format!("{}:{}:{s}", v[0], v[v.len() - 1]);
+            if parse_list("", &range).is_ok_and(|r| r == v) {
+                return range;
+            }
+        }
+    }
+    v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(",")
+}
+
+/// Rotation speeds [rad/s] as the rpm list a flag takes, read back exactly.
+pub fn rpm_list_text(omegas: &[f64]) -> String {
+    let rpm: Vec<f64> = omegas
+        .iter()
+        .map(|&w| {
+            scaled_text(w, propbet_bemt::units::omega_to_rpm, propbet_bemt::units::rpm_to_omega)
+                .parse()
+                .unwrap_or(f64::NAN)
+        })
+        .collect();
+    if rpm
+        .iter()
+        .map(|&r| propbet_bemt::units::rpm_to_omega(r))
+        .eq(omegas.iter().copied())
+    {
+        let t = list_text(&rpm);
+        if parse_list("", &t).is_ok_and(|r| {
+            r.iter()
+                .map(|&x| propbet_bemt::units::rpm_to_omega(x))
+                .eq(omegas.iter().copied())
+        }) {
+            return t;
+        }
+    }
+    omegas
+        .iter()
+        .map(|&w| scaled_text(w, propbet_bemt::units::omega_to_rpm, propbet_bemt::units::rpm_to_omega))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(text: &str, expected: &[f64]) {
+        let got = parse_list("--x", text).unwrap();
+        assert_eq!(got.len(), expected.len(), "{text}: {got:?}");
+        for (g, e) in got.iter().zip(expected) {
+            assert!((g - e).abs() < 1e-12, "{text}: {got:?}");
+        }
+    }
+
+    #[test]
+    fn lists_and_ranges() {
+        check("4000,6000", &[4000.0, 6000.0]);
+        check("0:0.2:0.05", &[0.0, 0.05, 0.1, 0.15, 0.2]);
+        check("0:20/3", &[0.0, 10.0, 20.0]);
+        check("1, 2:3:1", &[1.0, 2.0, 3.0]);
+        assert_eq!(parse_list("--j", "0:0.8:0.05").unwrap().len(), 17);
+        for bad in ["", "a", "1,,2", "0:1:0", "1:0:0.1", "0:1/0", "nan", "0:1"] {
+            assert!(parse_list("--x", bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn lists_print_back_exactly() {
+        for text in ["0:0.7:0.025", "4000,5000,6000", "0:20/7", "1,2,5", "-8:16:1"] {
+            let v = parse_list("--x", text).unwrap();
+            let back = list_text(&v);
+            assert_eq!(parse_list("--x", &back).unwrap(), v, "{text} -> {back}");
+        }
+        assert_eq!(list_text(&parse_list("", "0:0.7:0.025").unwrap()), "0:0.7:0.025");
+        let w: Vec<f64> = [4000.0, 5000.0, 6000.0].map(propbet_bemt::units::rpm_to_omega).to_vec();
+        assert_eq!(rpm_list_text(&w), "4000:6000:1000");
+        assert_eq!(scaled_text(0.4, |x| 100.0 * x, |x| x / 100.0), "40");
+        assert_eq!(length_unit_name(0.0254), Some("in"));
+    }
+
+    #[test]
+    fn units() {
+        assert!((parse_temperature("15C").unwrap() - 288.15).abs() < 1e-12);
+        assert!((parse_temperature("59F").unwrap() - 288.15).abs() < 1e-9);
+        assert!(parse_temperature("15").is_err());
+        assert!(parse_temperature("15Q")
+            .unwrap_err()
+            .to_string()
+            .contains("unknown temperature unit 'Q'"));
+        assert_eq!(parse_pressure("1013.25hPa").unwrap(), 101325.0);
+        assert_eq!(parse_pressure("101325").unwrap(), 101325.0);
+        assert!(parse_pressure("1atm").is_err());
+        assert_eq!(parse_humidity("50%").unwrap(), 0.5);
+        assert_eq!(parse_length_unit("in").unwrap(), 0.0254);
+        assert!(parse_length_unit("furlong").is_err());
+    }
+}
