@@ -83,6 +83,21 @@ pub struct QpropCoefficients {
 }
 
 impl QpropCoefficients {
+    /// QPROP's profile drag at `cl` before the Reynolds factor (FORMULATION.md, drag law):
+    /// CD0 + CD2 (cl − CLCD0)², with CD2 = CD2u above CLCD0 and CD2l below. The one copy of
+    /// the scalar law: the solver's drag, the polar fit and its tests use it (the vector lanes
+    /// of `simd.rs` repeat it in `f64x8`).
+    pub fn cd_profile(&self, cl: f64) -> f64 {
+        let clb = cl - self.clcd0;
+        let cd2 = if cl > self.clcd0 { self.cd2u } else { self.cd2l };
+        self.cd0 + cd2 * clb * clb
+    }
+
+    /// QPROP's Reynolds-number factor of the drag, (Re/REref)^REexp.
+    pub fn re_factor(&self, re: f64) -> f64 {
+        (re / self.re_ref).powf(self.re_exp)
+    }
+
     /// The coefficients as an array, in prop-file column order.
     pub fn to_array(&self) -> [f64; 10] {
         [
@@ -190,10 +205,7 @@ impl SectionAero for QpropAirfoil {
 
     fn drag(&self, q: &DragInput) -> f64 {
         let k = &self.coeffs;
-        let fac = (q.re.max(RE_FLOOR) / k.re_ref).powf(k.re_exp);
-        let clb = q.cl - k.clcd0;
-        let cd2 = if q.cl > k.clcd0 { k.cd2u } else { k.cd2l };
-        let mut cd = (k.cd0 + cd2 * clb * clb) * fac;
+        let mut cd = k.cd_profile(q.cl) * k.re_factor(q.re.max(RE_FLOOR));
         if q.mach > self.mcrit {
             cd += 10.0 * (q.mach - self.mcrit).powi(3);
         }

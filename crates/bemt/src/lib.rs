@@ -16,10 +16,10 @@ mod simd;
 pub mod solve;
 pub mod spline;
 pub mod sweep;
-pub mod units;
+pub use propbet_units as units;
 
 pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, SectionAero};
 pub use fluid::Fluid;
 pub use rotor::{Discretization, QpropBlade, Rotor, RotorError, Station};
-pub use solve::{solve_point, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};
-pub use sweep::{grid_omega_j, grid_omega_v, grid_rpm_j, grid_rpm_v, solve_points, Solver};
+pub use solve::{solve_point_scalar, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};
+pub use sweep::{grid_omega_j, grid_omega_v, grid_rpm_j, grid_rpm_v, solve_point, solve_points, Solver};

@@ -17,8 +17,8 @@ const LANES: usize = 8;
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
 use crate::solve::{
-    context, integrate, point_result, solve_station, station_result, Convergence, Ctx, Eval, OperatingPoint,
-    PointResult, SolverOptions, StationResult, Sums,
+    context, point_result, solve_station, station_result, Convergence, Ctx, Eval, OperatingPoint, PointResult,
+    SolverOptions, StationResult, Sums,
 };
 
 /// One vector's worth of stations' constants.
@@ -158,13 +158,7 @@ pub(crate) fn solve_point_prepared(
             let stations = stations.into_iter().flatten().collect();
             point_result(rotor, fluid, op, &sums, stations)
         }
-        _ => integrate(
-            rotor,
-            fluid,
-            op,
-            opts,
-            rotor.stations.iter().map(|st| solve_station(st, &ctx)),
-        ),
+        _ => crate::solve::solve_point_scalar(rotor, fluid, op, opts),
     }
 }
 

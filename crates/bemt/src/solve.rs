@@ -240,13 +240,20 @@ pub struct PointResult {
     pub stations: Vec<StationResult>,
 }
 
-/// Solves one operating point.
+/// Solves one operating point on the scalar path, station by station: the reference the
+/// vectorised path ([`crate::solve_point`], [`crate::Solver`]) is checked against.
 ///
 /// The rotor must satisfy [`Rotor::validate`]; the operating point must be finite with a
-/// non-negative rotation rate (the CLI checks user input before this point). For many points
-/// use [`crate::solve_points`], which prepares the rotor once.
-pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> PointResult {
-    crate::simd::solve_point_prepared(rotor, crate::simd::Prepared::new(rotor).as_ref(), fluid, op, opts)
+/// non-negative rotation rate (the CLI checks user input before this point).
+pub fn solve_point_scalar(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> PointResult {
+    let ctx = context(rotor, fluid, op, opts);
+    integrate(
+        rotor,
+        fluid,
+        op,
+        opts,
+        rotor.stations.iter().map(|st| solve_station(st, &ctx)),
+    )
 }
 
 /// The context of one operating point for the station solves.
@@ -352,15 +359,16 @@ fn loads_result(
     let disc = std::f64::consts::PI * big_r * big_r;
     let dv = ((op.v * op.v + 2.0 * thrust / (rho * disc)).max(0.0)).sqrt() - op.v;
     let (j, ct, cp, cq, adv, ctq, cpq) = if op.omega > 0.0 {
-        let n = op.omega / (2.0 * std::f64::consts::PI);
+        let n = crate::units::omega_to_rev_per_s(op.omega);
+        let scale = crate::units::Scales::new(rho, n, 2.0 * big_r);
         let d = 2.0 * big_r;
         let wr = op.omega * big_r;
         let qdisc = 0.5 * rho * wr * wr * disc;
         (
             Some(op.v / (n * d)),
-            Some(thrust / (rho * n * n * d.powi(4))),
-            Some(power / (rho * n.powi(3) * d.powi(5))),
-            Some(torque / (rho * n * n * d.powi(5))),
+            Some(thrust / scale.thrust),
+            Some(power / scale.power),
+            Some(torque / scale.torque),
             Some(op.v / wr),
             Some(thrust / qdisc),
             Some(torque / (qdisc * big_r)),
@@ -372,7 +380,7 @@ fn loads_result(
     PointResult {
         v: op.v,
         omega: op.omega,
-        rpm: op.omega * 30.0 / std::f64::consts::PI,
+        rpm: crate::units::omega_to_rpm(op.omega),
         thrust,
         torque,
         power,

@@ -9,6 +9,16 @@ use crate::rotor::Rotor;
 use crate::simd::{solve_batch, solve_point_prepared, Prepared};
 use crate::solve::{OperatingPoint, PointResult, SolverOptions};
 
+/// Solves one operating point, eight stations at a time in vector lanes where the rotor allows
+/// (the same result as [`crate::solve_point_scalar`] to rounding).
+///
+/// The rotor must satisfy [`Rotor::validate`]; the operating point must be finite with a
+/// non-negative rotation rate (the CLI checks user input before this point). For many points
+/// use [`solve_points`] or a [`Solver`], which prepare the rotor once.
+pub fn solve_point(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> PointResult {
+    solve_point_prepared(rotor, Prepared::new(rotor).as_ref(), fluid, op, opts)
+}
+
 /// A rotor, fluid and options prepared once for solving many operating points (the
 /// vectorised path's lane groups are built here).
 #[derive(Debug, Clone)]
@@ -25,6 +35,17 @@ impl<'a> Solver<'a> {
         Self {
             rotor,
             prepared: Prepared::new(rotor),
+            fluid: *fluid,
+            opts: *opts,
+        }
+    }
+
+    /// The same, solving every point on the scalar reference path (no vector lanes): for
+    /// checking the vectorised path against it.
+    pub fn scalar(rotor: &'a Rotor, fluid: &Fluid, opts: &SolverOptions) -> Self {
+        Self {
+            rotor,
+            prepared: None,
             fluid: *fluid,
             opts: *opts,
         }

@@ -6,8 +6,8 @@
 use std::sync::Arc;
 
 use propbet_bemt::{
-    solve_point, solve_points, Convergence, Discretization, Fluid, OperatingPoint, QpropAirfoil, QpropBlade,
-    QpropCoefficients, Rotor, SolverOptions, Station,
+    solve_point, solve_point_scalar, solve_points, Convergence, Discretization, Fluid, OperatingPoint, QpropAirfoil,
+    QpropBlade, QpropCoefficients, Rotor, Solver, SolverOptions, Station,
 };
 use proptest::prelude::*;
 
@@ -88,6 +88,33 @@ proptest! {
         let unstalled = |p: &propbet_bemt::PointResult| p.stations.iter().all(|s| !s.stalled);
         prop_assume!(unstalled(&a) && unstalled(&b));
         prop_assert!(b.ct.unwrap() < a.ct.unwrap(), "CT({}) = {:?} !> CT({}) = {:?}", j, a.ct, j + dj, b.ct);
+    }
+
+    #[test]
+    fn vectorised_sweeps_agree_with_the_scalar_reference(
+        rpm in 1000.0..30000.0f64,
+        v0 in -5.0..30.0f64,
+        dbeta in -6.0..8.0f64,
+        strength in 0.3..1.5f64,
+    ) {
+        // Eight points in one vector batch, against the scalar path point by point.
+        let rotor = cam6x3();
+        let fluid = Fluid::QPROP_DEFAULT;
+        let opts = SolverOptions {
+            dbeta: dbeta.to_radians(),
+            tip_loss_strength: strength,
+            ..SolverOptions::default()
+        };
+        let ops: Vec<OperatingPoint> = (0..8).map(|k| OperatingPoint::from_rpm(v0 + 2.0 * k as f64, rpm)).collect();
+        let vector = Solver::new(&rotor, &fluid, &opts).solve_many(&ops);
+        let scalar = Solver::scalar(&rotor, &fluid, &opts).solve_many(&ops);
+        for (op, (a, b)) in ops.iter().zip(vector.iter().zip(&scalar)) {
+            prop_assert_eq!(a.not_converged, b.not_converged);
+            prop_assert_eq!(b, &solve_point_scalar(&rotor, &fluid, *op, &opts));
+            let scale = b.thrust.abs() + b.torque.abs() / rotor.tip_radius + 1e-9;
+            prop_assert!((a.thrust - b.thrust).abs() < 1e-9 * scale, "thrust {} vs {}", a.thrust, b.thrust);
+            prop_assert!((a.torque - b.torque).abs() < 1e-9 * scale * rotor.tip_radius, "torque {} vs {}", a.torque, b.torque);
+        }
     }
 
     #[test]
@@ -224,10 +251,7 @@ fn loss_factor_strengths() {
         tip_loss_strength: 0.5,
         ..SolverOptions::default()
     };
-    let scalar = solve(SolverOptions {
-        keep_stations: true,
-        ..weak
-    });
+    let scalar = solve_point_scalar(&rotor, &fluid, op, &weak);
     let vector = solve_points(&rotor, &fluid, &[op], &weak).remove(0);
     assert!((scalar.thrust - vector.thrust).abs() < 1e-9 * scalar.thrust.abs());
     assert!(scalar.thrust > base.thrust, "weaker tip loss, more thrust");

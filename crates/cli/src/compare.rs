@@ -160,7 +160,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
 /// plots) into the spec's directory; returns the report page.
 pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> {
-    let setup = stages::setup(model, c.air.clone(), model.effects.clone());
+    let setup = stages::setup(model, c.air, model.effects.clone());
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(

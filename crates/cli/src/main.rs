@@ -105,20 +105,6 @@ fn main() -> ExitCode {
     }
 }
 
-/// The stage spec a stage's command line means (the commands `propbet run` and `propbet
-/// validate` print for their stages).
-pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_pipeline::spec::StageSpec>> {
-    use propbet_pipeline::spec::StageSpec;
-    Ok(Some(match command {
-        Command::Scan(a) => StageSpec::Scan(a.spec()?),
-        Command::Polars(a) => StageSpec::Polars(a.spec()?),
-        Command::Predict(a) => StageSpec::Predict(a.spec()?),
-        Command::Compare(a) => StageSpec::Compare(a.spec()?),
-        Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
-        _ => return Ok(None),
-    }))
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
@@ -127,6 +113,20 @@ mod tests {
     use propbet_pipeline::spec::StageSpec;
 
     use super::*;
+
+    /// The stage spec a stage's command line means (the commands `propbet run` and `propbet
+    /// validate` print for their stages).
+    pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_pipeline::spec::StageSpec>> {
+        use propbet_pipeline::spec::StageSpec;
+        Ok(Some(match command {
+            Command::Scan(a) => StageSpec::Scan(a.spec()?),
+            Command::Polars(a) => StageSpec::Polars(a.spec()?),
+            Command::Predict(a) => StageSpec::Predict(a.spec()?),
+            Command::Compare(a) => StageSpec::Compare(a.spec()?),
+            Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
+            _ => return Ok(None),
+        }))
+    }
 
     /// A spec's printed command line parses back to the same spec.
     fn check(spec: &StageSpec) {

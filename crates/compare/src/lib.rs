@@ -110,15 +110,16 @@ impl Quantities {
     /// From thrust and torque at rotation `omega` [rad/s], speed `v` [m/s], density `rho` and
     /// diameter `d`.
     pub fn from_forces(thrust: f64, torque: Option<f64>, omega: f64, v: f64, rho: f64, d: f64) -> Self {
-        let n = omega / (2.0 * PI);
+        let n = propbet_units::omega_to_rev_per_s(omega);
+        let scale = propbet_units::Scales::new(rho, n, d);
         let power = torque.map(|q| q * omega);
         Self {
             thrust: Some(thrust),
             torque,
             power,
-            ct: Some(thrust / (rho * n * n * d.powi(4))),
-            cp: power.map(|p| p / (rho * n.powi(3) * d.powi(5))),
-            cq: torque.map(|q| q / (rho * n * n * d.powi(5))),
+            ct: Some(thrust / scale.thrust),
+            cp: power.map(|p| p / scale.power),
+            cq: torque.map(|q| q / scale.torque),
             eta: power
                 .filter(|p| *p > 0.0 && v > 0.0 && thrust > 0.0)
                 .map(|p| thrust * v / p),
@@ -251,7 +252,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
     let rho = air.fluid.rho;
     let d = setup.diameter;
     let omega = p.omega.mean;
-    let n = omega / (2.0 * PI);
+    let n = propbet_units::omega_to_rev_per_s(omega);
     let rel_n = p.omega.relative_sd();
     let (v, v_sd) = match p.speed {
         Speed::Airspeed(v) => (v.mean, v.sd),
@@ -276,8 +277,9 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
             (m, sds)
         }
         Loads::Coefficients { ct, cp } => {
-            let thrust = ct * rho * n * n * d.powi(4);
-            let power = cp * rho * n.powi(3) * d.powi(5);
+            let scale = propbet_units::Scales::new(rho, n, d);
+            let thrust = ct * scale.thrust;
+            let power = cp * scale.power;
             let m = Quantities {
                 thrust: Some(thrust),
                 torque: Some(power / omega),
@@ -297,8 +299,8 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
         label: p.label.clone(),
         lines: p.lines,
         rpm: p.rpm(),
-        rpm_sd: p.omega.sd.map(|s| s * 30.0 / PI),
-        nominal_rpm: p.nominal_omega.map(|w| w * 30.0 / PI),
+        rpm_sd: p.omega.sd.map(propbet_units::omega_to_rpm),
+        nominal_rpm: p.nominal_omega.map(propbet_units::omega_to_rpm),
         v,
         j: v / (n * d),
         measured,

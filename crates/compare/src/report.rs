@@ -142,7 +142,7 @@ fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure>
         let rpm = mean(pts.iter().map(|p| p.rpm));
         let fluid = pts[0].air.fluid;
         let jmax = pts.iter().map(|p| p.j).fold(0.0, f64::max) * 1.08;
-        let omega = rpm * std::f64::consts::PI / 30.0;
+        let omega = propbet_units::rpm_to_omega(rpm);
         let n = omega / (2.0 * std::f64::consts::PI);
         let curve: Vec<(f64, crate::Quantities)> = (0..=40)
             .map(|i| {
@@ -192,7 +192,7 @@ fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
             let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / 40.0;
             (
                 rpm,
-                predict(setup, rpm * std::f64::consts::PI / 30.0, 0.0, &fluid)
+                predict(setup, propbet_units::rpm_to_omega(rpm), 0.0, &fluid)
                     .map_or_else(|_| Default::default(), |p| p.0),
             )
         })

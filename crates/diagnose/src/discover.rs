@@ -147,7 +147,14 @@ struct Folds {
 }
 
 fn folds(data: &Data, k: usize, seed: u64) -> Folds {
-    let n = data.obs.len();
+    let groups: Vec<i64> = data.obs.iter().map(|o| o.rpm_group).collect();
+    folds_of(&groups, k, seed)
+}
+
+/// k folds of the points (shuffled with `seed`) and, with three or more RPM groups, one fold
+/// per group; `groups[i]` is point i's RPM group.
+fn folds_of(groups: &[i64], k: usize, seed: u64) -> Folds {
+    let n = groups.len();
     let mut idx: Vec<usize> = (0..n).collect();
     let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
     idx.shuffle(&mut rng);
@@ -157,11 +164,11 @@ fn folds(data: &Data, k: usize, seed: u64) -> Folds {
         kfold[i % k].push(p);
     }
     kfold.retain(|f| !f.is_empty());
-    let mut groups: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
-    for (i, o) in data.obs.iter().enumerate() {
-        groups.entry(o.rpm_group).or_default().push(i);
+    let mut by_group: BTreeMap<i64, Vec<usize>> = BTreeMap::new();
+    for (i, &g) in groups.iter().enumerate() {
+        by_group.entry(g).or_default().push(i);
     }
-    let loro = (groups.len() >= 3).then(|| groups.into_values().collect());
+    let loro = (by_group.len() >= 3).then(|| by_group.into_values().collect());
     Folds { kfold, loro }
 }
 
@@ -534,6 +541,7 @@ pub fn diagnose(
         sd: Vec::new(),
         evaluations: 1,
         at_bound: Vec::new(),
+        stop: crate::fit::Stop::Converged,
     };
     let baseline = Evaluated {
         kfold: rms(&r0),
@@ -623,4 +631,66 @@ pub fn diagnose(
         baseline_residuals: r0,
         final_residuals,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn partition(folds: &[Vec<usize>], n: usize) {
+        let mut all: Vec<usize> = folds.iter().flatten().copied().collect();
+        all.sort_unstable();
+        assert_eq!(all, (0..n).collect::<Vec<_>>(), "every point in exactly one fold");
+        assert!(folds.iter().all(|f| !f.is_empty()));
+    }
+
+    #[test]
+    fn folds_partition_the_points() {
+        let groups: Vec<i64> = (0..23).map(|i| i % 4).collect();
+        let f = folds_of(&groups, 5, 7);
+        assert_eq!(f.kfold.len(), 5);
+        partition(&f.kfold, 23);
+        let sizes: Vec<usize> = f.kfold.iter().map(Vec::len).collect();
+        assert!(sizes.iter().all(|&s| s == 4 || s == 5), "{sizes:?}");
+        let loro = f.loro.expect("four RPM groups");
+        assert_eq!(loro.len(), 4);
+        partition(&loro, 23);
+        assert!(loro.iter().all(|g| g.iter().all(|&i| groups[i] == groups[g[0]])));
+        // The same seed gives the same folds; two groups give no leave-one-RPM-out.
+        assert_eq!(folds_of(&groups, 5, 7).kfold, f.kfold);
+        assert!(folds_of(&[0, 0, 1, 1], 2, 1).loro.is_none());
+        // More folds than points: one point each.
+        partition(&folds_of(&[0, 1, 2], 10, 1).kfold, 3);
+    }
+
+    fn outcome(sse: f64, rows: usize, params: usize) -> FitOutcome {
+        FitOutcome {
+            stack: Stack::baseline(),
+            p: vec![0.0; params],
+            residuals: vec![0.0; rows],
+            jacobian: DMatrix::zeros(rows, params),
+            sse,
+            sd: vec![0.0; params],
+            evaluations: 1,
+            at_bound: vec![false; params],
+            stop: crate::fit::Stop::Converged,
+        }
+    }
+
+    #[test]
+    fn the_f_test_matches_the_table() {
+        // F(1, 20) = 4.351 is the 5 % critical value (NIST/SEMATECH e-Handbook, table 1.3.6.7.3):
+        // reduced SSE = full SSE (1 + 4.351/20) with 21 rows and one parameter.
+        let full = outcome(1.0, 21, 1);
+        let (f, p) = f_test(1.0 + 4.351 / 20.0, &full, 1);
+        assert!((f - 4.351).abs() < 1e-9, "{f}");
+        assert!((p - 0.05).abs() < 1e-3, "{p}");
+        // F(2, 30) = 3.316 at 5 %.
+        let full = outcome(2.0, 32, 2);
+        let (_, p) = f_test(2.0 * (1.0 + 2.0 * 3.316 / 30.0), &full, 2);
+        assert!((p - 0.05).abs() < 1e-3, "{p}");
+        // No improvement: p = 1; a perfect fit of imperfect data: p = 0.
+        assert_eq!(f_test(1.0, &outcome(1.0, 21, 1), 1).1, 1.0);
+        assert_eq!(f_test(1.0, &outcome(0.0, 21, 1), 1).1, 0.0);
+    }
 }

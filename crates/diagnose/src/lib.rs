@@ -83,7 +83,7 @@ pub struct Observation {
 impl Observation {
     /// RPM as logged.
     pub fn rpm(&self) -> f64 {
-        self.omega * 30.0 / std::f64::consts::PI
+        propbet_units::omega_to_rpm(self.omega)
     }
 }
 
@@ -119,7 +119,7 @@ impl Data {
             obs.push(Observation {
                 index,
                 label: p.label.clone(),
-                omega: p.rpm * std::f64::consts::PI / 30.0,
+                omega: propbet_units::rpm_to_omega(p.rpm),
                 v: p.v,
                 j: p.j,
                 fluid: p.air.fluid,

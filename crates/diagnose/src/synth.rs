@@ -56,8 +56,8 @@ pub fn default_rpms(diameter: f64) -> Vec<f64> {
 
 /// The advance ratio where the baseline's thrust reaches zero at `rpm` (searched to J = 3).
 pub fn zero_thrust_j(model: &Model, fluid: &Fluid, rpm: f64) -> Option<f64> {
-    let omega = rpm * PI / 30.0;
-    let nd = omega / (2.0 * PI) * model.diameter;
+    let omega = propbet_units::rpm_to_omega(rpm);
+    let nd = propbet_units::omega_to_rev_per_s(omega) * model.diameter;
     let mut j = 0.0;
     while j < 3.0 {
         j += 0.02;
@@ -98,8 +98,8 @@ pub fn generate(model: &Model, stack: &Stack, plan: &Plan) -> Result<Vec<Point>,
     let normal = normal(plan.noise);
     let mut out = Vec::new();
     for &rpm in &plan.rpms {
-        let omega = rpm * PI / 30.0;
-        let nd = omega / (2.0 * PI) * model.diameter;
+        let omega = propbet_units::rpm_to_omega(rpm);
+        let nd = propbet_units::omega_to_rev_per_s(omega) * model.diameter;
         for &j in &plan.js {
             let v = j * nd;
             let p = stack.predict(
@@ -141,12 +141,13 @@ pub fn write_generic(points: &[Point], plan: &Plan) -> String {
 pub fn write_uiuc(points: &[Point], plan: &Plan, diameter: f64, stem: &str) -> Vec<(String, String)> {
     let mut files = Vec::new();
     for &rpm in &plan.rpms {
-        let n = rpm / 60.0;
+        let n = propbet_units::rpm_to_rev_per_s(rpm);
         let rho = plan.fluid.rho;
+        let scale = propbet_units::Scales::new(rho, n, diameter);
         let mut s = String::from("J       CT       CP       eta\n");
         for p in points.iter().filter(|p| p.rpm == rpm) {
-            let ct = p.thrust / (rho * n * n * diameter.powi(4));
-            let cp = p.torque * 2.0 * PI * n / (rho * n.powi(3) * diameter.powi(5));
+            let ct = p.thrust / scale.thrust;
+            let cp = p.torque * 2.0 * PI * n / scale.power;
             let eta = if cp > 0.0 { p.j * ct / cp } else { 0.0 };
             let _ = writeln!(s, "{:.3}   {:.5}   {:.5}   {:.3}", p.j, ct, cp, eta);
         }
@@ -173,7 +174,7 @@ pub fn write_rcbenchmark(points: &[Point], plan: &Plan) -> String {
             let rpm = p.rpm * (1.0 + rpm_noise.sample(&mut rng));
             let q = p.torque * (1.0 + rel.sample(&mut rng));
             let th = p.thrust * (1.0 + rel.sample(&mut rng));
-            let mech = q * rpm * PI / 30.0;
+            let mech = q * propbet_units::rpm_to_omega(rpm);
             let elec = mech / 0.75;
             let _ = writeln!(
                 s,

@@ -101,7 +101,7 @@ pub struct PointState {
 impl PointState {
     /// Rotation speed [1/min].
     pub fn rpm(&self) -> f64 {
-        self.omega * 30.0 / std::f64::consts::PI
+        propbet_units::omega_to_rpm(self.omega)
     }
 
     /// Advance ratio V/(nD), 0 without rotation.
@@ -419,7 +419,7 @@ impl Stack {
             return Err(EffectError::Formula(format!(
                 "the effects {} give a non-finite load at {:.0} rpm, V = {:.2} m/s",
                 self.describe(),
-                op.omega * 30.0 / std::f64::consts::PI,
+                propbet_units::omega_to_rpm(op.omega),
                 op.v
             )));
         }

@@ -264,7 +264,7 @@ impl UserEffect {
     fn dry_run(&self) -> Result<(), EffectError> {
         let typical = |name: &str| match name {
             "rpm" => 8000.0,
-            "omega" => 8000.0 * std::f64::consts::PI / 30.0,
+            "omega" => propbet_units::rpm_to_omega(8000.0),
             "v" => 5.0,
             "rho" => 1.225,
             "mu" => 1.81e-5,
@@ -381,7 +381,7 @@ impl Effect for UserEffect {
         let v = Self::common(point);
         let out = self.eval(p, &v).unwrap_or(f64::NAN);
         match self.target {
-            Target::Rpm => point.omega = out * std::f64::consts::PI / 30.0,
+            Target::Rpm => point.omega = propbet_units::rpm_to_omega(out),
             Target::Rho => point.fluid.rho = out,
             _ => {}
         }

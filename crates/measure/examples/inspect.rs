@@ -28,7 +28,7 @@ fn main() {
                     p.label,
                     p.lines,
                     p.rpm(),
-                    p.omega.sd.map(|s| s * 30.0 / std::f64::consts::PI),
+                    p.omega.sd.map(propbet_units::omega_to_rpm),
                     p.omega.n,
                     p.transient,
                     p.loads,

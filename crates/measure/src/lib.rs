@@ -131,7 +131,7 @@ pub struct MeasuredPoint {
 impl MeasuredPoint {
     /// Rotation speed [rpm] (a label for people).
     pub fn rpm(&self) -> f64 {
-        self.omega.mean * 30.0 / std::f64::consts::PI
+        propbet_units::omega_to_rpm(self.omega.mean)
     }
 }
 

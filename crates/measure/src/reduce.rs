@@ -48,8 +48,6 @@ impl Default for ReduceOptions {
     }
 }
 
-const RPM: f64 = std::f64::consts::PI / 30.0;
-
 fn median(xs: &mut [f64]) -> f64 {
     xs.sort_by(f64::total_cmp);
     let n = xs.len();
@@ -91,7 +89,7 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
                 dropped,
                 s,
                 DropReason::NegativeRpm,
-                format!("RPM = {:.0}", s.omega / RPM),
+                format!("RPM = {:.0}", propbet_units::omega_to_rpm(s.omega)),
             );
             continue;
         }
@@ -153,7 +151,11 @@ fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<Stri
             dropped.push(Dropped {
                 line: s.line,
                 reason: DropReason::NegativeThrust,
-                detail: format!("thrust {:.4} N at {:.0} rpm", s.thrust, s.omega / RPM),
+                detail: format!(
+                    "thrust {:.4} N at {:.0} rpm",
+                    s.thrust,
+                    propbet_units::omega_to_rpm(s.omega)
+                ),
             });
             continue;
         }
@@ -337,9 +339,11 @@ pub fn reduce_log(
     let mut om: Vec<f64> = samples.iter().map(|s| s.omega).collect();
     om.sort_by(f64::total_cmp);
     let span = om[(n * 95) / 100] - om[n / 20];
-    let width = opts
-        .rpm_bin
-        .unwrap_or_else(|| nice((span / 30.0).max(50.0 * RPM) / RPM) * RPM);
+    let width = opts.rpm_bin.unwrap_or_else(|| {
+        propbet_units::rpm_to_omega(nice(propbet_units::omega_to_rpm(
+            (span / 30.0).max(propbet_units::rpm_to_omega(50.0)),
+        )))
+    });
     let vmax = samples.iter().map(|s| s.airspeed).fold(0.0, f64::max);
     let vwidth = 0.5;
     let mut bins: BTreeMap<(i64, i64), Vec<Sample>> = BTreeMap::new();
@@ -354,12 +358,16 @@ pub fn reduce_log(
             sparse += s.len();
             continue;
         }
-        let label = format!("{:.0} ± {:.0} rpm", *k as f64 * width / RPM, 0.5 * width / RPM);
+        let label = format!(
+            "{:.0} ± {:.0} rpm",
+            propbet_units::omega_to_rpm(*k as f64 * width),
+            propbet_units::omega_to_rpm(0.5 * width)
+        );
         pts.push(point(label, s, 0, opts, false));
     }
     notes.push(format!(
         "ESC changes continuously: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
-        width / RPM,
+        propbet_units::omega_to_rpm(width),
         if vmax > vwidth { ", and 0.5 m/s airspeed bins" } else { "" },
         pts.len()
     ));
@@ -385,7 +393,7 @@ mod tests {
             line,
             time: Some(t),
             esc: Some(esc),
-            omega: rpm * RPM,
+            omega: propbet_units::rpm_to_omega(rpm),
             thrust,
             torque: Some(-thrust * 0.01),
             airspeed: 0.0,
@@ -428,7 +436,7 @@ mod tests {
             assert!((p.rpm() - target).abs() < 3.0, "{} vs {target}", p.rpm());
             assert_eq!(p.transient, 3);
             assert_eq!(p.omega.n, 17);
-            let sd = p.omega.sd.unwrap() / RPM;
+            let sd = propbet_units::omega_to_rpm(p.omega.sd.unwrap());
             assert!((sd - 10.0).abs() < 1.0, "sd {sd}");
             assert!(p.flags.is_empty());
         }

@@ -8,8 +8,6 @@
 use crate::reduce::Reduction;
 use crate::{DropReason, Dropped, Format, Loads, LoggedAir, MeasuredPoint, MeasuredSet, ReadError, Speed, Value};
 
-const RPM: f64 = std::f64::consts::PI / 30.0;
-
 /// The RPM in a UIUC file name: the number after the last underscore.
 pub fn rpm_from_name(name: &str) -> Option<f64> {
     let base = name.rsplit(['/', '\\']).next()?;
@@ -126,12 +124,12 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
                 None => format!("{rpm} rpm"),
             },
             lines: (line, line),
-            omega: Value::single(rpm * RPM),
+            omega: Value::single(propbet_units::rpm_to_omega(rpm)),
             speed,
             loads: Loads::Coefficients { ct, cp },
             air: LoggedAir::default(),
             transient: 0,
-            nominal_omega: file_rpm.map(|r| r * RPM),
+            nominal_omega: file_rpm.map(propbet_units::rpm_to_omega),
             flags: Vec::new(),
         });
     }

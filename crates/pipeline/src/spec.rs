@@ -455,7 +455,7 @@ impl ScanSpec {
         }
         match o.outliers {
             None => push(v, "--outliers", "off"),
-            Some((8, s)) if s == 2.5 => {}
+            Some((8, 2.5)) => {}
             Some((n, s)) => push(v, "--outliers", format!("{n},{s}")),
         }
         if let Some(m) = &o.manual {

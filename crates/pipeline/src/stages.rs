@@ -484,7 +484,7 @@ pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> 
 /// Runs the compare stage.
 pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
     let (air, sets) = load_measured(measured)?;
-    let points = propbet_compare::compare(&setup(model, air.clone(), model.effects.clone()), &sets)?;
+    let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
     let metrics = metrics(&points);
     Ok(Compared {
         sets,

@@ -189,14 +189,16 @@ pub fn scaled_text(si: f64, to_user: impl Fn(f64) -> f64, from_user: impl Fn(f64
 /// same numbers, else the numbers separated by commas.
 pub fn list_text(v: &[f64]) -> String {
     if v.len() >= 3 {
-        let step = format!("{}", v[1] - v[0]);
-        let range = format!("{}:{}:{step}", v[0], v[v.len() - 1]);
-        if parse_list("", &range).is_ok_and(|r| r == v) {
-            return range;
-        }
-        // The step as the user would write it (0.025, not 0.025000000000000001).
-        if let Ok(s) = format!("{:.6e}", v[1] - v[0]).parse::<f64>() {
-            let range = format!("{}:{}:{s}", v[0], v[v.len() - 1]);
+        // The numbers as a user would write them (0.7, not 0.7000000000000001) first.
+        let short = |x: f64| format!("{x:.9e}").parse::<f64>().unwrap_or(x);
+        let (first, last, step) = (v[0], v[v.len() - 1], v[1] - v[0]);
+        for (stop, step) in [
+            (short(last), short(step)),
+            (last, short(step)),
+            (short(last), step),
+            (last, step),
+        ] {
+            let range = format!("{first}:{stop}:{step}");
             if parse_list("", &range).is_ok_and(|r| r == v) {
                 return range;
             }

@@ -23,6 +23,23 @@ use thiserror::Error;
 
 use crate::table::Polar;
 
+/// Placeholder lift and Reynolds terms for evaluating the drag law alone (only its drag terms
+/// are read).
+fn drag_only() -> QpropCoefficients {
+    QpropCoefficients {
+        cl0: 0.0,
+        cl_a: 2.0 * std::f64::consts::PI,
+        cl_min: -1.0,
+        cl_max: 1.0,
+        cd0: 0.0,
+        cd2u: 0.0,
+        cd2l: 0.0,
+        clcd0: 0.0,
+        re_ref: 1.0,
+        re_exp: 0.0,
+    }
+}
+
 /// Lift tolerance of the linear range: every point within this of one straight line.
 pub const LINEAR_RANGE_CL_TOL: f64 = 0.025;
 /// Largest lift error of an acceptable fit over the linear range.
@@ -221,10 +238,15 @@ pub fn fit_qprop(
         let cd_min = rows.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
         (cl_lo, [cd_min, 0.0, 0.0])
     });
-    let cd_fit = |cl: f64| {
-        let d = cl - clcd0;
-        cd0 + if d > 0.0 { cd2u } else { cd2l } * d * d
+    // The law as the solver evaluates it (its Reynolds factor is 1 at the centre polar).
+    let law = QpropCoefficients {
+        cd0,
+        cd2u,
+        cd2l,
+        clcd0,
+        ..drag_only()
     };
+    let cd_fit = |cl: f64| law.cd_profile(cl);
 
     // 4. Reynolds-number exponent from the other polars, at equal cl.
     let (mut sxy, mut sxx) = (0.0, 0.0);
@@ -545,9 +567,7 @@ mod tests {
         Polar::from_law(re, -6, 16, |alpha| {
             let lin = c.cl0 + c.cl_a * alpha.to_radians();
             let cl = if alpha > 11.0 { lin - 0.15 * (alpha - 11.0) } else { lin };
-            let d = cl - c.clcd0;
-            let cd2 = if d > 0.0 { c.cd2u } else { c.cd2l };
-            (cl, (c.cd0 + cd2 * d * d) * (re / c.re_ref).powf(c.re_exp))
+            (cl, c.cd_profile(cl) * c.re_factor(re))
         })
     }
 
