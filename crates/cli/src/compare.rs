@@ -5,13 +5,13 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use propbet_compare::report::{self, FileEntry, ReportInput};
 use propbet_compare::ComparedPoint;
 use propbet_measure::{MeasuredSet, RpmSource};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared};
 use propbet_pipeline::values::parse_atmosphere;
+use propbet_report::compare::{self as report, FileEntry, ReportInput};
 
 use crate::output::{push_num, write_atomic, write_figure};
 use crate::predict::{load_model, ModelArgs};
@@ -161,6 +161,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
 /// plots) into the spec's directory; returns the report page.
 pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> {
     let setup = stages::setup(model, c.air, model.effects.clone());
+    let curves = propbet_compare::curves::curves(&setup, &c.points)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(
@@ -186,7 +187,8 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
             .collect(),
         points: &c.points,
         metrics: &c.metrics,
-        setup: &setup,
+        diameter: model.diameter,
+        curves: &curves,
         command: propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command(),
     })?;
     let out = &spec.out;

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use propbet_diagnose::report::{self, JsonOut};
 use propbet_pipeline::spec::{DiagnoseSpec, StageSpec};
 use propbet_pipeline::stages::{self, Diagnosed};
+use propbet_report::diagnose::{self as report, JsonOut};
 
 use crate::compare::{print_measured, MeasuredArgs};
 use crate::output::{write_atomic, write_figure};

@@ -9,7 +9,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use nalgebra::Vector3;
 use propbet_geometry::cloud::{parse_colour, to_ply};
-use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
+use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Manual, ScanOptions, SectionKind};
 use propbet_measure::uiuc::{geometry_at, GeometryRow};
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
@@ -314,10 +314,14 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
         )?;
     }
     // Plots.
-    write_figure(&a.out.join("plots/sections.svg"), &sections_figure(g), &inputs)?;
+    write_figure(
+        &a.out.join("plots/sections.svg"),
+        &propbet_report::scan::sections_figure(g),
+        &inputs,
+    )?;
     write_figure(
         &a.out.join("plots/distributions.svg"),
-        &distributions_figure(g, reference),
+        &propbet_report::scan::distributions_figure(g, reference),
         &inputs,
     )?;
     if let Some(c) = &g.colour {
@@ -440,97 +444,5 @@ pub fn print_summary(sc: &Scanned) {
             100.0 * rms(&dc),
             100.0 * max(&dc)
         );
-    }
-}
-
-/// Every section's points and fits.
-pub fn sections_figure(g: &Geometry) -> Figure {
-    let panels = g
-        .stations
-        .iter()
-        .map(|s| {
-            let step = (s.uw.len() / 300).max(1);
-            let pts: Vec<(f64, f64)> = s.uw.iter().step_by(step).map(|&p| s.naca.to_section(p)).collect();
-            let mut series = vec![Series::new("points", pts, Mark::Dots, Some(0))];
-            if let Some(c) = &s.cst {
-                series.push(Series::new("CST fit", c.selig(60), Mark::Line, Some(1)));
-            }
-            Panel {
-                title: format!(
-                    "r/R {:.3}: c {:.2} mm, β {:.2}°, NACA {}",
-                    s.r_r,
-                    s.chord,
-                    s.beta_deg,
-                    s.naca.designation()
-                ),
-                x_label: "x/c".into(),
-                y_label: "y/c".into(),
-                series,
-                zero_line: false,
-            }
-        })
-        .collect::<Vec<_>>();
-    let rows = panels.len().div_ceil(4).max(1) as u32;
-    Figure {
-        panels,
-        columns: 4,
-        width: 1600,
-        height: 260 * rows,
-    }
-}
-
-/// Chord, blade angle, thickness and camber, skew and rake along the radius.
-pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> Figure {
-    let col = |f: &dyn Fn(&propbet_geometry::scan::Station) -> f64| -> Vec<(f64, f64)> {
-        g.stations.iter().map(|s| (s.r_r, f(s))).collect()
-    };
-    let r = g.tip_radius;
-    let mut chord = vec![Series::new("scan", col(&|s| s.chord / r), Mark::Line, Some(0))];
-    let mut beta = vec![Series::new("scan", col(&|s| s.beta_deg), Mark::Line, Some(0))];
-    if let Some(t) = reference {
-        chord.push(Series::new(
-            "reference",
-            t.iter().map(|x| (x.r_r, x.c_r)).collect(),
-            Mark::Dots,
-            Some(1),
-        ));
-        beta.push(Series::new(
-            "reference",
-            t.iter().map(|x| (x.r_r, x.beta.to_degrees())).collect(),
-            Mark::Dots,
-            Some(1),
-        ));
-    }
-    let panel = |title: &str, y: &str, series: Vec<Series>| Panel {
-        title: title.into(),
-        x_label: "r/R".into(),
-        y_label: y.into(),
-        series,
-        zero_line: false,
-    };
-    Figure {
-        panels: vec![
-            panel("Chord", "c/R", chord),
-            panel("Blade angle", "β [deg]", beta),
-            panel(
-                "Thickness and camber",
-                "/ chord",
-                vec![
-                    Series::new("t/c", col(&|s| s.t_c), Mark::Line, Some(0)),
-                    Series::new("camber", col(&|s| s.camber), Mark::Line, Some(2)),
-                ],
-            ),
-            panel(
-                "Skew and rake",
-                "deg, mm",
-                vec![
-                    Series::new("skew [deg]", col(&|s| s.skew_deg), Mark::Line, Some(0)),
-                    Series::new("rake [mm]", col(&|s| s.rake), Mark::Line, Some(2)),
-                ],
-            ),
-        ],
-        columns: 2,
-        width: 1200,
-        height: 800,
     }
 }

@@ -5,7 +5,6 @@
 //! (`polars`, `compare`, `diagnose`, `compare --effect ...`) in its own directory; the table of
 //! relative CT and CP errors is written as Markdown and CSV.
 
-use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use anyhow::{bail, Result};
@@ -106,6 +105,8 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let (md, csv) = table(&rows, &skipped, a.rpm);
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
+    let html = propbet_report::validate::html(&rows, &skipped, a.rpm);
+    write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     println!("{md}");
     Ok(all_clean)
 }
@@ -162,32 +163,9 @@ struct CsvRow<'a> {
 }
 
 fn table(rows: &[Row], skipped: &[String], rpm: f64) -> (String, Vec<u8>) {
-    let pct = |x: f64| format!("{:.1}", 100.0 * x);
-    let mut md = format!(
-        "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
-         (static points included); polars at {} rpm. Before: UIUC geometry + APC sections + XFOIL; \
-         after: with the effects the diagnosis' ladder fitted to the same data (calibration).\n\n\
-         | prop | points | CT median | CT p90 | CP median | CP p90 | CT median after | CT p90 after | CP median after | CP p90 after | ladder |\n\
-         |---|---|---|---|---|---|---|---|---|---|---|\n",
-        rpm
-    );
+    let md = propbet_report::validate::markdown(rows, skipped, rpm);
     let mut csv = csv::Writer::from_writer(Vec::new());
     for r in rows {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} % | {} % | {} % | {} % | {} % | {} % | {} % | {} % | {} |",
-            r.prop,
-            r.points,
-            pct(r.ct[0].0),
-            pct(r.ct[0].1),
-            pct(r.cp[0].0),
-            pct(r.cp[0].1),
-            pct(r.ct[1].0),
-            pct(r.ct[1].1),
-            pct(r.cp[1].0),
-            pct(r.cp[1].1),
-            r.ladder
-        );
         // Rows are structs: the header comes from the same fields as the values.
         let _ = csv.serialize(CsvRow {
             prop: &r.prop,
@@ -203,39 +181,5 @@ fn table(rows: &[Row], skipped: &[String], rpm: f64) -> (String, Vec<u8>) {
             ladder: &r.ladder,
         });
     }
-    let csv = csv.into_inner().unwrap_or_default();
-    // Overall: the medians and 90th percentiles of the per-prop medians would hide the sizes;
-    // pool the points instead.
-    let pooled = |f: &dyn Fn(&Row) -> (f64, f64)| -> (f64, f64) {
-        let med: Vec<f64> = rows.iter().map(|r| f(r).0).collect();
-        let p90: Vec<f64> = rows.iter().map(|r| f(r).1).collect();
-        (
-            propbet_compare::metrics::quantile(med, 0.5),
-            propbet_compare::metrics::quantile(p90, 0.5),
-        )
-    };
-    let (a0, b0) = pooled(&|r| r.ct[0]);
-    let (c0, d0) = pooled(&|r| r.cp[0]);
-    let (a1, b1) = pooled(&|r| r.ct[1]);
-    let (c1, d1) = pooled(&|r| r.cp[1]);
-    let _ = writeln!(
-        md,
-        "| **all (median over props)** | {} | {} % | {} % | {} % | {} % | {} % | {} % | {} % | {} % | |",
-        rows.iter().map(|r| r.points).sum::<usize>(),
-        pct(a0),
-        pct(b0),
-        pct(c0),
-        pct(d0),
-        pct(a1),
-        pct(b1),
-        pct(c1),
-        pct(d1)
-    );
-    if !skipped.is_empty() {
-        md.push_str("\nNot validated:\n");
-        for s in skipped {
-            let _ = writeln!(md, "- {s}");
-        }
-    }
-    (md, csv)
+    (md, csv.into_inner().unwrap_or_default())
 }

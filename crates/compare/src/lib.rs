@@ -1,10 +1,10 @@
 //! Measured points against the solver: each point is reduced to J, CT, CP, CQ and efficiency
 //! with uncertainties, predicted at its own RPM, airspeed and air state, and scored
-//! ([`metrics`]); [`report`] turns the lot into figures, an HTML page, JSON and Markdown.
+//! ([`metrics`]); [`curves`] gives the model's curves beside them (pages: `propbet-report`).
 #![deny(missing_docs)]
 
+pub mod curves;
 pub mod metrics;
-pub mod report;
 
 use std::f64::consts::PI;
 

@@ -8,13 +8,12 @@
 //!   leave-one-RPM-out), an F test against the noise, a parsimony penalty, the ranking and the
 //!   greedy ladder.
 //! - [`signature`]: residual patterns in words.
-//! - [`report`]: figures and the HTML page.
 //! - [`synth`]: measurements made by the model with hidden effects and noise.
 #![deny(missing_docs)]
 
 pub mod discover;
 pub mod fit;
-pub mod report;
+
 pub mod signature;
 pub mod synth;
 

@@ -192,6 +192,17 @@ pub fn list_text(v: &[f64]) -> String {
         // The numbers as a user would write them (0.7, not 0.7000000000000001) first.
         let short = |x: f64| format!("{x:.9e}").parse::<f64>().unwrap_or(x);
         let (first, last, step) = (v[0], v[v.len() - 1], v[1] - v[0]);
+        for stop in [short(last), last] {
+            let points = format!("{first}:{stop}/{}", v.len());
+            if parse_list("", &points).is_ok_and(|r| r == v) {
+                // The step form where it reads as plainly (0:0.7:0.025), else N points.
+                let step_form = format!("{first}:{stop}:{}", short(step));
+                if parse_list("", &step_form).is_ok_and(|r| r == v) {
+                    return step_form;
+                }
+                return points;
+            }
+        }
         for (stop, step) in [
             (short(last), short(step)),
             (last, short(step)),
@@ -264,7 +275,15 @@ mod tests {
 
     #[test]
     fn lists_print_back_exactly() {
-        for text in ["0:0.7:0.025", "4000,5000,6000", "0:20/7", "1,2,5", "-8:16:1"] {
+        assert_eq!(list_text(&parse_list("", "0.2:0.96/20").unwrap()), "0.2:0.96/20");
+        for text in [
+            "0:0.7:0.025",
+            "4000,5000,6000",
+            "0:20/7",
+            "1,2,5",
+            "-8:16:1",
+            "0.15:0.97/25",
+        ] {
             let v = parse_list("--x", text).unwrap();
             let back = list_text(&v);
             assert_eq!(parse_list("--x", &back).unwrap(), v, "{text} -> {back}");

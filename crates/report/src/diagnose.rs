@@ -4,19 +4,21 @@
 
 use std::fmt::Write as _;
 
-use propbet_compare::report::{esc, sig, CSS};
+use propbet_diagnose::discover::{Diagnosis, Scored};
+use propbet_diagnose::fit::FittedParam;
+use propbet_diagnose::{Data, Row};
 use propbet_effects::fmt_value;
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 use serde::Serialize;
 
-use crate::discover::{Diagnosis, Scored};
-use crate::fit::FittedParam;
-use crate::{Data, Row};
+use crate::page::{esc, page, sig};
 
 /// The report in its forms.
 pub struct Report {
     /// Self-contained HTML page.
     pub html: String,
+    /// The page's body, to be placed in another page (headings from h1).
+    pub body: String,
     /// Markdown summary.
     pub markdown: String,
     /// Figures by file stem.
@@ -107,8 +109,11 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
         }
         let q = if torque { "torque" } else { "thrust" };
         for (x_name, x_of) in [
-            ("J", (|o: &crate::Observation| o.j) as fn(&crate::Observation) -> f64),
-            ("RPM", |o: &crate::Observation| o.rpm()),
+            (
+                "J",
+                (|o: &propbet_diagnose::Observation| o.j) as fn(&propbet_diagnose::Observation) -> f64,
+            ),
+            ("RPM", |o: &propbet_diagnose::Observation| o.rpm()),
         ] {
             let pts = |res: &[f64]| -> Vec<(f64, f64)> {
                 rows.iter()
@@ -219,14 +224,8 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], comman
     let mut h = String::new();
     let _ = write!(
         h,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>propbet diagnosis: {}</title>\n<style>{}\n{}\n\
-         tr.sig td{{background:#eef7ee}} svg text{{font-family:{},sans-serif}}</style></head><body>\n\
-         <h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
+        "<h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
          (relative thrust and torque errors).<br>command: <code>{}</code></p>\n<p><b>{}</b></p>\n",
-        esc(prop),
-        propbet_plot::font_face_css(),
-        CSS,
-        propbet_plot::FONT_FAMILY,
         esc(prop),
         esc(&measured.join(", ")),
         d.points,
@@ -270,7 +269,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], comman
     let last = d.ladder.last().map(|r| r.stack.clone()).unwrap_or_default();
     let _ = write!(
         h,
-        "</ul>\n<h2>Use it</h2>\n<p>Add the effects to any prediction or comparison: <code>{}</code></p>\n</body></html>\n",
+        "</ul>\n<h2>Use it</h2>\n<p>Add the effects to any prediction or comparison: <code>{}</code></p>\n",
         esc(&effect_args(d).join(" "))
     );
     let _ = last;
@@ -310,7 +309,8 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], comman
         let _ = writeln!(md, "- {}", s.text);
     }
     Ok(Report {
-        html: h,
+        html: page(&format!("propbet diagnosis: {prop}"), "", &h),
+        body: h,
         markdown: md,
         figures: vec![("ladder".into(), ladder), ("residuals".into(), residuals)],
     })

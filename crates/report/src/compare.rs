@@ -5,12 +5,14 @@
 
 use std::fmt::Write as _;
 
+use propbet_compare::curves::Curves;
+use propbet_compare::metrics::{group_points, rpm_group, MetricGroup, Metrics};
+use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 use serde::Serialize;
 
-use crate::metrics::{group_points, rpm_group, MetricGroup, Metrics};
-use crate::{predict, ComparedPoint, Setup, QUANTITIES};
+use crate::page::{esc, page, sig};
 
 /// A measured file as the report names it.
 pub struct FileEntry<'a> {
@@ -32,8 +34,10 @@ pub struct ReportInput<'a> {
     pub points: &'a [ComparedPoint],
     /// Their scores.
     pub metrics: &'a Metrics,
-    /// The solver setup (for the predicted curves).
-    pub setup: &'a Setup<'a>,
+    /// Propeller diameter of the coefficients [m].
+    pub diameter: f64,
+    /// The model's curves (from `propbet_compare::curves`).
+    pub curves: &'a Curves,
     /// The command that made the report.
     pub command: String,
 }
@@ -42,6 +46,8 @@ pub struct ReportInput<'a> {
 pub struct Report {
     /// Self-contained HTML page.
     pub html: String,
+    /// The page's body, to be placed in another page (headings from h1).
+    pub body: String,
     /// Markdown summary.
     pub markdown: String,
     /// Everything, as JSON.
@@ -63,41 +69,12 @@ fn label(q: &str) -> (&'static str, &'static str) {
     LABELS.iter().find(|l| l.0 == q).map_or(("?", ""), |l| (l.1, l.2))
 }
 
-/// `x` with 4 significant digits.
-pub fn sig(x: f64) -> String {
-    if !x.is_finite() {
-        return "–".into();
-    }
-    if x == 0.0 {
-        return "0".into();
-    }
-    let e = x.abs().log10().floor() as i32;
-    if (-4..6).contains(&e) {
-        format!("{:.*}", (3 - e).max(0) as usize, x)
-    } else {
-        format!("{x:.3e}")
-    }
-}
-
 fn pct(x: f64) -> String {
     if x.is_finite() {
         format!("{:+.1} %", 100.0 * x)
     } else {
         "–".into()
     }
-}
-
-/// HTML-escapes text.
-pub fn esc(s: &str) -> String {
-    s.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-        .replace('"', "&quot;")
-}
-
-fn mean(xs: impl Iterator<Item = f64>) -> f64 {
-    let (s, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
-    s / n.max(1) as f64
 }
 
 fn measured_series(
@@ -119,7 +96,7 @@ fn measured_series(
     s
 }
 
-fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
+fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
     if points.iter().all(ComparedPoint::is_static) {
         return None;
     }
@@ -139,20 +116,9 @@ fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure>
         if pts.iter().all(|p| p.is_static()) {
             continue;
         }
-        let rpm = mean(pts.iter().map(|p| p.rpm));
-        let fluid = pts[0].air.fluid;
-        let jmax = pts.iter().map(|p| p.j).fold(0.0, f64::max) * 1.08;
-        let omega = propbet_units::rpm_to_omega(rpm);
-        let n = omega / (2.0 * std::f64::consts::PI);
-        let curve: Vec<(f64, crate::Quantities)> = (0..=40)
-            .map(|i| {
-                let j = jmax * i as f64 / 40.0;
-                (
-                    j,
-                    predict(setup, omega, j * n * setup.diameter, &fluid).map_or_else(|_| Default::default(), |p| p.0),
-                )
-            })
-            .collect();
+        let Some(Some((rpm, curve))) = curves.j_sweeps.get(k) else {
+            continue;
+        };
         for (panel, q) in panels.iter_mut().zip(["ct", "cp", "eta"]) {
             panel
                 .series
@@ -177,26 +143,13 @@ fn coefficient_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure>
     })
 }
 
-fn static_figure(setup: &Setup, points: &[ComparedPoint]) -> Option<Figure> {
+fn static_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
     let stat: Vec<&ComparedPoint> = points.iter().filter(|p| p.is_static()).collect();
     if stat.is_empty() {
         return None;
     }
     let has_torque = stat.iter().any(|p| p.measured.torque.is_some());
-    let (lo, hi) = stat
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.rpm), b.max(p.rpm)));
-    let fluid = stat[0].air.fluid;
-    let curve: Vec<(f64, crate::Quantities)> = (0..=40)
-        .map(|i| {
-            let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / 40.0;
-            (
-                rpm,
-                predict(setup, propbet_units::rpm_to_omega(rpm), 0.0, &fluid)
-                    .map_or_else(|_| Default::default(), |p| p.0),
-            )
-        })
-        .collect();
+    let curve: &[(f64, propbet_compare::Quantities)] = curves.statics.as_deref().unwrap_or_default();
     let qs: &[&str] = if has_torque {
         &["thrust", "torque", "ct", "cp"]
     } else {
@@ -371,25 +324,15 @@ fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
     }
 }
 
-/// The report pages' stylesheet (shared by the diagnosis report).
-pub const CSS: &str = "body{font-family:PropbetSans,sans-serif;margin:2em auto;max-width:1500px;color:#222;padding:0 1em}\
-h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #0072b2;padding-bottom:.2em;margin-top:2em}\
-table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:.9em}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}\
-th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\
-.cards{display:flex;gap:1em;flex-wrap:wrap}.card{border:1px solid #ccc;border-radius:6px;padding:.8em 1.2em;min-width:11em}\
-.card b{display:block;font-size:1.6em;color:#0072b2}.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.6em 1em}\
-.note{color:#555}figure{margin:1em 0}figure svg{max-width:100%;height:auto}code{background:#f4f4f4;padding:0 .3em}\
-tr.flagged td{color:#999}";
-
 /// Builds the report.
 pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let pts = input.points;
     let m = input.metrics;
     let mut figures = Vec::new();
-    if let Some(f) = coefficient_figure(input.setup, pts) {
+    if let Some(f) = coefficient_figure(input.curves, pts) {
         figures.push(("coefficients".to_string(), f));
     }
-    if let Some(f) = static_figure(input.setup, pts) {
+    if let Some(f) = static_figure(input.curves, pts) {
         figures.push(("static".to_string(), f));
     }
     figures.push(("residuals".to_string(), residual_figure(pts)));
@@ -430,17 +373,9 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let mut h = String::with_capacity(2_000_000);
     let _ = write!(
         h,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>propbet: {}</title>\n<style>{}\n{}\nsvg text{{font-family:{},sans-serif}}</style></head><body>\n",
-        esc(&input.prop),
-        propbet_plot::font_face_css(),
-        CSS,
-        propbet_plot::FONT_FAMILY
-    );
-    let _ = write!(
-        h,
         "<h1>Prediction vs measurement</h1>\n<p class=\"note\">prop <code>{}</code> (D = {} m) against {} file(s); {} points ({} scored); air: {}.<br>command: <code>{}</code></p>\n",
         esc(&input.prop),
-        sig(input.setup.diameter),
+        sig(input.diameter),
         input.files.len(),
         pts.len(),
         pts.len() - m.unscored,
@@ -469,7 +404,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for (name, f) in &figures {
         let _ = writeln!(h, "<figure id=\"fig-{name}\">{}</figure>", propbet_plot::svg_inline(f)?);
     }
-    let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * crate::RELATIVE_FLOOR);
+    let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * propbet_compare::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
     top.extend(m.static_points.iter());
     top.extend(m.forward.iter());
@@ -554,7 +489,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for s in &air_sources {
         let _ = write!(h, "<li>{}</li>", esc(s));
     }
-    h.push_str("</ul>\n<p class=\"note\">Density of moist air from T, p, RH (ideal-gas mixture, Buck saturation pressure); viscosity by Sutherland's law; speed of sound of dry air.</p>\n</body></html>\n");
+    h.push_str("</ul>\n<p class=\"note\">Density of moist air from T, p, RH (ideal-gas mixture, Buck saturation pressure); viscosity by Sutherland's law; speed of sound of dry air.</p>\n");
 
     // ---------- Markdown ----------
     let mut md = String::new();
@@ -563,7 +498,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         md,
         "prop `{}` (D = {} m); {} file(s); {} points, {} scored; air: {}.\n",
         input.prop,
-        sig(input.setup.diameter),
+        sig(input.diameter),
         input.files.len(),
         pts.len(),
         pts.len() - m.unscored,
@@ -608,7 +543,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let json = serde_json::to_value(Json {
         prop: &input.prop,
         prop_notes: &input.prop_notes,
-        diameter_m: input.setup.diameter,
+        diameter_m: input.diameter,
         command: &input.command,
         files: input
             .files
@@ -623,7 +558,8 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     })
     .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
     Ok(Report {
-        html: h,
+        html: page(&format!("propbet: {}", input.prop), "", &h),
+        body: h,
         markdown: md,
         json,
         figures,

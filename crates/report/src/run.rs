@@ -1,0 +1,179 @@
+//! The page of `propbet run`: the stages and their commands, the geometry, the section
+//! polars, the sweeps, and the comparison and diagnosis.
+
+use std::fmt::Write as _;
+
+use propbet_bemt::PointResult;
+use propbet_pipeline::case::RunPlan;
+use propbet_pipeline::run::RunOutcome;
+use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
+
+use crate::page::{esc, nest};
+
+/// The run's page: how it was made, the geometry, the polars, the sweeps, and the compare and
+/// diagnose pages' bodies (`pages`: stage name and body) one level down.
+pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) -> Result<String, PlotError> {
+    let mut h = String::with_capacity(4_000_000);
+    let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
+    if !plan.description.is_empty() {
+        let _ = writeln!(h, "<p>{}</p>", esc(&plan.description));
+    }
+    let _ = writeln!(
+        h,
+        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}</nav>",
+        if pages.is_empty() {
+            String::new()
+        } else {
+            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing</a>".into()
+        }
+    );
+    // Stages.
+    h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
+    for s in &run.stages {
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td class=\"cmd\"><code>{}</code></td></tr>",
+            s.spec.name(),
+            s.seconds,
+            if s.clean { "ok" } else { "problems reported (see below)" },
+            esc(&s.spec.command())
+        );
+    }
+    let _ = writeln!(
+        h,
+        "</table>\n<p class=\"note\">case directory <code>{}</code>; outputs of each stage beside this report.</p>",
+        esc(&plan.dir.display().to_string())
+    );
+
+    // Geometry.
+    h.push_str("<section id=\"geometry\"><h2>Geometry</h2>\n");
+    match &run.scanned {
+        Some(sc) => {
+            let g = &sc.geometry;
+            let _ = writeln!(
+                h,
+                "<p>{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed.</p>",
+                g.blades,
+                g.tip_radius,
+                g.hub_radius.map_or("none".into(), |x| format!("{x:.2} mm")),
+                g.root_radius,
+                g.stations.len(),
+                g.failed.len(),
+            );
+            h.push_str("<ul>");
+            for n in &g.notes {
+                let _ = write!(h, "<li>{}</li>", esc(n));
+            }
+            h.push_str("</ul>\n");
+            for f in &g.failed {
+                let _ = writeln!(h, "<p class=\"note\">r/R {:.3}: {}</p>", f.r_r, esc(&f.reason));
+            }
+            h.push_str("<h3>Along the radius (with the reference table where the case has one)</h3>\n");
+            h.push_str(&propbet_plot::svg_inline(&crate::scan::distributions_figure(
+                g,
+                sc.reference.as_deref(),
+            ))?);
+            h.push_str("<h3>The sections: scan points and fits</h3>\n");
+            h.push_str(&propbet_plot::svg_inline(&crate::scan::sections_figure(g))?);
+        }
+        None => {
+            let _ = writeln!(
+                h,
+                "<p>From the prop file <code>{}</code> (no scan in this case).</p>",
+                esc(&plan.predict.model.prop.display().to_string())
+            );
+        }
+    }
+    h.push_str("</section>\n");
+
+    // Polars.
+    h.push_str("<section id=\"polars\"><h2>Section polars</h2>\n");
+    match &run.polars {
+        Some(p) => {
+            let b = &p.blade;
+            let _ = writeln!(
+                h,
+                "<p>XFOIL at each station's Reynolds and Mach numbers at {:.0} rpm, {} m/s; sections: {}.</p>",
+                b.rpm,
+                b.v,
+                esc(&b.airfoil)
+            );
+            h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re</th><th>Mach</th><th>α [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th>problem</th></tr>\n");
+            for s in &b.stations {
+                let c = s.fit.as_ref().map(|f| f.coeffs.to_array());
+                let cell = |k: usize, p: usize| c.map_or("–".into(), |v| format!("{:.*}", p, v[k]));
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{:.1}</td><td>{:.1}</td><td>{:.0}</td><td>{:.3}</td><td>{:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                    1000.0 * s.r,
+                    1000.0 * s.chord,
+                    s.re,
+                    s.mach,
+                    s.alpha_deg,
+                    cell(0, 3),
+                    cell(1, 2),
+                    cell(3, 2),
+                    cell(4, 4),
+                    cell(5, 4),
+                    esc(s.problem.as_deref().unwrap_or(""))
+                );
+            }
+            h.push_str("</table>\n");
+        }
+        None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
+    }
+    h.push_str("</section>\n");
+
+    // Prediction.
+    h.push_str("<section id=\"prediction\"><h2>Prediction</h2>\n");
+    h.push_str(&propbet_plot::svg_inline(&sweep_figure(&run.sweep))?);
+    h.push_str("</section>\n");
+
+    for (id, body) in pages {
+        let _ = writeln!(h, "<section id=\"{id}\">\n{}\n</section>", nest(body));
+    }
+    Ok(crate::page::page(&format!("propbet run: {}", plan.name), "", &h))
+}
+
+/// CT, CP and efficiency against J, one line per RPM.
+pub fn sweep_figure(points: &[PointResult]) -> Figure {
+    // Per RPM: (CT, CP, efficiency) against J.
+    type Curves = [Vec<(f64, f64)>; 3];
+    let mut by_rpm: Vec<(String, Curves)> = Vec::new();
+    let nan = f64::NAN;
+    for p in points {
+        // The label as the sweep table prints the speed (7 significant digits).
+        let rpm = format!("{:.0} rpm", p.rpm);
+        if by_rpm.last().is_none_or(|b| b.0 != rpm) {
+            by_rpm.push((rpm.clone(), Default::default()));
+        }
+        let e = &mut by_rpm.last_mut().expect("pushed").1;
+        let (j, ct, cp) = (p.j.unwrap_or(nan), p.ct.unwrap_or(nan), p.cp.unwrap_or(nan));
+        e[0].push((j, ct));
+        e[1].push((j, cp));
+        if ct > 0.0 {
+            e[2].push((j, p.eta));
+        }
+    }
+    let panel = |k: usize, title: &str, y: &str| Panel {
+        title: title.into(),
+        x_label: "J = V/(nD)".into(),
+        y_label: y.into(),
+        series: by_rpm
+            .iter()
+            .enumerate()
+            .map(|(i, (name, s))| Series::new(name.clone(), s[k].clone(), Mark::Line, Some(i)))
+            .collect(),
+        zero_line: true,
+    };
+    Figure {
+        panels: vec![
+            panel(0, "Thrust coefficient CT = T/(ρn²D⁴)", "CT"),
+            panel(1, "Power coefficient CP = P/(ρn³D⁵)", "CP"),
+            panel(2, "Efficiency η = J CT/CP (where CT > 0)", "η"),
+        ],
+        columns: 3,
+        width: 1200,
+        height: 400,
+    }
+}
