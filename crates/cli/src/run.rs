@@ -59,18 +59,13 @@ fn default_case() -> Result<PathBuf> {
 /// The scan flags of a case (`--units`, `--stations`, its `scan_args`) as the geometry
 /// pipeline's options, read as `propbet scan` reads them.
 fn scan_options(flags: &[String]) -> propbet_pipeline::Result<propbet_geometry::scan::ScanOptions> {
-    let argv = ["propbet", "scan", "scan.stl", "-o", "out"]
+    let argv = ["scan", "scan.stl", "-o", "out"]
         .into_iter()
         .map(String::from)
         .chain(flags.iter().cloned());
-    let cli =
-        crate::Cli::try_parse_from(argv).map_err(|e| propbet_pipeline::Error::Invalid(format!("scan_args: {e}")))?;
-    match cli.command {
-        crate::Command::Scan(a) => {
-            crate::scan::options(&a).map_err(|e| propbet_pipeline::Error::Invalid(format!("{e:#}")))
-        }
-        _ => unreachable!("parsed as scan"),
-    }
+    let cmd = crate::scan::ScanCommand::try_parse_from(argv)
+        .map_err(|e| propbet_pipeline::Error::Invalid(format!("scan_args: {e}")))?;
+    crate::scan::options(&cmd.args).map_err(|e| propbet_pipeline::Error::Invalid(format!("{e:#}")))
 }
 
 /// The plan of a case directory, writing under `out`.

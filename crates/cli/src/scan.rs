@@ -123,6 +123,15 @@ fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
         .collect()
 }
 
+/// `propbet scan`'s flags on their own (a case's scan flags are read with them).
+#[derive(Debug, clap::Parser)]
+#[command(name = "scan")]
+pub struct ScanCommand {
+    /// The flags.
+    #[command(flatten)]
+    pub args: ScanArgs,
+}
+
 impl ScanArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<ScanSpec> {

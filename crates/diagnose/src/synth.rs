@@ -3,7 +3,6 @@
 //! learning what each effect looks like.
 
 use std::f64::consts::PI;
-use std::fmt::Write as _;
 
 use propbet_bemt::{Fluid, OperatingPoint};
 use propbet_effects::{EffectError, Stack};
@@ -123,37 +122,29 @@ pub fn generate(model: &Model, stack: &Stack, plan: &Plan) -> Result<Vec<Point>,
     Ok(out)
 }
 
-/// Generic CSV, self-describing header (`rpm,airspeed_m_s,thrust_N,torque_Nm,air_temp_C,pressure_Pa`).
-pub fn write_generic(points: &[Point], plan: &Plan) -> String {
-    let mut s = String::from("rpm,airspeed_m_s,thrust_N,torque_Nm,air_temp_C,pressure_Pa\n");
-    for p in points {
-        let _ = writeln!(
-            s,
-            "{:.1},{:.4},{:.6},{:.7},{:.2},{:.0}",
-            p.rpm, p.v, p.thrust, p.torque, plan.logged.0, plan.logged.1
-        );
-    }
-    s
+fn to_write(points: &[Point]) -> Vec<propbet_measure::write::Point> {
+    points
+        .iter()
+        .map(|p| propbet_measure::write::Point {
+            omega: propbet_units::rpm_to_omega(p.rpm),
+            v: p.v,
+            j: p.j,
+            thrust: p.thrust,
+            torque: p.torque,
+        })
+        .collect()
 }
 
-/// UIUC files: one `J CT CP eta` sweep per RPM, named `{stem}_{rpm}.txt` (the readers take
-/// the RPM from the name); coefficients with the plan's density.
+/// Generic CSV (`propbet_measure::write::generic`) with the plan's logged air.
+pub fn write_generic(points: &[Point], plan: &Plan) -> String {
+    propbet_measure::write::generic(&to_write(points), (plan.logged.0 + 273.15, plan.logged.1))
+}
+
+/// UIUC files, one sweep per RPM of the plan (`propbet_measure::write::uiuc`), coefficients
+/// with the plan's density.
 pub fn write_uiuc(points: &[Point], plan: &Plan, diameter: f64, stem: &str) -> Vec<(String, String)> {
-    let mut files = Vec::new();
-    for &rpm in &plan.rpms {
-        let n = propbet_units::rpm_to_rev_per_s(rpm);
-        let rho = plan.fluid.rho;
-        let scale = propbet_units::Scales::new(rho, n, diameter);
-        let mut s = String::from("J       CT       CP       eta\n");
-        for p in points.iter().filter(|p| p.rpm == rpm) {
-            let ct = p.thrust / scale.thrust;
-            let cp = p.torque * 2.0 * PI * n / scale.power;
-            let eta = if cp > 0.0 { p.j * ct / cp } else { 0.0 };
-            let _ = writeln!(s, "{:.3}   {:.5}   {:.5}   {:.3}", p.j, ct, cp, eta);
-        }
-        files.push((format!("{stem}_{rpm:.0}.txt"), s));
-    }
-    files
+    let omegas: Vec<f64> = plan.rpms.iter().map(|&r| propbet_units::rpm_to_omega(r)).collect();
+    propbet_measure::write::uiuc(&to_write(points), &omegas, plan.fluid.rho, diameter, stem)
 }
 
 /// An RCbenchmark step log of the static points: one ESC step per RPM, eight samples 0.5 s
@@ -162,29 +153,23 @@ pub fn write_rcbenchmark(points: &[Point], plan: &Plan) -> String {
     let mut rng = rand::rngs::StdRng::seed_from_u64(plan.seed ^ 0x5eed);
     let rel = normal(plan.noise);
     let rpm_noise = normal(0.002);
-    let mut s = String::from(
-        "Time (s),ESC signal (µs),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Electrical Speed (RPM),\
-         Motor Optical Speed (RPM),Electrical Power (W),Mechanical Power (W),Motor Efficiency (%),\
-         Propeller Mech. Efficiency (N/W),Overall Efficiency (N/W),App message,\n",
-    );
+    let mut samples = Vec::new();
     let mut t = 0.0;
     for (k, p) in points.iter().filter(|p| p.v == 0.0).enumerate() {
-        let esc = 1100 + 100 * k;
+        let esc = 1100 + 100 * k as u32;
         for _ in 0..8 {
             let rpm = p.rpm * (1.0 + rpm_noise.sample(&mut rng));
-            let q = p.torque * (1.0 + rel.sample(&mut rng));
-            let th = p.thrust * (1.0 + rel.sample(&mut rng));
-            let mech = q * propbet_units::rpm_to_omega(rpm);
-            let elec = mech / 0.75;
-            let _ = writeln!(
-                s,
-                "{t:.2},{esc},{q:.5},{th:.4},11.10,{:.3},{rpm:.0},{rpm:.0},{elec:.3},{mech:.3},75.00,{:.4},{:.4},,",
-                elec / 11.1,
-                if mech > 0.0 { th / mech } else { 0.0 },
-                if elec > 0.0 { th / elec } else { 0.0 },
-            );
+            let torque = p.torque * (1.0 + rel.sample(&mut rng));
+            let thrust = p.thrust * (1.0 + rel.sample(&mut rng));
+            samples.push(propbet_measure::write::LogSample {
+                time: t,
+                esc,
+                omega: propbet_units::rpm_to_omega(rpm),
+                thrust,
+                torque,
+            });
             t += 0.5;
         }
     }
-    s
+    propbet_measure::write::rcbenchmark(&samples)
 }

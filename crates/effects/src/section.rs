@@ -4,7 +4,7 @@ use std::sync::{Arc, Mutex};
 
 use propbet_bemt::{DragInput, LiftEval, SectionAero};
 
-use crate::{Active, EffectError, SectionCtx};
+use crate::effect::{Active, EffectError, SectionCtx};
 
 /// The inner section with effects on top; the first formula error is kept for the caller
 /// (the solver's interface has no error path) and the unmodified value used meanwhile.

@@ -19,10 +19,11 @@ use std::collections::BTreeMap;
 
 use serde::Deserialize;
 
+use crate::options::ReadOptions;
 use crate::reduce::reduce_log;
+use crate::set::{Format, MeasuredSet, ReadError};
 use crate::table::{read_csv, samples, split_header, Column, Columns, CsvTable};
 use crate::units::{conversion, Quantity};
-use crate::{Format, MeasuredSet, ReadError, ReadOptions};
 
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
@@ -195,7 +196,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let (reduction, points) = reduce_log(s, cols.time.is_none(), &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::summarise_dropped(&dropped)));
+        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
     }
     Ok(MeasuredSet {
         format: Format::Generic,

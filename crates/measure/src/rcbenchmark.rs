@@ -10,10 +10,11 @@
 //! `Mechanical Power` column is torque times that speed); `poles` rescales it by 2/poles for logs
 //! recorded with the app's pole count at 2.
 
+use crate::options::ReadOptions;
 use crate::reduce::reduce_log;
+use crate::set::{Format, MeasuredSet, ReadError, RpmSource};
 use crate::table::{read_csv, samples, split_header, Column, Columns, CsvTable};
 use crate::units::Quantity;
-use crate::{Format, MeasuredSet, ReadError, ReadOptions, RpmSource};
 
 /// True when a header line looks like an RCbenchmark export.
 pub fn looks_like(header: &str) -> bool {
@@ -152,7 +153,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let (reduction, points) = reduce_log(s, false, &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::summarise_dropped(&dropped)));
+        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
     }
     Ok(MeasuredSet {
         format: Format::RcBenchmark,

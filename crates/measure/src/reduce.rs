@@ -5,24 +5,10 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use crate::set::{DropReason, Dropped, Loads, LoggedAir, MeasuredPoint, Speed, Value};
 use crate::table::Sample;
-use crate::{DropReason, Dropped, Loads, LoggedAir, MeasuredPoint, Speed, Value};
 
-/// How rows became points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Reduction {
-    /// ESC steps: transient dropped, steady part averaged.
-    Steps,
-    /// One already-averaged row per step (the RCbenchmark app's step-test summary).
-    AveragedSteps,
-    /// Continuous variation: binned by RPM (and airspeed).
-    Ramp,
-    /// Each row is a point.
-    Rows,
-    /// Published table (UIUC).
-    Table,
-}
+pub use crate::set::Reduction;
 
 /// Settings of the reduction.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

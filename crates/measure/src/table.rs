@@ -1,8 +1,8 @@
 //! CSV text to header and cells, and cells to samples in SI: the part RCbenchmark logs and
 //! generic CSV share.
 
+use crate::set::{DropReason, Dropped, ReadError};
 use crate::units::{conversion, Conversion, Quantity};
-use crate::{DropReason, Dropped, ReadError};
 
 /// A CSV file's header and rows, as text.
 #[derive(Debug, Clone)]

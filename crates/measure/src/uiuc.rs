@@ -5,8 +5,9 @@
 //! - sweep: `J CT CP eta` at the RPM given in the file name (`apcsf_10x4.7_kt0837_5018.txt`) or
 //!   in a first line `RPM average ...` (some files carry it there).
 
-use crate::reduce::Reduction;
-use crate::{DropReason, Dropped, Format, Loads, LoggedAir, MeasuredPoint, MeasuredSet, ReadError, Speed, Value};
+use crate::set::{
+    DropReason, Dropped, Format, Loads, LoggedAir, MeasuredPoint, MeasuredSet, ReadError, Reduction, Speed, Value,
+};
 
 /// The RPM in a UIUC file name: the number after the last underscore.
 pub fn rpm_from_name(name: &str) -> Option<f64> {
@@ -134,7 +135,7 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
         });
     }
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::summarise_dropped(&dropped)));
+        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
     }
     Ok(MeasuredSet {
         format: if sweep { Format::UiucSweep } else { Format::UiucStatic },

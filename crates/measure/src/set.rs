@@ -1,0 +1,295 @@
+//! What a measured file becomes: points (mean ± scatter), dropped rows with their reasons, and
+//! the errors of reading.
+
+use serde::Serialize;
+use thiserror::Error;
+
+/// How rows became points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reduction {
+    /// ESC steps: transient dropped, steady part averaged.
+    Steps,
+    /// One already-averaged row per step (the RCbenchmark app's step-test summary).
+    AveragedSteps,
+    /// Continuous variation: binned by RPM (and airspeed).
+    Ramp,
+    /// Each row is a point.
+    Rows,
+    /// Published table (UIUC).
+    Table,
+}
+
+/// A measured mean with its scatter.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Value {
+    /// Mean of the samples (SI).
+    pub mean: f64,
+    /// Sample standard deviation (SI); `None` when the file holds one value (already averaged).
+    pub sd: Option<f64>,
+    /// Number of samples averaged.
+    pub n: usize,
+}
+
+impl Value {
+    /// A single value without known scatter.
+    pub fn single(v: f64) -> Self {
+        Self {
+            mean: v,
+            sd: None,
+            n: 1,
+        }
+    }
+
+    /// Mean and sample standard deviation of `xs` (not empty).
+    pub fn of(xs: &[f64]) -> Self {
+        let n = xs.len();
+        let mean = xs.iter().sum::<f64>() / n as f64;
+        let sd = (n > 1).then(|| (xs.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt());
+        Self { mean, sd, n }
+    }
+
+    /// Relative scatter sd/|mean| (0 when unknown).
+    pub fn relative_sd(&self) -> f64 {
+        match self.sd {
+            Some(sd) if self.mean != 0.0 => sd / self.mean.abs(),
+            _ => 0.0,
+        }
+    }
+}
+
+/// How fast the propeller moves through the air.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Speed {
+    /// Axial airspeed [m/s] (0 on a static stand).
+    Airspeed(Value),
+    /// Advance ratio J = V/(nD) as published (UIUC), the diameter being the propeller's.
+    AdvanceRatio(f64),
+}
+
+/// What was measured at a point.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Loads {
+    /// Forces: thrust [N] and, when the stand has a torque cell, torque [N m].
+    Forces {
+        /// Thrust [N], positive pulling upstream.
+        thrust: Value,
+        /// Shaft torque absorbed by the propeller [N m], positive.
+        torque: Option<Value>,
+    },
+    /// Published coefficients (UIUC): CT = T/(rho n^2 D^4), CP = P/(rho n^3 D^5).
+    Coefficients {
+        /// Thrust coefficient.
+        ct: f64,
+        /// Power coefficient.
+        cp: f64,
+    },
+}
+
+/// Air state logged with a point (each part only when the file has it).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct LoggedAir {
+    /// Air temperature [K].
+    pub temperature: Option<f64>,
+    /// Static pressure [Pa].
+    pub pressure: Option<f64>,
+    /// Relative humidity [0..1].
+    pub humidity: Option<f64>,
+}
+
+/// One steady operating point.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeasuredPoint {
+    /// Where it came from: "step at ESC 1425 µs", "rpm bin 5000", "row".
+    pub label: String,
+    /// First and last line of the file that went into it (1-based).
+    pub lines: (usize, usize),
+    /// Rotation rate [rad/s].
+    pub omega: Value,
+    /// Airspeed or advance ratio.
+    pub speed: Speed,
+    /// Forces or coefficients.
+    pub loads: Loads,
+    /// Air state, when logged.
+    pub air: LoggedAir,
+    /// Samples dropped as the transient at the start of the step.
+    pub transient: usize,
+    /// Nominal group for per-RPM metrics (e.g. the RPM in a UIUC file name) [rad/s].
+    pub nominal_omega: Option<f64>,
+    /// Reasons not to trust the point (unsteady RPM, ...); flagged points are reported, not scored.
+    pub flags: Vec<String>,
+}
+
+impl MeasuredPoint {
+    /// Rotation speed [rpm] (a label for people).
+    pub fn rpm(&self) -> f64 {
+        propbet_units::omega_to_rpm(self.omega.mean)
+    }
+}
+
+/// Why a row was not used.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DropReason {
+    /// RPM is zero: the propeller was not turning (idle steps; expected, not a fault).
+    NotSpinning,
+    /// A needed cell is empty.
+    Missing,
+    /// A needed cell is not a finite number.
+    NotANumber,
+    /// Negative RPM reading.
+    NegativeRpm,
+    /// Thrust against the propeller's direction (after orienting the column).
+    NegativeThrust,
+    /// Same time stamp as the row before.
+    DuplicateTime,
+    /// Time stamp out of order (a stray row).
+    TimeOutOfOrder,
+}
+
+impl DropReason {
+    /// True for rows that are wrong, as opposed to rows that are expected not to count.
+    pub fn is_fault(self) -> bool {
+        !matches!(self, DropReason::NotSpinning)
+    }
+
+    /// Short text.
+    pub fn text(self) -> &'static str {
+        match self {
+            DropReason::NotSpinning => "not spinning (RPM 0)",
+            DropReason::Missing => "empty cell",
+            DropReason::NotANumber => "not a number",
+            DropReason::NegativeRpm => "negative RPM",
+            DropReason::NegativeThrust => "negative thrust",
+            DropReason::DuplicateTime => "duplicate time",
+            DropReason::TimeOutOfOrder => "time out of order",
+        }
+    }
+}
+
+/// A row that was not used.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Dropped {
+    /// Line in the file (1-based).
+    pub line: usize,
+    /// Why.
+    pub reason: DropReason,
+    /// The value or column concerned.
+    pub detail: String,
+}
+
+/// Which file format a set came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Format {
+    /// RCbenchmark / Tyto Robotics CSV export.
+    RcBenchmark,
+    /// UIUC static file (RPM CT CP).
+    UiucStatic,
+    /// UIUC advance-ratio sweep (J CT CP eta).
+    UiucSweep,
+    /// CSV with a column map.
+    Generic,
+}
+
+/// Where the RPM came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RpmSource {
+    /// Optical (or other once-per-revolution) sensor.
+    Optical,
+    /// The ESC's electrical speed (commutation frequency over pole pairs).
+    Electrical,
+}
+
+/// A file's points, with what was dropped and what was assumed.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MeasuredSet {
+    /// The format detected.
+    pub format: Format,
+    /// How rows became points.
+    pub reduction: Reduction,
+    /// The points, in file order.
+    pub points: Vec<MeasuredPoint>,
+    /// Rows not used, in file order.
+    pub dropped: Vec<Dropped>,
+    /// Data rows read.
+    pub rows: usize,
+    /// True when the file has a torque (or power) measurement.
+    pub has_torque: bool,
+    /// Where the RPM came from (thrust stands).
+    pub rpm_source: Option<RpmSource>,
+    /// What was detected or assumed, for the report.
+    pub notes: Vec<String>,
+}
+
+impl MeasuredSet {
+    /// Dropped rows that are faults (not idle rows).
+    pub fn faults(&self) -> usize {
+        self.dropped.iter().filter(|d| d.reason.is_fault()).count()
+    }
+}
+
+/// A file that cannot be read as measured data.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ReadError {
+    /// No header or no data rows.
+    #[error("no data: {0}")]
+    Empty(String),
+    /// A needed column is absent.
+    #[error("no {what} column (columns: {columns})")]
+    MissingColumn {
+        /// The quantity.
+        what: &'static str,
+        /// The headers found.
+        columns: String,
+    },
+    /// A column's unit is not known.
+    #[error("column '{column}': unknown unit '{unit}' for {quantity} (known: {known})")]
+    UnknownUnit {
+        /// Header as written.
+        column: String,
+        /// Unit as written.
+        unit: String,
+        /// The quantity.
+        quantity: &'static str,
+        /// Known units.
+        known: &'static str,
+    },
+    /// The CSV structure is broken at a line.
+    #[error("line {line}: {message}")]
+    Line {
+        /// Line (1-based).
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// The column map is wrong.
+    #[error("column map: {0}")]
+    Map(String),
+    /// Every row was dropped.
+    #[error("no usable rows: {0}")]
+    NoUsableRows(String),
+    /// A choice made by the user does not fit the file.
+    #[error("{0}")]
+    Option(String),
+}
+
+/// "12 rows: 10 not spinning (RPM 0), 2 not a number (first at line 7)".
+pub fn summarise_dropped(dropped: &[Dropped]) -> String {
+    let mut by: std::collections::BTreeMap<DropReason, (usize, usize)> = Default::default();
+    for d in dropped {
+        let e = by.entry(d.reason).or_insert((0, d.line));
+        e.0 += 1;
+    }
+    if by.is_empty() {
+        return "no rows were dropped".into();
+    }
+    let parts: Vec<String> = by
+        .iter()
+        .map(|(r, (n, first))| format!("{n} {} (first at line {first})", r.text()))
+        .collect();
+    format!("{} rows dropped: {}", dropped.len(), parts.join(", "))
+}

@@ -1,0 +1,229 @@
+//! Architecture invariants of the whole workspace, checked on the source (as rust-analyzer's
+//! tidy tests do): no file-level import cycle inside any crate, and no crate depending on one
+//! above it in the data flow.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Source without comments and test modules.
+fn code(text: &str) -> String {
+    let text = text.split("#[cfg(test)]").next().unwrap_or_default();
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or_default())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Identifiers following `prefix` in `text`.
+fn after<'a>(text: &'a str, prefix: &str) -> Vec<&'a str> {
+    text.match_indices(prefix)
+        .map(|(i, _)| {
+            let rest = &text[i + prefix.len()..];
+            let end = rest
+                .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .unwrap_or(rest.len());
+            &rest[..end]
+        })
+        .filter(|s| !s.is_empty())
+        .collect()
+}
+
+/// Names inside `use crate::{...};` groups (their first path segment).
+fn grouped(text: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for (i, _) in text.match_indices("use crate::{") {
+        let rest = &text[i + "use crate::{".len()..];
+        let Some(end) = rest.find("};") else { continue };
+        for part in rest[..end].split(',') {
+            let name = part.trim().split("::").next().unwrap_or_default().trim();
+            if !name.is_empty() {
+                out.push(name.to_string());
+            }
+        }
+    }
+    out
+}
+
+/// The module graph of one crate: file → files it imports from.
+fn graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let files: BTreeMap<String, String> = std::fs::read_dir(src)
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "rs").then(|| {
+                let stem = p.file_stem().unwrap().to_string_lossy().into_owned();
+                (stem, code(&std::fs::read_to_string(&p).unwrap()))
+            })
+        })
+        .collect();
+    let root = if files.contains_key("lib") { "lib" } else { "main" };
+    let mods: BTreeSet<&str> = files
+        .keys()
+        .map(String::as_str)
+        .filter(|m| *m != "lib" && *m != "main")
+        .collect();
+    let rt = &files[root];
+    // Items the root defines, and items it re-exports from a module.
+    let mut defined = BTreeSet::new();
+    for kw in ["struct ", "enum ", "trait ", "fn ", "type ", "const "] {
+        for line in rt.lines() {
+            let l = line
+                .trim_start()
+                .trim_start_matches("pub(crate) ")
+                .trim_start_matches("pub ");
+            if let Some(rest) = l.strip_prefix(kw) {
+                defined.insert(after(&format!(" {rest}"), " ")[0].to_string());
+            }
+        }
+    }
+    let mut reexported: BTreeMap<String, String> = BTreeMap::new();
+    let mut glob = Vec::new();
+    for line in rt.lines().map(str::trim) {
+        let Some(rest) = line.strip_prefix("pub use ") else {
+            continue;
+        };
+        let Some((m, items)) = rest.split_once("::") else {
+            continue;
+        };
+        if !mods.contains(m) {
+            continue;
+        }
+        if items.starts_with('*') {
+            glob.push(m.to_string());
+        }
+        for it in items
+            .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .filter(|s| !s.is_empty())
+        {
+            reexported.insert(it.to_string(), m.to_string());
+        }
+    }
+    let mut g = BTreeMap::new();
+    for (f, text) in &files {
+        let mut refs: BTreeSet<String> = after(text, "crate::").into_iter().map(String::from).collect();
+        refs.extend(grouped(text));
+        if f == root {
+            let body: String = text
+                .lines()
+                .filter(|l| {
+                    let t = l.trim_start().trim_start_matches("pub ");
+                    !(t.starts_with("mod ") || t.starts_with("use "))
+                })
+                .collect::<Vec<_>>()
+                .join("\n");
+            for m in &mods {
+                if body.contains(&format!("{m}::")) {
+                    refs.insert(m.to_string());
+                }
+            }
+        }
+        let mut deps = BTreeSet::new();
+        for r in refs {
+            if mods.contains(r.as_str()) {
+                deps.insert(r);
+            } else if defined.contains(&r) {
+                deps.insert(root.to_string());
+            } else if let Some(m) = reexported.get(&r) {
+                deps.insert(m.clone());
+            } else {
+                deps.extend(glob.iter().cloned());
+            }
+        }
+        deps.remove(f);
+        g.insert(f.clone(), deps);
+    }
+    g
+}
+
+fn reaches(g: &BTreeMap<String, BTreeSet<String>>, a: &str, b: &str) -> bool {
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![a.to_string()];
+    while let Some(x) = stack.pop() {
+        for d in g.get(&x).into_iter().flatten() {
+            if d == b {
+                return true;
+            }
+            if seen.insert(d.clone()) {
+                stack.push(d.clone());
+            }
+        }
+    }
+    false
+}
+
+fn crates() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = std::fs::read_dir(workspace().join("crates"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    v.push(workspace().join("xfoil_runner"));
+    v.sort();
+    v
+}
+
+#[test]
+fn no_file_level_import_cycle_in_any_crate() {
+    let mut cycles = Vec::new();
+    for c in crates() {
+        let g = graph(&c.join("src"));
+        let names: Vec<&String> = g.keys().collect();
+        for (i, a) in names.iter().enumerate() {
+            for b in &names[i + 1..] {
+                if reaches(&g, a, b) && reaches(&g, b, a) {
+                    cycles.push(format!("{}: {a}.rs <-> {b}.rs", c.display()));
+                }
+            }
+        }
+    }
+    assert!(cycles.is_empty(), "import cycles:\n{}", cycles.join("\n"));
+}
+
+/// The data flow, bottom up: a crate may depend only on crates of a lower rank.
+const RANKS: [(&str, u32); 15] = [
+    ("propbet-units", 0),
+    ("propbet-plot", 0),
+    ("xfoil-runner", 0),
+    ("propbet-geometry", 0),
+    ("propbet-bemt", 1),
+    ("propbet-measure", 1),
+    ("propbet-qprop", 2),
+    ("propbet-atmosphere", 2),
+    ("propbet-effects", 2),
+    ("propbet-polar", 2),
+    ("propbet-compare", 3),
+    ("propbet-diagnose", 4),
+    ("propbet-pipeline", 5),
+    ("propbet-report", 6),
+    ("propbet-cli", 7),
+];
+
+#[test]
+fn no_crate_depends_on_one_above_it_in_the_data_flow() {
+    let rank = |n: &str| RANKS.iter().find(|r| r.0 == n).map(|r| r.1);
+    let mut wrong = Vec::new();
+    for c in crates() {
+        let toml = std::fs::read_to_string(c.join("Cargo.toml")).unwrap();
+        let name = toml
+            .lines()
+            .find_map(|l| l.strip_prefix("name = "))
+            .unwrap()
+            .trim_matches('"')
+            .to_string();
+        let me = rank(&name).unwrap_or_else(|| panic!("{name}: give it a rank in RANKS"));
+        let deps = toml.split("[dependencies]").nth(1).unwrap_or_default();
+        let deps = deps.split("\n[").next().unwrap_or_default();
+        for line in deps.lines() {
+            let dep = line.split(['.', ' ', '=']).next().unwrap_or_default();
+            if let Some(r) = rank(dep) {
+                if r >= me {
+                    wrong.push(format!("{name} (rank {me}) depends on {dep} (rank {r})"));
+                }
+            }
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
