@@ -180,6 +180,7 @@ fn uiuc_static_and_sweeps_give_a_report() {
 /// Headless Chromium (package `chromium`, installed by scripts/setup.sh) renders the report:
 /// a screenshot with the figures drawn, no console error, no network request.
 #[test]
+#[ignore = "slow: headless Chromium (scripts/test.sh runs it)"]
 fn report_renders_in_headless_chromium() {
     let (prop, steps) = photofoil();
     let dir = tempfile::tempdir().unwrap();

@@ -34,6 +34,7 @@ fn commands(text: &str) -> Vec<String> {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn every_documented_command_runs() {
     let dir = tempfile::tempdir().unwrap();
     for d in ["props", "docs", "tests"] {

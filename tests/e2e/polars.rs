@@ -5,6 +5,7 @@ use std::os::unix::fs::PermissionsExt;
 use super::{cam6x3, col, read_csv, repo, run, stderr};
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn polar_of_naca4412_csv_fit_and_plot() {
     let dir = tempfile::tempdir().unwrap();
     let o = run(
@@ -136,6 +137,7 @@ fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
     let dir = tempfile::tempdir().unwrap();
     let cam = cam6x3();
@@ -228,6 +230,7 @@ fn processes_with(words: &[&str]) -> Vec<u32> {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn killing_propbet_stops_its_private_x_server() {
     let dir = tempfile::tempdir().unwrap();
     let mut child = super::bin()

@@ -9,6 +9,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn default_case_from_scan_to_report() {
     // No case argument, from a directory outside the repository: the shipped default case is
     // found beside the executable. A private cache keeps the run cold.

@@ -5,6 +5,7 @@
 use super::*;
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn validation_table_on_the_shipped_subset() {
     let dir = tempfile::tempdir().unwrap();
     let data = repo().join("tests/data/validate");

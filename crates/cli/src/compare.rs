@@ -13,7 +13,7 @@ use propbet_pipeline::stages::{self, Compared};
 use propbet_pipeline::values::parse_atmosphere;
 use propbet_report::compare::{self as report, FileEntry, ReportInput};
 
-use crate::output::{push_num, write_atomic, write_figure};
+use crate::output::{csv_rows, write_atomic, write_figure, Num};
 use crate::predict::{load_model, ModelArgs};
 
 /// Which RPM column of a thrust-stand log to use.
@@ -105,45 +105,73 @@ impl CompareArgs {
     }
 }
 
-const POINTS_HEADER: &str = "file,label,line_first,line_last,rpm,rpm_sd,v_m_s,j,rho,thrust_n,thrust_sd,thrust_pred,torque_nm,torque_sd,torque_pred,power_w,power_pred,ct,ct_sd,ct_pred,cp,cp_sd,cp_pred,eta,eta_pred,re75,mach_tip,scored";
+/// A row of points.csv.
+#[derive(serde::Serialize)]
+struct PointRow {
+    file: String,
+    label: String,
+    line_first: usize,
+    line_last: usize,
+    rpm: Num,
+    rpm_sd: Num,
+    v_m_s: Num,
+    j: Num,
+    rho: Num,
+    thrust_n: Num,
+    thrust_sd: Num,
+    thrust_pred: Num,
+    torque_nm: Num,
+    torque_sd: Num,
+    torque_pred: Num,
+    power_w: Num,
+    power_pred: Num,
+    ct: Num,
+    ct_sd: Num,
+    ct_pred: Num,
+    cp: Num,
+    cp_sd: Num,
+    cp_pred: Num,
+    eta: Num,
+    eta_pred: Num,
+    re75: Num,
+    mach_tip: Num,
+    scored: u8,
+}
 
-fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Vec<u8> {
-    let mut s = format!("{POINTS_HEADER}\n").into_bytes();
-    for p in pts {
-        let name = files[p.file].display().to_string().replace(',', ";");
-        s.extend_from_slice(format!("{name},{},{},{},", p.label.replace(',', ";"), p.lines.0, p.lines.1).as_bytes());
-        let cells = [
-            Some(p.rpm),
-            p.rpm_sd,
-            Some(p.v),
-            Some(p.j),
-            Some(p.air.fluid.rho),
-            p.measured.thrust,
-            p.measured_sd.thrust,
-            p.predicted.thrust,
-            p.measured.torque,
-            p.measured_sd.torque,
-            p.predicted.torque,
-            p.measured.power,
-            p.predicted.power,
-            p.measured.ct,
-            p.measured_sd.ct,
-            p.predicted.ct,
-            p.measured.cp,
-            p.measured_sd.cp,
-            p.predicted.cp,
-            p.measured.eta,
-            p.predicted.eta,
-            Some(p.re75),
-            Some(p.mach_tip),
-        ];
-        for c in cells {
-            push_num(&mut s, c);
-            s.push(b',');
-        }
-        s.extend_from_slice(if p.scored() { b"1\n" } else { b"0\n" });
-    }
-    s
+fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
+    csv_rows(
+        pts.iter().map(|p| PointRow {
+            file: files[p.file].display().to_string(),
+            label: p.label.clone(),
+            line_first: p.lines.0,
+            line_last: p.lines.1,
+            rpm: p.rpm.into(),
+            rpm_sd: p.rpm_sd.into(),
+            v_m_s: p.v.into(),
+            j: p.j.into(),
+            rho: p.air.fluid.rho.into(),
+            thrust_n: p.measured.thrust.into(),
+            thrust_sd: p.measured_sd.thrust.into(),
+            thrust_pred: p.predicted.thrust.into(),
+            torque_nm: p.measured.torque.into(),
+            torque_sd: p.measured_sd.torque.into(),
+            torque_pred: p.predicted.torque.into(),
+            power_w: p.measured.power.into(),
+            power_pred: p.predicted.power.into(),
+            ct: p.measured.ct.into(),
+            ct_sd: p.measured_sd.ct.into(),
+            ct_pred: p.predicted.ct.into(),
+            cp: p.measured.cp.into(),
+            cp_sd: p.measured_sd.cp.into(),
+            cp_pred: p.predicted.cp.into(),
+            eta: p.measured.eta.into(),
+            eta_pred: p.predicted.eta.into(),
+            re75: p.re75.into(),
+            mach_tip: p.mach_tip.into(),
+            scored: u8::from(p.scored()),
+        }),
+        true,
+    )
 }
 
 /// Runs `propbet compare`; returns false when rows were dropped as faulty or the solver did
@@ -207,7 +235,7 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(
         &out.join("points.csv"),
-        &[points_csv(&spec.measured.files, &c.points)],
+        &[points_csv(&spec.measured.files, &c.points)?],
         &inputs,
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;

@@ -15,6 +15,41 @@ const POW10: [f64; 65] = [
     1e18, 1e19, 1e20, 1e21, 1e22, 1e23, 1e24, 1e25, 1e26, 1e27, 1e28, 1e29, 1e30, 1e31, 1e32,
 ];
 
+/// A number as propbet's tables print it: 7 significant digits ([`push_num`]), an empty cell
+/// for `None`. Table rows are structs of these, written by `csv` + serde ([`csv_rows`]), so a
+/// header cannot drift from its values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub Option<f64>);
+
+impl From<f64> for Num {
+    fn from(v: f64) -> Self {
+        Num(Some(v))
+    }
+}
+
+impl From<Option<f64>> for Num {
+    fn from(v: Option<f64>) -> Self {
+        Num(v)
+    }
+}
+
+impl serde::Serialize for Num {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        let mut b = Vec::with_capacity(24);
+        push_num(&mut b, self.0);
+        s.serialize_str(std::str::from_utf8(&b).unwrap_or_default())
+    }
+}
+
+/// Rows as CSV, with the header from the row type's field names when `header`.
+pub fn csv_rows<T: serde::Serialize>(rows: impl IntoIterator<Item = T>, header: bool) -> Result<Vec<u8>> {
+    let mut w = csv::WriterBuilder::new().has_headers(header).from_writer(Vec::new());
+    for r in rows {
+        w.serialize(r).context("writing a CSV row")?;
+    }
+    w.into_inner().map_err(|e| anyhow::anyhow!("writing CSV: {e}"))
+}
+
 /// Significant digits written by [`push_num`].
 const DIGITS: i32 = 7;
 

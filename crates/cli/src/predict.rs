@@ -12,7 +12,7 @@ use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFo
 use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 use serde::Serialize;
 
-use crate::output::{emit, push_num};
+use crate::output::{csv_rows, emit, Num};
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -213,19 +213,20 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         use rayon::prelude::*;
         points
             .par_chunks(128)
-            .map(|c| {
+            .enumerate()
+            .map(|(k, c)| {
                 let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
-                    text: if csv { summary_rows(&r) } else { Vec::new() },
+                    text: if csv { summary_rows(&r, k == 0)? } else { Vec::new() },
                     failed: r.iter().map(|p| p.not_converged).sum(),
                     failed_points: r.iter().filter(|p| p.not_converged > 0).count(),
                     results: if keep_results { r } else { Vec::new() },
                 })
             })
-            .collect::<Result<_, propbet_pipeline::Error>>()?
+            .collect::<Result<_>>()?
     };
     let mut results = Vec::with_capacity(if keep_results { points.len() } else { 0 });
-    let mut body = vec![format!("{SUMMARY_HEADER}\n").into_bytes()];
+    let mut body = Vec::new();
     let (mut failed, mut failed_points) = (0, 0);
     for c in chunks {
         failed += c.failed;
@@ -239,7 +240,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     }
     emit(spec.out.as_deref(), &body, &inputs)?;
     if let Some(path) = &spec.stations {
-        emit(Some(path), &[stations_csv(&results)], &inputs)?;
+        emit(Some(path), &[stations_csv(&results)?], &inputs)?;
     }
     if failed > 0 {
         eprintln!(
@@ -277,86 +278,114 @@ fn json_doc(
 
 /// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage).
 pub fn write_sweep(spec: &PredictSpec, points: &[PointResult]) -> Result<()> {
-    let body = [format!("{SUMMARY_HEADER}\n").into_bytes(), summary_rows(points)];
+    let body = [summary_rows(points, true)?];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
     Ok(())
 }
 
-/// Column header of the summary CSV.
-pub const SUMMARY_HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,cl_avg,cd_avg,not_converged";
-
-fn summary_rows(results: &[PointResult]) -> Vec<u8> {
-    let mut s = Vec::with_capacity(200 * results.len());
-    for p in results {
-        let cells = [
-            Some(p.rpm),
-            Some(p.v),
-            p.j,
-            Some(p.thrust),
-            Some(p.torque),
-            Some(p.power),
-            p.ct,
-            p.cp,
-            p.cq,
-            Some(p.eta),
-            p.ct_qprop,
-            p.cp_qprop,
-            p.adv_qprop,
-            Some(p.dv),
-            Some(p.cl_avg),
-            Some(p.cd_avg),
-        ];
-        for c in cells {
-            push_num(&mut s, c);
-            s.push(b',');
-        }
-        s.extend_from_slice(p.not_converged.to_string().as_bytes());
-        s.push(b'\n');
-    }
-    s
+/// A row of the sweep table.
+#[derive(serde::Serialize)]
+struct SweepRow {
+    rpm: Num,
+    v_m_s: Num,
+    j: Num,
+    thrust_n: Num,
+    torque_nm: Num,
+    power_w: Num,
+    ct: Num,
+    cp: Num,
+    cq: Num,
+    eta: Num,
+    ct_qprop: Num,
+    cp_qprop: Num,
+    adv_qprop: Num,
+    dv_m_s: Num,
+    cl_avg: Num,
+    cd_avg: Num,
+    not_converged: usize,
 }
 
-fn stations_csv(results: &[PointResult]) -> Vec<u8> {
-    let mut s = b"rpm,v_m_s,r_m,chord_m,beta_deg,alpha_deg,cl,cd,re,mach,w_m_s,wa_m_s,wt_m_s,va_m_s,vt_m_s,f_tip,\
-dt_dr_n_m,dq_dr_n,stalled,convergence\n"
-        .to_vec();
-    for p in results {
-        for st in &p.stations {
-            for v in [
-                p.rpm,
-                p.v,
-                st.r,
-                st.chord,
-                st.beta.to_degrees(),
-                st.alpha.to_degrees(),
-                st.cl,
-                st.cd,
-                st.re,
-                st.mach,
-                st.w,
-                st.wa,
-                st.wt,
-                st.va,
-                st.vt,
-                st.f_tip,
-                st.dt_dr,
-                st.dq_dr,
-            ] {
-                push_num(&mut s, Some(v));
-                s.push(b',');
-            }
-            let conv = match st.convergence {
+fn summary_rows(results: &[PointResult], header: bool) -> Result<Vec<u8>> {
+    csv_rows(
+        results.iter().map(|p| SweepRow {
+            rpm: p.rpm.into(),
+            v_m_s: p.v.into(),
+            j: p.j.into(),
+            thrust_n: p.thrust.into(),
+            torque_nm: p.torque.into(),
+            power_w: p.power.into(),
+            ct: p.ct.into(),
+            cp: p.cp.into(),
+            cq: p.cq.into(),
+            eta: p.eta.into(),
+            ct_qprop: p.ct_qprop.into(),
+            cp_qprop: p.cp_qprop.into(),
+            adv_qprop: p.adv_qprop.into(),
+            dv_m_s: p.dv.into(),
+            cl_avg: p.cl_avg.into(),
+            cd_avg: p.cd_avg.into(),
+            not_converged: p.not_converged,
+        }),
+        header,
+    )
+}
+
+/// A row of the per-station table.
+#[derive(serde::Serialize)]
+struct StationRow {
+    rpm: Num,
+    v_m_s: Num,
+    r_m: Num,
+    chord_m: Num,
+    beta_deg: Num,
+    alpha_deg: Num,
+    cl: Num,
+    cd: Num,
+    re: Num,
+    mach: Num,
+    w_m_s: Num,
+    wa_m_s: Num,
+    wt_m_s: Num,
+    va_m_s: Num,
+    vt_m_s: Num,
+    f_tip: Num,
+    dt_dr_n_m: Num,
+    dq_dr_n: Num,
+    stalled: bool,
+    convergence: &'static str,
+}
+
+fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
+    let rows = results.iter().flat_map(|p| {
+        p.stations.iter().map(move |st| StationRow {
+            rpm: p.rpm.into(),
+            v_m_s: p.v.into(),
+            r_m: st.r.into(),
+            chord_m: st.chord.into(),
+            beta_deg: st.beta.to_degrees().into(),
+            alpha_deg: st.alpha.to_degrees().into(),
+            cl: st.cl.into(),
+            cd: st.cd.into(),
+            re: st.re.into(),
+            mach: st.mach.into(),
+            w_m_s: st.w.into(),
+            wa_m_s: st.wa.into(),
+            wt_m_s: st.wt.into(),
+            va_m_s: st.va.into(),
+            vt_m_s: st.vt.into(),
+            f_tip: st.f_tip.into(),
+            dt_dr_n_m: st.dt_dr.into(),
+            dq_dr_n: st.dq_dr.into(),
+            stalled: st.stalled,
+            convergence: match st.convergence {
                 propbet_bemt::Convergence::Newton { .. } => "newton",
                 propbet_bemt::Convergence::Bracketed { .. } => "bracketed",
                 propbet_bemt::Convergence::NotConverged => "not_converged",
                 propbet_bemt::Convergence::NoFlow => "no_flow",
                 propbet_bemt::Convergence::NoRotation => "no_rotation",
                 propbet_bemt::Convergence::ZeroChord => "zero_chord",
-            };
-            s.extend_from_slice(if st.stalled { b"true," } else { b"false," });
-            s.extend_from_slice(conv.as_bytes());
-            s.push(b'\n');
-        }
-    }
-    s
+            },
+        })
+    });
+    csv_rows(rows, true)
 }

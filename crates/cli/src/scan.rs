@@ -18,7 +18,7 @@ use propbet_plot::{Figure, Mark, Panel, Series};
 use propbet_qprop::write_prop;
 use serde_json::json;
 
-use crate::output::{write_atomic, write_figure};
+use crate::output::{csv_rows, write_atomic, write_figure, Num};
 
 /// Arguments of `propbet scan`.
 #[derive(Debug, Args)]
@@ -147,7 +147,8 @@ impl ScanArgs {
 
 /// Builds the pipeline's options from the flags.
 pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
-    let units = parse_length_unit(&a.units)? * 1000.0;
+    // Metres per file unit.
+    let units = parse_length_unit(&a.units)?;
     let stations = match &a.stations {
         Some(s) => parse_list("--stations", s)?,
         None => default_stations(),
@@ -171,8 +172,8 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
             }
             let o = vec3("--box-offset", &a.box_offset)?;
             Some(BoxSpec {
-                dims: [v[0], v[1], v[2]],
-                offset: [o.x, o.y, o.z],
+                dims: [v[0] / 1000.0, v[1] / 1000.0, v[2] / 1000.0],
+                offset: [o.x / 1000.0, o.y / 1000.0, o.z / 1000.0],
                 colours: colours("--box-colour", &a.box_colour)?,
                 seeds: match &a.box_seeds {
                     None => Vec::new(),
@@ -204,7 +205,7 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
         if d <= 0.0 || v[6] <= 0.0 {
             bail!("--known-length '{k}': two distinct points and a positive length are needed");
         }
-        scale = v[6] / d;
+        scale = v[6] / d / 1000.0;
     }
     let manual = match (&a.root_point, &a.tip_point) {
         (Some(r), Some(t)) => {
@@ -213,21 +214,21 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
                 root: vec3("--root-point", r)?,
                 tip: vec3("--tip-point", t)?,
                 origin: a.origin.as_deref().map(|o| vec3("--origin", o)).transpose()?,
-                rotate_deg: [rot.x, rot.y, rot.z],
+                rotate: [rot.x.to_radians(), rot.y.to_radians(), rot.z.to_radians()],
                 scale,
             })
         }
         _ => None,
     };
     Ok(ScanOptions {
-        units: scale,
+        scale,
         stations,
         kind: if a.planar {
             SectionKind::Planar
         } else {
             SectionKind::Cylindrical
         },
-        slab: a.slab,
+        slab: a.slab / 1000.0,
         slab_points: a.slab_points,
         blade_colours: a
             .blade_colour
@@ -241,6 +242,36 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
         outliers,
         manual,
     })
+}
+
+/// A row of geometry.csv (the reference table's columns empty without one).
+#[derive(serde::Serialize)]
+struct GeometryCsvRow {
+    r_mm: Num,
+    #[serde(rename = "r_R")]
+    r_r: Num,
+    chord_mm: Num,
+    #[serde(rename = "c_R")]
+    c_r: Num,
+    beta_deg: Num,
+    t_c: Num,
+    t_pos: Num,
+    camber: Num,
+    camber_pos: Num,
+    le_offset_mm: Num,
+    skew_deg: Num,
+    rake_mm: Num,
+    naca: String,
+    naca_t_c: Num,
+    naca_camber: Num,
+    naca_camber_pos: Num,
+    rms_naca_mm: Num,
+    rms_cst_mm: Num,
+    points: usize,
+    blade_spread_deg: Num,
+    #[serde(rename = "ref_c_R")]
+    ref_c_r: Num,
+    ref_beta_deg: Num,
 }
 
 /// Linear interpolation in a reference table at r/R `x`: column 1 c/R, 2 β [deg] (None outside).
@@ -268,48 +299,43 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let reference = sc.reference.as_deref();
     let big_r = g.tip_radius;
     // Geometry CSV.
-    let mut csv = String::from(
-        "r_mm,r_R,chord_mm,c_R,beta_deg,t_c,t_pos,camber,camber_pos,le_offset_mm,skew_deg,rake_mm,naca,naca_t_c,naca_camber,naca_camber_pos,rms_naca_mm,rms_cst_mm,points,blade_spread_deg",
-    );
-    if reference.is_some() {
-        csv.push_str(",ref_c_R,ref_beta_deg");
-    }
-    csv.push('\n');
-    for s in &g.stations {
-        csv.push_str(&format!(
-            "{:.4},{:.5},{:.4},{:.5},{:.3},{:.5},{:.3},{:.5},{:.3},{:.4},{:.3},{:.4},{},{:.5},{:.5},{:.3},{:.5},{:.5},{},{:.3}",
-            s.r,
-            s.r_r,
-            s.chord,
-            s.chord / big_r,
-            s.beta_deg,
-            s.t_c,
-            s.t_pos,
-            s.camber,
-            s.camber_pos,
-            s.le_offset,
-            s.skew_deg,
-            s.rake,
-            s.naca.designation(),
-            s.naca.t_c,
-            s.naca.camber,
-            s.naca.camber_pos,
-            s.naca.rms,
-            s.cst.as_ref().map_or(f64::NAN, |c| c.rms),
-            s.points,
-            s.blade_spread_deg
-        ));
-        if let Some(t) = reference {
-            let f = |k| interp(t, s.r_r, k).map_or(String::new(), |v| format!("{v:.4}"));
-            csv.push_str(&format!(",{},{}", f(1), f(2)));
+    let rows = g.stations.iter().map(|s| {
+        let reference = |k| reference.and_then(|t| interp(t, s.r_r, k));
+        GeometryCsvRow {
+            r_mm: (1000.0 * s.r).into(),
+            r_r: s.r_r.into(),
+            chord_mm: (1000.0 * s.chord).into(),
+            c_r: (s.chord / big_r).into(),
+            beta_deg: s.beta.to_degrees().into(),
+            t_c: s.t_c.into(),
+            t_pos: s.t_pos.into(),
+            camber: s.camber.into(),
+            camber_pos: s.camber_pos.into(),
+            le_offset_mm: (1000.0 * s.le_offset).into(),
+            skew_deg: s.skew.to_degrees().into(),
+            rake_mm: (1000.0 * s.rake).into(),
+            naca: s.naca.designation(),
+            naca_t_c: s.naca.t_c.into(),
+            naca_camber: s.naca.camber.into(),
+            naca_camber_pos: s.naca.camber_pos.into(),
+            rms_naca_mm: (1000.0 * s.naca.rms).into(),
+            rms_cst_mm: s.cst.as_ref().map(|c| 1000.0 * c.rms).into(),
+            points: s.points,
+            blade_spread_deg: s.blade_spread.to_degrees().into(),
+            ref_c_r: reference(1).into(),
+            ref_beta_deg: reference(2).into(),
         }
-        csv.push('\n');
-    }
-    write_atomic(&a.out.join("geometry.csv"), &[csv], &inputs)?;
+    });
+    write_atomic(&a.out.join("geometry.csv"), &[csv_rows(rows, true)?], &inputs)?;
     // UIUC-style table.
     let mut geom = String::from("r/R    c/R     beta\n");
     for s in &g.stations {
-        geom.push_str(&format!("{:.4} {:.4} {:.2}\n", s.r_r, s.chord / big_r, s.beta_deg));
+        geom.push_str(&format!(
+            "{:.4} {:.4} {:.2}\n",
+            s.r_r,
+            s.chord / big_r,
+            s.beta.to_degrees()
+        ));
     }
     write_atomic(&a.out.join("geom.txt"), &[geom], &inputs)?;
     // QPROP prop file.
@@ -399,12 +425,13 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
         },
         "input": a.input.display().to_string(),
         "blades": g.blades,
-        "tip_radius_mm": g.tip_radius,
-        "hub_radius_mm": g.hub_radius,
-        "root_radius_mm": g.root_radius,
+        "tip_radius_mm": 1000.0 * g.tip_radius,
+        "hub_radius_mm": g.hub_radius.map(|h| 1000.0 * h),
+        "root_radius_mm": 1000.0 * g.root_radius,
         "section_kind": g.kind,
         "samples": g.samples,
-        "box": g.box_fit.as_ref().map(|b| json!({"scale": b.scale, "rms_mm": b.rms, "faces": b.faces})),
+        // Millimetres per input unit, as the box's known size says.
+        "box": g.box_fit.as_ref().map(|b| json!({"scale": 1000.0 * b.scale, "rms_mm": 1000.0 * b.rms, "faces": b.faces})),
         "notes": g.notes,
         "stations": g.stations,
         "failed": g.failed,
@@ -423,9 +450,9 @@ pub fn print_summary(sc: &Scanned) {
     println!(
         "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
         g.blades,
-        g.tip_radius,
-        g.hub_radius.map_or("none".into(), |h| format!("{h:.2} mm")),
-        g.root_radius,
+        1000.0 * g.tip_radius,
+        g.hub_radius.map_or("none".into(), |h| format!("{:.2} mm", 1000.0 * h)),
+        1000.0 * g.root_radius,
         g.stations.len(),
         g.failed.len()
     );
@@ -439,7 +466,7 @@ pub fn print_summary(sc: &Scanned) {
         let (mut db, mut dc) = (Vec::new(), Vec::new());
         for s in g.stations.iter().filter(|s| (0.3..=0.7).contains(&s.r_r)) {
             if let (Some(c), Some(b)) = (interp(t, s.r_r, 1), interp(t, s.r_r, 2)) {
-                db.push(s.beta_deg - b);
+                db.push(s.beta.to_degrees() - b);
                 dc.push(s.chord / g.tip_radius / c - 1.0);
             }
         }

@@ -45,9 +45,9 @@ fn main() {
         "{:.3} s; {} blades, tip {:.3} mm, hub {:?}, root {:.2}",
         t0.elapsed().as_secs_f64(),
         geo.blades,
-        geo.tip_radius,
-        geo.hub_radius,
-        geo.root_radius
+        1000.0 * geo.tip_radius,
+        geo.hub_radius.map(|h| 1000.0 * h),
+        1000.0 * geo.root_radius
     );
     for n in &geo.notes {
         println!("  {n}");
@@ -57,17 +57,17 @@ fn main() {
         println!(
             "{:.3}  {:7.2}  {:6.2}  {:6.2}  {:.4} {:.2} {:.4} {:.2} {}  {:.4}  {:.4}  {:.2}",
             s.r_r,
-            s.r,
-            s.chord,
-            s.beta_deg,
+            1000.0 * s.r,
+            1000.0 * s.chord,
+            s.beta.to_degrees(),
             s.t_c,
             s.t_pos,
             s.camber,
             s.camber_pos,
             s.naca.designation(),
-            s.naca.rms,
-            s.cst.as_ref().map_or(f64::NAN, |c| c.rms),
-            s.blade_spread_deg
+            1000.0 * s.naca.rms,
+            s.cst.as_ref().map_or(f64::NAN, |c| 1000.0 * c.rms),
+            s.blade_spread.to_degrees()
         );
     }
     for f in &geo.failed {

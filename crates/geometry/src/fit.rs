@@ -56,6 +56,17 @@ pub struct NacaFit {
 }
 
 impl NacaFit {
+    /// The same fit with its lengths (leading edge, chord, rms) multiplied by `k`; the
+    /// objective is left as it was computed.
+    pub fn scaled(&self, k: f64) -> NacaFit {
+        NacaFit {
+            le: (self.le.0 * k, self.le.1 * k),
+            chord: self.chord * k,
+            rms: self.rms * k,
+            ..*self
+        }
+    }
+
     /// The section shape (t/c, camber, camber position), as a seed for a neighbouring station.
     pub fn shape(&self) -> [f64; 3] {
         [self.t_c, self.camber, self.camber_pos]
@@ -292,6 +303,14 @@ fn cst_row(x: f64) -> Vec<f64> {
 }
 
 impl Cst {
+    /// The same fit with its rms distance multiplied by `k` (the shape is per chord).
+    pub fn scaled(&self, k: f64) -> Cst {
+        Cst {
+            rms: self.rms * k,
+            ..self.clone()
+        }
+    }
+
     fn surface(w: &[f64], te: f64, x: f64) -> f64 {
         cst_row(x).iter().zip(w).map(|(a, b)| a * b).sum::<f64>() + x * te
     }

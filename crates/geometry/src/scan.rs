@@ -31,29 +31,28 @@ pub enum SectionKind {
 
 /// Manual alignment: a root and a tip point of blade 0 (input units) give the blade axis and
 /// the hub (unless `origin` is given: the root point moved along the blade axis to the
-/// station of the surface's centroid); the rotation axis
-/// is the direction of least spread across the blade axis; then rotations about the frame's
-/// x, y, z [deg]; `scale` input units → mm (e.g. from a known length).
+/// station of the surface's centroid); the rotation axis is the direction of least spread
+/// across the blade axis; then rotations about the frame's x, y, z.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Manual {
-    /// A point at the blade root.
+    /// A point at the blade root (input units).
     pub root: Vector3<f64>,
-    /// A point at the blade tip.
+    /// A point at the blade tip (input units).
     pub tip: Vector3<f64>,
     /// The hub centre (default: the root point moved along the blade axis to the centroid).
     pub origin: Option<Vector3<f64>>,
-    /// Corrections about x, y, z [deg], applied in that order.
-    pub rotate_deg: [f64; 3],
-    /// Input units → mm.
+    /// Corrections about x, y, z [rad], applied in that order.
+    pub rotate: [f64; 3],
+    /// Length of one input unit [m] (e.g. from a known length).
     pub scale: f64,
 }
 
 /// Reference box.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BoxSpec {
-    /// Edge lengths along the propeller frame's x, y, z [mm].
+    /// Edge lengths along the propeller frame's x, y, z [m].
     pub dims: [f64; 3],
-    /// The box centre in the propeller frame [mm] (the box is fixed to the hub).
+    /// The box centre in the propeller frame [m] (the box is fixed to the hub).
     pub offset: [f64; 3],
     /// Colours of its faces.
     pub colours: Vec<[u8; 3]>,
@@ -64,13 +63,13 @@ pub struct BoxSpec {
 /// What the pipeline does.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ScanOptions {
-    /// Input units → mm (1 for mm, 1000 for m, 25.4 for inches).
-    pub units: f64,
+    /// Length of one input unit [m] (0.001 for mm, 1 for m, 0.0254 for inches).
+    pub scale: f64,
     /// Stations as r/R.
     pub stations: Vec<f64>,
     /// Section kind.
     pub kind: SectionKind,
-    /// Slab thickness for clouds [mm].
+    /// Slab thickness for clouds [m].
     pub slab: f64,
     /// A cloud's slab is widened (up to 4 times) until a section at 0.6 R holds this many
     /// points per blade (0: never widened).
@@ -92,10 +91,10 @@ pub struct ScanOptions {
 impl Default for ScanOptions {
     fn default() -> Self {
         Self {
-            units: 1.0,
+            scale: 0.001,
             stations: default_stations(),
             kind: SectionKind::Cylindrical,
-            slab: 0.25,
+            slab: 0.25e-3,
             slab_points: 400,
             blade_colours: Vec::new(),
             colour_threshold: None,
@@ -105,6 +104,75 @@ impl Default for ScanOptions {
             manual: None,
         }
     }
+}
+
+/// Millimetres per metre: the geometry pipeline works in millimetres inside (its tolerances,
+/// slab widths and RANSAC thresholds are stated so); its public types are SI.
+const MM: f64 = 1000.0;
+
+impl ScanOptions {
+    /// The options in the pipeline's working units (mm, degrees).
+    fn to_mm(&self) -> MmOptions {
+        MmOptions {
+            units: self.scale * MM,
+            stations: self.stations.clone(),
+            kind: self.kind,
+            slab: self.slab * MM,
+            slab_points: self.slab_points,
+            blade_colours: self.blade_colours.clone(),
+            colour_threshold: self.colour_threshold,
+            reference_box: self.reference_box.as_ref().map(|b| MmBox {
+                dims: b.dims.map(|x| x * MM),
+                offset: b.offset.map(|x| x * MM),
+                colours: b.colours.clone(),
+                seeds: b.seeds.clone(),
+            }),
+            crop: self.crop,
+            outliers: self.outliers,
+            manual: self.manual.as_ref().map(|m| MmManual {
+                root: m.root,
+                tip: m.tip,
+                origin: m.origin,
+                rotate_deg: m.rotate.map(f64::to_degrees),
+                scale: m.scale * MM,
+            }),
+        }
+    }
+}
+
+/// [`Manual`] in the working units: rotations [deg], input units → mm.
+#[derive(Debug, Clone, PartialEq)]
+struct MmManual {
+    root: Vector3<f64>,
+    tip: Vector3<f64>,
+    origin: Option<Vector3<f64>>,
+    rotate_deg: [f64; 3],
+    scale: f64,
+}
+
+/// [`BoxSpec`] in the working units [mm].
+#[derive(Debug, Clone, PartialEq)]
+struct MmBox {
+    dims: [f64; 3],
+    offset: [f64; 3],
+    colours: Vec<[u8; 3]>,
+    seeds: Vec<Vector3<f64>>,
+}
+
+/// [`ScanOptions`] in the working units: input units → mm, slab [mm].
+#[derive(Debug, Clone, PartialEq)]
+struct MmOptions {
+    units: f64,
+    stations: Vec<f64>,
+    kind: SectionKind,
+    slab: f64,
+    slab_points: usize,
+    blade_colours: Vec<[u8; 3]>,
+    colour_threshold: Option<f64>,
+    reference_box: Option<MmBox>,
+    crop: Option<(Vector3<f64>, Vector3<f64>)>,
+    outliers: Option<(usize, f64)>,
+    manual: Option<MmManual>,
 }
 
 /// 25 stations from r/R 0.15 to 0.97.
@@ -126,18 +194,19 @@ pub enum ScanError {
     Input(String),
 }
 
-/// One measured station.
+/// One measured station of a scan (SI: the geometry pipeline's millimetres and degrees are
+/// converted here).
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Station {
+pub struct ScanStation {
     /// r/R.
     pub r_r: f64,
-    /// Radius [mm].
+    /// Radius [m].
     pub r: f64,
-    /// Chord [mm].
+    /// Chord [m].
     pub chord: f64,
-    /// Blade angle to the rotation plane [deg].
-    pub beta_deg: f64,
-    /// Maximum thickness / chord and its position (CST shape).
+    /// Blade angle to the rotation plane [rad].
+    pub beta: f64,
+    /// Maximum thickness / chord (CST shape).
     pub t_c: f64,
     /// Chord position of the maximum thickness.
     pub t_pos: f64,
@@ -145,23 +214,36 @@ pub struct Station {
     pub camber: f64,
     /// Its chord position.
     pub camber_pos: f64,
-    /// Leading edge's circumferential offset from the blade axis [mm] (sweep).
+    /// Leading edge's circumferential offset from the blade axis [m] (sweep).
     pub le_offset: f64,
-    /// Angular position of the mid-chord point [deg] (skew).
-    pub skew_deg: f64,
-    /// Axial position of the mid-chord point [mm] (rake, positive towards thrust).
+    /// Angular position of the mid-chord point [rad] (skew).
+    pub skew: f64,
+    /// Axial position of the mid-chord point [m] (rake, positive towards thrust).
     pub rake: f64,
-    /// The NACA 4-digit fit.
+    /// The NACA 4-digit fit (lengths [m]).
     pub naca: NacaFit,
-    /// The CST fit.
+    /// The CST fit (rms [m]).
     pub cst: Option<Cst>,
     /// Points of blade 0 in the section.
     pub points: usize,
-    /// Spread of the blade angle between blades [deg] (max − min of the quick measure).
-    pub blade_spread_deg: f64,
-    /// The section's points (u, w) [mm], for plots.
+    /// Spread of the blade angle between blades [rad] (max − min of the quick measure).
+    pub blade_spread: f64,
+    /// The section's points (u, w) [m], for plots.
     #[serde(skip)]
     pub uw: Vec<(f64, f64)>,
+}
+
+/// What the reference box registration found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BoxReport {
+    /// Length of one input unit [m], as the box's known size says.
+    pub scale: f64,
+    /// RMS point-to-face distance [m].
+    pub rms: f64,
+    /// Faces found.
+    pub faces: usize,
+    /// Box points used.
+    pub points: usize,
 }
 
 /// A station that could not be measured.
@@ -191,23 +273,21 @@ pub struct ColourReport {
 /// The geometry found in a scan.
 #[derive(Debug, Clone)]
 pub struct Geometry {
-    /// The frame.
-    pub frame: Frame,
     /// Blade count.
     pub blades: usize,
-    /// Tip radius [mm].
+    /// Tip radius [m].
     pub tip_radius: f64,
-    /// Hub radius [mm]: the largest radius where the surface goes all round the axis (None: no
+    /// Hub radius [m]: the largest radius where the surface goes all round the axis (None: no
     /// hub in the scan).
     pub hub_radius: Option<f64>,
-    /// Where the blades begin [mm].
+    /// Where the blades begin [m].
     pub root_radius: f64,
     /// Measured stations.
-    pub stations: Vec<Station>,
+    pub stations: Vec<ScanStation>,
     /// Stations that failed.
     pub failed: Vec<Failed>,
     /// The reference box registration.
-    pub box_fit: Option<BoxFit>,
+    pub box_fit: Option<BoxReport>,
     /// The colour filter.
     pub colour: Option<ColourReport>,
     /// Points or triangles used, after cleaning.
@@ -321,6 +401,7 @@ fn plausibility(tip: f64, notes: &mut Vec<String>) {
 
 /// Processes a mesh.
 pub fn scan_mesh(mesh: &Mesh, opts: &ScanOptions) -> Result<Geometry, ScanError> {
+    let opts = &opts.to_mm();
     let mut mesh = mesh.clone();
     if let Some((lo, hi)) = opts.crop {
         let inside = |v: &Vector3<f64>| (0..3).all(|k| v[k] >= lo[k] && v[k] <= hi[k]);
@@ -380,6 +461,7 @@ fn colour_select(
 
 /// Processes a cloud.
 pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanError> {
+    let opts = &opts.to_mm();
     let mut notes = Vec::new();
     let total = cloud.points.len();
     let mut blade = cloud.clone();
@@ -502,7 +584,7 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
 }
 
 /// The frame from a manual alignment.
-fn manual_frame<S: Surface>(m: &S, man: &Manual) -> Result<Frame, ScanError> {
+fn manual_frame<S: Surface>(m: &S, man: &MmManual) -> Result<Frame, ScanError> {
     let x = man.tip - man.root;
     if x.norm() == 0.0 {
         return Err(ScanError::Input(
@@ -598,7 +680,7 @@ struct Cut {
 fn finish<S: Surface + Sync + ScanSurface>(
     local: &S,
     mut frame: Frame,
-    opts: &ScanOptions,
+    opts: &MmOptions,
     mut notes: Vec<String>,
     samples: usize,
     box_fit: Option<BoxFit>,
@@ -676,7 +758,7 @@ fn finish<S: Surface + Sync + ScanSurface>(
             "NACA fit: {improved} station(s) fit better from a neighbouring station's shape"
         ));
     }
-    let results: Vec<Result<Station, Failed>> = cuts
+    let results: Vec<Result<ScanStation, Failed>> = cuts
         .into_par_iter()
         .zip(reseeded)
         .map(|(cut, better)| {
@@ -690,32 +772,28 @@ fn finish<S: Surface + Sync + ScanSurface>(
                 None => ((naca.t_c, 0.3), (naca.camber, naca.camber_pos)),
             };
             let spread = {
-                let b: Vec<f64> = secs
-                    .iter()
-                    .filter_map(|p| measure(p, r))
-                    .map(|s| s.beta.to_degrees())
-                    .collect();
+                let b: Vec<f64> = secs.iter().filter_map(|p| measure(p, r)).map(|s| s.beta).collect();
                 b.iter().copied().fold(f64::NEG_INFINITY, f64::max) - b.iter().copied().fold(f64::INFINITY, f64::min)
             };
             let (sb, cb) = naca.beta.sin_cos();
             let mid = (naca.le.0 - 0.5 * naca.chord * cb, naca.le.1 - 0.5 * naca.chord * sb);
-            Ok(Station {
+            Ok(ScanStation {
                 r_r: x,
-                r,
-                chord: naca.chord,
-                beta_deg: naca.beta.to_degrees(),
+                r: r / MM,
+                chord: naca.chord / MM,
+                beta: naca.beta,
                 t_c,
                 t_pos,
                 camber,
                 camber_pos,
-                le_offset: naca.le.0,
-                skew_deg: (mid.0 / r).to_degrees(),
-                rake: mid.1,
-                naca,
-                cst,
+                le_offset: naca.le.0 / MM,
+                skew: mid.0 / r,
+                rake: mid.1 / MM,
+                naca: naca.scaled(1.0 / MM),
+                cst: cst.map(|c| c.scaled(1.0 / MM)),
                 points: secs[0].len(),
-                blade_spread_deg: spread,
-                uw,
+                blade_spread: spread,
+                uw: uw.iter().map(|&(u, w)| (u / MM, w / MM)).collect(),
             })
         })
         .collect();
@@ -737,14 +815,18 @@ fn finish<S: Surface + Sync + ScanSurface>(
         )));
     }
     Ok(Geometry {
-        frame,
         blades,
-        tip_radius: tip,
-        hub_radius: hub,
-        root_radius: root,
+        tip_radius: tip / MM,
+        hub_radius: hub.map(|h| h / MM),
+        root_radius: root / MM,
         stations,
         failed,
-        box_fit,
+        box_fit: box_fit.map(|b| BoxReport {
+            scale: b.scale * opts.units / MM,
+            rms: b.rms / MM,
+            faces: b.faces,
+            points: b.points,
+        }),
         colour,
         samples,
         notes,

@@ -51,9 +51,10 @@ fn rms(v: &[f64]) -> f64 {
 fn errors(geo: &Geometry, def: &BladeDef) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
     let (mut b, mut c, mut t) = (Vec::new(), Vec::new(), Vec::new());
     for s in &geo.stations {
-        let truth = def.at(s.r);
-        b.push(s.beta_deg - truth.beta);
-        c.push(s.chord / truth.chord - 1.0);
+        // The definition is in mm and degrees.
+        let truth = def.at(1000.0 * s.r);
+        b.push(s.beta.to_degrees() - truth.beta);
+        c.push(1000.0 * s.chord / truth.chord - 1.0);
         t.push(s.t_c - truth.t_c);
     }
     (b, c, t)
@@ -92,8 +93,12 @@ fn posed_meshes_give_the_geometry_they_were_made_with() {
         assert!(rms(&e_beta) <= 0.1, "twist RMSE {} deg: {e_beta:?}", rms(&e_beta));
         assert!(rms(&e_chord) <= 0.005, "chord RMSE {}: {e_chord:?}", rms(&e_chord));
         assert!(e_tc.iter().all(|x| x.abs() <= 0.002), "t/c errors {e_tc:?}");
-        assert!((geo.hub_radius.unwrap() - 7.0).abs() <= 0.2, "hub {:?}", geo.hub_radius);
-        assert!((geo.tip_radius - 127.0).abs() <= 0.2, "tip {}", geo.tip_radius);
+        assert!(
+            (geo.hub_radius.unwrap() - 7.0e-3).abs() <= 0.2e-3,
+            "hub {:?}",
+            geo.hub_radius
+        );
+        assert!((geo.tip_radius - 127.0e-3).abs() <= 0.2e-3, "tip {}", geo.tip_radius);
         blade_labels_match_the_construction(&geo, &mesh, blades);
     }
 }
@@ -152,8 +157,8 @@ fn cloud_options() -> ScanOptions {
         stations: stations(),
         blade_colours: vec![colour("orange"), colour("black")],
         reference_box: Some(BoxSpec {
-            dims: [50.8, 48.26, 50.8],
-            offset: [0.0, 0.0, -40.0],
+            dims: [50.8e-3, 48.26e-3, 50.8e-3],
+            offset: [0.0, 0.0, -40.0e-3],
             colours: vec![colour("grey"), colour("blue")],
             seeds: Vec::new(),
         }),
@@ -168,7 +173,7 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
     // Through the PLY writer and reader, as a user's file would come.
     let cloud = read_cloud(&to_ply(&cloud, None), "synthetic.ply").unwrap();
     let geo = scan_cloud(&cloud, &cloud_options()).unwrap();
-    let scale = geo.box_fit.as_ref().unwrap().scale;
+    let scale = 1000.0 * geo.box_fit.as_ref().unwrap().scale;
     let (e_beta, e_chord, _) = errors(&geo, &def);
     eprintln!(
         "cloud: scale error {:.4} %, twist max {:.3} deg, chord max {:.3} %, notes {:?}",
@@ -203,7 +208,7 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
         b.seeds = seeds;
     }
     let seeded = scan_cloud(&cloud, &opts).unwrap();
-    let s2 = seeded.box_fit.as_ref().unwrap().scale;
+    let s2 = 1000.0 * seeded.box_fit.as_ref().unwrap().scale;
     assert!((s2 * 0.756 - 1.0).abs() <= 0.002, "seeded scale {s2}");
 }
 
@@ -256,14 +261,14 @@ fn manual_alignment_and_planar_sections() {
             root: Vector3::new(2.0, 0.0, 0.0),
             tip: Vector3::new(12.7, 0.0, 0.0),
             origin: Some(Vector3::zeros()),
-            rotate_deg: [0.0, 0.0, 0.0],
-            scale: 10.0,
+            rotate: [0.0, 0.0, 0.0],
+            scale: 0.01,
         }),
         ..ScanOptions::default()
     };
     let geo = scan_mesh(&mesh, &opts).unwrap();
     assert_eq!(geo.blades, 2);
-    assert!((geo.tip_radius - 127.0).abs() < 0.2, "{}", geo.tip_radius);
+    assert!((geo.tip_radius - 127.0e-3).abs() < 0.2e-3, "{}", geo.tip_radius);
     let (e_beta, e_chord, _) = errors(&geo, &def);
     assert!(
         e_beta.iter().all(|x| x.abs() < 0.1) && e_chord.iter().all(|x| x.abs() < 0.005),
@@ -288,10 +293,10 @@ fn manual_alignment_and_planar_sections() {
             c.chord
         );
         assert!(
-            (p.beta_deg - c.beta_deg).abs() < 3.0,
+            (p.beta - c.beta).abs() < 3f64.to_radians(),
             "{} vs {}",
-            p.beta_deg,
-            c.beta_deg
+            p.beta.to_degrees(),
+            c.beta.to_degrees()
         );
     }
 }

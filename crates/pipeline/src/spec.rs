@@ -404,14 +404,18 @@ impl ScanSpec {
         if let Some(n) = &self.name {
             push(v, "--name", n.clone());
         }
-        // The scale: a named unit, or a known length of one file unit.
-        let unit = [("mm", 1.0), ("cm", 10.0), ("m", 1000.0), ("in", 25.4)]
+        // The scale: a named unit, or a known length [mm] of one file unit.
+        let unit = [("mm", 0.001), ("cm", 0.01), ("m", 1.0), ("in", 0.0254)]
             .into_iter()
-            .find(|u| u.1 == o.units);
+            .find(|u| u.1 == o.scale);
         match unit {
             Some(("mm", _)) => {}
             Some((name, _)) => push(v, "--units", name),
-            None => push_eq(v, "--known-length", format!("0,0,0,1,0,0,{}", o.units)),
+            None => push_eq(
+                v,
+                "--known-length",
+                format!("0,0,0,1,0,0,{}", scaled_text(o.scale, |x| x * 1000.0, |x| x / 1000.0)),
+            ),
         }
         if o.stations != default_stations() {
             push(v, "--stations", list_text(&o.stations));
@@ -422,8 +426,8 @@ impl ScanSpec {
         if o.kind == SectionKind::Planar {
             v.push("--planar".into());
         }
-        if o.slab != 0.25 {
-            push(v, "--slab", format!("{}", o.slab));
+        if o.slab != ScanOptions::default().slab {
+            push(v, "--slab", scaled_text(o.slab, |x| x * 1000.0, |x| x / 1000.0));
         }
         if o.slab_points != 400 {
             push(v, "--slab-points", o.slab_points.to_string());
@@ -464,8 +468,8 @@ impl ScanSpec {
             if let Some(c) = &m.origin {
                 push_eq(v, "--origin", vec_text(c));
             }
-            if m.rotate_deg != [0.0; 3] {
-                let r = m.rotate_deg;
+            if m.rotate != [0.0; 3] {
+                let r = m.rotate.map(deg_text);
                 push_eq(v, "--rotate", format!("{},{},{}", r[0], r[1], r[2]));
             }
         }

@@ -53,7 +53,7 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
         invalid!("--stations: r/R {x} is outside (0, 1]");
     }
     if !(o.slab > 0.0 && o.slab.is_finite()) {
-        invalid!("--slab {}: must be a positive thickness in mm", o.slab);
+        invalid!("--slab {}: must be a positive thickness in mm", 1000.0 * o.slab);
     }
     let path = &spec.input;
     let bytes = std::fs::read(path).map_err(|source| Error::Read {
@@ -105,9 +105,9 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
                 ..generic
             };
             PropRow {
-                r: s.r / 1000.0,
-                chord: s.chord / 1000.0,
-                beta: s.beta_deg,
+                r: s.r,
+                chord: s.chord,
+                beta: s.beta.to_degrees(),
                 coeffs: c.to_array().to_vec(),
             }
         })
@@ -115,7 +115,7 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
     PropFile {
         name: name.to_string(),
         blades: g.blades as f64,
-        radius: Some(g.tip_radius / 1000.0),
+        radius: Some(g.tip_radius),
         global: generic.to_array(),
         scale: [1.0, 1.0, 1.0],
         offset: [0.0, 0.0, 0.0],
@@ -131,7 +131,7 @@ pub fn station_airfoils(name: &str, g: &Geometry) -> Vec<(usize, String)> {
         .enumerate()
         .filter_map(|(i, s)| {
             let c = s.cst.as_ref()?;
-            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, c.rms);
+            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, 1000.0 * c.rms);
             for (x, y) in c.selig(80) {
                 t.push_str(&format!("{x:.6} {y:.6}\n"));
             }

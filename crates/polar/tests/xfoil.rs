@@ -31,6 +31,7 @@ fn grid(lo: f64, hi: f64, step: f64) -> Vec<f64> {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn naca4412_at_re_1e5_matches_debian_xfoil() {
     let e = engine(None);
     let job = PolarJob::new(
@@ -55,6 +56,7 @@ fn naca4412_at_re_1e5_matches_debian_xfoil() {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn qprop_fit_reproduces_xfoil_over_the_linear_range() {
     let e = engine(None);
     let foil = naca4_from_name("naca4412").unwrap().unwrap();
@@ -118,6 +120,7 @@ fn qprop_fit_reproduces_xfoil_over_the_linear_range() {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn apc_sections_give_polars_at_low_re() {
     let e = engine(None);
     let e63 = shipped("e63.dat");
@@ -165,6 +168,7 @@ fn apc_sections_give_polars_at_low_re() {
 }
 
 #[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn the_cache_returns_the_same_polar_and_heals_corruption() {
     let dir = tempfile::tempdir().unwrap();
     let e = engine(Some(dir.path()));

@@ -54,9 +54,9 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
                 h,
                 "<p>{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed.</p>",
                 g.blades,
-                g.tip_radius,
-                g.hub_radius.map_or("none".into(), |x| format!("{x:.2} mm")),
-                g.root_radius,
+                1000.0 * g.tip_radius,
+                g.hub_radius.map_or("none".into(), |x| format!("{:.2} mm", 1000.0 * x)),
+                1000.0 * g.root_radius,
                 g.stations.len(),
                 g.failed.len(),
             );

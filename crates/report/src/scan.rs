@@ -20,8 +20,8 @@ pub fn sections_figure(g: &Geometry) -> Figure {
                 title: format!(
                     "r/R {:.3}: c {:.2} mm, β {:.2}°, NACA {}",
                     s.r_r,
-                    s.chord,
-                    s.beta_deg,
+                    1000.0 * s.chord,
+                    s.beta.to_degrees(),
                     s.naca.designation()
                 ),
                 x_label: "x/c".into(),
@@ -42,12 +42,12 @@ pub fn sections_figure(g: &Geometry) -> Figure {
 
 /// Chord, blade angle, thickness and camber, skew and rake along the radius.
 pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> Figure {
-    let col = |f: &dyn Fn(&propbet_geometry::scan::Station) -> f64| -> Vec<(f64, f64)> {
+    let col = |f: &dyn Fn(&propbet_geometry::scan::ScanStation) -> f64| -> Vec<(f64, f64)> {
         g.stations.iter().map(|s| (s.r_r, f(s))).collect()
     };
     let r = g.tip_radius;
     let mut chord = vec![Series::new("scan", col(&|s| s.chord / r), Mark::Line, Some(0))];
-    let mut beta = vec![Series::new("scan", col(&|s| s.beta_deg), Mark::Line, Some(0))];
+    let mut beta = vec![Series::new("scan", col(&|s| s.beta.to_degrees()), Mark::Line, Some(0))];
     if let Some(t) = reference {
         chord.push(Series::new(
             "reference",
@@ -85,8 +85,8 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
                 "Skew and rake",
                 "deg, mm",
                 vec![
-                    Series::new("skew [deg]", col(&|s| s.skew_deg), Mark::Line, Some(0)),
-                    Series::new("rake [mm]", col(&|s| s.rake), Mark::Line, Some(2)),
+                    Series::new("skew [deg]", col(&|s| s.skew.to_degrees()), Mark::Line, Some(0)),
+                    Series::new("rake [mm]", col(&|s| 1000.0 * s.rake), Mark::Line, Some(2)),
                 ],
             ),
         ],
