@@ -10,7 +10,7 @@ use propbet_pipeline::case::parse_fraction;
 use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput};
 use propbet_pipeline::values::parse_list;
-use propbet_plot::{Figure, Mark, Panel, Series};
+use propbet_plot::Figure;
 use propbet_polar::{fit_qprop, Airfoil, AlphaWeights, Polar, PolarJob, QpropFit};
 use propbet_qprop::write_prop;
 
@@ -226,7 +226,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     }
     if let Some(path) = &args.plot {
         let fig = Figure {
-            panels: polar_panels(&foil.name, &polars, &fits),
+            panels: propbet_report::polar::panels(&foil.name, &polars, &fits),
             columns: 2,
             width: 1400,
             height: 560,
@@ -285,59 +285,6 @@ fn fit_summary(re: f64, f: &QpropFit) -> String {
         s.push_str(&format!("\n  note: {n}"));
     }
     s
-}
-
-fn polar_panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
-    let mut lift = Vec::new();
-    let mut drag = Vec::new();
-    for (k, p) in polars.iter().enumerate() {
-        let label = format!("XFOIL Re {:.0}", p.re);
-        lift.push(Series::new(
-            label.clone(),
-            p.points.iter().map(|q| (q.alpha_deg, q.cl)).collect(),
-            Mark::Dots,
-            Some(k),
-        ));
-        drag.push(Series::new(
-            label,
-            p.points.iter().map(|q| (q.cd, q.cl)).collect(),
-            Mark::Dots,
-            Some(k),
-        ));
-    }
-    for f in fits {
-        let k = polars.iter().position(|p| p.re == f.coeffs.re_ref);
-        let label = format!("QPROP fit Re {:.0}", f.coeffs.re_ref);
-        let lin: Vec<_> = f.residuals.iter().filter(|r| r.linear).collect();
-        lift.push(Series::new(
-            label.clone(),
-            lin.iter().map(|r| (r.alpha_deg, r.cl_fit)).collect(),
-            Mark::Line,
-            k,
-        ));
-        drag.push(Series::new(
-            label,
-            lin.iter().map(|r| (r.cd_fit, r.cl_xfoil)).collect(),
-            Mark::Line,
-            k,
-        ));
-    }
-    vec![
-        Panel {
-            title: format!("{name}: lift"),
-            x_label: "angle of attack [deg]".into(),
-            y_label: "cl".into(),
-            series: lift,
-            zero_line: false,
-        },
-        Panel {
-            title: format!("{name}: drag polar"),
-            x_label: "cd".into(),
-            y_label: "cl".into(),
-            series: drag,
-            zero_line: false,
-        },
-    ]
 }
 
 /// Arguments of `propbet polars`.

@@ -14,7 +14,6 @@ use propbet_measure::uiuc::{geometry_at, GeometryRow};
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
 use propbet_pipeline::values::{parse_length_unit, parse_list};
-use propbet_plot::{Figure, Mark, Panel, Series};
 use propbet_qprop::write_prop;
 use serde_json::json;
 
@@ -360,37 +359,7 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
         &inputs,
     )?;
     if let Some(c) = &g.colour {
-        let pts: Vec<(f64, f64)> = c
-            .histogram
-            .counts
-            .iter()
-            .enumerate()
-            .map(|(i, &n)| ((i as f64 + 0.5) * c.histogram.width, n as f64))
-            .collect();
-        let top = pts.iter().map(|p| p.1).fold(1.0, f64::max);
-        let fig = Figure {
-            panels: vec![Panel {
-                title: format!(
-                    "Colour distance to the blade colours: {} of {} points kept (threshold {:.0}, Otsu {:.0})",
-                    c.kept, c.total, c.threshold, c.suggested
-                ),
-                x_label: "RGB distance".into(),
-                y_label: "points".into(),
-                series: vec![
-                    Series::new("points", pts, Mark::Line, Some(0)),
-                    Series::new(
-                        "threshold",
-                        vec![(c.threshold, 0.0), (c.threshold, top)],
-                        Mark::Dashed,
-                        Some(1),
-                    ),
-                ],
-                zero_line: false,
-            }],
-            columns: 1,
-            width: 900,
-            height: 450,
-        };
+        let fig = propbet_report::scan::colour_figure(c);
         write_figure(&a.out.join("plots/colour_histogram.svg"), &fig, &inputs)?;
     }
     // The cleaned surface in the propeller frame, by blade.
@@ -447,15 +416,7 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
 /// The scan on the terminal.
 pub fn print_summary(sc: &Scanned) {
     let (g, reference) = (&sc.geometry, sc.reference.as_deref());
-    println!(
-        "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
-        g.blades,
-        1000.0 * g.tip_radius,
-        g.hub_radius.map_or("none".into(), |h| format!("{:.2} mm", 1000.0 * h)),
-        1000.0 * g.root_radius,
-        g.stations.len(),
-        g.failed.len()
-    );
+    println!("{}", propbet_report::scan::summary(g));
     for n in &g.notes {
         println!("  {n}");
     }

@@ -1,12 +1,13 @@
 //! The pages people read, built from the pipeline's typed artifacts: one page skeleton
 //! ([`page`]: head, font, stylesheet, escaping), the comparison ([`compare`]), the diagnosis
 //! ([`diagnose`]), the run ([`run`], holding the other two), the validation table
-//! ([`validate`]), and the scan's figures ([`scan`]). Pages are strings; the CLI writes them.
+//! ([`validate`]), and the figures of a scan ([`scan`]) and of polars ([`polar`]). Pages are strings; the CLI writes them.
 #![deny(missing_docs)]
 
 pub mod compare;
 pub mod diagnose;
 pub mod page;
+pub mod polar;
 pub mod run;
 pub mod scan;
 pub mod validate;

@@ -50,16 +50,7 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
     match &run.scanned {
         Some(sc) => {
             let g = &sc.geometry;
-            let _ = writeln!(
-                h,
-                "<p>{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed.</p>",
-                g.blades,
-                1000.0 * g.tip_radius,
-                g.hub_radius.map_or("none".into(), |x| format!("{:.2} mm", 1000.0 * x)),
-                1000.0 * g.root_radius,
-                g.stations.len(),
-                g.failed.len(),
-            );
+            let _ = writeln!(h, "<p>{}.</p>", esc(&crate::scan::summary(g)));
             h.push_str("<ul>");
             for n in &g.notes {
                 let _ = write!(h, "<li>{}</li>", esc(n));

@@ -1,8 +1,21 @@
 //! Figures of a scan: the sections with their fits, and the blade along the radius.
 
-use propbet_geometry::scan::Geometry;
+use propbet_geometry::scan::{ColourReport, Geometry};
 use propbet_measure::uiuc::GeometryRow;
 use propbet_plot::{Figure, Mark, Panel, Series};
+
+/// The scan in one sentence (terminal and page): blades, tip, hub and root radius, stations.
+pub fn summary(g: &Geometry) -> String {
+    format!(
+        "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
+        g.blades,
+        1000.0 * g.tip_radius,
+        g.hub_radius.map_or("none".into(), |h| format!("{:.2} mm", 1000.0 * h)),
+        1000.0 * g.root_radius,
+        g.stations.len(),
+        g.failed.len()
+    )
+}
 
 /// Every section's points and fits.
 pub fn sections_figure(g: &Geometry) -> Figure {
@@ -93,5 +106,40 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
         columns: 2,
         width: 1200,
         height: 800,
+    }
+}
+
+/// The colour filter: the histogram of colour distances with the threshold used.
+pub fn colour_figure(c: &ColourReport) -> Figure {
+    let pts: Vec<(f64, f64)> = c
+        .histogram
+        .counts
+        .iter()
+        .enumerate()
+        .map(|(i, &n)| ((i as f64 + 0.5) * c.histogram.width, n as f64))
+        .collect();
+    let top = pts.iter().map(|p| p.1).fold(1.0, f64::max);
+    Figure {
+        panels: vec![Panel {
+            title: format!(
+                "Colour distance to the blade colours: {} of {} points kept (threshold {:.0}, Otsu {:.0})",
+                c.kept, c.total, c.threshold, c.suggested
+            ),
+            x_label: "RGB distance".into(),
+            y_label: "points".into(),
+            series: vec![
+                Series::new("points", pts, Mark::Line, Some(0)),
+                Series::new(
+                    "threshold",
+                    vec![(c.threshold, 0.0), (c.threshold, top)],
+                    Mark::Dashed,
+                    Some(1),
+                ),
+            ],
+            zero_line: false,
+        }],
+        columns: 1,
+        width: 900,
+        height: 450,
     }
 }
