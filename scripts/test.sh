@@ -9,5 +9,5 @@ cd "$(dirname "$0")/.."
 if [ "${1:-}" = "--fast" ]; then
   cargo test --workspace --locked --release
 else
-  cargo test --workspace --locked --release -- --include-ignored
+  cargo test --workspace --locked --release --no-fail-fast -- --include-ignored
 fi

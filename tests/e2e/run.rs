@@ -144,6 +144,10 @@ fn bad_cases_get_clear_errors() {
             format!("{good}[polars]\nairfoil = \"naca4412\"\nrpm = 5000\n"),
             "needs a [geometry] scan",
         ),
+        (
+            format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nmodel = \"magic\"\n"),
+            "`tables` or `qprop`",
+        ),
     ] {
         std::fs::write(case.join("case.toml"), &toml).unwrap();
         let o = run(&["run", "case", "-o", "out"], dir.path());

@@ -42,6 +42,13 @@ pub struct ValidateArgs {
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stages).
     #[command(flatten)]
     pub xfoil: XfoilProcess,
+    /// Section model: `qprop` (QPROP's law fitted to XFOIL's polars) or `tables` (the polars
+    /// interpolated in alpha and Re).
+    #[arg(long, value_parser = ["tables", "qprop"], default_value = "qprop")]
+    pub section_model: String,
+    /// Transition amplification ratio Ncrit of the polars.
+    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
+    pub ncrit: f64,
 }
 
 /// Runs `propbet validate`.
@@ -61,7 +68,15 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         omega: rpm_to_omega(a.rpm),
         out: a.out.clone(),
         xfoil: a.xfoil.spec(),
+        tables: a.section_model == "tables",
+        ncrit: a.ncrit,
     };
+    if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
+        bail!(
+            "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
+            a.ncrit
+        );
+    }
     std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
@@ -132,7 +147,12 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             }
             StageSpec::Compare(s) => {
                 let c = compared.next().expect("two comparisons");
-                let model = propbet_pipeline::model::Model::from_loaded(&s.model, v.polars.0.prop.clone(), false)?;
+                let model = propbet_pipeline::model::Model::from_parts(
+                    &s.model,
+                    v.polars.0.prop.clone(),
+                    Some(&v.polars.0.blade),
+                    false,
+                )?;
                 crate::compare::write(s, &model, c)?;
                 crate::compare::print(s, c);
             }

@@ -82,6 +82,15 @@ pub struct PolarSection {
     pub alpha: Option<String>,
     /// Multiples of each station's Re for REexp.
     pub re_factors: Option<String>,
+    /// The section model of the sweeps, comparison and diagnosis: `qprop` (QPROP's law fitted
+    /// to the polars; the default) or `tables` (the polars themselves, interpolated in alpha
+    /// and Re).
+    #[serde(default = "default_model")]
+    pub model: String,
+}
+
+fn default_model() -> String {
+    "qprop".into()
 }
 
 fn default_sections() -> String {
@@ -146,6 +155,12 @@ pub fn read_case(dir: &Path) -> Result<Case> {
             return Err(Error::input(
                 &path,
                 "[polars] sections = \"scan\" needs a [geometry] scan",
+            ));
+        }
+        if p.model != "tables" && p.model != "qprop" {
+            return Err(Error::input(
+                &path,
+                format!("[polars] model = {:?}: `tables` or `qprop`", p.model),
             ));
         }
         if !(p.rpm.is_finite() && p.rpm > 0.0) {
@@ -309,13 +324,16 @@ impl Case {
                 ))
             }
         };
-        // The fitted prop file is in metres; a case's own prop file keeps its units.
+        // The fitted prop file is in metres; a case's own prop file keeps its units. With
+        // tables, the polars are the section model (the prop file gives the blade).
         let (prop, model_units) = match &polars {
             Some(_) => (out.join("polars/prop.qprop"), None),
             None => (geometry, units),
         };
+        let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
         let model = ModelSpec {
             units: model_units,
+            polars: tables.then(|| out.join("polars/polars.json")),
             ..ModelSpec::prop(prop)
         };
         let a = &self.atmosphere;
@@ -405,4 +423,42 @@ pub fn parse_fraction(text: &str) -> Result<f64> {
         .parse()
         .map_err(|_| Error::Invalid(format!("{t:?} is not a number")))?;
     Ok(v * scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn plan(polars: &str) -> RunPlan {
+        let text = format!(
+            "name = \"x\"\n[geometry]\nscan = \"x.stl\"\n[sweep]\nrpm = \"4000,6000\"\nj = \"0:0.5:0.1\"\n\
+             [polars]\nairfoil = \"naca4412\"\nrpm = 5000\n{polars}\n[measured]\nfiles = [\"m.txt\"]\n"
+        );
+        let case: Case = toml::from_str(&text).unwrap();
+        case.plan(
+            Path::new("case"),
+            Path::new("out"),
+            &XfoilProcessSpec::default(),
+            &|_| Ok(ScanOptions::default()),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_section_model_decides_what_the_stages_solve_with() {
+        let q = plan("");
+        assert_eq!(q.predict.model.polars, None, "QPROP's law by default");
+        let t = plan("model = \"tables\"");
+        let polars = Some(Path::new("out").join("polars/polars.json"));
+        assert_eq!(t.predict.model.polars, polars);
+        let (c, d) = t.compare.unwrap();
+        assert_eq!(
+            (c.model.polars.clone(), d.model.polars.clone()),
+            (polars.clone(), polars)
+        );
+        // Every stage is its own command: the tables appear as --polars in the commands.
+        assert!(StageSpec::Compare(c)
+            .command()
+            .contains("--polars out/polars/polars.json"));
+    }
 }

@@ -1,7 +1,7 @@
 //! The propeller model a stage solves: a prop file read and discretised, optionally with
 //! tabulated polars as the section model and effects on top, and the air.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use propbet_atmosphere::AirState;
 use propbet_bemt::{Discretization, Fluid, Rotor, SolverOptions};
@@ -88,7 +88,18 @@ impl Model {
     }
 
     /// Builds the model from a prop file already read (the spec's `prop` names it in messages).
-    pub fn from_loaded(spec: &ModelSpec, mut loaded: LoadedProp, keep_stations: bool) -> Result<Model> {
+    pub fn from_loaded(spec: &ModelSpec, loaded: LoadedProp, keep_stations: bool) -> Result<Model> {
+        Model::from_parts(spec, loaded, None, keep_stations)
+    }
+
+    /// Builds the model from a prop file and, where the spec names a polars file, the polars
+    /// already in memory (`polars`, the content of that file); None reads the file.
+    pub fn from_parts(
+        spec: &ModelSpec,
+        mut loaded: LoadedProp,
+        polars: Option<&propbet_polar::BladePolars>,
+        keep_stations: bool,
+    ) -> Result<Model> {
         let differences: Vec<String> = loaded.file.qprop_differences().into_iter().map(|w| w.message).collect();
         for w in &mut loaded.warnings {
             if differences.iter().any(|d| w.ends_with(d.as_str())) {
@@ -112,8 +123,14 @@ impl Model {
                 qprop_reref_quirk: spec.qprop_compat,
             })
             .map_err(|e| Error::input(&spec.prop, e))?;
-        if let Some(path) = &spec.polars {
-            apply_polars(&mut rotor, path)?;
+        match (&spec.polars, polars) {
+            (Some(path), Some(blade)) => tabulate(&mut rotor, blade, path)?,
+            (Some(path), None) => {
+                let text = read_text(path)?;
+                let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| Error::input(path, e))?;
+                tabulate(&mut rotor, &blade, path)?;
+            }
+            (None, _) => {}
         }
         if !spec.dbeta.is_finite() {
             invalid!("--dbeta: not a finite number");
@@ -161,10 +178,9 @@ impl ModelSpec {
     }
 }
 
-/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file.
-fn apply_polars(rotor: &mut Rotor, path: &PathBuf) -> Result<()> {
-    let text = read_text(path)?;
-    let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| Error::input(path, e))?;
+/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file
+/// (`path` names it in messages).
+fn tabulate(rotor: &mut Rotor, blade: &propbet_polar::BladePolars, path: &Path) -> Result<()> {
     let (r, models) = blade.models().map_err(|e| Error::input(path, e))?;
     let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
     if r[0] > hi || r[r.len() - 1] < lo {

@@ -185,7 +185,7 @@ pub fn run_case(
     let s = it.next().expect("the predict stage");
     let (k, t0) = start(s, on);
     let model = match &polars {
-        Some(p) => Model::from_loaded(&spec.model, p.prop.clone(), false),
+        Some(p) => Model::from_parts(&spec.model, p.prop.clone(), Some(&p.blade), false),
         None => Model::load(&spec.model, false),
     }
     .map_err(|e| stage_err("predict", e))?;

@@ -439,11 +439,16 @@ impl ScanSpec {
             push(v, "--colour-threshold", format!("{t}"));
         }
         if let Some(b) = &o.reference_box {
-            push(v, "--box", format!("{}x{}x{}", b.dims[0], b.dims[1], b.dims[2]));
+            let mm = |x: f64| scaled_text(x, |x| x * 1000.0, |x| x / 1000.0);
+            push(
+                v,
+                "--box",
+                format!("{}x{}x{}", mm(b.dims[0]), mm(b.dims[1]), mm(b.dims[2])),
+            );
             push_eq(
                 v,
                 "--box-offset",
-                format!("{},{},{}", b.offset[0], b.offset[1], b.offset[2]),
+                format!("{},{},{}", mm(b.offset[0]), mm(b.offset[1]), mm(b.offset[2])),
             );
             push(v, "--box-colour", colour_text(&b.colours));
             if !b.seeds.is_empty() {

@@ -35,6 +35,10 @@ pub struct ValidateSpec {
     pub out: PathBuf,
     /// XFOIL executable, cache, progress.
     pub xfoil: XfoilProcessSpec,
+    /// Section model: the polars as tables (true) or QPROP's law fitted to them.
+    pub tables: bool,
+    /// Transition amplification ratio Ncrit of the polars.
+    pub ncrit: f64,
 }
 
 /// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
@@ -197,7 +201,7 @@ pub fn validate_prop(
         air: AirSpec::default(),
         xfoil: XfoilSpec {
             process: spec.xfoil.clone(),
-            ncrit: crate::spec::DEFAULT_NCRIT,
+            ncrit: spec.ncrit,
             alphas_deg: crate::values::parse_list("", crate::spec::DEFAULT_ALPHA)?,
             panels: None,
             iter: xfoil_runner::DEFAULT_MAX_ITER,
@@ -237,8 +241,11 @@ pub fn validate_prop(
         return Err(Error::Invalid("no static or J-sweep file".into()));
     }
     let measured = MeasuredSpec::files(measured);
-    let model_spec = ModelSpec::prop(dir.join("prop.qprop"));
-    let model = Model::from_loaded(&model_spec, polars.prop.clone(), false)?;
+    let model_spec = ModelSpec {
+        polars: spec.tables.then(|| dir.join("polars.json")),
+        ..ModelSpec::prop(dir.join("prop.qprop"))
+    };
+    let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
     let compare_stage = |spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>| -> Result<Compared> {
         let t0 = Instant::now();
         let c = stages::compare(model, &spec.measured)?;
@@ -285,7 +292,7 @@ pub fn validate_prop(
         effects: effects.clone(),
         ..model_spec
     };
-    let cal_model = Model::from_loaded(&cal_spec, polars.prop.clone(), false)?;
+    let cal_model = Model::from_parts(&cal_spec, polars.prop.clone(), Some(&polars.blade), false)?;
     let calibrated = compare_stage(
         CompareSpec {
             model: cal_spec,
