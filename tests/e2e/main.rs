@@ -42,6 +42,7 @@ fn col(header: &[String], name: &str) -> usize {
         .unwrap_or_else(|| panic!("no column {name}"))
 }
 
+mod bad_inputs;
 mod compare;
 mod diagnose;
 mod docs;

@@ -147,6 +147,34 @@ pub enum DropReason {
     DuplicateTime,
     /// Time stamp out of order (a stray row).
     TimeOutOfOrder,
+    /// A value no small propeller can have (see [`limits`]): a file error, not a measurement.
+    Implausible,
+}
+
+/// Magnitudes beyond which a measured value is not a small propeller's: a row holding one is
+/// dropped as [`DropReason::Implausible`] (a corrupt or mistyped file; the largest real values
+/// in the shared data are about 30,000 rpm, 60 N, 2 N m, CT 0.2, J 1.2).
+pub mod limits {
+    /// Rotation rate [rad/s] (500,000 rpm).
+    pub const OMEGA: f64 = 500_000.0 * std::f64::consts::PI / 30.0;
+    /// Thrust [N].
+    pub const THRUST: f64 = 1.0e5;
+    /// Torque [N m].
+    pub const TORQUE: f64 = 1.0e4;
+    /// Airspeed [m/s].
+    pub const AIRSPEED: f64 = 500.0;
+    /// |CT|, |CP|.
+    pub const COEFFICIENT: f64 = 10.0;
+    /// Advance ratio.
+    pub const ADVANCE_RATIO: f64 = 20.0;
+
+    /// The first value of `checks` (name, value, limit) beyond its limit, as a drop's detail.
+    pub fn beyond(checks: &[(&str, f64, f64)]) -> Option<String> {
+        checks
+            .iter()
+            .find(|(_, v, lim)| v.abs() > *lim)
+            .map(|(n, v, lim)| format!("{n} = {v:.4e} is beyond {lim:.0e}"))
+    }
 }
 
 impl DropReason {
@@ -165,6 +193,7 @@ impl DropReason {
             DropReason::NegativeThrust => "negative thrust",
             DropReason::DuplicateTime => "duplicate time",
             DropReason::TimeOutOfOrder => "time out of order",
+            DropReason::Implausible => "beyond any small propeller's values",
         }
     }
 }

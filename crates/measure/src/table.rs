@@ -1,7 +1,7 @@
 //! CSV text to header and cells, and cells to samples in SI: the part RCbenchmark logs and
 //! generic CSV share.
 
-use crate::set::{DropReason, Dropped, ReadError};
+use crate::set::{limits, DropReason, Dropped, ReadError};
 use crate::units::{conversion, Conversion, Quantity};
 
 /// A CSV file's header and rows, as text.
@@ -63,6 +63,19 @@ pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
                 let mut h: Vec<String> = rec.iter().map(str::to_string).collect();
                 while h.last().is_some_and(|c| c.is_empty()) {
                     h.pop();
+                }
+                // Two columns of one name: no reader can tell which holds what.
+                for (j, name) in h.iter().enumerate().filter(|(_, n)| !n.is_empty()) {
+                    if let Some(k) = h[..j].iter().position(|x| x == name) {
+                        return Err(ReadError::Line {
+                            line,
+                            message: format!(
+                                "column '{name}' appears twice (columns {} and {}): rename one so that each quantity has one column",
+                                k + 1,
+                                j + 1
+                            ),
+                        });
+                    }
                 }
                 headers = Some(h);
             }
@@ -191,6 +204,15 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
             let torque = cols.torque.as_ref().map(|c| cell(row, c)).transpose()?;
             let airspeed = cols.airspeed.as_ref().map(|c| cell(row, c)).transpose()?.unwrap_or(0.0);
             let time = cols.time.as_ref().map(|c| cell(row, c)).transpose()?;
+            let checks = [
+                ("rotation rate [rad/s]", omega, limits::OMEGA),
+                ("thrust [N]", thrust, limits::THRUST),
+                ("torque [N m]", torque.unwrap_or(0.0), limits::TORQUE),
+                ("airspeed [m/s]", airspeed, limits::AIRSPEED),
+            ];
+            if let Some(detail) = limits::beyond(&checks) {
+                return Err((DropReason::Implausible, detail));
+            }
             Ok::<_, (DropReason, String)>((omega, thrust, torque, airspeed, time))
         })();
         match needed {

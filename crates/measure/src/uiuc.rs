@@ -6,7 +6,8 @@
 //!   in a first line `RPM average ...` (some files carry it there).
 
 use crate::set::{
-    DropReason, Dropped, Format, Loads, LoggedAir, MeasuredPoint, MeasuredSet, ReadError, Reduction, Speed, Value,
+    limits, DropReason, Dropped, Format, Loads, LoggedAir, MeasuredPoint, MeasuredSet, ReadError, Reduction, Speed,
+    Value,
 };
 
 /// The RPM in a UIUC file name: the number after the last underscore.
@@ -62,6 +63,16 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
                 "a UIUC J sweep needs its RPM: in the file name (…_5018.txt) or a first line 'RPM average 5018'".into(),
             )
         })?;
+        if !(r > 0.0 && propbet_units::rpm_to_omega(r) <= limits::OMEGA) {
+            return Err(ReadError::Option(format!(
+                "the sweep's RPM {r:.4e} (from the {}) is not a small propeller's",
+                if rpm_line.is_some() {
+                    "'RPM average' line"
+                } else {
+                    "file name"
+                }
+            )));
+        }
         notes.push(format!(
             "advance-ratio sweep at {r:.0} rpm (from the {})",
             if rpm_line.is_some() {
@@ -103,6 +114,19 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
             continue;
         }
         let (a, ct, cp) = (vals[0].unwrap_or(0.0), vals[1].unwrap_or(0.0), vals[2].unwrap_or(0.0));
+        let first = match file_rpm {
+            Some(_) => ("J", a, limits::ADVANCE_RATIO),
+            None => ("RPM", propbet_units::rpm_to_omega(a), limits::OMEGA),
+        };
+        let checks = [first, ("CT", ct, limits::COEFFICIENT), ("CP", cp, limits::COEFFICIENT)];
+        if let Some(detail) = limits::beyond(&checks) {
+            dropped.push(Dropped {
+                line,
+                reason: DropReason::Implausible,
+                detail,
+            });
+            continue;
+        }
         let (rpm, speed) = match file_rpm {
             Some(r) => (r, Speed::AdvanceRatio(a)),
             None => (a, Speed::Airspeed(Value::single(0.0))),
@@ -204,6 +228,18 @@ pub fn geometry_at(table: &[GeometryRow], x: f64) -> Option<(f64, f64)> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn absurd_values_are_dropped_as_implausible() {
+        let t = "RPM CT CP\n2523 0.0923 0.0397\n2811 1e308 0.0394\n1e20 0.09 0.04\n";
+        let s = super::read(t, None).unwrap();
+        assert_eq!(s.points.len(), 1);
+        assert_eq!(s.dropped.len(), 2);
+        assert!(s.dropped.iter().all(|d| d.reason == crate::DropReason::Implausible));
+        assert!(s.dropped[0].detail.contains("CT = 1.0000e308"), "{:?}", s.dropped);
+        let e = super::read("J CT CP eta\n0.1 0.1 0.05 0.2\n", Some("x_kt0001_99999999.txt")).unwrap_err();
+        assert!(e.to_string().contains("not a small propeller's"), "{e}");
+    }
+
     #[test]
     fn geometry_tables_and_bad_rows() {
         let t = super::read_geometry("r/R c/R beta\n0.15 0.12 30\n0.2 0.14 28\n").unwrap();

@@ -341,8 +341,22 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
 // ---------------------------------------------------------------------------------------
 // predict
 
+/// Most operating points one sweep may hold (RPM values times J or V values): about 200 MB of
+/// results, 50 times the largest sweep of the benchmarks.
+pub const MAX_POINTS: usize = 1_000_000;
+
 /// The operating points of a predict spec, for a rotor of tip radius `tip_radius` [m].
 pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
+    let other = match &spec.axis {
+        SweepAxis::J(v) | SweepAxis::V(v) => v.len(),
+    };
+    let n = spec.omegas.len().saturating_mul(other);
+    if n > MAX_POINTS {
+        invalid!(
+            "the sweep has {} RPM values x {other} J or V values = {n} operating points; at most {MAX_POINTS} in one sweep",
+            spec.omegas.len()
+        );
+    }
     if let Some(bad) = spec.omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
         invalid!(
             "--rpm: rotation speed must not be negative, found {}",

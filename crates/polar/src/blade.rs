@@ -67,6 +67,18 @@ impl BladePolars {
         if b.stations.windows(2).any(|w| w[1].r <= w[0].r) {
             return Err("station radii are not ascending".into());
         }
+        for (i, s) in b.stations.iter().enumerate() {
+            if !(s.r.is_finite() && s.r > 0.0 && s.chord.is_finite() && s.chord >= 0.0) {
+                return Err(format!(
+                    "station {} (r = {}): radius or chord not a positive number",
+                    i + 1,
+                    s.r
+                ));
+            }
+            for p in &s.polars {
+                check_polar(p).map_err(|e| format!("station {} (r = {:.4} m), Re {:.0}: {e}", i + 1, s.r, p.re))?;
+            }
+        }
         Ok(b)
     }
 
@@ -98,6 +110,35 @@ pub struct XfoilSettings {
     pub panels: u32,
     /// Viscous iteration limit per angle.
     pub max_iter: u32,
+}
+
+/// A polar as the tabulated model needs it: a positive Re, and points of finite, plausible
+/// coefficients in strictly ascending alpha.
+fn check_polar(p: &Polar) -> Result<(), String> {
+    if !(p.re.is_finite() && p.re > 0.0) {
+        return Err("Reynolds number not a positive number".into());
+    }
+    for (k, q) in p.points.iter().enumerate() {
+        if !(q.alpha_deg.is_finite() && q.cl.is_finite() && q.cd.is_finite()) {
+            return Err(format!("point {}: not a finite number", k + 1));
+        }
+        if q.cl.abs() > 5.0 || !(q.cd > 0.0 && q.cd < 5.0) {
+            return Err(format!(
+                "point {} (alpha {} deg): cl {} or cd {} is not a section's",
+                k + 1,
+                q.alpha_deg,
+                q.cl,
+                q.cd
+            ));
+        }
+    }
+    if let Some(w) = p.points.windows(2).find(|w| w[1].alpha_deg <= w[0].alpha_deg) {
+        return Err(format!(
+            "angles not ascending ({} deg then {} deg)",
+            w[0].alpha_deg, w[1].alpha_deg
+        ));
+    }
+    Ok(())
 }
 
 /// Panels for a blade's polars: 1.9x faster than XFOIL's 160, and close to it (NACA 4412 at

@@ -1,0 +1,171 @@
+//! The inputs that broke propbet (`tests/data/bad_inputs`, from `../shared/examples/bad_inputs`),
+//! each run with the command the shared README gives: a clear message and exit code, no panic,
+//! no hang, no inf or NaN in an output.
+
+use super::*;
+
+fn bad(name: &str) -> String {
+    repo().join("tests/data/bad_inputs").join(name).display().to_string()
+}
+
+fn apc_prop() -> String {
+    repo()
+        .join("props/apcsf_10x4.7/apcsf_10x4.7.qprop")
+        .display()
+        .to_string()
+}
+
+/// Every number of every CSV and JSON file under `dir` is finite.
+fn outputs_finite(dir: &Path) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            outputs_finite(&p);
+        } else if matches!(p.extension().and_then(|x| x.to_str()), Some("csv" | "json")) {
+            let text = std::fs::read_to_string(&p).unwrap();
+            for bad in ["inf", "NaN", "nan"] {
+                let hit = text
+                    .split(|c: char| !(c.is_alphanumeric() || ".-_/".contains(c)))
+                    .any(|w| w == bad || w == "-inf");
+                assert!(!hit, "{}: holds {bad}", p.display());
+            }
+        }
+    }
+}
+
+#[test]
+fn tabulated_polars_out_of_order_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = bad("polars_alpha_reversed.json");
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            &apc_prop(),
+            "--polars",
+            &file,
+            "--rpm",
+            "5000",
+            "--v",
+            "0,5",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("polars_alpha_reversed.json") && e.contains("angles not ascending") && e.contains("station"),
+        "{e}"
+    );
+}
+
+#[test]
+fn absurd_measured_values_are_dropped_and_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    // Static CT of +-1e308: the rows are dropped, the others compared; exit 1 (faults reported).
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            &apc_prop(),
+            "--measured",
+            &bad("uiuc_static_inf_hang.txt"),
+            "--out",
+            "static",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("beyond any small propeller's values"),
+        "{}",
+        stderr(&o)
+    );
+    outputs_finite(&dir.path().join("static"));
+    // A J sweep with CT and CP of 1e308: the diagnosis runs on the rest.
+    let o = run(
+        &[
+            "diagnose",
+            "--prop",
+            &apc_prop(),
+            "--measured",
+            &bad("uiuc_sweep_1e308_kt0000_4014.txt"),
+            "--out",
+            "sweep",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("2 beyond any small propeller's values"),
+        "{}",
+        stderr(&o)
+    );
+    outputs_finite(&dir.path().join("sweep"));
+    // A thrust of 1e308 N in every row of a thrust-stand log: nothing is left, and that is said.
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            cam6x3().to_str().unwrap(),
+            "--measured",
+            &bad("stand_thrust_1e308.csv"),
+            "--out",
+            "stand",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("stand_thrust_1e308.csv") && e.contains("63 beyond any small propeller's values (first at line 2)"),
+        "{e}"
+    );
+    assert!(!dir.path().join("stand/points.csv").exists());
+}
+
+#[test]
+fn a_duplicated_column_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            cam6x3().to_str().unwrap(),
+            "--measured",
+            &bad("stand_duplicated_header.csv"),
+            "--out",
+            "out",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("stand_duplicated_header.csv") && e.contains("'Thrust (N)' appears twice"),
+        "{e}"
+    );
+    assert!(!dir.path().join("out/report.html").exists());
+}
+
+#[test]
+fn a_huge_grid_is_refused_before_it_is_allocated() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(&["run", &bad("run_huge_grid"), "-o", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("at most 1000000 in one sweep"), "{}", stderr(&o));
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            cam6x3().to_str().unwrap(),
+            "--rpm",
+            "1000:20000/100000",
+            "--j",
+            "0:1/100000",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("10000000000 operating points"), "{}", stderr(&o));
+}
