@@ -169,3 +169,26 @@ fn a_huge_grid_is_refused_before_it_is_allocated() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("10000000000 operating points"), "{}", stderr(&o));
 }
+
+#[test]
+fn tip_radius_in_metres_with_stations_in_cm_is_read_as_qprop_reads_it() {
+    // QPROP 1.22 gives this file exactly the numbers of cam6x3 (T = 0.6596 N at 5 m/s, 8000 rpm:
+    // ../shared/reference/qprop/cam6x3_*), and so does propbet, with and without --qprop-compat.
+    let dir = tempfile::tempdir().unwrap();
+    let thrust = |prop: &str, extra: &[&str]| -> (f64, String) {
+        let mut args = vec!["predict", "--prop", prop, "--rpm", "8000", "--v", "5", "--out", "p.csv"];
+        args.extend_from_slice(extra);
+        let o = run(&args, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (h, r) = read_csv(&dir.path().join("p.csv"));
+        (r[0][col(&h, "thrust_n")].parse().unwrap(), stderr(&o))
+    };
+    let file = bad("prop_R_metres_stations_cm.qprop");
+    for extra in [&[][..], &["--qprop-compat"][..]] {
+        let (t, e) = thrust(&file, extra);
+        let (t_ref, _) = thrust(cam6x3().to_str().unwrap(), extra);
+        assert_eq!(t, t_ref);
+        assert!((t - 0.6596).abs() < 5e-5, "{t}");
+        assert!(e.contains("line 4: R = 0.0762 would lie inside the blade") && !e.contains("line 0"), "{e}");
+    }
+}

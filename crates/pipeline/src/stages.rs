@@ -116,6 +116,8 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
         name: name.to_string(),
         blades: g.blades as f64,
         radius: Some(g.tip_radius),
+        radius_in_metres: false,
+        radius_line: 0,
         global: generic.to_array(),
         scale: [1.0, 1.0, 1.0],
         offset: [0.0, 0.0, 0.0],

@@ -170,6 +170,8 @@ pub fn validate_prop(
         name: format!("{prop} (UIUC geometry, APC PE0 sections)"),
         blades: 2.0,
         radius: Some(big_r),
+        radius_in_metres: false,
+        radius_line: 0,
         global: generic.to_array(),
         scale: [1.0, 1.0, 1.0],
         offset: [0.0, 0.0, 0.0],

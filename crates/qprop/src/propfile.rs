@@ -51,6 +51,14 @@ pub struct PropFile {
     pub offset: [f64; 3],
     /// Radial rows.
     pub rows: Vec<PropRow>,
+    /// R on line 2 is in metres, as QPROP 1.22 reads it, because in the units of the r column
+    /// (Rfac, Radd) it would lie inside the blade.
+    #[serde(default)]
+    pub radius_in_metres: bool,
+    /// 1-based line number of line 2 (Nblades, R) in the source, 0 when not read from a file
+    /// (not part of equality).
+    #[serde(skip)]
+    pub radius_line: usize,
     /// 1-based line number of each row in the source (not part of equality).
     #[serde(skip)]
     pub row_lines: Vec<usize>,
@@ -61,6 +69,7 @@ impl PartialEq for PropFile {
         self.name == o.name
             && self.blades == o.blades
             && self.radius == o.radius
+            && self.radius_in_metres == o.radius_in_metres
             && self.global == o.global
             && self.scale == o.scale
             && self.offset == o.offset
@@ -244,6 +253,7 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
     const L2: &str = "Nblades [R]";
     let (l, v) = lines.numbers(L2)?;
     need(l, &v, 1, L2)?;
+    let radius_line = l;
     let blades = v[0];
     if blades <= 0.0 {
         return Err(ParsePropError::Invalid {
@@ -321,16 +331,35 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
             ),
         });
     }
-    let file = PropFile {
+    let mut file = PropFile {
         name,
         blades,
         radius,
+        radius_in_metres: false,
+        radius_line,
         global,
         scale,
         offset,
         rows,
         row_lines,
     };
+    // QPROP 1.22 takes R unscaled, in metres; propbet reads it in the r column's units. Where
+    // that would put the tip inside the blade and metres do not, the file was written for
+    // QPROP's reading (several of QPROP's own examples are): read it so, and say so.
+    if let (Some(rad), Some(last)) = (radius, file.rows.last()) {
+        let last = last.r * scale[0] + offset[0];
+        let documented = rad * scale[0] + offset[0];
+        if documented < last && rad >= last * (1.0 - 1e-9) && (scale[0] != 1.0 || offset[0] != 0.0) {
+            file.radius_in_metres = true;
+            lines.warnings.push(Warning {
+                line: radius_line,
+                message: format!(
+                    "R = {rad} would lie inside the blade in the r column's units ({documented} m); \
+                     read in metres, as QPROP 1.22 reads it"
+                ),
+            });
+        }
+    }
     file.check_rows()?;
     let mut warnings = lines.warnings;
     warnings.extend(file.qprop_differences());
@@ -395,9 +424,9 @@ impl PropFile {
         }
         if let Some(rad) = self.radius {
             let last = self.rows.last().map(|r| r.r).unwrap_or(0.0);
-            if rad * self.scale[0] + self.offset[0] < last * self.scale[0] + self.offset[0] {
+            if self.tip_radius(RadiusReading::Documented) < last * self.scale[0] + self.offset[0] {
                 return Err(ParsePropError::Invalid {
-                    line: 0,
+                    line: self.radius_line,
                     message: format!("tip radius R = {rad} on line 2 is less than the last radius {last}"),
                 });
             }
@@ -409,11 +438,11 @@ impl PropFile {
     /// warnings of [`parse_prop`]).
     pub fn qprop_differences(&self) -> Vec<Warning> {
         let mut w = Vec::new();
-        if let Some(rad) = self.radius {
+        if let Some(rad) = self.radius.filter(|_| !self.radius_in_metres) {
             if self.scale[0] != 1.0 || self.offset[0] != 0.0 {
                 let si = rad * self.scale[0] + self.offset[0];
                 w.push(Warning {
-                    line: 0,
+                    line: self.radius_line,
                     message: format!(
                         "line 2 gives R = {rad}: QPROP 1.22 takes it unscaled as {rad} m, propbet reads it in the \
                          units of the r column as {si} m"
@@ -456,6 +485,7 @@ impl PropFile {
             .unwrap_or(0.0);
         match (self.radius, reading) {
             (None, _) => last,
+            (Some(r), RadiusReading::Documented) if self.radius_in_metres => r,
             (Some(r), RadiusReading::Documented) => r * self.scale[0] + self.offset[0],
             (Some(r), RadiusReading::Qprop122) => r,
         }
@@ -503,6 +533,8 @@ impl PropFile {
             name: name.to_string(),
             blades: blade.blades,
             radius: Some(blade.tip_radius),
+            radius_in_metres: false,
+            radius_line: 0,
             global,
             scale: [1.0, 1.0, 1.0],
             offset: [0.0, 0.0, 0.0],
@@ -720,7 +752,7 @@ mod tests {
                 if coeffs.len() > 8 { coeffs[8] = coeffs[8].abs() + 1.0; }
                 rows.push(PropRow { r, chord: 0.01 + s, beta: 40.0 * s, coeffs });
             }
-            let f = PropFile { name: "p".into(), blades: blades as f64, radius, global,
+            let f = PropFile { name: "p".into(), blades: blades as f64, radius, radius_in_metres: false, radius_line: 0, global,
                 scale: [1.0, 1.0, 1.0], offset: [0.0; 3], rows, row_lines: vec![] };
             let text = write_prop(&f);
             let (g1, _) = parse_prop(&text).unwrap();
