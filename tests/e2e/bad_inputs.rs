@@ -189,6 +189,22 @@ fn tip_radius_in_metres_with_stations_in_cm_is_read_as_qprop_reads_it() {
         let (t_ref, _) = thrust(cam6x3().to_str().unwrap(), extra);
         assert_eq!(t, t_ref);
         assert!((t - 0.6596).abs() < 5e-5, "{t}");
-        assert!(e.contains("line 4: R = 0.0762 would lie inside the blade") && !e.contains("line 0"), "{e}");
+        assert!(
+            e.contains("line 4: R = 0.0762 would lie inside the blade") && !e.contains("line 0"),
+            "{e}"
+        );
     }
+}
+
+#[test]
+fn a_cloud_with_corrupt_coordinates_is_refused_not_searched_for_ever() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        &["scan", &bad("cloud_hang.ply"), "--stations", "0.3:0.9/5", "-o", "out"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("cloud_hang.ply") && e.contains("not a propeller"), "{e}");
+    assert!(!dir.path().join("out/geometry.csv").exists());
 }

@@ -389,6 +389,9 @@ pub fn blade_labels<S: Surface + Sync>(s: &S, blades: usize, root: f64, tip: f64
 /// Propeller sizes this tool expects [mm]: a warning outside.
 pub const PLAUSIBLE_DIAMETER_MM: (f64, f64) = (25.0, 3000.0);
 
+/// Largest radius a scan may reach [mm] (100 m): beyond it the input is not a propeller.
+const MAX_RADIUS_MM: f64 = 1.0e5;
+
 fn plausibility(tip: f64, notes: &mut Vec<String>) {
     let d = 2.0 * tip;
     if d < PLAUSIBLE_DIAMETER_MM.0 || d > PLAUSIBLE_DIAMETER_MM.1 {
@@ -621,6 +624,8 @@ fn manual_frame<S: Surface>(m: &S, man: &MmManual) -> Result<Frame, ScanError> {
 /// Hub radius: the largest radius below `limit` where the cut goes all round the axis (no
 /// angular gap over 20°), by a scan in `step` then bisection.
 fn hub_radius<S: Surface>(s: &S, limit: f64, step: f64) -> Option<f64> {
+    // At most 2,000 cuts, whatever the size (a corrupt cloud reaches 1e34 mm).
+    let step = step.max(limit / 2000.0);
     let full = |r: f64| {
         let mut th: Vec<f64> = s.cylinder_cut(r).iter().map(|p| p.0).collect();
         if th.len() < 18 {
@@ -689,19 +694,26 @@ fn finish<S: Surface + Sync + ScanSurface>(
     // The tip in mm, whatever unit the frame was found in.
     let tip = local.max_radius();
     frame.tip_radius = tip;
+    if !(tip.is_finite() && tip <= MAX_RADIUS_MM) {
+        return Err(ScanError::Input(format!(
+            "the surface reaches {tip:.4e} mm from the axis: not a propeller (a corrupted file, stray points or \
+             wrong units; --crop keeps a region)"
+        )));
+    }
     plausibility(tip, &mut notes);
     let blades = frame.blades;
     let hub = hub_radius(local, 0.5 * tip, 0.25);
     // Root: the first radius beyond the hub where blade 0 has a section.
     let mut root = hub.unwrap_or(0.0);
     {
-        let mut r = root + 0.25;
+        let step = 0.25f64.max(tip / 4000.0);
+        let mut r = root + step;
         while r < tip {
             if split_blades(&local.cylinder_cut(r), blades)[0].len() >= 8 {
                 root = r;
                 break;
             }
-            r += 0.25;
+            r += step;
         }
     }
     // First pass: each station cut, measured and fitted from its own measure.
