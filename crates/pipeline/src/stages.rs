@@ -112,18 +112,7 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
             }
         })
         .collect();
-    PropFile {
-        name: name.to_string(),
-        blades: g.blades as f64,
-        radius: Some(g.tip_radius),
-        radius_in_metres: false,
-        radius_line: 0,
-        global: generic.to_array(),
-        scale: [1.0, 1.0, 1.0],
-        offset: [0.0, 0.0, 0.0],
-        rows,
-        row_lines: Vec::new(),
-    }
+    PropFile::metric(name.to_string(), g.blades as f64, g.tip_radius, rows)
 }
 
 /// Each station's CST section as a Selig file (`airfoils/station_NN.dat`).

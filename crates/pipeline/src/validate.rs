@@ -142,7 +142,6 @@ pub fn validate_prop(
         apc_airfoil(&pe0.airfoils[1].1, &spec.airfoils)?,
     );
     // The blade (metres) and each station's section scaled to the PE0 thickness there.
-    let generic = propbet_qprop::GENERIC;
     let mut rows = Vec::new();
     let mut airfoils = Vec::new();
     for (i, row) in table.iter().enumerate() {
@@ -166,18 +165,7 @@ pub fn validate_prop(
         foil.name = format!("{} t/c {:.3}", base.name, tc);
         airfoils.push((i, foil.to_selig()));
     }
-    let file = PropFile {
-        name: format!("{prop} (UIUC geometry, APC PE0 sections)"),
-        blades: 2.0,
-        radius: Some(big_r),
-        radius_in_metres: false,
-        radius_line: 0,
-        global: generic.to_array(),
-        scale: [1.0, 1.0, 1.0],
-        offset: [0.0, 0.0, 0.0],
-        rows,
-        row_lines: Vec::new(),
-    };
+    let file = PropFile::metric(format!("{prop} (UIUC geometry, APC PE0 sections)"), 2.0, big_r, rows);
     let geometry_path = dir.join("geometry.qprop");
     let geometry = as_written(&file, &geometry_path)?;
     let foil_dir = dir.join("airfoils");

@@ -367,6 +367,24 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
 }
 
 impl PropFile {
+    /// A prop file in metres (Rfac = Cfac = Bfac = 1) with the tip radius on line 2 and
+    /// [`crate::GENERIC`] as the global coefficients: what propbet writes for a blade it has
+    /// measured (a scan, a validation geometry) before its polars are fitted.
+    pub fn metric(name: String, blades: f64, tip_radius: f64, rows: Vec<PropRow>) -> PropFile {
+        PropFile {
+            name,
+            blades,
+            radius: Some(tip_radius),
+            radius_in_metres: false,
+            radius_line: 0,
+            global: crate::GENERIC.to_array(),
+            scale: [1.0, 1.0, 1.0],
+            offset: [0.0, 0.0, 0.0],
+            rows,
+            row_lines: Vec::new(),
+        }
+    }
+
     fn row_line(&self, i: usize) -> usize {
         self.row_lines.get(i).copied().unwrap_or(0)
     }
