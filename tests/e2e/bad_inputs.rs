@@ -208,3 +208,83 @@ fn a_cloud_with_corrupt_coordinates_is_refused_not_searched_for_ever() {
     assert!(e.contains("cloud_hang.ply") && e.contains("not a propeller"), "{e}");
     assert!(!dir.path().join("out/geometry.csv").exists());
 }
+
+#[test]
+fn absurd_operating_points_and_cases_that_would_overwrite_their_inputs_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let cam = cam6x3();
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            cam.to_str().unwrap(),
+            "--rpm",
+            "8000",
+            "--v",
+            "1e300",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("beyond any small propeller's operating range"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(
+        &["predict", "--prop", cam.to_str().unwrap(), "--rpm", "1e20"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    // A case whose measurements lie in its own output directory.
+    let case = dir.path().join("case");
+    std::fs::create_dir_all(case.clone()).unwrap();
+    std::fs::create_dir_all(dir.path().join("out")).unwrap();
+    std::fs::copy(&cam, case.join("cam6x3.qprop")).unwrap();
+    std::fs::write(dir.path().join("out/m.csv"), "rpm,thrust_N\n8000,1.0\n").unwrap();
+    std::fs::write(
+        case.join("case.toml"),
+        "name = \"x\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"8000\"\nj = \"0:0.4:0.2\"\n\
+         [measured]\nfiles = [\"../out/m.csv\"]\n",
+    )
+    .unwrap();
+    let o = run(&["run", "case", "-o", "out"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("inside the output directory"), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("out/m.csv")).unwrap(),
+        "rpm,thrust_N\n8000,1.0\n"
+    );
+}
+
+#[test]
+fn a_closed_standard_error_or_output_is_not_a_panic() {
+    // `propbet ... 2>&1 >/dev/null | head -1`: the reader of the pipe has gone when propbet
+    // writes its warnings (this prop file has two); the messages are lost, the run is not.
+    for (out, err) in [(false, true), (true, false)] {
+        let pipe = |on: bool| {
+            if on {
+                std::process::Stdio::piped()
+            } else {
+                std::process::Stdio::null()
+            }
+        };
+        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_propbet"))
+            .args([
+                "prop",
+                repo().join("props/photofoil_8x4.5/QProp_8x4_5.txt").to_str().unwrap(),
+            ])
+            .stdout(pipe(out))
+            .stderr(pipe(err))
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        drop(child.stderr.take());
+        let status = child.wait().unwrap();
+        assert_ne!(
+            status.code(),
+            Some(101),
+            "panicked with stdout closed {out}, stderr closed {err}"
+        );
+    }
+}

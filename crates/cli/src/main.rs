@@ -6,6 +6,24 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+/// `eprintln!` that does not panic when standard error is closed (`propbet ... 2>&- `, or a
+/// pipe whose reader has gone): a message nobody can read is not a reason to abort. Defined
+/// before the modules, so it replaces the standard macro in all of them.
+macro_rules! eprintln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+
+/// `println!` that does not panic when standard output is closed (`propbet ... | head -1`).
+macro_rules! println {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
 mod compare;
 mod diagnose;
 mod output;

@@ -190,7 +190,8 @@ pub fn read_geometry(text: &str) -> Result<Vec<GeometryRow>, ReadError> {
     let mut rows = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let f: Vec<&str> = line.split_whitespace().collect();
-        if f.is_empty() || f[0].parse::<f64>().is_err() {
+        // Header lines before the table; within it every row must be numbers.
+        if f.is_empty() || (rows.is_empty() && f[0].parse::<f64>().is_err()) {
             continue;
         }
         let bad = |message: String| ReadError::Line { line: i + 1, message };
@@ -248,6 +249,10 @@ mod tests {
         let (c, b) = super::geometry_at(&t, 0.175).unwrap();
         assert!((c - 0.13).abs() < 1e-12 && (b - 29f64.to_radians()).abs() < 1e-12);
         assert_eq!(super::geometry_at(&t, 0.3), None);
+        let e = super::read_geometry("r/R c/R beta\n0.1 0.2 3\n0.1x 0.135 25.28\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("line 3") && e.contains("not three numbers"), "{e}");
         let e = super::read_geometry("0.1 0.2\n").unwrap_err().to_string();
         assert!(e.contains("line 1"), "{e}");
         let e = super::read_geometry("0.1 0.2 x\n0.2 0.1 3\n").unwrap_err().to_string();

@@ -348,6 +348,23 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
             spec.omegas.len()
         );
     }
+    if let Some(bad) = spec.omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
+        invalid!(
+            "--rpm: {} is beyond any small propeller's speed (at most 500000)",
+            crate::spec::rpm_text(*bad)
+        );
+    }
+    let speeds = match &spec.axis {
+        SweepAxis::J(j) => j.iter().any(|j| j.abs() > propbet_measure::limits::ADVANCE_RATIO),
+        SweepAxis::V(v) => v.iter().any(|v| v.abs() > propbet_measure::limits::AIRSPEED),
+    };
+    if speeds {
+        invalid!(
+            "--j / --v: beyond any small propeller's operating range (|J| at most {}, |V| at most {} m/s)",
+            propbet_measure::limits::ADVANCE_RATIO,
+            propbet_measure::limits::AIRSPEED
+        );
+    }
     if let Some(bad) = spec.omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
         invalid!(
             "--rpm: rotation speed must not be negative, found {}",

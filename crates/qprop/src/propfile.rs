@@ -586,7 +586,13 @@ fn join(vals: &[f64]) -> String {
 /// Note that QPROP 1.22 reads R on line 2 unscaled; with Rfac != 1 the file means R in r units.
 pub fn write_prop(file: &PropFile) -> String {
     let mut out = String::new();
-    let name: String = file.name.replace('!', "|");
+    // One line: a newline or other control character in a name would break the file.
+    let name: String = file
+        .name
+        .replace('!', "|")
+        .chars()
+        .map(|c| if c.is_control() { ' ' } else { c })
+        .collect();
     let name = if name.trim().is_empty() {
         "propeller".to_string()
     } else {
@@ -745,6 +751,13 @@ mod tests {
         let (f, _) = parse_prop(CAM).unwrap();
         let (g, _) = parse_prop(&write_prop(&f)).unwrap();
         assert_eq!(f, g);
+        // A name with a newline (a case's name, --name) stays one line.
+        let h = PropFile {
+            name: "two\nlines\r\tname".into(),
+            ..f
+        };
+        let (k, _) = parse_prop(&write_prop(&h)).unwrap();
+        assert_eq!(k.name, "two lines  name");
     }
 
     fn finite() -> impl Strategy<Value = f64> {
