@@ -103,16 +103,15 @@ impl XfoilArgs {
         let mut a = parse_list("--alpha", &self.alpha)?;
         a.sort_by(f64::total_cmp);
         a.dedup();
-        if let Some(bad) = a.iter().find(|x| x.abs() > 90.0) {
-            bail!("--alpha: {bad} deg is outside -90..90");
-        }
-        Ok(XfoilSpec {
+        let spec = XfoilSpec {
             process: self.process.spec(),
             ncrit: self.ncrit,
             alphas_deg: a,
             panels: self.panels,
             iter: self.iter,
-        })
+        };
+        spec.check()?;
+        Ok(spec)
     }
 }
 

@@ -106,7 +106,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     }
     // No input of the case may lie where the run writes (a stage would overwrite it).
     if let Ok(o) = out.canonicalize() {
-        for input in plan_inputs(&plan) {
+        for input in plan.inputs() {
             if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {
                 bail!(
                     "{}: the case reads {}, which is inside the output directory {}; choose another -o",
@@ -160,25 +160,6 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         report_path.display()
     );
     Ok(outcome.clean())
-}
-
-/// The files a plan reads from the case (not those its own stages write).
-fn plan_inputs(plan: &RunPlan) -> Vec<PathBuf> {
-    let mut v = Vec::new();
-    if let Some(s) = &plan.scan {
-        v.push(s.input.clone());
-        v.extend(s.reference.clone());
-    } else {
-        v.push(plan.predict.model.prop.clone());
-    }
-    if let Some((p, _)) = &plan.polars {
-        v.push(PathBuf::from(&p.airfoil));
-    }
-    if let Some((c, _)) = &plan.compare {
-        v.extend(c.measured.files.iter().cloned());
-        v.extend(c.measured.columns.clone());
-    }
-    v
 }
 
 fn create_parent(path: &Path) -> Result<()> {

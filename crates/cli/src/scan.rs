@@ -152,12 +152,7 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
         Some(s) => parse_list("--stations", s)?,
         None => default_stations(),
     };
-    if let Some(x) = stations.iter().find(|&&x| !(x > 0.0 && x <= 1.0)) {
-        bail!("--stations: r/R {x} is outside (0, 1]");
-    }
-    if !(a.slab > 0.0 && a.slab.is_finite()) {
-        bail!("--slab {}: must be a positive thickness in mm", a.slab);
-    }
+    // The stations and the slab are checked by the scan stage (propbet_pipeline::stages::scan).
     let reference_box = match &a.box_dims {
         None => None,
         Some(d) => {

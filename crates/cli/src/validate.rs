@@ -138,6 +138,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
         &[propbet_qprop::write_prop(&v.geometry.file)],
         &[],
     )?;
+    // The two comparisons, in the order of their stages.
     let mut compared = [&v.compared, &v.calibrated].into_iter();
     for StageRecord { spec, .. } in &v.stages {
         match spec {
@@ -146,14 +147,8 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
                 crate::polar::write_polars(s, &v.polars.0)?;
             }
             StageSpec::Compare(s) => {
-                let c = compared.next().expect("two comparisons");
-                let model = propbet_pipeline::model::Model::from_parts(
-                    &s.model,
-                    v.polars.0.prop.clone(),
-                    Some(&v.polars.0.blade),
-                    false,
-                )?;
-                crate::compare::write(s, &model, c)?;
+                let (c, model) = compared.next().expect("two comparisons");
+                crate::compare::write(s, model, c)?;
                 crate::compare::print(s, c);
             }
             StageSpec::Diagnose(s) => {

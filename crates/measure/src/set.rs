@@ -156,7 +156,7 @@ pub enum DropReason {
 /// in the shared data are about 30,000 rpm, 60 N, 2 N m, CT 0.2, J 1.2).
 pub mod limits {
     /// Rotation rate [rad/s] (500,000 rpm).
-    pub const OMEGA: f64 = 500_000.0 * std::f64::consts::PI / 30.0;
+    pub const OMEGA: f64 = propbet_units::rpm_to_omega(500_000.0);
     /// Thrust [N].
     pub const THRUST: f64 = 1.0e5;
     /// Torque [N m].

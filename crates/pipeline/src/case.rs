@@ -214,6 +214,25 @@ pub struct RunPlan {
 }
 
 impl RunPlan {
+    /// The files the plan reads from the case (not those its own stages write).
+    pub fn inputs(&self) -> Vec<PathBuf> {
+        let mut v = Vec::new();
+        match &self.scan {
+            Some(s) => {
+                v.push(s.input.clone());
+                v.extend(s.reference.clone());
+            }
+            None => v.push(self.predict.model.prop.clone()),
+        }
+        if let Some((p, _)) = &self.polars {
+            v.push(PathBuf::from(&p.airfoil));
+        }
+        if let Some((c, _)) = &self.compare {
+            v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
+        }
+        v
+    }
+
     /// The specs in the order they run.
     pub fn stages(&self) -> Vec<StageSpec> {
         let mut v = Vec::new();

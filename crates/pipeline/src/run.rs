@@ -87,6 +87,59 @@ impl RunOutcome {
     }
 }
 
+/// Runs one stage without events: its command, time and whether it ran clean (`clean` of its
+/// result) go into `records`.
+pub(crate) fn timed<T>(
+    records: &mut Vec<StageRecord>,
+    spec: StageSpec,
+    run: impl FnOnce() -> Result<T>,
+    clean: impl Fn(&T) -> bool,
+) -> Result<T> {
+    let t0 = Instant::now();
+    let out = run()?;
+    records.push(StageRecord {
+        clean: clean(&out),
+        spec,
+        seconds: t0.elapsed().as_secs_f64(),
+    });
+    Ok(out)
+}
+
+/// The stages' bookkeeping: numbering, timing, records, and the events the caller hears.
+struct Book<'o> {
+    on: &'o mut dyn for<'a> FnMut(Event<'a>),
+    records: Vec<StageRecord>,
+    total: usize,
+}
+
+impl Book<'_> {
+    /// A stage starts.
+    fn start(&mut self, spec: StageSpec) -> (StageSpec, Instant) {
+        let n = self.records.len() + 1;
+        (self.on)(Event::Start {
+            n,
+            total: self.total,
+            spec: &spec,
+        });
+        (spec, Instant::now())
+    }
+
+    /// It finished, clean or with reported problems, having made `made`.
+    fn done(&mut self, (spec, t0): (StageSpec, Instant), clean: bool, made: Finished) {
+        self.records.push(StageRecord {
+            spec,
+            seconds: t0.elapsed().as_secs_f64(),
+            clean,
+        });
+        (self.on)(Event::Done {
+            n: self.records.len(),
+            total: self.total,
+            record: self.records.last().expect("pushed"),
+            made,
+        });
+    }
+}
+
 /// Runs a plan. `progress` is the XFOIL stage's (jobs done, jobs in all); `on` hears each
 /// stage start and finish.
 pub fn run_case(
@@ -94,29 +147,18 @@ pub fn run_case(
     progress: &propbet_polar::Progress<'_>,
     on: &mut dyn FnMut(Event),
 ) -> Result<RunOutcome> {
-    let specs = plan.stages();
-    let total = specs.len() + 1;
-    let mut records: Vec<StageRecord> = Vec::new();
-    let mut n = 0;
-    let mut start = |spec: &StageSpec, on: &mut dyn FnMut(Event)| {
-        n += 1;
-        on(Event::Start { n, total, spec });
-        (n, Instant::now())
-    };
-    let record = |spec: &StageSpec, t0: Instant, clean: bool| StageRecord {
-        spec: spec.clone(),
-        seconds: t0.elapsed().as_secs_f64(),
-        clean,
+    let mut book = Book {
+        on,
+        records: Vec::new(),
+        total: plan.stages().len() + 1,
     };
     let stage_err = |name: &str, e: Error| Error::Invalid(format!("{name} stage: {e}"));
-    let mut it = specs.iter();
 
     // 1. Geometry.
     let mut scanned = None;
     let mut geometry: Option<LoadedProp> = None;
     if let Some(spec) = &plan.scan {
-        let s = it.next().expect("the scan stage");
-        let (k, t0) = start(s, on);
+        let t = book.start(StageSpec::Scan(spec.clone()));
         let r = stages::scan(spec).map_err(|e| stage_err("scan", e))?;
         if let Some(want) = plan.blades {
             if want != r.geometry.blades {
@@ -126,13 +168,7 @@ pub fn run_case(
                 ));
             }
         }
-        records.push(record(s, t0, true));
-        on(Event::Done {
-            n: k,
-            total,
-            record: records.last().expect("pushed"),
-            made: Finished::Scan(&r),
-        });
+        book.done(t, true, Finished::Scan(&r));
         geometry = Some(r.prop.clone());
         scanned = Some(r);
     }
@@ -140,8 +176,7 @@ pub fn run_case(
     // 2. Polars.
     let mut polars = None;
     if let Some((spec, scanned_sections)) = &plan.polars {
-        let s = it.next().expect("the polars stage");
-        let (k, t0) = start(s, on);
+        let t = book.start(StageSpec::Polars(spec.clone()));
         let run = || -> Result<(Polars, PolarsInput)> {
             let (foil, mut notes) = stages::load_airfoil(&spec.airfoil, spec.thickness)?;
             let geometry = match &geometry {
@@ -170,20 +205,13 @@ pub fn run_case(
             Ok((stages::polars(spec, &input, &engine, progress)?, input))
         };
         let (p, input) = run().map_err(|e| stage_err("polars", e))?;
-        records.push(record(s, t0, p.all_fitted()));
-        on(Event::Done {
-            n: k,
-            total,
-            record: records.last().expect("pushed"),
-            made: Finished::Polars(&p, &input),
-        });
+        book.done(t, p.all_fitted(), Finished::Polars(&p, &input));
         polars = Some(p);
     }
 
     // 3. Sweeps: the polars' prop file in memory, else the case's own.
     let spec = &plan.predict;
-    let s = it.next().expect("the predict stage");
-    let (k, t0) = start(s, on);
+    let t = book.start(StageSpec::Predict(spec.clone()));
     let model = match &polars {
         Some(p) => Model::from_parts(&spec.model, p.prop.clone(), Some(&p.blade), false),
         None => Model::load(&spec.model, false),
@@ -192,38 +220,19 @@ pub fn run_case(
     let fluid = spec.air.fluid().map_err(|e| stage_err("predict", e))?;
     let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
     let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
-    records.push(record(s, t0, sweep.iter().all(|p| p.not_converged == 0)));
-    on(Event::Done {
-        n: k,
-        total,
-        record: records.last().expect("pushed"),
-        made: Finished::Predict(&sweep, &model),
-    });
+    let clean = sweep.iter().all(|p| p.not_converged == 0);
+    book.done(t, clean, Finished::Predict(&sweep, &model));
 
     // 4-5. Comparison and diagnosis.
     let (mut compared, mut diagnosed) = (None, None);
     if let Some((cspec, dspec)) = &plan.compare {
-        let s = it.next().expect("the compare stage");
-        let (k, t0) = start(s, on);
+        let t = book.start(StageSpec::Compare(cspec.clone()));
         let c = stages::compare(&model, &cspec.measured).map_err(|e| stage_err("compare", e))?;
-        records.push(record(s, t0, c.problems() == (0, 0)));
-        on(Event::Done {
-            n: k,
-            total,
-            record: records.last().expect("pushed"),
-            made: Finished::Compare(&c, &model),
-        });
+        book.done(t, c.problems() == (0, 0), Finished::Compare(&c, &model));
         compared = Some(c);
-        let s = it.next().expect("the diagnose stage");
-        let (k, t0) = start(s, on);
+        let t = book.start(StageSpec::Diagnose(dspec.clone()));
         let d = stages::diagnose(&model, dspec).map_err(|e| stage_err("diagnose", e))?;
-        records.push(record(s, t0, true));
-        on(Event::Done {
-            n: k,
-            total,
-            record: records.last().expect("pushed"),
-            made: Finished::Diagnose(&d),
-        });
+        book.done(t, true, Finished::Diagnose(&d));
         diagnosed = Some(d);
     }
     Ok(RunOutcome {
@@ -234,6 +243,6 @@ pub fn run_case(
         sweep,
         compared,
         diagnosed,
-        stages: records,
+        stages: book.records,
     })
 }

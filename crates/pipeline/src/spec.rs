@@ -7,11 +7,10 @@
 use std::path::PathBuf;
 
 use propbet_atmosphere::AirState;
-use propbet_bemt::units::{omega_to_rpm, rpm_to_omega};
 use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_measure::RpmSource;
 
-use crate::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
+use crate::values::{length_unit_name, list_text, rpm_list_text, rpm_text, scaled_text};
 
 /// The `propbet` command line of one stage (without the program name).
 pub type Argv = Vec<String>;
@@ -33,6 +32,16 @@ fn push_eq(v: &mut Argv, flag: &str, value: impl AsRef<str>) {
 /// Degrees as text that reads back to exactly `rad`.
 fn deg_text(rad: f64) -> String {
     scaled_text(rad, f64::to_degrees, f64::to_radians)
+}
+
+/// Millimetres as text that reads back to exactly `m` [m] (the scan's flags are in mm).
+fn mm_text(m: f64) -> String {
+    scaled_text(m, |x| x * 1000.0, |x| x / 1000.0)
+}
+
+/// Percent as text that reads back to exactly the fraction `f`.
+fn percent_text(f: f64) -> String {
+    scaled_text(f, |x| 100.0 * x, |x| x / 100.0)
 }
 
 /// The XFOIL executable, the polar cache and progress.
@@ -87,6 +96,14 @@ pub struct XfoilSpec {
 }
 
 impl XfoilSpec {
+    /// The angles are ones XFOIL can be asked for.
+    pub fn check(&self) -> crate::Result<()> {
+        if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
+            crate::invalid!("--alpha: {bad} deg is outside -90..90");
+        }
+        Ok(())
+    }
+
     fn push_argv(&self, v: &mut Argv) {
         self.process.push_argv(v);
         if self.ncrit != DEFAULT_NCRIT {
@@ -124,11 +141,7 @@ impl AirSpec {
             push_eq(v, "--temp", format!("{}K", s.temperature));
             push(v, "--pressure", format!("{}", s.pressure));
             if s.relative_humidity != 0.0 {
-                push(
-                    v,
-                    "--humidity",
-                    scaled_text(s.relative_humidity, |x| 100.0 * x, |x| x / 100.0),
-                );
+                push(v, "--humidity", percent_text(s.relative_humidity));
             }
         }
         for (flag, x) in [("--rho", self.rho), ("--mu", self.mu), ("--a", self.a)] {
@@ -292,7 +305,7 @@ impl MeasuredSpec {
                     "{}K,{},{}",
                     s.temperature,
                     s.pressure,
-                    scaled_text(s.relative_humidity, |x| 100.0 * x, |x| x / 100.0)
+                    percent_text(s.relative_humidity)
                 ),
             );
         }
@@ -411,11 +424,7 @@ impl ScanSpec {
         match unit {
             Some(("mm", _)) => {}
             Some((name, _)) => push(v, "--units", name),
-            None => push_eq(
-                v,
-                "--known-length",
-                format!("0,0,0,1,0,0,{}", scaled_text(o.scale, |x| x * 1000.0, |x| x / 1000.0)),
-            ),
+            None => push_eq(v, "--known-length", format!("0,0,0,1,0,0,{}", mm_text(o.scale))),
         }
         if o.stations != default_stations() {
             push(v, "--stations", list_text(&o.stations));
@@ -427,7 +436,7 @@ impl ScanSpec {
             v.push("--planar".into());
         }
         if o.slab != ScanOptions::default().slab {
-            push(v, "--slab", scaled_text(o.slab, |x| x * 1000.0, |x| x / 1000.0));
+            push(v, "--slab", mm_text(o.slab));
         }
         if o.slab_points != 400 {
             push(v, "--slab-points", o.slab_points.to_string());
@@ -439,7 +448,7 @@ impl ScanSpec {
             push(v, "--colour-threshold", format!("{t}"));
         }
         if let Some(b) = &o.reference_box {
-            let mm = |x: f64| scaled_text(x, |x| x * 1000.0, |x| x / 1000.0);
+            let mm = mm_text;
             push(
                 v,
                 "--box",
@@ -525,7 +534,7 @@ impl StageSpec {
                 if let Some(d) = &s.station_airfoils {
                     push(&mut v, "--station-airfoils", path(d));
                 }
-                push_eq(&mut v, "--rpm", scaled_text(s.omega, omega_to_rpm, rpm_to_omega));
+                push_eq(&mut v, "--rpm", rpm_text(s.omega));
                 if s.v != 0.0 {
                     push_eq(&mut v, "--v", format!("{}", s.v));
                 }
@@ -598,9 +607,4 @@ pub fn shell_word(a: &str) -> String {
     } else {
         a.to_string()
     }
-}
-
-/// Revolutions per minute of `omega` [rad/s], as text that reads back exactly.
-pub fn rpm_text(omega: f64) -> String {
-    scaled_text(omega, omega_to_rpm, rpm_to_omega)
 }

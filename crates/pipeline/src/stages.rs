@@ -281,7 +281,7 @@ impl Polars {
 pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, progress: &Progress<'_>) -> Result<Polars> {
     let (fluid, _) = spec.air.fluid()?;
     if !(spec.omega.is_finite() && spec.omega > 0.0) {
-        invalid!("--rpm: {} must be positive", crate::spec::rpm_text(spec.omega));
+        invalid!("--rpm: {} must be positive", crate::values::rpm_text(spec.omega));
     }
     if !spec.v.is_finite() || spec.v < 0.0 {
         invalid!("--v: {} must be a non-negative speed", spec.v);
@@ -289,9 +289,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
     if let Some(bad) = spec.re_factors.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
         invalid!("--re-factors: {bad} must be positive");
     }
-    if let Some(bad) = spec.xfoil.alphas_deg.iter().find(|x| x.abs() > 90.0) {
-        invalid!("--alpha: {bad} deg is outside -90..90");
-    }
+    spec.xfoil.check()?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
         ncrit: spec.xfoil.ncrit,
@@ -351,7 +349,7 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
     if let Some(bad) = spec.omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
         invalid!(
             "--rpm: {} is beyond any small propeller's speed (at most 500000)",
-            crate::spec::rpm_text(*bad)
+            crate::values::rpm_text(*bad)
         );
     }
     let speeds = match &spec.axis {
@@ -368,7 +366,7 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
     if let Some(bad) = spec.omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
         invalid!(
             "--rpm: rotation speed must not be negative, found {}",
-            crate::spec::rpm_text(*bad)
+            crate::values::rpm_text(*bad)
         );
     }
     Ok(match &spec.axis {

@@ -4,7 +4,6 @@
 //! diagnosed, and compared again with the diagnosis' ladder of effects.
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use propbet_compare::metrics::{quantile, window_errors, VALIDATION_J_WINDOW};
 use propbet_polar::{naca4_from_name, Airfoil};
@@ -12,7 +11,7 @@ use propbet_qprop::apc::{read_pe0, uiuc_diameter};
 use propbet_qprop::{PropFile, PropRow};
 
 use crate::model::{as_written, LoadedProp, Model};
-use crate::run::StageRecord;
+use crate::run::{timed, StageRecord};
 use crate::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilProcessSpec, XfoilSpec,
     DEFAULT_RE_FACTORS,
@@ -103,14 +102,14 @@ pub struct Validated {
     pub airfoils: Vec<(usize, String)>,
     /// The polars and their inputs.
     pub polars: (Polars, PolarsInput),
-    /// The prediction against the measurements.
-    pub compared: Compared,
+    /// The prediction against the measurements, and its model.
+    pub compared: (Compared, Model),
     /// The diagnosis.
     pub diagnosed: Diagnosed,
     /// The ladder's effects (as `--effect` takes them).
     pub effects: Vec<String>,
-    /// The prediction with them.
-    pub calibrated: Compared,
+    /// The prediction with them, and its model.
+    pub calibrated: (Compared, Model),
     /// The stages.
     pub stages: Vec<StageRecord>,
     /// The table's row.
@@ -199,7 +198,6 @@ pub fn validate_prop(
         out_prop: dir.join("prop.qprop"),
         out_polars: Some(dir.join("polars.json")),
     };
-    let t0 = Instant::now();
     let input = PolarsInput {
         geometry: geometry.clone(),
         foils,
@@ -207,12 +205,12 @@ pub fn validate_prop(
         notes,
     };
     let engine = stages::polar_engine(&spec.xfoil)?;
-    let polars = stages::polars(&polars_spec, &input, &engine, progress)?;
-    records.push(StageRecord {
-        spec: StageSpec::Polars(polars_spec),
-        seconds: t0.elapsed().as_secs_f64(),
-        clean: polars.all_fitted(),
-    });
+    let polars = timed(
+        &mut records,
+        StageSpec::Polars(polars_spec.clone()),
+        || stages::polars(&polars_spec, &input, &engine, progress),
+        Polars::all_fitted,
+    )?;
 
     // The measurements: every file of this prop but the geometry.
     let mut measured: Vec<PathBuf> = std::fs::read_dir(&spec.uiuc)
@@ -236,15 +234,13 @@ pub fn validate_prop(
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
-    let compare_stage = |spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>| -> Result<Compared> {
-        let t0 = Instant::now();
-        let c = stages::compare(model, &spec.measured)?;
-        records.push(StageRecord {
-            spec: StageSpec::Compare(spec),
-            seconds: t0.elapsed().as_secs_f64(),
-            clean: c.problems() == (0, 0),
-        });
-        Ok(c)
+    let compare_stage = |spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>| {
+        timed(
+            records,
+            StageSpec::Compare(spec.clone()),
+            || stages::compare(model, &spec.measured),
+            |c: &Compared| c.problems() == (0, 0),
+        )
     };
     let compared = compare_stage(
         CompareSpec {
@@ -263,13 +259,12 @@ pub fn validate_prop(
         max_steps: crate::spec::DEFAULT_MAX_STEPS,
         out: dir.join("diagnose"),
     };
-    let t0 = Instant::now();
-    let diagnosed = stages::diagnose(&model, &dspec)?;
-    records.push(StageRecord {
-        spec: StageSpec::Diagnose(dspec),
-        seconds: t0.elapsed().as_secs_f64(),
-        clean: true,
-    });
+    let diagnosed = timed(
+        &mut records,
+        StageSpec::Diagnose(dspec.clone()),
+        || stages::diagnose(&model, &dspec),
+        |_| true,
+    )?;
     // Calibrated: the ladder's effects as the command line gives them.
     let effects: Vec<String> = diagnosed
         .diagnosis
@@ -310,10 +305,10 @@ pub fn validate_prop(
         geometry,
         airfoils,
         polars: (polars, input),
-        compared,
+        compared: (compared, model),
         diagnosed,
         effects,
-        calibrated,
+        calibrated: (calibrated, cal_model),
         stages: records,
         row,
     })

@@ -218,35 +218,21 @@ pub fn list_text(v: &[f64]) -> String {
     v.iter().map(|x| format!("{x}")).collect::<Vec<_>>().join(",")
 }
 
-/// Rotation speeds [rad/s] as the rpm list a flag takes, read back exactly.
+/// Rotation speeds [rad/s] as the rpm list a flag takes, read back exactly: each speed as the
+/// shortest rpm text that converts back to it ([`scaled_text`]), the list as [`list_text`]
+/// writes it (which reads back to exactly those numbers).
 pub fn rpm_list_text(omegas: &[f64]) -> String {
     let rpm: Vec<f64> = omegas
         .iter()
-        .map(|&w| {
-            scaled_text(w, propbet_bemt::units::omega_to_rpm, propbet_bemt::units::rpm_to_omega)
-                .parse()
-                .unwrap_or(f64::NAN)
-        })
+        .map(|&w| rpm_text(w).parse().unwrap_or(f64::NAN))
         .collect();
-    if rpm
-        .iter()
-        .map(|&r| propbet_bemt::units::rpm_to_omega(r))
-        .eq(omegas.iter().copied())
-    {
-        let t = list_text(&rpm);
-        if parse_list("", &t).is_ok_and(|r| {
-            r.iter()
-                .map(|&x| propbet_bemt::units::rpm_to_omega(x))
-                .eq(omegas.iter().copied())
-        }) {
-            return t;
-        }
-    }
-    omegas
-        .iter()
-        .map(|&w| scaled_text(w, propbet_bemt::units::omega_to_rpm, propbet_bemt::units::rpm_to_omega))
-        .collect::<Vec<_>>()
-        .join(",")
+    list_text(&rpm)
+}
+
+/// Revolutions per minute of `omega` [rad/s], as text that reads back exactly.
+pub fn rpm_text(omega: f64) -> String {
+    use propbet_bemt::units::{omega_to_rpm, rpm_to_omega};
+    scaled_text(omega, omega_to_rpm, rpm_to_omega)
 }
 
 #[cfg(test)]

@@ -7,7 +7,7 @@
 use std::f64::consts::PI;
 
 /// Angular rate [rad/s] of `rpm` revolutions per minute.
-pub fn rpm_to_omega(rpm: f64) -> f64 {
+pub const fn rpm_to_omega(rpm: f64) -> f64 {
     rpm * PI / 30.0
 }
 
