@@ -90,14 +90,16 @@ pub fn html(rows: &[Row], skipped: &[String], rpm: f64) -> String {
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
         esc(&intro(rpm))
     );
-    for c in HEAD {
-        let _ = write!(h, "<th>{}</th>", esc(c));
+    // The last column (the ladder) is text: left-aligned.
+    let class = |k: usize| if k + 1 == HEAD.len() { " class=\"text\"" } else { "" };
+    for (k, c) in HEAD.iter().enumerate() {
+        let _ = write!(h, "<th{}>{}</th>", class(k), esc(c));
     }
     h.push_str("</tr>\n");
     for (k, r) in rows.iter().map(cells).chain(std::iter::once(overall(rows))).enumerate() {
         h.push_str(if k == rows.len() { "<tr class=\"sig\">" } else { "<tr>" });
-        for c in r {
-            let _ = write!(h, "<td>{}</td>", esc(&c));
+        for (k, c) in r.iter().enumerate() {
+            let _ = write!(h, "<td{}>{}</td>", class(k), esc(c));
         }
         h.push_str("</tr>\n");
     }
