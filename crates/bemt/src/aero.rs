@@ -52,6 +52,11 @@ pub trait SectionAero: Send + Sync + std::fmt::Debug {
     fn as_qprop(&self) -> Option<&QpropAirfoil> {
         None
     }
+    /// Reynolds numbers the model has data for (lowest, highest), if it is data at all: a
+    /// station solved outside them runs on extrapolated data.
+    fn reynolds_range(&self) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// Cap on the local M^2 used for Prandtl-Glauert and drag rise (QPROP's `MSQMAX`).
@@ -300,50 +305,5 @@ mod tests {
         );
         // No flow: finite drag, not infinity.
         assert!(m.drag(&DragInput { re: 0.0, ..base }).is_finite());
-    }
-}
-
-/// Two section models mixed by a fraction: `(1 - f) * a + f * b` in lift, its derivatives and
-/// drag. Used between input stations whose models cannot be interpolated coefficient by
-/// coefficient (tabulated polars).
-#[derive(Debug, Clone)]
-pub struct BlendedAero {
-    a: std::sync::Arc<dyn SectionAero>,
-    b: std::sync::Arc<dyn SectionAero>,
-    f: f64,
-}
-
-impl BlendedAero {
-    /// Mixes `a` and `b`; `f` is clamped to [0, 1].
-    pub fn new(a: std::sync::Arc<dyn SectionAero>, b: std::sync::Arc<dyn SectionAero>, f: f64) -> Self {
-        Self {
-            a,
-            b,
-            f: f.clamp(0.0, 1.0),
-        }
-    }
-}
-
-impl SectionAero for BlendedAero {
-    fn lift(&self, alpha: f64, re: f64, msq: f64) -> LiftEval {
-        let (p, q, f) = (self.a.lift(alpha, re, msq), self.b.lift(alpha, re, msq), self.f);
-        let mix = |x: f64, y: f64| x + f * (y - x);
-        LiftEval {
-            cl: mix(p.cl, q.cl),
-            dcl_dalpha: mix(p.dcl_dalpha, q.dcl_dalpha),
-            dcl_dmsq: mix(p.dcl_dmsq, q.dcl_dmsq),
-            dcl_dre: mix(p.dcl_dre, q.dcl_dre),
-            stalled: if f < 0.5 { p.stalled } else { q.stalled },
-        }
-    }
-
-    fn drag(&self, input: &DragInput) -> f64 {
-        let (x, y) = (self.a.drag(input), self.b.drag(input));
-        x + self.f * (y - x)
-    }
-
-    fn alpha_zero_lift(&self) -> f64 {
-        let (x, y) = (self.a.alpha_zero_lift(), self.b.alpha_zero_lift());
-        x + self.f * (y - x)
     }
 }

@@ -304,16 +304,16 @@ pub struct PolarsArgs {
     /// uses `--airfoil`.
     #[arg(long)]
     pub station_airfoils: Option<PathBuf>,
-    /// Operating point: rotation speed [rpm].
-    #[arg(long)]
-    pub rpm: f64,
-    /// Operating point: axial speed [m/s].
-    #[arg(long, default_value_t = 0.0)]
-    pub v: f64,
-    /// Further polars at these multiples of each station's Re, for REexp (`none`: one Re per
-    /// station, REexp kept at -0.5).
-    #[arg(long, default_value = "0.7,1.4")]
-    pub re_factors: String,
+    /// Rotation speeds whose Reynolds numbers the polars cover [rpm]: a list, `start:stop:step`
+    /// or `start:stop/N` (give the sweep's, or the measured range).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rpm: String,
+    /// Advance ratios J = V/(nD) covered with every speed, same syntax.
+    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
+    pub j: Option<String>,
+    /// Axial speeds covered [m/s], same syntax (default: 0, static).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
     /// Air properties.
     #[command(flatten)]
     pub air: FluidArgs,
@@ -331,11 +331,6 @@ pub struct PolarsArgs {
 impl PolarsArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PolarsSpec> {
-        let re_factors = if self.re_factors.trim() == "none" {
-            Vec::new()
-        } else {
-            parse_list("--re-factors", &self.re_factors)?
-        };
         Ok(PolarsSpec {
             geometry: self.geometry.clone(),
             units: self
@@ -346,9 +341,8 @@ impl PolarsArgs {
             airfoil: self.section.airfoil.clone(),
             thickness: self.section.thickness.as_deref().map(parse_fraction).transpose()?,
             station_airfoils: self.station_airfoils.clone(),
-            omega: rpm_to_omega(self.rpm),
-            v: self.v,
-            re_factors,
+            omegas: parse_list("--rpm", &self.rpm)?.into_iter().map(rpm_to_omega).collect(),
+            axis: crate::predict::sweep_axis(self.j.as_deref(), self.v.as_deref())?,
             air: self.air.spec()?,
             xfoil: self.xfoil.spec()?,
             out_prop: self.out_prop.clone(),
@@ -399,6 +393,15 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
             ),
         }
     }
+    let e = &p.export;
+    eprintln!(
+        "exported prop file (QPROP's law) against the tables over {} operating points: CT {:.1} % median, {:.1} % at most; CP {:.1} % median, {:.1} % at most",
+        e.points,
+        100.0 * e.ct[0],
+        100.0 * e.ct[1],
+        100.0 * e.cp[0],
+        100.0 * e.cp[1]
+    );
 }
 
 /// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).

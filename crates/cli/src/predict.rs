@@ -172,11 +172,7 @@ impl PredictArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PredictSpec> {
         let rpms = parse_list("--rpm", &self.rpm)?;
-        let axis = match (&self.j, &self.v) {
-            (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
-            (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
-            (None, None) => SweepAxis::V(vec![0.0]),
-        };
+        let axis = sweep_axis(self.j.as_deref(), self.v.as_deref())?;
         Ok(PredictSpec {
             model: self.model.spec()?,
             omegas: rpms.into_iter().map(rpm_to_omega).collect(),
@@ -190,6 +186,15 @@ impl PredictArgs {
             stations: self.stations.clone(),
         })
     }
+}
+
+/// The second axis of a sweep from `--j` or `--v` (neither: static).
+pub fn sweep_axis(j: Option<&str>, v: Option<&str>) -> Result<SweepAxis> {
+    Ok(match (j, v) {
+        (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
+        (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
+        (None, None) => SweepAxis::V(vec![0.0]),
+    })
 }
 
 /// Runs `propbet predict`; returns whether every station of every point converged.

@@ -9,7 +9,6 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_bemt::units::rpm_to_omega;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::StageSpec;
 use propbet_pipeline::validate::{uiuc_props, validate_prop, Row, ValidateSpec, Validated};
@@ -33,18 +32,15 @@ pub struct ValidateArgs {
     /// Only the props whose name contains one of these (comma-separated).
     #[arg(long)]
     pub only: Option<String>,
-    /// Operating point of the polars' Reynolds numbers [rpm].
-    #[arg(long, default_value_t = 5000.0)]
-    pub rpm: f64,
     /// Output directory.
     #[arg(long, short)]
     pub out: PathBuf,
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stages).
     #[command(flatten)]
     pub xfoil: XfoilProcess,
-    /// Section model: `qprop` (QPROP's law fitted to XFOIL's polars) or `tables` (the polars
-    /// interpolated in alpha and Re).
-    #[arg(long, value_parser = ["tables", "qprop"], default_value = "qprop")]
+    /// Section model: `tables` (XFOIL's polars interpolated in alpha and Re) or `qprop`
+    /// (QPROP's law fitted to them, as the exported prop file holds it).
+    #[arg(long, value_parser = ["tables", "qprop"], default_value = "tables")]
     pub section_model: String,
     /// Transition amplification ratio Ncrit of the polars.
     #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
@@ -58,14 +54,10 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         let keys: Vec<&str> = only.split(',').map(str::trim).collect();
         geoms.retain(|g| keys.iter().any(|k| g.contains(k)));
     }
-    if !(a.rpm.is_finite() && a.rpm > 0.0) {
-        bail!("--rpm: {} must be positive", a.rpm);
-    }
     let spec = ValidateSpec {
         uiuc: a.uiuc.clone(),
         pe0: a.pe0.clone(),
         airfoils: a.airfoils.clone(),
-        omega: rpm_to_omega(a.rpm),
         out: a.out.clone(),
         xfoil: a.xfoil.spec(),
         tables: a.section_model == "tables",
@@ -117,10 +109,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             skipped.join("; ")
         );
     }
-    let (md, csv) = table(&rows, &skipped, a.rpm);
+    let model = format!("section model {}, Ncrit {}", a.section_model, a.ncrit);
+    let (md, csv) = table(&rows, &skipped, &model);
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
-    let html = propbet_report::validate::html(&rows, &skipped, a.rpm);
+    let html = propbet_report::validate::html(&rows, &skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     println!("{md}");
     Ok(all_clean)
@@ -177,8 +170,8 @@ struct CsvRow<'a> {
     ladder: &'a str,
 }
 
-fn table(rows: &[Row], skipped: &[String], rpm: f64) -> (String, Vec<u8>) {
-    let md = propbet_report::validate::markdown(rows, skipped, rpm);
+fn table(rows: &[Row], skipped: &[String], model: &str) -> (String, Vec<u8>) {
+    let md = propbet_report::validate::markdown(rows, skipped, model);
     let mut csv = csv::Writer::from_writer(Vec::new());
     for r in rows {
         // Rows are structs: the header comes from the same fields as the values.

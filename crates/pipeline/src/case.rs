@@ -11,7 +11,7 @@ use propbet_measure::RpmSource;
 
 use crate::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PredictSpec, ScanSpec, StageSpec,
-    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec, DEFAULT_RE_FACTORS,
+    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
 use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
 use crate::{read_text, Error, Result};
@@ -71,26 +71,46 @@ pub struct PolarSection {
     pub airfoil: String,
     /// Scale the airfoil to this thickness ratio.
     pub thickness: Option<String>,
-    /// Operating point whose Reynolds numbers the polars are computed at [rpm].
-    pub rpm: f64,
-    /// Its axial speed [m/s].
-    #[serde(default)]
-    pub v: f64,
+    /// Rotation speeds whose Reynolds numbers the polars cover [rpm]: a number or a list as
+    /// `propbet polars --rpm` takes it (default: the sweep's).
+    pub rpm: Option<NumberOrList>,
+    /// Advance ratios they cover, as `--j` takes them (default: the sweep's, unless `v` is
+    /// given).
+    pub j: Option<String>,
+    /// Axial speeds they cover [m/s] instead of advance ratios: a number or a list.
+    pub v: Option<NumberOrList>,
     /// Transition amplification ratio.
     pub ncrit: Option<f64>,
     /// Angles of attack (`propbet polars --alpha`).
     pub alpha: Option<String>,
-    /// Multiples of each station's Re for REexp.
-    pub re_factors: Option<String>,
-    /// The section model of the sweeps, comparison and diagnosis: `qprop` (QPROP's law fitted
-    /// to the polars; the default) or `tables` (the polars themselves, interpolated in alpha
-    /// and Re).
+    /// The section model of the sweeps, comparison and diagnosis: `tables` (the polars
+    /// themselves, interpolated in alpha and Re; the default) or `qprop` (QPROP's law fitted
+    /// to them, as the exported prop file holds it).
     #[serde(default = "default_model")]
     pub model: String,
 }
 
+/// A number, or a list as the command line writes it (`"2000:7000:1000"`).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum NumberOrList {
+    /// `rpm = 5000`.
+    Number(f64),
+    /// `rpm = "2000:7000:1000"`.
+    List(String),
+}
+
+impl NumberOrList {
+    fn values(&self, flag: &str) -> Result<Vec<f64>> {
+        match self {
+            NumberOrList::Number(x) => Ok(vec![*x]),
+            NumberOrList::List(t) => parse_list(flag, t),
+        }
+    }
+}
+
 fn default_model() -> String {
-    "qprop".into()
+    "tables".into()
 }
 
 fn default_sections() -> String {
@@ -163,11 +183,8 @@ pub fn read_case(dir: &Path) -> Result<Case> {
                 format!("[polars] model = {:?}: `tables` or `qprop`", p.model),
             ));
         }
-        if !(p.rpm.is_finite() && p.rpm > 0.0) {
-            return Err(Error::input(
-                &path,
-                format!("[polars] rpm = {}: must be positive", p.rpm),
-            ));
+        if p.j.is_some() && p.v.is_some() {
+            return Err(Error::input(&path, "[polars] takes `j` or `v`, not both"));
         }
     }
     // Every file the case names must be there before anything runs.
@@ -306,10 +323,15 @@ impl Case {
                 let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
                 alphas.sort_by(f64::total_cmp);
                 alphas.dedup();
-                let re_factors = match p.re_factors.as_deref() {
-                    None => DEFAULT_RE_FACTORS.to_vec(),
-                    Some("none") => Vec::new(),
-                    Some(t) => parse_list("--re-factors", t).map_err(|e| at("[polars] re_factors", e))?,
+                // The operating points the polars cover: the sweep's, unless the case says.
+                let rpms = match &p.rpm {
+                    Some(r) => r.values("--rpm").map_err(|e| at("[polars] rpm", e))?,
+                    None => parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?,
+                };
+                let axis = match (&p.j, &p.v) {
+                    (_, Some(v)) => SweepAxis::V(v.values("--v").map_err(|e| at("[polars] v", e))?),
+                    (Some(j), None) => SweepAxis::J(parse_list("--j", j).map_err(|e| at("[polars] j", e))?),
+                    (None, None) => SweepAxis::J(parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?),
                 };
                 let thickness = p
                     .thickness
@@ -325,9 +347,8 @@ impl Case {
                         airfoil,
                         thickness,
                         station_airfoils: scanned.then(|| out.join("scan/airfoils")),
-                        omega: rpm_to_omega(p.rpm),
-                        v: p.v,
-                        re_factors,
+                        omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+                        axis,
                         air: AirSpec::default(),
                         xfoil: XfoilSpec {
                             process: xfoil.clone(),
@@ -465,9 +486,9 @@ mod tests {
 
     #[test]
     fn the_section_model_decides_what_the_stages_solve_with() {
-        let q = plan("");
-        assert_eq!(q.predict.model.polars, None, "QPROP's law by default");
-        let t = plan("model = \"tables\"");
+        let q = plan("model = \"qprop\"");
+        assert_eq!(q.predict.model.polars, None, "QPROP's law when asked");
+        let t = plan("");
         let polars = Some(Path::new("out").join("polars/polars.json"));
         assert_eq!(t.predict.model.polars, polars);
         let (c, d) = t.compare.unwrap();
@@ -479,5 +500,24 @@ mod tests {
         assert!(StageSpec::Compare(c)
             .command()
             .contains("--polars out/polars/polars.json"));
+    }
+
+    #[test]
+    fn the_polars_cover_the_sweep_unless_the_case_says() {
+        let sweep = plan("");
+        let (p, _) = sweep.polars.unwrap();
+        assert_eq!(p.omegas, vec![rpm_to_omega(5000.0)], "rpm = 5000 as given");
+        assert_eq!(p.axis, sweep.predict.axis, "the sweep's J");
+        let text = "name = \"x\"\n[geometry]\nscan = \"x.stl\"\n[sweep]\nrpm = \"4000,6000\"\nj = \"0:0.5:0.1\"\n\
+             [polars]\nairfoil = \"naca4412\"\nv = \"0,5\"\n";
+        let case: Case = toml::from_str(text).unwrap();
+        let plan = case
+            .plan(Path::new("case"), Path::new("out"), &XfoilProcessSpec::default(), &|_| {
+                Ok(ScanOptions::default())
+            })
+            .unwrap();
+        let (p, _) = plan.polars.unwrap();
+        assert_eq!(p.omegas, vec![rpm_to_omega(4000.0), rpm_to_omega(6000.0)]);
+        assert_eq!(p.axis, SweepAxis::V(vec![0.0, 5.0]));
     }
 }

@@ -10,7 +10,7 @@ use propbet_atmosphere::AirState;
 use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_measure::RpmSource;
 
-use crate::values::{length_unit_name, list_text, rpm_list_text, rpm_text, scaled_text};
+use crate::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
 
 /// The `propbet` command line of one stage (without the program name).
 pub type Argv = Vec<String>;
@@ -351,9 +351,6 @@ pub struct DiagnoseSpec {
     pub out: PathBuf,
 }
 
-/// Default multiples of each station's Re of `propbet polars`.
-pub const DEFAULT_RE_FACTORS: [f64; 2] = [0.7, 1.4];
-
 /// `propbet polars`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PolarsSpec {
@@ -367,12 +364,10 @@ pub struct PolarsSpec {
     pub thickness: Option<f64>,
     /// Per-station sections (`station_NN.dat`).
     pub station_airfoils: Option<PathBuf>,
-    /// Operating point: rotation speed [rad/s].
-    pub omega: f64,
-    /// Operating point: axial speed [m/s].
-    pub v: f64,
-    /// Further multiples of each station's Re (empty: one Re per station).
-    pub re_factors: Vec<f64>,
+    /// Rotation speeds whose Reynolds numbers the polars cover [rad/s].
+    pub omegas: Vec<f64>,
+    /// With the advance ratios or axial speeds.
+    pub axis: SweepAxis,
     /// Air.
     pub air: AirSpec,
     /// XFOIL.
@@ -534,14 +529,11 @@ impl StageSpec {
                 if let Some(d) = &s.station_airfoils {
                     push(&mut v, "--station-airfoils", path(d));
                 }
-                push_eq(&mut v, "--rpm", rpm_text(s.omega));
-                if s.v != 0.0 {
-                    push_eq(&mut v, "--v", format!("{}", s.v));
-                }
-                if s.re_factors.is_empty() {
-                    push(&mut v, "--re-factors", "none");
-                } else if s.re_factors != DEFAULT_RE_FACTORS {
-                    push(&mut v, "--re-factors", list_text(&s.re_factors));
+                push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
+                match &s.axis {
+                    SweepAxis::V(x) if x == &[0.0] => {}
+                    SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
+                    SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
                 }
                 s.air.push_argv(&mut v);
                 s.xfoil.push_argv(&mut v);

@@ -267,6 +267,58 @@ pub struct Polars {
     pub prop: LoadedProp,
     /// Every station's polars and fit.
     pub blade: BladePolars,
+    /// How far the exported prop file (QPROP's law) predicts from the tables over the points
+    /// the polars cover.
+    pub export: ExportCheck,
+}
+
+/// The exported prop file against the tables it was fitted to: relative differences
+/// |CT_qprop / CT_tables - 1| (and CP) over the operating points the polars cover where the
+/// tables give positive thrust and power.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct ExportCheck {
+    /// Points compared.
+    pub points: usize,
+    /// CT: median and largest relative difference [-].
+    pub ct: [f64; 2],
+    /// CP: median and largest relative difference [-].
+    pub cp: [f64; 2],
+}
+
+impl ExportCheck {
+    /// Compares the prop file's QPROP law with the tables at `points`.
+    fn new(file: &PropFile, blade: &BladePolars, fluid: &Fluid, points: &[OperatingPoint]) -> Result<ExportCheck> {
+        let law = file
+            .to_blade(propbet_qprop::RadiusReading::Documented)
+            .to_rotor(propbet_bemt::Discretization::default())
+            .map_err(|e| Error::Invalid(e.to_string()))?;
+        let mut tables = law.clone();
+        let (r, models) = blade.models().map_err(Error::Invalid)?;
+        propbet_polar::tabulated::apply_to_rotor(&mut tables, &r, &models);
+        let opts = propbet_bemt::SolverOptions::default();
+        let a = Solver::new(&law, fluid, &opts).solve_many(points);
+        let b = Solver::new(&tables, fluid, &opts).solve_many(points);
+        let (mut ct, mut cp) = (Vec::new(), Vec::new());
+        for (x, y) in a.iter().zip(&b) {
+            if let (Some(ct_a), Some(ct_b), Some(cp_a), Some(cp_b)) = (x.ct, y.ct, x.cp, y.cp) {
+                if ct_b > 0.0 && cp_b > 0.0 {
+                    ct.push((ct_a / ct_b - 1.0).abs());
+                    cp.push((cp_a / cp_b - 1.0).abs());
+                }
+            }
+        }
+        let stats = |v: &[f64]| {
+            [
+                propbet_compare::metrics::quantile(v.to_vec(), 0.5),
+                v.iter().copied().fold(0.0, f64::max),
+            ]
+        };
+        Ok(ExportCheck {
+            points: ct.len(),
+            ct: stats(&ct),
+            cp: stats(&cp),
+        })
+    }
 }
 
 impl Polars {
@@ -276,18 +328,20 @@ impl Polars {
     }
 }
 
-/// Runs the polars stage: XFOIL at every station's Re and Mach at the operating point, each
-/// reduced to QPROP's coefficients.
+/// Runs the polars stage: XFOIL on the rungs of the Re ladder covering every station's Re and
+/// Mach over the spec's operating points, each station reduced to QPROP's coefficients.
 pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, progress: &Progress<'_>) -> Result<Polars> {
     let (fluid, _) = spec.air.fluid()?;
-    if !(spec.omega.is_finite() && spec.omega > 0.0) {
-        invalid!("--rpm: {} must be positive", crate::values::rpm_text(spec.omega));
+    let tip = input.geometry.file.tip_radius(propbet_qprop::RadiusReading::Documented);
+    let points = grid(&spec.omegas, &spec.axis, tip)?;
+    if points.is_empty() {
+        invalid!("--rpm / --j / --v: no operating point for the polars to cover");
     }
-    if !spec.v.is_finite() || spec.v < 0.0 {
-        invalid!("--v: {} must be a non-negative speed", spec.v);
+    if let Some(p) = points.iter().find(|p| p.omega <= 0.0) {
+        invalid!("--rpm: {} must be positive", crate::values::rpm_text(p.omega));
     }
-    if let Some(bad) = spec.re_factors.iter().find(|f| !(**f > 0.0 && f.is_finite())) {
-        invalid!("--re-factors: {bad} must be positive");
+    if let Some(p) = points.iter().find(|p| p.v < 0.0) {
+        invalid!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
     }
     spec.xfoil.check()?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
@@ -301,9 +355,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         blade: &blade,
         geometry: spec.geometry.display().to_string(),
         foils: &input.foils,
-        omega: spec.omega,
-        v: spec.v,
-        factors: &spec.re_factors,
+        points: &points,
         fluid,
         settings: &settings,
     };
@@ -315,16 +367,12 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         }
     }
     file.name = format!(
-        "{} / {} polars at {:.0} rpm, {} m/s",
-        file.name,
-        input.foil_name,
-        propbet_bemt::units::omega_to_rpm(spec.omega),
-        spec.v
+        "{} / {} polars for {:.0}-{:.0} rpm, {}-{} m/s",
+        file.name, input.foil_name, b.rpm[0], b.rpm[1], b.v[0], b.v[1]
     );
-    Ok(Polars {
-        prop: as_written(&file, &spec.out_prop)?,
-        blade: b,
-    })
+    let prop = as_written(&file, &spec.out_prop)?;
+    let export = ExportCheck::new(&prop.file, &b, &fluid, &points)?;
+    Ok(Polars { prop, blade: b, export })
 }
 
 // ---------------------------------------------------------------------------------------
@@ -336,23 +384,28 @@ pub const MAX_POINTS: usize = 1_000_000;
 
 /// The operating points of a predict spec, for a rotor of tip radius `tip_radius` [m].
 pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
-    let other = match &spec.axis {
+    grid(&spec.omegas, &spec.axis, tip_radius)
+}
+
+/// Every rotation speed with every J or V, checked, for a rotor of tip radius `tip_radius` [m].
+pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
+    let other = match axis {
         SweepAxis::J(v) | SweepAxis::V(v) => v.len(),
     };
-    let n = spec.omegas.len().saturating_mul(other);
+    let n = omegas.len().saturating_mul(other);
     if n > MAX_POINTS {
         invalid!(
             "the sweep has {} RPM values x {other} J or V values = {n} operating points; at most {MAX_POINTS} in one sweep",
-            spec.omegas.len()
+            omegas.len()
         );
     }
-    if let Some(bad) = spec.omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
+    if let Some(bad) = omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
         invalid!(
             "--rpm: {} is beyond any small propeller's speed (at most 500000)",
             crate::values::rpm_text(*bad)
         );
     }
-    let speeds = match &spec.axis {
+    let speeds = match axis {
         SweepAxis::J(j) => j.iter().any(|j| j.abs() > propbet_measure::limits::ADVANCE_RATIO),
         SweepAxis::V(v) => v.iter().any(|v| v.abs() > propbet_measure::limits::AIRSPEED),
     };
@@ -363,20 +416,20 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
             propbet_measure::limits::AIRSPEED
         );
     }
-    if let Some(bad) = spec.omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
+    if let Some(bad) = omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
         invalid!(
             "--rpm: rotation speed must not be negative, found {}",
             crate::values::rpm_text(*bad)
         );
     }
-    Ok(match &spec.axis {
+    Ok(match axis {
         SweepAxis::J(j) => {
-            if spec.omegas.contains(&0.0) {
+            if omegas.contains(&0.0) {
                 invalid!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
             }
-            grid_omega_j(&spec.omegas, j, tip_radius)
+            grid_omega_j(omegas, j, tip_radius)
         }
-        SweepAxis::V(v) => grid_omega_v(&spec.omegas, v),
+        SweepAxis::V(v) => grid_omega_v(omegas, v),
     })
 }
 

@@ -14,7 +14,6 @@ use crate::model::{as_written, LoadedProp, Model};
 use crate::run::{timed, StageRecord};
 use crate::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilProcessSpec, XfoilSpec,
-    DEFAULT_RE_FACTORS,
 };
 use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
 use crate::{read_text, Error, Result};
@@ -28,8 +27,6 @@ pub struct ValidateSpec {
     pub pe0: PathBuf,
     /// Airfoil coordinates (`e63.dat`, `clarky.dat`).
     pub airfoils: PathBuf,
-    /// Operating point of the polars' Reynolds numbers [rad/s].
-    pub omega: f64,
     /// Output directory (one directory per prop below it).
     pub out: PathBuf,
     /// XFOIL executable, cache, progress.
@@ -76,6 +73,31 @@ fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
         }
     };
     Ok(stages::read_airfoil(&dir.join(file))?.0)
+}
+
+/// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
+/// out to 100 rpm) with J from 0 to the largest measured, in steps of 0.05.
+fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
+    let (_, sets) = stages::load_measured(measured)?;
+    let points = sets.iter().flat_map(|s| &s.points);
+    let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
+    for p in points {
+        lo = lo.min(p.rpm());
+        hi = hi.max(p.rpm());
+        if let propbet_measure::Speed::AdvanceRatio(j) = p.speed {
+            j_max = j_max.max(j);
+        }
+    }
+    if !(lo.is_finite() && hi > 0.0) {
+        return Err(Error::Invalid("no measured point to cover".into()));
+    }
+    let (lo, hi) = ((lo / 100.0).floor().max(1.0) * 100.0, (hi / 100.0).ceil() * 100.0);
+    let rpms = vec![lo, (0.5 * (lo + hi) / 100.0).round() * 100.0, hi];
+    let mut rpms: Vec<f64> = rpms.into_iter().map(propbet_bemt::units::rpm_to_omega).collect();
+    rpms.dedup();
+    let steps = (j_max / 0.05).ceil() as usize;
+    let js = (0..=steps).map(|k| 0.05 * k as f64).collect();
+    Ok((rpms, js))
 }
 
 /// One row of the validation table: |pred/meas − 1| of CT and CP below 85 % of each sweep's
@@ -177,6 +199,25 @@ pub fn validate_prop(
     let foils = stages::station_foils(&foil_dir, texts, &first, &mut notes)?;
     let mut records = Vec::new();
 
+    // The measurements: every file of this prop but the geometry.
+    let mut measured: Vec<PathBuf> = std::fs::read_dir(&spec.uiuc)
+        .map_err(|source| Error::Read {
+            path: spec.uiuc.clone(),
+            source,
+        })?
+        .filter_map(|e| {
+            let n = e.ok()?.file_name().to_str()?.to_string();
+            (n.starts_with(&format!("{prop}_")) && n.ends_with(".txt") && !n.ends_with("_geom.txt")).then_some(n)
+        })
+        .map(|n| spec.uiuc.join(n))
+        .collect();
+    measured.sort();
+    if measured.is_empty() {
+        return Err(Error::Invalid("no static or J-sweep file".into()));
+    }
+    let measured = MeasuredSpec::files(measured);
+    let (omegas, js) = cover(&measured)?;
+
     // Polars.
     let polars_spec = PolarsSpec {
         geometry: geometry_path,
@@ -184,9 +225,8 @@ pub fn validate_prop(
         airfoil: foil_dir.join("station_00.dat").display().to_string(),
         thickness: None,
         station_airfoils: Some(foil_dir),
-        omega: spec.omega,
-        v: 0.0,
-        re_factors: DEFAULT_RE_FACTORS.to_vec(),
+        omegas,
+        axis: crate::spec::SweepAxis::J(js),
         air: AirSpec::default(),
         xfoil: XfoilSpec {
             process: spec.xfoil.clone(),
@@ -212,23 +252,6 @@ pub fn validate_prop(
         Polars::all_fitted,
     )?;
 
-    // The measurements: every file of this prop but the geometry.
-    let mut measured: Vec<PathBuf> = std::fs::read_dir(&spec.uiuc)
-        .map_err(|source| Error::Read {
-            path: spec.uiuc.clone(),
-            source,
-        })?
-        .filter_map(|e| {
-            let n = e.ok()?.file_name().to_str()?.to_string();
-            (n.starts_with(&format!("{prop}_")) && n.ends_with(".txt") && !n.ends_with("_geom.txt")).then_some(n)
-        })
-        .map(|n| spec.uiuc.join(n))
-        .collect();
-    measured.sort();
-    if measured.is_empty() {
-        return Err(Error::Invalid("no static or J-sweep file".into()));
-    }
-    let measured = MeasuredSpec::files(measured);
     let model_spec = ModelSpec {
         polars: spec.tables.then(|| dir.join("polars.json")),
         ..ModelSpec::prop(dir.join("prop.qprop"))

@@ -1,10 +1,14 @@
-//! Polars of a whole blade: one set per input station, at the Reynolds and Mach numbers that
-//! station sees at an operating point, with the QPROP fit of each. Written by `propbet polars`
-//! as JSON and read back by `propbet predict --polars` for the tabulated section model.
+//! Polars of a whole blade: one set per input station, at Reynolds numbers that cover what that
+//! station sees over a set of operating points (the sweep), with the QPROP fit of each. Written
+//! by `propbet polars` as JSON and read back by `propbet predict --polars` for the tabulated
+//! section model.
+//!
+//! Reynolds numbers are taken from a fixed ladder of five per decade (10^(k/5): 10,000, 15,849,
+//! 25,119, 39,811, 63,096, 100,000, ...), the rungs just below and above the station's lowest and
+//! highest Re over the points and every rung between: neighbouring polars differ by a factor
+//! 1.58 in Re, and the same rung recurs from one sweep to the next (the cache serves it). Each
+//! rung is computed at the Mach number that goes with it at that station (M = Re mu/(rho c a)).
 
-use std::sync::Arc;
-
-use propbet_bemt::SectionAero;
 use serde::{Deserialize, Serialize};
 
 use crate::reduce::QpropFit;
@@ -12,10 +16,16 @@ use crate::table::Polar;
 use crate::tabulated::TabulatedAero;
 
 /// Section models placed at radii [m], ascending.
-pub type StationModels = (Vec<f64>, Vec<Arc<dyn SectionAero>>);
+pub type StationModels = (Vec<f64>, Vec<TabulatedAero>);
 
 /// Format tag of the JSON file.
-pub const FORMAT: &str = "propbet-blade-polars-1";
+pub const FORMAT: &str = "propbet-blade-polars-2";
+
+/// Rungs of the Reynolds-number ladder per decade.
+pub const RE_PER_DECADE: f64 = 5.0;
+/// Most rungs per station (a station whose Re spans more than this many is given the lowest
+/// rungs' and highest rungs' ends and the rungs between thinned; in practice a sweep spans 2-5).
+pub const MAX_RUNGS: usize = 10;
 
 /// Polars of every input station of a blade.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -26,10 +36,10 @@ pub struct BladePolars {
     pub geometry: String,
     /// The section used (name).
     pub airfoil: String,
-    /// Operating point the Reynolds numbers were taken at: rotation speed [rpm].
-    pub rpm: f64,
-    /// Operating point: axial speed [m/s].
-    pub v: f64,
+    /// Rotation speeds the polars cover (lowest, highest) [rpm].
+    pub rpm: [f64; 2],
+    /// Axial speeds they cover (lowest, highest) [m/s].
+    pub v: [f64; 2],
     /// Air density [kg/m^3], viscosity [Pa s], speed of sound [m/s] used.
     pub air: [f64; 3],
     /// The stations, ascending in radius.
@@ -43,13 +53,18 @@ pub struct StationPolars {
     pub r: f64,
     /// Chord [m].
     pub chord: f64,
-    /// Reynolds number at the operating point [-].
+    /// Reynolds number the QPROP fit is centred on: the geometric mean of the lowest and
+    /// highest over the operating points [-].
     pub re: f64,
-    /// Mach number at the operating point [-].
+    /// Lowest and highest Reynolds number over the operating points [-].
+    pub re_range: [f64; 2],
+    /// Mach number at `re` [-].
     pub mach: f64,
-    /// Angle of attack at the operating point [deg].
+    /// Median angle of attack over the operating points [deg].
     pub alpha_deg: f64,
-    /// Polars computed (the station's Re and its neighbours).
+    /// Lowest and highest angle of attack over the operating points [deg].
+    pub alpha_range_deg: [f64; 2],
+    /// Polars computed (the rungs of the Re ladder covering `re_range`).
     pub polars: Vec<Polar>,
     /// QPROP fit, when the polars allowed one.
     pub fit: Option<QpropFit>,
@@ -85,11 +100,11 @@ impl BladePolars {
     /// Tabulated section models at the stations that have polars: their radii and models.
     pub fn models(&self) -> Result<StationModels, String> {
         let mut r = Vec::new();
-        let mut m: Vec<Arc<dyn SectionAero>> = Vec::new();
+        let mut m = Vec::new();
         for s in &self.stations {
             if let Some(t) = TabulatedAero::new(&s.polars) {
                 r.push(s.r);
-                m.push(Arc::new(t));
+                m.push(t);
             }
         }
         if m.is_empty() {
@@ -154,12 +169,8 @@ pub struct BladeJob<'a> {
     pub geometry: String,
     /// One section for every station, or one per input station.
     pub foils: &'a [crate::Airfoil],
-    /// Operating point: rotation speed [rad/s].
-    pub omega: f64,
-    /// Operating point: axial speed [m/s].
-    pub v: f64,
-    /// Further multiples of each station's Re (for REexp).
-    pub factors: &'a [f64],
+    /// Operating points whose Reynolds numbers the polars cover (at least one).
+    pub points: &'a [propbet_bemt::OperatingPoint],
     /// Air.
     pub fluid: propbet_bemt::Fluid,
     /// Angles, panels, iterations, Ncrit.
@@ -175,67 +186,91 @@ pub enum BladeError {
     /// No section was given.
     #[error("no section given")]
     NoSection,
+    /// No operating point was given.
+    #[error("no operating point to cover")]
+    NoPoint,
 }
 
-/// Polars of every input station at its Re and Mach at the operating point, each fitted to
-/// QPROP's coefficients around the angle of attack the station works at. A station whose
-/// polars or fit failed keeps `fit: None` and says why in `problem`; the batch goes on.
+/// The rungs of the Re ladder that cover `lo..=hi`: the one at or below `lo`, the one at or
+/// above `hi`, those between; at least two (REexp needs two), at most [`MAX_RUNGS`].
+pub fn re_rungs(lo: f64, hi: f64) -> Vec<f64> {
+    let k = |re: f64| RE_PER_DECADE * re.log10();
+    // A hair of tolerance, so that a Re on a rung is not bracketed by the rung below it.
+    let k_lo = (k(lo) + 1e-9).floor() as i64;
+    let k_hi = ((k(hi) - 1e-9).ceil() as i64).max(k_lo + 1);
+    let n = (k_hi - k_lo + 1) as usize;
+    let step = n.div_ceil(MAX_RUNGS).max(1);
+    let mut ks: Vec<i64> = (k_lo..=k_hi).step_by(step).collect();
+    if ks.last() != Some(&k_hi) {
+        ks.push(k_hi);
+    }
+    ks.into_iter().map(|k| 10f64.powf(k as f64 / RE_PER_DECADE)).collect()
+}
+
+/// Polars of every input station on the rungs of the Re ladder covering what it sees over the
+/// operating points, each fitted to QPROP's coefficients over the angles of attack the station
+/// works at. A station whose polars or fit failed keeps `fit: None` and says why in `problem`;
+/// the batch goes on.
 ///
-/// Each station's inflow comes from the solver on the blade's own coefficients at the
-/// operating point; Re = ρ W c / μ, Mach = W / a (capped at 0.85, XFOIL's limit of sense).
+/// Each station's inflow comes from the solver on the blade's own coefficients at every
+/// point; Re = ρ W c / μ, Mach = W / a (capped at 0.85, XFOIL's limit of sense).
 pub fn compute_blade(
     job: &BladeJob,
     engine: &crate::PolarEngine,
     progress: &crate::Progress<'_>,
 ) -> Result<BladePolars, BladeError> {
-    use propbet_bemt::{OperatingPoint, Solver, SolverOptions, StationResult};
+    use propbet_bemt::{Solver, SolverOptions, StationResult};
     let blade = job.blade;
     let rotor = blade.to_rotor(propbet_bemt::Discretization::default())?;
     let fluid = job.fluid;
     if job.foils.is_empty() {
         return Err(BladeError::NoSection);
     }
+    if job.points.is_empty() {
+        return Err(BladeError::NoPoint);
+    }
     let opts = SolverOptions {
         keep_stations: true,
         ..SolverOptions::default()
     };
-    let point = Solver::new(&rotor, &fluid, &opts).solve(OperatingPoint {
-        v: job.v,
-        omega: job.omega,
-    });
-    let st = &point.stations;
-    let at = |r: f64, f: &dyn Fn(&StationResult) -> f64| -> f64 {
+    let solver = Solver::new(&rotor, &fluid, &opts);
+    let solved: Vec<Vec<StationResult>> = job.points.iter().map(|&op| solver.solve(op).stations).collect();
+    let at = |st: &[StationResult], r: f64, f: &dyn Fn(&StationResult) -> f64| -> f64 {
         let i = st.partition_point(|s| s.r <= r).clamp(1, st.len() - 1);
         let (a, b) = (&st[i - 1], &st[i]);
         let t = ((r - a.r) / (b.r - a.r)).clamp(-0.5, 1.5);
         f(a) + t * (f(b) - f(a))
     };
+    let range = |v: &[f64]| [v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(f64::NEG_INFINITY, f64::max)];
     let mut jobs = Vec::new();
     let mut stations = Vec::new();
     for (i, &r) in blade.r.iter().enumerate() {
-        let w = at(r, &|s| s.w);
         let chord = blade.chord[i];
-        let re = fluid.rho * w * chord / fluid.mu;
-        let mach = (w / fluid.a).min(0.85);
-        let alpha_deg = at(r, &|s| s.alpha).to_degrees();
+        let ws: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.w)).collect();
+        let mut alphas: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.alpha).to_degrees()).collect();
+        alphas.sort_by(f64::total_cmp);
+        let per_re = fluid.mu / (fluid.rho * chord);
+        let re_range = range(&ws).map(|w| w / per_re);
+        let re = (re_range[0] * re_range[1]).sqrt();
+        let mach_at = |re: f64| (re * per_re / fluid.a).min(0.85);
         let first = jobs.len();
-        if re > 0.0 && chord > 0.0 {
+        if re > 0.0 && chord > 0.0 && re.is_finite() {
             let foil = &job.foils[i.min(job.foils.len() - 1)];
-            for f in std::iter::once(1.0).chain(job.factors.iter().copied()) {
+            for rung in re_rungs(re_range[0], re_range[1]) {
                 jobs.push(crate::PolarJob {
                     panels: job.settings.panels,
                     max_iter: job.settings.max_iter,
                     ..crate::PolarJob::new(
                         foil.clone(),
-                        re * f,
-                        mach,
+                        rung,
+                        mach_at(rung),
                         job.settings.ncrit,
                         job.settings.alphas_deg.clone(),
                     )
                 });
             }
         }
-        stations.push((r, chord, re, mach, alpha_deg, first..jobs.len()));
+        stations.push((r, chord, re, re_range, mach_at(re), alphas, first..jobs.len()));
     }
     let mut results: Vec<Option<Result<Polar, String>>> = engine
         .compute_all(&jobs, progress)
@@ -243,22 +278,24 @@ pub fn compute_blade(
         .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))
         .collect();
     let mut out = Vec::new();
-    for (r, chord, re, mach, alpha_deg, range) in stations {
+    for (r, chord, re, re_range, mach, alphas, range_k) in stations {
         let mut polars = Vec::new();
         let mut problems = Vec::new();
-        for k in range {
+        for k in range_k {
             match results[k].take() {
                 Some(Ok(p)) => polars.push(p),
                 Some(Err(e)) => problems.push(e),
                 None => {}
             }
         }
+        let alpha_deg = alphas[alphas.len() / 2];
+        let alpha_range_deg = [alphas[0], alphas[alphas.len() - 1]];
         let weights = crate::AlphaWeights::Around {
-            alphas_deg: vec![alpha_deg],
+            alphas_deg: alphas,
             sigma_deg: 3.0,
         };
         let fit = if polars.is_empty() {
-            problems.push(format!("no polar at r = {r:.4} m (Re {re:.0})"));
+            problems.push(format!("no polar at r = {r:.4} m (Re {:.0}-{:.0})", re_range[0], re_range[1]));
             None
         } else {
             match crate::fit_qprop(&polars, re, &weights, -0.5) {
@@ -273,14 +310,18 @@ pub fn compute_blade(
             r,
             chord,
             re,
+            re_range,
             mach,
             alpha_deg,
+            alpha_range_deg,
             polars,
             fit,
             problem: (!problems.is_empty()).then(|| problems.join("; ")),
         });
     }
     let names: Vec<&str> = job.foils.iter().map(|f| f.name.as_str()).collect();
+    let rpms: Vec<f64> = job.points.iter().map(|p| propbet_bemt::units::omega_to_rpm(p.omega)).collect();
+    let vs: Vec<f64> = job.points.iter().map(|p| p.v).collect();
     Ok(BladePolars {
         format: FORMAT.into(),
         geometry: job.geometry.clone(),
@@ -289,9 +330,31 @@ pub fn compute_blade(
         } else {
             format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1])
         },
-        rpm: propbet_bemt::units::omega_to_rpm(job.omega),
-        v: job.v,
+        rpm: range(&rpms),
+        v: range(&vs),
         air: [fluid.rho, fluid.mu, fluid.a],
         stations: out,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rungs_bracket_the_range_five_per_decade() {
+        let r = re_rungs(30_000.0, 70_000.0);
+        let want = [25_118.864, 39_810.717, 63_095.734, 100_000.0];
+        assert_eq!(r.len(), want.len(), "{r:?}");
+        for (a, b) in r.iter().zip(want) {
+            assert!((a / b - 1.0).abs() < 1e-6, "{r:?}");
+        }
+        // A Re on a rung is its own lower end; one Re still gets two rungs.
+        let one = re_rungs(100_000.0, 100_000.0);
+        assert_eq!(one.len(), 2);
+        assert!((one[0] - 1e5).abs() < 1e-6 && (one[1] / 158_489.32 - 1.0).abs() < 1e-6);
+        // Absurd spans are thinned, ends kept.
+        let wide = re_rungs(1e3, 1e8);
+        assert!(wide.len() <= MAX_RUNGS + 1 && wide[0] <= 1e3 * 1.0001 && *wide.last().unwrap() >= 1e8 * 0.9999);
+    }
 }

@@ -47,13 +47,56 @@ pub const FIT_CL_TOL: f64 = 0.03;
 /// Largest relative drag error of an acceptable fit over the linear range.
 pub const FIT_CD_REL_TOL: f64 = 0.10;
 
+/// Physical bounds of QPROP's coefficients for a small propeller's section, in prop-file order
+/// (CL0, CL_a [/rad], CLmin, CLmax, CD0, CD2u, CD2l, CLCD0, -, REexp). Lift slope: thin-airfoil
+/// theory gives 2 pi = 6.28 /rad, XFOIL at Re 2e4-2e5 between about 4 and 7; laminar bubbles
+/// and short linear ranges give fits outside 3..7.5 that QPROP then applies at every angle.
+/// CL0 of a section up to 8 % camber stays below 1 (thin-airfoil CL0 = 4 pi camber = 1.0 at
+/// 8 %). CD2 curvatures of measured low-Re polars are 0.005-0.5; CD0 0.005-0.2; REexp between
+/// -1 (laminar separation) and 0.
+pub const BOUNDS: [(f64, f64); 10] = [
+    (-0.5, 1.0),
+    (3.0, 7.5),
+    (-1.5, 0.0),
+    (0.3, 2.0),
+    (0.005, 0.2),
+    (0.0, 1.0),
+    (0.0, 1.0),
+    (-0.5, 1.5),
+    (0.0, f64::INFINITY),
+    (-1.0, 0.0),
+];
+
+/// Clamps coefficients to [`BOUNDS`]; one sentence for each clamped (the fallback named).
+pub fn bound(c: &mut QpropCoefficients) -> Vec<String> {
+    let mut a = c.to_array();
+    let mut said = Vec::new();
+    for (k, (lo, hi)) in BOUNDS.iter().enumerate() {
+        let v = a[k];
+        if !(v >= *lo && v <= *hi) {
+            let to = if v.is_nan() { 0.5 * (lo + hi) } else { v.clamp(*lo, *hi) };
+            said.push(format!(
+                "{} {} is outside the physical {}..{}: set to {} in the exported prop file (fallback)",
+                QpropCoefficients::NAMES[k],
+                format!("{v:.4}"),
+                lo,
+                hi,
+                to
+            ));
+            a[k] = to;
+        }
+    }
+    *c = QpropCoefficients::from_array(a);
+    said
+}
+
 /// Which angles of attack matter, and how much.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub enum AlphaWeights {
     /// Every angle alike.
     Uniform,
     /// Gaussian bumps of width `sigma_deg` around each angle the blade works at (from the
-    /// solver), on a floor of 0.05 so that no converged point is ignored entirely.
+    /// solver), averaged, on a floor of 0.05 so that no converged point is ignored entirely.
     Around {
         /// Angles of attack seen by the section [deg].
         alphas_deg: Vec<f64>,
@@ -72,6 +115,7 @@ impl AlphaWeights {
                     .iter()
                     .map(|a| (-0.5 * ((alpha_deg - a) / sigma_deg).powi(2)).exp())
                     .sum::<f64>()
+                    / alphas_deg.len().max(1) as f64
             }
         }
     }
@@ -360,9 +404,13 @@ pub fn fit_qprop(
             .filter(|a| *a < range[0] - 0.5 || *a > range[1] + 0.5)
             .collect();
         if !outside.is_empty() {
+            let (lo, hi) = outside
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &a| (l.min(a), h.max(a)));
             unfit.push(format!(
-                "the blade works at alpha {} deg, outside the linear range {:.1}..{:.1} deg",
-                outside.iter().map(|a| format!("{a:.1}")).collect::<Vec<_>>().join(", "),
+                "the blade works at alpha {lo:.1}..{hi:.1} deg at {} of its {} operating points, outside the linear range {:.1}..{:.1} deg",
+                outside.len(),
+                alphas_deg.len(),
                 range[0],
                 range[1]
             ));
@@ -373,23 +421,26 @@ pub fn fit_qprop(
             .count();
         if failed > 0 {
             unfit.push(format!(
-                "XFOIL did not converge at {failed} of the angles the blade works at"
+                "XFOIL did not converge within 1 deg of the angle the blade works at, at {failed} of its {} operating points",
+                alphas_deg.len()
             ));
         }
     }
+    let mut coeffs = QpropCoefficients {
+        cl0: cl0_m * beta,
+        cl_a: slope_deg.to_degrees() * beta,
+        cl_min,
+        cl_max,
+        cd0,
+        cd2u,
+        cd2l,
+        clcd0,
+        re_ref: centre.re,
+        re_exp,
+    };
+    unfit.extend(bound(&mut coeffs));
     Ok(QpropFit {
-        coeffs: QpropCoefficients {
-            cl0: cl0_m * beta,
-            cl_a: slope_deg.to_degrees() * beta,
-            cl_min,
-            cl_max,
-            cd0,
-            cd2u,
-            cd2l,
-            clcd0,
-            re_ref: centre.re,
-            re_exp,
-        },
+        coeffs,
         linear_range_deg: range,
         linear_points: lin.len(),
         cl_max_error,
@@ -561,6 +612,29 @@ fn solve3(a: [[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn coefficients_outside_physics_are_clamped_and_named() {
+        let mut c = QpropCoefficients {
+            cl0: 1.3,
+            cl_a: 17.27,
+            cl_min: -0.3,
+            cl_max: 1.2,
+            cd0: 0.03,
+            cd2u: 5000.0,
+            cd2l: 0.07,
+            clcd0: 0.3,
+            re_ref: 15849.0,
+            re_exp: -0.09,
+        };
+        let said = bound(&mut c);
+        assert_eq!((c.cl0, c.cl_a, c.cd2u), (1.0, 7.5, 1.0));
+        assert_eq!(said.len(), 3, "{said:?}");
+        assert!(said[1].starts_with("CL_a 17.27") && said[1].contains("fallback"), "{said:?}");
+        // Inside the bounds nothing changes.
+        let before = c;
+        assert!(bound(&mut c).is_empty() && c == before);
+    }
 
     /// A polar made from QPROP's own law (plus a stall) must come back exactly.
     fn synthetic(re: f64, c: &QpropCoefficients) -> Polar {

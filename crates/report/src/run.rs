@@ -84,23 +84,27 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             let b = &p.blade;
             let _ = writeln!(
                 h,
-                "<p>XFOIL at each station's Reynolds and Mach numbers at {:.0} rpm, {} m/s; sections: {}.</p>",
-                b.rpm,
-                b.v,
+                "<p>XFOIL polars covering the Reynolds numbers each station sees from {:.0} to {:.0} rpm and {} to {} m/s (five per decade in Re), used as tables in α and Re; sections: {}. The QPROP columns are the exported prop file's fit, centred on the Re shown.</p>",
+                b.rpm[0],
+                b.rpm[1],
+                b.v[0],
+                b.v[1],
                 esc(&b.airfoil)
             );
-            h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re</th><th>Mach</th><th>α [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th>problem</th></tr>\n");
+            h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re range</th><th>Mach</th><th>α range [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th>problem</th></tr>\n");
             for s in &b.stations {
                 let c = s.fit.as_ref().map(|f| f.coeffs.to_array());
                 let cell = |k: usize, p: usize| c.map_or("–".into(), |v| format!("{:.*}", p, v[k]));
                 let _ = writeln!(
                     h,
-                    "<tr><td>{:.1}</td><td>{:.1}</td><td>{:.0}</td><td>{:.3}</td><td>{:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                    "<tr><td>{:.1}</td><td>{:.1}</td><td>{:.0}–{:.0}</td><td>{:.3}</td><td>{:.1}–{:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
                     1000.0 * s.r,
                     1000.0 * s.chord,
-                    s.re,
+                    s.re_range[0],
+                    s.re_range[1],
                     s.mach,
-                    s.alpha_deg,
+                    s.alpha_range_deg[0],
+                    s.alpha_range_deg[1],
                     cell(0, 3),
                     cell(1, 2),
                     cell(3, 2),
@@ -110,6 +114,16 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
                 );
             }
             h.push_str("</table>\n");
+            let e = &p.export;
+            let _ = writeln!(
+                h,
+                "<p>The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover: CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.</p>",
+                e.points,
+                100.0 * e.ct[0],
+                100.0 * e.ct[1],
+                100.0 * e.cp[0],
+                100.0 * e.cp[1]
+            );
         }
         None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
     }

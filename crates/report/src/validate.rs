@@ -53,19 +53,20 @@ fn overall(rows: &[Row]) -> Vec<String> {
     v
 }
 
-fn intro(rpm: f64) -> String {
+fn intro(model: &str) -> String {
     format!(
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
-         (static points included); polars at {rpm} rpm. Before: UIUC geometry + APC sections + XFOIL; \
-         after: with the effects the diagnosis' ladder fitted to the same data (calibration)."
+         (static points included). Before: UIUC geometry + APC sections + XFOIL polars covering each \
+         prop's measured RPM and J range ({model}); after: with the effects the diagnosis' ladder \
+         fitted to the same data (calibration)."
     )
 }
 
 /// The table as Markdown, with the props that were not validated and why.
-pub fn markdown(rows: &[Row], skipped: &[String], rpm: f64) -> String {
+pub fn markdown(rows: &[Row], skipped: &[String], model: &str) -> String {
     let mut md = format!(
         "{}\n\n| {} |\n|{}\n",
-        intro(rpm),
+        intro(model),
         HEAD.join(" | "),
         "---|".repeat(HEAD.len())
     );
@@ -85,10 +86,10 @@ pub fn markdown(rows: &[Row], skipped: &[String], rpm: f64) -> String {
 }
 
 /// The table as a page.
-pub fn html(rows: &[Row], skipped: &[String], rpm: f64) -> String {
+pub fn html(rows: &[Row], skipped: &[String], model: &str) -> String {
     let mut h = format!(
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
-        esc(&intro(rpm))
+        esc(&intro(model))
     );
     // The last column (the ladder) is text: left-aligned.
     let class = |k: usize| if k + 1 == HEAD.len() { " class=\"text\"" } else { "" };
@@ -128,14 +129,14 @@ mod tests {
             ladder: "none".into(),
         };
         let rows = [row("a", 0.1), row("b", 0.3), row("c", 0.2)];
-        let md = markdown(&rows, &["d: no PE0 file".into()], 5000.0);
+        let md = markdown(&rows, &["d: no PE0 file".into()], "tables");
         assert!(md.contains("| a | 10 | 10.0 % | 20.0 % |"), "{md}");
         assert!(
             md.contains("| **all (median over props)** | 30 | 20.0 % | 40.0 % |"),
             "{md}"
         );
         assert!(md.contains("- d: no PE0 file"));
-        let page = html(&rows, &[], 5000.0);
+        let page = html(&rows, &[], "tables");
         assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 5);
     }
 }
