@@ -18,6 +18,8 @@ fn validation_table_on_the_shipped_subset() {
             data.join("pe0").to_str().unwrap(),
             "--airfoils",
             repo().join("props/airfoils").to_str().unwrap(),
+            "--per3",
+            data.join("per3").to_str().unwrap(),
             "--cache",
             "cache",
             "--quiet",
@@ -30,7 +32,11 @@ fn validation_table_on_the_shipped_subset() {
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     let md = std::fs::read_to_string(dir.path().join("val/validation.md")).unwrap();
     eprintln!("{md}");
-    assert!(md.contains("gwsdd_9x5: not an APC propeller"), "{md}");
+    // Every prop has a row: the one without APC sections says why.
+    assert!(
+        md.contains("| gwsdd_9x5 | gwsdd | 0 | – |") && md.contains("not validated: UIUC family gwsdd: not an APC propeller"),
+        "{md}"
+    );
     let (h, rows) = read_csv(&dir.path().join("val/validation.csv"));
     assert_eq!(rows.len(), 1);
     let r = &rows[0];
@@ -42,6 +48,10 @@ fn validation_table_on_the_shipped_subset() {
     // The prediction is of the right size, and calibration does not make it worse.
     assert!(v("ct_median") < 0.3 && v("cp_median") < 0.3, "{r:?}");
     assert!(v("ct_median_after") <= v("ct_median") + 1e-9, "{r:?}");
+    // APC's own prediction scored on the same points (PER3 covers 1000 rpm steps and J to
+    // about 0.9: every point of the window).
+    assert!(v("apc_points") >= v("points") - 2.0, "{r:?}");
+    assert!(v("apc_ct_median") > 0.0 && v("apc_ct_median") < 0.3, "{r:?}");
     // Every stage's outputs for the prop.
     for f in [
         "prop.qprop",

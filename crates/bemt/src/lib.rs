@@ -5,11 +5,13 @@
 //! - [`solve`]: the per-station solve (Newton on psi with a bracketed fallback) and loads.
 //! - [`sweep`]: parallel sweeps over operating points.
 //! - [`spline`]: Drela's derivative-form cubic spline.
+//! - [`check`]: physical sense of a solved point (flags for what no propeller does).
 //!
 //! SI units throughout; angles in radians. This crate reads no files.
 #![deny(missing_docs)]
 
 pub mod aero;
+pub mod check;
 pub mod fluid;
 pub mod rotor;
 mod simd;

@@ -136,6 +136,7 @@ struct PointRow {
     re75: Num,
     mach_tip: Num,
     scored: u8,
+    model_flags: String,
 }
 
 fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
@@ -169,6 +170,7 @@ fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec
             re75: p.re75.into(),
             mach_tip: p.mach_tip.into(),
             scored: u8::from(p.scored()),
+            model_flags: p.model_flags.join("; "),
         }),
         true,
     )
@@ -279,5 +281,16 @@ pub fn print(spec: &CompareSpec, c: &Compared) {
     }
     if unconverged > 0 {
         eprintln!("propbet: {unconverged} station solutions did not converge");
+    }
+    let flagged: Vec<&ComparedPoint> = c.points.iter().filter(|p| !p.model_flags.is_empty()).collect();
+    if let Some(first) = flagged.first() {
+        eprintln!(
+            "propbet: warning: the prediction is physically implausible at {} of {} points (column model_flags of points.csv), for example at {:.0} rpm, J {:.3}: {}",
+            flagged.len(),
+            c.points.len(),
+            first.rpm,
+            first.j,
+            first.model_flags.join("; ")
+        );
     }
 }

@@ -222,7 +222,11 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
             .map(|(k, c)| {
                 let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
-                    text: if csv { summary_rows(&r, k == 0)? } else { Vec::new() },
+                    text: if csv {
+                        summary_rows(&r, k == 0, fluid.rho, model.rotor.tip_radius)?
+                    } else {
+                        Vec::new()
+                    },
                     failed: r.iter().map(|p| p.not_converged).sum(),
                     failed_points: r.iter().filter(|p| p.not_converged > 0).count(),
                     results: if keep_results { r } else { Vec::new() },
@@ -282,8 +286,9 @@ fn json_doc(
 }
 
 /// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage).
-pub fn write_sweep(spec: &PredictSpec, points: &[PointResult]) -> Result<()> {
-    let body = [summary_rows(points, true)?];
+pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<()> {
+    let (fluid, _) = spec.air.fluid()?;
+    let body = [summary_rows(points, true, fluid.rho, model.rotor.tip_radius)?];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
     Ok(())
 }
@@ -308,9 +313,11 @@ struct SweepRow {
     cl_avg: Num,
     cd_avg: Num,
     not_converged: usize,
+    /// What is physically implausible at the point ([`propbet_bemt::check::implausible`]).
+    flags: String,
 }
 
-fn summary_rows(results: &[PointResult], header: bool) -> Result<Vec<u8>> {
+fn summary_rows(results: &[PointResult], header: bool, rho: f64, tip_radius: f64) -> Result<Vec<u8>> {
     csv_rows(
         results.iter().map(|p| SweepRow {
             rpm: p.rpm.into(),
@@ -330,6 +337,7 @@ fn summary_rows(results: &[PointResult], header: bool) -> Result<Vec<u8>> {
             cl_avg: p.cl_avg.into(),
             cd_avg: p.cd_avg.into(),
             not_converged: p.not_converged,
+            flags: propbet_bemt::check::implausible(p, rho, tip_radius).join("; "),
         }),
         header,
     )

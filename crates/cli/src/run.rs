@@ -189,7 +189,7 @@ fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> 
             if let Some(o) = &spec.out {
                 create_parent(o)?;
             }
-            crate::predict::write_sweep(spec, points)?;
+            crate::predict::write_sweep(spec, model, points)?;
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let page = crate::compare::write(spec, model, c)?;

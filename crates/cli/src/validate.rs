@@ -42,6 +42,10 @@ pub struct ValidateArgs {
     /// (QPROP's law fitted to them, as the exported prop file holds it).
     #[arg(long, value_parser = ["tables", "qprop"], default_value = "tables")]
     pub section_model: String,
+    /// APC's PER3 directory (`PER3_<D><P><type>.dat`): APC's own predictions scored on the same
+    /// points beside propbet's.
+    #[arg(long)]
+    pub per3: Option<PathBuf>,
     /// Transition amplification ratio Ncrit of the polars.
     #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
     pub ncrit: f64,
@@ -62,6 +66,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         xfoil: a.xfoil.spec(),
         tables: a.section_model == "tables",
         ncrit: a.ncrit,
+        per3: a.per3.clone(),
     };
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
@@ -78,11 +83,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         let pe0_path = match pe0_name(prop) {
             Some(n) if a.pe0.join(&n).is_file() => a.pe0.join(n),
             Some(n) => {
-                skipped.push(format!("{prop}: no PE0 file {n}"));
+                skipped.push((prop.clone(), format!("no PE0 file {n} in {}", a.pe0.display())));
                 continue;
             }
             None => {
-                skipped.push(format!("{prop}: not an APC propeller (no PE0 file)"));
+                skipped.push((prop.clone(), propbet_qprop::apc::pe0_unknown(prop)));
                 continue;
             }
         };
@@ -98,7 +103,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             }
             Err(e) => {
                 all_clean = false;
-                skipped.push(format!("{prop}: {e:#}"));
+                skipped.push((prop.clone(), format!("{e:#}")));
             }
         }
     }
@@ -106,7 +111,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         bail!(
             "{}: no propeller could be validated: {}",
             a.uiuc.display(),
-            skipped.join("; ")
+            skipped.iter().map(|(p, why)| format!("{p}: {why}")).collect::<Vec<_>>().join("; ")
         );
     }
     let model = format!("section model {}, Ncrit {}", a.section_model, a.ncrit);
@@ -167,10 +172,16 @@ struct CsvRow<'a> {
     ct_p90_after: f64,
     cp_median_after: f64,
     cp_p90_after: f64,
+    implausible_points: usize,
+    apc_points: Option<usize>,
+    apc_ct_median: Option<f64>,
+    apc_ct_p90: Option<f64>,
+    apc_cp_median: Option<f64>,
+    apc_cp_p90: Option<f64>,
     ladder: &'a str,
 }
 
-fn table(rows: &[Row], skipped: &[String], model: &str) -> (String, Vec<u8>) {
+fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> (String, Vec<u8>) {
     let md = propbet_report::validate::markdown(rows, skipped, model);
     let mut csv = csv::Writer::from_writer(Vec::new());
     for r in rows {
@@ -186,6 +197,12 @@ fn table(rows: &[Row], skipped: &[String], model: &str) -> (String, Vec<u8>) {
             ct_p90_after: r.ct[1].1,
             cp_median_after: r.cp[1].0,
             cp_p90_after: r.cp[1].1,
+            implausible_points: r.implausible,
+            apc_points: r.per3.as_ref().map(|p| p.points),
+            apc_ct_median: r.per3.as_ref().map(|p| p.ct.0),
+            apc_ct_p90: r.per3.as_ref().map(|p| p.ct.1),
+            apc_cp_median: r.per3.as_ref().map(|p| p.cp.0),
+            apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             ladder: &r.ladder,
         });
     }

@@ -160,6 +160,9 @@ pub struct ComparedPoint {
     pub mach_tip: f64,
     /// Stations the solver did not converge.
     pub not_converged: usize,
+    /// What is physically wrong with the prediction at this point
+    /// ([`propbet_bemt::check`]): reported with the point, never silently scored.
+    pub model_flags: Vec<String>,
     /// Reasons not to score the point.
     pub flags: Vec<String>,
     /// Smallest |measured| value given a relative error, per quantity: 5 % of the largest in
@@ -293,6 +296,13 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
         }
     };
     let (predicted, result) = predict(setup, omega, v, &air.fluid)?;
+    let mut model_flags = propbet_bemt::check::implausible(&result, air.fluid.rho, setup.rotor.tip_radius);
+    let outside = propbet_bemt::check::outside_data(setup.rotor, &result);
+    if outside > 0 {
+        model_flags.push(format!(
+            "{outside} stations solved at a Reynolds number far outside their polars"
+        ));
+    }
     let tip = 0.5 * d;
     Ok(ComparedPoint {
         file,
@@ -309,6 +319,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
         re75: re_at(&result, 0.75 * tip),
         mach_tip: (omega * tip).hypot(v) / air.fluid.a,
         not_converged: result.not_converged,
+        model_flags,
         flags: p.flags.clone(),
         rel_floor: Quantities::default(),
         air,

@@ -245,6 +245,7 @@ mod tests {
             re75: 0.0,
             mach_tip: 0.0,
             not_converged: 0,
+            model_flags: vec![],
             flags: vec![],
             rel_floor: Quantities::default(),
         }

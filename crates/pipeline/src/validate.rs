@@ -35,6 +35,8 @@ pub struct ValidateSpec {
     pub tables: bool,
     /// Transition amplification ratio Ncrit of the polars.
     pub ncrit: f64,
+    /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
+    pub per3: Option<PathBuf>,
 }
 
 /// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
@@ -108,12 +110,65 @@ pub struct Row {
     pub prop: String,
     /// Points scored.
     pub points: usize,
+    /// Points (of all compared) where the prediction is physically implausible (scored, and
+    /// named in the prop's points.csv).
+    pub implausible: usize,
     /// CT (median, p90) before and after.
     pub ct: [(f64, f64); 2],
     /// CP (median, p90) before and after.
     pub cp: [(f64, f64); 2],
+    /// APC's own prediction (PER3) on the same points: CT and CP (median, p90), and the points
+    /// it covers; None without `--per3` or its file.
+    pub per3: Option<Per3Score>,
     /// The ladder's effects.
     pub ladder: String,
+}
+
+/// APC's PER3 prediction scored as propbet's is.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Per3Score {
+    /// Points scored (those inside the PER3 file's RPM and J range).
+    pub points: usize,
+    /// CT (median, p90).
+    pub ct: (f64, f64),
+    /// CP (median, p90).
+    pub cp: (f64, f64),
+}
+
+/// The UIUC family of a prop name, as APC names the line: `apce_10x5` → `E`, `apcsf` → `SF`,
+/// `apcsp` → `SP`, `apcff` → `FF`; other makers: their prefix.
+pub fn family(prop: &str) -> String {
+    let prefix = prop.split('_').next().unwrap_or(prop);
+    match prefix {
+        "apce" => "E".into(),
+        "apcsf" => "SF".into(),
+        "apcsp" => "SP".into(),
+        "apcff" => "FF".into(),
+        other => other.to_string(),
+    }
+}
+
+/// Scores APC's PER3 prediction on the compared points: each point's predicted CT and CP
+/// replaced by PER3's at its RPM and J (points outside PER3's range left out), then the same
+/// window and errors as propbet's.
+pub fn per3_score(per3: &propbet_qprop::apc::Per3, points: &[propbet_compare::ComparedPoint]) -> Per3Score {
+    let replaced: Vec<propbet_compare::ComparedPoint> = points
+        .iter()
+        .map(|p| {
+            let mut q = p.clone();
+            let at = per3.at(p.rpm, p.j);
+            q.predicted.ct = at.map(|x| x.0);
+            q.predicted.cp = at.map(|x| x.1);
+            q
+        })
+        .collect();
+    let (ct, cp) = window_errors(&replaced, VALIDATION_J_WINDOW);
+    let q = |v: &Vec<f64>| (quantile(v.clone(), 0.5), quantile(v.clone(), 0.9));
+    Per3Score {
+        points: ct.len(),
+        ct: q(&ct),
+        cp: q(&cp),
+    }
 }
 
 /// Everything one prop's validation made.
@@ -313,11 +368,25 @@ pub fn validate_prop(
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
     let (ct1, cp1) = window_errors(&calibrated.points, VALIDATION_J_WINDOW);
     let q = |v: &Vec<f64>| (quantile(v.clone(), 0.5), quantile(v.clone(), 0.9));
+    let per3 = match &spec.per3 {
+        None => None,
+        Some(dir) => match propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)) {
+            Some(path) if path.is_file() => {
+                let text = read_text(&path)?;
+                let file = propbet_qprop::apc::read_per3(&text, &path.display().to_string())
+                    .map_err(|e| Error::Invalid(e.to_string()))?;
+                Some(per3_score(&file, &compared.points))
+            }
+            _ => None,
+        },
+    };
     let row = Row {
         prop: prop.to_string(),
         points: ct0.len(),
+        implausible: compared.points.iter().filter(|p| !p.model_flags.is_empty()).count(),
         ct: [q(&ct0), q(&ct1)],
         cp: [q(&cp0), q(&cp1)],
+        per3,
         ladder: if effects.is_empty() {
             "none".into()
         } else {

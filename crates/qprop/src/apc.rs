@@ -41,6 +41,19 @@ pub fn pe0_name(uiuc: &str) -> Option<String> {
     Some(format!("{}{suffix}-PERF.PE0", size.replace('.', "")))
 }
 
+/// Why a UIUC prop has no PE0 name: another maker, or an APC family whose file name is not known.
+pub fn pe0_unknown(uiuc: &str) -> String {
+    let family = uiuc.split('_').next().unwrap_or(uiuc);
+    if family.starts_with("apc") {
+        format!(
+            "UIUC family {family}: APC's PE0 file name for it is not known (known: apce -> <D><P>E, \
+             apcsf -> <D><P>SF, apcsp and apcff -> <D><P>); no APC sections to predict it with"
+        )
+    } else {
+        format!("UIUC family {family}: not an APC propeller, no PE0 file with its sections")
+    }
+}
+
 /// The diameter [m] from a UIUC size in inches (`apcsf_10x4.7` → 10 in).
 pub fn uiuc_diameter(uiuc: &str) -> Option<f64> {
     let d_in: f64 = uiuc.split_once('_')?.1.split_once('x')?.0.parse().ok()?;
@@ -123,6 +136,101 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
     })
 }
 
+/// APC's predicted performance (a PER3 file): for each RPM block, (J, CT, CP) rows ascending in J.
+/// Predictions of APC's own code, a reference to compare with, never measurements.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Per3 {
+    /// (rpm, rows of (J, CT, CP)), ascending in rpm.
+    pub blocks: Vec<(f64, Vec<[f64; 3]>)>,
+}
+
+/// A PER3 file that cannot be read.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ReadPer3Error {
+    /// A `PROP RPM =` line without a number.
+    #[error("{name}: line {line}: '{text}': expected 'PROP RPM = <number>'")]
+    RpmLine {
+        /// File name.
+        name: String,
+        /// Line (1-based).
+        line: usize,
+        /// The line (at most 80 characters).
+        text: String,
+    },
+    /// No block with at least two rows.
+    #[error("{name}: not an APC PER3 file (no 'PROP RPM =' block with two or more data rows)")]
+    NotPer3 {
+        /// File name.
+        name: String,
+    },
+}
+
+/// The PER3 file name of a UIUC prop (`apcsf_10x4.7` → `PER3_10x47SF.dat`).
+pub fn per3_name(uiuc: &str) -> Option<String> {
+    let pe0 = pe0_name(uiuc)?;
+    Some(format!("PER3_{}.dat", pe0.strip_suffix("-PERF.PE0")?))
+}
+
+/// Reads a PER3 file: blocks `PROP RPM = N` followed by rows of 15 numbers (V [mph], J, Pe,
+/// Ct, Cp, ...); rows with non-finite or negative J are skipped.
+pub fn read_per3(text: &str, name: &str) -> Result<Per3, ReadPer3Error> {
+    let mut blocks: Vec<(f64, Vec<[f64; 3]>)> = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if let Some(rest) = t.strip_prefix("PROP RPM =") {
+            let rpm: f64 = rest.trim().parse().map_err(|_| ReadPer3Error::RpmLine {
+                name: name.to_string(),
+                line: i + 1,
+                text: t.chars().take(80).collect(),
+            })?;
+            blocks.push((rpm, Vec::new()));
+            continue;
+        }
+        let v: Vec<f64> = t.split_whitespace().map_while(|s| s.parse().ok()).collect();
+        if v.len() >= 5 && v[1].is_finite() && v[1] >= 0.0 && v[3].is_finite() && v[4].is_finite() {
+            if let Some((_, rows)) = blocks.last_mut() {
+                rows.push([v[1], v[3], v[4]]);
+            }
+        }
+    }
+    blocks.retain(|(rpm, rows)| rpm.is_finite() && *rpm > 0.0 && rows.len() >= 2);
+    for (_, rows) in &mut blocks {
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]));
+    }
+    blocks.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if blocks.is_empty() {
+        return Err(ReadPer3Error::NotPer3 { name: name.to_string() });
+    }
+    Ok(Per3 { blocks })
+}
+
+impl Per3 {
+    /// (CT, CP) at `rpm` and `j`: linear in J within the two blocks around `rpm`, linear in rpm
+    /// between them; None outside the blocks' J range or RPM range.
+    pub fn at(&self, rpm: f64, j: f64) -> Option<(f64, f64)> {
+        let in_block = |rows: &[[f64; 3]]| -> Option<(f64, f64)> {
+            let k = rows.partition_point(|r| r[0] <= j);
+            if k == 0 || (k == rows.len() && j > rows[rows.len() - 1][0]) {
+                return None;
+            }
+            let k = k.min(rows.len() - 1).max(1);
+            let (a, b) = (rows[k - 1], rows[k]);
+            let t = if b[0] > a[0] { (j - a[0]) / (b[0] - a[0]) } else { 0.0 };
+            Some((a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])))
+        };
+        let b = &self.blocks;
+        let k = b.partition_point(|x| x.0 <= rpm);
+        if k == 0 || (k == b.len() && rpm > b[b.len() - 1].0) {
+            return None;
+        }
+        let k = k.min(b.len() - 1).max(1);
+        let (lo, hi) = (&b[k - 1], &b[k]);
+        let (p, q) = (in_block(&lo.1)?, in_block(&hi.1)?);
+        let t = if hi.0 > lo.0 { (rpm - lo.0) / (hi.0 - lo.0) } else { 0.0 };
+        Some((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -135,6 +243,41 @@ mod tests {
         assert_eq!(pe0_name("apcff_4.2x4").as_deref(), Some("42x4-PERF.PE0"));
         assert_eq!(pe0_name("gwsdd_9x5"), None);
         assert!((uiuc_diameter("apcff_4.2x4").unwrap() - 4.2 * 0.0254).abs() < 1e-15);
+        assert_eq!(per3_name("apcsf_10x4.7").as_deref(), Some("PER3_10x47SF.dat"));
+        assert_eq!(pe0_name("apc29ff_9x5"), None);
+        assert!(pe0_unknown("apc29ff_9x5").contains("apc29ff: APC's PE0 file name for it is not known"));
+        assert!(pe0_unknown("gwsdd_9x5").contains("not an APC propeller"));
+    }
+
+    #[test]
+    fn per3_blocks_interpolate_in_j_and_rpm() {
+        let text = "  PROP RPM =  1000\n  V J Pe Ct Cp\n (mph) - - - -\n\
+                    0.00 0.0000 0.0 0.1342 0.0549 0 0 0 0 0 0 0 0 0 0\n\
+                    0.21 0.1000 0.05 0.1242 0.0550 0 0 0 0 0 0 0 0 0 0\n\
+                    PROP RPM = 2000\n\
+                    0.00 0.0000 0.0 0.1442 0.0649 0 0 0 0 0 0 0 0 0 0\n\
+                    0.21 0.1000 0.05 0.1342 0.0650 0 0 0 0 0 0 0 0 0 0\n";
+        let p = read_per3(text, "x.dat").unwrap();
+        assert_eq!(p.blocks.len(), 2);
+        let (ct, cp) = p.at(1500.0, 0.05).unwrap();
+        assert!((ct - 0.1342).abs() < 1e-12 && (cp - 0.05995).abs() < 1e-12, "{ct} {cp}");
+        assert_eq!(p.at(1000.0, 0.0), Some((0.1342, 0.0549)));
+        assert_eq!(p.at(2000.0, 0.1), Some((0.1342, 0.065)));
+        assert_eq!(p.at(2500.0, 0.05), None, "beyond the RPM blocks");
+        assert_eq!(p.at(1500.0, 0.2), None, "beyond the J range");
+        let e = read_per3("PROP RPM = lots\n", "y.dat").unwrap_err().to_string();
+        assert!(e.contains("y.dat: line 1"), "{e}");
+        assert!(read_per3("hello\n", "z.dat").unwrap_err().to_string().contains("not an APC PER3"));
+    }
+
+    #[test]
+    fn the_shared_per3_files_read() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/data/per3");
+        let text = std::fs::read_to_string(dir.join("PER3_10x47SF.dat")).unwrap();
+        let p = read_per3(&text, "PER3_10x47SF.dat").unwrap();
+        assert!(p.blocks.len() >= 10 && p.blocks[0].0 == 1000.0, "{}", p.blocks.len());
+        // The file's first row at 1000 rpm: J 0, Ct 0.1342, Cp 0.0549.
+        assert_eq!(p.at(1000.0, 0.0), Some((0.1342, 0.0549)));
     }
 
     #[test]

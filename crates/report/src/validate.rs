@@ -1,142 +1,201 @@
 //! The validation table of `propbet validate`: Markdown (for the README and the terminal) and
-//! an HTML page.
+//! an HTML page. One row per prop (a prop that could not be validated keeps its row, with the
+//! reason), then the median over the props of each family (E, SF, SP, FF) and over all.
 
 use std::fmt::Write as _;
 
 use propbet_compare::metrics::quantile;
-use propbet_pipeline::validate::Row;
+use propbet_pipeline::validate::{family, Row};
 
 use crate::page::{esc, page};
 
-/// Column heads of the table.
-const HEAD: [&str; 11] = [
-    "prop",
-    "points",
-    "CT median",
-    "CT p90",
-    "CP median",
-    "CP p90",
-    "CT median after",
-    "CT p90 after",
-    "CP median after",
-    "CP p90 after",
-    "ladder",
-];
+/// A prop that was not validated: its name and why.
+pub type Skipped = (String, String);
 
 fn pct(x: f64) -> String {
-    format!("{:.1} %", 100.0 * x)
+    if x.is_finite() {
+        format!("{:.1} %", 100.0 * x)
+    } else {
+        "–".into()
+    }
+}
+
+/// Column heads; the APC columns only when some row has them.
+fn head(apc: bool) -> Vec<&'static str> {
+    let mut h = vec!["prop", "family", "points", "CT median", "CT p90", "CP median", "CP p90"];
+    if apc {
+        h.extend(["APC CT median", "APC CT p90", "APC CP median", "APC CP p90"]);
+    }
+    h.extend([
+        "CT median after",
+        "CT p90 after",
+        "CP median after",
+        "CP p90 after",
+        "ladder",
+    ]);
+    h
+}
+
+/// The numeric columns of a row, in table order (NaN where missing).
+fn numbers(r: &Row, apc: bool) -> Vec<f64> {
+    let mut v = vec![r.ct[0].0, r.ct[0].1, r.cp[0].0, r.cp[0].1];
+    if apc {
+        let p = r.per3.as_ref();
+        v.extend([
+            p.map_or(f64::NAN, |p| p.ct.0),
+            p.map_or(f64::NAN, |p| p.ct.1),
+            p.map_or(f64::NAN, |p| p.cp.0),
+            p.map_or(f64::NAN, |p| p.cp.1),
+        ]);
+    }
+    v.extend([r.ct[1].0, r.ct[1].1, r.cp[1].0, r.cp[1].1]);
+    v
 }
 
 /// The cells of one prop's row.
-fn cells(r: &Row) -> Vec<String> {
-    let mut v = vec![r.prop.clone(), r.points.to_string()];
-    for (m, p) in [r.ct[0], r.cp[0], r.ct[1], r.cp[1]] {
-        v.push(pct(m));
-        v.push(pct(p));
-    }
+fn cells(r: &Row, apc: bool) -> Vec<String> {
+    let mut v = vec![r.prop.clone(), family(&r.prop), r.points.to_string()];
+    v.extend(numbers(r, apc).into_iter().map(pct));
     v.push(r.ladder.clone());
     v
 }
 
-/// The last row: the median over props of each column (of the medians, of the p90s).
-fn overall(rows: &[Row]) -> Vec<String> {
-    let mut v = vec![
-        "all (median over props)".to_string(),
-        rows.iter().map(|r| r.points).sum::<usize>().to_string(),
-    ];
-    let cols = |r: &Row| [r.ct[0], r.cp[0], r.ct[1], r.cp[1]];
-    for k in 0..4 {
-        v.push(pct(quantile(rows.iter().map(|r| cols(r)[k].0).collect(), 0.5)));
-        v.push(pct(quantile(rows.iter().map(|r| cols(r)[k].1).collect(), 0.5)));
+/// A summary row: the median over `rows` of each column.
+fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
+    let mut v = vec![label, String::new(), rows.iter().map(|r| r.points).sum::<usize>().to_string()];
+    let cols: Vec<Vec<f64>> = rows.iter().map(|r| numbers(r, apc)).collect();
+    for k in 0..cols.first().map_or(0, Vec::len) {
+        let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
+        v.push(pct(quantile(col, 0.5)));
     }
     v.push(String::new());
     v
+}
+
+/// Every row of the table: props, skipped props, per-family medians (families with two or more
+/// props), the median over all.
+fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<String>, bool)>) {
+    let apc = rows.iter().any(|r| r.per3.is_some());
+    let h = head(apc);
+    let mut out: Vec<(Vec<String>, bool)> = rows.iter().map(|r| (cells(r, apc), false)).collect();
+    for (prop, why) in skipped {
+        let mut v = vec![prop.clone(), family(prop), "0".into()];
+        v.resize(h.len() - 1, "–".into());
+        v.push(format!("not validated: {why}"));
+        out.push((v, false));
+    }
+    let mut families: Vec<String> = rows.iter().map(|r| family(&r.prop)).collect();
+    families.sort();
+    families.dedup();
+    for f in families {
+        let members: Vec<&Row> = rows.iter().filter(|r| family(&r.prop) == f).collect();
+        if members.len() >= 2 {
+            out.push((median_row(format!("{f} (median of {})", members.len()), &members, apc), true));
+        }
+    }
+    let all: Vec<&Row> = rows.iter().collect();
+    out.push((median_row("all (median over props)".into(), &all, apc), true));
+    (h, out)
 }
 
 fn intro(model: &str) -> String {
     format!(
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
          (static points included). Before: UIUC geometry + APC sections + XFOIL polars covering each \
-         prop's measured RPM and J range ({model}); after: with the effects the diagnosis' ladder \
-         fitted to the same data (calibration)."
+         prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
+         measurements) on the same points; after: with the effects the diagnosis' ladder fitted to \
+         the same data (calibration)."
     )
 }
 
-/// The table as Markdown, with the props that were not validated and why.
-pub fn markdown(rows: &[Row], skipped: &[String], model: &str) -> String {
-    let mut md = format!(
-        "{}\n\n| {} |\n|{}\n",
-        intro(model),
-        HEAD.join(" | "),
-        "---|".repeat(HEAD.len())
-    );
-    for r in rows {
-        let _ = writeln!(md, "| {} |", cells(r).join(" | "));
-    }
-    let mut last = overall(rows);
-    last[0] = format!("**{}**", last[0]);
-    let _ = writeln!(md, "| {} |", last.join(" | "));
-    if !skipped.is_empty() {
-        md.push_str("\nNot validated:\n");
-        for s in skipped {
-            let _ = writeln!(md, "- {s}");
+/// The table as Markdown.
+pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
+    let (h, body) = table(rows, skipped);
+    let mut md = format!("{}\n\n| {} |\n|{}\n", intro(model), h.join(" | "), "---|".repeat(h.len()));
+    for (cells, summary) in body {
+        let mut cells = cells;
+        if summary {
+            cells[0] = format!("**{}**", cells[0]);
         }
+        let _ = writeln!(md, "| {} |", cells.join(" | "));
     }
     md
 }
 
 /// The table as a page.
-pub fn html(rows: &[Row], skipped: &[String], model: &str) -> String {
-    let mut h = format!(
+pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
+    let (h, body) = table(rows, skipped);
+    let mut s = format!(
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
         esc(&intro(model))
     );
     // The last column (the ladder) is text: left-aligned.
-    let class = |k: usize| if k + 1 == HEAD.len() { " class=\"text\"" } else { "" };
-    for (k, c) in HEAD.iter().enumerate() {
-        let _ = write!(h, "<th{}>{}</th>", class(k), esc(c));
+    let class = |k: usize| if k + 1 == h.len() { " class=\"text\"" } else { "" };
+    for (k, c) in h.iter().enumerate() {
+        let _ = write!(s, "<th{}>{}</th>", class(k), esc(c));
     }
-    h.push_str("</tr>\n");
-    for (k, r) in rows.iter().map(cells).chain(std::iter::once(overall(rows))).enumerate() {
-        h.push_str(if k == rows.len() { "<tr class=\"sig\">" } else { "<tr>" });
-        for (k, c) in r.iter().enumerate() {
-            let _ = write!(h, "<td{}>{}</td>", class(k), esc(c));
+    s.push_str("</tr>\n");
+    for (cells, summary) in &body {
+        s.push_str(if *summary { "<tr class=\"sig\">" } else { "<tr>" });
+        for (k, c) in cells.iter().enumerate() {
+            let _ = write!(s, "<td{}>{}</td>", class(k), esc(c));
         }
-        h.push_str("</tr>\n");
+        s.push_str("</tr>\n");
     }
-    h.push_str("</table>\n");
-    if !skipped.is_empty() {
-        h.push_str("<h2>Not validated</h2>\n<ul>");
-        for s in skipped {
-            let _ = write!(h, "<li>{}</li>", esc(s));
-        }
-        h.push_str("</ul>\n");
-    }
-    page("propbet validate", "", &h)
+    s.push_str("</table>\n");
+    page("propbet validate", "", &s)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use propbet_pipeline::validate::Per3Score;
 
-    #[test]
-    fn tables_have_a_row_per_prop_and_the_median_over_props() {
-        let row = |p: &str, x: f64| Row {
+    fn row(p: &str, x: f64, apc: bool) -> Row {
+        Row {
             prop: p.into(),
             points: 10,
+            implausible: 0,
             ct: [(x, 2.0 * x), (x / 2.0, x)],
             cp: [(x, x), (x, x)],
+            per3: apc.then_some(Per3Score {
+                points: 9,
+                ct: (0.08, 0.2),
+                cp: (0.06, 0.1),
+            }),
             ladder: "none".into(),
-        };
-        let rows = [row("a", 0.1), row("b", 0.3), row("c", 0.2)];
-        let md = markdown(&rows, &["d: no PE0 file".into()], "tables");
-        assert!(md.contains("| a | 10 | 10.0 % | 20.0 % |"), "{md}");
+        }
+    }
+
+    #[test]
+    fn tables_have_a_row_per_prop_family_medians_and_the_median_over_props() {
+        let rows = [row("apce_a", 0.1, false), row("apce_b", 0.3, false), row("apcsf_c", 0.2, false)];
+        let skipped = [("apc29ff_9x5".to_string(), "no PE0 file".to_string())];
+        let md = markdown(&rows, &skipped, "tables");
+        assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
+        assert!(md.contains("| **E (median of 2)** |  | 20 | 30.0 % |"), "{md}");
+        assert!(!md.contains("SF (median"), "a family of one has no median row: {md}");
         assert!(
-            md.contains("| **all (median over props)** | 30 | 20.0 % | 40.0 % |"),
+            md.contains("| **all (median over props)** |  | 30 | 20.0 % | 40.0 % |"),
             "{md}"
         );
-        assert!(md.contains("- d: no PE0 file"));
-        let page = html(&rows, &[], "tables");
-        assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 5);
+        assert!(md.contains("| apc29ff_9x5 | apc29ff | 0 | – |") && md.contains("not validated: no PE0 file"), "{md}");
+        assert!(!md.contains("APC CT"), "no PER3, no APC columns");
+        let page = html(&rows, &skipped, "tables");
+        assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 7);
+    }
+
+    #[test]
+    fn apc_columns_when_per3_is_given() {
+        let rows = [row("apce_a", 0.1, true), row("apcsf_c", 0.2, false)];
+        let md = markdown(&rows, &[], "tables");
+        assert!(md.contains("| APC CT median | APC CT p90 |"), "{md}");
+        assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % | 10.0 % | 10.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"), "{md}");
+        assert!(md.contains("| apcsf_c | SF | 10 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | – | – | – | – |"), "{md}");
+        // The median over props of APC's columns uses the props that have them.
+        assert!(
+            md.contains("| **all (median over props)** |  | 20 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"),
+            "{md}"
+        );
     }
 }
