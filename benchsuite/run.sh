@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Benchmark of issue 7: `propbet run` on the default case (props/apcsf_10x4.7: STL scan, XFOIL
-# polars of 20 stations at 3 Re each, sweeps, comparison with 8 UIUC files, diagnosis, report)
+# polars of 20 stations on the Re rungs covering the measured range, sweeps, comparison with 8 UIUC files, diagnosis, report)
 # on 2 threads. Cold: a fresh polar cache each run. Warm: the same cache filled.
-# Targets (issue 7): cold <= 60 s, warm <= 10 s on 2 cores.
+# Targets (issues 7 and 16): cold <= 60 s, warm <= 10 s on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v hyperfine >/dev/null 2>&1 || { apt-get install -y -qq hyperfine >/dev/null; }

@@ -15,8 +15,11 @@ while read -r pkg; do
 done < scripts/debian-packages.txt
 if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing Debian packages: ${missing[*]}"
-  need_root apt-get update -qq
-  need_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}"
+  # Another apt (unattended upgrades on a fresh machine) may hold the lock: wait for it, up to
+  # 10 minutes, instead of failing at once.
+  lock=(-o DPkg::Lock::Timeout=600)
+  need_root apt-get "${lock[@]}" update -qq
+  need_root env DEBIAN_FRONTEND=noninteractive apt-get "${lock[@]}" install -y -qq "${missing[@]}"
 fi
 
 required=$(sed -n 's/^rust-version *= *"\(.*\)"/\1/p' Cargo.toml)

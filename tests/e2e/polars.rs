@@ -184,13 +184,26 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("fit.json")).unwrap()).unwrap();
     assert_eq!(json["rpm"], serde_json::json!([6000.0, 10000.0]));
     for st in json["stations"].as_array().unwrap() {
-        let range: Vec<f64> = st["re_range"].as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect();
+        let range: Vec<f64> = st["re_range"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
         assert!(range[1] > 1.5 * range[0], "{range:?}");
-        let res: Vec<f64> = st["polars"].as_array().unwrap().iter().map(|p| p["re"].as_f64().unwrap()).collect();
+        let res: Vec<f64> = st["polars"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["re"].as_f64().unwrap())
+            .collect();
         assert!(res.len() >= 3, "{res:?}");
         let ladder = |re: f64| (5.0 * re.log10() - (5.0 * re.log10()).round()).abs() < 1e-6;
         assert!(res.iter().all(|&re| ladder(re)), "{res:?}");
-        assert!(res[0] <= range[0] && res[res.len() - 1] >= range[1], "{res:?} vs {range:?}");
+        assert!(
+            res[0] <= range[0] && res[res.len() - 1] >= range[1],
+            "{res:?} vs {range:?}"
+        );
     }
     // Both section models predict; the tabulated one close to the fitted one at the design point.
     let thrust = |extra: &[&str]| -> f64 {

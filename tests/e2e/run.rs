@@ -67,6 +67,21 @@ fn default_case_from_scan_to_report() {
         100.0 * e_cp
     );
     assert!(e_ct.abs() < 0.25 && e_cp.abs() < 0.35, "static CT {e_ct}, CP {e_cp}");
+    // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number) as
+    // measured, to within a third of the measured rise (issue 16's target).
+    let rpm = col(&h, "rpm");
+    let lo = stat.iter().min_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
+    let hi = stat.iter().max_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
+    let (rise_m, rise_p) = (num(hi, ct) / num(lo, ct) - 1.0, num(hi, ctp) / num(lo, ctp) - 1.0);
+    eprintln!(
+        "default case, static CT rise: measured {:.1} %, predicted {:.1} %",
+        100.0 * rise_m,
+        100.0 * rise_p
+    );
+    assert!(
+        (rise_p - rise_m).abs() < rise_m / 3.0,
+        "rise {rise_p} vs measured {rise_m}"
+    );
     // The diagnosis: the ladder's held-out error falls.
     let d: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("diagnose/diagnosis.json")).unwrap()).unwrap();

@@ -272,3 +272,15 @@ fn bad_scans_get_clear_errors() {
     assert!(stderr(&o).contains("outside (0, 1]"), "{}", stderr(&o));
     assert!(!p.join("out/geometry.csv").exists());
 }
+
+#[test]
+fn a_coloured_cloud_without_its_blade_colours_is_told_the_option() {
+    let dir = tempfile::tempdir().unwrap();
+    let ply = scans().join("synthetic_apce10x5/apce10x5_synthetic.ply");
+    let o = run(
+        &["scan", ply.to_str().unwrap(), "--stations", "0.3:0.9/4", "-o", "out"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--blade-colour"), "{}", stderr(&o));
+}

@@ -34,7 +34,8 @@ fn validation_table_on_the_shipped_subset() {
     eprintln!("{md}");
     // Every prop has a row: the one without APC sections says why.
     assert!(
-        md.contains("| gwsdd_9x5 | gwsdd | 0 | – |") && md.contains("not validated: UIUC family gwsdd: not an APC propeller"),
+        md.contains("| gwsdd_9x5 | gwsdd | 0 | – |")
+            && md.contains("not validated: UIUC family gwsdd: not an APC propeller"),
         "{md}"
     );
     let (h, rows) = read_csv(&dir.path().join("val/validation.csv"));

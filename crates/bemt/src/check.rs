@@ -28,7 +28,9 @@ pub fn implausible(p: &PointResult, rho: f64, tip_radius: f64) -> Vec<String> {
         if v.abs() < 1e-9 {
             let fm = t.powf(1.5) / (power * (2.0 * rho * area).sqrt());
             if fm > 1.0 {
-                said.push(format!("static thrust beyond momentum theory (figure of merit {fm:.2} > 1)"));
+                said.push(format!(
+                    "static thrust beyond momentum theory (figure of merit {fm:.2} > 1)"
+                ));
             }
         } else if v > 0.0 {
             let ideal = 2.0 / (1.0 + (1.0 + t / (0.5 * rho * v * v * area)).sqrt());

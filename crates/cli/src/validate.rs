@@ -111,7 +111,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         bail!(
             "{}: no propeller could be validated: {}",
             a.uiuc.display(),
-            skipped.iter().map(|(p, why)| format!("{p}: {why}")).collect::<Vec<_>>().join("; ")
+            skipped
+                .iter()
+                .map(|(p, why)| format!("{p}: {why}"))
+                .collect::<Vec<_>>()
+                .join("; ")
         );
     }
     let model = format!("section model {}, Ncrit {}", a.section_model, a.ncrit);

@@ -107,10 +107,13 @@ impl Mesh {
 
 /// Reads an STL file, binary or ASCII (`name` is used in messages).
 pub fn read_stl(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
+    // ASCII: `solid`, then `facet` within the first 1000 bytes (or a short file). The `solid`
+    // line is a free-text name that exporters write in any encoding (Latin-1 from older CAD
+    // tools), so the test does not ask for UTF-8.
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(1000)]);
     let ascii = bytes.len() >= 5
         && bytes[..5].eq_ignore_ascii_case(b"solid")
-        && std::str::from_utf8(&bytes[..bytes.len().min(1000)])
-            .is_ok_and(|s| s.contains("facet") || s.trim().len() < 1000);
+        && (head.contains("facet") || head.trim().len() < 1000);
     let binary_consistent = bytes.len() >= 84 && {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
         bytes.len() == 84 + 50 * n
@@ -221,6 +224,16 @@ fn read_ascii(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ascii_stl_with_a_latin1_name_is_read_as_ascii() {
+        let mut bytes = b"solid h\xe9lice \xb0 10x4.7\n".to_vec();
+        bytes.extend_from_slice(
+            b"facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid\n",
+        );
+        let m = read_stl(&bytes, "latin1.stl").unwrap();
+        assert_eq!(m.triangles.len(), 1);
+    }
 
     fn tri() -> Mesh {
         let mut m = Mesh::default();

@@ -464,7 +464,21 @@ fn colour_select(
 
 /// Processes a cloud.
 pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanError> {
-    let opts = &opts.to_mm();
+    scan_cloud_mm(cloud, &opts.to_mm()).map_err(|e| {
+        // A coloured cloud scanned without its blade colours keeps the background: say which
+        // option drops it.
+        if cloud.colors.is_some() && opts.blade_colours.is_empty() {
+            ScanError::Input(format!(
+                "{e}\nthe cloud has colours: give the blade's with --blade-colour (for example \
+                 --blade-colour orange,black) to drop the background and the reference box"
+            ))
+        } else {
+            e
+        }
+    })
+}
+
+fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions) -> Result<Geometry, ScanError> {
     let mut notes = Vec::new();
     let total = cloud.points.len();
     let mut blade = cloud.clone();

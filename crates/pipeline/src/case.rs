@@ -512,9 +512,12 @@ mod tests {
              [polars]\nairfoil = \"naca4412\"\nv = \"0,5\"\n";
         let case: Case = toml::from_str(text).unwrap();
         let plan = case
-            .plan(Path::new("case"), Path::new("out"), &XfoilProcessSpec::default(), &|_| {
-                Ok(ScanOptions::default())
-            })
+            .plan(
+                Path::new("case"),
+                Path::new("out"),
+                &XfoilProcessSpec::default(),
+                &|_| Ok(ScanOptions::default()),
+            )
             .unwrap();
         let (p, _) = plan.polars.unwrap();
         assert_eq!(p.omegas, vec![rpm_to_omega(4000.0), rpm_to_omega(6000.0)]);

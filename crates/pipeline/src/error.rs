@@ -68,3 +68,40 @@ pub fn read_text(path: &std::path::Path) -> Result<String> {
     String::from_utf8(bytes)
         .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))
 }
+
+/// A text file whose first line is a free-text title (prop files, airfoil coordinates): the
+/// title may be Latin-1 (older tools write it so) and is decoded as such; the rest must be UTF-8.
+pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    match String::from_utf8(bytes) {
+        Ok(s) => Ok(s),
+        Err(e) => {
+            let bytes = e.into_bytes();
+            let nl = bytes.iter().position(|&b| b == b'\n').unwrap_or(bytes.len());
+            let (title, rest) = bytes.split_at(nl);
+            let rest = std::str::from_utf8(rest)
+                .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", nl + e.valid_up_to())))?;
+            Ok(title.iter().map(|&b| char::from(b)).collect::<String>() + rest)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_latin1_title_is_read_the_rest_must_be_utf8() {
+        let dir = tempfile::tempdir().unwrap();
+        let ok = dir.path().join("h.dat");
+        std::fs::write(&ok, b"H\xe9lice 10\xb0\n1.0 0.0\n").unwrap();
+        assert_eq!(read_titled_text(&ok).unwrap(), "Hélice 10°\n1.0 0.0\n");
+        let bad = dir.path().join("b.dat");
+        std::fs::write(&bad, b"title\n1.0 \xff0.0\n").unwrap();
+        let e = read_titled_text(&bad).unwrap_err().to_string();
+        assert!(e.contains("b.dat") && e.contains("not UTF-8 text (byte 10)"), "{e}");
+    }
+}

@@ -24,8 +24,8 @@ pub struct LoadedProp {
 /// Reads a prop file, naming the file in every error; `units` [m per unit] replaces its Rfac
 /// and Cfac.
 pub fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
-    let text = read_text(path).map_err(|e| match e {
-        Error::Input { path, .. } => Error::input(path, "not UTF-8 text (is it a QPROP prop file?)"),
+    let text = crate::error::read_titled_text(path).map_err(|e| match e {
+        Error::Input { path, message } => Error::input(path, format!("{message} (is it a QPROP prop file?)")),
         e => e,
     })?;
     prop_from_text(&text, path, units)

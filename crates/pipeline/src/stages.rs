@@ -136,7 +136,7 @@ pub fn station_airfoils(name: &str, g: &Geometry) -> Vec<(usize, String)> {
 
 /// An airfoil file, parsed and normalised, with what was repaired in it.
 pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
-    let text = read_text(path)?;
+    let text = crate::error::read_titled_text(path)?;
     parse_airfoil(&text, path)
 }
 

@@ -241,7 +241,12 @@ pub fn compute_blade(
         let t = ((r - a.r) / (b.r - a.r)).clamp(-0.5, 1.5);
         f(a) + t * (f(b) - f(a))
     };
-    let range = |v: &[f64]| [v.iter().copied().fold(f64::INFINITY, f64::min), v.iter().copied().fold(f64::NEG_INFINITY, f64::max)];
+    let range = |v: &[f64]| {
+        [
+            v.iter().copied().fold(f64::INFINITY, f64::min),
+            v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        ]
+    };
     let mut jobs = Vec::new();
     let mut stations = Vec::new();
     for (i, &r) in blade.r.iter().enumerate() {
@@ -295,7 +300,10 @@ pub fn compute_blade(
             sigma_deg: 3.0,
         };
         let fit = if polars.is_empty() {
-            problems.push(format!("no polar at r = {r:.4} m (Re {:.0}-{:.0})", re_range[0], re_range[1]));
+            problems.push(format!(
+                "no polar at r = {r:.4} m (Re {:.0}-{:.0})",
+                re_range[0], re_range[1]
+            ));
             None
         } else {
             match crate::fit_qprop(&polars, re, &weights, -0.5) {
@@ -320,7 +328,11 @@ pub fn compute_blade(
         });
     }
     let names: Vec<&str> = job.foils.iter().map(|f| f.name.as_str()).collect();
-    let rpms: Vec<f64> = job.points.iter().map(|p| propbet_bemt::units::omega_to_rpm(p.omega)).collect();
+    let rpms: Vec<f64> = job
+        .points
+        .iter()
+        .map(|p| propbet_bemt::units::omega_to_rpm(p.omega))
+        .collect();
     let vs: Vec<f64> = job.points.iter().map(|p| p.v).collect();
     Ok(BladePolars {
         format: FORMAT.into(),

@@ -630,7 +630,10 @@ mod tests {
         let said = bound(&mut c);
         assert_eq!((c.cl0, c.cl_a, c.cd2u), (1.0, 7.5, 1.0));
         assert_eq!(said.len(), 3, "{said:?}");
-        assert!(said[1].starts_with("CL_a 17.27") && said[1].contains("fallback"), "{said:?}");
+        assert!(
+            said[1].starts_with("CL_a 17.27") && said[1].contains("fallback"),
+            "{said:?}"
+        );
         // Inside the bounds nothing changes.
         let before = c;
         assert!(bound(&mut c).is_empty() && c == before);

@@ -152,6 +152,8 @@ impl Curve {
 pub struct TabulatedAero {
     curves: Vec<Curve>,
     res: Vec<f64>,
+    /// ln of `res` (the solver asks for lift hundreds of times a point: one log per call).
+    ln_res: Vec<f64>,
     alpha_zero_lift: f64,
     re_exp_outside: f64,
 }
@@ -187,6 +189,7 @@ impl TabulatedAero {
     fn from_curves(curves: Vec<Curve>, alpha_zero_lift: f64, re_exp_outside: f64) -> TabulatedAero {
         TabulatedAero {
             res: curves.iter().map(|c| c.re).collect(),
+            ln_res: curves.iter().map(|c| c.re.ln()).collect(),
             curves,
             alpha_zero_lift,
             re_exp_outside,
@@ -238,9 +241,25 @@ impl TabulatedAero {
         )
     }
 
+    /// The two polars around `re` and the fraction between them, linear in ln Re (clamped to
+    /// the ends: [`re_bracket`] with the logs kept).
+    fn bracket(&self, re: f64) -> (usize, usize, f64, f64) {
+        let n = self.res.len();
+        let lr = re.ln();
+        if n == 1 || !(lr > self.ln_res[0]) {
+            return (0, 0, 0.0, lr);
+        }
+        if lr >= self.ln_res[n - 1] {
+            return (n - 1, n - 1, 0.0, lr);
+        }
+        let i = self.ln_res.iter().position(|&x| x > lr).unwrap_or(n - 1).max(1);
+        let t = (lr - self.ln_res[i - 1]) / (self.ln_res[i] - self.ln_res[i - 1]);
+        (i - 1, i, t, lr)
+    }
+
     fn at(&self, alpha: f64, re: f64) -> (f64, f64, f64, f64, f64, bool) {
         let a = wrap(alpha);
-        let (i, j, t) = re_bracket(&self.res, re);
+        let (i, j, t, _) = self.bracket(re);
         let (ci, cj) = (&self.curves[i], &self.curves[j]);
         let (li, si, di) = ci.eval(a);
         let (lj, sj, dj) = cj.eval(a);
@@ -248,7 +267,7 @@ impl TabulatedAero {
         let slope = si + t * (sj - si);
         let mut cd = di + t * (dj - di);
         let dcl_dre = if i != j {
-            (lj - li) / (re * (cj.re / ci.re).ln())
+            (lj - li) / (re * (self.ln_res[j] - self.ln_res[i]))
         } else {
             0.0
         };
@@ -271,7 +290,8 @@ impl SectionAero for TabulatedAero {
         LiftEval {
             cl: cl * factor,
             dcl_dalpha: slope * factor,
-            dcl_dmsq: cl * beta_t * 0.5 * one_m.powf(-1.5),
+            // d/dM^2 of beta_t (1 - M^2)^(-1/2) = beta_t / 2 (1 - M^2)^(-3/2).
+            dcl_dmsq: 0.5 * cl * factor / one_m,
             dcl_dre: dcl_dre * factor,
             stalled,
         }

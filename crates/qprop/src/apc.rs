@@ -267,7 +267,10 @@ mod tests {
         assert_eq!(p.at(1500.0, 0.2), None, "beyond the J range");
         let e = read_per3("PROP RPM = lots\n", "y.dat").unwrap_err().to_string();
         assert!(e.contains("y.dat: line 1"), "{e}");
-        assert!(read_per3("hello\n", "z.dat").unwrap_err().to_string().contains("not an APC PER3"));
+        assert!(read_per3("hello\n", "z.dat")
+            .unwrap_err()
+            .to_string()
+            .contains("not an APC PER3"));
     }
 
     #[test]

@@ -62,7 +62,11 @@ fn cells(r: &Row, apc: bool) -> Vec<String> {
 
 /// A summary row: the median over `rows` of each column.
 fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
-    let mut v = vec![label, String::new(), rows.iter().map(|r| r.points).sum::<usize>().to_string()];
+    let mut v = vec![
+        label,
+        String::new(),
+        rows.iter().map(|r| r.points).sum::<usize>().to_string(),
+    ];
     let cols: Vec<Vec<f64>> = rows.iter().map(|r| numbers(r, apc)).collect();
     for k in 0..cols.first().map_or(0, Vec::len) {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
@@ -90,7 +94,10 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     for f in families {
         let members: Vec<&Row> = rows.iter().filter(|r| family(&r.prop) == f).collect();
         if members.len() >= 2 {
-            out.push((median_row(format!("{f} (median of {})", members.len()), &members, apc), true));
+            out.push((
+                median_row(format!("{f} (median of {})", members.len()), &members, apc),
+                true,
+            ));
         }
     }
     let all: Vec<&Row> = rows.iter().collect();
@@ -111,7 +118,12 @@ fn intro(model: &str) -> String {
 /// The table as Markdown.
 pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     let (h, body) = table(rows, skipped);
-    let mut md = format!("{}\n\n| {} |\n|{}\n", intro(model), h.join(" | "), "---|".repeat(h.len()));
+    let mut md = format!(
+        "{}\n\n| {} |\n|{}\n",
+        intro(model),
+        h.join(" | "),
+        "---|".repeat(h.len())
+    );
     for (cells, summary) in body {
         let mut cells = cells;
         if summary {
@@ -169,7 +181,11 @@ mod tests {
 
     #[test]
     fn tables_have_a_row_per_prop_family_medians_and_the_median_over_props() {
-        let rows = [row("apce_a", 0.1, false), row("apce_b", 0.3, false), row("apcsf_c", 0.2, false)];
+        let rows = [
+            row("apce_a", 0.1, false),
+            row("apce_b", 0.3, false),
+            row("apcsf_c", 0.2, false),
+        ];
         let skipped = [("apc29ff_9x5".to_string(), "no PE0 file".to_string())];
         let md = markdown(&rows, &skipped, "tables");
         assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
@@ -179,7 +195,10 @@ mod tests {
             md.contains("| **all (median over props)** |  | 30 | 20.0 % | 40.0 % |"),
             "{md}"
         );
-        assert!(md.contains("| apc29ff_9x5 | apc29ff | 0 | – |") && md.contains("not validated: no PE0 file"), "{md}");
+        assert!(
+            md.contains("| apc29ff_9x5 | apc29ff | 0 | – |") && md.contains("not validated: no PE0 file"),
+            "{md}"
+        );
         assert!(!md.contains("APC CT"), "no PER3, no APC columns");
         let page = html(&rows, &skipped, "tables");
         assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 7);
@@ -190,8 +209,14 @@ mod tests {
         let rows = [row("apce_a", 0.1, true), row("apcsf_c", 0.2, false)];
         let md = markdown(&rows, &[], "tables");
         assert!(md.contains("| APC CT median | APC CT p90 |"), "{md}");
-        assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % | 10.0 % | 10.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"), "{md}");
-        assert!(md.contains("| apcsf_c | SF | 10 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | – | – | – | – |"), "{md}");
+        assert!(
+            md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % | 10.0 % | 10.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| apcsf_c | SF | 10 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | – | – | – | – |"),
+            "{md}"
+        );
         // The median over props of APC's columns uses the props that have them.
         assert!(
             md.contains("| **all (median over props)** |  | 20 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"),
