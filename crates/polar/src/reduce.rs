@@ -76,12 +76,8 @@ pub fn bound(c: &mut QpropCoefficients) -> Vec<String> {
         if !(v >= *lo && v <= *hi) {
             let to = if v.is_nan() { 0.5 * (lo + hi) } else { v.clamp(*lo, *hi) };
             said.push(format!(
-                "{} {} is outside the physical {}..{}: set to {} in the exported prop file (fallback)",
+                "{} {v:.4} is outside the physical {lo}..{hi}: set to {to} in the exported prop file (fallback)",
                 QpropCoefficients::NAMES[k],
-                format!("{v:.4}"),
-                lo,
-                hi,
-                to
             ));
             a[k] = to;
         }

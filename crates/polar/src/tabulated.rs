@@ -246,7 +246,8 @@ impl TabulatedAero {
     fn bracket(&self, re: f64) -> (usize, usize, f64, f64) {
         let n = self.res.len();
         let lr = re.ln();
-        if n == 1 || !(lr > self.ln_res[0]) {
+        // NaN Re (no flow) takes the first polar.
+        if n == 1 || lr.is_nan() || lr <= self.ln_res[0] {
             return (0, 0, 0.0, lr);
         }
         if lr >= self.ln_res[n - 1] {
