@@ -137,6 +137,52 @@ fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
 }
 
 #[test]
+fn a_blade_whose_xfoil_never_converges_names_each_station_and_its_fallback() {
+    let dir = tempfile::tempdir().unwrap();
+    let fake = dir.path().join("xfoil");
+    std::fs::write(
+        &fake,
+        "#!/bin/sh\necho ' Polar accumulation enabled'\necho 'Program received signal SIGFPE'\nkill -FPE $$\n",
+    )
+    .unwrap();
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let o = run(
+        &[
+            "polars",
+            "--geometry",
+            cam6x3().to_str().unwrap(),
+            "--airfoil",
+            "naca4412",
+            "--rpm",
+            "8000",
+            "--alpha",
+            "0:2:1",
+            "--no-cache",
+            "--quiet",
+            "--xfoil",
+            fake.to_str().unwrap(),
+            "--out-prop",
+            "fit.qprop",
+        ],
+        dir.path(),
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    // Every station says where (r, Re range, angles), what failed and the fallback.
+    assert!(
+        e.contains("station 1 (r = ") && e.contains(", Re ") && e.contains("alpha "),
+        "{e}"
+    );
+    assert!(
+        e.contains("fallback: the tables use the neighbouring stations' polars"),
+        "{e}"
+    );
+    assert!(e.contains("keeps the coefficients of"), "{e}");
+    // The prop file is still written, with the geometry's own coefficients.
+    assert!(dir.path().join("fit.qprop").is_file());
+}
+
+#[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
     let dir = tempfile::tempdir().unwrap();

@@ -385,23 +385,33 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
                 fit_summary(s.re, f)
             ),
             None => eprintln!(
-                "propbet: station {} (r = {:.4} m): no fit, coefficients kept from {}: {}",
+                "propbet: station {} (r = {:.4} m, Re {:.0}-{:.0}, alpha {:.1}..{:.1} deg): {}; fallback: {}, and the exported prop file keeps the coefficients of {} there",
                 i + 1,
                 s.r,
-                spec.geometry.display(),
-                s.problem.as_deref().unwrap_or_default()
+                s.re_range[0],
+                s.re_range[1],
+                s.alpha_range_deg[0],
+                s.alpha_range_deg[1],
+                s.problem.as_deref().unwrap_or("no fit"),
+                if s.polars.is_empty() {
+                    "the tables use the neighbouring stations' polars"
+                } else {
+                    "the tables use this station's polars as XFOIL gave them"
+                },
+                spec.geometry.display()
             ),
         }
     }
-    let e = &p.export;
-    eprintln!(
-        "exported prop file (QPROP's law) against the tables over {} operating points: CT {:.1} % median, {:.1} % at most; CP {:.1} % median, {:.1} % at most",
-        e.points,
-        100.0 * e.ct[0],
-        100.0 * e.ct[1],
-        100.0 * e.cp[0],
-        100.0 * e.cp[1]
-    );
+    if let Some(e) = &p.export {
+        eprintln!(
+            "exported prop file (QPROP's law) against the tables over {} operating points: CT {:.1} % median, {:.1} % at most; CP {:.1} % median, {:.1} % at most",
+            e.points,
+            100.0 * e.ct[0],
+            100.0 * e.ct[1],
+            100.0 * e.cp[0],
+            100.0 * e.cp[1]
+        );
+    }
 }
 
 /// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).

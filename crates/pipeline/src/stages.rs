@@ -268,8 +268,8 @@ pub struct Polars {
     /// Every station's polars and fit.
     pub blade: BladePolars,
     /// How far the exported prop file (QPROP's law) predicts from the tables over the points
-    /// the polars cover.
-    pub export: ExportCheck,
+    /// the polars cover (None when no station has a polar).
+    pub export: Option<ExportCheck>,
 }
 
 /// The exported prop file against the tables it was fitted to: relative differences
@@ -287,13 +287,20 @@ pub struct ExportCheck {
 
 impl ExportCheck {
     /// Compares the prop file's QPROP law with the tables at `points`.
-    fn new(file: &PropFile, blade: &BladePolars, fluid: &Fluid, points: &[OperatingPoint]) -> Result<ExportCheck> {
+    fn new(
+        file: &PropFile,
+        blade: &BladePolars,
+        fluid: &Fluid,
+        points: &[OperatingPoint],
+    ) -> Result<Option<ExportCheck>> {
         let law = file
             .to_blade(propbet_qprop::RadiusReading::Documented)
             .to_rotor(propbet_bemt::Discretization::default())
             .map_err(|e| Error::Invalid(e.to_string()))?;
         let mut tables = law.clone();
-        let (r, models) = blade.models().map_err(Error::Invalid)?;
+        let Ok((r, models)) = blade.models() else {
+            return Ok(None);
+        };
         propbet_polar::tabulated::apply_to_rotor(&mut tables, &r, &models);
         let opts = propbet_bemt::SolverOptions::default();
         let a = Solver::new(&law, fluid, &opts).solve_many(points);
@@ -313,11 +320,11 @@ impl ExportCheck {
                 v.iter().copied().fold(0.0, f64::max),
             ]
         };
-        Ok(ExportCheck {
+        Ok(Some(ExportCheck {
             points: ct.len(),
             ct: stats(&ct),
             cp: stats(&cp),
-        })
+        }))
     }
 }
 

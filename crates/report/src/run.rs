@@ -110,20 +110,21 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
                     cell(3, 2),
                     cell(4, 4),
                     cell(5, 4),
-                    esc(s.problem.as_deref().unwrap_or(""))
+                    esc(&station_problems(s))
                 );
             }
             h.push_str("</table>\n");
-            let e = &p.export;
-            let _ = writeln!(
-                h,
-                "<p>The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover: CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.</p>",
-                e.points,
-                100.0 * e.ct[0],
-                100.0 * e.ct[1],
-                100.0 * e.cp[0],
-                100.0 * e.cp[1]
-            );
+            if let Some(e) = &p.export {
+                let _ = writeln!(
+                    h,
+                    "<p>The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover: CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.</p>",
+                    e.points,
+                    100.0 * e.ct[0],
+                    100.0 * e.ct[1],
+                    100.0 * e.cp[0],
+                    100.0 * e.cp[1]
+                );
+            }
         }
         None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
     }
@@ -181,4 +182,22 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
         width: 1200,
         height: 400,
     }
+}
+
+/// Everything wrong at a station of the polars, for the table's problem column: XFOIL's
+/// failures (rungs without a polar: the tables interpolate across them), angles that did not
+/// converge, and the QPROP fit's verdicts and fallbacks.
+fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
+    let mut v: Vec<String> = s.problem.iter().cloned().collect();
+    let unconverged: usize = s.polars.iter().map(|p| p.unconverged_deg.len()).sum();
+    if unconverged > 0 {
+        v.push(format!(
+            "{unconverged} angles did not converge in XFOIL over {} polars",
+            s.polars.len()
+        ));
+    }
+    if let Some(f) = &s.fit {
+        v.extend(f.unfit.iter().map(|u| format!("QPROP fit: {u}")));
+    }
+    v.join("; ")
 }
