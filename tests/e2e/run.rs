@@ -67,8 +67,10 @@ fn default_case_from_scan_to_report() {
         100.0 * e_cp
     );
     assert!(e_ct.abs() < 0.25 && e_cp.abs() < 0.35, "static CT {e_ct}, CP {e_cp}");
-    // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number) as
-    // measured, to within a third of the measured rise (issue 16's target).
+    // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number).
+    // Measured +22.7 % from 2377 to 6528 rpm; predicted +14.7 % at the default Ncrit 5 (+1 %
+    // when the polars were taken at one RPM). Issue 16's target, within a third of the measured
+    // rise (+15.1 % or more), is not reached: asserted here is at least half of it.
     let rpm = col(&h, "rpm");
     let lo = stat.iter().min_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
     let hi = stat.iter().max_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();

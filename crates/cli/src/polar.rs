@@ -83,9 +83,10 @@ pub struct XfoilArgs {
     /// Executable, cache, progress.
     #[command(flatten)]
     pub process: XfoilProcess,
-    /// Transition amplification ratio Ncrit (9: average wind tunnel; 5-7 for turbulent air).
-    #[arg(long, default_value_t = 9.0)]
-    pub ncrit: f64,
+    /// Transition amplification ratio Ncrit (default: 9 for `polar`, XFOIL's average wind
+    /// tunnel; 5 for a propeller's blades in `polars`: docs/studies/ncrit-tables.md).
+    #[arg(long)]
+    pub ncrit: Option<f64>,
     /// Angles of attack [deg]: `start:stop:step`, `start:stop/N` or a list.
     #[arg(long, default_value = "-8:16:1", allow_hyphen_values = true)]
     pub alpha: String,
@@ -98,14 +99,14 @@ pub struct XfoilArgs {
 }
 
 impl XfoilArgs {
-    /// The spec (flags in SI).
-    pub fn spec(&self) -> Result<XfoilSpec> {
+    /// The spec (flags in SI); `default_ncrit` when `--ncrit` is not given.
+    pub fn spec(&self, default_ncrit: f64) -> Result<XfoilSpec> {
         let mut a = parse_list("--alpha", &self.alpha)?;
         a.sort_by(f64::total_cmp);
         a.dedup();
         let spec = XfoilSpec {
             process: self.process.spec(),
-            ncrit: self.ncrit,
+            ncrit: self.ncrit.unwrap_or(default_ncrit),
             alphas_deg: a,
             panels: self.panels,
             iter: self.iter,
@@ -174,7 +175,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     if !(args.mach.is_finite() && (0.0..0.9).contains(&args.mach)) {
         bail!("--mach: {} must be in [0, 0.9)", args.mach);
     }
-    let xs = args.xfoil.spec()?;
+    let xs = args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT)?;
     let alphas = xs.alphas_deg.clone();
     let engine = stages::polar_engine(&xs.process)?;
     let bar = Bar::new(xs.process.quiet);
@@ -183,7 +184,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         .map(|&re| PolarJob {
             panels: args.xfoil.panels.unwrap_or(xfoil_runner::DEFAULT_PANELS),
             max_iter: args.xfoil.iter,
-            ..PolarJob::new(foil.clone(), re, args.mach, args.xfoil.ncrit, alphas.clone())
+            ..PolarJob::new(foil.clone(), re, args.mach, xs.ncrit, alphas.clone())
         })
         .collect();
     let mut ok = true;
@@ -344,7 +345,7 @@ impl PolarsArgs {
             omegas: parse_list("--rpm", &self.rpm)?.into_iter().map(rpm_to_omega).collect(),
             axis: crate::predict::sweep_axis(self.j.as_deref(), self.v.as_deref())?,
             air: self.air.spec()?,
-            xfoil: self.xfoil.spec()?,
+            xfoil: self.xfoil.spec(propbet_pipeline::spec::DEFAULT_NCRIT)?,
             out_prop: self.out_prop.clone(),
             out_polars: self.out_polars.clone(),
         })
