@@ -187,6 +187,7 @@ impl UserEffect {
         if def.id.is_empty() || def.id.contains([':', ',', ' ']) {
             return Err(bad("the id must be a non-empty word without ':' ',' or spaces".into()));
         }
+        check_formula_size(&def.formula).map_err(bad)?;
         let tree = build_operator_tree::<DefaultNumericTypes>(&def.formula)
             .map_err(|e| bad(format!("formula `{}` does not parse: {e}", def.formula)))?;
         let mut names: Vec<String> = def.hook.variables().iter().map(|s| s.to_string()).collect();
@@ -455,9 +456,63 @@ impl Effect for UserEffect {
     }
 }
 
+/// Longest formula accepted [characters]: a physical correction is a line, not a program.
+pub const MAX_FORMULA_CHARS: usize = 2000;
+/// Deepest nesting accepted (brackets, and runs of unary signs, which the parser also nests).
+pub const MAX_FORMULA_DEPTH: usize = 64;
+
+/// Refuses formulas whose size would take the expression parser (recursive) down a deep stack
+/// or through a long parse before it says anything: too long, too deeply bracketed, too many
+/// signs in a row.
+fn check_formula_size(formula: &str) -> Result<(), String> {
+    let n = formula.chars().count();
+    if n > MAX_FORMULA_CHARS {
+        return Err(format!(
+            "formula of {n} characters: at most {MAX_FORMULA_CHARS} (a formula is one expression)"
+        ));
+    }
+    let (mut depth, mut deepest, mut signs, mut most_signs) = (0usize, 0usize, 0usize, 0usize);
+    for c in formula.chars() {
+        match c {
+            '(' => {
+                depth += 1;
+                deepest = deepest.max(depth);
+            }
+            ')' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        if c == '-' || c == '+' || c == '!' {
+            signs += 1;
+            most_signs = most_signs.max(signs);
+        } else if !c.is_whitespace() {
+            signs = 0;
+        }
+    }
+    if deepest > MAX_FORMULA_DEPTH || most_signs > MAX_FORMULA_DEPTH {
+        return Err(format!(
+            "formula nested {} deep: at most {MAX_FORMULA_DEPTH} brackets or signs in a row",
+            deepest.max(most_signs)
+        ));
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn formulas_too_long_or_too_deep_are_refused_before_parsing() {
+        let deep = format!("{}x{}", "(".repeat(50_000), ")".repeat(50_000));
+        let e = check_formula_size(&deep).unwrap_err();
+        assert!(e.contains("at most 2000"), "{e}");
+        let deep = format!("{}x{}", "(".repeat(100), ")".repeat(100));
+        assert!(check_formula_size(&deep).unwrap_err().contains("nested 100 deep"));
+        assert!(check_formula_size(&format!("{}x", "-".repeat(500)))
+            .unwrap_err()
+            .contains("nested 500 deep"));
+        assert!(check_formula_size("beta + k * (1 - x) ^ 2 - -1").is_ok());
+    }
 
     const GOOD: &str = r#"
 [[effect]]

@@ -274,7 +274,8 @@ pub struct Polars {
 
 /// The exported prop file against the tables it was fitted to: relative differences
 /// |CT_qprop / CT_tables - 1| (and CP) over the operating points the polars cover where the
-/// tables give positive thrust and power.
+/// tables' thrust is at least a quarter of their largest (near zero thrust a ratio says
+/// nothing, as in validate's window) and their power positive.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
 pub struct ExportCheck {
     /// Points compared.
@@ -306,9 +307,10 @@ impl ExportCheck {
         let a = Solver::new(&law, fluid, &opts).solve_many(points);
         let b = Solver::new(&tables, fluid, &opts).solve_many(points);
         let (mut ct, mut cp) = (Vec::new(), Vec::new());
+        let ct_max = b.iter().filter_map(|p| p.ct).fold(0.0, f64::max);
         for (x, y) in a.iter().zip(&b) {
             if let (Some(ct_a), Some(ct_b), Some(cp_a), Some(cp_b)) = (x.ct, y.ct, x.cp, y.cp) {
-                if ct_b > 0.0 && cp_b > 0.0 {
+                if ct_b >= 0.25 * ct_max && ct_b > 0.0 && cp_b > 0.0 {
                     ct.push((ct_a / ct_b - 1.0).abs());
                     cp.push((cp_a / cp_b - 1.0).abs());
                 }
