@@ -36,7 +36,30 @@ fn outputs_finite(dir: &Path) {
 #[test]
 fn tabulated_polars_out_of_order_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let file = bad("polars_alpha_reversed.json");
+    // The shared file is of the first polars format: refused as such, naming the file.
+    let shared = bad("polars_alpha_reversed.json");
+    let o = run(
+        &["predict", "--prop", &apc_prop(), "--polars", &shared, "--rpm", "5000"],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("polars_alpha_reversed.json") && e.contains("written by another version of propbet"),
+        "{e}"
+    );
+    // The same content in today's format: the descending angles are named.
+    let mut v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&shared).unwrap()).unwrap();
+    v["format"] = "propbet-blade-polars-2".into();
+    v["rpm"] = serde_json::json!([5000.0, 5000.0]);
+    v["v"] = serde_json::json!([0.0, 0.0]);
+    for st in v["stations"].as_array_mut().unwrap() {
+        let (re, a) = (st["re"].clone(), st["alpha_deg"].clone());
+        st["re_range"] = serde_json::json!([re, re]);
+        st["alpha_range_deg"] = serde_json::json!([a, a]);
+    }
+    let file = dir.path().join("polars_alpha_reversed.json").display().to_string();
+    std::fs::write(&file, serde_json::to_string(&v).unwrap()).unwrap();
     let o = run(
         &[
             "predict",

@@ -412,8 +412,9 @@ fn effect_flag_on_predict_and_compare() {
         text.lines()
             .skip(1)
             .map(|l| {
-                let c: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-                (c[3], c[4])
+                // Thrust and torque (the last column, flags, is text).
+                let c: Vec<&str> = l.split(',').collect();
+                (c[3].parse::<f64>().unwrap(), c[4].parse::<f64>().unwrap())
             })
             .collect::<Vec<_>>()
     };

@@ -69,6 +69,11 @@ pub fn read_text(path: &std::path::Path) -> Result<String> {
         .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))
 }
 
+/// Where the UTF-8 of `bytes` first fails.
+fn e_at(bytes: &[u8]) -> usize {
+    std::str::from_utf8(bytes).err().map_or(0, |e| e.valid_up_to())
+}
+
 /// A text file whose first line is a free-text title (prop files, airfoil coordinates): the
 /// title may be Latin-1 (older tools write it so) and is decoded as such; the rest must be UTF-8.
 pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
@@ -80,8 +85,14 @@ pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
         Ok(s) => Ok(s),
         Err(e) => {
             let bytes = e.into_bytes();
-            let nl = bytes.iter().position(|&b| b == b'\n').unwrap_or(bytes.len());
+            let not_text = || Error::input(path, format!("not UTF-8 text (byte {})", e_at(&bytes)));
+            // A title: a first line ended by a newline, of printable bytes (no NUL or other
+            // control bytes: those make a binary file, not a Latin-1 title).
+            let nl = bytes.iter().position(|&b| b == b'\n').ok_or_else(not_text)?;
             let (title, rest) = bytes.split_at(nl);
+            if title.iter().any(|&b| b < 0x20 && b != b'\t' && b != b'\r' || b == 0x7f) {
+                return Err(not_text());
+            }
             let rest = std::str::from_utf8(rest)
                 .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", nl + e.valid_up_to())))?;
             Ok(title.iter().map(|&b| char::from(b)).collect::<String>() + rest)
@@ -103,5 +114,17 @@ mod tests {
         std::fs::write(&bad, b"title\n1.0 \xff0.0\n").unwrap();
         let e = read_titled_text(&bad).unwrap_err().to_string();
         assert!(e.contains("b.dat") && e.contains("not UTF-8 text (byte 10)"), "{e}");
+        // Binary, not a title: no newline, control bytes.
+        let bin = dir.path().join("x.qprop");
+        std::fs::write(&bin, [0xff, 0xfe, 0x00, 0x80]).unwrap();
+        assert!(read_titled_text(&bin)
+            .unwrap_err()
+            .to_string()
+            .contains("not UTF-8 text (byte 0)"));
+        std::fs::write(&bin, b"\xff\x00\x01\n1 2\n").unwrap();
+        assert!(read_titled_text(&bin)
+            .unwrap_err()
+            .to_string()
+            .contains("not UTF-8 text"));
     }
 }

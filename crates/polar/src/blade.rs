@@ -75,10 +75,18 @@ pub struct StationPolars {
 impl BladePolars {
     /// Reads and checks the JSON text.
     pub fn from_json(text: &str) -> Result<Self, String> {
-        let b: BladePolars = serde_json::from_str(text).map_err(|e| format!("not a blade-polars file: {e}"))?;
-        if b.format != FORMAT {
-            return Err(format!("format {:?}, expected {FORMAT:?}", b.format));
+        // The format first: a file of another version says so, not which field it lacks.
+        let v: serde_json::Value = serde_json::from_str(text).map_err(|e| format!("not a blade-polars file: {e}"))?;
+        match v.get("format").and_then(|f| f.as_str()) {
+            Some(FORMAT) => {}
+            Some(f) if f.starts_with("propbet-blade-polars-") => {
+                return Err(format!(
+                    "format {f:?}, written by another version of propbet (this one reads {FORMAT:?}): run `propbet polars` again"
+                ))
+            }
+            _ => return Err(format!("not a blade-polars file (no \"format\": {FORMAT:?})")),
         }
+        let b: BladePolars = serde_json::from_value(v).map_err(|e| format!("not a blade-polars file: {e}"))?;
         if b.stations.windows(2).any(|w| w[1].r <= w[0].r) {
             return Err("station radii are not ascending".into());
         }
