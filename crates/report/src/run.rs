@@ -84,20 +84,20 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             let b = &p.blade;
             let _ = writeln!(
                 h,
-                "<p>XFOIL polars covering the Reynolds numbers each station sees from {:.0} to {:.0} rpm and {} to {} m/s (five per decade in Re), used as tables in α and Re; sections: {}. The QPROP columns are the exported prop file's fit, centred on the Re shown.</p>",
+                "<p>XFOIL polars covering the Reynolds numbers each station sees from {:.0} to {:.0} rpm and {:.1} to {:.1} m/s (five per decade in Re), used as tables in α and Re; sections: {}. The QPROP columns are the exported prop file's fit (centred on the geometric mean of the Re range), with its fallbacks in the problem column.</p>",
                 b.rpm[0],
                 b.rpm[1],
                 b.v[0],
                 b.v[1],
                 esc(&b.airfoil)
             );
-            h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re range</th><th>Mach</th><th>α range [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th>problem</th></tr>\n");
+            h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re range</th><th>Mach</th><th>α range [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th class=\"text\">problem</th></tr>\n");
             for s in &b.stations {
                 let c = s.fit.as_ref().map(|f| f.coeffs.to_array());
                 let cell = |k: usize, p: usize| c.map_or("–".into(), |v| format!("{:.*}", p, v[k]));
                 let _ = writeln!(
                     h,
-                    "<tr><td>{:.1}</td><td>{:.1}</td><td>{:.0}–{:.0}</td><td>{:.3}</td><td>{:.1}–{:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                    "<tr><td>{:.1}</td><td>{:.1}</td><td>{:.0}–{:.0}</td><td>{:.3}</td><td>{:.1}–{:.1}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"text\">{}</td></tr>",
                     1000.0 * s.r,
                     1000.0 * s.chord,
                     s.re_range[0],

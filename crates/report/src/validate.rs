@@ -141,10 +141,21 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
         esc(&intro(model))
     );
-    // The last column (the ladder) is text: left-aligned.
-    let class = |k: usize| if k + 1 == h.len() { " class=\"text\"" } else { "" };
+    // The last column (the ladder) is text: left-aligned; numbers keep their "%" on their line.
+    let class = |k: usize| {
+        if k + 1 == h.len() {
+            " class=\"text\""
+        } else {
+            " style=\"white-space:nowrap\""
+        }
+    };
     for (k, c) in h.iter().enumerate() {
-        let _ = write!(s, "<th{}>{}</th>", class(k), esc(c));
+        let _ = write!(
+            s,
+            "<th{}>{}</th>",
+            if k + 1 == h.len() { " class=\"text\"" } else { "" },
+            esc(c)
+        );
     }
     s.push_str("</tr>\n");
     for (cells, summary) in &body {
