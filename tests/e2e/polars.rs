@@ -104,16 +104,22 @@ fn polar_bad_input_gets_clear_errors() {
     assert_eq!(std::fs::read(&copy).unwrap(), std::fs::read(&foil).unwrap());
 }
 
-#[test]
-fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
-    let dir = tempfile::tempdir().unwrap();
-    let fake = dir.path().join("xfoil");
+/// An `xfoil` in `dir` that dies of SIGFPE at once, as Debian's does without a display.
+fn crashing_xfoil(dir: &std::path::Path) -> std::path::PathBuf {
+    let fake = dir.join("xfoil");
     std::fs::write(
         &fake,
         "#!/bin/sh\necho ' Polar accumulation enabled'\necho 'Program received signal SIGFPE'\nkill -FPE $$\n",
     )
     .unwrap();
     std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    fake
+}
+
+#[test]
+fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
+    let dir = tempfile::tempdir().unwrap();
+    let fake = crashing_xfoil(dir.path());
     let t = std::time::Instant::now();
     let o = run(
         &[
@@ -139,13 +145,7 @@ fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
 #[test]
 fn a_blade_whose_xfoil_never_converges_names_each_station_and_its_fallback() {
     let dir = tempfile::tempdir().unwrap();
-    let fake = dir.path().join("xfoil");
-    std::fs::write(
-        &fake,
-        "#!/bin/sh\necho ' Polar accumulation enabled'\necho 'Program received signal SIGFPE'\nkill -FPE $$\n",
-    )
-    .unwrap();
-    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let fake = crashing_xfoil(dir.path());
     let o = run(
         &[
             "polars",

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_bemt::units::rpm_to_omega;
 use propbet_pipeline::case::parse_fraction;
 use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput};
@@ -305,16 +304,10 @@ pub struct PolarsArgs {
     /// uses `--airfoil`.
     #[arg(long)]
     pub station_airfoils: Option<PathBuf>,
-    /// Rotation speeds whose Reynolds numbers the polars cover [rpm]: a list, `start:stop:step`
-    /// or `start:stop/N` (give the sweep's, or the measured range).
-    #[arg(long, allow_hyphen_values = true)]
-    pub rpm: String,
-    /// Advance ratios J = V/(nD) covered with every speed, same syntax.
-    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
-    pub j: Option<String>,
-    /// Axial speeds covered [m/s], same syntax (default: 0, static).
-    #[arg(long, allow_hyphen_values = true)]
-    pub v: Option<String>,
+    /// The operating points whose Reynolds numbers the polars cover (give the sweep's, or the
+    /// measured range).
+    #[command(flatten)]
+    pub points: crate::predict::SweepArgs,
     /// Air properties.
     #[command(flatten)]
     pub air: FluidArgs,
@@ -332,6 +325,7 @@ pub struct PolarsArgs {
 impl PolarsArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PolarsSpec> {
+        let (omegas, axis) = self.points.spec()?;
         Ok(PolarsSpec {
             geometry: self.geometry.clone(),
             units: self
@@ -342,8 +336,8 @@ impl PolarsArgs {
             airfoil: self.section.airfoil.clone(),
             thickness: self.section.thickness.as_deref().map(parse_fraction).transpose()?,
             station_airfoils: self.station_airfoils.clone(),
-            omegas: parse_list("--rpm", &self.rpm)?.into_iter().map(rpm_to_omega).collect(),
-            axis: crate::predict::sweep_axis(self.j.as_deref(), self.v.as_deref())?,
+            omegas,
+            axis,
             air: self.air.spec()?,
             xfoil: self.xfoil.spec(propbet_pipeline::spec::DEFAULT_NCRIT)?,
             out_prop: self.out_prop.clone(),
@@ -404,14 +398,7 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
         }
     }
     if let Some(e) = &p.export {
-        eprintln!(
-            "exported prop file (QPROP's law) against the tables over {} operating points: CT {:.1} % median, {:.1} % at most; CP {:.1} % median, {:.1} % at most",
-            e.points,
-            100.0 * e.ct[0],
-            100.0 * e.ct[1],
-            100.0 * e.cp[0],
-            100.0 * e.cp[1]
-        );
+        eprintln!("{}", e.sentence());
     }
 }
 

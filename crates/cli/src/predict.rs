@@ -29,15 +29,9 @@ pub struct PredictArgs {
     /// The propeller model.
     #[command(flatten)]
     pub model: ModelArgs,
-    /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
-    #[arg(long, allow_hyphen_values = true)]
-    pub rpm: String,
-    /// Advance ratios J = V/(nD), same syntax.
-    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
-    pub j: Option<String>,
-    /// Axial speeds [m/s], same syntax (default: 0, static).
-    #[arg(long, allow_hyphen_values = true)]
-    pub v: Option<String>,
+    /// The operating points.
+    #[command(flatten)]
+    pub points: SweepArgs,
     /// Air properties.
     #[command(flatten)]
     pub air: FluidArgs,
@@ -171,11 +165,10 @@ struct JsonOut<'a> {
 impl PredictArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PredictSpec> {
-        let rpms = parse_list("--rpm", &self.rpm)?;
-        let axis = sweep_axis(self.j.as_deref(), self.v.as_deref())?;
+        let (omegas, axis) = self.points.spec()?;
         Ok(PredictSpec {
             model: self.model.spec()?,
-            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+            omegas,
             axis,
             air: self.air.spec()?,
             format: match self.format {
@@ -188,13 +181,31 @@ impl PredictArgs {
     }
 }
 
-/// The second axis of a sweep from `--j` or `--v` (neither: static).
-pub fn sweep_axis(j: Option<&str>, v: Option<&str>) -> Result<SweepAxis> {
-    Ok(match (j, v) {
-        (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
-        (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
-        (None, None) => SweepAxis::V(vec![0.0]),
-    })
+/// Operating points as `predict` and `polars` take them: every RPM with every J or V.
+#[derive(Debug, Args)]
+pub struct SweepArgs {
+    /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rpm: String,
+    /// Advance ratios J = V/(nD), same syntax.
+    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
+    pub j: Option<String>,
+    /// Axial speeds [m/s], same syntax (default: 0, static).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+}
+
+impl SweepArgs {
+    /// Rotation speeds [rad/s] and the second axis (neither `--j` nor `--v`: static).
+    pub fn spec(&self) -> Result<(Vec<f64>, SweepAxis)> {
+        let omegas = parse_list("--rpm", &self.rpm)?.into_iter().map(rpm_to_omega).collect();
+        let axis = match (&self.j, &self.v) {
+            (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
+            (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
+            (None, None) => SweepAxis::V(vec![0.0]),
+        };
+        Ok((omegas, axis))
+    }
 }
 
 /// Runs `propbet predict`; returns whether every station of every point converged.

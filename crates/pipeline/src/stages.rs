@@ -287,6 +287,18 @@ pub struct ExportCheck {
 }
 
 impl ExportCheck {
+    /// The check in one sentence (terminal and report).
+    pub fn sentence(&self) -> String {
+        format!(
+            "The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover (thrust at least a quarter of the largest): CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.",
+            self.points,
+            100.0 * self.ct[0],
+            100.0 * self.ct[1],
+            100.0 * self.cp[0],
+            100.0 * self.cp[1]
+        )
+    }
+
     /// Compares the prop file's QPROP law with the tables at `points`.
     fn new(
         file: &PropFile,

@@ -115,15 +115,7 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             }
             h.push_str("</table>\n");
             if let Some(e) = &p.export {
-                let _ = writeln!(
-                    h,
-                    "<p>The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover: CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.</p>",
-                    e.points,
-                    100.0 * e.ct[0],
-                    100.0 * e.ct[1],
-                    100.0 * e.cp[0],
-                    100.0 * e.cp[1]
-                );
+                let _ = writeln!(h, "<p>{}</p>", esc(&e.sentence()));
             }
         }
         None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
