@@ -441,6 +441,9 @@ impl Xfoil {
             .try_clone()
             .map_err(|e| XfoilError::io("cannot create XFOIL's log file", e))?;
         let mut cmd = Command::new(&self.config.executable);
+        // Its own process group: a hang kills XFOIL and whatever it started (a wrapper script's
+        // children), not only the direct child.
+        std::os::unix::process::CommandExt::process_group(&mut cmd, 0);
         cmd.current_dir(path)
             .stdin(Stdio::piped())
             .stdout(Stdio::from(log))
@@ -506,13 +509,22 @@ fn watch(child: &mut std::process::Child, log: &Path, stall: Duration, budget: D
             last_change = now;
         }
         if now - last_change > stall || now - start > budget {
-            let _ = child.kill();
+            kill_group(child);
             let _ = child.wait();
             return Ok(Ending::Hung(now - start));
         }
         std::thread::sleep(nap);
         nap = (nap * 2).min(Duration::from_millis(10));
     }
+}
+
+/// Kills `child`'s process group (it leads its own: `process_group(0)` at spawn), then the child
+/// itself in case the group is already gone.
+fn kill_group(child: &mut std::process::Child) {
+    if let Some(pid) = i32::try_from(child.id()).ok().and_then(rustix::process::Pid::from_raw) {
+        let _ = rustix::process::kill_process_group(pid, rustix::process::Signal::KILL);
+    }
+    let _ = child.kill();
 }
 
 fn tail(bytes: &[u8]) -> String {

@@ -191,3 +191,33 @@ fn a_missing_xfoil_says_how_to_install_it() {
     let e = Xfoil::new(XfoilConfig::new(PathBuf::from("/nonexistent/xfoil"))).unwrap_err();
     assert!(e.to_string().contains("apt-get install xfoil"), "{e}");
 }
+
+#[test]
+fn a_hung_wrappers_children_are_killed_with_it() {
+    // At -2 deg the fake starts a child of its own (as a wrapper script would start the real
+    // XFOIL), records its pid, and hangs: the runner must end both.
+    let pids = tempfile::tempdir().unwrap();
+    let pid_file = pids.path().join("child.pid");
+    let behaviour = format!(
+        r#"[ "$arg" = "-2.000000" ] && {{ sleep 60 & echo $! > {}; while :; do :; done; }}"#,
+        pid_file.display()
+    );
+    let (_d, exe) = fake(&behaviour);
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(matches!(out.faults[0].kind, FaultKind::Hang { .. }), "{:?}", out.faults);
+    let pid = std::fs::read_to_string(&pid_file).unwrap().trim().to_string();
+    // The child is gone (or a zombie reaped by init): no live process with that pid.
+    let t = Instant::now();
+    let alive = || {
+        std::fs::read_to_string(format!("/proc/{pid}/stat"))
+            .map(|s| s.split_whitespace().nth(2).is_none_or(|state| state != "Z"))
+            .unwrap_or(false)
+    };
+    while alive() {
+        assert!(
+            t.elapsed() < Duration::from_secs(2),
+            "the wrapper's child {pid} outlived the kill"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}

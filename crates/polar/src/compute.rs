@@ -253,7 +253,13 @@ impl PolarEngine {
             unconverged_deg: out.unconverged_deg,
             faults: out.faults,
         };
-        if let Some(c) = &self.cache {
+        // A hang may be the machine's load, not XFOIL's answer (the stall limit is wall time):
+        // a polar with one is not cached, so the next run asks XFOIL again.
+        let transient = polar
+            .faults
+            .iter()
+            .any(|f| matches!(f.kind, xfoil_runner::FaultKind::Hang { .. }));
+        if let (Some(c), false) = (&self.cache, transient) {
             c.put(&key, &polar)?;
         }
         Ok((polar, source))

@@ -1,0 +1,76 @@
+//! The polar cache and XFOIL's faults, with a fake `xfoil` (the dialogue of
+//! `xfoil_runner/tests/faults.rs`): a polar whose XFOIL hung is not cached, since a hang may be
+//! the machine's load rather than XFOIL's answer; a polar without one is.
+
+use std::os::unix::fs::PermissionsExt;
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use propbet_polar::{PolarCache, PolarEngine, PolarJob, Source};
+use xfoil_runner::{DisplayChoice, Xfoil, XfoilConfig};
+
+/// A fake XFOIL that runs `behaviour` (bash) at each `ALFA $arg` before saving the point.
+fn fake(dir: &Path, behaviour: &str) -> PathBuf {
+    let path = dir.join("xfoil");
+    let script = format!(
+        r#"#!/bin/bash
+echo "  XFOIL Version 6.99 (fake)"
+acc=0
+while read -r cmd arg; do
+  case "$cmd" in
+    PACC)
+      if [ $acc = 0 ]; then
+        read -r polar; read -r dump; acc=1; echo " Polar accumulation enabled"
+        printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
+      else acc=0; fi ;;
+    ALFA)
+      echo "       a =  $arg      CL =  0.5"
+      {behaviour}
+      if [ $acc = 1 ]; then
+        awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
+      fi ;;
+    QUIT) exit 0 ;;
+  esac
+done
+"#
+    );
+    std::fs::write(&path, script).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+fn engine(exe: PathBuf, cache: &Path) -> PolarEngine {
+    let mut c = XfoilConfig::new(exe);
+    c.display = DisplayChoice::Headless;
+    c.stall_timeout = Duration::from_millis(400);
+    c.startup_timeout = Duration::from_secs(1);
+    c.point_timeout = Duration::from_millis(200);
+    PolarEngine::new(Xfoil::new(c).unwrap(), Some(PolarCache::open(cache).unwrap()))
+}
+
+fn job() -> PolarJob {
+    let foil = propbet_polar::naca4_from_name("naca2412").unwrap().unwrap();
+    PolarJob::new(foil, 1e5, 0.0, 9.0, (-2..=4).map(f64::from).collect())
+}
+
+#[test]
+fn a_polar_whose_xfoil_hung_is_not_cached_a_clean_one_is() {
+    let dir = tempfile::tempdir().unwrap();
+    let hangs = engine(
+        fake(dir.path(), r#"[ "$arg" = "3.000000" ] && while :; do :; done"#),
+        &dir.path().join("cache"),
+    );
+    let (first, s1) = hangs.compute(&job()).unwrap();
+    assert_eq!(s1, Source::Xfoil);
+    assert!(!first.faults.is_empty(), "the hang is reported");
+    assert_eq!(
+        hangs.compute(&job()).unwrap().1,
+        Source::Xfoil,
+        "computed again, not replayed"
+    );
+
+    let clean_dir = tempfile::tempdir().unwrap();
+    let clean = engine(fake(clean_dir.path(), ""), &clean_dir.path().join("cache"));
+    assert_eq!(clean.compute(&job()).unwrap().1, Source::Xfoil);
+    assert_eq!(clean.compute(&job()).unwrap().1, Source::Cache);
+}
