@@ -320,7 +320,9 @@ impl Xfoil {
         // A drag below 80 % of laminar flat-plate friction on both sides (2 x 1.328 / sqrt(Re))
         // is a spurious XFOIL solution, not a polar point.
         let floor = 0.8 * 2.0 * 1.328 / req.reynolds.sqrt();
-        out.points.retain(|p| p.cd >= floor);
+        // Nor are values no section has (|cl| above 5, cd above 5): taken as not converged.
+        out.points
+            .retain(|p| p.cd >= floor && p.cd <= 5.0 && p.cl.abs() <= 5.0 && p.cm.abs() <= 5.0);
         out.unconverged_deg = a.iter().copied().filter(|&x| !converged(&out, x)).collect();
         if out.points.is_empty() && !out.faults.is_empty() {
             let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
@@ -527,11 +529,28 @@ fn kill_group(child: &mut std::process::Child) {
     let _ = child.kill();
 }
 
+/// The end of XFOIL's output, as text safe to print anywhere (terminal, JSON, HTML after
+/// escaping): control bytes other than newline and tab removed, so no escape sequence or bell
+/// from a misbehaving executable reaches the user's terminal.
 fn tail(bytes: &[u8]) -> String {
     let start = bytes.len().saturating_sub(TAIL_BYTES);
     let text = String::from_utf8_lossy(&bytes[start..]);
-    match text.find('\n') {
-        Some(i) if start > 0 => text[i + 1..].to_string(),
-        _ => text.into_owned(),
+    let text = match text.find('\n') {
+        Some(i) if start > 0 => &text[i + 1..],
+        _ => &text[..],
+    };
+    text.chars()
+        .filter(|&c| !c.is_control() || c == '\n' || c == '\t')
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn output_tails_carry_no_control_bytes() {
+        let t = tail(b"\x1b[31mred\x1b[0m\x07 a =  1.0\r\n\tdone\x00\n");
+        assert_eq!(t, "[31mred[0m a =  1.0\n\tdone\n");
     }
 }

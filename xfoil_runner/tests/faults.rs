@@ -221,3 +221,19 @@ fn a_hung_wrappers_children_are_killed_with_it() {
         std::thread::sleep(Duration::from_millis(20));
     }
 }
+
+#[test]
+fn absurd_values_are_not_converged_points() {
+    // At 2 deg the fake saves cl 1e30, at 3 deg a negative drag.
+    let (_d, exe) = fake(
+        r#"if [ "$arg" = "2.000000" ] && [ $acc = 1 ]; then printf '%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n' 2 1e30 0.02 0.005 -0.1 0.5 1.0 >> "$polar"; continue; fi
+      if [ "$arg" = "3.000000" ] && [ $acc = 1 ]; then printf '%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n' 3 0.7 -0.02 0.005 -0.1 0.5 1.0 >> "$polar"; continue; fi"#,
+    );
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(
+        !alphas(&out).contains(&2.0) && !alphas(&out).contains(&3.0),
+        "{:?}",
+        alphas(&out)
+    );
+    assert!(out.unconverged_deg.contains(&2.0) && out.unconverged_deg.contains(&3.0));
+}

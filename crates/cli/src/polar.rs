@@ -192,6 +192,9 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         match r {
             Ok((p, _)) => {
                 report_failures(&format!("Re {:.0}", job.re), &p);
+                // An XFOIL that was killed (hung) or crashed leaves a polar with holes: said,
+                // and the exit code is 1.
+                ok &= p.faults.is_empty();
                 polars.push(p);
             }
             Err(e) => {
