@@ -25,9 +25,10 @@ pub struct ScanArgs {
     /// The scan: .stl (ASCII or binary), .ply (ASCII or binary, colours), COLMAP
     /// points3D.txt, or .xyz / .txt (XYZ or XYZRGB rows).
     pub input: PathBuf,
-    /// Length unit of the file: mm (default), cm, m, in.
-    #[arg(long, default_value = "mm")]
-    pub units: String,
+    /// Length unit of the file: mm, cm, m, in (default: mm, assumed; a point cloud then says so
+    /// in every output: give the unit, --known-length or --box).
+    #[arg(long)]
+    pub units: Option<String>,
     /// Stations as r/R: a list, start:stop:step or start:stop/N (default 0.15:0.97/25).
     #[arg(long)]
     pub stations: Option<String>,
@@ -147,7 +148,7 @@ impl ScanArgs {
 /// Builds the pipeline's options from the flags.
 pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
     // Metres per file unit.
-    let units = parse_length_unit(&a.units)?;
+    let units = parse_length_unit(a.units.as_deref().unwrap_or("mm"))?;
     let stations = match &a.stations {
         Some(s) => parse_list("--stations", s)?,
         None => default_stations(),
@@ -216,6 +217,7 @@ pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
     };
     Ok(ScanOptions {
         scale,
+        scale_given: a.units.is_some() || a.known_length.is_some(),
         stations,
         kind: if a.planar {
             SectionKind::Planar

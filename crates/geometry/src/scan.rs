@@ -65,6 +65,9 @@ pub struct BoxSpec {
 pub struct ScanOptions {
     /// Length of one input unit [m] (0.001 for mm, 1 for m, 0.0254 for inches).
     pub scale: f64,
+    /// Whether the user gave the scale (a unit or a known length); false: millimetres assumed,
+    /// which a point cloud (photogrammetry has no scale of its own) says in its notes.
+    pub scale_given: bool,
     /// Stations as r/R.
     pub stations: Vec<f64>,
     /// Section kind.
@@ -92,6 +95,7 @@ impl Default for ScanOptions {
     fn default() -> Self {
         Self {
             scale: 0.001,
+            scale_given: false,
             stations: default_stations(),
             kind: SectionKind::Cylindrical,
             slab: 0.25e-3,
@@ -464,7 +468,7 @@ fn colour_select(
 
 /// Processes a cloud.
 pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanError> {
-    scan_cloud_mm(cloud, &opts.to_mm()).map_err(|e| {
+    scan_cloud_mm(cloud, &opts.to_mm(), opts.scale_given).map_err(|e| {
         // A coloured cloud scanned without its blade colours keeps the background: say which
         // option drops it.
         if cloud.colors.is_some() && opts.blade_colours.is_empty() {
@@ -478,8 +482,16 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
     })
 }
 
-fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions) -> Result<Geometry, ScanError> {
+fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions, scale_given: bool) -> Result<Geometry, ScanError> {
     let mut notes = Vec::new();
+    if !scale_given && opts.reference_box.is_none() {
+        notes.push(
+            "SCALE ASSUMED: 1 file unit = 1 mm (no --units, --known-length or --box given). A point \
+             cloud from photogrammetry has no scale of its own: every length below is only right if \
+             the cloud is in millimetres"
+                .to_string(),
+        );
+    }
     let total = cloud.points.len();
     let mut blade = cloud.clone();
     let mut colour = None;

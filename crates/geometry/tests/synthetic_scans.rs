@@ -300,3 +300,34 @@ fn manual_alignment_and_planar_sections() {
         );
     }
 }
+
+#[test]
+fn a_cloud_without_a_scale_says_the_millimetres_are_assumed() {
+    let cloud = apce_like(2).to_cloud(&cloud_spec(200_000, 5));
+    let opts = ScanOptions {
+        reference_box: None,
+        ..cloud_options()
+    };
+    let assumed = scan_cloud(&cloud, &opts).unwrap();
+    assert!(
+        assumed
+            .notes
+            .iter()
+            .any(|n| n.starts_with("SCALE ASSUMED: 1 file unit = 1 mm")),
+        "{:?}",
+        assumed.notes
+    );
+    let given = scan_cloud(
+        &cloud,
+        &ScanOptions {
+            scale_given: true,
+            ..opts
+        },
+    )
+    .unwrap();
+    assert!(
+        !given.notes.iter().any(|n| n.contains("SCALE ASSUMED")),
+        "{:?}",
+        given.notes
+    );
+}

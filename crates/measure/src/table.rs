@@ -38,6 +38,10 @@ pub fn split_header(h: &str) -> (String, Option<String>) {
     (h.to_string(), None)
 }
 
+/// Most fields a CSV row may have: RCbenchmark's logs have about 40 columns, a generic log a
+/// few; a row of thousands is not a measurement table (and would cost memory per field).
+pub const MAX_FIELDS: usize = 1000;
+
 /// Reads CSV text (BOM, trailing commas and rows longer than the header allowed).
 pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
@@ -55,6 +59,15 @@ pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
             message: format!("not CSV: {e}"),
         })?;
         let line = rec.position().map_or(0, |p| p.line() as usize);
+        if rec.len() > MAX_FIELDS {
+            return Err(ReadError::Line {
+                line,
+                message: format!(
+                    "{} fields in one row: at most {MAX_FIELDS} (a thrust-stand log has tens of columns)",
+                    rec.len()
+                ),
+            });
+        }
         if rec.iter().all(|c| c.is_empty()) {
             continue;
         }
@@ -241,6 +254,18 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rows_of_too_many_fields_are_refused_by_count() {
+        let mut text = String::from("rpm,thrust_N\n");
+        text.push_str(&vec!["1"; 5000].join(","));
+        let e = read_csv(&text).unwrap_err().to_string();
+        assert!(e.contains("5000 fields in one row: at most 1000"), "{e}");
+        assert!(e.len() < 200, "the message does not echo the row: {} bytes", e.len());
+        let header = (0..3000).map(|k| format!("c{k}")).collect::<Vec<_>>().join(",");
+        let e = read_csv(&format!("{header}\n1\n")).unwrap_err().to_string();
+        assert!(e.contains("3000 fields") && e.len() < 200, "{e}");
+    }
 
     #[test]
     fn headers_and_units() {

@@ -431,7 +431,7 @@ impl ScanSpec {
             .into_iter()
             .find(|u| u.1 == o.scale);
         match unit {
-            Some(("mm", _)) => {}
+            Some(("mm", _)) if !o.scale_given => {}
             Some((name, _)) => push(v, "--units", name),
             None => push_eq(v, "--known-length", format!("0,0,0,1,0,0,{}", mm_text(o.scale))),
         }
