@@ -54,6 +54,11 @@ pub trait Surface: Sized {
     fn cylinder_cut(&self, r: f64) -> Vec<CylPoint>;
     /// Largest distance from the z axis.
     fn max_radius(&self) -> f64;
+    /// Half the radial width of a cut: 0 for a mesh (exact intersections), half the slab for
+    /// points (a cut at r holds every point within it).
+    fn cut_half_width(&self) -> f64 {
+        0.0
+    }
     /// How much of the surface lies at each whole degree of azimuth in the ring `lo..hi`
     /// (surface already in the frame).
     fn ring_weights(&self, lo: f64, hi: f64) -> Vec<f64> {
@@ -142,6 +147,9 @@ impl Surface for Points {
     }
     fn cylinder_cut(&self, r: f64) -> Vec<CylPoint> {
         slab_points(&self.points, r, self.slab)
+    }
+    fn cut_half_width(&self) -> f64 {
+        0.5 * self.slab
     }
     fn max_radius(&self) -> f64 {
         // The 99.98th percentile: a stray point must not set the tip.

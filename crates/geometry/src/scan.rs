@@ -662,13 +662,15 @@ fn hub_radius<S: Surface>(s: &S, limit: f64, step: f64) -> Option<f64> {
         let wrap = th[0] + 2.0 * std::f64::consts::PI - th[th.len() - 1];
         gap.max(wrap) < 20f64.to_radians()
     };
+    // The outermost closed ring inside `limit` (below the blades' roots only blades cross a
+    // ring): the hub's wall. Not the end of the first run of closed rings: near the axis a
+    // cloud's end caps put few points in a cut, so a ring there can look closed with an open
+    // one just beyond (a 6 mm hub was read as 1.3-2 mm).
     let mut r = step;
     let mut last = None;
     while r < limit {
         if full(r) {
             last = Some(r);
-        } else if last.is_some() {
-            break;
         }
         r += step;
     }
@@ -681,7 +683,9 @@ fn hub_radius<S: Surface>(s: &S, limit: f64, step: f64) -> Option<f64> {
             hi = m;
         }
     }
-    Some(lo)
+    // A cloud's cut at r holds the points within half a slab of it: the wall is that much
+    // inside the last closed ring.
+    Some((lo - s.cut_half_width()).max(step))
 }
 
 /// The section of blade 0 at radius r in the frame, for either kind.

@@ -191,7 +191,11 @@ fn noisy_cloud_with_a_reference_box_and_unknown_scale() {
     eprintln!("cloud labels: {per_blade:?} per blade, {hub} hub");
     let ratio = per_blade[0] as f64 / per_blade[1] as f64;
     assert!((ratio - 1.0).abs() < 0.05, "blade point counts {per_blade:?}");
-    assert!(hub < per_blade[0] / 5, "hub {hub} of {per_blade:?}");
+    // The hub (7 mm, 16 mm long: 1,010 mm^2 of surface against about 5,400 mm^2 a blade) holds
+    // about a fifth of a blade's points; its radius is its wall's.
+    assert!(hub < (2 * per_blade[0]) / 5, "hub {hub} of {per_blade:?}");
+    let hub_mm = geo.hub_radius.unwrap() * 1000.0;
+    assert!((hub_mm - 7.0).abs() <= 0.3, "hub radius {hub_mm} mm (truth 7)");
     let c = geo.colour.as_ref().unwrap();
     assert!(c.kept < c.total && c.threshold > 20.0 && c.threshold < 150.0, "{c:?}");
     // The same with the faces given by one seed point each (face centres, posed and scaled).
@@ -330,4 +334,24 @@ fn a_cloud_without_a_scale_says_the_millimetres_are_assumed() {
         "{:?}",
         given.notes
     );
+}
+
+/// Issue 19: on a sparse cloud the hub radius came out as 1.31 mm for a 6 mm hub. The hub's end
+/// caps put few points in a thin cylinder cut at small radii, so a ring near the axis can look
+/// closed and the next one open; the hub is the outermost closed ring, where its wall is.
+#[test]
+fn the_hub_radius_of_a_sparse_cloud_is_its_wall() {
+    for (seed, points) in [(11, 60_000), (12, 90_000), (13, 120_000)] {
+        let def = BladeDef {
+            hub: Some((6.0, 10.0)),
+            ..apce_like(2)
+        };
+        let cloud = def.to_cloud(&cloud_spec(points, seed));
+        let geo = scan_cloud(&cloud, &cloud_options()).unwrap();
+        let hub_mm = geo.hub_radius.unwrap() * 1000.0;
+        assert!(
+            (hub_mm - 6.0).abs() <= 0.3,
+            "seed {seed}, {points} points: hub {hub_mm} mm (truth 6.0)"
+        );
+    }
 }
