@@ -159,25 +159,75 @@ pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path])
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)
-        .with_context(|| format!("{}: cannot create a file in {}", path.display(), dir.display()))?;
+    // The bytes go to a file without a name (O_TMPFILE), which gets one only when complete,
+    // just before it is renamed into place: a run killed by SIGINT or SIGTERM while writing
+    // leaves nothing behind. Where the directory cannot hold unnamed files, a named temporary.
+    match unnamed_in(dir, chunks)
+        .ok()
+        .and_then(|file| link_hidden(&file, dir, path))
     {
-        let mut w = std::io::BufWriter::new(tmp.as_file_mut());
-        for c in chunks {
-            w.write_all(c.as_ref())
-                .with_context(|| format!("{}: write failed", path.display()))?;
+        Some(tmp) => std::fs::rename(&tmp, path).map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            anyhow::anyhow!("{}: cannot move the finished file into place: {e}", path.display())
+        })?,
+        None => {
+            let mut tmp = tempfile::NamedTempFile::new_in(dir)
+                .with_context(|| format!("{}: cannot create a file in {}", path.display(), dir.display()))?;
+            {
+                let mut w = std::io::BufWriter::new(tmp.as_file_mut());
+                for c in chunks {
+                    w.write_all(c.as_ref())
+                        .with_context(|| format!("{}: write failed", path.display()))?;
+                }
+                w.flush().with_context(|| format!("{}: write failed", path.display()))?;
+            }
+            // Temporary files are created private (0600); a result is an ordinary file.
+            #[cfg(unix)]
+            {
+                use std::os::unix::fs::PermissionsExt;
+                let _ = std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o644));
+            }
+            tmp.persist(path)
+                .with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
         }
-        w.flush().with_context(|| format!("{}: write failed", path.display()))?;
     }
-    // Temporary files are created private (0600); a result is an ordinary file.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let _ = std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o644));
-    }
-    tmp.persist(path)
-        .with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
     Ok(())
+}
+
+/// The chunks in a file of `dir` that has no name yet (Linux O_TMPFILE via `tempfile`).
+fn unnamed_in<B: AsRef<[u8]>>(dir: &Path, chunks: &[B]) -> std::io::Result<std::fs::File> {
+    let file = tempfile::tempfile_in(dir)?;
+    {
+        let mut w = std::io::BufWriter::new(&file);
+        for c in chunks {
+            w.write_all(c.as_ref())?;
+        }
+        w.flush()?;
+    }
+    use std::os::unix::fs::PermissionsExt;
+    file.set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    Ok(file)
+}
+
+/// Gives the unnamed `file` a hidden name in `dir` beside `path` (linkat through
+/// /proc/self/fd), to be renamed over `path` at once; None where that cannot be done.
+fn link_hidden(file: &std::fs::File, dir: &Path, path: &Path) -> Option<std::path::PathBuf> {
+    use std::os::fd::AsRawFd;
+    static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let name = path
+        .file_name()
+        .map_or("out".into(), |f| f.to_string_lossy().into_owned());
+    let tmp = dir.join(format!(".{name}.propbet-{}-{n}", std::process::id()));
+    rustix::fs::linkat(
+        rustix::fs::CWD,
+        format!("/proc/self/fd/{}", file.as_raw_fd()),
+        rustix::fs::CWD,
+        &tmp,
+        rustix::fs::AtFlags::SYMLINK_FOLLOW,
+    )
+    .ok()?;
+    Some(tmp)
 }
 
 /// Writes a figure to `path` as SVG or PNG (by its extension), atomically.
@@ -208,6 +258,27 @@ pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path])
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_output_has_no_name_until_it_is_complete() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = unnamed_in(dir.path(), &[b"half of a result".as_slice()]).unwrap();
+        // Written, not yet named: a signal now would leave nothing in the directory.
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        drop(file);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        // The whole write leaves exactly the result, readable by others.
+        let out = dir.path().join("r.csv");
+        write_atomic(&out, &[b"a,b\n".as_slice()], &[]).unwrap();
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("r.csv")]);
+        assert_eq!(std::fs::read(&out).unwrap(), b"a,b\n");
+        use std::os::unix::fs::PermissionsExt;
+        assert_eq!(std::fs::metadata(&out).unwrap().permissions().mode() & 0o777, 0o644);
+    }
 
     fn check(v: f64, expected: &str) {
         let mut s = Vec::new();
