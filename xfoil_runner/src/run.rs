@@ -43,6 +43,9 @@ pub struct XfoilConfig {
     pub point_timeout: Duration,
     /// Restarts per sweep direction after crashes or hangs before the rest is given up.
     pub max_restarts: usize,
+    /// Longest a whole sweep (one polar, every restart and retry) may take; what is left
+    /// then is given up (a fault of kind [`FaultKind::OverBudget`]).
+    pub sweep_budget: Duration,
 }
 
 impl XfoilConfig {
@@ -58,6 +61,7 @@ impl XfoilConfig {
             startup_timeout: Duration::from_secs(5),
             point_timeout: Duration::from_secs(2),
             max_restarts: 6,
+            sweep_budget: Duration::from_secs(120),
         }
     }
 }
@@ -152,6 +156,11 @@ pub enum FaultKind {
         /// How long it ran [s].
         seconds: f64,
     },
+    /// The polar's (or the command's) time budget ran out: the angles left were given up.
+    OverBudget {
+        /// The time spent on the polar [s].
+        seconds: f64,
+    },
 }
 
 /// One crash or hang, at the angle XFOIL was working on.
@@ -176,6 +185,11 @@ impl std::fmt::Display for Fault {
                     self.alpha_deg
                 )
             }
+            FaultKind::OverBudget { seconds } => write!(
+                f,
+                "the time budget ran out after {seconds:.1} s: alpha {} deg and the angles after it were given up",
+                self.alpha_deg
+            ),
         }
     }
 }
@@ -275,7 +289,15 @@ impl Xfoil {
     /// request is invalid, XFOIL cannot be started, it writes unreadable output, or every run
     /// faulted before converging anything.
     pub fn sweep(&self, req: &SweepRequest) -> Result<SweepOutcome, XfoilError> {
+        self.sweep_until(req, Instant::now() + self.config.sweep_budget)
+    }
+
+    /// [`Xfoil::sweep`] that gives up what is left at `deadline` (the earlier of it and the
+    /// sweep's own budget).
+    pub fn sweep_until(&self, req: &SweepRequest, deadline: Instant) -> Result<SweepOutcome, XfoilError> {
         req.validate()?;
+        let start = Instant::now();
+        let deadline = deadline.min(start + self.config.sweep_budget);
         let settings = RunSettings {
             reynolds: req.reynolds,
             mach: req.mach,
@@ -297,7 +319,7 @@ impl Xfoil {
         }
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();
-        let failed = self.branch(&airfoil, &settings, &steps, &mut out, &mut last_tail)?;
+        let failed = self.branch(&airfoil, &settings, &steps, &mut out, &mut last_tail, (start, deadline))?;
         let converged =
             |out: &SweepOutcome, x: f64| out.points.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
         let mut retry: Vec<f64> = failed.into_iter().filter(|&x| !converged(&out, x)).collect();
@@ -315,6 +337,7 @@ impl Xfoil {
                 &Step::list(&retry, false, true),
                 &mut out,
                 &mut last_tail,
+                (start, deadline),
             )?;
         }
         // A drag below 80 % of laminar flat-plate friction on both sides (2 x 1.328 / sqrt(Re))
@@ -347,6 +370,7 @@ impl Xfoil {
         steps: &[Step],
         out: &mut SweepOutcome,
         last_tail: &mut String,
+        (start, deadline): (Instant, Instant),
     ) -> Result<Vec<f64>, XfoilError> {
         let mut warm_up: Option<f64> = None;
         let mut failed = Vec::new();
@@ -355,7 +379,19 @@ impl Xfoil {
         while pos < steps.len() {
             let todo_steps = &steps[pos..];
             let todo: Vec<f64> = todo_steps.iter().map(|s| s.alpha_deg).collect();
-            let run = self.run_once(airfoil, settings, warm_up, todo_steps)?;
+            let now = Instant::now();
+            if now >= deadline {
+                out.faults.push(Fault {
+                    kind: FaultKind::OverBudget {
+                        seconds: (now - start).as_secs_f64(),
+                    },
+                    alpha_deg: todo[0],
+                    output_tail: last_tail.clone(),
+                });
+                failed.extend(todo);
+                return Ok(failed);
+            }
+            let run = self.run_once(airfoil, settings, warm_up, todo_steps, deadline - now)?;
             out.runs += 1;
             // Match saved points to requested angles; anything else is garbage.
             let mut last_done: Option<usize> = None;
@@ -398,6 +434,7 @@ impl Xfoil {
                     status: match kind {
                         FaultKind::Crash { status } => status,
                         FaultKind::Hang { .. } => "hung".into(),
+                        FaultKind::OverBudget { .. } => "over its time budget".into(),
                     },
                     output_tail: run.output_tail,
                 });
@@ -429,6 +466,7 @@ impl Xfoil {
         settings: &RunSettings,
         warm_up: Option<f64>,
         steps: &[Step],
+        left: Duration,
     ) -> Result<RunOutput, XfoilError> {
         let dir = tempfile::Builder::new()
             .prefix("propbet-xfoil-")
@@ -464,7 +502,7 @@ impl Xfoil {
             // XFOIL may die before reading everything; the watchdog below reports that.
             let _ = stdin.write_all(text.as_bytes());
         }
-        let budget = self.config.startup_timeout + self.config.point_timeout * (steps.len() as u32 + 1);
+        let budget = (self.config.startup_timeout + self.config.point_timeout * (steps.len() as u32 + 1)).min(left);
         let ending = watch(&mut child, &log_path, self.config.stall_timeout, budget)?;
         let output = std::fs::read(&log_path).unwrap_or_default();
         let output_tail = tail(&output);

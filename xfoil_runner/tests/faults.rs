@@ -237,3 +237,30 @@ fn absurd_values_are_not_converged_points() {
     );
     assert!(out.unconverged_deg.contains(&2.0) && out.unconverged_deg.contains(&3.0));
 }
+
+#[test]
+fn a_sweep_gives_up_when_its_budget_runs_out() {
+    // Endless chatter at every angle from 1 deg: each run is stopped by its own budget, and the
+    // sweep by its total one instead of restarting for minutes.
+    let (_d, exe) =
+        fake(r#"if [ "${arg%%.*}" -ge 1 ] 2>/dev/null; then while :; do echo " XFOIL   c>"; sleep 0.01; done; fi"#);
+    let mut c = XfoilConfig::new(exe);
+    c.display = DisplayChoice::Headless;
+    c.stall_timeout = Duration::from_millis(500);
+    c.startup_timeout = Duration::from_secs(1);
+    c.point_timeout = Duration::from_millis(300);
+    c.sweep_budget = Duration::from_millis(1500);
+    let t = Instant::now();
+    let out = Xfoil::new(c).unwrap().sweep(&request()).unwrap();
+    assert!(t.elapsed() < Duration::from_secs(4), "took {:?}", t.elapsed());
+    assert!(
+        out.faults
+            .iter()
+            .any(|f| matches!(f.kind, FaultKind::OverBudget { .. })),
+        "{:?}",
+        out.faults
+    );
+    assert!(out.unconverged_deg.contains(&6.0), "{:?}", out.unconverged_deg);
+    // What converged before the budget ran out is kept.
+    assert!(alphas(&out).contains(&0.0), "{:?}", alphas(&out));
+}

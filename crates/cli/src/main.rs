@@ -166,6 +166,7 @@ mod tests {
             cache: Some("/tmp/cache dir".into()),
             no_cache: false,
             quiet: true,
+            xfoil_budget: Some(600.0),
         };
         let mut n = 0;
         for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {
@@ -268,6 +269,8 @@ mod tests {
                 "--iter",
                 "50",
                 "--no-cache",
+                "--xfoil-budget",
+                "90",
                 "--out-prop",
                 "o.qprop",
             ],

@@ -33,6 +33,10 @@ pub struct XfoilProcess {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
+    /// Total XFOIL time of the command [s]: polars not started by then are errors, a running
+    /// one gives up its remaining angles (each polar has 120 s of its own at most).
+    #[arg(long, value_name = "SECONDS")]
+    pub xfoil_budget: Option<f64>,
 }
 
 impl XfoilProcess {
@@ -43,6 +47,7 @@ impl XfoilProcess {
             cache: self.cache.clone(),
             no_cache: self.no_cache,
             quiet: self.quiet,
+            budget: self.xfoil_budget,
         }
     }
 }

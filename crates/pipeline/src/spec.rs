@@ -55,10 +55,15 @@ pub struct XfoilProcessSpec {
     pub no_cache: bool,
     /// No progress bar.
     pub quiet: bool,
+    /// Total XFOIL time of the command [s] (None: no limit beyond each polar's).
+    pub budget: Option<f64>,
 }
 
 impl XfoilProcessSpec {
     fn push_argv(&self, v: &mut Argv) {
+        if let Some(b) = self.budget {
+            push(v, "--xfoil-budget", format!("{b}"));
+        }
         if let Some(x) = &self.xfoil {
             push(v, "--xfoil", path(x));
         }

@@ -185,7 +185,12 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
             None => None,
         }
     };
-    Ok(PolarEngine::new(xfoil, cache))
+    let engine = PolarEngine::new(xfoil, cache);
+    Ok(match p.budget {
+        None => engine,
+        Some(b) if b.is_finite() && b > 0.0 => engine.with_budget(b),
+        Some(b) => invalid!("--xfoil-budget {b}: a positive number of seconds"),
+    })
 }
 
 /// What the polars stage reads: the blade and its sections.

@@ -88,6 +88,16 @@ pub enum PolarError {
         /// The runner's error.
         source: XfoilError,
     },
+    /// The command's XFOIL time budget ran out before this polar was started.
+    #[error("{airfoil} at Re {re:.0}: not computed, the XFOIL time budget ({seconds:.0} s) ran out")]
+    Budget {
+        /// Airfoil name.
+        airfoil: String,
+        /// Reynolds number.
+        re: f64,
+        /// The budget [s].
+        seconds: f64,
+    },
     /// The cache directory cannot be used.
     #[error("polar cache {path}: {source}")]
     Cache {
@@ -184,6 +194,8 @@ pub struct PolarEngine {
     xfoil: Xfoil,
     cache: Option<PolarCache>,
     identity: OnceLock<String>,
+    /// The command's budget: (deadline, its length [s]).
+    deadline: Option<(std::time::Instant, f64)>,
 }
 
 impl PolarEngine {
@@ -193,7 +205,16 @@ impl PolarEngine {
             xfoil,
             cache,
             identity: OnceLock::new(),
+            deadline: None,
         }
+    }
+
+    /// The engine with a total XFOIL time budget from now [s]: polars not started by then are
+    /// errors ([`PolarError::Budget`]), a polar running then gives up its remaining angles.
+    pub fn with_budget(mut self, seconds: f64) -> Self {
+        let d = std::time::Duration::from_secs_f64(seconds.clamp(0.0, 1e9));
+        self.deadline = Some((std::time::Instant::now() + d, seconds));
+        self
     }
 
     /// SHA-256 of the XFOIL executable and the script version.
@@ -240,7 +261,20 @@ impl PolarEngine {
                 Err(()) => source = Source::RecomputedCorrupt,
             }
         }
-        let out = self.xfoil.sweep(&req).map_err(|source| PolarError::Xfoil {
+        let out = match self.deadline {
+            None => self.xfoil.sweep(&req),
+            Some((deadline, seconds)) => {
+                if std::time::Instant::now() >= deadline {
+                    return Err(PolarError::Budget {
+                        airfoil: job.airfoil.name.clone(),
+                        re: job.re,
+                        seconds,
+                    });
+                }
+                self.xfoil.sweep_until(&req, deadline)
+            }
+        }
+        .map_err(|source| PolarError::Xfoil {
             airfoil: job.airfoil.name.clone(),
             re: job.re,
             source,
@@ -253,12 +287,14 @@ impl PolarEngine {
             unconverged_deg: out.unconverged_deg,
             faults: out.faults,
         };
-        // A hang may be the machine's load, not XFOIL's answer (the stall limit is wall time):
-        // a polar with one is not cached, so the next run asks XFOIL again.
-        let transient = polar
-            .faults
-            .iter()
-            .any(|f| matches!(f.kind, xfoil_runner::FaultKind::Hang { .. }));
+        // A hang or a budget run out may be the machine's load, not XFOIL's answer (the limits
+        // are wall time): a polar with one is not cached, so the next run asks XFOIL again.
+        let transient = polar.faults.iter().any(|f| {
+            matches!(
+                f.kind,
+                xfoil_runner::FaultKind::Hang { .. } | xfoil_runner::FaultKind::OverBudget { .. }
+            )
+        });
         if let (Some(c), false) = (&self.cache, transient) {
             c.put(&key, &polar)?;
         }

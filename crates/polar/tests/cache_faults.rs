@@ -74,3 +74,12 @@ fn a_polar_whose_xfoil_hung_is_not_cached_a_clean_one_is() {
     assert_eq!(clean.compute(&job()).unwrap().1, Source::Xfoil);
     assert_eq!(clean.compute(&job()).unwrap().1, Source::Cache);
 }
+
+#[test]
+fn polars_not_started_within_the_commands_budget_are_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let e = engine(fake(dir.path(), ""), &dir.path().join("cache")).with_budget(0.001);
+    std::thread::sleep(Duration::from_millis(10));
+    let err = e.compute(&job()).unwrap_err().to_string();
+    assert!(err.contains("Re 100000") && err.contains("XFOIL time budget"), "{err}");
+}
