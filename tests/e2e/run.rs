@@ -112,6 +112,8 @@ fn default_case_from_scan_to_report() {
     ] {
         assert!(html.contains(part), "report lacks {part}");
     }
+    // A finished run's folder is not marked incomplete.
+    assert!(!out.join("INCOMPLETE.txt").exists());
     // The case directory is untouched: nothing written into it.
     let case = repo().join("props/apcsf_10x4.7");
     assert!(!case.join("scan").exists() && !case.join("report.html").exists());
@@ -180,4 +182,26 @@ fn bad_cases_get_clear_errors() {
     let o = run(&["run", "case", "-o", "case"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("would hold the case"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_run_that_fails_leaves_its_folder_marked_incomplete() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case");
+    std::fs::create_dir(&case).unwrap();
+    std::fs::copy(cam6x3(), case.join("cam6x3.qprop")).unwrap();
+    // A measured file that is not a measurement: the compare stage fails after predict wrote.
+    std::fs::write(case.join("m.csv"), "this,is\nnot,a log\n").unwrap();
+    std::fs::write(
+        case.join("case.toml"),
+        "name = \"x\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"5000\"\nj = \"0:0.5:0.1\"\n[measured]\nfiles = [\"m.csv\"]\n",
+    )
+    .unwrap();
+    let o = run(&["run", "case", "-o", "out", "--quiet"], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let marker = std::fs::read_to_string(dir.path().join("out/INCOMPLETE.txt")).unwrap();
+    assert!(
+        marker.contains("This folder is incomplete") && marker.contains("propbet run"),
+        "{marker}"
+    );
 }

@@ -118,6 +118,18 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         }
     }
     std::fs::create_dir_all(&out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))?;
+    // Until the report is written the folder says it is incomplete: a run that fails or is
+    // interrupted leaves this file, naming the case; a finished run removes it.
+    let marker = out.join(INCOMPLETE);
+    write_atomic(
+        &marker,
+        &[format!(
+            "This folder is incomplete: `propbet run {}` started writing it and has not finished (it failed, was \
+             interrupted, or is still running). Its files may be from different runs.\n",
+            dir.display()
+        )],
+        &[],
+    )?;
     let bar = Bar::new(a.xfoil.quiet);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut write_err: Option<anyhow::Error> = None;
@@ -152,6 +164,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
     eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
+    std::fs::remove_file(&marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", marker.display()))?;
     println!(
         "{}: {} stages in {:.1} s; report: {}",
         plan.name,
@@ -161,6 +174,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     );
     Ok(outcome.clean())
 }
+
+/// The file that marks a run's output folder as incomplete.
+pub const INCOMPLETE: &str = "INCOMPLETE.txt";
 
 fn create_parent(path: &Path) -> Result<()> {
     if let Some(d) = path.parent() {
