@@ -141,6 +141,10 @@ fn check_polar(p: &Polar) -> Result<(), String> {
     if !(p.re.is_finite() && p.re > 0.0) {
         return Err("Reynolds number not a positive number".into());
     }
+    // Prandtl-Glauert divides by sqrt(1 - M^2): a polar's Mach is subsonic.
+    if !(p.mach.is_finite() && (0.0..1.0).contains(&p.mach)) {
+        return Err(format!("Mach number {} is not in [0, 1)", p.mach));
+    }
     for (k, q) in p.points.iter().enumerate() {
         if !(q.alpha_deg.is_finite() && q.cl.is_finite() && q.cd.is_finite()) {
             return Err(format!("point {}: not a finite number", k + 1));
@@ -360,6 +364,16 @@ pub fn compute_blade(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_polar_at_sonic_mach_is_refused() {
+        let mut p = Polar::from_law(1e5, -2, 4, |a| (0.4 + 0.1 * a, 0.012));
+        assert!(check_polar(&p).is_ok());
+        p.mach = 1.2;
+        assert!(check_polar(&p).unwrap_err().contains("Mach number 1.2"));
+        p.mach = f64::NAN;
+        assert!(check_polar(&p).is_err());
+    }
 
     #[test]
     fn rungs_bracket_the_range_five_per_decade() {
