@@ -350,31 +350,11 @@ fn a_polar_with_an_xfoil_fault_exits_1() {
     // A fake XFOIL that speaks the dialogue and dies of SIGFPE at 2 deg: the other angles come
     // back, the fault is said, and the exit code is 1 (not 0).
     let dir = tempfile::tempdir().unwrap();
-    let fake = dir.path().join("xfoil");
-    std::fs::write(
-        &fake,
-        r#"#!/bin/bash
-echo "  XFOIL Version 6.99 (fake)"
-acc=0
-while read -r cmd arg; do
-  case "$cmd" in
-    PACC)
-      if [ $acc = 0 ]; then
-        read -r polar; read -r dump; acc=1; echo " Polar accumulation enabled"
-        printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
-      else acc=0; fi ;;
-    ALFA)
-      [ "$arg" = "2.000000" ] && { echo 'Program received signal SIGFPE'; kill -FPE $$; }
-      if [ $acc = 1 ]; then
-        awk -v a="$arg" 'BEGIN { printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }' >> "$polar"
-      fi ;;
-    QUIT) exit 0 ;;
-  esac
-done
-"#,
+    let fake = xfoil_runner::fake::write_fake_xfoil(
+        dir.path(),
+        r#"[ "$arg" = "2.000000" ] && { echo 'Program received signal SIGFPE'; kill -FPE $$; }"#,
     )
     .unwrap();
-    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
     let o = run(
         &[
             "polar",

@@ -11,6 +11,7 @@
 #![deny(missing_docs)]
 
 pub mod display;
+pub mod fake;
 mod find;
 mod output;
 mod run;

@@ -8,37 +8,10 @@ use std::time::{Duration, Instant};
 
 use xfoil_runner::{DisplayChoice, FaultKind, SweepRequest, Xfoil, XfoilConfig, XfoilError};
 
-/// A fake XFOIL whose reaction to `ALFA $arg` is `behaviour` (a bash snippet run before the
-/// point is saved).
+/// A fake XFOIL whose reaction to `ALFA $arg` is `behaviour` ([`xfoil_runner::fake`]).
 fn fake(behaviour: &str) -> (tempfile::TempDir, PathBuf) {
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("xfoil");
-    let script = format!(
-        r#"#!/bin/bash
-echo "  XFOIL Version 6.99 (fake)"
-acc=0; init=1
-while read -r cmd arg; do
-  case "$cmd" in
-    PACC)
-      if [ $acc = 0 ]; then
-        read -r polar; read -r dump; acc=1; echo " Polar accumulation enabled"
-        printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
-      else acc=0; fi ;;
-    ALFA)
-      echo "       a =  $arg      CL =  0.5"
-      {behaviour}
-      was_init=$init; init=0
-      if [ $acc = 1 ]; then
-        awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
-      fi ;;
-    INIT) init=1 ;;
-    QUIT) exit 0 ;;
-  esac
-done
-"#
-    );
-    std::fs::write(&path, script).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let path = xfoil_runner::fake::write_fake_xfoil(dir.path(), behaviour).unwrap();
     (dir, path)
 }
 

@@ -1,8 +1,6 @@
-//! The polar cache and XFOIL's faults, with a fake `xfoil` (the dialogue of
-//! `xfoil_runner/tests/faults.rs`): a polar whose XFOIL hung is not cached, since a hang may be
+//! The polar cache and XFOIL's faults, with a fake `xfoil` (`xfoil_runner::fake`): a polar whose XFOIL hung is not cached, since a hang may be
 //! the machine's load rather than XFOIL's answer; a polar without one is.
 
-use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -11,32 +9,7 @@ use xfoil_runner::{DisplayChoice, Xfoil, XfoilConfig};
 
 /// A fake XFOIL that runs `behaviour` (bash) at each `ALFA $arg` before saving the point.
 fn fake(dir: &Path, behaviour: &str) -> PathBuf {
-    let path = dir.join("xfoil");
-    let script = format!(
-        r#"#!/bin/bash
-echo "  XFOIL Version 6.99 (fake)"
-acc=0
-while read -r cmd arg; do
-  case "$cmd" in
-    PACC)
-      if [ $acc = 0 ]; then
-        read -r polar; read -r dump; acc=1; echo " Polar accumulation enabled"
-        printf '\n   alpha    CL        CD       CDp       CM     Top_Xtr  Bot_Xtr\n  ------ -------- --------- --------- -------- -------- --------\n' > "$polar"
-      else acc=0; fi ;;
-    ALFA)
-      echo "       a =  $arg      CL =  0.5"
-      {behaviour}
-      if [ $acc = 1 ]; then
-        awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
-      fi ;;
-    QUIT) exit 0 ;;
-  esac
-done
-"#
-    );
-    std::fs::write(&path, script).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
-    path
+    xfoil_runner::fake::write_fake_xfoil(dir, behaviour).unwrap()
 }
 
 fn engine(exe: PathBuf, cache: &Path) -> PolarEngine {
