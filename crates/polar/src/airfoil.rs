@@ -117,7 +117,8 @@ impl Airfoil {
             Some((_, [nu, nl])) if *nu >= 2.0 && *nl >= 2.0 && nu.fract() == 0.0 && nl.fract() == 0.0 => {
                 let (nu, nl) = (*nu as usize, *nl as usize);
                 let rest: Vec<[f64; 2]> = pairs[1..].iter().map(|(_, p)| *p).collect();
-                if rest.len() != nu + nl {
+                // Counts as large as 1e20 saturate to usize::MAX: compared without overflow.
+                if nu.checked_add(nl) != Some(rest.len()) {
                     return Err(AirfoilError::LednicerCounts {
                         source_name: source_name.to_string(),
                         upper: nu,
@@ -664,6 +665,12 @@ mod tests {
         let bad = led.replacen(&format!("{}.", upper.len()), &format!("{}.", upper.len() + 3), 1);
         let e = Airfoil::parse(&bad, "x.dat").unwrap_err().to_string();
         assert!(e.contains("announces"), "{e}");
+        // Counts that overflow when added (found by fuzzing: a panic in release builds).
+        let huge = "E63\n3.00000  99999999999999999999\n0.99719  -0\n0.98938  0.0\n";
+        assert!(Airfoil::parse(huge, "h.dat")
+            .unwrap_err()
+            .to_string()
+            .contains("announces"));
     }
 
     #[test]
