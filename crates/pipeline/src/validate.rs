@@ -124,6 +124,11 @@ pub struct Row {
     pub ladder: String,
 }
 
+/// The median and 90th percentile of errors: the table's two numbers per quantity.
+fn median_p90(v: &[f64]) -> (f64, f64) {
+    (quantile(v.to_vec(), 0.5), quantile(v.to_vec(), 0.9))
+}
+
 /// APC's PER3 prediction scored as propbet's is.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Per3Score {
@@ -163,11 +168,10 @@ pub fn per3_score(per3: &propbet_qprop::apc::Per3, points: &[propbet_compare::Co
         })
         .collect();
     let (ct, cp) = window_errors(&replaced, VALIDATION_J_WINDOW);
-    let q = |v: &Vec<f64>| (quantile(v.clone(), 0.5), quantile(v.clone(), 0.9));
     Per3Score {
         points: ct.len(),
-        ct: q(&ct),
-        cp: q(&cp),
+        ct: median_p90(&ct),
+        cp: median_p90(&cp),
     }
 }
 
@@ -367,7 +371,6 @@ pub fn validate_prop(
     )?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
     let (ct1, cp1) = window_errors(&calibrated.points, VALIDATION_J_WINDOW);
-    let q = |v: &Vec<f64>| (quantile(v.clone(), 0.5), quantile(v.clone(), 0.9));
     let per3 = match &spec.per3 {
         None => None,
         Some(dir) => match propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)) {
@@ -384,8 +387,8 @@ pub fn validate_prop(
         prop: prop.to_string(),
         points: ct0.len(),
         implausible: compared.points.iter().filter(|p| !p.model_flags.is_empty()).count(),
-        ct: [q(&ct0), q(&ct1)],
-        cp: [q(&cp0), q(&cp1)],
+        ct: [median_p90(&ct0), median_p90(&ct1)],
+        cp: [median_p90(&cp0), median_p90(&cp1)],
         per3,
         ladder: if effects.is_empty() {
             "none".into()

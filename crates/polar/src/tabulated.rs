@@ -22,7 +22,7 @@ use std::sync::Arc;
 
 use propbet_bemt::{DragInput, LiftEval, Rotor, SectionAero};
 
-use crate::table::{re_bracket, Polar};
+use crate::table::Polar;
 
 /// Drag coefficient of a flat plate broadside to the flow, used by the post-stall extension.
 pub const CD_MAX: f64 = 1.3;
@@ -203,7 +203,7 @@ impl TabulatedAero {
 
     /// The curve this model uses at `re` (outside the range: the end curve, drag scaled).
     fn curve_at(&self, re: f64) -> Curve {
-        let (i, j, t) = re_bracket(&self.res, re);
+        let (i, j, t, _) = self.bracket(re);
         let mut c = Curve::mix(&self.curves[i], &self.curves[j], t);
         if let Some(e) = self.edge(re) {
             let f = (re / e).powf(self.re_exp_outside);
@@ -242,7 +242,7 @@ impl TabulatedAero {
     }
 
     /// The two polars around `re` and the fraction between them, linear in ln Re (clamped to
-    /// the ends: [`re_bracket`] with the logs kept).
+    /// the ends: `table::re_bracket` with the logs kept).
     fn bracket(&self, re: f64) -> (usize, usize, f64, f64) {
         let n = self.res.len();
         let lr = re.ln();
