@@ -129,16 +129,27 @@ pub fn read_ply(bytes: &[u8], name: &str) -> Result<Cloud, CloudError> {
     let mut reader = ply_rs_bw::parser::Reader::new(std::io::BufReader::new(bytes));
     let header = parser
         .read_header(&mut reader)
-        .map_err(|e| err(format!("header: {e}")))?;
+        .map_err(|e| err(format!("header: {}", propbet_units::excerpt(&e.to_string()))))?;
     // PLY writers put the vertices first; anything before them would have to be skipped.
     let element = match header.elements.values().next() {
         Some(e) if e.name == "vertex" => e,
-        Some(e) => return Err(err(format!("the first element is '{}', not 'vertex'", e.name))),
+        Some(e) => {
+            return Err(err(format!(
+                "the first element is '{}', not 'vertex'",
+                propbet_units::excerpt(&e.name)
+            )))
+        }
         None => return Err(CloudError::Empty(name.to_string())),
     };
     let verts = parser
         .read_payload_for_element(&mut reader, element, &header)
-        .map_err(|e| err(format!("vertex data ({} announced): {e}", element.count)))?;
+        .map_err(|e| {
+            err(format!(
+                "vertex data ({} announced): {}",
+                element.count,
+                propbet_units::excerpt(&e.to_string())
+            ))
+        })?;
     let has_c = verts.first().is_some_and(|v| v.has_c);
     let mut cloud = Cloud {
         points: Vec::with_capacity(verts.len()),
@@ -197,9 +208,13 @@ pub fn read_text(text: &str, name: &str, colmap: bool) -> Result<Cloud, CloudErr
             let s = f
                 .get(skip + k)
                 .ok_or_else(|| syntax(format!("column {} is missing", skip + k + 1)))?;
-            *slot = s
-                .parse::<f64>()
-                .map_err(|_| syntax(format!("column {}: '{s}' is not a number", skip + k + 1)))?;
+            *slot = s.parse::<f64>().map_err(|_| {
+                syntax(format!(
+                    "column {}: '{}' is not a number",
+                    skip + k + 1,
+                    propbet_units::excerpt(s)
+                ))
+            })?;
         }
         if !v[..3].iter().all(|x| x.is_finite()) {
             return Err(syntax("a coordinate is not a finite number".into()));

@@ -187,13 +187,13 @@ fn read_ascii(bytes: &[u8], name: &str) -> Result<Mesh, MeshError> {
             .map_err(|_| MeshError::Syntax {
                 name: name.to_string(),
                 line: i + 1,
-                message: format!("`{}` is not `vertex x y z`", line.trim()),
+                message: format!("`{}` is not `vertex x y z`", propbet_units::excerpt(line)),
             })?;
         if vals.len() != 3 {
             return Err(MeshError::Syntax {
                 name: name.to_string(),
                 line: i + 1,
-                message: format!("`{}` is not `vertex x y z`", line.trim()),
+                message: format!("`{}` is not `vertex x y z`", propbet_units::excerpt(line)),
             });
         }
         if !vals.iter().all(|x| x.is_finite()) {

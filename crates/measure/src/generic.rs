@@ -104,8 +104,9 @@ fn mapped(table: &CsvTable, map: &str) -> Result<Columns, ReadError> {
         };
         let index = table.headers.iter().position(|h| *h == name).ok_or_else(|| {
             ReadError::Map(format!(
-                "{key}: no column '{name}' (columns: {})",
-                table.headers.join(", ")
+                "{key}: no column '{}' (columns: {})",
+                propbet_units::excerpt(&name),
+                table.header_list()
             ))
         })?;
         let unit = unit.or_else(|| split_header(&name).1);
@@ -162,7 +163,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         Some(map) => mapped(&table, map)?,
         None => automatic(&table)?,
     };
-    let all = table.headers.join(", ");
+    let all = table.header_list();
     for (what, c) in [("rpm", &cols.rotation), ("thrust", &cols.thrust)] {
         if c.is_none() {
             return Err(ReadError::MissingColumn {

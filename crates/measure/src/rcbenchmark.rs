@@ -52,7 +52,7 @@ fn readings(table: &CsvTable, c: &Column) -> usize {
 /// Reads an export and reduces it to points.
 pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let table = read_csv(text)?;
-    let all = table.headers.join(", ");
+    let all = table.header_list();
     let missing = |what| ReadError::MissingColumn {
         what,
         columns: all.clone(),

@@ -15,6 +15,23 @@ pub struct CsvTable {
     pub long_rows: Vec<usize>,
 }
 
+impl CsvTable {
+    /// The header's names for a message: each as an excerpt, at most 40 of them.
+    pub fn header_list(&self) -> String {
+        const SHOWN: usize = 40;
+        let mut list: Vec<String> = self
+            .headers
+            .iter()
+            .take(SHOWN)
+            .map(|h| propbet_units::excerpt(h))
+            .collect();
+        if self.headers.len() > SHOWN {
+            list.push(format!("and {} more", self.headers.len() - SHOWN));
+        }
+        list.join(", ")
+    }
+}
+
 /// One data row.
 #[derive(Debug, Clone)]
 pub struct CsvRow {
@@ -195,11 +212,21 @@ pub struct Sample {
 fn cell(row: &CsvRow, col: &Column) -> Result<f64, (DropReason, String)> {
     let text = row.cells.get(col.index).map(String::as_str).unwrap_or("");
     if text.is_empty() {
-        return Err((DropReason::Missing, format!("{} is empty", col.header)));
+        return Err((
+            DropReason::Missing,
+            format!("{} is empty", propbet_units::excerpt(&col.header)),
+        ));
     }
     match text.parse::<f64>() {
         Ok(v) if v.is_finite() => Ok(col.conv.apply(v)),
-        _ => Err((DropReason::NotANumber, format!("{} = '{text}'", col.header))),
+        _ => Err((
+            DropReason::NotANumber,
+            format!(
+                "{} = '{}'",
+                propbet_units::excerpt(&col.header),
+                propbet_units::excerpt(text)
+            ),
+        )),
     }
 }
 

@@ -35,7 +35,10 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
     if header.to_ascii_lowercase().contains("average") {
         let rpm = last_number(header).ok_or_else(|| ReadError::Line {
             line: hline + 1,
-            message: format!("'{}': no RPM value on the 'RPM average' line", header.trim()),
+            message: format!(
+                "'{}': no RPM value on the 'RPM average' line",
+                propbet_units::excerpt(header)
+            ),
         })?;
         rpm_line = Some(rpm);
         (hline, header) = lines
@@ -53,7 +56,7 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
             line: hline + 1,
             message: format!(
                 "header '{}': expected 'J CT CP eta' (sweep) or 'RPM CT CP' (static), as UIUC files have",
-                header.trim()
+                propbet_units::excerpt(header)
             ),
         });
     };
@@ -109,7 +112,11 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
             dropped.push(Dropped {
                 line,
                 reason: DropReason::NotANumber,
-                detail: format!("{} = '{}'", cols[k], cells[k]),
+                detail: format!(
+                    "{} = '{}'",
+                    propbet_units::excerpt(&cols[k]),
+                    propbet_units::excerpt(cells[k])
+                ),
             });
             continue;
         }
@@ -202,7 +209,7 @@ pub fn read_geometry(text: &str) -> Result<Vec<GeometryRow>, ReadError> {
             .iter()
             .map(|s| s.parse::<f64>().ok().filter(|x| x.is_finite()))
             .collect::<Option<_>>()
-            .ok_or_else(|| bad(format!("'{}' is not three numbers", line.trim())))?;
+            .ok_or_else(|| bad(format!("'{}' is not three numbers", propbet_units::excerpt(line))))?;
         rows.push(GeometryRow {
             r_r: v[0],
             c_r: v[1],

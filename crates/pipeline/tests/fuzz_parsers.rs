@@ -12,7 +12,10 @@
 //!   cargo test --release -p propbet-pipeline --test fuzz_parsers -- --test-threads 1 --nocapture
 //! ```
 //!
-//! Each test prints its counts: runs, panics, hangs. The generator is a fixed-seed xorshift
+//! A parser's output must also hold only finite numbers: each closure returns whether it does,
+//! and a non-finite output fails the test like a panic.
+//!
+//! Each test prints its counts: runs, panics, hangs, non-finite outputs. The generator is a fixed-seed xorshift
 //! (`PROPBET_FUZZ_SEED` to vary), so a failure replays.
 
 use std::path::Path;
@@ -105,13 +108,13 @@ fn mutate(seed: &[u8], rng: &mut Rng) -> Vec<u8> {
 
 /// Runs `parse` on every seed and on mutations of them until the case or time budget is spent;
 /// panics (with the input saved) on a panic or a hang.
-fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) + std::panic::RefUnwindSafe) {
+fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) -> bool + std::panic::RefUnwindSafe) {
     let cases = env_num("PROPBET_FUZZ_CASES", 200);
     let seconds = env_num("PROPBET_FUZZ_SECONDS", 0);
     let hang = Duration::from_secs(env_num("PROPBET_FUZZ_HANG_SECONDS", 10));
     let mut rng = Rng(env_num("PROPBET_FUZZ_SEED", 0x9E37_79B9_7F4A_7C15) | 1);
     let start = Instant::now();
-    let (mut runs, mut panics, mut hangs) = (0u64, 0u64, 0u64);
+    let (mut runs, mut panics, mut hangs, mut nonfinite) = (0u64, 0u64, 0u64, 0u64);
     let mut first_failure: Option<String> = None;
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
@@ -124,12 +127,16 @@ fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) + std::panic::RefUn
         };
         k += 1;
         let t = Instant::now();
-        let ok = std::panic::catch_unwind(|| parse(&input)).is_ok();
+        let result = std::panic::catch_unwind(|| parse(&input));
         runs += 1;
+        let ok = result.is_ok();
+        let finite = result.unwrap_or(true);
         let slow = t.elapsed() > hang;
-        if !ok || slow {
+        if !ok || slow || !finite {
             if !ok {
                 panics += 1;
+            } else if !finite {
+                nonfinite += 1;
             } else {
                 hangs += 1;
             }
@@ -138,7 +145,13 @@ fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) + std::panic::RefUn
                 let _ = std::fs::write(&path, &input);
                 first_failure = Some(format!(
                     "{} on case {runs} ({:.1} s), input in {}",
-                    if ok { "hang" } else { "panic" },
+                    if !ok {
+                        "panic"
+                    } else if !finite {
+                        "non-finite output"
+                    } else {
+                        "hang"
+                    },
                     t.elapsed().as_secs_f64(),
                     path.display()
                 ));
@@ -155,7 +168,7 @@ fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) + std::panic::RefUn
     }
     std::panic::set_hook(hook);
     println!(
-        "fuzz {name}: {runs} runs in {:.1} s, {panics} panics, {hangs} hangs",
+        "fuzz {name}: {runs} runs in {:.1} s, {panics} panics, {hangs} hangs, {nonfinite} non-finite outputs",
         start.elapsed().as_secs_f64()
     );
     assert!(
@@ -163,6 +176,27 @@ fn fuzz(name: &str, seeds: &[Vec<u8>], parse: impl Fn(&[u8]) + std::panic::RefUn
         "fuzz {name}: {}",
         first_failure.unwrap_or_default()
     );
+}
+
+fn finite(xs: &[f64]) -> bool {
+    xs.iter().all(|x| x.is_finite())
+}
+
+/// Every number of a measured set that reads is finite.
+fn measured_finite(set: Result<propbet_measure::MeasuredSet, propbet_measure::ReadError>) -> bool {
+    use propbet_measure::{Loads, Speed};
+    let Ok(set) = set else { return true };
+    set.points.iter().all(|p| {
+        let speed = match p.speed {
+            Speed::Airspeed(v) => v.mean,
+            Speed::AdvanceRatio(j) => j,
+        };
+        let loads = match p.loads {
+            Loads::Forces { thrust, torque } => finite(&[thrust.mean, torque.map_or(0.0, |q| q.mean)]),
+            Loads::Coefficients { ct, cp } => finite(&[ct, cp]),
+        };
+        finite(&[p.omega.mean, speed]) && loads
+    })
 }
 
 fn file(rel: &str) -> Vec<u8> {
@@ -188,11 +222,17 @@ fn prop_files() {
     ];
     fuzz("prop", &seeds, |b| {
         if let Ok((f, _)) = propbet_qprop::parse_prop(&text(b)) {
-            // A file that reads also discretises or says why.
-            let _ = f
+            // A file that reads also discretises or says why, into finite stations.
+            if let Ok(rotor) = f
                 .to_blade(propbet_qprop::RadiusReading::Documented)
-                .to_rotor(propbet_bemt::Discretization::default());
+                .to_rotor(propbet_bemt::Discretization::default())
+            {
+                return rotor.tip_radius.is_finite()
+                    && rotor.blades.is_finite()
+                    && rotor.stations.iter().all(|s| finite(&[s.r, s.dr, s.chord, s.beta]));
+            }
         }
+        true
     });
 }
 
@@ -203,7 +243,9 @@ fn airfoils() {
         if let Ok((mut a, _)) = propbet_polar::Airfoil::parse(&text(b), "fuzz.dat") {
             a.normalise();
             let _ = a.scale_thickness(0.08);
+            return a.points.iter().all(|p| finite(p));
         }
+        true
     });
 }
 
@@ -237,9 +279,14 @@ fn small_stl_binary() -> Vec<u8> {
 
 #[test]
 fn stl() {
-    fuzz("stl", &[small_stl_ascii(), small_stl_binary()], |b| {
-        let _ = propbet_geometry::mesh::read_stl(b, "fuzz.stl");
-    });
+    fuzz(
+        "stl",
+        &[small_stl_ascii(), small_stl_binary()],
+        |b| match propbet_geometry::mesh::read_stl(b, "fuzz.stl") {
+            Ok(m) => m.vertices.iter().all(|v| finite(v.as_slice())),
+            Err(_) => true,
+        },
+    );
 }
 
 #[test]
@@ -258,9 +305,12 @@ fn clouds() {
     }
     let seeds = [ply.into_bytes(), xyz.into_bytes(), colmap.into_bytes()];
     fuzz("cloud", &seeds, |b| {
-        for name in ["fuzz.ply", "fuzz.xyz", "points3D.txt"] {
-            let _ = propbet_geometry::cloud::read_cloud(b, name);
-        }
+        ["fuzz.ply", "fuzz.xyz", "points3D.txt"]
+            .iter()
+            .all(|name| match propbet_geometry::cloud::read_cloud(b, name) {
+                Ok(c) => c.points.iter().all(|v| finite(v.as_slice())),
+                Err(_) => true,
+            })
     });
 }
 
@@ -273,7 +323,10 @@ fn thrust_stand_csv_and_column_maps() {
         file("tests/data/bad_inputs/stand_duplicated_header.csv"),
     ];
     fuzz("stand_csv", &seeds, |b| {
-        let _ = propbet_measure::read(&text(b), &propbet_measure::ReadOptions::default());
+        measured_finite(propbet_measure::read(
+            &text(b),
+            &propbet_measure::ReadOptions::default(),
+        ))
     });
     let csv = "time_s,speed,force\n0,5000,1.0\n1,5000,1.1\n2,6000,1.5\n".to_string();
     let map = b"rpm = { column = \"speed\", unit = \"rpm\" }\nthrust = { column = \"force\", unit = \"N\" }\n".to_vec();
@@ -282,7 +335,7 @@ fn thrust_stand_csv_and_column_maps() {
             column_map: Some(text(b)),
             ..Default::default()
         };
-        let _ = propbet_measure::read(&csv, &opts);
+        measured_finite(propbet_measure::read(&csv, &opts))
     });
 }
 
@@ -298,26 +351,33 @@ fn uiuc_files() {
             name: Some("apcsf_10x4.7_kt0836_4014.txt".into()),
             ..Default::default()
         };
-        let _ = propbet_measure::read(&text(b), &opts);
+        measured_finite(propbet_measure::read(&text(b), &opts))
     });
     fuzz(
         "uiuc_geometry",
         &[file("props/apcsf_10x4.7/apcsf_10x4.7_geom.txt")],
-        |b| {
-            let _ = propbet_measure::uiuc::read_geometry(&text(b));
+        |b| match propbet_measure::uiuc::read_geometry(&text(b)) {
+            Ok(rows) => rows.iter().all(|r| finite(&[r.r_r, r.c_r, r.beta])),
+            Err(_) => true,
         },
     );
 }
 
 #[test]
 fn apc_files() {
-    fuzz("pe0", &[file("tests/data/validate/pe0/9x47SF-PERF.PE0")], |b| {
-        let _ = propbet_qprop::apc::read_pe0(&text(b), "fuzz.PE0");
-    });
+    fuzz(
+        "pe0",
+        &[file("tests/data/validate/pe0/9x47SF-PERF.PE0")],
+        |b| match propbet_qprop::apc::read_pe0(&text(b), "fuzz.PE0") {
+            Ok(p) => p.thickness.iter().all(|&(r, t)| finite(&[r, t])),
+            Err(_) => true,
+        },
+    );
     fuzz("per3", &[head("tests/data/per3/PER3_10x47SF.dat", 12_000)], |b| {
         if let Ok(p) = propbet_qprop::apc::read_per3(&text(b), "fuzz.dat") {
             let _ = p.at(1500.0, 0.1);
         }
+        true
     });
 }
 
@@ -337,6 +397,7 @@ fn case_files() {
                 &|_| Ok(propbet_geometry::scan::ScanOptions::default()),
             );
         }
+        true
     });
 }
 
@@ -344,6 +405,7 @@ fn case_files() {
 fn user_effects() {
     fuzz("user_effects", &[file("docs/user_effects.toml")], |b| {
         let _ = propbet_effects::user::parse(&text(b), "fuzz.toml");
+        true
     });
 }
 
@@ -382,11 +444,19 @@ fn polar_json() {
         if let Ok(p) = propbet_polar::BladePolars::from_json(&text(b)) {
             if let Ok((_, models)) = p.models() {
                 use propbet_bemt::SectionAero;
-                for m in &models {
+                return models.iter().all(|m| {
                     let l = m.lift(0.05, 50_000.0, 0.01);
-                    assert!(l.cl.is_finite(), "a model read from checked polars gives finite lift");
-                }
+                    let d = m.drag(&propbet_bemt::DragInput {
+                        alpha: 0.05,
+                        cl: l.cl,
+                        stalled: l.stalled,
+                        re: 50_000.0,
+                        mach: 0.1,
+                    });
+                    finite(&[l.cl, l.dcl_dalpha, d])
+                });
             }
         }
+        true
     });
 }

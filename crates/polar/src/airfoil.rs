@@ -26,13 +26,13 @@ pub struct Repair(pub String);
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum AirfoilError {
     /// A line that is neither the name nor two numbers.
-    #[error("{source_name}, line {line}: {text:?} is not an `x y` pair of numbers")]
+    #[error("{source_name}, line {line}: '{text}' is not an `x y` pair of numbers")]
     BadLine {
         /// File or origin.
         source_name: String,
         /// One-based line number.
         line: usize,
-        /// The line.
+        /// The line, as an excerpt ([`propbet_bemt::units::excerpt`]).
         text: String,
     },
     /// A Lednicer file whose point counts do not match its data.
@@ -99,7 +99,7 @@ impl Airfoil {
                     return Err(AirfoilError::BadLine {
                         source_name: source_name.to_string(),
                         line: i + 1,
-                        text: raw.to_string(),
+                        text: propbet_bemt::units::excerpt(raw),
                     })
                 }
             }

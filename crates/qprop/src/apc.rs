@@ -13,7 +13,17 @@ pub enum ReadPe0Error {
         name: String,
         /// Line (1-based).
         line: usize,
-        /// The line.
+        /// The line, as an excerpt.
+        text: String,
+    },
+    /// A station row whose radius or thickness ratio is not a finite number in range.
+    #[error("{name}: line {line}: '{text}': a station needs a finite radius >= 0 and a thickness ratio in (0, 1)")]
+    StationRow {
+        /// File name.
+        name: String,
+        /// Line (1-based).
+        line: usize,
+        /// The line, as an excerpt.
         text: String,
     },
     /// The file has no station table or not two AIRFOIL lines.
@@ -108,10 +118,10 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
             let bad = || ReadPe0Error::AirfoilLine {
                 name: name.to_string(),
                 line: i + 1,
-                text: t.to_string(),
+                text: propbet_bemt::units::excerpt(t),
             };
             let (r, n) = rest.split_once(',').ok_or_else(bad)?;
-            let r: f64 = r.trim().parse().map_err(|_| bad())?;
+            let r: f64 = r.trim().parse().ok().filter(|r: &f64| r.is_finite()).ok_or_else(bad)?;
             let n = n.split_whitespace().next().unwrap_or_default().to_string();
             foils.push((r * IN, n));
             continue;
@@ -120,6 +130,13 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
         // The station table comes before the AIRFOIL lines; the performance tables after them
         // have as many columns.
         if v.len() >= 13 && foils.is_empty() {
+            if !(v[0].is_finite() && v[0] >= 0.0 && v[6] > 0.0 && v[6] < 1.0) {
+                return Err(ReadPe0Error::StationRow {
+                    name: name.to_string(),
+                    line: i + 1,
+                    text: propbet_bemt::units::excerpt(t),
+                });
+            }
             thickness.push((v[0] * IN, v[6]));
         }
     }
@@ -154,7 +171,7 @@ pub enum ReadPer3Error {
         name: String,
         /// Line (1-based).
         line: usize,
-        /// The line (at most 80 characters).
+        /// The line, as an excerpt.
         text: String,
     },
     /// No block with at least two rows.
@@ -181,7 +198,7 @@ pub fn read_per3(text: &str, name: &str) -> Result<Per3, ReadPer3Error> {
             let rpm: f64 = rest.trim().parse().map_err(|_| ReadPer3Error::RpmLine {
                 name: name.to_string(),
                 line: i + 1,
-                text: t.chars().take(80).collect(),
+                text: propbet_bemt::units::excerpt(t),
             })?;
             blocks.push((rpm, Vec::new()));
             continue;
@@ -299,5 +316,17 @@ mod tests {
         assert!(e.contains("y.PE0") && e.contains("not an APC PE0 file"), "{e}");
         let e = read_pe0("AIRFOIL1: x, E63\n", "z.PE0").unwrap_err().to_string();
         assert!(e.contains("line 1"), "{e}");
+        // Found by the fuzz harness: an infinite radius or thickness passed through.
+        for bad in ["inf", "nan"] {
+            let t = text.replacen("0.9567", bad, 1);
+            let e = read_pe0(&t, "w.PE0").unwrap_err().to_string();
+            assert!(e.contains("w.PE0: line 1") && e.contains("finite radius"), "{e}");
+        }
+        let e = read_pe0(
+            &text.replacen(", E63", ", inf", 1).replacen("0.95,", "inf,", 1),
+            "v.PE0",
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("line 3"), "{e}");
     }
 }

@@ -209,7 +209,7 @@ fn parse_numbers(line: usize, text: &str, expected: &'static str) -> Result<Vec<
                 .parse()
                 .map_err(|_| ParsePropError::NotANumber {
                     line,
-                    token: tok.to_string(),
+                    token: propbet_bemt::units::excerpt(tok),
                     expected,
                 })?;
             if v.is_finite() {
@@ -217,7 +217,7 @@ fn parse_numbers(line: usize, text: &str, expected: &'static str) -> Result<Vec<
             } else {
                 Err(ParsePropError::NotFinite {
                     line,
-                    token: tok.to_string(),
+                    token: propbet_bemt::units::excerpt(tok),
                     expected,
                 })
             }

@@ -2,6 +2,8 @@
 //! (how people and files state it) against the angular rate [rad/s] used inside, and the
 //! denominators of the propeller coefficients CT = T/(ρn²D⁴), CP = P/(ρn³D⁵),
 //! CQ = Q/(ρn²D⁵) (n in rev/s, D the diameter).
+//!
+//! Also how a piece of a user's file is quoted in a message ([`excerpt`]): every parser uses it.
 #![deny(missing_docs)]
 
 use std::f64::consts::PI;
@@ -64,5 +66,42 @@ mod tests {
         let s = Scales::new(1.2, 100.0, 0.25);
         assert!((s.power / s.torque - 100.0).abs() < 1e-12);
         assert_eq!(rpm_to_rev_per_s(6000.0), 100.0);
+    }
+}
+
+/// Longest excerpt of a user's file that a message quotes [characters].
+pub const EXCERPT_CHARS: usize = 60;
+
+/// A piece of a user's file, safe and short enough to quote in a message: surrounding blanks
+/// trimmed, control characters (escape sequences, bells, carriage returns) shown as `?`, and
+/// at most [`EXCERPT_CHARS`] characters, the rest replaced by `…` and the full length. A file
+/// that is not what the command expected (a case may name any file) is never echoed whole.
+pub fn excerpt(text: &str) -> String {
+    let text = text.trim();
+    let n = text.chars().count();
+    let mut out: String = text
+        .chars()
+        .take(EXCERPT_CHARS)
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect();
+    if n > EXCERPT_CHARS {
+        out.push_str(&format!("… ({n} characters)"));
+    }
+    out
+}
+
+#[cfg(test)]
+mod excerpt_tests {
+    use super::*;
+
+    #[test]
+    fn excerpts_are_short_and_carry_no_control_characters() {
+        assert_eq!(excerpt("  0.5 0.1  "), "0.5 0.1");
+        let long = format!("\x1b[31m{}", "x".repeat(500));
+        let e = excerpt(&long);
+        assert!(e.starts_with("?[31mxxx"), "{e}");
+        assert!(e.ends_with("… (505 characters)"), "{e}");
+        assert!(!e.chars().any(char::is_control));
+        assert!(e.chars().count() < EXCERPT_CHARS + 20);
     }
 }
