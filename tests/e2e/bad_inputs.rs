@@ -311,3 +311,34 @@ fn a_closed_standard_error_or_output_is_not_a_panic() {
         );
     }
 }
+
+#[test]
+fn a_file_that_is_not_an_input_is_quoted_in_a_short_clean_excerpt() {
+    // Issue 19 item 6: a case (or a flag) may name any file; its errors quote at most a short
+    // excerpt, with no control characters, never the whole line or file.
+    let dir = tempfile::tempdir().unwrap();
+    let line = format!("\x1b[2J\x07SECRET-{}\n", "x".repeat(400));
+    std::fs::write(dir.path().join("other.txt"), line.repeat(20)).unwrap();
+    let cam = cam6x3();
+    for args in [
+        vec!["polar", "--airfoil", "other.txt", "--re", "5e4"],
+        vec!["scan", "other.txt", "-o", "s"],
+        vec![
+            "compare",
+            "--prop",
+            cam.to_str().unwrap(),
+            "--measured",
+            "other.txt",
+            "-o",
+            "c",
+        ],
+        vec!["predict", "--prop", "other.txt", "--rpm", "5000"],
+    ] {
+        let o = run(&args, dir.path());
+        let err = stderr(&o);
+        assert!(matches!(o.status.code(), Some(1 | 2)), "{args:?}: {err}");
+        assert!(err.contains("other.txt"), "{args:?}: the file is named: {err}");
+        assert!(!err.contains('\x1b') && !err.contains('\x07'), "{args:?}: {err:?}");
+        assert!(!err.contains(&"x".repeat(100)), "{args:?}: the line is echoed whole: {err}");
+    }
+}
