@@ -339,6 +339,97 @@ fn a_file_that_is_not_an_input_is_quoted_in_a_short_clean_excerpt() {
         assert!(matches!(o.status.code(), Some(1 | 2)), "{args:?}: {err}");
         assert!(err.contains("other.txt"), "{args:?}: the file is named: {err}");
         assert!(!err.contains('\x1b') && !err.contains('\x07'), "{args:?}: {err:?}");
-        assert!(!err.contains(&"x".repeat(100)), "{args:?}: the line is echoed whole: {err}");
+        assert!(
+            !err.contains(&"x".repeat(100)),
+            "{args:?}: the line is echoed whole: {err}"
+        );
     }
+}
+
+#[test]
+fn commands_refuse_an_output_over_an_input_before_they_write_anything() {
+    // Issue 19 item 5: the refusal comes first; the output directory stays as it was.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::copy(cam6x3(), out.join("prop.qprop")).unwrap();
+    let steps = repo().join("tests/data/hidden_effects/torque_tare/cam6x3_steps.csv");
+    std::fs::copy(&steps, out.join("points.csv")).unwrap();
+    let before = |d: &Path| {
+        let mut v: Vec<_> = walk(d);
+        v.sort();
+        v
+    };
+    let listing = before(&out);
+    for args in [
+        vec![
+            "compare",
+            "--prop",
+            "out/prop.qprop",
+            "--measured",
+            "out/points.csv",
+            "-o",
+            "out",
+        ],
+        vec![
+            "diagnose",
+            "--prop",
+            "out/prop.qprop",
+            "--measured",
+            "out/points.csv",
+            "--out",
+            "out",
+        ],
+        vec!["synth", "--prop", "out/prop.qprop", "--format", "uiuc", "-o", "out"],
+        vec!["synth", "--prop", "out/prop.qprop", "-o", "out/prop.qprop"],
+        vec![
+            "polars",
+            "--geometry",
+            "out/prop.qprop",
+            "--airfoil",
+            "naca4412",
+            "--rpm",
+            "5000",
+            "--out-prop",
+            "out/prop.qprop",
+        ],
+        vec![
+            "polar",
+            "--airfoil",
+            "out/points.csv",
+            "--re",
+            "5e4",
+            "-o",
+            "out/points.csv",
+        ],
+    ] {
+        let o = run(&args, dir.path());
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("inside the output directory") || err.contains("refusing to overwrite an input"),
+            "{args:?}: {err}"
+        );
+        assert_eq!(before(&out), listing, "{args:?} wrote into the output directory");
+    }
+    assert_eq!(
+        std::fs::read(out.join("points.csv")).unwrap(),
+        std::fs::read(&steps).unwrap()
+    );
+}
+
+/// Every file under `d` with its size.
+fn walk(d: &Path) -> Vec<(PathBuf, u64)> {
+    let mut v = Vec::new();
+    for e in std::fs::read_dir(d).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            v.push((p.clone(), 0));
+            v.extend(walk(&p));
+        } else {
+            let n = std::fs::metadata(&p).unwrap().len();
+            v.push((p, n));
+        }
+    }
+    v
 }

@@ -180,6 +180,9 @@ fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec
 /// not converge somewhere (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
     let spec = args.spec()?;
+    let mut inputs = spec.model.inputs();
+    inputs.extend(spec.measured.inputs());
+    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model(&spec.model, false)?;
     let c = stages::compare(&model, &spec.measured)?;
     write(&spec, &model, &c)?;

@@ -53,6 +53,9 @@ impl DiagnoseArgs {
 /// Runs `propbet diagnose`.
 pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let spec = args.spec()?;
+    let mut inputs = spec.model.inputs();
+    inputs.extend(spec.measured.inputs());
+    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model(&spec.model, false)?;
     let d = stages::diagnose(&model, &spec)?;
     write(&spec, &d)?;

@@ -145,8 +145,41 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
     buf.extend_from_slice(&out[..n]);
 }
 
-/// Writes `chunks` one after the other to `path` atomically, refusing to replace any of
+/// Refuses, before a command computes or writes anything, an output directory `out` that holds
+/// one of the command's `inputs` (files or directories): a later write could replace it.
+/// Nothing is inside a directory that does not exist yet.
+pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
+    let Ok(o) = out.canonicalize() else { return Ok(()) };
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {
+            bail!(
+                "{}: this input is inside the output directory {}; choose another output directory",
+                input.display(),
+                out.display()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Refuses, before a command computes or writes anything, output files that are among its
 /// `inputs`.
+pub fn refuse_outputs_over_inputs(outputs: &[&Path], inputs: &[&Path]) -> Result<()> {
+    for out in outputs {
+        let Ok(target) = out.canonicalize() else { continue };
+        if inputs
+            .iter()
+            .any(|i| i.canonicalize().ok().as_deref() == Some(target.as_path()))
+        {
+            bail!("{}: refusing to overwrite an input file", out.display());
+        }
+    }
+    Ok(())
+}
+
+/// Writes `chunks` one after the other to `path` atomically, refusing to replace any of
+/// `inputs` (a last guard: commands check their outputs against their inputs before they
+/// start, [`refuse_inputs_inside`], [`refuse_outputs_over_inputs`]).
 pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path]) -> Result<()> {
     if let Ok(target) = path.canonicalize() {
         for input in inputs {

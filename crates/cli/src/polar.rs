@@ -171,6 +171,12 @@ pub struct PolarArgs {
 
 /// Runs `propbet polar`; false when some polar failed (the others are written).
 pub fn run_polar(args: &PolarArgs) -> Result<bool> {
+    let outputs: Vec<&Path> = [&args.out, &args.fit_out, &args.plot]
+        .into_iter()
+        .flatten()
+        .map(|p| p.as_path())
+        .collect();
+    crate::output::refuse_outputs_over_inputs(&outputs, &input_paths(&args.section))?;
     let foil = args.section.load()?;
     let res = parse_list("--re", &args.re)?;
     if let Some(bad) = res.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
@@ -241,6 +247,18 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         crate::output::write_figure(path, &fig, &inputs)?;
     }
     Ok(ok)
+}
+
+/// The files `polars` reads: the geometry, the airfoil file (not a NACA name) and the scanned
+/// sections' directory.
+fn polars_inputs(spec: &PolarsSpec) -> Vec<&Path> {
+    let mut inputs: Vec<&Path> = vec![spec.geometry.as_path()];
+    let foil = Path::new(&spec.airfoil);
+    if foil.exists() {
+        inputs.push(foil);
+    }
+    inputs.extend(spec.station_airfoils.as_deref());
+    inputs
 }
 
 fn input_paths(a: &AirfoilArgs) -> Vec<&Path> {
@@ -358,6 +376,10 @@ impl PolarsArgs {
 /// geometry file, and it is reported).
 pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     let spec = args.spec()?;
+    let outputs: Vec<&Path> = std::iter::once(spec.out_prop.as_path())
+        .chain(spec.out_polars.as_deref())
+        .collect();
+    crate::output::refuse_outputs_over_inputs(&outputs, &polars_inputs(&spec))?;
     let input = stages::polars_input(&spec)?;
     for w in &input.geometry.warnings {
         eprintln!("propbet: warning: {w}");
@@ -412,11 +434,7 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
 
 /// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).
 pub fn write_polars(spec: &PolarsSpec, p: &Polars) -> Result<()> {
-    let mut inputs: Vec<&Path> = vec![spec.geometry.as_path()];
-    let foil = Path::new(&spec.airfoil);
-    if foil.exists() {
-        inputs.push(foil);
-    }
+    let inputs = polars_inputs(spec);
     crate::output::write_atomic(&spec.out_prop, &[write_prop(&p.prop.file).as_bytes()], &inputs)?;
     if let Some(path) = &spec.out_polars {
         let json = serde_json::to_vec(&p.blade)?;

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{bail, Result};
+use anyhow::{bail, Context, Result};
 use clap::{Args, Parser};
 use propbet_pipeline::case::{read_case, RunPlan};
 use propbet_pipeline::run::{run_case, Event, Finished, StageRecord};
@@ -105,18 +105,14 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         }
     }
     // No input of the case may lie where the run writes (a stage would overwrite it).
-    if let Ok(o) = out.canonicalize() {
-        for input in plan.inputs() {
-            if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {
-                bail!(
-                    "{}: the case reads {}, which is inside the output directory {}; choose another -o",
-                    dir.join("case.toml").display(),
-                    input.display(),
-                    out.display()
-                );
-            }
-        }
-    }
+    let inputs = plan.inputs();
+    let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
+    crate::output::refuse_inputs_inside(&out, &inputs).with_context(|| {
+        format!(
+            "{}: the case reads a file in the output directory",
+            dir.join("case.toml").display()
+        )
+    })?;
     std::fs::create_dir_all(&out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))?;
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves this file, naming the case; a finished run removes it.

@@ -3,7 +3,7 @@
 //! prop file, per-station airfoil files (Selig), plots, the cleaned surface split by blade
 //! (STL per blade for meshes, a PLY with a `blade` property for clouds), and a JSON summary.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
@@ -278,6 +278,10 @@ fn interp(table: &[GeometryRow], x: f64, k: usize) -> Option<f64> {
 /// Runs `propbet scan`.
 pub fn run(a: &ScanArgs) -> Result<bool> {
     let spec = a.spec()?;
+    let inputs: Vec<&Path> = std::iter::once(spec.input.as_path())
+        .chain(spec.reference.as_deref())
+        .collect();
+    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let s = stages::scan(&spec)?;
     write(&spec, &s)?;
     print_summary(&s);
@@ -291,7 +295,9 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let g = &sc.geometry;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
-    let inputs = [a.input.as_path()];
+    let inputs: Vec<&Path> = std::iter::once(a.input.as_path())
+        .chain(a.reference.as_deref())
+        .collect();
     let reference = sc.reference.as_deref();
     let big_r = g.tip_radius;
     // Geometry CSV.

@@ -70,6 +70,13 @@ fn parse_noise(s: &str) -> Result<f64> {
 /// Runs `propbet synth`.
 pub fn run(args: &SynthArgs) -> Result<bool> {
     let mspec = args.model.spec()?;
+    let mut answer_path = args.out.as_os_str().to_owned();
+    answer_path.push(".answer.json");
+    let answer_path = PathBuf::from(answer_path);
+    match args.format {
+        SynthFormat::Uiuc => crate::output::refuse_inputs_inside(&args.out, &mspec.inputs())?,
+        _ => crate::output::refuse_outputs_over_inputs(&[&args.out, &answer_path], &mspec.inputs())?,
+    }
     let m = load_model(&mspec, false)?;
     let noise = parse_noise(&args.noise)?;
     let state = AirState::ISA;
@@ -139,9 +146,7 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
                 synth::write_rcbenchmark(&points, &plan)
             };
             write_atomic(&args.out, &[text.as_bytes()], &inputs)?;
-            let mut name = args.out.as_os_str().to_owned();
-            name.push(".answer.json");
-            write_atomic(&PathBuf::from(name), &[&answer_bytes], &inputs)?;
+            write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
         }
         SynthFormat::Uiuc => {
             std::fs::create_dir_all(&args.out)

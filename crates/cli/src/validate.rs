@@ -5,7 +5,7 @@
 //! (`polars`, `compare`, `diagnose`, `compare --effect ...`) in its own directory; the table of
 //! relative CT and CP errors is written as Markdown and CSV.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
@@ -74,6 +74,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             a.ncrit
         );
     }
+    let inputs: Vec<&Path> = [a.uiuc.as_path(), a.pe0.as_path(), a.airfoils.as_path()]
+        .into_iter()
+        .chain(a.per3.as_deref())
+        .collect();
+    crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
