@@ -341,6 +341,44 @@ impl Airfoil {
         })
     }
 
+    /// Whether the lower surface is flat from 30 % to 95 % of the chord (within 0.3 % of the
+    /// chord of the straight line through its ends there), as a Clark-Y's is; for a
+    /// normalised contour.
+    pub fn has_flat_bottom(&self) -> bool {
+        let (_, lower) = self.surfaces();
+        let (x0, x1) = (0.3, 0.95);
+        let (y0, y1) = (interp_surface(&lower, x0), interp_surface(&lower, x1));
+        lower
+            .iter()
+            .filter(|q| (x0..=x1).contains(&q[0]))
+            .all(|q| (q[1] - (y0 + (y1 - y0) * (q[0] - x0) / (x1 - x0))).abs() < 0.003)
+    }
+
+    /// Scales a normalised contour to thickness `target` (t/c) as a whole, every y by the same
+    /// factor: camber grows with thickness and a flat bottom stays flat. How a family of
+    /// flat-bottomed sections (APC's Clark-Y "scaled based on thickness ratio", its pitch
+    /// "defined with a flat bottom surface", PE0 files) is thickened; [`Self::scale_thickness`]
+    /// keeps the camber line instead.
+    pub fn scale_whole(&self, target: f64) -> Result<Airfoil, AirfoilError> {
+        if !(target.is_finite() && target > 0.0 && target < 0.5) {
+            return Err(AirfoilError::BadArgument(format!(
+                "target thickness {target} must be in (0, 0.5)"
+            )));
+        }
+        let (t, _) = self.max_thickness();
+        if t <= 0.0 {
+            return Err(AirfoilError::BadArgument(format!(
+                "{}: has no thickness to scale",
+                self.name
+            )));
+        }
+        let k = target / t;
+        Ok(Airfoil {
+            name: format!("{} scaled to t/c {:.2}%", self.name, target * 100.0),
+            points: self.points.iter().map(|q| [q[0], q[1] * k]).collect(),
+        })
+    }
+
     /// Resamples the contour with `n` points (odd counts put a node exactly at the leading edge;
     /// even counts are rounded up), cosine-clustered towards both edges along the arc length on
     /// each surface. The leading edge and trailing-edge points are kept exactly.
@@ -645,6 +683,24 @@ mod tests {
         );
         let (t, _) = a.max_thickness();
         assert!((t - 0.0425).abs() < 0.001, "t/c = {t}");
+    }
+
+    #[test]
+    fn flat_bottoms_are_found_and_kept_when_scaled_as_a_whole() {
+        let mut clarky = Airfoil::parse(CLARKY, "clarky.dat").unwrap().0;
+        clarky.normalise();
+        assert!(clarky.has_flat_bottom());
+        let mut e63 = Airfoil::parse(E63, "e63.dat").unwrap().0;
+        e63.normalise();
+        assert!(!e63.has_flat_bottom(), "E63's lower surface is concave");
+        let naca = naca4_from_name("naca4412").unwrap().unwrap();
+        assert!(!naca.has_flat_bottom());
+        let thick = clarky.scale_whole(0.20).unwrap();
+        assert!((thick.max_thickness().0 - 0.20).abs() < 1e-9);
+        assert!(thick.has_flat_bottom(), "scaled as a whole, the bottom stays flat");
+        // About the camber line the bottom bulges.
+        assert!(!clarky.scale_thickness(0.20).unwrap().has_flat_bottom());
+        assert!(clarky.scale_whole(0.0).is_err() && clarky.scale_whole(f64::NAN).is_err());
     }
 
     #[test]
