@@ -130,7 +130,7 @@ fn shipped_hidden_effect_examples_name_their_answer() {
         assert!(fall(&j) > 0.9, "{case}: held-out error falls by {}", fall(&j));
         // The report names the effect and its physics.
         let html = std::fs::read_to_string(dir.path().join("d/report.html")).unwrap();
-        assert!(html.contains("Most likely missing: ") && html.contains(id.as_str()));
+        assert!(html.contains("Missing: ") && html.contains(id.as_str()));
         assert!(dir.path().join("d/plots/ladder.svg").exists());
     }
 }

@@ -31,6 +31,11 @@ pub struct DiagnoseArgs {
     /// Most effects the ladder adds.
     #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_MAX_STEPS)]
     pub max_steps: usize,
+    /// Scored window: only points below this fraction of their file's measured zero-thrust J
+    /// are fitted and scored (near zero thrust a relative error says nothing); the same window
+    /// as `validate` and the report's headline.
+    #[arg(long, default_value_t = propbet_compare::metrics::VALIDATION_J_WINDOW)]
+    pub window: f64,
     /// Output directory (created if missing).
     #[arg(long, short)]
     pub out: PathBuf,
@@ -45,6 +50,7 @@ impl DiagnoseArgs {
             effects: self.effects.split(',').map(|s| s.trim().to_string()).collect(),
             folds: self.folds,
             max_steps: self.max_steps,
+            window: self.window,
             out: self.out.clone(),
         })
     }

@@ -188,6 +188,7 @@ struct CsvRow<'a> {
     apc_cp_median: Option<f64>,
     apc_cp_p90: Option<f64>,
     ladder: &'a str,
+    held_out_ladders: String,
 }
 
 fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> (String, Vec<u8>) {
@@ -213,6 +214,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_cp_median: r.per3.as_ref().map(|p| p.cp.0),
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             ladder: &r.ladder,
+            held_out_ladders: r.held_out_ladders.join(" / "),
         });
     }
     (md, csv.into_inner().unwrap_or_default())

@@ -168,36 +168,51 @@ pub fn metrics(points: &[ComparedPoint]) -> Metrics {
 /// near zero thrust a relative error says nothing, and the last points of a sweep are there.
 pub const VALIDATION_J_WINDOW: f64 = 0.85;
 
-/// The validation metric's samples: |predicted/measured − 1| of CT and of CP at every point
-/// below `window` times its file's measured zero-thrust J (linear between the last positive
-/// and the first non-positive measured CT; every point of a file whose CT never crosses zero,
-/// static files included). Points without a measured or predicted value are left out.
-pub fn window_errors(points: &[ComparedPoint], window: f64) -> (Vec<f64>, Vec<f64>) {
+/// Which points lie inside the scored window: below `window` times their file's measured
+/// zero-thrust J (linear between the last positive and the first non-positive measured CT;
+/// every point of a file whose CT never crosses zero, static files included). The one window
+/// of validate, diagnose's ladder and the report's headline.
+pub fn in_window(points: &[ComparedPoint], window: f64) -> Vec<bool> {
     let nan = f64::NAN;
+    let mut inside = vec![true; points.len()];
     let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
+    files.sort_unstable();
     files.dedup();
-    let (mut ect, mut ecp) = (Vec::new(), Vec::new());
     for f in files {
-        let mut pts: Vec<&ComparedPoint> = points.iter().filter(|p| p.file == f).collect();
-        pts.sort_by(|a, b| a.j.total_cmp(&b.j));
-        let ct = |p: &ComparedPoint| p.measured.ct.unwrap_or(nan);
+        let mut pts: Vec<usize> = (0..points.len()).filter(|&i| points[i].file == f).collect();
+        pts.sort_by(|&a, &b| points[a].j.total_cmp(&points[b].j));
+        let ct = |i: usize| points[i].measured.ct.unwrap_or(nan);
         let j0 = pts.windows(2).find(|w| ct(w[0]) > 0.0 && ct(w[1]) <= 0.0).map(|w| {
             let (a, b) = (ct(w[0]), ct(w[1]));
-            w[0].j + a / (a - b) * (w[1].j - w[0].j)
+            points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
         });
-        for p in pts {
-            if j0.is_some_and(|j0| p.j >= window * j0) {
-                continue;
+        if let Some(j0) = j0 {
+            for i in pts {
+                inside[i] = points[i].j < window * j0;
             }
-            let pairs = [
-                (p.measured.ct, p.predicted.ct, &mut ect),
-                (p.measured.cp, p.predicted.cp, &mut ecp),
-            ];
-            for (m, q, out) in pairs {
-                let (m, q) = (m.unwrap_or(nan), q.unwrap_or(nan));
-                if m.is_finite() && q.is_finite() && m > 0.0 {
-                    out.push((q / m - 1.0).abs());
-                }
+        }
+    }
+    inside
+}
+
+/// The validation metric's samples: |predicted/measured − 1| of CT and of CP at every point
+/// inside the window ([`in_window`]). Points without a measured or predicted value are left
+/// out.
+pub fn window_errors(points: &[ComparedPoint], window: f64) -> (Vec<f64>, Vec<f64>) {
+    let nan = f64::NAN;
+    let (mut ect, mut ecp) = (Vec::new(), Vec::new());
+    for (p, inside) in points.iter().zip(in_window(points, window)) {
+        if !inside {
+            continue;
+        }
+        let pairs = [
+            (p.measured.ct, p.predicted.ct, &mut ect),
+            (p.measured.cp, p.predicted.cp, &mut ecp),
+        ];
+        for (m, q, out) in pairs {
+            let (m, q) = (m.unwrap_or(nan), q.unwrap_or(nan));
+            if m.is_finite() && q.is_finite() && m > 0.0 {
+                out.push((q / m - 1.0).abs());
             }
         }
     }
@@ -269,9 +284,13 @@ mod tests {
             mk(0.55, -0.01, 0.0, 0.01, 0.01),
         ];
         let (ct, cp) = window_errors(&pts, VALIDATION_J_WINDOW);
+        // In the points' order.
         assert_eq!(ct.len(), 2);
-        assert!((ct[0] - 0.1).abs() < 1e-12 && ct[1].abs() < 1e-12, "{ct:?}");
-        assert!((cp[1] - 0.1).abs() < 1e-12, "{cp:?}");
+        assert!(ct[0].abs() < 1e-12 && (ct[1] - 0.1).abs() < 1e-12, "{ct:?}");
+        assert!((cp[0] - 0.1).abs() < 1e-12, "{cp:?}");
+        assert_eq!(in_window(&pts, VALIDATION_J_WINDOW), vec![true, true, false, false]);
+        // A wider window takes J = 0.45 in.
+        assert_eq!(in_window(&pts, 0.95), vec![true, true, true, false]);
         assert_eq!(quantile(vec![3.0, 1.0, 2.0], 0.5), 2.0);
         assert!(quantile(vec![], 0.5).is_nan());
     }

@@ -14,6 +14,16 @@
 //! p < alpha / (number of candidates) (Bonferroni), and its held-out RMS error falls by at
 //! least [`MIN_GAIN`] of the current one.
 //!
+//! **Repeatability.** Where the data repeat themselves (overlapping sweeps at one RPM,
+//! repeated steps: [`Data::repeatability`]), a candidate must also change the loads by at
+//! least [`REPEATABILITY_FACTOR`] times that scatter (the root of the fall of the squared
+//! in-sample RMS error): an effect weaker than the measurements repeat is not found, however
+//! small its p value.
+//!
+//! **Bounds.** Every parameter has physical bounds; a candidate whose fit ends on one (other
+//! than its neutral value) is never significant: it "hit its bound", the data want more than
+//! it can physically give.
+//!
 //! **Ladder.** Starting from the baseline, the best significant candidate is added, all
 //! parameters of the stack are refitted together, and the remaining candidates are tried on
 //! top, until none is significant.
@@ -30,10 +40,12 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{bounds, fit, stack_at, FitOutcome, FittedParam};
 use crate::signature::{signatures, Signature};
-use crate::{rms, Data, DiagnoseError, Model};
+use crate::{rms, Data, DiagnoseError, Model, Repeatability};
 
 /// Smallest relative fall of the held-out RMS error that counts.
 pub const MIN_GAIN: f64 = 0.10;
+/// How many times the measured repeatability an effect must change the loads by.
+pub const REPEATABILITY_FACTOR: f64 = 3.0;
 
 /// How a diagnosis is run.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,6 +141,8 @@ pub struct Diagnosis {
     pub found: bool,
     /// Residual RMS of the final model: the noise level as far as the model can tell.
     pub noise_estimate: f64,
+    /// How well the measurements repeat, where they show it.
+    pub repeatability: Option<Repeatability>,
     /// The final stack.
     #[serde(skip)]
     pub final_stack: Stack,
@@ -138,6 +152,32 @@ pub struct Diagnosis {
     /// Final residual rows.
     #[serde(skip)]
     pub final_residuals: Vec<f64>,
+}
+
+impl Diagnosis {
+    /// What the final model leaves unexplained, against how well the measurements repeat:
+    /// "2.1 % unexplained, above the 0.6 % the measurements repeat to (14 pairs)".
+    pub fn unexplained(&self) -> String {
+        let left = 100.0 * self.noise_estimate;
+        match &self.repeatability {
+            Some(r) if self.noise_estimate > 1.5 * r.sd => format!(
+                "{left:.1} % unexplained, above the {:.1} % the measurements repeat to ({} pairs of points at one \
+                 operating point): something the candidates cannot describe is still missing",
+                100.0 * r.sd,
+                r.pairs
+            ),
+            Some(r) => format!(
+                "{left:.1} % unexplained, within the {:.1} % the measurements repeat to ({} pairs of points at one \
+                 operating point)",
+                100.0 * r.sd,
+                r.pairs
+            ),
+            None => format!(
+                "{left:.1} % unexplained; the measurements hold no repeated operating point to tell it from their \
+                 scatter"
+            ),
+        }
+    }
 }
 
 /// Point indices of the k folds and the RPM groups.
@@ -346,8 +386,8 @@ fn try_candidate(
     current: &Evaluated,
     cand: &Arc<dyn Effect>,
     f: &Folds,
-    m: usize,
-    alpha: f64,
+    p_max: f64,
+    rep: Option<&Repeatability>,
 ) -> Result<Scored, DiagnoseError> {
     let mut effects = current.effects();
     effects.push(cand.clone());
@@ -389,8 +429,25 @@ fn try_candidate(
     } else {
         0.0
     };
-    let significant = p_value < alpha / m.max(1) as f64 && gain >= MIN_GAIN;
+    let beyond = ev.fit.beyond_bounds();
+    let size = (rms(&current.fit.residuals).powi(2) - rms(&ev.fit.residuals).powi(2))
+        .max(0.0)
+        .sqrt();
+    let weak = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd);
+    let note = if !beyond.is_empty() {
+        Some(bound_note(&beyond))
+    } else {
+        weak.map(|r| {
+            format!(
+                "changes the loads by {:.1} %, less than {REPEATABILITY_FACTOR} times the {:.1} % the measurements repeat to",
+                100.0 * size,
+                100.0 * r.sd
+            )
+        })
+    };
+    let significant = p_value < p_max && gain >= MIN_GAIN && beyond.is_empty() && weak.is_none();
     Ok(Scored {
+        note,
         params: ev.fit.params(),
         rms: rms(&ev.fit.residuals),
         kfold_rms: ev.kfold,
@@ -405,6 +462,18 @@ fn try_candidate(
     })
 }
 
+/// The words for a fit that ended on physical bounds.
+pub fn bound_note(beyond: &[FittedParam]) -> String {
+    let list: Vec<String> = beyond
+        .iter()
+        .map(|p| format!("{}:{} = {:.4}", p.effect, p.name, p.value))
+        .collect();
+    format!(
+        "hit its bound ({}): the data want more than this effect can physically give; not an answer",
+        list.join(", ")
+    )
+}
+
 /// Ranks `candidates` on top of the current stack.
 fn rank(
     model: &Model,
@@ -413,11 +482,12 @@ fn rank(
     candidates: &[Arc<dyn Effect>],
     f: &Folds,
     alpha: f64,
+    rep: Option<&Repeatability>,
 ) -> Result<Vec<Scored>, DiagnoseError> {
     let m = candidates.len();
     let mut out = candidates
         .iter()
-        .map(|c| try_candidate(model, data, current, c, f, m, alpha))
+        .map(|c| try_candidate(model, data, current, c, f, alpha / m.max(1) as f64, rep))
         .collect::<Result<Vec<_>, _>>()?;
     out.sort_by(|a, b| a.score.total_cmp(&b.score));
     Ok(out)
@@ -449,7 +519,10 @@ fn refine(
                     continue;
                 }
                 let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
-                if ev.score() < chosen.score() - 1e-9 * chosen.score().abs() && ev.fit.sse < chosen.fit.sse {
+                if ev.score() < chosen.score() - 1e-9 * chosen.score().abs()
+                    && ev.fit.sse < chosen.fit.sse
+                    && ev.fit.beyond_bounds().is_empty()
+                {
                     chosen = ev;
                     improved = true;
                     break 'swap;
@@ -483,6 +556,47 @@ fn refine(
         }
     }
     Ok(chosen)
+}
+
+/// Most candidates (best of the first step first) whose pairs are all tried: every built-in.
+const PAIR_POOL: usize = 14;
+
+/// When the selection holds two effects: every pair of the first step's best candidates
+/// (those inside their bounds) is fitted, and a pair that scores better replaces the
+/// selection. Greedy steps and single swaps miss a pair whose members each look like a third
+/// effect (an RPM error and a torque tare can pass for a thrust tare and a drag change).
+fn best_pair(
+    model: &Model,
+    data: &Data,
+    chosen: Evaluated,
+    ranking: &[Scored],
+    candidates: &[Arc<dyn Effect>],
+    f: &Folds,
+) -> Result<Evaluated, DiagnoseError> {
+    if chosen.fit.stack.active.len() != 2 {
+        return Ok(chosen);
+    }
+    let pool: Vec<Arc<dyn Effect>> = ranking
+        .iter()
+        .filter(|s| s.fit.is_some() && s.note.is_none())
+        .take(PAIR_POOL)
+        .filter_map(|s| candidates.iter().find(|c| c.id() == s.id).cloned())
+        .collect();
+    let mut best = chosen;
+    for i in 0..pool.len() {
+        for j in i + 1..pool.len() {
+            let effects = vec![pool[i].clone(), pool[j].clone()];
+            let k: usize = effects.iter().map(|e| e.params().len()).sum();
+            if best.fit.residuals.len() < k + 2 {
+                continue;
+            }
+            let ev = evaluate(model, data, effects, &Stack::baseline(), f)?;
+            if ev.score() < best.score() - 1e-9 * best.score().abs() && ev.fit.beyond_bounds().is_empty() {
+                best = ev;
+            }
+        }
+    }
+    Ok(best)
 }
 
 /// Checks that the measurements are in the propeller's operating range and of its size.
@@ -530,6 +644,7 @@ pub fn diagnose(
     let baseline_loads = model.loads(data, &Stack::baseline(), &all)?;
     check_overlap(data, &baseline_loads)?;
     let f = folds(data, opts.folds, opts.seed);
+    let repeatability = data.repeatability();
     let r0 = data.residuals(&all, &baseline_loads);
     let rows = r0.len();
     let base_fit = FitOutcome {
@@ -558,7 +673,15 @@ pub fn diagnose(
         if remaining.is_empty() {
             break;
         }
-        let ranked = rank(model, data, &current, &remaining, &f, opts.alpha)?;
+        let ranked = rank(
+            model,
+            data,
+            &current,
+            &remaining,
+            &f,
+            opts.alpha,
+            repeatability.as_ref(),
+        )?;
         let pick = ranked.iter().find(|s| s.significant).cloned();
         if step == 0 {
             ranking = ranked;
@@ -589,6 +712,7 @@ pub fn diagnose(
             // Swaps and backward elimination, then the ladder rebuilt along the final set: at
             // each rung the effect of the set that helps most.
             let refined = refine(model, data, current, candidates, &f, opts.alpha)?;
+            let refined = best_pair(model, data, refined, &ranking, candidates, &f)?;
             let mut set = refined.effects();
             let mut cur = baseline;
             while !set.is_empty() {
@@ -625,6 +749,7 @@ pub fn diagnose(
         after: signatures(data, &final_residuals),
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
+        repeatability,
         final_stack: current.fit.stack.clone(),
         ranking,
         ladder,

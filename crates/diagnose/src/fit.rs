@@ -197,7 +197,8 @@ pub struct FittedParam {
     pub value: f64,
     /// Half-width of the 95 % interval (None: the data cannot determine it).
     pub ci95: Option<f64>,
-    /// True when it ended on a bound.
+    /// True when it ended on one of its physical bounds (other than its neutral value: a
+    /// friction torque of zero is no torque tare, not one that wants to be negative).
     pub at_bound: bool,
 }
 
@@ -215,12 +216,20 @@ impl FitOutcome {
                     unit: p.unit.clone(),
                     value: self.p[k],
                     ci95: sd.is_finite().then_some(1.96 * sd),
-                    at_bound: self.at_bound[k],
+                    at_bound: self.at_bound[k] && p.neutral.is_none_or(|n| (self.p[k] - n).abs() > 1e-6 * p.scale),
                 });
                 k += 1;
             }
         }
         out
+    }
+}
+
+impl FitOutcome {
+    /// The parameters that ended on a physical bound (not their neutral value): the data want
+    /// more than the effect can physically give.
+    pub fn beyond_bounds(&self) -> Vec<FittedParam> {
+        self.params().into_iter().filter(|p| p.at_bound).collect()
     }
 }
 

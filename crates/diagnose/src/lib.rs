@@ -56,6 +56,8 @@ pub struct Model<'a> {
 pub struct Observation {
     /// Index in the comparison's points.
     pub index: usize,
+    /// Index of its measurement file.
+    pub file: usize,
     /// Label ("line 12", "ESC 1300 µs").
     pub label: String,
     /// Logged rotation rate [rad/s].
@@ -107,16 +109,20 @@ pub struct Row {
 }
 
 impl Data {
-    /// The scored points of a comparison (points flagged by the reader are left out).
-    pub fn from_points(points: &[ComparedPoint]) -> Result<Self, DiagnoseError> {
+    /// The scored points of a comparison: those the reader did not flag, inside the window
+    /// (below `window` times their file's measured zero-thrust J,
+    /// [`propbet_compare::metrics::in_window`]).
+    pub fn from_points(points: &[ComparedPoint], window: f64) -> Result<Self, DiagnoseError> {
         let mut obs = Vec::new();
+        let inside = propbet_compare::metrics::in_window(points, window);
         for (index, p) in points.iter().enumerate() {
-            let Some(thrust) = p.measured.thrust.filter(|_| p.scored()) else {
+            let Some(thrust) = p.measured.thrust.filter(|_| p.scored() && inside[index]) else {
                 continue;
             };
             let (key, name) = rpm_group(p);
             obs.push(Observation {
                 index,
+                file: p.file,
                 label: p.label.clone(),
                 omega: propbet_units::rpm_to_omega(p.rpm),
                 v: p.v,
@@ -205,6 +211,107 @@ impl Model<'_> {
     /// Residual rows of the points `which` with `stack`.
     pub fn residuals(&self, data: &Data, stack: &Stack, which: &[usize]) -> Result<Vec<f64>, EffectError> {
         Ok(data.residuals(which, &self.loads(data, stack, which)?))
+    }
+}
+
+/// How well the measurements repeat, estimated from the data themselves: pairs of points
+/// taken at the same operating point in two sweeps (overlapping J sweeps at one RPM, the second
+/// interpolated in J) or repeated within one file.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Repeatability {
+    /// Relative standard deviation of one point's thrust (and torque, where measured) [-].
+    pub sd: f64,
+    /// Pairs of points it is estimated from.
+    pub pairs: usize,
+}
+
+/// Largest RPM difference of two points taken as the same operating point (UIUC's sweeps at
+/// "5000 rpm" run at 4,997 and 5,018).
+const SAME_RPM: f64 = 0.03;
+/// Widest J interval a point of another sweep is interpolated across.
+const MAX_J_GAP: f64 = 0.1;
+/// Pairs whose thrust is below this fraction of the largest are left out (near zero thrust a
+/// relative difference says nothing).
+const PAIR_THRUST_FLOOR: f64 = 0.25;
+
+impl Data {
+    /// The repeatability of these measurements, if they hold at least three pairs of points at
+    /// the same operating point (`None` otherwise: nothing to estimate it from).
+    pub fn repeatability(&self) -> Option<Repeatability> {
+        let max_t = self.obs.iter().fold(0.0f64, |a, o| a.max(o.thrust.abs()));
+        // Loads over rho omega^2: the coefficients up to the diameter, which is common.
+        let norm = |o: &Observation, x: f64| x / (o.fluid.rho * o.omega * o.omega);
+        let big = |o: &Observation| o.thrust > PAIR_THRUST_FLOOR * max_t;
+        let mut d2 = Vec::new();
+        let mut files: Vec<usize> = self.obs.iter().map(|o| o.file).collect();
+        files.sort_unstable();
+        files.dedup();
+        for (ia, &fa) in files.iter().enumerate() {
+            let a_pts: Vec<&Observation> = self.obs.iter().filter(|o| o.file == fa && big(o)).collect();
+            // Repeated points within one file.
+            for (k, a) in a_pts.iter().enumerate() {
+                for b in &a_pts[k + 1..] {
+                    if (a.omega / b.omega - 1.0).abs() < 0.01 && (a.j - b.j).abs() < 0.005 {
+                        pairs_of(a, b, norm, &mut d2);
+                    }
+                }
+            }
+            for &fb in &files[ia + 1..] {
+                let mut b_pts: Vec<&Observation> = self.obs.iter().filter(|o| o.file == fb).collect();
+                b_pts.sort_by(|x, y| x.j.total_cmp(&y.j));
+                for a in &a_pts {
+                    let near: Vec<&&Observation> = b_pts
+                        .iter()
+                        .filter(|b| (b.omega / a.omega - 1.0).abs() < SAME_RPM)
+                        .collect();
+                    if a.j < 0.01 {
+                        // Static: the nearest static point of the other file at the same RPM.
+                        if let Some(b) = near.iter().find(|b| b.j < 0.01 && big(b)) {
+                            pairs_of(a, b, norm, &mut d2);
+                        }
+                        continue;
+                    }
+                    if let Some(w) = near.windows(2).find(|w| w[0].j <= a.j && a.j <= w[1].j) {
+                        let (b0, b1) = (w[0], w[1]);
+                        if b1.j - b0.j <= MAX_J_GAP && b1.j > b0.j && big(b0) && big(b1) {
+                            let t = (a.j - b0.j) / (b1.j - b0.j);
+                            interpolated_pair(a, b0, b1, t, norm, &mut d2);
+                        }
+                    }
+                }
+            }
+        }
+        (d2.len() >= 3).then(|| Repeatability {
+            // Each pair's difference holds two points' scatter.
+            sd: (d2.iter().sum::<f64>() / (2.0 * d2.len() as f64)).sqrt(),
+            pairs: d2.len(),
+        })
+    }
+}
+
+/// Squared relative differences of thrust (and torque) of `a` and `b`.
+fn pairs_of(a: &Observation, b: &Observation, norm: impl Fn(&Observation, f64) -> f64, d2: &mut Vec<f64>) {
+    let rel = |x: f64, y: f64| (x / y - 1.0).powi(2);
+    d2.push(rel(norm(a, a.thrust), norm(b, b.thrust)));
+    if let (Some(qa), Some(qb)) = (a.torque, b.torque) {
+        d2.push(rel(norm(a, qa), norm(b, qb)));
+    }
+}
+
+/// Squared relative differences of `a` and the point interpolated between `b0` and `b1`.
+fn interpolated_pair(
+    a: &Observation,
+    b0: &Observation,
+    b1: &Observation,
+    t: f64,
+    norm: impl Fn(&Observation, f64) -> f64,
+    d2: &mut Vec<f64>,
+) {
+    let lerp = |x: f64, y: f64| x + t * (y - x);
+    let rel = |x: f64, y: f64| (x / y - 1.0).powi(2);
+    d2.push(rel(norm(a, a.thrust), lerp(norm(b0, b0.thrust), norm(b1, b1.thrust))));
+    if let (Some(qa), Some(q0), Some(q1)) = (a.torque, b0.torque, b1.torque) {
+        d2.push(rel(norm(a, qa), lerp(norm(b0, q0), norm(b1, q1))));
     }
 }
 

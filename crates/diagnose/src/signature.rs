@@ -33,6 +33,51 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
+/// Width of the J bins within which RPM trends are measured (static points are one bin).
+const J_BIN: f64 = 0.05;
+
+/// The error's trend with RPM at fixed J: within J bins, the least-squares slope of the error
+/// against ln RPM; the median over the bins that span at least 5 % in RPM (one bin of large
+/// errors near zero thrust does not outvote the others), returned as the change over the RPM
+/// range of those bins, with the range. `pts`: (J, rpm, group, error).
+pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<(f64, f64, f64)> {
+    let mut bins: BTreeMap<i64, Vec<(f64, f64)>> = BTreeMap::new();
+    for &(j, rpm, _, e) in pts {
+        let key = if j < 0.01 { -1 } else { (j / J_BIN).floor() as i64 };
+        if rpm > 0.0 && e.is_finite() {
+            bins.entry(key).or_default().push((rpm.ln(), e));
+        }
+    }
+    let mut slopes = Vec::new();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for b in bins.values() {
+        let xs: Vec<f64> = b.iter().map(|p| p.0).collect();
+        let (xmin, xmax) = xs
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| (a.0.min(x), a.1.max(x)));
+        if b.len() < 2 || xmax - xmin < 0.05 {
+            continue;
+        }
+        let (mx, me) = (mean(&xs), mean(&b.iter().map(|p| p.1).collect::<Vec<_>>()));
+        let sxx: f64 = b.iter().map(|p| (p.0 - mx).powi(2)).sum();
+        let sxy: f64 = b.iter().map(|p| (p.0 - mx) * (p.1 - me)).sum();
+        slopes.push(sxy / sxx);
+        lo = lo.min(xmin);
+        hi = hi.max(xmax);
+    }
+    if slopes.is_empty() || hi - lo < 1.3f64.ln() {
+        return None;
+    }
+    slopes.sort_by(f64::total_cmp);
+    let n = slopes.len();
+    let median = if n % 2 == 1 {
+        slopes[n / 2]
+    } else {
+        0.5 * (slopes[n / 2 - 1] + slopes[n / 2])
+    };
+    Some((median * (hi - lo), lo.exp(), hi.exp()))
+}
+
 /// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
 /// relative errors with the floors).
 pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
@@ -90,6 +135,22 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
                 parts.push(format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b)));
+            }
+        }
+        // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
+        if let Some((change, rl, rh)) = rpm_trend_at_fixed_j(&pts) {
+            // Its own threshold: a trend with RPM is the signature of missing physics even
+            // under a larger error of another kind.
+            if change.abs() > 0.5 * QUIET {
+                let faster = if change < 0.0 { "faster" } else { "slower" };
+                parts.push(format!(
+                    "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm: the measured {name} grows {faster} \
+                     with RPM than the model's (a Reynolds-number effect on the sections; Mach at high tip speeds). \
+                     Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, mostly torque), \
+                     compressibility (tip Mach above 0.3), elastic-twist (thrust falling at high RPM); \
+                     not density, rpm-scale, chord-scale, pitch-offset or the tares, which act alike at every RPM",
+                    pct(change)
+                ));
             }
         }
         // RPM: first against last group.

@@ -432,6 +432,7 @@ impl Case {
                         effects: vec!["all".into()],
                         folds: m.folds.unwrap_or(crate::spec::DEFAULT_FOLDS),
                         max_steps: m.max_steps.unwrap_or(crate::spec::DEFAULT_MAX_STEPS),
+                        window: propbet_compare::metrics::VALIDATION_J_WINDOW,
                         out: out.join("diagnose"),
                     },
                 ))

@@ -366,6 +366,9 @@ pub struct DiagnoseSpec {
     pub folds: usize,
     /// Most effects the ladder adds.
     pub max_steps: usize,
+    /// Scored window: points below this fraction of their file's measured zero-thrust J
+    /// (validate's and the report's window, [`propbet_compare::metrics::in_window`]).
+    pub window: f64,
     /// Output directory.
     pub out: PathBuf,
 }
@@ -595,6 +598,9 @@ impl StageSpec {
                 }
                 if s.max_steps != DEFAULT_MAX_STEPS {
                     push(&mut v, "--max-steps", s.max_steps.to_string());
+                }
+                if s.window != propbet_compare::metrics::VALIDATION_J_WINDOW {
+                    push(&mut v, "--window", s.window.to_string());
                 }
                 push(&mut v, "--out", path(&s.out));
             }

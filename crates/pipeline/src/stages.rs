@@ -622,7 +622,10 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
     let (air, sets) = load_measured(&spec.measured)?;
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
-    let data = Data::from_points(&points).map_err(|e| Error::Invalid(e.to_string()))?;
+    if !(spec.window.is_finite() && spec.window > 0.0 && spec.window <= 2.0) {
+        invalid!("--window {}: a fraction of the zero-thrust J in (0, 2]", spec.window);
+    }
+    let data = Data::from_points(&points, spec.window).map_err(|e| Error::Invalid(e.to_string()))?;
     // The model's own effects stay in the model, under the candidates.
     let dmodel = propbet_diagnose::Model {
         rotor: &model.rotor,

@@ -120,8 +120,40 @@ pub struct Row {
     /// APC's own prediction (PER3) on the same points: CT and CP (median, p90), and the points
     /// it covers; None without `--per3` or its file.
     pub per3: Option<Per3Score>,
-    /// The ladder's effects.
+    /// The ladder's effects (fitted to all the prop's files: the calibration in `calibrated/`).
     pub ladder: String,
+    /// The ladders fitted to each half of the files, whose predictions of the other half are
+    /// the "after" columns.
+    pub held_out_ladders: [String; 2],
+}
+
+/// The two halves of a prop's files for the held-out calibration: sorted by the RPM in their
+/// names (static files, which have none, first), alternately to each half, so that each half
+/// has sweeps across the RPM range and every sweep is predicted by a ladder that did not see it.
+pub fn halves(files: &[PathBuf]) -> [Vec<PathBuf>; 2] {
+    let rpm = |p: &PathBuf| -> f64 {
+        let stem = p
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        stem.rsplit('_').next().and_then(|t| t.parse().ok()).unwrap_or(0.0)
+    };
+    let mut sorted = files.to_vec();
+    sorted.sort_by(|a, b| rpm(a).total_cmp(&rpm(b)).then(a.cmp(b)));
+    let mut out = [Vec::new(), Vec::new()];
+    for (k, f) in sorted.into_iter().enumerate() {
+        out[k % 2].push(f);
+    }
+    out
+}
+
+/// The ladder of one fold as the command line gives it ("none" without an effect).
+fn ladder_text(effects: &[String]) -> String {
+    if effects.is_empty() {
+        "none".into()
+    } else {
+        effects.join(" + ")
+    }
 }
 
 /// The median and 90th percentile of errors: the table's two numbers per quantity.
@@ -347,6 +379,7 @@ pub fn validate_prop(
         effects: vec!["all".into()],
         folds: crate::spec::DEFAULT_FOLDS,
         max_steps: crate::spec::DEFAULT_MAX_STEPS,
+        window: VALIDATION_J_WINDOW,
         out: dir.join("diagnose"),
     };
     let diagnosed = timed(
@@ -363,6 +396,7 @@ pub fn validate_prop(
         .iter()
         .map(|a| a.describe())
         .collect();
+    let model_spec_all = model_spec.clone();
     let cal_spec = ModelSpec {
         effects: effects.clone(),
         ..model_spec
@@ -371,14 +405,48 @@ pub fn validate_prop(
     let calibrated = compare_stage(
         CompareSpec {
             model: cal_spec,
-            measured,
+            measured: measured.clone(),
             out: dir.join("calibrated"),
         },
         &cal_model,
         &mut records,
     )?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let (ct1, cp1) = window_errors(&calibrated.points, VALIDATION_J_WINDOW);
+    // Held out: a ladder fitted to each half of the files predicts the other half; "after" is
+    // scored on those predictions only.
+    let (mut ct1, mut cp1) = (Vec::new(), Vec::new());
+    let mut held_out_ladders = [String::new(), String::new()];
+    let folds = halves(&measured.files);
+    for k in 0..2 {
+        let (train, test) = (&folds[k], &folds[1 - k]);
+        if train.is_empty() || test.is_empty() {
+            held_out_ladders[k] = "none (a single file: nothing to hold out)".into();
+            continue;
+        }
+        let fold_spec = DiagnoseSpec {
+            measured: MeasuredSpec::files(train.clone()),
+            out: dir.join(format!("held_out_{k}")),
+            ..dspec.clone()
+        };
+        let fitted = stages::diagnose(&model, &fold_spec)?;
+        let fx: Vec<String> = fitted
+            .diagnosis
+            .final_stack
+            .active
+            .iter()
+            .map(|a| a.describe())
+            .collect();
+        held_out_ladders[k] = ladder_text(&fx);
+        let fold_model_spec = ModelSpec {
+            effects: fx,
+            ..model_spec_all.clone()
+        };
+        let fold_model = Model::from_parts(&fold_model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
+        let predicted = stages::compare(&fold_model, &MeasuredSpec::files(test.clone()))?;
+        let (a, b) = window_errors(&predicted.points, VALIDATION_J_WINDOW);
+        ct1.extend(a);
+        cp1.extend(b);
+    }
     let per3 = match &spec.per3 {
         None => None,
         Some(dir) => match propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)) {
@@ -398,11 +466,8 @@ pub fn validate_prop(
         ct: [median_p90(&ct0), median_p90(&ct1)],
         cp: [median_p90(&cp0), median_p90(&cp1)],
         per3,
-        ladder: if effects.is_empty() {
-            "none".into()
-        } else {
-            effects.join(" + ")
-        },
+        ladder: ladder_text(&effects),
+        held_out_ladders,
     };
     Ok(Validated {
         geometry,

@@ -79,24 +79,22 @@ pub fn verdict(d: &Diagnosis) -> String {
                 sig(s.p_value)
             )
         });
-        return format!(
-            "No effect is significant: the model agrees with the measurements within their noise (residual RMS {}).{best}",
-            pct(base.rms)
-        );
+        return format!("No effect is significant ({}).{best}", d.unexplained());
     }
+    // The ladder's final answer, with its values: what the user should add.
     let last = d.ladder.last().expect("found implies a rung");
-    let steps: Vec<String> = d.ladder[1..].iter().map(|r| r.added.clone()).collect();
-    let top = &d.ranking[0];
+    let answer: Vec<String> = d.ladder[1..]
+        .iter()
+        .map(|r| format!("{} ({})", r.added, params_text(&last.params, Some(&r.added))))
+        .collect();
     format!(
-        "Most likely missing: {} ({}). With {} the held-out error falls from {} to {} ({:.0} % less); \
-         what is left, {} RMS, is the noise as far as the model can tell.",
-        top.id,
-        params_text(&top.params, Some(&top.id)),
-        steps.join(" + "),
+        "Missing: {}. With {} the held-out error falls from {} to {} ({:.0} % less); {}.",
+        answer.join(" and "),
+        if answer.len() == 1 { "it" } else { "them" },
         pct(base.kfold_rms),
         pct(last.kfold_rms),
         100.0 * (1.0 - last.kfold_rms / base.kfold_rms.max(1e-300)),
-        pct(d.noise_estimate)
+        d.unexplained()
     )
 }
 

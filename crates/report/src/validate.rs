@@ -31,7 +31,8 @@ fn head(apc: bool) -> Vec<&'static str> {
         "CT p90 after",
         "CP median after",
         "CP p90 after",
-        "ladder",
+        "ladder (all files)",
+        "held-out ladders (each half of the files)",
     ]);
     h
 }
@@ -57,6 +58,7 @@ fn cells(r: &Row, apc: bool) -> Vec<String> {
     let mut v = vec![r.prop.clone(), family(&r.prop), r.points.to_string()];
     v.extend(numbers(r, apc).into_iter().map(pct));
     v.push(r.ladder.clone());
+    v.push(format!("{} / {}", r.held_out_ladders[0], r.held_out_ladders[1]));
     v
 }
 
@@ -72,7 +74,7 @@ fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
         v.push(pct(quantile(col, 0.5)));
     }
-    v.push(String::new());
+    v.extend([String::new(), String::new()]);
     v
 }
 
@@ -84,8 +86,9 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     let mut out: Vec<(Vec<String>, bool)> = rows.iter().map(|r| (cells(r, apc), false)).collect();
     for (prop, why) in skipped {
         let mut v = vec![prop.clone(), family(prop), "0".into()];
-        v.resize(h.len() - 1, "–".into());
+        v.resize(h.len() - 2, "–".into());
         v.push(format!("not validated: {why}"));
+        v.push(String::new());
         out.push((v, false));
     }
     let mut families: Vec<String> = rows.iter().map(|r| family(&r.prop)).collect();
@@ -110,8 +113,8 @@ fn intro(model: &str) -> String {
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
          (static points included). Before: UIUC geometry + APC sections + XFOIL polars covering each \
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
-         measurements) on the same points; after: with the effects the diagnosis' ladder fitted to \
-         the same data (calibration)."
+         measurements) on the same points; after: held out, each half of a prop's files (sorted by \
+         RPM, alternately) predicted with the effects the ladder fitted to the other half."
     )
 }
 
@@ -141,21 +144,18 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
         esc(&intro(model))
     );
-    // The last column (the ladder) is text: left-aligned; numbers keep their "%" on their line.
+    // The last two columns (the ladders) are text: left-aligned; numbers keep their "%" on
+    // their line.
+    let text = |k: usize| k + 2 >= h.len();
     let class = |k: usize| {
-        if k + 1 == h.len() {
+        if text(k) {
             " class=\"text\""
         } else {
             " style=\"white-space:nowrap\""
         }
     };
     for (k, c) in h.iter().enumerate() {
-        let _ = write!(
-            s,
-            "<th{}>{}</th>",
-            if k + 1 == h.len() { " class=\"text\"" } else { "" },
-            esc(c)
-        );
+        let _ = write!(s, "<th{}>{}</th>", if text(k) { " class=\"text\"" } else { "" }, esc(c));
     }
     s.push_str("</tr>\n");
     for (cells, summary) in &body {
@@ -187,6 +187,7 @@ mod tests {
                 cp: (0.06, 0.1),
             }),
             ladder: "none".into(),
+            held_out_ladders: ["none".into(), "none".into()],
         }
     }
 
