@@ -187,6 +187,8 @@ fn every_builtin_effect_is_found_on_two_props() {
         (1, ("hub-loss", vec![("strength", 5.0, 8.0)]), &[], &[]),
         (0, ("re-scaling", vec![("dexp", -1.2, -0.8)]), &[], &[]),
         (1, ("re-scaling", vec![("dexp", 0.9, 1.3)]), &[], &[]),
+        (0, ("re-lift", vec![("n", 0.15, 0.25)]), &[], &[]),
+        (1, ("re-lift", vec![("n", -0.25, -0.15)]), &[], &[]),
         (
             0,
             ("compressibility", vec![("mcrit", 0.27, 0.33), ("pg", 1.8, 2.4)]),
@@ -260,7 +262,7 @@ fn every_builtin_effect_is_found_on_two_props() {
         );
         *seen.entry(id).or_default() += 1;
     }
-    assert_eq!(seen.len(), 13, "every built-in effect is tested");
+    assert_eq!(seen.len(), 14, "every built-in effect is tested");
     assert!(seen.values().all(|&n| n >= 2));
 }
 

@@ -5,6 +5,7 @@
 //! | `tip-loss` | inflow | `strength` (1 = the baseline's Prandtl factor, 0 = none) |
 //! | `hub-loss` | inflow | `strength` (0 = none, 1 = Prandtl's hub factor at the blade root) |
 //! | `re-scaling` | section drag | `dexp`: change of the drag's Reynolds exponent |
+//! | `re-lift` | section lift | `n`: lift times (Re/1e5)^n |
 //! | `compressibility` | section lift and drag | `mcrit` (drag-rise Mach), `pg` (Prandtl-Glauert exponent) |
 //! | `stall-delay` | section lift | `a` (Snel's rotational augmentation, 3 in Snel) |
 //! | `post-stall` | section lift and drag | `cd_max` (Viterna's flat-plate drag) |
@@ -35,6 +36,7 @@ enum Kind {
     TipLoss,
     HubLoss,
     ReScaling,
+    ReLift,
     Compressibility,
     StallDelay,
     PostStall,
@@ -103,6 +105,21 @@ fn make(kind: Kind) -> Builtin {
             "At the Reynolds numbers of small propellers (20k-100k) laminar separation bubbles make the \
              section drag depend on Re more strongly than the polar's exponent says: torque errors that change \
              with RPM at a fixed advance ratio.",
+        ),
+        Kind::ReLift => (
+            "re-lift",
+            vec![Param::new(
+                "n",
+                "-",
+                0.0,
+                (-0.4, 0.4),
+                0.02,
+                "section lift times (Re/1e5)^n (physical bounds: +-0.4, lift halving or doubling over a decade at most)",
+            )],
+            &[Section],
+            "At 20k-100k the sections' lift depends on Reynolds number (laminar separation and bubbles \
+             thin as Re grows) more or less than the polars say: thrust errors that change with RPM at a fixed \
+             advance ratio, torque following through the induced power.",
         ),
         Kind::Compressibility => (
             "compressibility",
@@ -286,10 +303,11 @@ fn make(kind: Kind) -> Builtin {
     }
 }
 
-const KINDS: [Kind; 13] = [
+const KINDS: [Kind; 14] = [
     Kind::TipLoss,
     Kind::HubLoss,
     Kind::ReScaling,
+    Kind::ReLift,
     Kind::Compressibility,
     Kind::StallDelay,
     Kind::PostStall,
@@ -428,7 +446,7 @@ impl Effect for Builtin {
         p: &[f64],
         ctx: &SectionCtx,
         inner: &dyn SectionAero,
-        (alpha, _re, msq): (f64, f64, f64),
+        (alpha, re, msq): (f64, f64, f64),
         base: LiftEval,
     ) -> Result<LiftEval, EffectError> {
         Ok(match self.kind {
@@ -440,6 +458,16 @@ impl Effect for Builtin {
                     cl: base.cl * f,
                     dcl_dalpha: base.dcl_dalpha * f,
                     dcl_dmsq: base.dcl_dmsq * f + base.cl * f_msq,
+                    ..base
+                }
+            }
+            Kind::ReLift => {
+                let f = (re.max(1.0) / RE_SCALING_REF).powf(p[0]);
+                LiftEval {
+                    cl: base.cl * f,
+                    dcl_dalpha: base.dcl_dalpha * f,
+                    dcl_dmsq: base.dcl_dmsq * f,
+                    dcl_dre: base.dcl_dre * f + base.cl * f * p[0] / re.max(1.0),
                     ..base
                 }
             }
