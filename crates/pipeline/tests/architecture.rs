@@ -187,7 +187,7 @@ const RANKS: [(&str, u32); 15] = [
     ("propbet-units", 0),
     ("propbet-plot", 0),
     ("xfoil-runner", 0),
-    ("propbet-geometry", 0),
+    ("propbet-geometry", 1),
     ("propbet-bemt", 1),
     ("propbet-measure", 1),
     ("propbet-qprop", 2),
