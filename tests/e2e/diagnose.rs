@@ -613,3 +613,30 @@ fn bad_input_gets_clear_messages() {
         "--noise 'lots'",
     );
 }
+
+/// An effect beyond its physical bounds (a 30 % chord error, where ±15 % is the bound) is
+/// reported as hitting its bound and is never the answer; nothing in the ladder sits on a bound.
+#[test]
+fn a_fit_on_a_physical_bound_is_never_the_answer() {
+    let dir = tempfile::tempdir().unwrap();
+    // The measured propeller's blades are 30 % wider than the file says (Cfac 0.0254 -> 0.03302).
+    let text = std::fs::read_to_string(cam6x3()).unwrap();
+    let line = " 0.0254  0.0254   1.0  !  Rfac";
+    assert!(text.contains(line));
+    let wide = dir.path().join("wide.qprop");
+    std::fs::write(&wide, text.replace(line, " 0.0254  0.03302  1.0  !  Rfac")).unwrap();
+    let data = dir.path().join("wide.csv");
+    synth(&wide, &[], &[], 11, &data, dir.path());
+    let (o, j) = diagnose(&cam6x3(), &[&data], &[], dir.path());
+    let out = String::from_utf8_lossy(&o.stdout);
+    let ranking = j["diagnosis"]["ranking"].as_array().unwrap();
+    let chord = ranking.iter().find(|s| s["id"] == "chord-scale").unwrap();
+    assert_eq!(chord["significant"], false, "{out}");
+    assert!(chord["note"].as_str().unwrap().contains("hit its bound"), "{out}");
+    for rung in j["diagnosis"]["ladder"].as_array().unwrap() {
+        for p in rung["params"].as_array().unwrap() {
+            assert_eq!(p["at_bound"], false, "{out}");
+        }
+    }
+    assert!(out.contains("hit its bound"), "{out}");
+}

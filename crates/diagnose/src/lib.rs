@@ -323,3 +323,56 @@ pub fn rms(r: &[f64]) -> f64 {
         (r.iter().map(|x| x * x).sum::<f64>() / r.len() as f64).sqrt()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn obs(file: usize, rpm: f64, j: f64, thrust: f64) -> Observation {
+        Observation {
+            index: 0,
+            file,
+            label: String::new(),
+            omega: propbet_units::rpm_to_omega(rpm),
+            v: 0.0,
+            j,
+            fluid: Fluid::QPROP_DEFAULT,
+            thrust,
+            torque: None,
+            rpm_group: 0,
+            rpm_name: String::new(),
+            mach_tip: 0.1,
+        }
+    }
+
+    #[test]
+    fn repeatability_comes_from_points_at_one_operating_point() {
+        // Two sweeps at 5000 rpm: the second's thrust 2 % above the first's, J nodes offset by
+        // half a step (interpolated); a third sweep at 8000 rpm pairs with neither.
+        let mut v = Vec::new();
+        for k in 0..6 {
+            let j = 0.1 + 0.05 * f64::from(k);
+            v.push(obs(0, 5000.0, j, 10.0 - 10.0 * j));
+            let j2 = j + 0.025;
+            v.push(obs(1, 5000.0, j2, 1.02 * (10.0 - 10.0 * j2)));
+            v.push(obs(2, 8000.0, j, 30.0 - 30.0 * j));
+        }
+        let data = Data {
+            obs: v,
+            thrust_floor: 0.5,
+            torque_floor: 1e-12,
+        };
+        let r = data.repeatability().expect("overlapping sweeps");
+        // Every pair differs by 2 % (linear thrust: interpolation is exact): the first sweep's
+        // point over the second's is 1/1.02, sd = that difference / sqrt 2. Points below a
+        // quarter of the largest thrust (the 8000 rpm sweep's) are left out.
+        assert!((r.sd - (1.0 - 1.0 / 1.02) / 2f64.sqrt()).abs() < 1e-9, "{r:?}");
+        assert!(r.pairs >= 3, "{r:?}");
+        // One sweep alone repeats nothing.
+        let single = Data {
+            obs: data.obs.iter().filter(|o| o.file == 0).cloned().collect(),
+            ..data.clone()
+        };
+        assert!(single.repeatability().is_none());
+    }
+}

@@ -205,3 +205,27 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_rpm_trend_is_measured_at_fixed_j() {
+        // At each J the error falls by 5 % per doubling of RPM; across J it varies much more
+        // (a J pattern the trend must not mistake for an RPM one).
+        let mut pts = Vec::new();
+        for (k, j) in [0.0, 0.2, 0.4].into_iter().enumerate() {
+            for rpm in [3000.0f64, 6000.0] {
+                let e = -0.3 * k as f64 - 0.05 * (rpm / 3000.0).log2();
+                pts.push((j, rpm, 0, e));
+            }
+        }
+        let (change, lo, hi) = rpm_trend_at_fixed_j(&pts).unwrap();
+        assert!((change + 0.05).abs() < 1e-9, "{change}");
+        assert_eq!((lo.round(), hi.round()), (3000.0, 6000.0));
+        // No bin spans 1.3x in RPM: no trend to tell.
+        let narrow: Vec<_> = pts.iter().filter(|p| p.1 == 3000.0).copied().collect();
+        assert!(rpm_trend_at_fixed_j(&narrow).is_none());
+    }
+}

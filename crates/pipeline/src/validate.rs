@@ -481,3 +481,23 @@ pub fn validate_prop(
         row,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn halves_alternate_by_rpm_static_first() {
+        let f = |n: &str| PathBuf::from(format!("uiuc/{n}.txt"));
+        let files = [
+            f("p_kt1_6000"),
+            f("p_static_kt0"),
+            f("p_kt2_4000"),
+            f("p_kt3_5000"),
+            f("p_kt4_5010"),
+        ];
+        let [a, b] = halves(&files);
+        assert_eq!(a, vec![f("p_static_kt0"), f("p_kt3_5000"), f("p_kt1_6000")]);
+        assert_eq!(b, vec![f("p_kt2_4000"), f("p_kt4_5010")]);
+    }
+}
