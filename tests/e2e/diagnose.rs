@@ -640,3 +640,51 @@ fn a_fit_on_a_physical_bound_is_never_the_answer() {
     }
     assert!(out.contains("hit its bound"), "{out}");
 }
+
+/// Two runs of the same test (two seeds of 0.5 % noise) let the diagnosis measure the
+/// repeatability; an effect weaker than 3x it (a 1 % density error) is not called significant,
+/// a strong one (10 %) is found.
+#[test]
+fn effects_weaker_than_the_measured_repeatability_are_not_found() {
+    let dir = tempfile::tempdir().unwrap();
+    for (ratio, found) in [("0.99", false), ("0.9", true)] {
+        let mut files = Vec::new();
+        for seed in [21u64, 22] {
+            let f = dir.path().join(format!("d{ratio}_{seed}.csv"));
+            let mut args = vec![
+                "synth".to_string(),
+                "--prop".into(),
+                cam6x3().display().to_string(),
+                "--noise".into(),
+                "0.5%".into(),
+                "--seed".into(),
+                seed.to_string(),
+                "--effect".into(),
+                format!("density:ratio={ratio}"),
+                "--out".into(),
+                f.display().to_string(),
+            ];
+            args.shrink_to_fit();
+            let a: Vec<&str> = args.iter().map(String::as_str).collect();
+            let o = run(&a, dir.path());
+            assert!(o.status.success(), "{}", stderr(&o));
+            files.push(f);
+        }
+        let measured: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+        let (o, j) = diagnose(&cam6x3(), &measured, &[], dir.path());
+        let out = String::from_utf8_lossy(&o.stdout);
+        let rep = j["diagnosis"]["repeatability"]["sd"]
+            .as_f64()
+            .expect("two runs repeat every point");
+        assert!(
+            (0.002..0.008).contains(&rep),
+            "repeatability {rep} for 0.5 % noise: {out}"
+        );
+        assert_eq!(j["diagnosis"]["found"], found, "density {ratio}: {out}");
+        if found {
+            assert_eq!(top(&j), "density", "{out}");
+        } else {
+            assert!(out.contains("measurements repeat to"), "{out}");
+        }
+    }
+}

@@ -162,9 +162,15 @@ impl Diagnosis {
         match &self.repeatability {
             Some(r) if self.noise_estimate > 1.5 * r.sd => format!(
                 "{left:.1} % unexplained, above the {:.1} % the measurements repeat to ({} pairs of points at one \
-                 operating point): something the candidates cannot describe is still missing",
+                 operating point): {}",
                 100.0 * r.sd,
-                r.pairs
+                r.pairs,
+                if self.found {
+                    "something the ladder's effects do not describe is still missing"
+                } else {
+                    "an effect may be there, but none changes the loads by 3x the repeatability, the least \
+                     propbet names"
+                }
             ),
             Some(r) => format!(
                 "{left:.1} % unexplained, within the {:.1} % the measurements repeat to ({} pairs of points at one \
