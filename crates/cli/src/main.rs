@@ -37,7 +37,7 @@ mod validate;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
 #[derive(Debug, Parser)]
-#[command(name = "propbet", version, about)]
+#[command(name = "propbet", version, about, after_help = EXIT)]
 pub(crate) struct Cli {
     /// Worker threads for sweeps (default: all cores).
     #[arg(long, global = true)]
@@ -46,35 +46,92 @@ pub(crate) struct Cli {
     pub(crate) command: Command,
 }
 
+/// The exit codes, as every help page states them.
+const EXIT: &str = "Exit status: 0 done; 1 done, with problems it reports (unfit stations, XFOIL faults, \
+dropped rows, unconverged points); 2 error (bad input or arguments: a message naming the file, line or value).";
+
 #[derive(Debug, Subcommand)]
 pub(crate) enum Command {
-    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
-    Predict(Box<predict::PredictArgs>),
-    /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
-    Prop(prop::PropArgs),
-    /// Polars of one section from XFOIL at given Reynolds numbers, with their QPROP fit.
-    Polar(Box<polar::PolarArgs>),
+    /// The main job: a case directory (case.toml) from scan to report — scan, XFOIL polars,
+    /// sweeps, comparison with the measurements, diagnosis, one HTML report.
+    #[command(after_help = concat!(
+        "Example:\n  propbet run props/apcsf_10x4.7 -o run_apc\n\n",
+        "Exit status: 0 done; 1 done, with problems it reports; 2 error (the output folder keeps INCOMPLETE.txt)."
+    ))]
+    Run(Box<run::RunArgs>),
+    /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
+    /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
+    #[command(after_help = concat!(
+        "Example:\n  propbet scan props/apcsf_10x4.7/apcsf_10x4.7.stl --units mm -o scan_apc\n\n",
+        "Exit status: 0 done; 1 done, with problems it reports; 2 error."
+    ))]
+    Scan(Box<scan::ScanArgs>),
     /// Polars of every station of a blade at its operating Re and Mach, reduced to a QPROP file.
+    #[command(after_help = concat!(
+        "Example:\n  propbet polars --geometry props/apcsf_10x4.7/apcsf_10x4.7_geometry.qprop \\\n",
+        "    --airfoil props/airfoils/e63.dat --rpm 4000,6000 --j 0:0.6:0.1 --out-prop apc.qprop --out-polars apc.json\n\n",
+        "Exit status: 0 done; 1 done, with unfit stations or XFOIL faults it reports; 2 error."
+    ))]
     Polars(Box<polar::PolarsArgs>),
+    /// Polars of one section from XFOIL at given Reynolds numbers, with their QPROP fit.
+    #[command(after_help = concat!(
+        "Example:\n  propbet polar --airfoil naca4412 --re 5e4,1e5 -o naca4412.csv\n\n",
+        "Exit status: 0 done; 1 done, with XFOIL faults it reports; 2 error."
+    ))]
+    Polar(Box<polar::PolarArgs>),
+    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
+    #[command(after_help = concat!(
+        "Example:\n  propbet predict --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05\n\n",
+        "Exit status: 0 done; 1 done, with unconverged points it reports; 2 error."
+    ))]
+    Predict(Box<predict::PredictArgs>),
     /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
     /// plots and an HTML report.
+    #[command(after_help = concat!(
+        "Example:\n  propbet compare --prop props/cam6x3/cam6x3.qprop \\\n",
+        "    --measured tests/data/hidden_effects/no_effect/cam6x3_steps.csv -o cmp\n\n",
+        "Exit status: 0 done; 1 done, with dropped rows or unconverged points it reports; 2 error."
+    ))]
     Compare(Box<compare::CompareArgs>),
     /// Which physical effect is missing: candidate effects fitted to the measurements, ranked
     /// by held-out error, and the ladder of effects that help.
+    #[command(after_help = concat!(
+        "Example:\n  propbet diagnose --prop tests/data/hidden_effects/torque_tare/cam6x3.qprop \\\n",
+        "    --measured tests/data/hidden_effects/torque_tare/cam6x3_steps.csv --out dg\n\n",
+        "Exit status: 0 done; 2 error."
+    ))]
     Diagnose(Box<diagnose::DiagnoseArgs>),
     /// List the effects (built-in and user-defined) with their parameters and physics.
+    #[command(after_help = concat!("Example:\n  propbet effects\n\n", "Exit status: 0 done; 2 error."))]
     Effects(diagnose::EffectsArgs),
     /// Write synthetic measurements made by the model with hidden effects and noise.
+    #[command(after_help = concat!(
+        "Example:\n  propbet synth --prop props/cam6x3/cam6x3.qprop --effect pitch-offset:deg=1.5 --noise 1% --out synth.csv\n\n",
+        "Exit status: 0 done; 2 error."
+    ))]
     Synth(Box<synth::SynthArgs>),
-    /// The main job: a case directory (case.toml) from scan to report — scan, XFOIL polars,
-    /// sweeps, comparison with the measurements, diagnosis, one HTML report.
-    Run(Box<run::RunArgs>),
     /// Validation on real data: every UIUC propeller with a geometry file and an APC PE0 file,
     /// predicted and compared with its static and J-sweep files, before and after calibration.
+    #[command(after_help = concat!(
+        "Example:\n  propbet validate --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",
+        "    --per3 ../shared/data/apc/PER3 -o validation\n\n",
+        "Exit status: 0 done; 1 done, with problems it reports; 2 error."
+    ))]
     Validate(Box<validate::ValidateArgs>),
-    /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
-    /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
-    Scan(Box<scan::ScanArgs>),
+    /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
+    #[command(after_help = concat!("Example:\n  propbet prop props/cam6x3/cam6x3.qprop\n\n", "Exit status: 0 done; 2 error."))]
+    Prop(prop::PropArgs),
+    /// Shell completions for bash, zsh, fish, elvish or PowerShell, on standard output.
+    #[command(
+        after_help = "Example:\n  propbet completions bash > /etc/bash_completion.d/propbet\n\nExit status: 0 done; 2 error."
+    )]
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// The manual page (roff), on standard output.
+    #[command(after_help = "Example:\n  propbet man > propbet.1 && man ./propbet.1\n\nExit status: 0 done; 2 error.")]
+    Man,
 }
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
@@ -101,6 +158,18 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Effects(a) => diagnose::list(&a),
         Command::Synth(a) => synth::run(&a),
         Command::Scan(a) => scan::run(&a),
+        Command::Completions { shell } => {
+            let mut cmd = <Cli as clap::CommandFactory>::command();
+            clap_complete::generate(shell, &mut cmd, "propbet", &mut std::io::stdout());
+            Ok(true)
+        }
+        Command::Man => {
+            let cmd = <Cli as clap::CommandFactory>::command();
+            let mut out = Vec::new();
+            clap_mangen::Man::new(cmd).render(&mut out)?;
+            std::io::Write::write_all(&mut std::io::stdout(), &out)?;
+            Ok(true)
+        }
     }
 }
 
@@ -144,6 +213,37 @@ mod tests {
             Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
             _ => return Ok(None),
         }))
+    }
+
+    /// Every subcommand's help ends with an example that parses and the exit codes; the
+    /// completions and the manual page are generated from the same definition.
+    #[test]
+    fn every_help_has_an_example_that_parses_and_the_exit_codes() {
+        use clap::CommandFactory;
+        let cmd = Cli::command();
+        let names: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
+        // Workflow order: the main job first, the tools after.
+        assert_eq!(&names[..3], ["run", "scan", "polars"]);
+        for sub in cmd.get_subcommands() {
+            let help = sub.get_after_help().map(|h| h.to_string()).unwrap_or_default();
+            assert!(help.contains("Exit status: 0"), "{}: {help}", sub.get_name());
+            let example = help
+                .split("Example:\n")
+                .nth(1)
+                .and_then(|e| e.split("\n\n").next())
+                .unwrap_or_else(|| panic!("{}: no example", sub.get_name()));
+            let line = example.replace("\\\n", " ");
+            let line = line.split('>').next().unwrap().split("&&").next().unwrap();
+            let argv: Vec<&str> = line.split_whitespace().collect();
+            assert_eq!(argv[1], sub.get_name());
+            Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{line}: {e}"));
+        }
+        let mut bash = Vec::new();
+        clap_complete::generate(clap_complete::Shell::Bash, &mut Cli::command(), "propbet", &mut bash);
+        assert!(String::from_utf8(bash).unwrap().contains("validate"));
+        let mut man = Vec::new();
+        clap_mangen::Man::new(Cli::command()).render(&mut man).unwrap();
+        assert!(String::from_utf8(man).unwrap().contains(".TH propbet"));
     }
 
     /// A spec's printed command line parses back to the same spec.
