@@ -167,7 +167,25 @@ fn uiuc_static_and_sweeps_give_a_report() {
     // rho = (101325 - 935.6)/(287.058 * 293.15) + 935.6/(461.495 * 293.15) = 1.1999 kg/m^3.
     let rho = m["points"][0]["air"]["fluid"]["rho"].as_f64().unwrap();
     assert!((rho - 1.1999).abs() < 2e-4, "rho {rho}");
+    // The headline is validate's window, static and forward flight apart; the points near
+    // zero thrust are counted out, not scored.
+    let headline: Vec<&str> = m["metrics"]["headline"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(headline.len(), 2, "{headline:?}");
+    assert!(headline[0] == "static" && headline[1].starts_with("forward flight, below 85 %"));
+    let windowed = m["metrics"]["headline"][1]["points"].as_u64().unwrap();
+    let forward = m["metrics"]["forward"]["points"].as_u64().unwrap();
+    let outside = m["metrics"]["outside_window"].as_u64().unwrap();
+    assert!(
+        outside > 0 && windowed + outside == forward,
+        "{windowed} + {outside} != {forward}"
+    );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("static thrust, mean error") && html.contains("not in these numbers"));
     assert!(!html.contains("standard air (ISA"));
     assert!(html.matches("<svg").count() >= 3);
     assert!(!html.contains("http://") || html.contains("xmlns=\"http://www.w3.org/2000/svg\""));

@@ -251,17 +251,27 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
 pub fn print(spec: &CompareSpec, c: &Compared) {
     print_measured(&spec.measured, &c.sets);
     let m = &c.metrics;
-    for q in ["thrust", "torque", "power", "eta"] {
-        if let Some(x) = m.overall.metrics.get(q) {
-            println!(
-                "{q:>7}: n {:>3}  mean error {:+6.1} %  mean |error| {:5.1} %  worst {:+6.1} % ({})",
-                x.n,
-                100.0 * x.mean_rel,
-                100.0 * x.mean_abs_rel,
-                100.0 * x.max_rel,
-                x.max_rel_at
-            );
+    // The headline: the scored window, static and forward flight apart (as the report).
+    for g in &m.headline {
+        println!("{}:", g.name);
+        for q in ["thrust", "torque"] {
+            if let Some(x) = g.metrics.get(q) {
+                println!(
+                    "{q:>7}: n {:>3}  mean error {:+6.1} %  mean |error| {:5.1} %  worst {:+6.1} % ({})",
+                    x.n,
+                    100.0 * x.mean_rel,
+                    100.0 * x.mean_abs_rel,
+                    100.0 * x.max_rel,
+                    x.max_rel_at
+                );
+            }
         }
+    }
+    if m.outside_window > 0 {
+        println!(
+            "({} point(s) at or beyond 85 % of their sweep's zero-thrust J: in the report, not in these numbers)",
+            m.outside_window
+        );
     }
     if m.overall.points == 0 {
         let mut reasons: Vec<&str> = c

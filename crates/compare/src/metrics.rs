@@ -52,6 +52,11 @@ pub struct Metrics {
     pub forward: Option<MetricGroup>,
     /// Points left out of the scores (flagged).
     pub unscored: usize,
+    /// The headline: scored points inside the window ([`in_window`] with
+    /// [`VALIDATION_J_WINDOW`], the window of validate and diagnose), static and forward flight.
+    pub headline: Vec<MetricGroup>,
+    /// Scored points outside the window (near zero thrust): shown, not in the headline.
+    pub outside_window: usize,
 }
 
 fn metric(points: &[&ComparedPoint], q: &str) -> Option<Metric> {
@@ -154,7 +159,30 @@ pub fn metrics(points: &[ComparedPoint]) -> Metrics {
     let scored: Vec<&ComparedPoint> = points.iter().filter(|p| p.scored()).collect();
     let stat: Vec<&ComparedPoint> = scored.iter().copied().filter(|p| p.is_static()).collect();
     let fwd: Vec<&ComparedPoint> = scored.iter().copied().filter(|p| !p.is_static()).collect();
+    let inside = in_window(points, VALIDATION_J_WINDOW);
+    let windowed: Vec<&ComparedPoint> = points
+        .iter()
+        .zip(&inside)
+        .filter(|(p, &i)| i && p.scored())
+        .map(|(p, _)| p)
+        .collect();
+    let mut headline = Vec::new();
+    for (name, is_static) in [
+        ("static", true),
+        ("forward flight, below 85 % of the zero-thrust J", false),
+    ] {
+        let part: Vec<&ComparedPoint> = windowed
+            .iter()
+            .copied()
+            .filter(|p| p.is_static() == is_static)
+            .collect();
+        if !part.is_empty() {
+            headline.push(group(name, &part));
+        }
+    }
     Metrics {
+        outside_window: scored.len() - windowed.len(),
+        headline,
         overall: group("all points", &scored),
         per_rpm: grouped(&scored, rpm_group),
         per_j: grouped(&scored, j_group),

@@ -382,21 +382,34 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         air_line,
         esc(&input.command)
     );
+    // The headline: the scored window (validate's and diagnose's), static and forward flight
+    // apart, per quantity, with the worst point named.
     h.push_str("<div class=\"cards\">");
-    for q in ["thrust", "torque", "power", "eta"] {
-        if let Some(x) = m.overall.metrics.get(q) {
-            let _ = write!(
-                h,
-                "<div class=\"card\">{} mean error<b>{}</b>RMSE {} {} · worst {}</div>",
-                label(q).0,
-                pct(x.mean_rel),
-                sig(x.rmse),
-                label(q).1,
-                pct(x.max_rel)
-            );
+    for g in &m.headline {
+        for q in ["thrust", "torque"] {
+            if let Some(x) = g.metrics.get(q) {
+                let _ = write!(
+                    h,
+                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {} over {} points · worst {} at {}</div>",
+                    esc(&g.name),
+                    label(q).0,
+                    pct(x.mean_rel),
+                    format!("{:.1} %", 100.0 * x.mean_abs_rel),
+                    x.n,
+                    pct(x.max_rel),
+                    esc(&x.max_rel_at)
+                );
+            }
         }
     }
     h.push_str("</div>\n");
+    if m.outside_window > 0 {
+        let _ = writeln!(
+            h,
+            "<p class=\"note\">{} point(s) at or beyond 85 % of their sweep's zero-thrust J are shown in the figures and tables but not in these numbers: near zero thrust a relative error says nothing.</p>",
+            m.outside_window
+        );
+    }
     for w in &warnings {
         let _ = writeln!(h, "<p class=\"warn\">{}</p>", esc(w));
     }
@@ -514,6 +527,10 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         metric_rows(md, g, false);
         md.push('\n');
     };
+    md.push_str("## Headline (the scored window)\n\n");
+    for g in &m.headline {
+        md_table(&mut md, g);
+    }
     md.push_str("## Metrics\n\n");
     for g in &top {
         md_table(&mut md, g);
