@@ -433,3 +433,34 @@ fn walk(d: &Path) -> Vec<(PathBuf, u64)> {
     }
     v
 }
+
+#[test]
+fn a_copied_case_whose_paths_do_not_resolve_fails_before_anything_runs() {
+    // Issue 18: the shipped cases share ../airfoils; a copy elsewhere must fail at once, naming
+    // the file, and leave no output folder.
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("copy");
+    std::fs::create_dir_all(case.join("uiuc")).unwrap();
+    let src = repo().join("props/apcsf_10x4.7");
+    for e in std::fs::read_dir(&src).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_file() {
+            std::fs::copy(&p, case.join(p.file_name().unwrap())).unwrap();
+        }
+    }
+    for e in std::fs::read_dir(src.join("uiuc")).unwrap() {
+        let p = e.unwrap().path();
+        std::fs::copy(&p, case.join("uiuc").join(p.file_name().unwrap())).unwrap();
+    }
+    let o = run(&["run", "copy", "-o", "out", "--quiet"], dir.path());
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("airfoils/e63.dat") && err.contains("do not exist") && err.contains("nothing was run"),
+        "{err}"
+    );
+    assert!(
+        !dir.path().join("out").exists(),
+        "no output folder from a case that cannot run"
+    );
+}

@@ -104,6 +104,17 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             );
         }
     }
+    // Every file the case names exists, before anything runs or is written.
+    let missing = plan.missing_inputs();
+    if !missing.is_empty() {
+        let list: Vec<String> = missing.iter().map(|f| f.display().to_string()).collect();
+        bail!(
+            "{}: names {} that do not exist: {} (relative paths are taken from the case directory); nothing was run",
+            dir.join("case.toml").display(),
+            if list.len() == 1 { "a file" } else { "files" },
+            list.join(", ")
+        );
+    }
     // No input of the case may lie where the run writes (a stage would overwrite it).
     let inputs = plan.inputs();
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();

@@ -250,6 +250,21 @@ impl RunPlan {
         v
     }
 
+    /// The files the case names that do not exist (a NACA name instead of an airfoil file is
+    /// not a file): checked before the first stage runs, so a copied case whose relative paths
+    /// no longer resolve fails at once, with nothing written.
+    pub fn missing_inputs(&self) -> Vec<PathBuf> {
+        let naca = self
+            .polars
+            .as_ref()
+            .filter(|(p, _)| propbet_polar::naca4_from_name(&p.airfoil).is_some())
+            .map(|(p, _)| PathBuf::from(&p.airfoil));
+        self.inputs()
+            .into_iter()
+            .filter(|f| Some(f) != naca.as_ref() && !f.exists())
+            .collect()
+    }
+
     /// The specs in the order they run.
     pub fn stages(&self) -> Vec<StageSpec> {
         let mut v = Vec::new();
