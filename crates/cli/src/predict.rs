@@ -234,7 +234,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
                 let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
                     text: if csv {
-                        summary_rows(&r, k == 0, fluid.rho, model.rotor.tip_radius)?
+                        summary_rows(&r, k == 0, fluid.rho, &fluid_source, model.rotor.tip_radius)?
                     } else {
                         Vec::new()
                     },
@@ -298,8 +298,8 @@ fn json_doc(
 
 /// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage).
 pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<()> {
-    let (fluid, _) = spec.air.fluid()?;
-    let body = [summary_rows(points, true, fluid.rho, model.rotor.tip_radius)?];
+    let (fluid, source) = spec.air.fluid()?;
+    let body = [summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
     Ok(())
 }
@@ -326,9 +326,13 @@ struct SweepRow {
     not_converged: usize,
     /// What is physically implausible at the point ([`propbet_bemt::check::implausible`]).
     flags: String,
+    /// Air density used [kg/m^3].
+    rho_kg_m3: Num,
+    /// Where the air came from: given, from T, P, RH, or QPROP's defaults (assumed).
+    air: String,
 }
 
-fn summary_rows(results: &[PointResult], header: bool, rho: f64, tip_radius: f64) -> Result<Vec<u8>> {
+fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
     csv_rows(
         results.iter().map(|p| SweepRow {
             rpm: p.rpm.into(),
@@ -349,6 +353,9 @@ fn summary_rows(results: &[PointResult], header: bool, rho: f64, tip_radius: f64
             cd_avg: p.cd_avg.into(),
             not_converged: p.not_converged,
             flags: propbet_bemt::check::implausible(p, rho, tip_radius).join("; "),
+            rho_kg_m3: rho.into(),
+            // No comma in the cell: the table stays splittable on commas.
+            air: air.replace(',', ";"),
         }),
         header,
     )

@@ -390,11 +390,11 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
             if let Some(x) = g.metrics.get(q) {
                 let _ = write!(
                     h,
-                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {} over {} points · worst {} at {}</div>",
+                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {:.1} % over {} points · worst {} at {}</div>",
                     esc(&g.name),
                     label(q).0,
                     pct(x.mean_rel),
-                    format!("{:.1} %", 100.0 * x.mean_abs_rel),
+                    100.0 * x.mean_abs_rel,
                     x.n,
                     pct(x.max_rel),
                     esc(&x.max_rel_at)
