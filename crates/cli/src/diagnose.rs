@@ -93,7 +93,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
         command: &command,
         diagnosis: dg,
         final_params: dg.ladder.last().map(|r| r.params.clone()).unwrap_or_default(),
-        final_effects: dg.final_stack.active.iter().map(|a| a.describe()).collect(),
+        final_effects: dg.final_effects(),
     };
     let mut bytes = serde_json::to_vec_pretty(&json)?;
     bytes.push(b'\n');

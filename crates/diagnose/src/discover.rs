@@ -155,6 +155,11 @@ pub struct Diagnosis {
 }
 
 impl Diagnosis {
+    /// The ladder's final effects as `--effect` arguments ("pitch-offset:deg=1.2").
+    pub fn final_effects(&self) -> Vec<String> {
+        self.final_stack.active.iter().map(|a| a.describe()).collect()
+    }
+
     /// What the final model leaves unexplained, against how well the measurements repeat:
     /// "2.1 % unexplained, above the 0.6 % the measurements repeat to (14 pairs)".
     pub fn unexplained(&self) -> String {

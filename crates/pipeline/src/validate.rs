@@ -389,13 +389,7 @@ pub fn validate_prop(
         |_| true,
     )?;
     // Calibrated: the ladder's effects as the command line gives them.
-    let effects: Vec<String> = diagnosed
-        .diagnosis
-        .final_stack
-        .active
-        .iter()
-        .map(|a| a.describe())
-        .collect();
+    let effects = diagnosed.diagnosis.final_effects();
     let model_spec_all = model_spec.clone();
     let cal_spec = ModelSpec {
         effects: effects.clone(),
@@ -429,13 +423,7 @@ pub fn validate_prop(
             ..dspec.clone()
         };
         let fitted = stages::diagnose(&model, &fold_spec)?;
-        let fx: Vec<String> = fitted
-            .diagnosis
-            .final_stack
-            .active
-            .iter()
-            .map(|a| a.describe())
-            .collect();
+        let fx = fitted.diagnosis.final_effects();
         held_out_ladders[k] = ladder_text(&fx);
         let fold_model_spec = ModelSpec {
             effects: fx,

@@ -302,10 +302,8 @@ impl Airfoil {
             .fold((0.0, 0.0), |acc, t| if t.0 > acc.0 { t } else { acc })
     }
 
-    /// Scales the thickness of a normalised contour to `target` (t/c) about its camber line,
-    /// keeping every point's x, so the leading edge keeps its own points (resampling y(x) there
-    /// would make zero-length panels, on which XFOIL divides by zero).
-    pub fn scale_thickness(&self, target: f64) -> Result<Airfoil, AirfoilError> {
+    /// The factor that takes this contour's thickness to `target` (t/c, in (0, 0.5)).
+    fn thickness_factor(&self, target: f64) -> Result<f64, AirfoilError> {
         if !(target.is_finite() && target > 0.0 && target < 0.5) {
             return Err(AirfoilError::BadArgument(format!(
                 "target thickness {target} must be in (0, 0.5)"
@@ -318,7 +316,14 @@ impl Airfoil {
                 self.name
             )));
         }
-        let k = target / t;
+        Ok(target / t)
+    }
+
+    /// Scales the thickness of a normalised contour to `target` (t/c) about its camber line,
+    /// keeping every point's x, so the leading edge keeps its own points (resampling y(x) there
+    /// would make zero-length panels, on which XFOIL divides by zero).
+    pub fn scale_thickness(&self, target: f64) -> Result<Airfoil, AirfoilError> {
+        let k = self.thickness_factor(target)?;
         let (upper, lower) = self.surfaces();
         let le = self.leading_edge_index();
         let points = self
@@ -360,19 +365,7 @@ impl Airfoil {
     /// "defined with a flat bottom surface", PE0 files) is thickened; [`Self::scale_thickness`]
     /// keeps the camber line instead.
     pub fn scale_whole(&self, target: f64) -> Result<Airfoil, AirfoilError> {
-        if !(target.is_finite() && target > 0.0 && target < 0.5) {
-            return Err(AirfoilError::BadArgument(format!(
-                "target thickness {target} must be in (0, 0.5)"
-            )));
-        }
-        let (t, _) = self.max_thickness();
-        if t <= 0.0 {
-            return Err(AirfoilError::BadArgument(format!(
-                "{}: has no thickness to scale",
-                self.name
-            )));
-        }
-        let k = target / t;
+        let k = self.thickness_factor(target)?;
         Ok(Airfoil {
             name: format!("{} scaled to t/c {:.2}%", self.name, target * 100.0),
             points: self.points.iter().map(|q| [q[0], q[1] * k]).collect(),
