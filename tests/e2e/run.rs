@@ -131,6 +131,13 @@ fn shipped_cases_without_a_scan() {
             dir.path(),
         );
         assert!(o.status.success(), "{case}: {}", stderr(&o));
+        // Each measured file is summarised once on the terminal (compare and diagnose read it).
+        let err = stderr(&o);
+        let mut files: Vec<&str> = err.lines().filter(|l| l.contains(" rows -> ")).collect();
+        let n = files.len();
+        files.sort_unstable();
+        files.dedup();
+        assert_eq!(files.len(), n, "{case}: {err}");
         let html = std::fs::read_to_string(dir.path().join(case).join("report.html")).unwrap();
         for p in parts {
             assert!(html.contains(p), "{case}: report lacks {p}");

@@ -106,7 +106,12 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
 /// The diagnosis on the terminal.
 pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
     print_measured(&spec.measured, &d.sets);
-    let d = &d.diagnosis;
+    print_result(&d.diagnosis);
+    println!("report: {}", spec.out.join("report.html").display());
+}
+
+/// The diagnosis on the terminal: verdict, where the baseline fails, ranking, ladder.
+pub fn print_result(d: &propbet_diagnose::discover::Diagnosis) {
     println!("{}", report::verdict(d));
     println!("where the baseline fails:");
     for s in &d.before {
@@ -130,7 +135,6 @@ pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
     for r in &d.ladder {
         println!("  {:<60} held-out {:>6.2} %", r.stack, 100.0 * r.kfold_rms);
     }
-    println!("report: {}", spec.out.join("report.html").display());
 }
 
 /// Arguments of `propbet effects`.

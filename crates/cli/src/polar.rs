@@ -392,6 +392,52 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     Ok(p.all_fitted())
 }
 
+/// The polars stage in a few lines (for `propbet run`, whose report holds every station's
+/// details): each kind of problem once, with the number of stations it concerns.
+pub fn print_polars_brief(input: &PolarsInput, p: &Polars) {
+    for n in &input.notes {
+        eprintln!("propbet: {n}");
+    }
+    // Kind of a message: its words, numbers left out; counted, with the first as example.
+    let mut kinds: std::collections::BTreeMap<String, (usize, String)> = std::collections::BTreeMap::new();
+    let kind_of = |l: &str| -> String {
+        l.chars()
+            .filter(|c| !(c.is_ascii_digit() || *c == '.' || *c == '-'))
+            .collect()
+    };
+    let (mut unconverged, mut faults) = (0usize, 0usize);
+    for s in &p.blade.stations {
+        unconverged += s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count();
+        faults += s.polars.iter().map(|pol| pol.faults.len()).sum::<usize>();
+        let lines: Vec<String> = match &s.fit {
+            Some(f) => fit_summary(s.re, f)
+                .lines()
+                .filter(|l| l.contains("UNFIT"))
+                .map(|l| l.trim().to_string())
+                .collect(),
+            None => vec![format!("no fit: {}", s.problem.as_deref().unwrap_or("no polar"))],
+        };
+        for l in lines {
+            kinds.entry(kind_of(&l)).or_insert((0, l)).0 += 1;
+        }
+    }
+    eprintln!(
+        "propbet: polars: {} stations, {} polars; {unconverged} with angles XFOIL did not converge, {faults} XFOIL faults (every station in the report)",
+        p.blade.stations.len(),
+        p.blade.stations.iter().map(|s| s.polars.len()).sum::<usize>()
+    );
+    for (n, example) in kinds.into_values() {
+        if n > 1 {
+            eprintln!("propbet:   {n} stations, for example: {example}");
+        } else {
+            eprintln!("propbet:   1 station: {example}");
+        }
+    }
+    if let Some(e) = &p.export {
+        eprintln!("{}", e.sentence());
+    }
+}
+
 /// Every station's polar faults and fit on the terminal.
 pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
     for n in &input.notes {

@@ -201,7 +201,7 @@ fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> 
             crate::scan::print_summary(s);
         }
         (StageSpec::Polars(spec), Finished::Polars(p, input)) => {
-            crate::polar::print_polars(spec, input, p);
+            crate::polar::print_polars_brief(input, p);
             create_parent(&spec.out_prop)?;
             crate::polar::write_polars(spec, p)?;
         }
@@ -221,7 +221,8 @@ fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> 
         }
         (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {
             let page = crate::diagnose::write(spec, d)?;
-            crate::diagnose::print(spec, d);
+            // The measured files were summarised by the compare stage.
+            crate::diagnose::print_result(&d.diagnosis);
             return Ok(Some(page));
         }
         _ => unreachable!("a stage's record and artifact match"),
