@@ -112,6 +112,16 @@ fn default_case_from_scan_to_report() {
     ] {
         assert!(html.contains(part), "report lacks {part}");
     }
+    // The stages' problems are summarised once at the top (issue 18): the polars stage's
+    // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
+    let top = &html[..html.find("How this report was made").expect("stage table")];
+    assert!(top.contains("Problems the stages reported"), "no summary");
+    assert!(
+        top.contains("<b>polars</b>: ") && top.contains("standard air assumed"),
+        "{top}"
+    );
+    let err = stderr(&o);
+    assert!(err.lines().count() < 60, "the terminal repeats itself: {err}");
     // A finished run's folder is not marked incomplete.
     assert!(!out.join("INCOMPLETE.txt").exists());
     // The case directory is untouched: nothing written into it.

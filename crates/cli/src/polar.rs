@@ -398,13 +398,7 @@ pub fn print_polars_brief(input: &PolarsInput, p: &Polars) {
     for n in &input.notes {
         eprintln!("propbet: {n}");
     }
-    // Kind of a message: its words, numbers left out; counted, with the first as example.
-    let mut kinds: std::collections::BTreeMap<String, (usize, String)> = std::collections::BTreeMap::new();
-    let kind_of = |l: &str| -> String {
-        l.chars()
-            .filter(|c| !(c.is_ascii_digit() || *c == '.' || *c == '-'))
-            .collect()
-    };
+    let mut messages = Vec::new();
     let (mut unconverged, mut faults) = (0usize, 0usize);
     for s in &p.blade.stations {
         unconverged += s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count();
@@ -417,16 +411,14 @@ pub fn print_polars_brief(input: &PolarsInput, p: &Polars) {
                 .collect(),
             None => vec![format!("no fit: {}", s.problem.as_deref().unwrap_or("no polar"))],
         };
-        for l in lines {
-            kinds.entry(kind_of(&l)).or_insert((0, l)).0 += 1;
-        }
+        messages.extend(lines);
     }
     eprintln!(
         "propbet: polars: {} stations, {} polars; {unconverged} with angles XFOIL did not converge, {faults} XFOIL faults (every station in the report)",
         p.blade.stations.len(),
         p.blade.stations.iter().map(|s| s.polars.len()).sum::<usize>()
     );
-    for (n, example) in kinds.into_values() {
+    for (n, example) in propbet_report::page::group_alike(messages) {
         if n > 1 {
             eprintln!("propbet:   {n} stations, for example: {example}");
         } else {

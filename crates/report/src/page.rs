@@ -75,3 +75,35 @@ mod tests {
         assert_eq!(sig(0.012345), "0.01235");
     }
 }
+
+/// Messages grouped by kind (their words, numbers left out), in order of kind: each kind once,
+/// with how many messages it holds and the first as example. How propbet tells about a problem
+/// that repeats (at many stations, rows or points): once, with a count.
+pub fn group_alike(messages: impl IntoIterator<Item = String>) -> Vec<(usize, String)> {
+    let mut kinds: std::collections::BTreeMap<String, (usize, String)> = std::collections::BTreeMap::new();
+    for m in messages {
+        let kind: String = m
+            .chars()
+            .filter(|c| !(c.is_ascii_digit() || *c == '.' || *c == '-'))
+            .collect();
+        kinds.entry(kind).or_insert((0, m)).0 += 1;
+    }
+    kinds.into_values().collect()
+}
+
+#[cfg(test)]
+mod group_tests {
+    #[test]
+    fn alike_messages_are_counted_once() {
+        let g = super::group_alike(
+            ["CL_a 9.1 is outside 3..7.5", "CL_a 8.2 is outside 3..7.5", "no polar"].map(String::from),
+        );
+        assert_eq!(
+            g,
+            vec![
+                (2, "CL_a 9.1 is outside 3..7.5".to_string()),
+                (1, "no polar".to_string())
+            ]
+        );
+    }
+}

@@ -27,6 +27,25 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing</a>".into()
         }
     );
+    // Every stage's problems, once, at the top; each is also shown where its result is.
+    let problems = problems(run);
+    if problems.is_empty() {
+        h.push_str("<p class=\"note\">No stage reported a problem.</p>\n");
+    } else {
+        let _ = writeln!(
+            h,
+            "<section id=\"problems\"><h2>Problems the stages reported</h2>\n<ul class=\"problems\">"
+        );
+        for (stage, n, text) in &problems {
+            let count = if *n > 1 {
+                format!("{n}×, for example: ")
+            } else {
+                String::new()
+            };
+            let _ = writeln!(h, "<li><b>{}</b>: {count}{}</li>", esc(stage), esc(text));
+        }
+        h.push_str("</ul></section>\n");
+    }
     // Stages.
     h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
     for s in &run.stages {
@@ -35,7 +54,11 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td class=\"cmd\"><code>{}</code></td></tr>",
             s.spec.name(),
             s.seconds,
-            if s.clean { "ok" } else { "problems reported (see below)" },
+            if s.clean && !problems.iter().any(|p| p.0 == s.spec.name()) {
+                "ok"
+            } else {
+                "problems (listed above)"
+            },
             esc(&s.spec.command())
         );
     }
@@ -179,6 +202,70 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
 /// Everything wrong at a station of the polars, for the table's problem column: XFOIL's
 /// failures (rungs without a polar: the tables interpolate across them), angles that did not
 /// converge, and the QPROP fit's verdicts and fallbacks.
+/// The problems of every stage, grouped alike: (stage, count, example).
+fn problems(run: &RunOutcome) -> Vec<(&'static str, usize, String)> {
+    let mut out = Vec::new();
+    let mut add = |stage: &'static str, msgs: Vec<String>| {
+        for (n, m) in crate::page::group_alike(msgs) {
+            out.push((stage, n, m));
+        }
+    };
+    if let Some(sc) = &run.scanned {
+        let g = &sc.geometry;
+        let mut v: Vec<String> = g
+            .failed
+            .iter()
+            .map(|f| format!("station at r/R {:.2} failed: {}", f.r_r, f.reason))
+            .collect();
+        v.extend(g.notes.iter().filter(|n| n.contains("ASSUMED")).cloned());
+        add("scan", v);
+    }
+    if let Some(p) = &run.polars {
+        let v = p
+            .blade
+            .stations
+            .iter()
+            .flat_map(|s| {
+                let mut m: Vec<String> = s.problem.iter().cloned().collect();
+                if let Some(f) = &s.fit {
+                    m.extend(f.unfit.iter().map(|u| format!("QPROP fit: {u}")));
+                }
+                if s.polars.iter().any(|p| !p.faults.is_empty()) {
+                    m.push("XFOIL faults (crash, hang or budget) at some Reynolds numbers".into());
+                }
+                m
+            })
+            .collect();
+        add("polars", v);
+    }
+    add("predict", run.model.loaded.warnings.clone());
+    if let Some(c) = &run.compared {
+        let (faults, unconverged) = c.problems();
+        let mut v = Vec::new();
+        if faults > 0 {
+            v.push(format!("{faults} measured rows dropped as faulty"));
+        }
+        if unconverged > 0 {
+            v.push(format!("{unconverged} station solutions did not converge"));
+        }
+        let implausible = c.points.iter().filter(|p| !p.model_flags.is_empty()).count();
+        if implausible > 0 {
+            v.push(format!(
+                "the prediction is physically implausible at {implausible} points"
+            ));
+        }
+        let standard = c.points.iter().filter(|p| p.air.standard).count();
+        if standard > 0 {
+            v.push(format!(
+                "standard air assumed at {standard} of {} points (no temperature or pressure logged or given)",
+                c.points.len()
+            ));
+        }
+        add("compare", v);
+    }
+    out
+}
+
 fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
     let mut v: Vec<String> = s.problem.iter().cloned().collect();
     let unconverged: usize = s.polars.iter().map(|p| p.unconverged_deg.len()).sum();
