@@ -65,7 +65,14 @@ pub struct Panel {
     pub series: Vec<Series>,
     /// Draw the line y = 0.
     pub zero_line: bool,
+    /// Limits of the y axis, when the data may run far beyond the useful band (relative
+    /// errors near zero thrust): points outside are drawn on the edge as triangles.
+    pub y_clip: Option<(f64, f64)>,
 }
+
+/// The useful band of a relative-error axis [%]: beyond it a point says only "far off", and
+/// a ±600 % axis would hide the band where the model is judged.
+pub const ERROR_AXIS: (f64, f64) = (-100.0, 100.0);
 
 /// Panels on a grid.
 #[derive(Debug, Clone)]
@@ -191,8 +198,42 @@ fn range(panel: &Panel) -> (f64, f64, f64, f64) {
         (a - d, b + d)
     };
     let (x0, x1) = pad(x0, x1);
-    let (y0, y1) = pad(y0, y1);
+    let (y0, y1) = match panel.y_clip {
+        Some((lo, hi)) => {
+            let (a, b) = pad(y0.max(lo), y1.min(hi));
+            (a.max(lo), b.min(hi))
+        }
+        None => pad(y0, y1),
+    };
     (x0, x1, y0, y1)
+}
+
+/// The corner of the plot area with the fewest points (in a box of a third of each axis),
+/// where the legend hides the least.
+fn legend_corner(panel: &Panel, (x0, x1, y0, y1): (f64, f64, f64, f64)) -> SeriesLabelPosition {
+    let fx = |x: f64| (x - x0) / (x1 - x0);
+    let fy = |y: f64| (y - y0) / (y1 - y0);
+    let corners = [
+        (SeriesLabelPosition::UpperRight, true, true),
+        (SeriesLabelPosition::UpperLeft, false, true),
+        (SeriesLabelPosition::LowerRight, true, false),
+        (SeriesLabelPosition::LowerLeft, false, false),
+    ];
+    let count = |right: bool, upper: bool| {
+        panel
+            .series
+            .iter()
+            .flat_map(|s| s.points.iter())
+            .filter(|p| {
+                let (x, y) = (fx(p.0), fy(p.1.clamp(y0, y1)));
+                (if right { x > 0.6 } else { x < 0.4 }) && (if upper { y > 0.6 } else { y < 0.4 })
+            })
+            .count()
+    };
+    corners
+        .into_iter()
+        .min_by_key(|&(_, r, u)| count(r, u))
+        .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
 }
 
 fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fig: &Figure) -> Result<(), PlotError> {
@@ -237,7 +278,10 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
                 .enumerate()
                 .filter(|(_, p)| p.0.is_finite() && p.1.is_finite())
                 .collect();
-            let xy = data.iter().map(|d| d.1);
+            // Points beyond a clipped axis go on its edge (marked below).
+            let clip = |p: (f64, f64)| (p.0, p.1.clamp(y0, y1));
+            let outside: Vec<(f64, f64)> = data.iter().map(|d| d.1).filter(|p| p.1 < y0 || p.1 > y1).collect();
+            let xy = data.iter().map(|d| clip(d.1));
             let drawn = match s.mark {
                 Mark::Line => chart.draw_series(LineSeries::new(xy, c.stroke_width(2))).map_err(err)?,
                 Mark::Dashed => chart
@@ -259,11 +303,13 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
                                 .map(|(x, y, e)| ErrorBar::new_vertical(x, y - e, y, y + e, c.stroke_width(1), 6)),
                         )
                         .map_err(err)?;
+                    let inside: Vec<(f64, f64)> = xy.filter(|p| p.1 > y0 && p.1 < y1).collect();
                     chart
-                        .draw_series(xy.map(|p| Circle::new(p, 3, c.filled())))
+                        .draw_series(inside.into_iter().map(|p| Circle::new(p, 3, c.filled())))
                         .map_err(err)?
                 }
             };
+
             if !s.name.is_empty() {
                 legend = true;
                 let dots = s.mark == Mark::Dots;
@@ -277,6 +323,16 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
                         }
                     });
             }
+            // Off-scale points: a triangle on the edge, pointing the way they went.
+            chart
+                .draw_series(outside.iter().map(|&(x, y)| {
+                    let (edge, dy) = if y > y1 { (y1, -1) } else { (y0, 1) };
+                    let tip = (0, 0);
+                    let base = (-5, 8 * dy);
+                    let base2 = (5, 8 * dy);
+                    EmptyElement::at((x, edge)) + Polygon::new(vec![tip, base, base2], c.stroke_width(1))
+                }))
+                .map_err(err)?;
         }
         if legend {
             chart
@@ -284,7 +340,7 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
                 .background_style(WHITE.mix(0.85))
                 .border_style(BLACK.mix(0.3))
                 .label_font((FONT_FAMILY, 11))
-                .position(SeriesLabelPosition::UpperRight)
+                .position(legend_corner(panel, (x0, x1, y0, y1)))
                 .draw()
                 .map_err(err)?;
         }
@@ -328,6 +384,7 @@ mod tests {
                         Series::new("predicted", vec![(0.0, 1.1), (1.0, 2.1)], Mark::Line, Some(0)),
                     ],
                     zero_line: true,
+                    y_clip: None,
                 },
                 Panel {
                     title: "empty".into(),
@@ -335,6 +392,7 @@ mod tests {
                     y_label: "y".into(),
                     series: vec![],
                     zero_line: false,
+                    y_clip: None,
                 },
             ],
             columns: 2,

@@ -9,7 +9,7 @@ use propbet_compare::curves::Curves;
 use propbet_compare::metrics::{group_points, rpm_group, MetricGroup, Metrics};
 use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
-use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
+use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
 use crate::page::{esc, page, sig};
@@ -110,6 +110,7 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figur
             y_label: label(q).0.into(),
             series: Vec::new(),
             zero_line: false,
+            y_clip: None,
         })
         .collect();
     for (k, (name, pts)) in groups.iter().enumerate() {
@@ -177,6 +178,7 @@ fn static_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
                     ),
                 ],
                 zero_line: false,
+                y_clip: None,
             }
         })
         .collect();
@@ -222,6 +224,7 @@ fn residual_figure(points: &[ComparedPoint]) -> Figure {
                 .filter(|s| !s.points.is_empty())
                 .collect(),
             zero_line: true,
+            y_clip: Some(ERROR_AXIS),
         })
         .collect();
     let rows = panels.len().div_ceil(2) as u32;

@@ -8,7 +8,7 @@ use propbet_diagnose::discover::{Diagnosis, Scored};
 use propbet_diagnose::fit::FittedParam;
 use propbet_diagnose::{Data, Row};
 use propbet_effects::fmt_value;
-use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
+use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
 use crate::page::{esc, page, sig};
@@ -134,6 +134,7 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
                     ),
                 ],
                 zero_line: true,
+                y_clip: Some(ERROR_AXIS),
             });
         }
     }
@@ -180,6 +181,7 @@ fn ladder_figure(d: &Diagnosis) -> Figure {
             y_label: "RMS relative error [%]".into(),
             series,
             zero_line: true,
+            y_clip: None,
         }],
         columns: 1,
         width: 900,

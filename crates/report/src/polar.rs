@@ -46,6 +46,7 @@ pub fn panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
             y_label: "cl".into(),
             series: lift,
             zero_line: false,
+            y_clip: None,
         },
         Panel {
             title: format!("{name}: drag polar"),
@@ -53,6 +54,7 @@ pub fn panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
             y_label: "cl".into(),
             series: drag,
             zero_line: false,
+            y_clip: None,
         },
     ]
 }

@@ -186,6 +186,7 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
             .map(|(i, (name, s))| Series::new(name.clone(), s[k].clone(), Mark::Line, Some(i)))
             .collect(),
         zero_line: true,
+        y_clip: None,
     };
     Figure {
         panels: vec![

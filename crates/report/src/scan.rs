@@ -41,6 +41,7 @@ pub fn sections_figure(g: &Geometry) -> Figure {
                 y_label: "y/c".into(),
                 series,
                 zero_line: false,
+                y_clip: None,
             }
         })
         .collect::<Vec<_>>();
@@ -81,6 +82,7 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
         y_label: y.into(),
         series,
         zero_line: false,
+        y_clip: None,
     };
     Figure {
         panels: vec![
@@ -137,6 +139,7 @@ pub fn colour_figure(c: &ColourReport) -> Figure {
                 ),
             ],
             zero_line: false,
+            y_clip: None,
         }],
         columns: 1,
         width: 900,
