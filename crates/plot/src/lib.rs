@@ -413,6 +413,50 @@ mod tests {
     }
 
     #[test]
+    fn a_clipped_axis_keeps_the_band_and_marks_what_is_beyond() {
+        let mut p = fig().panels.remove(0);
+        p.series = vec![Series::new(
+            "err",
+            vec![(0.0, 10.0), (1.0, -20.0), (2.0, 650.0)],
+            Mark::Dots,
+            None,
+        )];
+        let free = range(&p);
+        assert!(free.3 > 650.0);
+        p.y_clip = Some(ERROR_AXIS);
+        let (_, _, y0, y1) = range(&p);
+        assert!(y0 >= -100.0 && y1 == 100.0, "{y0} {y1}");
+        let f = Figure {
+            panels: vec![p],
+            columns: 1,
+            width: 400,
+            height: 300,
+        };
+        // Two dots inside, one triangle on the upper edge.
+        let svg = svg_inline(&f).unwrap();
+        assert_eq!(svg.matches("<circle").count(), 2 + 1, "two dots and the legend's");
+        assert!(svg.contains("<polygon"), "the off-scale point is marked");
+    }
+
+    #[test]
+    fn the_legend_goes_where_the_data_are_not() {
+        let mut p = fig().panels.remove(0);
+        p.series = vec![Series::new(
+            "a",
+            (0..20).map(|k| (f64::from(k), f64::from(k))).collect(),
+            Mark::Dots,
+            None,
+        )];
+        // Data on the diagonal from lower left to upper right: an empty corner is upper left
+        // or lower right.
+        let c = legend_corner(&p, range(&p));
+        assert!(matches!(
+            c,
+            SeriesLabelPosition::UpperLeft | SeriesLabelPosition::LowerRight
+        ));
+    }
+
+    #[test]
     fn png_is_a_png_with_ink() {
         let bytes = png(&fig()).unwrap();
         assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
