@@ -284,3 +284,41 @@ fn a_coloured_cloud_without_its_blade_colours_is_told_the_option() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--blade-colour"), "{}", stderr(&o));
 }
+
+/// The check against the reference table covers the outboard stations too, where the STL's
+/// chord is short of UIUC's (issue 18: the check stopped at r/R 0.7).
+#[test]
+fn the_reference_check_covers_the_outboard_blade() {
+    let dir = tempfile::tempdir().unwrap();
+    let stl = repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl");
+    let table = repo().join("props/apcsf_10x4.7/apcsf_10x4.7_geom.txt");
+    let o = run(
+        &[
+            "scan",
+            stl.to_str().unwrap(),
+            "--reference",
+            table.to_str().unwrap(),
+            "--stations",
+            "0.5,0.8,0.9,0.96",
+            "-o",
+            "out",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("against the reference table"))
+        .expect(&text);
+    let outboard = line.split("r/R 0.75 and beyond (3 stations)").nth(1).expect(line);
+    // "chord RMSE 8.7 % (worst -12.9 % at r/R 0.96)"
+    let worst: f64 = outboard
+        .split("chord RMSE ")
+        .nth(1)
+        .and_then(|t| t.split("(worst ").nth(1))
+        .and_then(|t| t.split(' ').next())
+        .and_then(|t| t.parse().ok())
+        .expect(line);
+    assert!(worst < -5.0, "the outboard chord shortfall is named: {line}");
+}

@@ -426,23 +426,7 @@ pub fn print_summary(sc: &Scanned) {
     for f in &g.failed {
         println!("  r/R {:.3}: {}", f.r_r, f.reason);
     }
-    if let Some(t) = reference {
-        let (mut db, mut dc) = (Vec::new(), Vec::new());
-        for s in g.stations.iter().filter(|s| (0.3..=0.7).contains(&s.r_r)) {
-            if let (Some(c), Some(b)) = (interp(t, s.r_r, 1), interp(t, s.r_r, 2)) {
-                db.push(s.beta.to_degrees() - b);
-                dc.push(s.chord / g.tip_radius / c - 1.0);
-            }
-        }
-        let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len().max(1) as f64).sqrt();
-        let max = |v: &[f64]| v.iter().map(|x| x.abs()).fold(0.0, f64::max);
-        println!(
-            "against the reference at r/R 0.3-0.7 ({} stations): twist RMSE {:.2} deg (max {:.2}), chord RMSE {:.1} % (max {:.1} %)",
-            db.len(),
-            rms(&db),
-            max(&db),
-            100.0 * rms(&dc),
-            100.0 * max(&dc)
-        );
+    if let Some(line) = reference.and_then(|t| propbet_report::scan::reference_check(g, t)) {
+        println!("{line}");
     }
 }

@@ -74,6 +74,9 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
         Some(sc) => {
             let g = &sc.geometry;
             let _ = writeln!(h, "<p>{}.</p>", esc(&crate::scan::summary(g)));
+            if let Some(line) = sc.reference.as_deref().and_then(|t| crate::scan::reference_check(g, t)) {
+                let _ = writeln!(h, "<p>{}.</p>", esc(&line));
+            }
             h.push_str("<ul>");
             for n in &g.notes {
                 let _ = write!(h, "<li>{}</li>", esc(n));

@@ -17,6 +17,42 @@ pub fn summary(g: &Geometry) -> String {
     )
 }
 
+/// The scan against a reference table (UIUC's measured r/R, c/R, β) at every station the table
+/// covers, inboard (r/R < 0.75) and outboard (where most thrust is made) apart, each with its
+/// worst station: "twist RMSE 0.21 deg (worst -0.44 at r/R 0.92), chord RMSE 7.9 % (worst -12.6 %
+/// at r/R 0.96)". None without a station inside the table.
+pub fn reference_check(g: &Geometry, table: &[GeometryRow]) -> Option<String> {
+    let mut parts = Vec::new();
+    for (name, range) in [("r/R below 0.75", 0.0..0.75), ("r/R 0.75 and beyond", 0.75..1.01)] {
+        let (mut db, mut dc) = (Vec::new(), Vec::new());
+        for s in g.stations.iter().filter(|s| range.contains(&s.r_r)) {
+            if let Some((c, b)) = propbet_measure::uiuc::geometry_at(table, s.r_r) {
+                db.push((s.r_r, (s.beta - b).to_degrees()));
+                dc.push((s.r_r, s.chord / g.tip_radius / c - 1.0));
+            }
+        }
+        if db.is_empty() {
+            continue;
+        }
+        let rms = |v: &[(f64, f64)]| (v.iter().map(|x| x.1 * x.1).sum::<f64>() / v.len() as f64).sqrt();
+        let worst = |v: &[(f64, f64)]| {
+            v.iter()
+                .copied()
+                .fold((0.0f64, 0.0f64), |a, x| if x.1.abs() > a.1.abs() { x } else { a })
+        };
+        let (rb, wb) = worst(&db);
+        let (rc, wc) = worst(&dc);
+        parts.push(format!(
+            "{name} ({} stations): twist RMSE {:.2} deg (worst {wb:+.2} at r/R {rb:.2}), chord RMSE {:.1} % (worst {:+.1} % at r/R {rc:.2})",
+            db.len(),
+            rms(&db),
+            100.0 * rms(&dc),
+            100.0 * wc
+        ));
+    }
+    (!parts.is_empty()).then(|| format!("against the reference table: {}", parts.join("; ")))
+}
+
 /// Every section's points and fits.
 pub fn sections_figure(g: &Geometry) -> Figure {
     let panels = g
