@@ -25,6 +25,41 @@ fn stderr(o: &Output) -> String {
 }
 
 /// Reads a CSV written by propbet into (header, rows).
+/// How far the page at `report` runs wider than a 1300-px window, in headless Chromium
+/// (package `chromium`, installed by scripts/setup.sh): a probe copy of the page with one line
+/// of script that writes the difference into the DOM Chromium dumps. Negative: it fits.
+fn overflow_px(report: &Path) -> i64 {
+    let dir = tempfile::tempdir().unwrap();
+    let probe = dir.path().join("probe.html");
+    let mut html = std::fs::read_to_string(report).unwrap();
+    html.push_str("<script>document.body.setAttribute('data-overflow', String(document.documentElement.scrollWidth - window.innerWidth));</script>");
+    std::fs::write(&probe, html).unwrap();
+    let out = Command::new("chromium")
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--window-size=1300,900",
+            "--dump-dom",
+        ])
+        .arg(format!("--user-data-dir={}", dir.path().join("profile").display()))
+        .arg(format!("file://{}", probe.display()))
+        .output()
+        .expect("chromium is installed (scripts/setup.sh installs it)");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let v = dom
+        .split("data-overflow=\"")
+        .nth(1)
+        .and_then(|t| t.split('"').next())
+        .unwrap_or_else(|| {
+            panic!(
+                "no measure in the dumped page: {}",
+                String::from_utf8_lossy(&out.stderr)
+            )
+        });
+    v.parse().unwrap()
+}
+
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines();

@@ -5,14 +5,15 @@
 /// The stylesheet of every page.
 pub const CSS: &str = "body{font-family:PropbetSans,sans-serif;margin:2em auto;max-width:1500px;color:#222;padding:0 1em}\
 h1{font-size:1.6em;margin-bottom:.2em}h2{border-bottom:2px solid #0072b2;padding-bottom:.2em;margin-top:2em}\
-table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:.9em}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}\
+table{border-collapse:collapse;margin:.5em 0 1.5em;font-size:.9em;display:block;overflow-x:auto;max-width:100%}td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}\
 th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\
 .cards{display:flex;gap:1em;flex-wrap:wrap}.card{border:1px solid #ccc;border-radius:6px;padding:.8em 1.2em;min-width:11em}\
 .card b{display:block;font-size:1.6em;color:#0072b2}.warn{background:#fff4e0;border-left:4px solid #e69f00;padding:.6em 1em}\
 .note{color:#555}figure{margin:1em 0}figure svg{max-width:100%;height:auto}code{background:#f4f4f4;padding:0 .3em}\
 tr.flagged td{color:#999}tr.sig td{background:#eef7ee}nav a{margin-right:1em}\
 section{border-top:2px solid #888;margin-top:2em}svg{max-width:100%;height:auto}\
-td.cmd,td.text,th.text{text-align:left}td.cmd code{white-space:normal;overflow-wrap:anywhere;font-size:.85em}";
+td.cmd,td.text,th.text{text-align:left}td.cmd code{white-space:normal;overflow-wrap:anywhere;font-size:.85em}\
+p,li{overflow-wrap:anywhere}pre{overflow-x:auto}";
 
 /// A whole page: `title`, extra CSS (empty for none), and the body's markup.
 pub fn page(title: &str, extra_css: &str, body: &str) -> String {
