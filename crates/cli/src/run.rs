@@ -27,6 +27,10 @@ pub struct RunArgs {
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stage).
     #[command(flatten)]
     pub xfoil: XfoilProcess,
+    /// Print every stage's full terminal output (each station's polar fit, the measured files
+    /// again for the diagnosis), as the stages' own commands do; by default a summary per stage.
+    #[arg(long)]
+    pub verbose: bool,
 }
 
 /// The shipped default case: `props/apcsf_10x4.7` under the current directory or beside the
@@ -146,7 +150,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         }
         Event::Done { n, total, record, made } => {
             if write_err.is_none() {
-                match write_stage(record, &made) {
+                match write_stage(record, &made, a.verbose) {
                     Ok(Some(page)) => pages.push((record.spec.name(), page)),
                     Ok(None) => {}
                     Err(e) => write_err = Some(e),
@@ -194,14 +198,18 @@ fn create_parent(path: &Path) -> Result<()> {
 
 /// Writes a finished stage's outputs and prints its summary, as its own command does; the
 /// compare and diagnose pages come back for the report.
-fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> {
+fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<Option<String>> {
     match (&record.spec, made) {
         (StageSpec::Scan(spec), Finished::Scan(s)) => {
             crate::scan::write(spec, s)?;
             crate::scan::print_summary(s);
         }
         (StageSpec::Polars(spec), Finished::Polars(p, input)) => {
-            crate::polar::print_polars_brief(input, p);
+            if verbose {
+                crate::polar::print_polars(spec, input, p);
+            } else {
+                crate::polar::print_polars_brief(input, p);
+            }
             create_parent(&spec.out_prop)?;
             crate::polar::write_polars(spec, p)?;
         }
@@ -221,8 +229,12 @@ fn write_stage(record: &StageRecord, made: &Finished) -> Result<Option<String>> 
         }
         (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {
             let page = crate::diagnose::write(spec, d)?;
-            // The measured files were summarised by the compare stage.
-            crate::diagnose::print_result(&d.diagnosis);
+            if verbose {
+                crate::diagnose::print(spec, d);
+            } else {
+                // The measured files were summarised by the compare stage.
+                crate::diagnose::print_result(&d.diagnosis);
+            }
             return Ok(Some(page));
         }
         _ => unreachable!("a stage's record and artifact match"),
