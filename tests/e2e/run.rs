@@ -228,3 +228,20 @@ fn a_run_that_fails_leaves_its_folder_marked_incomplete() {
         "{marker}"
     );
 }
+
+/// `--verbose` prints the stages' full output (the measured files again for the diagnosis);
+/// by default each measured file is summarised once.
+#[test]
+fn verbose_prints_each_stage_in_full() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo().join("props/photofoil_8x4.5");
+    let count = |extra: &[&str], out: &str| {
+        let mut args = vec!["run", case.to_str().unwrap(), "-o", out];
+        args.extend_from_slice(extra);
+        let o = run(&args, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        stderr(&o).lines().filter(|l| l.contains(" rows -> ")).count()
+    };
+    let (quiet, verbose) = (count(&[], "a"), count(&["--verbose"], "b"));
+    assert!(quiet >= 1 && verbose == 2 * quiet, "{quiet} vs {verbose}");
+}
