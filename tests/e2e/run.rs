@@ -244,4 +244,15 @@ fn verbose_prints_each_stage_in_full() {
     };
     let (quiet, verbose) = (count(&[], "a"), count(&["--verbose"], "b"));
     assert!(quiet >= 1 && verbose == 2 * quiet, "{quiet} vs {verbose}");
+    // The machine-readable summary beside the report.
+    let j: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("a/summary.json")).unwrap()).unwrap();
+    assert_eq!(j["format"], "propbet-run-summary-1");
+    assert_eq!(j["stages"].as_array().unwrap().len(), 3, "{j}");
+    assert_eq!(j["headline"][0]["points"], "static", "{j}");
+    assert!(j["headline"][0]["errors"]["thrust"]["n"].as_u64().unwrap() >= 5, "{j}");
+    assert!(
+        j["diagnosis"]["verdict"].as_str().unwrap().starts_with("Missing: "),
+        "{j}"
+    );
 }

@@ -174,6 +174,13 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let html = propbet_report::run::page(&plan, &outcome, &pages)?;
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
+    let mut summary = serde_json::to_vec_pretty(&propbet_report::run::summary_json(&plan, &outcome))?;
+    summary.push(b'\n');
+    write_atomic(
+        &out.join("summary.json"),
+        &[summary],
+        &[dir.join("case.toml").as_path()],
+    )?;
     eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
     std::fs::remove_file(&marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", marker.display()))?;
     println!(
