@@ -4,7 +4,7 @@
 
 use propbet_effects::EffectError;
 
-use crate::metrics::{group_points, rpm_group};
+use crate::metrics::{group_points, sweep_group};
 use crate::{predict, ComparedPoint, Quantities, Setup};
 
 /// Points per curve.
@@ -16,7 +16,7 @@ pub type Curve = Vec<(f64, Quantities)>;
 /// Predicted curves for the comparison's figures.
 #[derive(Debug, Clone, Default)]
 pub struct Curves {
-    /// Per RPM group, in the order of [`group_points`] by [`rpm_group`]: the group's mean speed
+    /// Per sweep, in the order of [`group_points`] by [`sweep_group`]: the group's mean speed
     /// [rpm, a label] and (J, predicted quantities) from 0 to 1.08 of its largest J; None for a
     /// group of static points only.
     pub j_sweeps: Vec<Option<(f64, Curve)>>,
@@ -33,7 +33,7 @@ fn mean(xs: impl Iterator<Item = f64>) -> f64 {
 /// The curves of `setup` for `points`.
 pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectError> {
     let mut j_sweeps = Vec::new();
-    for (_, pts) in group_points(points, rpm_group) {
+    for (_, pts) in group_points(points, sweep_group) {
         if pts.iter().all(|p| p.is_static()) {
             j_sweeps.push(None);
             continue;

@@ -126,6 +126,14 @@ pub fn rpm_group(p: &ComparedPoint) -> (i64, String) {
     }
 }
 
+/// The sweep a point belongs to in the figures: its nominal RPM to the nearest 100 (UIUC's
+/// "5000 rpm" sweeps run at 4,997 and 5,018: one colour, one predicted curve), else its
+/// logged RPM to the nearest 100.
+pub fn sweep_group(p: &ComparedPoint) -> (i64, String) {
+    let k = (p.nominal_rpm.unwrap_or(p.rpm) / 100.0).round() as i64 * 100;
+    (k, format!("{k} rpm"))
+}
+
 fn j_group(p: &ComparedPoint) -> (i64, String) {
     if p.is_static() {
         return (-1, "static (J = 0)".into());
@@ -321,6 +329,18 @@ mod tests {
         assert_eq!(in_window(&pts, 0.95), vec![true, true, true, false]);
         assert_eq!(quantile(vec![3.0, 1.0, 2.0], 0.5), 2.0);
         assert!(quantile(vec![], 0.5).is_nan());
+    }
+
+    #[test]
+    fn sweeps_of_one_nominal_speed_share_a_group() {
+        let mut a = pt("a", 4997.0, 0.3, 1.0, 1.0);
+        a.nominal_rpm = Some(4997.0);
+        let mut b = pt("b", 5018.0, 0.3, 1.0, 1.0);
+        b.nominal_rpm = Some(5018.0);
+        let c = pt("c", 6023.0, 0.0, 1.0, 1.0);
+        assert_eq!(sweep_group(&a), (5000, "5000 rpm".to_string()));
+        assert_eq!(sweep_group(&a), sweep_group(&b));
+        assert_eq!(sweep_group(&c).0, 6000);
     }
 
     #[test]

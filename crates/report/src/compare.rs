@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{group_points, rpm_group, MetricGroup, Metrics};
+use propbet_compare::metrics::{group_points, sweep_group, MetricGroup, Metrics};
 use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
@@ -101,7 +101,7 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figur
         return None;
     }
     // Static points of the same RPM groups belong on the J axis too.
-    let groups = group_points(points, rpm_group);
+    let groups = group_points(points, sweep_group);
     let mut panels: Vec<Panel> = ["ct", "cp", "eta"]
         .iter()
         .map(|q| Panel {
