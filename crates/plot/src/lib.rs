@@ -208,6 +208,25 @@ fn range(panel: &Panel) -> (f64, f64, f64, f64) {
     (x0, x1, y0, y1)
 }
 
+/// A tick label with no more digits than it needs: "2000", not "2000.0"; "0", not "-0.0";
+/// "0.05"; "1.2e-5" for small values.
+fn tick(v: &f64) -> String {
+    let v = *v;
+    if v.abs() < 1e-12 {
+        return "0".into();
+    }
+    if v.abs() < 1e-3 || v.abs() >= 1e7 {
+        return format!("{v:.1e}");
+    }
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.to_string()
+    }
+}
+
 /// The corner of the plot area with the fewest points (in a box of a third of each axis),
 /// where the legend hides the least.
 fn legend_corner(panel: &Panel, (x0, x1, y0, y1): (f64, f64, f64, f64)) -> SeriesLabelPosition {
@@ -256,6 +275,8 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
             .x_desc(&panel.x_label)
             .y_desc(&panel.y_label)
             .label_style((FONT_FAMILY, 12))
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .axis_desc_style((FONT_FAMILY, 13))
             .light_line_style(RGBColor(235, 235, 235))
             .draw()
@@ -454,6 +475,17 @@ mod tests {
             c,
             SeriesLabelPosition::UpperLeft | SeriesLabelPosition::LowerRight
         ));
+    }
+
+    #[test]
+    fn tick_labels_have_the_digits_they_need() {
+        assert_eq!(tick(&2000.0), "2000");
+        assert_eq!(tick(&-0.0), "0");
+        assert_eq!(tick(&-1e-15), "0");
+        assert_eq!(tick(&0.05), "0.05");
+        assert_eq!(tick(&(0.1 + 0.2)), "0.3");
+        assert_eq!(tick(&-2.5), "-2.5");
+        assert_eq!(tick(&1.2e-5), "1.2e-5");
     }
 
     #[test]

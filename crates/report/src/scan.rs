@@ -126,24 +126,27 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
             panel("Blade angle", "β [deg]", beta),
             panel(
                 "Thickness and camber",
-                "/ chord",
+                "t/c, camber/c",
                 vec![
                     Series::new("t/c", col(&|s| s.t_c), Mark::Line, Some(0)),
                     Series::new("camber", col(&|s| s.camber), Mark::Line, Some(2)),
                 ],
             ),
+            // An angle and a length: one axis each.
             panel(
-                "Skew and rake",
-                "deg, mm",
-                vec![
-                    Series::new("skew [deg]", col(&|s| s.skew.to_degrees()), Mark::Line, Some(0)),
-                    Series::new("rake [mm]", col(&|s| 1000.0 * s.rake), Mark::Line, Some(2)),
-                ],
+                "Skew",
+                "skew [deg]",
+                vec![Series::new("", col(&|s| s.skew.to_degrees()), Mark::Line, Some(0))],
+            ),
+            panel(
+                "Rake",
+                "rake [mm]",
+                vec![Series::new("", col(&|s| 1000.0 * s.rake), Mark::Line, Some(2))],
             ),
         ],
-        columns: 2,
-        width: 1200,
-        height: 800,
+        columns: 3,
+        width: 1500,
+        height: 700,
     }
 }
 
