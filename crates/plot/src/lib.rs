@@ -270,12 +270,24 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
             .y_label_area_size(64)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err)?;
+        // A count on the x axis (ladder steps): integer ticks only.
+        let xs = || panel.series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
+        let counts = xs().count() > 0 && xs().all(|x| x.fract() == 0.0 && (0.0..=50.0).contains(&x));
+        let x_labels = if counts { (x1 - x0).round().max(1.0) as usize + 1 } else { 10 };
+        let x_tick = |v: &f64| {
+            if counts && (v.fract().abs() > 1e-9) {
+                String::new()
+            } else {
+                tick(v)
+            }
+        };
         chart
             .configure_mesh()
+            .x_labels(x_labels)
             .x_desc(&panel.x_label)
             .y_desc(&panel.y_label)
             .label_style((FONT_FAMILY, 12))
-            .x_label_formatter(&tick)
+            .x_label_formatter(&x_tick)
             .y_label_formatter(&tick)
             .axis_desc_style((FONT_FAMILY, 13))
             .light_line_style(RGBColor(235, 235, 235))
