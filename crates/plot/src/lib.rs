@@ -68,6 +68,8 @@ pub struct Panel {
     /// Limits of the y axis, when the data may run far beyond the useful band (relative
     /// errors near zero thrust): points outside are drawn on the edge as triangles.
     pub y_clip: Option<(f64, f64)>,
+    /// One unit is as long on both axes (airfoil sections: no stretched outlines).
+    pub equal_aspect: bool,
 }
 
 /// The useful band of a relative-error axis [%]: beyond it a point says only "far off", and
@@ -208,6 +210,19 @@ fn range(panel: &Panel) -> (f64, f64, f64, f64) {
     (x0, x1, y0, y1)
 }
 
+/// `ranges` widened on one axis so that a unit is as long on both over a plot area of `(pw, ph)`
+/// pixels, each axis centred where it was.
+fn equal_aspect((x0, x1, y0, y1): (f64, f64, f64, f64), (pw, ph): (f64, f64)) -> (f64, f64, f64, f64) {
+    let (sx, sy) = ((x1 - x0) / pw, (y1 - y0) / ph);
+    if sx > sy {
+        let c = 0.5 * (y0 + y1);
+        (x0, x1, c - 0.5 * sx * ph, c + 0.5 * sx * ph)
+    } else {
+        let c = 0.5 * (x0 + x1);
+        (c - 0.5 * sy * pw, c + 0.5 * sy * pw, y0, y1)
+    }
+}
+
 /// A tick label with no more digits than it needs: "2000", not "2000.0"; "0", not "-0.0";
 /// "0.05"; "1.2e-5" for small values.
 fn tick(v: &f64) -> String {
@@ -262,7 +277,16 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
     let rows = fig.panels.len().div_ceil(cols).max(1);
     let areas = root.split_evenly((rows, cols));
     for (panel, area) in fig.panels.iter().zip(areas.iter()) {
-        let (x0, x1, y0, y1) = range(panel);
+        let (mut x0, mut x1, mut y0, mut y1) = range(panel);
+        if panel.equal_aspect {
+            // The plot area without the caption, margins and label areas (as built below).
+            let (w, h) = area.dim_in_pixel();
+            let plot = (
+                f64::from(w.saturating_sub(64 + 24)).max(1.0),
+                f64::from(h.saturating_sub(40 + 24 + 30)).max(1.0),
+            );
+            (x0, x1, y0, y1) = equal_aspect((x0, x1, y0, y1), plot);
+        }
         let mut chart = ChartBuilder::on(area)
             .caption(&panel.title, (FONT_FAMILY, 17))
             .margin(12)
@@ -273,7 +297,11 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
         // A count on the x axis (ladder steps): integer ticks only.
         let xs = || panel.series.iter().flat_map(|s| s.points.iter().map(|p| p.0));
         let counts = xs().count() > 0 && xs().all(|x| x.fract() == 0.0 && (0.0..=50.0).contains(&x));
-        let x_labels = if counts { (x1 - x0).round().max(1.0) as usize + 1 } else { 10 };
+        let x_labels = if counts {
+            (x1 - x0).round().max(1.0) as usize + 1
+        } else {
+            10
+        };
         let x_tick = |v: &f64| {
             if counts && (v.fract().abs() > 1e-9) {
                 String::new()
@@ -418,6 +446,7 @@ mod tests {
                     ],
                     zero_line: true,
                     y_clip: None,
+                    equal_aspect: false,
                 },
                 Panel {
                     title: "empty".into(),
@@ -426,6 +455,7 @@ mod tests {
                     series: vec![],
                     zero_line: false,
                     y_clip: None,
+                    equal_aspect: false,
                 },
             ],
             columns: 2,
@@ -487,6 +517,17 @@ mod tests {
             c,
             SeriesLabelPosition::UpperLeft | SeriesLabelPosition::LowerRight
         ));
+    }
+
+    #[test]
+    fn equal_aspect_widens_the_short_axis() {
+        // A section (x 0..1, y -0.1..0.15) on 300 x 200 px: y widens to 2/3 of a unit.
+        let (x0, x1, y0, y1) = equal_aspect((0.0, 1.0, -0.1, 0.15), (300.0, 200.0));
+        assert_eq!((x0, x1), (0.0, 1.0));
+        assert!(((y1 - y0) - 2.0 / 3.0).abs() < 1e-12 && ((y0 + y1) / 2.0 - 0.025).abs() < 1e-12);
+        // A tall range on a wide area: x widens instead.
+        let (x0, x1, ..) = equal_aspect((0.0, 1.0, 0.0, 4.0), (300.0, 200.0));
+        assert!(((x1 - x0) - 6.0).abs() < 1e-12);
     }
 
     #[test]

@@ -111,6 +111,7 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figur
             series: Vec::new(),
             zero_line: false,
             y_clip: None,
+            equal_aspect: false,
         })
         .collect();
     for (k, (name, pts)) in groups.iter().enumerate() {
@@ -179,6 +180,7 @@ fn static_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
                 ],
                 zero_line: false,
                 y_clip: None,
+                equal_aspect: false,
             }
         })
         .collect();
@@ -225,6 +227,7 @@ fn residual_figure(points: &[ComparedPoint]) -> Figure {
                 .collect(),
             zero_line: true,
             y_clip: Some(ERROR_AXIS),
+            equal_aspect: false,
         })
         .collect();
     let rows = panels.len().div_ceil(2) as u32;

@@ -135,6 +135,7 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
                 ],
                 zero_line: true,
                 y_clip: Some(ERROR_AXIS),
+                equal_aspect: false,
             });
         }
     }
@@ -182,6 +183,7 @@ fn ladder_figure(d: &Diagnosis) -> Figure {
             series,
             zero_line: true,
             y_clip: None,
+            equal_aspect: false,
         }],
         columns: 1,
         width: 900,

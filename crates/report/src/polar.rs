@@ -47,6 +47,7 @@ pub fn panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
             series: lift,
             zero_line: false,
             y_clip: None,
+            equal_aspect: false,
         },
         Panel {
             title: format!("{name}: drag polar"),
@@ -55,6 +56,7 @@ pub fn panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
             series: drag,
             zero_line: false,
             y_clip: None,
+            equal_aspect: false,
         },
     ]
 }

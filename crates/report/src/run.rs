@@ -190,6 +190,7 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
             .collect(),
         zero_line: true,
         y_clip: None,
+        equal_aspect: false,
     };
     Figure {
         panels: vec![

@@ -78,6 +78,7 @@ pub fn sections_figure(g: &Geometry) -> Figure {
                 series,
                 zero_line: false,
                 y_clip: None,
+                equal_aspect: true,
             }
         })
         .collect::<Vec<_>>();
@@ -119,6 +120,7 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
         series,
         zero_line: false,
         y_clip: None,
+        equal_aspect: false,
     };
     Figure {
         panels: vec![
@@ -179,6 +181,7 @@ pub fn colour_figure(c: &ColourReport) -> Figure {
             ],
             zero_line: false,
             y_clip: None,
+            equal_aspect: false,
         }],
         columns: 1,
         width: 900,
