@@ -109,3 +109,28 @@ fn the_command_extractor_joins_continuations() {
         vec!["propbet a --b c".to_string(), "propbet d".to_string()]
     );
 }
+
+/// Every picture the guide shows is in the repository (scripts/screenshots.sh makes them).
+#[test]
+fn the_guides_pictures_exist() {
+    let mut seen = 0;
+    for e in std::fs::read_dir(repo().join("docs/guide")).unwrap() {
+        let page = e.unwrap().path();
+        if page.extension().and_then(|x| x.to_str()) != Some("md") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&page).unwrap();
+        for link in text.split("](").skip(1).filter_map(|t| t.split(')').next()) {
+            if link.ends_with(".png") {
+                let f = repo().join("docs/guide").join(link);
+                assert!(
+                    f.metadata().is_ok_and(|m| m.len() > 10_000),
+                    "{}: {link} missing",
+                    page.display()
+                );
+                seen += 1;
+            }
+        }
+    }
+    assert!(seen >= 3, "the guide shows the report ({seen} pictures)");
+}
