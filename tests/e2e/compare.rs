@@ -186,6 +186,11 @@ fn uiuc_static_and_sweeps_give_a_report() {
     );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("static thrust, mean error") && html.contains("not in these numbers"));
+    // The long points table folds, saying how many points are flagged.
+    assert!(
+        html.contains("<details><summary>") && html.contains(" flagged (the reader"),
+        "points table"
+    );
     assert!(!html.contains("standard air (ISA"));
     assert!(html.matches("<svg").count() >= 3);
     assert!(!html.contains("http://") || html.contains("xmlns=\"http://www.w3.org/2000/svg\""));

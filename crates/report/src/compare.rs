@@ -432,7 +432,16 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     html_metric_table(&mut h, &m.per_rpm.iter().collect::<Vec<_>>());
     h.push_str("<h2>By advance ratio</h2>\n");
     html_metric_table(&mut h, &m.per_j.iter().collect::<Vec<_>>());
-    h.push_str("<h2>Points</h2>\n<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
+    let flagged = pts
+        .iter()
+        .filter(|p| !p.flags.is_empty() || !p.model_flags.is_empty())
+        .count();
+    let _ = write!(
+        h,
+        "<h2>Points</h2>\n<details><summary>{} points, {flagged} flagged (the reader's flags and the prediction's, such as thrust beyond momentum theory): open the table</summary>\n",
+        pts.len()
+    );
+    h.push_str("<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
     for p in pts {
         let pm = |q: &str| {
             let v = p.measured.get(q).map_or("–".into(), sig);
@@ -465,10 +474,10 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
             p.predicted.eta.map_or("–".into(), sig),
             p.re75,
             p.mach_tip,
-            esc(&p.flags.join("; "))
+            esc(&p.flags.iter().chain(&p.model_flags).cloned().collect::<Vec<_>>().join("; "))
         );
     }
-    h.push_str("</table>\n<h2>Measured files</h2>\n");
+    h.push_str("</table></details>\n<h2>Measured files</h2>\n");
     for (i, f) in input.files.iter().enumerate() {
         let s = f.set;
         let _ = write!(
