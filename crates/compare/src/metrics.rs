@@ -120,8 +120,11 @@ pub fn rpm_group(p: &ComparedPoint) -> (i64, String) {
     match p.nominal_rpm {
         Some(r) => (r.round() as i64, format!("{r:.0} rpm")),
         None => {
+            // Points without a nominal speed (thrust-stand steps, UIUC static files) in
+            // 1000-rpm bands, named as bands so they do not read as one speed.
             let b = (p.rpm / 1000.0).floor() as i64;
-            (b * 1000, format!("{}-{} rpm", b * 1000, b * 1000 + 1000))
+            let kind = if p.is_static() { "static, " } else { "" };
+            (b * 1000, format!("{kind}{}-{} rpm band", b * 1000, b * 1000 + 1000))
         }
     }
 }
@@ -359,7 +362,7 @@ mod tests {
         assert_relative_eq!(t.mean_abs_rel, 0.2 / 3.0, epsilon = 1e-12);
         assert_relative_eq!(t.max_rel.abs(), 0.1, epsilon = 1e-12);
         assert_eq!(m.per_rpm.len(), 2);
-        assert_eq!(m.per_rpm[0].name, "4000-5000 rpm");
+        assert_eq!(m.per_rpm[0].name, "static, 4000-5000 rpm band");
         assert_eq!(m.per_rpm[0].points, 2);
         assert_eq!(m.per_j[0].name, "static (J = 0)");
         assert_eq!(m.per_j[1].name, "J 0.2-0.4");
