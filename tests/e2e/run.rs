@@ -114,6 +114,9 @@ fn default_case_from_scan_to_report() {
     }
     // The stages' problems are summarised once at the top (issue 18): the polars stage's
     // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
+    assert!(html.contains(
+        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5) of the e63.dat section"
+    ));
     let top = &html[..html.find("How this report was made").expect("stage table")];
     assert!(top.contains("Problems the stages reported"), "no summary");
     assert!(
@@ -254,5 +257,11 @@ fn verbose_prints_each_stage_in_full() {
     assert!(
         j["diagnosis"]["verdict"].as_str().unwrap().starts_with("Missing: "),
         "{j}"
+    );
+    // The report says what the run did, from its plan (issue 18: not the case's own words).
+    let html = std::fs::read_to_string(dir.path().join("a/report.html")).unwrap();
+    assert!(
+        html.contains("What this run did: geometry from the prop file QProp_8x4_5.txt; the prop file"),
+        "no generated description"
     );
 }

@@ -20,6 +20,11 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
     }
     let _ = writeln!(
         h,
+        "<p class=\"note\">What this run did: {}.</p>",
+        esc(&what_it_does(plan))
+    );
+    let _ = writeln!(
+        h,
         "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}</nav>",
         if pages.is_empty() {
             String::new()
@@ -262,6 +267,68 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "headline": headline,
         "diagnosis": diagnosis,
     })
+}
+
+/// What the run does, from its plan (not from the case's own words, which may be out of date).
+pub fn what_it_does(plan: &RunPlan) -> String {
+    let name = |p: &std::path::Path| {
+        p.file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+    };
+    let mut parts = Vec::new();
+    match &plan.scan {
+        Some(s) => parts.push(format!("geometry scanned from {}", name(&s.input))),
+        None => parts.push(format!(
+            "geometry from the prop file {}",
+            name(&plan.predict.model.prop)
+        )),
+    }
+    match &plan.polars {
+        Some((p, scan_sections)) => {
+            let rpm: Vec<f64> = p.omegas.iter().map(|&w| propbet_bemt::units::omega_to_rpm(w)).collect();
+            let (lo, hi) = rpm
+                .iter()
+                .fold((f64::INFINITY, 0.0f64), |a, &r| (a.0.min(r), a.1.max(r)));
+            let sections = if *scan_sections {
+                format!(
+                    "each station's scanned section (the {} where a fit failed)",
+                    name(std::path::Path::new(&p.airfoil))
+                )
+            } else {
+                format!(
+                    "the {} section at every station",
+                    name(std::path::Path::new(&p.airfoil))
+                )
+            };
+            parts.push(format!(
+                "XFOIL polars (Ncrit {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
+                p.xfoil.ncrit,
+                if plan.predict.model.polars.is_some() {
+                    "tables in alpha and Re"
+                } else {
+                    "QPROP's fitted law"
+                }
+            ));
+        }
+        None => parts.push("the prop file's own QPROP coefficients".into()),
+    }
+    let rpm: Vec<f64> = plan
+        .predict
+        .omegas
+        .iter()
+        .map(|&w| propbet_bemt::units::omega_to_rpm(w))
+        .collect();
+    parts.push(format!(
+        "sweeps at {} rpm",
+        rpm.iter().map(|r| format!("{r:.0}")).collect::<Vec<_>>().join(", ")
+    ));
+    if let Some((c, _)) = &plan.compare {
+        parts.push(format!(
+            "compared with {} measured file(s) and diagnosed",
+            c.measured.files.len()
+        ));
+    }
+    parts.join("; ")
 }
 
 /// The problems of every stage, grouped alike: (stage, count, example).
