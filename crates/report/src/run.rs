@@ -62,7 +62,7 @@ pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) 
             if s.clean && !problems.iter().any(|p| p.0 == s.spec.name()) {
                 "ok"
             } else {
-                "problems (listed above)"
+                "problems"
             },
             esc(&s.spec.command())
         );
