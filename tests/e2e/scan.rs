@@ -1,6 +1,9 @@
 //! `propbet scan` on the shipped scans (issue 4's acceptance on real and reference data) and
 //! on bad input.
 
+use std::path::Path;
+use std::process::Output;
+
 use super::{col, read_csv, repo, run, stderr};
 
 fn scans() -> std::path::PathBuf {
@@ -18,24 +21,29 @@ fn interp(t: &[(f64, f64)], x: f64) -> f64 {
     a.1 + (x - a.0) / (b.0 - a.0) * (b.1 - a.1)
 }
 
-#[test]
-fn apc_10x4_7_stl_against_the_uiuc_table() {
-    let dir = tempfile::tempdir().unwrap();
+/// `propbet scan` of the APC 10x4.7 STL against UIUC's table at `stations`, into `dir/out`.
+fn scan_apc(stations: &str, dir: &Path) -> Output {
     let stl = repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl");
     let table = repo().join("props/apcsf_10x4.7/apcsf_10x4.7_geom.txt");
-    let o = run(
+    run(
         &[
             "scan",
             stl.to_str().unwrap(),
             "--reference",
             table.to_str().unwrap(),
             "--stations",
-            "0.3:0.7/9",
+            stations,
             "-o",
             "out",
         ],
-        dir.path(),
-    );
+        dir,
+    )
+}
+
+#[test]
+fn apc_10x4_7_stl_against_the_uiuc_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = scan_apc("0.3:0.7/9", dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
     let out = dir.path().join("out");
     for f in [
@@ -290,21 +298,7 @@ fn a_coloured_cloud_without_its_blade_colours_is_told_the_option() {
 #[test]
 fn the_reference_check_covers_the_outboard_blade() {
     let dir = tempfile::tempdir().unwrap();
-    let stl = repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl");
-    let table = repo().join("props/apcsf_10x4.7/apcsf_10x4.7_geom.txt");
-    let o = run(
-        &[
-            "scan",
-            stl.to_str().unwrap(),
-            "--reference",
-            table.to_str().unwrap(),
-            "--stations",
-            "0.5,0.8,0.9,0.96",
-            "-o",
-            "out",
-        ],
-        dir.path(),
-    );
+    let o = scan_apc("0.5,0.8,0.9,0.96", dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     let line = text

@@ -181,13 +181,7 @@ pub fn refuse_outputs_over_inputs(outputs: &[&Path], inputs: &[&Path]) -> Result
 /// `inputs` (a last guard: commands check their outputs against their inputs before they
 /// start, [`refuse_inputs_inside`], [`refuse_outputs_over_inputs`]).
 pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path]) -> Result<()> {
-    if let Ok(target) = path.canonicalize() {
-        for input in inputs {
-            if input.canonicalize().ok().as_deref() == Some(target.as_path()) {
-                bail!("{}: refusing to overwrite an input file", path.display());
-            }
-        }
-    }
+    refuse_outputs_over_inputs(&[path], inputs)?;
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

@@ -404,11 +404,7 @@ pub fn print_polars_brief(input: &PolarsInput, p: &Polars) {
         unconverged += s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count();
         faults += s.polars.iter().map(|pol| pol.faults.len()).sum::<usize>();
         let lines: Vec<String> = match &s.fit {
-            Some(f) => fit_summary(s.re, f)
-                .lines()
-                .filter(|l| l.contains("UNFIT"))
-                .map(|l| l.trim().to_string())
-                .collect(),
+            Some(f) => f.unfit.iter().map(|u| format!("UNFIT: {u}")).collect(),
             None => vec![format!("no fit: {}", s.problem.as_deref().unwrap_or("no polar"))],
         };
         messages.extend(lines);

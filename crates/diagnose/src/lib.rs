@@ -252,7 +252,7 @@ impl Data {
             for (k, a) in a_pts.iter().enumerate() {
                 for b in &a_pts[k + 1..] {
                     if (a.omega / b.omega - 1.0).abs() < 0.01 && (a.j - b.j).abs() < 0.005 {
-                        pairs_of(a, b, norm, &mut d2);
+                        interpolated_pair(a, b, b, 0.0, norm, &mut d2);
                     }
                 }
             }
@@ -267,7 +267,7 @@ impl Data {
                     if a.j < 0.01 {
                         // Static: the nearest static point of the other file at the same RPM.
                         if let Some(b) = near.iter().find(|b| b.j < 0.01 && big(b)) {
-                            pairs_of(a, b, norm, &mut d2);
+                            interpolated_pair(a, b, b, 0.0, norm, &mut d2);
                         }
                         continue;
                     }
@@ -289,16 +289,8 @@ impl Data {
     }
 }
 
-/// Squared relative differences of thrust (and torque) of `a` and `b`.
-fn pairs_of(a: &Observation, b: &Observation, norm: impl Fn(&Observation, f64) -> f64, d2: &mut Vec<f64>) {
-    let rel = |x: f64, y: f64| (x / y - 1.0).powi(2);
-    d2.push(rel(norm(a, a.thrust), norm(b, b.thrust)));
-    if let (Some(qa), Some(qb)) = (a.torque, b.torque) {
-        d2.push(rel(norm(a, qa), norm(b, qb)));
-    }
-}
-
-/// Squared relative differences of `a` and the point interpolated between `b0` and `b1`.
+/// Squared relative differences of thrust (and torque) of `a` and the point interpolated
+/// between `b0` and `b1` (`b0 = b1`, `t = 0` for a point measured again).
 fn interpolated_pair(
     a: &Observation,
     b0: &Observation,

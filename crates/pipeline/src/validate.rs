@@ -131,13 +131,7 @@ pub struct Row {
 /// names (static files, which have none, first), alternately to each half, so that each half
 /// has sweeps across the RPM range and every sweep is predicted by a ladder that did not see it.
 pub fn halves(files: &[PathBuf]) -> [Vec<PathBuf>; 2] {
-    let rpm = |p: &PathBuf| -> f64 {
-        let stem = p
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
-        stem.rsplit('_').next().and_then(|t| t.parse().ok()).unwrap_or(0.0)
-    };
+    let rpm = |p: &PathBuf| propbet_measure::uiuc::rpm_from_name(&p.to_string_lossy()).unwrap_or(0.0);
     let mut sorted = files.to_vec();
     sorted.sort_by(|a, b| rpm(a).total_cmp(&rpm(b)).then(a.cmp(b)));
     let mut out = [Vec::new(), Vec::new()];
