@@ -277,6 +277,31 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
         (tabulated / fitted - 1.0).abs() < 0.15,
         "fitted {fitted} N, tabulated {tabulated} N"
     );
+    // Rotational augmentation (Snel) is the tabulated model's default: it only adds lift
+    // where a section lifts less than its attached-flow line, which the inner sections at
+    // static thrust do; QPROP's law has none unless asked.
+    let off = thrust(&["--polars", "fit.json", "--rotation", "off"]);
+    assert_eq!(thrust(&["--polars", "fit.json", "--rotation", "snel"]), tabulated);
+    assert!(tabulated > off, "snel {tabulated} N, off {off} N");
+    assert!(thrust(&["--rotation", "snel"]) >= fitted);
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            "fit.qprop",
+            "--rpm",
+            "8000",
+            "--rotation",
+            "du-selig",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("rotational augmentation `du-selig`: expected off or snel"),
+        "{}",
+        stderr(&o)
+    );
     // The second run comes from the cache, byte for byte (its time is measured in
     // benchsuite/polars_blade.sh, not here).
     polars(&["--out-prop", "fit2.qprop"]);

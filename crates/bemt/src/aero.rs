@@ -230,6 +230,82 @@ impl SectionAero for QpropAirfoil {
     }
 }
 
+/// Snel's coefficient of rotational augmentation (Snel, Houwink & Bosschers 1994: 3).
+pub const SNEL_A: f64 = 3.0;
+
+/// Lift of the attached-flow line at `alpha` and its slope, Prandtl-Glauert scaled: QPROP's
+/// linear law for a QPROP section, else 2 pi (alpha - alpha_0) through the section's zero-lift
+/// angle (thin-airfoil theory, the potential-flow lift Snel's correction restores a part of).
+pub fn attached_lift(section: &dyn SectionAero, alpha: f64, msq: f64) -> (f64, f64) {
+    let pg = 1.0 / (1.0 - msq).sqrt();
+    match section.as_qprop() {
+        Some(q) => ((q.coeffs.cl0 + q.coeffs.cl_a * alpha) * pg, q.coeffs.cl_a * pg),
+        None => (
+            2.0 * std::f64::consts::PI * (alpha - section.alpha_zero_lift()) * pg,
+            2.0 * std::f64::consts::PI * pg,
+        ),
+    }
+}
+
+/// Fraction of the lift deficit rotation restores at a station of chord `chord` at radius `r`:
+/// Snel's `a (c/r)^2`, at most 1 (the attached-flow line itself: small propellers reach
+/// c/r = 0.6 at the root, where Snel's law, made for wind turbines, would pass it).
+pub fn snel_fraction(a: f64, chord: f64, r: f64) -> f64 {
+    let c_r = chord / r.max(1e-9);
+    (a * c_r * c_r).clamp(0.0, 1.0)
+}
+
+/// Snel's rotational augmentation of a lift evaluation: `cl + k (cl_att - cl)` wherever the
+/// section lifts less than its attached-flow line `(cl_att, dcl_att/dalpha)` on the positive
+/// side (stall, laminar separation, thick sections at low Re). The deficit counted is at most
+/// `cl_att` itself, so that the correction fades to zero at the line's zero-lift angle and the
+/// lift stays continuous in alpha.
+pub fn augment_lift(base: LiftEval, attached: (f64, f64), k: f64) -> LiftEval {
+    let (lin, lin_a) = attached;
+    if k <= 0.0 || lin <= 0.0 || lin <= base.cl {
+        return base;
+    }
+    let (gap, gap_a) = if base.cl >= 0.0 {
+        (lin - base.cl, lin_a - base.dcl_dalpha)
+    } else {
+        (lin, lin_a)
+    };
+    LiftEval {
+        cl: base.cl + k * gap,
+        dcl_dalpha: base.dcl_dalpha + k * gap_a,
+        ..base
+    }
+}
+
+/// A section with Snel's rotational augmentation at its station (`k` from [`snel_fraction`]);
+/// drag as the section's own.
+#[derive(Debug, Clone)]
+pub struct Rotational {
+    /// The 2-D section.
+    pub inner: std::sync::Arc<dyn SectionAero>,
+    /// Fraction of the lift deficit restored [-].
+    pub k: f64,
+}
+
+impl SectionAero for Rotational {
+    fn lift(&self, alpha: f64, re: f64, msq: f64) -> LiftEval {
+        let base = self.inner.lift(alpha, re, msq);
+        augment_lift(base, attached_lift(self.inner.as_ref(), alpha, msq), self.k)
+    }
+
+    fn drag(&self, input: &DragInput) -> f64 {
+        self.inner.drag(input)
+    }
+
+    fn alpha_zero_lift(&self) -> f64 {
+        self.inner.alpha_zero_lift()
+    }
+
+    fn reynolds_range(&self) -> Option<(f64, f64)> {
+        self.inner.reynolds_range()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,5 +381,30 @@ mod tests {
         );
         // No flow: finite drag, not infinity.
         assert!(m.drag(&DragInput { re: 0.0, ..base }).is_finite());
+    }
+
+    #[test]
+    fn rotational_augmentation_restores_part_of_the_deficit_and_stays_continuous() {
+        let base = |cl: f64| LiftEval {
+            cl,
+            dcl_dalpha: 1.0,
+            dcl_dmsq: 0.0,
+            dcl_dre: 0.0,
+            stalled: false,
+        };
+        // Attached flow (cl on the line) and beyond the line: unchanged.
+        assert_eq!(augment_lift(base(0.8), (0.8, 6.0), 0.5).cl, 0.8);
+        assert_eq!(augment_lift(base(0.9), (0.8, 6.0), 0.5).cl, 0.9);
+        // Half of a 0.4 deficit.
+        let e = augment_lift(base(0.6), (1.0, 6.0), 0.5);
+        assert_relative_eq!(e.cl, 0.8);
+        assert_relative_eq!(e.dcl_dalpha, 3.5);
+        // Negative 2-D lift above the line's zero: at most the line's own lift is restored,
+        // so the correction vanishes where the line crosses zero.
+        assert_relative_eq!(augment_lift(base(-0.2), (0.1, 6.0), 0.5).cl, -0.15);
+        assert_eq!(augment_lift(base(-0.2), (-0.1, 6.0), 0.5).cl, -0.2);
+        // Snel's fraction: a (c/r)^2, capped at 1 (the line itself).
+        assert_relative_eq!(snel_fraction(3.0, 0.02, 0.1), 0.12);
+        assert_eq!(snel_fraction(3.0, 0.06, 0.1), 1.0);
     }
 }

@@ -20,7 +20,7 @@ pub mod spline;
 pub mod sweep;
 pub use propbet_units as units;
 
-pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, SectionAero};
+pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, Rotational, SectionAero};
 pub use fluid::Fluid;
 pub use rotor::{Discretization, QpropBlade, Rotor, RotorError, Station};
 pub use solve::{solve_point_scalar, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};

@@ -115,6 +115,21 @@ pub enum RotorError {
 }
 
 impl Rotor {
+    /// Gives every station Snel's rotational augmentation with coefficient `a`
+    /// ([`crate::aero::snel_fraction`] of its chord and radius); `a = 0` leaves the rotor as it is.
+    pub fn with_rotational_augmentation(mut self, a: f64) -> Rotor {
+        if a > 0.0 {
+            for s in &mut self.stations {
+                let k = crate::aero::snel_fraction(a, s.chord, s.r);
+                s.aero = Arc::new(crate::aero::Rotational {
+                    inner: s.aero.clone(),
+                    k,
+                });
+            }
+        }
+        self
+    }
+
     /// Checks the invariants the solver relies on.
     pub fn validate(&self) -> Result<(), RotorError> {
         check_blades_and_tip(self.blades, self.tip_radius)?;

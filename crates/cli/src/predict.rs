@@ -8,7 +8,7 @@ use propbet_atmosphere::AirState;
 use propbet_bemt::units::rpm_to_omega;
 use propbet_bemt::{Fluid, PointResult};
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
+use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, Rotation, SweepAxis, TableFormat};
 use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 use serde::Serialize;
 
@@ -69,6 +69,11 @@ pub struct ModelArgs {
     /// section model, instead of the prop file's QPROP coefficients.
     #[arg(long)]
     pub polars: Option<PathBuf>,
+    /// Rotational augmentation of the section lift: `off` or `snel` (Snel's 3 (c/r)^2 of the
+    /// lift lost below the attached-flow line). Default: the tabulated model's default with
+    /// --polars, off with the prop file's QPROP law.
+    #[arg(long, value_name = "off|snel")]
+    pub rotation: Option<String>,
     /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
     /// `propbet effects` for the list). Parameters not given take their neutral value.
@@ -89,6 +94,10 @@ impl ModelArgs {
             qprop_compat: self.qprop_compat,
             no_tip_loss: self.no_tip_loss,
             polars: self.polars.clone(),
+            rotation: Rotation::or_default(
+                self.rotation.as_deref().map(Rotation::parse).transpose()?,
+                self.polars.is_some(),
+            ),
             effects: self.effect.clone(),
             user_effects: self.user_effects.clone(),
         })

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Result};
 use clap::Args;
 use propbet_pipeline::run::StageRecord;
-use propbet_pipeline::spec::StageSpec;
+use propbet_pipeline::spec::{Rotation, StageSpec};
 use propbet_pipeline::validate::{uiuc_props, validate_prop, Row, ValidateSpec, Validated};
 use propbet_qprop::apc::pe0_name;
 
@@ -49,6 +49,10 @@ pub struct ValidateArgs {
     /// Transition amplification ratio Ncrit of the polars.
     #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
     pub ncrit: f64,
+    /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
+    /// model's default; off with `--section-model qprop`).
+    #[arg(long, value_name = "off|snel")]
+    pub rotation: Option<String>,
 }
 
 /// Runs `propbet validate`.
@@ -66,6 +70,10 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         xfoil: a.xfoil.spec(),
         tables: a.section_model == "tables",
         ncrit: a.ncrit,
+        rotation: Rotation::or_default(
+            a.rotation.as_deref().map(Rotation::parse).transpose()?,
+            a.section_model == "tables",
+        ),
         per3: a.per3.clone(),
     };
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
@@ -123,7 +131,12 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
                 .join("; ")
         );
     }
-    let model = format!("section model {}, Ncrit {}", a.section_model, a.ncrit);
+    let model = format!(
+        "section model {}, Ncrit {}, rotational augmentation {}",
+        a.section_model,
+        a.ncrit,
+        spec.rotation.name()
+    );
     let (md, csv) = table(&rows, &skipped, &model);
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;

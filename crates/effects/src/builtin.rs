@@ -20,6 +20,7 @@
 use std::f64::consts::PI;
 use std::sync::{Arc, OnceLock};
 
+use propbet_bemt::aero::{attached_lift, augment_lift, snel_fraction};
 use propbet_bemt::{DragInput, LiftEval, PointResult, QpropAirfoil, Rotor, SectionAero, SolverOptions};
 
 use crate::{Effect, EffectError, Hook, Loads, Param, PointState, SectionCtx, StationGeom};
@@ -157,7 +158,7 @@ fn make(kind: Kind) -> Builtin {
                 0.0,
                 (0.0, 12.0),
                 0.5,
-                "Snel's coefficient: cl + a (c/r)^2 (cl_linear - cl) where stalled (Snel: 3)",
+                "Snel's coefficient: cl + a (c/r)^2 (cl_attached - cl) where the section lifts less than its attached-flow line (Snel: 3)",
             )],
             &[Section],
             "Rotation delays stall near the root: centrifugal pumping thins the boundary layer and \
@@ -336,16 +337,6 @@ pub fn get(id: &str) -> Option<Arc<dyn Effect>> {
     all().iter().find(|e| e.id() == id).cloned()
 }
 
-/// Linear (unstalled) lift of a section at `alpha`: QPROP's line where the section is QPROP's
-/// model, otherwise 2 pi from the zero-lift angle; both with Prandtl-Glauert.
-fn linear_lift(inner: &dyn SectionAero, alpha: f64, msq: f64) -> (f64, f64) {
-    let pg = 1.0 / (1.0 - msq).sqrt();
-    match inner.as_qprop() {
-        Some(q) => ((q.coeffs.cl0 + q.coeffs.cl_a * alpha) * pg, q.coeffs.cl_a * pg),
-        None => (2.0 * PI * (alpha - inner.alpha_zero_lift()) * pg, 2.0 * PI * pg),
-    }
-}
-
 /// Viterna-Corrigan post-stall lift and drag (and d cl/d alpha) at `alpha` beyond the positive
 /// stall of a QPROP section, for flat-plate drag `cd_max`; `None` below stall or for sections
 /// without a stall angle.
@@ -471,20 +462,11 @@ impl Effect for Builtin {
                     ..base
                 }
             }
-            Kind::StallDelay if base.stalled => {
-                let (lin, lin_a) = linear_lift(inner, alpha, msq);
-                let c_r = ctx.geom.chord / ctx.geom.r.max(1e-9);
-                let k = p[0] * c_r * c_r;
-                if lin > base.cl && base.cl > 0.0 {
-                    LiftEval {
-                        cl: base.cl + k * (lin - base.cl),
-                        dcl_dalpha: base.dcl_dalpha + k * (lin_a - base.dcl_dalpha),
-                        ..base
-                    }
-                } else {
-                    base
-                }
-            }
+            Kind::StallDelay => augment_lift(
+                base,
+                attached_lift(inner, alpha, msq),
+                snel_fraction(p[0], ctx.geom.chord, ctx.geom.r),
+            ),
             Kind::PostStall if base.stalled => match inner.as_qprop().and_then(|q| viterna(q, alpha, msq, p[0])) {
                 Some((cl, dcl, _)) => LiftEval {
                     cl,

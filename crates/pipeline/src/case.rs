@@ -88,6 +88,9 @@ pub struct PolarSection {
     /// to them, as the exported prop file holds it).
     #[serde(default = "default_model")]
     pub model: String,
+    /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
+    /// model's default; off with `model = "qprop"`).
+    pub rotation: Option<String>,
 }
 
 /// A number, or a list as the command line writes it (`"2000:7000:1000"`).
@@ -386,9 +389,17 @@ impl Case {
             None => (geometry, units),
         };
         let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
+        let rotation = self
+            .polars
+            .as_ref()
+            .and_then(|p| p.rotation.as_deref())
+            .map(crate::spec::Rotation::parse)
+            .transpose()
+            .map_err(|e| at("[polars] rotation", e))?;
         let model = ModelSpec {
             units: model_units,
             polars: tables.then(|| out.join("polars/polars.json")),
+            rotation: crate::spec::Rotation::or_default(rotation, tables),
             ..ModelSpec::prop(prop)
         };
         let a = &self.atmosphere;

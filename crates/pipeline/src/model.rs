@@ -132,6 +132,7 @@ impl Model {
             }
             (None, _) => {}
         }
+        let rotor = rotor.with_rotational_augmentation(spec.rotation.coefficient());
         if !spec.dbeta.is_finite() {
             invalid!("--dbeta: not a finite number");
         }

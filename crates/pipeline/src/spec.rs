@@ -171,6 +171,58 @@ impl AirSpec {
     }
 }
 
+/// Rotational augmentation of the section lift (issue 16, item 5;
+/// `docs/studies/rotational-augmentation.md` has the shared data with each).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rotation {
+    /// The 2-D sections as they are.
+    Off,
+    /// Snel, Houwink & Bosschers (1994): `cl + 3 (c/r)^2 (cl_attached - cl)` where a section
+    /// lifts less than its attached-flow line (`propbet_bemt::aero::augment_lift`).
+    Snel,
+}
+
+/// The rotational augmentation of the tabulated section model (the default model) when none
+/// is asked for; QPROP's law is always as QPROP has it (off), unless asked.
+pub const DEFAULT_ROTATION: Rotation = Rotation::Snel;
+
+impl Rotation {
+    /// The setting a model gets: `asked`, else [`DEFAULT_ROTATION`] with tabulated polars and
+    /// off with QPROP's law.
+    pub fn or_default(asked: Option<Rotation>, tables: bool) -> Rotation {
+        asked.unwrap_or(if tables { DEFAULT_ROTATION } else { Rotation::Off })
+    }
+
+    /// Every setting, as the command line names it.
+    pub const ALL: [Rotation; 2] = [Rotation::Off, Rotation::Snel];
+
+    /// The name the command line and a case use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rotation::Off => "off",
+            Rotation::Snel => "snel",
+        }
+    }
+
+    /// The setting a name gives.
+    pub fn parse(name: &str) -> crate::Result<Rotation> {
+        Rotation::ALL.into_iter().find(|r| r.name() == name).ok_or_else(|| {
+            crate::Error::Invalid(format!(
+                "rotational augmentation `{}`: expected off or snel",
+                propbet_bemt::units::excerpt(name)
+            ))
+        })
+    }
+
+    /// Snel's coefficient `a` (0: off).
+    pub fn coefficient(self) -> f64 {
+        match self {
+            Rotation::Off => 0.0,
+            Rotation::Snel => propbet_bemt::aero::SNEL_A,
+        }
+    }
+}
+
 /// The propeller model: a prop file, how to read it, and what to change in it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelSpec {
@@ -186,6 +238,8 @@ pub struct ModelSpec {
     pub no_tip_loss: bool,
     /// Tabulated polars (`propbet polars --out-polars`) as the section model.
     pub polars: Option<PathBuf>,
+    /// Rotational augmentation of every section's lift.
+    pub rotation: Rotation,
     /// Effects added to the model (`id:param=value,...`).
     pub effects: Vec<String>,
     /// TOML file of user-defined effects.
@@ -202,6 +256,7 @@ impl ModelSpec {
             qprop_compat: false,
             no_tip_loss: false,
             polars: None,
+            rotation: Rotation::Off,
             effects: Vec::new(),
             user_effects: None,
         }
@@ -223,6 +278,9 @@ impl ModelSpec {
         }
         if let Some(p) = &self.polars {
             push(v, "--polars", path(p));
+        }
+        if self.rotation != Rotation::or_default(None, self.polars.is_some()) {
+            push(v, "--rotation", self.rotation.name());
         }
         for e in &self.effects {
             push(v, "--effect", e.clone());
@@ -623,5 +681,34 @@ pub fn shell_word(a: &str) -> String {
         format!("'{}'", a.replace('\'', "'\\''"))
     } else {
         a.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {
+        assert_eq!(Rotation::or_default(None, true), DEFAULT_ROTATION);
+        assert_eq!(Rotation::or_default(None, false), Rotation::Off);
+        assert_eq!(Rotation::or_default(Some(Rotation::Off), true), Rotation::Off);
+        for r in Rotation::ALL {
+            assert_eq!(Rotation::parse(r.name()).unwrap(), r);
+        }
+        assert_eq!(Rotation::Snel.coefficient(), 3.0);
+        let e = Rotation::parse("snell").unwrap_err().to_string();
+        assert!(e.contains("`snell`: expected off or snel"), "{e}");
+        // The equivalent command names the setting only where it is not the default.
+        let mut spec = ModelSpec::prop("p.qprop".into());
+        spec.polars = Some("polars.json".into());
+        spec.rotation = DEFAULT_ROTATION;
+        let mut v = Vec::new();
+        spec.push_argv(&mut v);
+        assert!(!v.iter().any(|a| a == "--rotation"), "{v:?}");
+        spec.rotation = Rotation::Off;
+        let mut v = Vec::new();
+        spec.push_argv(&mut v);
+        assert!(v.windows(2).any(|w| w[0] == "--rotation" && w[1] == "off"), "{v:?}");
     }
 }

@@ -35,6 +35,8 @@ pub struct ValidateSpec {
     pub tables: bool,
     /// Transition amplification ratio Ncrit of the polars.
     pub ncrit: f64,
+    /// Rotational augmentation of the section lift.
+    pub rotation: crate::spec::Rotation,
     /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
     pub per3: Option<PathBuf>,
 }
@@ -347,6 +349,7 @@ pub fn validate_prop(
 
     let model_spec = ModelSpec {
         polars: spec.tables.then(|| dir.join("polars.json")),
+        rotation: spec.rotation,
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
