@@ -184,6 +184,17 @@ fn uiuc_static_and_sweeps_give_a_report() {
         outside > 0 && windowed + outside == forward,
         "{windowed} + {outside} != {forward}"
     );
+    // summary.json: the same headline, the window and the problems, machine-readable.
+    let s = json(&out.join("summary.json"));
+    assert_eq!(s["format"], "propbet-compare-summary-1");
+    assert!(s["command"].as_str().unwrap().starts_with("propbet compare --prop "));
+    assert_eq!(s["outside_window"].as_u64().unwrap(), outside);
+    assert_eq!(s["headline"][1]["count"].as_u64().unwrap(), windowed);
+    assert_eq!(
+        s["headline"][0]["errors"]["thrust"]["mean_error"],
+        m["metrics"]["headline"][0]["metrics"]["thrust"]["mean_rel"]
+    );
+    assert!(s["problems"]["dropped_rows"].is_u64() && s["clean"].is_boolean());
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("static thrust, mean error") && html.contains("not in these numbers"));
     // The long points table folds, saying how many points are flagged.

@@ -363,6 +363,15 @@ fn ladder_finds_two_hidden_effects() {
             .collect();
         want.sort();
         assert_eq!(found, want, "{}", String::from_utf8_lossy(&o.stdout));
+        // summary.json holds the ladder's final answer, as the headline states it.
+        let s = json(&dir.path().join("d/summary.json"));
+        assert_eq!(s["format"], "propbet-diagnose-summary-1");
+        assert_eq!(s["diagnosis"]["effects"], j["final_effects"]);
+        assert!(s["diagnosis"]["found"].as_bool().unwrap());
+        let verdict = s["diagnosis"]["verdict"].as_str().unwrap();
+        for id in &want {
+            assert!(verdict.contains(id.as_str()), "{verdict}");
+        }
         // The error falls at every rung.
         let l = j["diagnosis"]["ladder"].as_array().unwrap();
         for w in l.windows(2) {

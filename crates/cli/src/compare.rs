@@ -1,5 +1,6 @@
 //! `propbet compare`: measured files against the model's prediction; writes the report
-//! directory (report.html, metrics.json, summary.md, points.csv, plots/*.svg and *.png).
+//! directory (report.html, metrics.json, summary.json, summary.md, points.csv, plots/*.svg and
+//! *.png).
 
 use std::path::PathBuf;
 
@@ -237,6 +238,10 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
+    let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
+    let mut summary = serde_json::to_vec_pretty(&report::summary_json(&command, &c.metrics, &c.points, c.problems()))?;
+    summary.push(b'\n');
+    write_atomic(&out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(
         &out.join("points.csv"),

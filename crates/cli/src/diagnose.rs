@@ -69,7 +69,8 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     Ok(true)
 }
 
-/// Writes the diagnose stage's outputs (diagnosis.json, summary.md, report.html, plots);
+/// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,
+/// plots);
 /// returns the report page.
 pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let prop = spec.model.prop.display().to_string();
@@ -98,6 +99,14 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let mut bytes = serde_json::to_vec_pretty(&json)?;
     bytes.push(b'\n');
     write_atomic(&spec.out.join("diagnosis.json"), &[bytes], &inputs)?;
+    let summary = serde_json::json!({
+        "format": "propbet-diagnose-summary-1",
+        "command": command,
+        "diagnosis": report::diagnosis_json(dg),
+    });
+    let mut summary = serde_json::to_vec_pretty(&summary)?;
+    summary.push(b'\n');
+    write_atomic(&spec.out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     Ok(rep.html)

@@ -239,6 +239,58 @@ fn residual_figure(points: &[ComparedPoint]) -> Figure {
     }
 }
 
+/// The headline as JSON (`summary.json` of `propbet compare` and `propbet run`): per group of
+/// points (static, forward flight), the scored points' count and, per quantity, the mean and
+/// mean absolute relative error and the worst point.
+pub fn headline_json(m: &Metrics) -> serde_json::Value {
+    use serde_json::json;
+    let groups: Vec<_> = m
+        .headline
+        .iter()
+        .map(|g| {
+            let q: serde_json::Map<String, serde_json::Value> = ["thrust", "torque"]
+                .iter()
+                .filter_map(|q| {
+                    g.metrics.get(*q).map(|m| {
+                        (
+                            (*q).to_string(),
+                            json!({"n": m.n, "mean_error": m.mean_rel, "mean_abs_error": m.mean_abs_rel,
+                                   "worst_error": m.max_rel, "worst_at": m.max_rel_at}),
+                        )
+                    })
+                })
+                .collect();
+            json!({"points": g.name, "count": g.points, "errors": q})
+        })
+        .collect();
+    json!(groups)
+}
+
+/// `summary.json` of `propbet compare`: the command, the headline, the points outside the
+/// scored window, and the problems (rows dropped as faulty, station solutions that did not
+/// converge, points where the prediction is physically implausible).
+pub fn summary_json(
+    command: &str,
+    m: &Metrics,
+    points: &[ComparedPoint],
+    problems: (usize, usize),
+) -> serde_json::Value {
+    let implausible = points.iter().filter(|p| !p.model_flags.is_empty()).count();
+    serde_json::json!({
+        "format": "propbet-compare-summary-1",
+        "command": command,
+        "clean": problems == (0, 0) && implausible == 0,
+        "points": points.len(),
+        "outside_window": m.outside_window,
+        "headline": headline_json(m),
+        "problems": {
+            "dropped_rows": problems.0,
+            "unconverged_stations": problems.1,
+            "implausible_points": implausible,
+        },
+    })
+}
+
 /// Consecutive dropped rows of one reason, as line ranges.
 pub fn dropped_ranges(dropped: &[Dropped]) -> Vec<(usize, usize, usize, DropReason, String)> {
     let mut out: Vec<(usize, usize, usize, DropReason, String)> = Vec::new();

@@ -66,6 +66,20 @@ fn params_text(ps: &[FittedParam], only: Option<&str>) -> String {
         .join(", ")
 }
 
+/// The diagnosis' answer as JSON (`summary.json` of `propbet diagnose` and `propbet run`): the
+/// verdict as the report words it, whether an effect was found, the ladder's final effects,
+/// the error left unexplained and the measurements' repeatability (relative, or null where the
+/// data have no repeated points).
+pub fn diagnosis_json(d: &Diagnosis) -> serde_json::Value {
+    serde_json::json!({
+        "verdict": verdict(d),
+        "found": d.found,
+        "effects": d.final_effects(),
+        "unexplained": d.noise_estimate,
+        "repeatability": d.repeatability.as_ref().map(|r| r.sd),
+    })
+}
+
 /// The one-paragraph verdict.
 pub fn verdict(d: &Diagnosis) -> String {
     let base = &d.ladder[0];

@@ -209,9 +209,6 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
     }
 }
 
-/// Everything wrong at a station of the polars, for the table's problem column: XFOIL's
-/// failures (rungs without a polar: the tables interpolate across them), angles that did not
-/// converge, and the QPROP fit's verdicts and fallbacks.
 /// The run in a machine-readable summary (`summary.json` of `propbet run`): the stages with
 /// their commands, every problem grouped alike, the comparison's headline (the scored window,
 /// static and forward flight) and the diagnosis' answer.
@@ -226,37 +223,14 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         .into_iter()
         .map(|(stage, count, example)| json!({"stage": stage, "count": count, "example": example}))
         .collect();
-    let headline: Vec<_> = run.compared.as_ref().map_or(Vec::new(), |c| {
-        c.metrics
-            .headline
-            .iter()
-            .map(|g| {
-                let q: serde_json::Map<String, serde_json::Value> = ["thrust", "torque"]
-                    .iter()
-                    .filter_map(|q| {
-                        g.metrics.get(*q).map(|m| {
-                            (
-                                (*q).to_string(),
-                                json!({"n": m.n, "mean_error": m.mean_rel, "mean_abs_error": m.mean_abs_rel,
-                                       "worst_error": m.max_rel, "worst_at": m.max_rel_at}),
-                            )
-                        })
-                    })
-                    .collect();
-                json!({"points": g.name, "count": g.points, "errors": q})
-            })
-            .collect()
-    });
-    let diagnosis = run.diagnosed.as_ref().map(|d| {
-        let dg = &d.diagnosis;
-        json!({
-            "verdict": crate::diagnose::verdict(dg),
-            "found": dg.found,
-            "effects": dg.final_effects(),
-            "unexplained": dg.noise_estimate,
-            "repeatability": dg.repeatability.as_ref().map(|r| r.sd),
-        })
-    });
+    let headline = run
+        .compared
+        .as_ref()
+        .map_or(json!([]), |c| crate::compare::headline_json(&c.metrics));
+    let diagnosis = run
+        .diagnosed
+        .as_ref()
+        .map(|d| crate::diagnose::diagnosis_json(&d.diagnosis));
     json!({
         "format": "propbet-run-summary-1",
         "case": plan.name,
