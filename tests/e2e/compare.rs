@@ -392,3 +392,71 @@ fn bad_flags_and_missing_files() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("nope.csv: cannot read"));
 }
+
+/// APC's own prediction (`--per3`) is drawn beside propbet's and scored on the same points, the
+/// same window and the same measure (issue 18); a file that is not a PER3 file stops the
+/// command before anything is written.
+#[test]
+fn apc_prediction_is_drawn_and_scored_beside_propbets() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo().join("props/apcsf_10x4.7");
+    let files = [
+        case.join("uiuc/apcsf_10x4.7_static_kt0835.txt"),
+        case.join("uiuc/apcsf_10x4.7_kt0836_4014.txt"),
+    ];
+    let refs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    let per3 = case.join("PER3_10x47SF.dat");
+    let o = compare(
+        &["--per3", per3.to_str().unwrap()],
+        &refs,
+        &case.join("apcsf_10x4.7.qprop"),
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let out = dir.path().join("out");
+    let s = json(&out.join("summary.json"));
+    assert!(s["command"].as_str().unwrap().contains("--per3 "));
+    let name = s["reference"]["name"].as_str().unwrap();
+    assert_eq!(name, "APC's prediction (PER3_10x47SF.dat)");
+    // The same groups and counts as propbet's headline; APC's static thrust is its own.
+    for g in 0..2 {
+        assert_eq!(s["reference"]["headline"][g]["points"], s["headline"][g]["points"]);
+        assert_eq!(s["reference"]["headline"][g]["count"], s["headline"][g]["count"]);
+    }
+    let apc = s["reference"]["headline"][0]["errors"]["thrust"]["mean_error"]
+        .as_f64()
+        .unwrap();
+    let own = s["headline"][0]["errors"]["thrust"]["mean_error"].as_f64().unwrap();
+    assert!(apc.is_finite() && (apc - own).abs() > 1e-3, "{apc} {own}");
+    // APC's static CT at 4000 rpm, read by hand from the PER3 file's 4000 rpm block (J = 0:
+    // Ct 0.1348), against the UIUC static point nearest 4000 rpm (4029 rpm, CT 0.1158): APC is
+    // 16 % high there; the scored mean over the 16 static points is of that size.
+    assert!(apc > 0.05 && apc < 0.25, "APC static thrust error {apc}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("dashed: APC's prediction (PER3_10x47SF.dat)"));
+    assert!(html.contains("APC's prediction (PER3_10x47SF.dat): mean error"));
+    // Not a PER3 file: exit 2, the file named, nothing written.
+    let bad = dir.path().join("bad.dat");
+    std::fs::write(&bad, "this is not APC's table\n").unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            case.join("apcsf_10x4.7.qprop").to_str().unwrap(),
+            "--measured",
+            files[0].to_str().unwrap(),
+            "--per3",
+            bad.to_str().unwrap(),
+            "--out",
+            "out2",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.dat") && stderr(&o).contains("not an APC PER3 file"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("out2").exists());
+}

@@ -12,7 +12,7 @@ use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared};
 use propbet_pipeline::values::parse_atmosphere;
-use propbet_report::compare::{self as report, FileEntry, ReportInput};
+use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};
 use crate::predict::{load_model, ModelArgs};
@@ -35,6 +35,10 @@ pub struct CompareArgs {
     /// The measurements.
     #[command(flatten)]
     pub data: MeasuredArgs,
+    /// APC's predictions for this prop (a PER3 file, `PER3_10x47SF.dat`): drawn beside propbet's
+    /// prediction and scored on the same points.
+    #[arg(long, value_name = "FILE")]
+    pub per3: Option<PathBuf>,
     /// Output directory (created if missing).
     #[arg(long, short)]
     pub out: PathBuf,
@@ -101,6 +105,7 @@ impl CompareArgs {
         Ok(CompareSpec {
             model: self.model.spec()?,
             measured: self.data.spec()?,
+            per3: self.per3.clone(),
             out: self.out.clone(),
         })
     }
@@ -183,7 +188,12 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     let spec = args.spec()?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
+    inputs.extend(spec.per3.as_deref());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
+    // A PER3 file that cannot be read stops the command before anything is computed.
+    if let Some(p) = &spec.per3 {
+        stages::read_per3(p)?;
+    }
     let model = load_model(&spec.model, false)?;
     let c = stages::compare(&model, &spec.measured)?;
     write(&spec, &model, &c)?;
@@ -206,7 +216,17 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     if !model.effects.is_empty() {
         prop_notes.push(format!("model with effects: {}", model.effects.describe()));
     }
+    let per3 = spec.per3.as_deref().map(stages::read_per3).transpose()?;
+    let per3_at = |rpm: f64, j: f64| per3.as_ref().and_then(|p| p.at(rpm, j));
     let rep = report::build(&ReportInput {
+        reference: spec.per3.as_ref().map(|p| ReferenceInput {
+            name: format!(
+                "APC's prediction ({})",
+                p.file_name()
+                    .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+            ),
+            at: &per3_at,
+        }),
         prop: spec.model.prop.display().to_string(),
         prop_notes,
         files: spec
@@ -228,6 +248,7 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     let out = &spec.out;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
+    inputs.extend(spec.per3.as_deref());
     let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {
@@ -239,7 +260,11 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
     let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
-    let mut summary = serde_json::to_vec_pretty(&report::summary_json(&command, &c.metrics, &c.points, c.problems()))?;
+    let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems());
+    if let (Some(r), serde_json::Value::Object(o)) = (rep.json.get("reference"), &mut summary) {
+        o.insert("reference".into(), r.clone());
+    }
+    let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');
     write_atomic(&out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;

@@ -70,3 +70,75 @@ pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectE
     };
     Ok(Curves { j_sweeps, statics })
 }
+
+/// Another prediction to draw and score beside propbet's (APC's PER3 tables, a QPROP run):
+/// (CT, CP) at (rpm, J), None where it has no value.
+pub type Reference<'a> = &'a dyn Fn(f64, f64) -> Option<(f64, f64)>;
+
+/// The compared points with `reference`'s prediction in place of the model's (all quantities
+/// None where the reference has no value), to be scored by [`crate::metrics::metrics`] on the
+/// same points, window and measure as the model.
+pub fn with_reference(points: &[ComparedPoint], reference: Reference<'_>, diameter: f64) -> Vec<ComparedPoint> {
+    points
+        .iter()
+        .map(|p| {
+            let omega = propbet_units::rpm_to_omega(p.rpm);
+            let predicted = match reference(p.rpm, p.j) {
+                Some((ct, cp)) => {
+                    let s =
+                        propbet_units::Scales::new(p.air.fluid.rho, propbet_units::omega_to_rev_per_s(omega), diameter);
+                    Quantities::from_forces(
+                        ct * s.thrust,
+                        Some(cp * s.power / omega),
+                        omega,
+                        p.v,
+                        p.air.fluid.rho,
+                        diameter,
+                    )
+                }
+                None => Quantities::default(),
+            };
+            ComparedPoint { predicted, ..p.clone() }
+        })
+        .collect()
+}
+
+/// A reference's curves on the model's abscissae: (J, quantities) at each sweep's speed and
+/// (rpm, quantities) static at `rho_static`, None where the reference has no value.
+pub fn reference_curves(curves: &Curves, reference: Reference<'_>, diameter: f64, rho_static: f64) -> Curves {
+    let at = |rpm: f64, j: f64, rho: f64| {
+        let (ct, cp) = reference(rpm, j)?;
+        let omega = propbet_units::rpm_to_omega(rpm);
+        let n = propbet_units::omega_to_rev_per_s(omega);
+        let s = propbet_units::Scales::new(rho, n, diameter);
+        Some(Quantities::from_forces(
+            ct * s.thrust,
+            Some(cp * s.power / omega),
+            omega,
+            j * n * diameter,
+            rho,
+            diameter,
+        ))
+    };
+    Curves {
+        j_sweeps: curves
+            .j_sweeps
+            .iter()
+            .map(|s| {
+                s.as_ref().map(|(rpm, c)| {
+                    (
+                        *rpm,
+                        c.iter()
+                            .filter_map(|(j, _)| Some((*j, at(*rpm, *j, rho_static)?)))
+                            .collect(),
+                    )
+                })
+            })
+            .collect(),
+        statics: curves.statics.as_ref().map(|c| {
+            c.iter()
+                .filter_map(|(r, _)| Some((*r, at(*r, 0.0, rho_static)?)))
+                .collect()
+        }),
+    }
+}

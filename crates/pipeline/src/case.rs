@@ -146,6 +146,8 @@ pub struct MeasuredSection {
     pub folds: Option<usize>,
     /// Most effects the ladder adds.
     pub max_steps: Option<usize>,
+    /// APC's predictions for the prop (a PER3 file), drawn and scored beside propbet's.
+    pub per3: Option<String>,
 }
 
 /// `[atmosphere]`.
@@ -249,6 +251,7 @@ impl RunPlan {
         }
         if let Some((c, _)) = &self.compare {
             v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
+            v.extend(c.per3.clone());
         }
         v
     }
@@ -450,6 +453,7 @@ impl Case {
                     CompareSpec {
                         model: model.clone(),
                         measured: measured.clone(),
+                        per3: m.per3.as_deref().map(f),
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {

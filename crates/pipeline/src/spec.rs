@@ -402,6 +402,8 @@ pub struct CompareSpec {
     pub model: ModelSpec,
     /// The measurements.
     pub measured: MeasuredSpec,
+    /// APC's predictions (a PER3 file) drawn and scored beside propbet's.
+    pub per3: Option<PathBuf>,
     /// Output directory.
     pub out: PathBuf,
 }
@@ -643,6 +645,9 @@ impl StageSpec {
             StageSpec::Compare(s) => {
                 s.model.push_argv(&mut v);
                 s.measured.push_argv(&mut v);
+                if let Some(p) = &s.per3 {
+                    push(&mut v, "--per3", path(p));
+                }
                 push(&mut v, "--out", path(&s.out));
             }
             StageSpec::Diagnose(s) => {

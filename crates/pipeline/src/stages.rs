@@ -641,3 +641,9 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     let diagnosis = discover(&dmodel, &data, &candidates, &opts).map_err(|e| Error::Invalid(e.to_string()))?;
     Ok(Diagnosed { sets, data, diagnosis })
 }
+
+/// Reads APC's predictions (a PER3 file), naming the file in every error.
+pub fn read_per3(path: &Path) -> Result<propbet_qprop::apc::Per3> {
+    let text = read_text(path)?;
+    propbet_qprop::apc::read_per3(&text, &path.display().to_string()).map_err(|e| Error::input(path, e))
+}

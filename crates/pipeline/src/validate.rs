@@ -361,8 +361,15 @@ pub fn validate_prop(
             |c: &Compared| c.problems() == (0, 0),
         )
     };
+    // APC's own prediction of the prop, drawn beside propbet's in its comparison.
+    let per3_file = spec
+        .per3
+        .as_ref()
+        .and_then(|dir| propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)))
+        .filter(|p| p.is_file());
     let compared = compare_stage(
         CompareSpec {
+            per3: per3_file.clone(),
             model: model_spec.clone(),
             measured: measured.clone(),
             out: dir.join("compare"),
@@ -395,6 +402,7 @@ pub fn validate_prop(
     let cal_model = Model::from_parts(&cal_spec, polars.prop.clone(), Some(&polars.blade), false)?;
     let calibrated = compare_stage(
         CompareSpec {
+            per3: None,
             model: cal_spec,
             measured: measured.clone(),
             out: dir.join("calibrated"),
@@ -432,17 +440,9 @@ pub fn validate_prop(
         ct1.extend(a);
         cp1.extend(b);
     }
-    let per3 = match &spec.per3 {
+    let per3 = match &per3_file {
         None => None,
-        Some(dir) => match propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)) {
-            Some(path) if path.is_file() => {
-                let text = read_text(&path)?;
-                let file = propbet_qprop::apc::read_per3(&text, &path.display().to_string())
-                    .map_err(|e| Error::Invalid(e.to_string()))?;
-                Some(per3_score(&file, &compared.points))
-            }
-            _ => None,
-        },
+        Some(path) => Some(per3_score(&crate::stages::read_per3(path)?, &compared.points)),
     };
     let row = Row {
         prop: prop.to_string(),

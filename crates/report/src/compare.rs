@@ -40,6 +40,23 @@ pub struct ReportInput<'a> {
     pub curves: &'a Curves,
     /// The command that made the report.
     pub command: String,
+    /// Another prediction drawn and scored beside propbet's (APC's own, `--per3`).
+    pub reference: Option<ReferenceInput<'a>>,
+}
+
+/// Another prediction for the report: its name and its (CT, CP) at (rpm, J).
+pub struct ReferenceInput<'a> {
+    /// What it is, for legends and the headline ("APC's prediction (PER3_10x47SF.dat)").
+    pub name: String,
+    /// (CT, CP) at (rpm, J); None outside its range.
+    pub at: propbet_compare::curves::Reference<'a>,
+}
+
+/// A reference's curves and scores, as the figures and the headline use them.
+struct Scored<'a> {
+    name: &'a str,
+    curves: Curves,
+    metrics: Metrics,
 }
 
 /// The report in its three forms, and its figures.
@@ -96,7 +113,7 @@ fn measured_series(
     s
 }
 
-fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
+fn coefficient_figure(curves: &Curves, points: &[ComparedPoint], reference: Option<&Scored>) -> Option<Figure> {
     if points.iter().all(ComparedPoint::is_static) {
         return None;
     }
@@ -118,23 +135,26 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figur
         if pts.iter().all(|p| p.is_static()) {
             continue;
         }
-        let Some(Some((rpm, curve))) = curves.j_sweeps.get(k) else {
+        let Some(Some((_, curve))) = curves.j_sweeps.get(k) else {
             continue;
         };
-        for (panel, q) in panels.iter_mut().zip(["ct", "cp", "eta"]) {
-            panel
-                .series
-                .push(measured_series(format!("measured {name}"), pts, |p| p.j, q, k));
+        // One legend, on the first panel: the sweeps' colours (measured dots); the caption says
+        // which line is whose, so that no legend hides data.
+        for (i, (panel, q)) in panels.iter_mut().zip(["ct", "cp", "eta"]).enumerate() {
+            let legend = if i == 0 { name.clone() } else { String::new() };
+            panel.series.push(measured_series(legend, pts, |p| p.j, q, k));
             let line: Vec<(f64, f64)> = curve
                 .iter()
                 .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
                 .collect();
-            panel.series.push(Series::new(
-                format!("predicted {rpm:.0} rpm"),
-                line,
-                Mark::Line,
-                Some(k),
-            ));
+            panel.series.push(Series::new("", line, Mark::Line, Some(k)));
+            if let Some(Some((_, c))) = reference.map(|r| &r.curves).and_then(|c| c.j_sweeps.get(k)) {
+                let line: Vec<(f64, f64)> = c
+                    .iter()
+                    .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
+                    .collect();
+                panel.series.push(Series::new("", line, Mark::Dashed, Some(k)));
+            }
         }
     }
     Some(Figure {
@@ -145,7 +165,7 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figur
     })
 }
 
-fn static_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
+fn static_figure(curves: &Curves, points: &[ComparedPoint], reference: Option<&Scored>) -> Option<Figure> {
     let stat: Vec<&ComparedPoint> = points.iter().filter(|p| p.is_static()).collect();
     if stat.is_empty() {
         return None;
@@ -169,15 +189,23 @@ fn static_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
                 } else {
                     format!("{name} [{unit}]")
                 },
-                series: vec![
-                    measured_series("measured".into(), &stat, |p| p.rpm, q, 0),
-                    Series::new(
+                series: std::iter::once(measured_series("measured".into(), &stat, |p| p.rpm, q, 0))
+                    .chain(std::iter::once(Series::new(
                         "predicted",
                         curve.iter().filter_map(|(r, c)| c.get(q).map(|v| (*r, v))).collect(),
                         Mark::Line,
                         Some(1),
-                    ),
-                ],
+                    )))
+                    .chain(reference.and_then(|r| {
+                        let c = r.curves.statics.as_ref()?;
+                        Some(Series::new(
+                            r.name,
+                            c.iter().filter_map(|(x, c)| c.get(q).map(|v| (*x, v))).collect(),
+                            Mark::Dashed,
+                            Some(2),
+                        ))
+                    }))
+                    .collect(),
                 zero_line: false,
                 y_clip: None,
                 equal_aspect: false,
@@ -386,11 +414,29 @@ fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
 pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let pts = input.points;
     let m = input.metrics;
+    // The other prediction, scored on the same points, window and measure as propbet's.
+    let reference = input.reference.as_ref().map(|r| {
+        let stat: Vec<f64> = pts.iter().filter(|p| p.is_static()).map(|p| p.air.fluid.rho).collect();
+        let rho = if stat.is_empty() {
+            pts.iter().map(|p| p.air.fluid.rho).sum::<f64>() / pts.len().max(1) as f64
+        } else {
+            stat.iter().sum::<f64>() / stat.len() as f64
+        };
+        Scored {
+            name: &r.name,
+            curves: propbet_compare::curves::reference_curves(input.curves, r.at, input.diameter, rho),
+            metrics: propbet_compare::metrics::metrics(&propbet_compare::curves::with_reference(
+                pts,
+                r.at,
+                input.diameter,
+            )),
+        }
+    });
     let mut figures = Vec::new();
-    if let Some(f) = coefficient_figure(input.curves, pts) {
+    if let Some(f) = coefficient_figure(input.curves, pts, reference.as_ref()) {
         figures.push(("coefficients".to_string(), f));
     }
-    if let Some(f) = static_figure(input.curves, pts) {
+    if let Some(f) = static_figure(input.curves, pts, reference.as_ref()) {
         figures.push(("static".to_string(), f));
     }
     figures.push(("residuals".to_string(), residual_figure(pts)));
@@ -446,9 +492,23 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for g in &m.headline {
         for q in ["thrust", "torque"] {
             if let Some(x) = g.metrics.get(q) {
+                let beside = reference
+                    .as_ref()
+                    .and_then(|r| {
+                        let rg = r.metrics.headline.iter().find(|rg| rg.name == g.name)?;
+                        let y = rg.metrics.get(q)?;
+                        Some(format!(
+                            "<br>{}: mean error {}, mean |error| {:.1} % over {} points",
+                            esc(r.name),
+                            pct(y.mean_rel),
+                            100.0 * y.mean_abs_rel,
+                            y.n
+                        ))
+                    })
+                    .unwrap_or_default();
                 let _ = write!(
                     h,
-                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {:.1} % over {} points · worst {} at {}</div>",
+                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {:.1} % over {} points · worst {} at {}{beside}</div>",
                     esc(&g.name),
                     label(q).0,
                     pct(x.mean_rel),
@@ -473,7 +533,18 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     }
     h.push_str("<h2>Figures</h2>\n");
     for (name, f) in &figures {
-        let _ = writeln!(h, "<figure id=\"fig-{name}\">{}</figure>", propbet_plot::svg_inline(f)?);
+        let caption = match name.as_str() {
+            "coefficients" => format!(
+                "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}.</figcaption>",
+                reference.as_ref().map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
+            ),
+            _ => String::new(),
+        };
+        let _ = writeln!(
+            h,
+            "<figure id=\"fig-{name}\">{}{caption}</figure>",
+            propbet_plot::svg_inline(f)?
+        );
     }
     let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * propbet_compare::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
@@ -598,6 +669,12 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for g in &m.headline {
         md_table(&mut md, g);
     }
+    if let Some(r) = &reference {
+        let _ = writeln!(md, "## {}, on the same points\n", r.name);
+        for g in &r.metrics.headline {
+            md_table(&mut md, g);
+        }
+    }
     md.push_str("## Metrics\n\n");
     for g in &top {
         md_table(&mut md, g);
@@ -641,6 +718,16 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         points: pts,
     })
     .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
+    let json = match (&reference, json) {
+        (Some(r), serde_json::Value::Object(mut o)) => {
+            o.insert(
+                "reference".into(),
+                serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}),
+            );
+            serde_json::Value::Object(o)
+        }
+        (_, j) => j,
+    };
     Ok(Report {
         html: page(&format!("propbet: {}", input.prop), "", &h),
         body: h,
