@@ -77,6 +77,9 @@ pub struct SweepRequest {
     pub mach: f64,
     /// e^n amplification ratio (9 = average wind tunnel) [-].
     pub ncrit: f64,
+    /// Forced transition at this fraction of the chord on both surfaces (XFOIL's XTR), at
+    /// the latest: free transition ahead of it still happens. None: free transition only.
+    pub trip: Option<f64>,
     /// Angles of attack [deg], ascending, evenly spaced or not.
     pub alphas_deg: Vec<f64>,
     /// Viscous iteration limit per point (XFOIL's ITER).
@@ -93,6 +96,7 @@ impl SweepRequest {
             reynolds,
             mach,
             ncrit: 9.0,
+            trip: None,
             alphas_deg,
             max_iter: DEFAULT_MAX_ITER,
             panels: DEFAULT_PANELS,
@@ -109,6 +113,9 @@ impl SweepRequest {
         }
         if !(self.ncrit.is_finite() && self.ncrit > 0.0 && self.ncrit <= 20.0) {
             return bad(format!("Ncrit {} must be in (0, 20]", self.ncrit));
+        }
+        if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
+            return bad(format!("forced transition at x/c = {x} must be in (0, 1]"));
         }
         if !(1..=1000).contains(&self.max_iter) {
             return bad(format!("iteration limit {} must be in 1..=1000", self.max_iter));
@@ -302,6 +309,7 @@ impl Xfoil {
             reynolds: req.reynolds,
             mach: req.mach,
             ncrit: req.ncrit,
+            trip: req.trip,
             max_iter: req.max_iter,
             panels: req.panels,
         };

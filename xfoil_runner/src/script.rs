@@ -44,6 +44,8 @@ pub struct RunSettings {
     pub mach: f64,
     /// e^n transition amplification ratio [-].
     pub ncrit: f64,
+    /// Forced transition x/c on both surfaces (None: free).
+    pub trip: Option<f64>,
     /// Viscous Newton iteration limit per point.
     pub max_iter: u32,
     /// Panel nodes (XFOIL's PPAR N).
@@ -67,7 +69,14 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, steps: &[Step]) -
     let _ = writeln!(out, "OPER");
     let _ = writeln!(out, "VISC {:e}", s.reynolds);
     let _ = writeln!(out, "MACH {:.6}", s.mach);
-    let _ = writeln!(out, "VPAR\nN {:.6}\n", s.ncrit);
+    match s.trip {
+        Some(x) => {
+            let _ = writeln!(out, "VPAR\nN {:.6}\nXTR {x:.6} {x:.6}\n", s.ncrit);
+        }
+        None => {
+            let _ = writeln!(out, "VPAR\nN {:.6}\n", s.ncrit);
+        }
+    }
     let _ = writeln!(out, "ITER {}", s.max_iter);
     if let Some(a) = warm_up_deg {
         let _ = writeln!(out, "ALFA {a:.6}");
@@ -103,14 +112,27 @@ mod tests {
             reynolds: 1e5,
             mach: 0.1,
             ncrit: 9.0,
+            trip: None,
             max_iter: 100,
             panels: 160,
         };
         let text = sweep_script(&s, Some(3.0), &Step::list(&[4.0, 5.0], false, false));
         let retry = sweep_script(&s, None, &Step::list(&[4.0, 6.0], false, true));
         assert!(retry.contains("\n\nALFA 4.000000\nINIT\nALFA 6.000000\n"), "{retry}");
+        // Free transition says nothing of XTR; a trip sets both surfaces, inside VPAR.
+        assert!(!text.contains("XTR"));
+        let tripped = sweep_script(
+            &RunSettings { trip: Some(0.05), ..s },
+            None,
+            &Step::list(&[4.0], false, false),
+        );
+        assert!(
+            tripped.contains("VPAR\nN 9.000000\nXTR 0.050000 0.050000\n\n"),
+            "{tripped}"
+        );
         let keywords = [
-            "PLOP", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "ITER", "INIT", "ALFA", "PACC", "QUIT",
+            "PLOP", "W", "LOAD", "PPAR", "N", "OPER", "VISC", "MACH", "VPAR", "XTR", "ITER", "INIT", "ALFA", "PACC",
+            "QUIT",
         ];
         for line in text.lines() {
             for word in line.split_whitespace() {

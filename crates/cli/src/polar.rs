@@ -91,6 +91,10 @@ pub struct XfoilArgs {
     /// tunnel; 5 for a propeller's blades in `polars`: docs/studies/ncrit-tables.md).
     #[arg(long)]
     pub ncrit: Option<f64>,
+    /// Force transition at this chord fraction on both surfaces, at the latest (XFOIL's XTR;
+    /// default: free transition by Ncrit alone; docs/studies/transition-trip.md).
+    #[arg(long, value_name = "X/C")]
+    pub trip: Option<f64>,
     /// Angles of attack [deg]: `start:stop:step`, `start:stop/N` or a list.
     #[arg(long, default_value = "-8:16:1", allow_hyphen_values = true)]
     pub alpha: String,
@@ -111,6 +115,7 @@ impl XfoilArgs {
         let spec = XfoilSpec {
             process: self.process.spec(),
             ncrit: self.ncrit.unwrap_or(default_ncrit),
+            trip: self.trip,
             alphas_deg: a,
             panels: self.panels,
             iter: self.iter,
@@ -192,6 +197,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let jobs: Vec<PolarJob> = res
         .iter()
         .map(|&re| PolarJob {
+            trip: xs.trip,
             panels: args.xfoil.panels.unwrap_or(xfoil_runner::DEFAULT_PANELS),
             max_iter: args.xfoil.iter,
             ..PolarJob::new(foil.clone(), re, args.mach, xs.ncrit, alphas.clone())

@@ -53,6 +53,10 @@ pub struct ValidateArgs {
     /// model's default; off with `--section-model qprop`).
     #[arg(long, value_name = "off|snel")]
     pub rotation: Option<String>,
+    /// Force transition at this chord fraction on both surfaces of every polar (default: free
+    /// transition by Ncrit alone; docs/studies/transition-trip.md).
+    #[arg(long, value_name = "X/C")]
+    pub trip: Option<f64>,
 }
 
 /// Runs `propbet validate`.
@@ -74,8 +78,14 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             a.rotation.as_deref().map(Rotation::parse).transpose()?,
             a.section_model == "tables",
         ),
+        trip: a.trip,
         per3: a.per3.clone(),
     };
+    if let Some(x) = a.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
+        bail!(
+            "--trip {x}: the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)"
+        );
+    }
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
             "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
@@ -132,9 +142,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         );
     }
     let model = format!(
-        "section model {}, Ncrit {}, rotational augmentation {}",
+        "section model {}, Ncrit {}{}, rotational augmentation {}",
         a.section_model,
         a.ncrit,
+        a.trip
+            .map_or(String::new(), |x| format!(", transition forced at x/c {x}")),
         spec.rotation.name()
     );
     let (md, csv) = table(&rows, &skipped, &model);

@@ -81,6 +81,8 @@ pub struct PolarSection {
     pub v: Option<NumberOrList>,
     /// Transition amplification ratio.
     pub ncrit: Option<f64>,
+    /// Forced transition x/c on both surfaces (default: free transition).
+    pub trip: Option<f64>,
     /// Angles of attack (`propbet polars --alpha`).
     pub alpha: Option<String>,
     /// The section model of the sweeps, comparison and diagnosis: `tables` (the polars
@@ -374,6 +376,7 @@ impl Case {
                         xfoil: XfoilSpec {
                             process: xfoil.clone(),
                             ncrit: p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT),
+                            trip: p.trip,
                             alphas_deg: alphas,
                             panels: None,
                             iter: xfoil_runner::DEFAULT_MAX_ITER,

@@ -100,6 +100,9 @@ pub struct XfoilSpec {
     pub process: XfoilProcessSpec,
     /// Transition amplification ratio Ncrit [-].
     pub ncrit: f64,
+    /// Forced transition at this x/c on both surfaces, at the latest (None: free transition;
+    /// `docs/studies/transition-trip.md`).
+    pub trip: Option<f64>,
     /// Angles of attack [deg] (XFOIL's unit), ascending, no duplicates.
     pub alphas_deg: Vec<f64>,
     /// Panel nodes (None: the command's default).
@@ -117,6 +120,9 @@ impl XfoilSpec {
                 self.ncrit
             );
         }
+        if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
+            crate::invalid!("--trip {x}: the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)");
+        }
         if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
             crate::invalid!("--alpha: {bad} deg is outside -90..90");
         }
@@ -127,6 +133,9 @@ impl XfoilSpec {
         self.process.push_argv(v);
         if self.ncrit != DEFAULT_NCRIT {
             push(v, "--ncrit", format!("{}", self.ncrit));
+        }
+        if let Some(x) = self.trip {
+            push(v, "--trip", format!("{x}"));
         }
         let default = crate::values::parse_list("", DEFAULT_ALPHA).unwrap_or_default();
         if self.alphas_deg != default {

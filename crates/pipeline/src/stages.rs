@@ -373,6 +373,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
         ncrit: spec.xfoil.ncrit,
+        trip: spec.xfoil.trip,
         alphas_deg: spec.xfoil.alphas_deg.clone(),
         panels: spec.xfoil.panels.unwrap_or(BLADE_PANELS),
         max_iter: spec.xfoil.iter,

@@ -37,6 +37,8 @@ pub struct ValidateSpec {
     pub ncrit: f64,
     /// Rotational augmentation of the section lift.
     pub rotation: crate::spec::Rotation,
+    /// Forced transition x/c of the polars (None: free).
+    pub trip: Option<f64>,
     /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
     pub per3: Option<PathBuf>,
 }
@@ -326,6 +328,7 @@ pub fn validate_prop(
         xfoil: XfoilSpec {
             process: spec.xfoil.clone(),
             ncrit: spec.ncrit,
+            trip: spec.trip,
             alphas_deg: crate::values::parse_list("", crate::spec::DEFAULT_ALPHA)?,
             panels: None,
             iter: xfoil_runner::DEFAULT_MAX_ITER,

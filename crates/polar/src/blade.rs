@@ -127,6 +127,8 @@ impl BladePolars {
 pub struct XfoilSettings {
     /// Transition amplification ratio Ncrit [-].
     pub ncrit: f64,
+    /// Forced transition x/c on both surfaces (None: free).
+    pub trip: Option<f64>,
     /// Angles of attack [deg], ascending, no duplicates (XFOIL's unit).
     pub alphas_deg: Vec<f64>,
     /// Panel nodes.
@@ -275,6 +277,7 @@ pub fn compute_blade(
             let foil = &job.foils[i.min(job.foils.len() - 1)];
             for rung in re_rungs(re_range[0], re_range[1]) {
                 jobs.push(crate::PolarJob {
+                    trip: job.settings.trip,
                     panels: job.settings.panels,
                     max_iter: job.settings.max_iter,
                     ..crate::PolarJob::new(

@@ -34,6 +34,8 @@ pub struct PolarJob {
     pub mach: f64,
     /// Transition amplification ratio [-].
     pub ncrit: f64,
+    /// Forced transition x/c on both surfaces (None: free transition).
+    pub trip: Option<f64>,
     /// Angles of attack [deg], ascending.
     pub alphas_deg: Vec<f64>,
     /// Panel nodes (XFOIL's default is 160).
@@ -50,6 +52,7 @@ impl PolarJob {
             re,
             mach,
             ncrit,
+            trip: None,
             alphas_deg,
             panels: DEFAULT_PANELS,
             max_iter: DEFAULT_MAX_ITER,
@@ -65,6 +68,7 @@ impl PolarJob {
             reynolds: self.re,
             mach: self.mach,
             ncrit: self.ncrit,
+            trip: self.trip,
             alphas_deg: self.alphas_deg.clone(),
             max_iter: self.max_iter,
             panels: self.panels,
@@ -242,6 +246,10 @@ impl PolarEngine {
             "re {} mach {} ncrit {} iter {} panels {}\nalpha",
             req.reynolds, req.mach, req.ncrit, req.max_iter, req.panels
         ));
+        // Free transition keeps the key it always had (caches stay valid).
+        if let Some(x) = req.trip {
+            text.push_str(&format!(" trip {x}"));
+        }
         for a in &req.alphas_deg {
             text.push_str(&format!(" {a}"));
         }
@@ -283,6 +291,7 @@ impl PolarEngine {
             re: job.re,
             mach: job.mach,
             ncrit: job.ncrit,
+            trip: job.trip,
             points: out.points,
             unconverged_deg: out.unconverged_deg,
             faults: out.faults,

@@ -18,6 +18,9 @@ pub struct Polar {
     pub mach: f64,
     /// Transition amplification ratio [-].
     pub ncrit: f64,
+    /// Forced transition x/c on both surfaces (absent: free transition).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trip: Option<f64>,
     /// Converged points, ascending in alpha.
     pub points: Vec<PolarPoint>,
     /// Angles requested that did not converge [deg].
@@ -94,6 +97,7 @@ impl Polar {
             })
             .collect();
         Polar {
+            trip: None,
             re,
             mach: 0.0,
             ncrit: 9.0,
@@ -166,6 +170,7 @@ mod tests {
 
     fn polar() -> Polar {
         Polar {
+            trip: None,
             re: 1e5,
             mach: 0.0,
             ncrit: 9.0,
