@@ -3,7 +3,8 @@
 # 1. geometry: UIUC's measured r/R, c/R, beta of the APC 10x4.7 Slow Flyer, R = 5 in, written as
 #    a QPROP prop file in inches with QPROP's generic coefficients (first inflow estimate only);
 # 2. coefficients: XFOIL polars of the E63 section (APC's PE0 file names E63 for this prop) at
-#    each station's Re and Mach at 5000 rpm static, fitted per station by `propbet polars`.
+#    each station's Re and Mach at 5000 rpm static, fitted per station by `propbet polars`
+#    (Ncrit 9, free transition: the settings the shipped files were made with).
 set -euo pipefail
 here=props/apcsf_10x4.7
 geom=$here/apcsf_10x4.7_geom.txt   # copy of ../shared/data/uiuc/apcsf_10x4.7_geom.txt
@@ -25,5 +26,5 @@ geom=$here/apcsf_10x4.7_geom.txt   # copy of ../shared/data/uiuc/apcsf_10x4.7_ge
   awk 'NR > 1 && NF == 3 { printf " %7.4f  %7.4f  %6.2f\n", $1 * 5.0, $2 * 5.0, $3 }' "$geom"
 } > "$here/apcsf_10x4.7_geometry.qprop"
 target/release/propbet polars --geometry "$here/apcsf_10x4.7_geometry.qprop" \
-  --airfoil props/airfoils/e63.dat --rpm 5000 --v 0 --quiet \
+  --airfoil props/airfoils/e63.dat --rpm 5000 --v 0 --ncrit 9 --trip free --quiet \
   --out-prop "$here/apcsf_10x4.7.qprop" --out-polars "$here/apcsf_10x4.7.polars.json"

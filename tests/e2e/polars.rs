@@ -450,5 +450,9 @@ fn a_trip_forces_transition_and_keeps_the_lift_at_small_angles() {
         dir.path(),
     );
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--trip 1.5: the chord fraction"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--trip '1.5': `free`, or the chord fraction"),
+        "{}",
+        stderr(&o)
+    );
 }

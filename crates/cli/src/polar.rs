@@ -91,10 +91,11 @@ pub struct XfoilArgs {
     /// tunnel; 5 for a propeller's blades in `polars`: docs/studies/ncrit-tables.md).
     #[arg(long)]
     pub ncrit: Option<f64>,
-    /// Force transition at this chord fraction on both surfaces, at the latest (XFOIL's XTR;
-    /// default: free transition by Ncrit alone; docs/studies/transition-trip.md).
-    #[arg(long, value_name = "X/C")]
-    pub trip: Option<f64>,
+    /// Force transition at this chord fraction on both surfaces, at the latest (XFOIL's XTR),
+    /// or `free` (by Ncrit alone). Default: 0.5 for a propeller's blades in `polars`, free for
+    /// `polar` (docs/studies/transition-trip.md).
+    #[arg(long, value_name = "X/C|free")]
+    pub trip: Option<String>,
     /// Angles of attack [deg]: `start:stop:step`, `start:stop/N` or a list.
     #[arg(long, default_value = "-8:16:1", allow_hyphen_values = true)]
     pub alpha: String,
@@ -107,15 +108,19 @@ pub struct XfoilArgs {
 }
 
 impl XfoilArgs {
-    /// The spec (flags in SI); `default_ncrit` when `--ncrit` is not given.
-    pub fn spec(&self, default_ncrit: f64) -> Result<XfoilSpec> {
+    /// The spec (flags in SI); `default_ncrit` and `default_trip` when `--ncrit` and `--trip`
+    /// are not given.
+    pub fn spec(&self, default_ncrit: f64, default_trip: Option<f64>) -> Result<XfoilSpec> {
         let mut a = parse_list("--alpha", &self.alpha)?;
         a.sort_by(f64::total_cmp);
         a.dedup();
         let spec = XfoilSpec {
             process: self.process.spec(),
             ncrit: self.ncrit.unwrap_or(default_ncrit),
-            trip: self.trip,
+            trip: match &self.trip {
+                None => default_trip,
+                Some(t) => propbet_pipeline::values::parse_trip(t)?,
+            },
             alphas_deg: a,
             panels: self.panels,
             iter: self.iter,
@@ -190,7 +195,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     if !(args.mach.is_finite() && (0.0..0.9).contains(&args.mach)) {
         bail!("--mach: {} must be in [0, 0.9)", args.mach);
     }
-    let xs = args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT)?;
+    let xs = args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT, None)?;
     let alphas = xs.alphas_deg.clone();
     let engine = stages::polar_engine(&xs.process)?;
     let bar = Bar::new(xs.process.quiet);
@@ -371,7 +376,10 @@ impl PolarsArgs {
             omegas,
             axis,
             air: self.air.spec()?,
-            xfoil: self.xfoil.spec(propbet_pipeline::spec::DEFAULT_NCRIT)?,
+            xfoil: self.xfoil.spec(
+                propbet_pipeline::spec::DEFAULT_NCRIT,
+                propbet_pipeline::spec::DEFAULT_TRIP,
+            )?,
             out_prop: self.out_prop.clone(),
             out_polars: self.out_polars.clone(),
         })

@@ -53,10 +53,10 @@ pub struct ValidateArgs {
     /// model's default; off with `--section-model qprop`).
     #[arg(long, value_name = "off|snel")]
     pub rotation: Option<String>,
-    /// Force transition at this chord fraction on both surfaces of every polar (default: free
-    /// transition by Ncrit alone; docs/studies/transition-trip.md).
-    #[arg(long, value_name = "X/C")]
-    pub trip: Option<f64>,
+    /// Force transition at this chord fraction on both surfaces of every polar, or `free` (by
+    /// Ncrit alone). Default: 0.5 (docs/studies/transition-trip.md).
+    #[arg(long, value_name = "X/C|free")]
+    pub trip: Option<String>,
 }
 
 /// Runs `propbet validate`.
@@ -78,14 +78,12 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             a.rotation.as_deref().map(Rotation::parse).transpose()?,
             a.section_model == "tables",
         ),
-        trip: a.trip,
+        trip: match &a.trip {
+            None => propbet_pipeline::spec::DEFAULT_TRIP,
+            Some(t) => propbet_pipeline::values::parse_trip(t)?,
+        },
         per3: a.per3.clone(),
     };
-    if let Some(x) = a.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
-        bail!(
-            "--trip {x}: the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)"
-        );
-    }
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
             "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
@@ -145,8 +143,9 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         "section model {}, Ncrit {}{}, rotational augmentation {}",
         a.section_model,
         a.ncrit,
-        a.trip
-            .map_or(String::new(), |x| format!(", transition forced at x/c {x}")),
+        spec.trip.map_or(", free transition".to_string(), |x| format!(
+            ", transition forced at x/c {x} at the latest"
+        )),
         spec.rotation.name()
     );
     let (md, csv) = table(&rows, &skipped, &model);

@@ -81,8 +81,9 @@ pub struct PolarSection {
     pub v: Option<NumberOrList>,
     /// Transition amplification ratio.
     pub ncrit: Option<f64>,
-    /// Forced transition x/c on both surfaces (default: free transition).
-    pub trip: Option<f64>,
+    /// Forced transition x/c on both surfaces, or `"free"` (default:
+    /// [`crate::spec::DEFAULT_TRIP`]).
+    pub trip: Option<NumberOrList>,
     /// Angles of attack (`propbet polars --alpha`).
     pub alpha: Option<String>,
     /// The section model of the sweeps, comparison and diagnosis: `tables` (the polars
@@ -376,7 +377,15 @@ impl Case {
                         xfoil: XfoilSpec {
                             process: xfoil.clone(),
                             ncrit: p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT),
-                            trip: p.trip,
+                            trip: match &p.trip {
+                                None => crate::spec::DEFAULT_TRIP,
+                                Some(NumberOrList::Number(x)) => {
+                                    crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
+                                }
+                                Some(NumberOrList::List(t)) => {
+                                    crate::values::parse_trip(t).map_err(|e| at("[polars] trip", e))?
+                                }
+                            },
                             alphas_deg: alphas,
                             panels: None,
                             iter: xfoil_runner::DEFAULT_MAX_ITER,

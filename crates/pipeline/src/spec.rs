@@ -86,6 +86,12 @@ impl XfoilProcessSpec {
 /// and less below 5; published BEMT work on small propellers finds 5-7 best.
 pub const DEFAULT_NCRIT: f64 = 5.0;
 
+/// Default forced transition of a blade's polars: at mid-chord at the latest, both surfaces
+/// (free transition ahead of it still happens); `propbet polar` (one airfoil) keeps XFOIL's free
+/// transition. The shared props with each setting and the reasoning:
+/// `docs/studies/transition-trip.md`.
+pub const DEFAULT_TRIP: Option<f64> = Some(0.5);
+
 /// Default Ncrit of a single airfoil's polars (`propbet polar`): XFOIL's 9, an average wind
 /// tunnel.
 pub const AIRFOIL_NCRIT: f64 = 9.0;
@@ -121,7 +127,7 @@ impl XfoilSpec {
             );
         }
         if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
-            crate::invalid!("--trip {x}: the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)");
+            crate::invalid!("--trip '{x}': `free`, or the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)");
         }
         if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
             crate::invalid!("--alpha: {bad} deg is outside -90..90");
@@ -134,8 +140,8 @@ impl XfoilSpec {
         if self.ncrit != DEFAULT_NCRIT {
             push(v, "--ncrit", format!("{}", self.ncrit));
         }
-        if let Some(x) = self.trip {
-            push(v, "--trip", format!("{x}"));
+        if self.trip != DEFAULT_TRIP {
+            push(v, "--trip", crate::values::trip_text(self.trip));
         }
         let default = crate::values::parse_list("", DEFAULT_ALPHA).unwrap_or_default();
         if self.alphas_deg != default {
@@ -701,6 +707,21 @@ pub fn shell_word(a: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn trips_read_back_as_written() {
+        use crate::values::{parse_trip, trip_text};
+        assert_eq!(parse_trip("free").unwrap(), None);
+        assert_eq!(parse_trip("1").unwrap(), None);
+        assert_eq!(parse_trip("0.5").unwrap(), Some(0.5));
+        for t in [None, Some(0.05), DEFAULT_TRIP] {
+            assert_eq!(parse_trip(&trip_text(t)).unwrap(), t);
+        }
+        for bad in ["0", "-0.1", "1.5", "nan", "mid"] {
+            let e = parse_trip(bad).unwrap_err().to_string();
+            assert!(e.contains(&format!("--trip '{bad}'")), "{e}");
+        }
+    }
 
     #[test]
     fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {

@@ -129,6 +129,29 @@ pub fn parse_humidity(text: &str) -> Result<f64> {
     }
 }
 
+/// Forced transition as `--trip` and `[polars] trip` give it: `free` (or 1, the trailing edge)
+/// for free transition by Ncrit alone, else the chord fraction in (0, 1) where transition is
+/// forced on both surfaces at the latest.
+pub fn parse_trip(text: &str) -> Result<Option<f64>> {
+    let t = text.trim();
+    if t == "free" {
+        return Ok(None);
+    }
+    match t.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 && x < 1.0 => Ok(Some(x)),
+        Ok(1.0) => Ok(None),
+        _ => invalid!(
+            "--trip '{}': `free`, or the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)",
+            propbet_bemt::units::excerpt(t)
+        ),
+    }
+}
+
+/// The text [`parse_trip`] reads back.
+pub fn trip_text(trip: Option<f64>) -> String {
+    trip.map_or_else(|| "free".to_string(), |x| format!("{x}"))
+}
+
 /// A length unit for prop-file radii and chords: metres per unit.
 pub fn parse_length_unit(text: &str) -> Result<f64> {
     Ok(match text {

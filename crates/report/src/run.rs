@@ -275,8 +275,11 @@ pub fn what_it_does(plan: &RunPlan) -> String {
                 )
             };
             parts.push(format!(
-                "XFOIL polars (Ncrit {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
+                "XFOIL polars (Ncrit {}, {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
                 p.xfoil.ncrit,
+                p.xfoil
+                    .trip
+                    .map_or("free transition".to_string(), |x| format!("transition by x/c {x}")),
                 if plan.predict.model.polars.is_some() {
                     "tables in alpha and Re"
                 } else {
