@@ -460,3 +460,83 @@ fn apc_prediction_is_drawn_and_scored_beside_propbets() {
     );
     assert!(!dir.path().join("out2").exists());
 }
+
+/// A QPROP output (`--qprop-output`) is drawn and scored beside propbet's prediction: QPROP's
+/// own 8000 rpm sweep of the CAM 6x3 (tests/reference/qprop) against data made by propbet's
+/// QPROP-compatible model scores as propbet does, to QPROP's printed digits and the
+/// interpolation between its 1 m/s rows (issue 18).
+#[test]
+fn a_qprop_output_is_drawn_and_scored_beside_propbets() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = cam6x3();
+    let o = run(
+        &[
+            "synth",
+            "--prop",
+            prop.to_str().unwrap(),
+            "--qprop-compat",
+            "--noise",
+            "1%",
+            "--rpm",
+            "8000",
+            "--j",
+            "0:0.4:0.04",
+            "--seed",
+            "3",
+            "--out",
+            "data.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let qprop = repo().join("tests/reference/qprop/cam6x3_Vsweep_rpm8000.out");
+    let data = dir.path().join("data.csv");
+    let o = compare(
+        &["--qprop-compat", "--qprop-output", qprop.to_str().unwrap()],
+        &[data.as_path()],
+        &prop,
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&dir.path().join("out/summary.json"));
+    assert_eq!(s["reference"]["name"], "QPROP's prediction (cam6x3_Vsweep_rpm8000.out)");
+    for g in 0..2 {
+        for q in ["thrust", "torque"] {
+            let own = s["headline"][g]["errors"][q]["mean_error"].as_f64().unwrap();
+            let theirs = s["reference"]["headline"][g]["errors"][q]["mean_error"]
+                .as_f64()
+                .unwrap();
+            assert!((own - theirs).abs() < 0.004, "{g} {q}: propbet {own}, QPROP {theirs}");
+            assert_eq!(
+                s["reference"]["headline"][g]["errors"][q]["n"],
+                s["headline"][g]["errors"][q]["n"]
+            );
+        }
+    }
+    // Not a QPROP output, or both references at once: exit 2.
+    let bad = dir.path().join("bad.out");
+    std::fs::write(&bad, "no header here\n").unwrap();
+    for extra in [
+        vec!["--qprop-output", bad.to_str().unwrap()],
+        vec![
+            "--qprop-output",
+            qprop.to_str().unwrap(),
+            "--per3",
+            qprop.to_str().unwrap(),
+        ],
+    ] {
+        let o = compare(&extra, &[data.as_path()], &prop, dir.path());
+        assert_eq!(o.status.code(), Some(2), "{extra:?}");
+    }
+    let o = compare(
+        &["--qprop-output", bad.to_str().unwrap()],
+        &[data.as_path()],
+        &prop,
+        dir.path(),
+    );
+    assert!(
+        stderr(&o).contains("bad.out") && stderr(&o).contains("QPROP"),
+        "{}",
+        stderr(&o)
+    );
+}

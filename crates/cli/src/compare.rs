@@ -39,6 +39,11 @@ pub struct CompareArgs {
     /// prediction and scored on the same points.
     #[arg(long, value_name = "FILE")]
     pub per3: Option<PathBuf>,
+    /// A QPROP output for this prop (QPROP's printed sweep, one or several speeds): drawn
+    /// beside propbet's prediction and scored on the same points (its T and Q, with the model's
+    /// diameter and the output's density).
+    #[arg(long, value_name = "FILE", conflicts_with = "per3")]
+    pub qprop_output: Option<PathBuf>,
     /// Output directory (created if missing).
     #[arg(long, short)]
     pub out: PathBuf,
@@ -106,6 +111,7 @@ impl CompareArgs {
             model: self.model.spec()?,
             measured: self.data.spec()?,
             per3: self.per3.clone(),
+            qprop_output: self.qprop_output.clone(),
             out: self.out.clone(),
         })
     }
@@ -189,10 +195,14 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
+    inputs.extend(spec.qprop_output.as_deref());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     // A PER3 file that cannot be read stops the command before anything is computed.
     if let Some(p) = &spec.per3 {
         stages::read_per3(p)?;
+    }
+    if let Some(p) = &spec.qprop_output {
+        stages::read_qprop_output(p)?;
     }
     let model = load_model(&spec.model, false)?;
     let c = stages::compare(&model, &spec.measured)?;
@@ -217,15 +227,28 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
         prop_notes.push(format!("model with effects: {}", model.effects.describe()));
     }
     let per3 = spec.per3.as_deref().map(stages::read_per3).transpose()?;
-    let per3_at = |rpm: f64, j: f64| per3.as_ref().and_then(|p| p.at(rpm, j));
+    let qprop = match &spec.qprop_output {
+        Some(p) => Some(qprop_table(&stages::read_qprop_output(p)?, model.diameter)),
+        None => None,
+    };
+    let reference_at = |rpm: f64, j: f64| match (&per3, &qprop) {
+        (Some(p), _) => p.at(rpm, j),
+        (None, Some(q)) => q.at(rpm, j),
+        (None, None) => None,
+    };
+    let file_name = |p: &std::path::Path| {
+        p.file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+    };
+    let reference_name = match (&spec.per3, &spec.qprop_output) {
+        (Some(p), _) => Some(format!("APC's prediction ({})", file_name(p))),
+        (None, Some(p)) => Some(format!("QPROP's prediction ({})", file_name(p))),
+        (None, None) => None,
+    };
     let rep = report::build(&ReportInput {
-        reference: spec.per3.as_ref().map(|p| ReferenceInput {
-            name: format!(
-                "APC's prediction ({})",
-                p.file_name()
-                    .map_or(String::new(), |n| n.to_string_lossy().into_owned())
-            ),
-            at: &per3_at,
+        reference: reference_name.map(|name| ReferenceInput {
+            name,
+            at: &reference_at,
         }),
         prop: spec.model.prop.display().to_string(),
         prop_notes,
@@ -249,6 +272,7 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
+    inputs.extend(spec.qprop_output.as_deref());
     let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {
@@ -275,6 +299,23 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     Ok(rep.html)
+}
+
+/// A QPROP output's summary rows as (rpm, J, CT, CP) in propbet's coefficients: from its
+/// printed thrust and torque, the output's density and the model's diameter `d` (so that the
+/// radius QPROP's own coefficients use does not matter).
+fn qprop_table(out: &propbet_qprop::output::QpropOutput, d: f64) -> propbet_compare::curves::PerformanceTable {
+    propbet_compare::curves::PerformanceTable::new(out.summary.iter().map(|r| {
+        let (v, rpm, thrust, torque) = (r[0].value, r[1].value, r[3].value, r[4].value);
+        let n = propbet_bemt::units::rpm_to_rev_per_s(rpm);
+        let s = propbet_bemt::units::Scales::new(out.rho, n, d);
+        [
+            rpm,
+            v / (n * d),
+            thrust / s.thrust,
+            torque * 2.0 * std::f64::consts::PI * n / s.power,
+        ]
+    }))
 }
 
 /// A short summary on the terminal.

@@ -142,3 +142,113 @@ pub fn reference_curves(curves: &Curves, reference: Reference<'_>, diameter: f64
         }),
     }
 }
+
+/// Another code's predictions as a table to interpolate (a QPROP output's summary rows): rows
+/// of (rpm, J, CT, CP) grouped by speed.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PerformanceTable {
+    /// (rpm, rows of (J, CT, CP) ascending in J), ascending in rpm.
+    groups: Vec<(f64, Vec<[f64; 3]>)>,
+}
+
+impl PerformanceTable {
+    /// The table of `rows` (rpm, J, CT, CP); rows within 0.5 % of a speed share its group,
+    /// non-finite rows are left out.
+    pub fn new(rows: impl IntoIterator<Item = [f64; 4]>) -> PerformanceTable {
+        let mut rows: Vec<[f64; 4]> = rows
+            .into_iter()
+            .filter(|r| r.iter().all(|x| x.is_finite()) && r[0] > 0.0)
+            .collect();
+        rows.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+        let mut groups: Vec<(f64, Vec<[f64; 3]>)> = Vec::new();
+        for r in rows {
+            match groups.last_mut() {
+                Some((rpm, g)) if (r[0] / *rpm - 1.0).abs() <= 0.005 => g.push([r[1], r[2], r[3]]),
+                _ => groups.push((r[0], vec![[r[1], r[2], r[3]]])),
+            }
+        }
+        PerformanceTable { groups }
+    }
+
+    /// True when the table has no row.
+    pub fn is_empty(&self) -> bool {
+        self.groups.is_empty()
+    }
+
+    /// (CT, CP) of one speed's rows at `j`: linear in J inside their range; a single row only
+    /// at its own J (within 0.005).
+    fn in_group(rows: &[[f64; 3]], j: f64) -> Option<(f64, f64)> {
+        if let [r] = rows {
+            return ((r[0] - j).abs() <= 0.005).then_some((r[1], r[2]));
+        }
+        let (first, last) = (rows.first()?, rows.last()?);
+        if j < first[0] - 1e-9 || j > last[0] + 1e-9 {
+            return None;
+        }
+        let k = rows.partition_point(|r| r[0] <= j).clamp(1, rows.len() - 1);
+        let (a, b) = (rows[k - 1], rows[k]);
+        let t = if b[0] > a[0] {
+            ((j - a[0]) / (b[0] - a[0])).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        Some((a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])))
+    }
+
+    /// (CT, CP) at `rpm` and `j`: within a speed's rows, linear in J; between two speeds that
+    /// both have a value, linear in rpm; within 2 % of the nearest speed outside them, that
+    /// speed's value; None elsewhere.
+    pub fn at(&self, rpm: f64, j: f64) -> Option<(f64, f64)> {
+        let g = &self.groups;
+        let (first, last) = (g.first()?, g.last()?);
+        if rpm <= first.0 {
+            return ((first.0 / rpm - 1.0) <= 0.02)
+                .then(|| Self::in_group(&first.1, j))
+                .flatten();
+        }
+        if rpm >= last.0 {
+            return ((rpm / last.0 - 1.0) <= 0.02)
+                .then(|| Self::in_group(&last.1, j))
+                .flatten();
+        }
+        let k = g.partition_point(|x| x.0 <= rpm).clamp(1, g.len() - 1);
+        let (lo, hi) = (&g[k - 1], &g[k]);
+        match (Self::in_group(&lo.1, j), Self::in_group(&hi.1, j)) {
+            (Some(p), Some(q)) => {
+                let t = (rpm - lo.0) / (hi.0 - lo.0);
+                Some((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)))
+            }
+            (Some(p), None) if rpm / lo.0 - 1.0 <= 0.02 => Some(p),
+            (None, Some(q)) if 1.0 - rpm / hi.0 <= 0.02 => Some(q),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod table_tests {
+    use super::PerformanceTable;
+
+    #[test]
+    fn a_table_interpolates_in_j_and_rpm_and_says_none_outside() {
+        let t = PerformanceTable::new([
+            [4000.0, 0.0, 0.10, 0.05],
+            [4000.0, 0.4, 0.06, 0.04],
+            [6000.0, 0.0, 0.12, 0.06],
+            [6000.0, 0.4, 0.08, 0.05],
+            [8000.0, 0.0, 0.13, 0.07],
+        ]);
+        let (ct, cp) = t.at(4000.0, 0.2).unwrap();
+        assert!((ct - 0.08).abs() < 1e-12 && (cp - 0.045).abs() < 1e-12);
+        let (ct, _) = t.at(5000.0, 0.2).unwrap();
+        assert!((ct - 0.09).abs() < 1e-12);
+        // A single row (a static point) only at its own J; between 6000 and 8000 at J = 0.
+        assert!((t.at(7000.0, 0.0).unwrap().0 - 0.125).abs() < 1e-12);
+        assert_eq!(t.at(7000.0, 0.2), None);
+        // Outside the J range, or more than 2 % beyond the speeds.
+        assert_eq!(t.at(4000.0, 0.5), None);
+        assert_eq!(t.at(3000.0, 0.0), None);
+        assert!(t.at(3950.0, 0.0).is_some());
+        assert!(PerformanceTable::new([]).at(4000.0, 0.0).is_none());
+    }
+}

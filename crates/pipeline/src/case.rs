@@ -466,6 +466,7 @@ impl Case {
                         model: model.clone(),
                         measured: measured.clone(),
                         per3: m.per3.as_deref().map(f),
+                        qprop_output: None,
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {

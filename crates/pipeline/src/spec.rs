@@ -419,6 +419,8 @@ pub struct CompareSpec {
     pub measured: MeasuredSpec,
     /// APC's predictions (a PER3 file) drawn and scored beside propbet's.
     pub per3: Option<PathBuf>,
+    /// A QPROP output (its printed sweep) drawn and scored beside propbet's.
+    pub qprop_output: Option<PathBuf>,
     /// Output directory.
     pub out: PathBuf,
 }
@@ -662,6 +664,9 @@ impl StageSpec {
                 s.measured.push_argv(&mut v);
                 if let Some(p) = &s.per3 {
                     push(&mut v, "--per3", path(p));
+                }
+                if let Some(p) = &s.qprop_output {
+                    push(&mut v, "--qprop-output", path(p));
                 }
                 push(&mut v, "--out", path(&s.out));
             }

@@ -643,6 +643,12 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     Ok(Diagnosed { sets, data, diagnosis })
 }
 
+/// Reads a QPROP output file (its printed sweep), naming the file in every error.
+pub fn read_qprop_output(path: &Path) -> Result<propbet_qprop::output::QpropOutput> {
+    let text = read_text(path)?;
+    propbet_qprop::output::parse_output(&text).map_err(|e| Error::input(path, e))
+}
+
 /// Reads APC's predictions (a PER3 file), naming the file in every error.
 pub fn read_per3(path: &Path) -> Result<propbet_qprop::apc::Per3> {
     let text = read_text(path)?;

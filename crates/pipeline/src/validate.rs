@@ -373,6 +373,7 @@ pub fn validate_prop(
     let compared = compare_stage(
         CompareSpec {
             per3: per3_file.clone(),
+            qprop_output: None,
             model: model_spec.clone(),
             measured: measured.clone(),
             out: dir.join("compare"),
@@ -406,6 +407,7 @@ pub fn validate_prop(
     let calibrated = compare_stage(
         CompareSpec {
             per3: None,
+            qprop_output: None,
             model: cal_spec,
             measured: measured.clone(),
             out: dir.join("calibrated"),
