@@ -697,3 +697,55 @@ fn effects_weaker_than_the_measured_repeatability_are_not_found() {
         }
     }
 }
+
+/// An optical RPM (a UIUC wind-tunnel file) has no pole count to get wrong: the RPM scale is
+/// bounded by the sensor's calibration (`stages::OPTICAL_RPM_SCALE`), so an 8 % RPM error hidden
+/// in wind-tunnel files is reported as beyond what the effect can physically give there, while
+/// the same data from an electrical reading (generic CSV, RPM source unknown) name it.
+#[test]
+fn an_optical_rpm_is_not_scaled_like_an_electrical_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = apc8x6();
+    let prop = p.to_str().unwrap();
+    for (format, out) in [("uiuc", "tunnel"), ("generic", "stand.csv")] {
+        let o = super::run(
+            &[
+                "synth",
+                "--prop",
+                prop,
+                "--effect",
+                "rpm-scale:factor=0.92",
+                "--noise",
+                "0.5%",
+                "--seed",
+                "4",
+                "--format",
+                format,
+                "--out",
+                out,
+            ],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{}", stderr(&o));
+    }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.path().join("tunnel"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "txt"))
+        .collect();
+    files.sort();
+    let refs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    let (o, j) = diagnose(&p, &refs, &[], dir.path());
+    assert!(
+        !ladder_ids(&j).contains(&"rpm-scale".to_string()),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("rpm-scale        hit its bound (rpm-scale:factor = 0.9700)"),
+        "{out}"
+    );
+    let (o, j) = diagnose(&p, &[&dir.path().join("stand.csv")], &[], dir.path());
+    assert_eq!(top(&j), "rpm-scale", "{}", String::from_utf8_lossy(&o.stdout));
+}

@@ -287,3 +287,84 @@ pub fn fmt_value(v: f64) -> String {
         format!("{v:.3e}")
     }
 }
+
+/// An effect with narrower bounds on its parameters, the same physics otherwise: what the
+/// measurement rules out (an optical RPM sensor has no pole count to get wrong, so an RPM scale
+/// beyond its calibration is not on the table).
+#[derive(Debug, Clone)]
+pub struct Narrowed {
+    inner: Arc<dyn Effect>,
+    params: Vec<Param>,
+}
+
+impl Narrowed {
+    /// `inner` with each named parameter's bounds replaced by `(lower, upper, why)`: the
+    /// reason is appended to the parameter's description.
+    pub fn new(inner: Arc<dyn Effect>, bounds: &[(&str, f64, f64, &str)]) -> Narrowed {
+        let params = inner
+            .params()
+            .iter()
+            .map(|p| match bounds.iter().find(|b| b.0 == p.name) {
+                Some(&(_, lower, upper, why)) => Param {
+                    lower,
+                    upper,
+                    start: p.start.clamp(lower, upper),
+                    doc: format!("{} ({why}: {lower}-{upper})", p.doc),
+                    ..p.clone()
+                },
+                None => p.clone(),
+            })
+            .collect();
+        Narrowed { inner, params }
+    }
+}
+
+impl Effect for Narrowed {
+    fn id(&self) -> &str {
+        self.inner.id()
+    }
+    fn params(&self) -> &[Param] {
+        &self.params
+    }
+    fn hooks(&self) -> &[Hook] {
+        self.inner.hooks()
+    }
+    fn explanation(&self) -> &str {
+        self.inner.explanation()
+    }
+    fn extra_starts(&self) -> Vec<Vec<f64>> {
+        self.inner.extra_starts()
+    }
+    fn measurement(&self, p: &[f64], point: &mut PointState) {
+        self.inner.measurement(p, point);
+    }
+    fn geometry(&self, p: &[f64], point: &PointState, geom: &mut StationGeom) {
+        self.inner.geometry(p, point, geom);
+    }
+    fn inflow(&self, p: &[f64], point: &PointState, rotor: &Rotor, opts: &mut SolverOptions) {
+        self.inner.inflow(p, point, rotor, opts);
+    }
+    fn lift(
+        &self,
+        p: &[f64],
+        ctx: &SectionCtx,
+        inner: &dyn propbet_bemt::SectionAero,
+        state: (f64, f64, f64),
+        base: LiftEval,
+    ) -> Result<LiftEval, EffectError> {
+        self.inner.lift(p, ctx, inner, state, base)
+    }
+    fn drag(
+        &self,
+        p: &[f64],
+        ctx: &SectionCtx,
+        inner: &dyn propbet_bemt::SectionAero,
+        input: &DragInput,
+        cd: f64,
+    ) -> Result<f64, EffectError> {
+        self.inner.drag(p, ctx, inner, input, cd)
+    }
+    fn loads(&self, p: &[f64], point: &PointState, result: &PointResult, loads: &mut Loads) -> Result<(), EffectError> {
+        self.inner.loads(p, point, result, loads)
+    }
+}

@@ -604,6 +604,11 @@ pub struct Diagnosed {
     pub diagnosis: Diagnosis,
 }
 
+/// Bounds of the RPM scale when every file's RPM is optical: a calibrated once-per-revolution
+/// sensor reads within a few percent (the wide bounds hold the pole-count ratios of an
+/// electrical reading, 12/14 and 14/12).
+pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.97, 1.03);
+
 /// Runs the diagnose stage.
 pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     if spec.folds < 2 {
@@ -622,6 +627,29 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     // Effects already in the baseline are not candidates.
     candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
     let (air, sets) = load_measured(&spec.measured)?;
+    // An optical RPM sensor (a wind tunnel's, a thrust stand's optical probe) has no pole count
+    // to get wrong: an RPM scale is then only its calibration.
+    let optical = sets.iter().all(|s| {
+        matches!(
+            s.format,
+            propbet_measure::Format::UiucStatic | propbet_measure::Format::UiucSweep
+        ) || s.rpm_source == Some(propbet_measure::RpmSource::Optical)
+    });
+    if optical {
+        for c in &mut candidates {
+            if c.id() == "rpm-scale" {
+                *c = std::sync::Arc::new(propbet_effects::Narrowed::new(
+                    c.clone(),
+                    &[(
+                        "factor",
+                        OPTICAL_RPM_SCALE.0,
+                        OPTICAL_RPM_SCALE.1,
+                        "an optical RPM sensor: no pole count to get wrong",
+                    )],
+                ));
+            }
+        }
+    }
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
     if !(spec.window.is_finite() && spec.window > 0.0 && spec.window <= 2.0) {
         invalid!("--window {}: a fraction of the zero-thrust J in (0, 2]", spec.window);
