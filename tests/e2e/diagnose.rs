@@ -148,6 +148,17 @@ impl Rng {
     }
 }
 
+/// The `.txt` files of a directory (synth's UIUC files), sorted.
+fn txt_files(dir: &Path) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "txt"))
+        .collect();
+    files.sort();
+    files
+}
+
 fn synth(prop: &Path, effects: &[String], extra: &[&str], seed: u64, out: &Path, dir: &Path) {
     let mut args = vec![
         "synth",
@@ -287,12 +298,7 @@ fn synth_writes_uiuc_and_rcbenchmark_that_diagnose_reads() {
         dir.path(),
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.path().join("tunnel"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "txt"))
-        .collect();
-    files.sort();
+    let files = txt_files(&dir.path().join("tunnel"));
     assert_eq!(files.len(), 4, "one J sweep per RPM");
     assert!(dir.path().join("tunnel/answer.json").exists());
     let refs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
@@ -728,12 +734,7 @@ fn an_optical_rpm_is_not_scaled_like_an_electrical_one() {
         );
         assert!(o.status.success(), "{}", stderr(&o));
     }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.path().join("tunnel"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "txt"))
-        .collect();
-    files.sort();
+    let files = txt_files(&dir.path().join("tunnel"));
     let refs: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
     let (o, j) = diagnose(&p, &refs, &[], dir.path());
     assert!(

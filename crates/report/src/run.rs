@@ -327,21 +327,7 @@ fn problems(run: &RunOutcome) -> Vec<(&'static str, usize, String)> {
         add("scan", v);
     }
     if let Some(p) = &run.polars {
-        let v = p
-            .blade
-            .stations
-            .iter()
-            .flat_map(|s| {
-                let mut m: Vec<String> = s.problem.iter().cloned().collect();
-                if let Some(f) = &s.fit {
-                    m.extend(f.unfit.iter().map(|u| format!("QPROP fit: {u}")));
-                }
-                if s.polars.iter().any(|p| !p.faults.is_empty()) {
-                    m.push("XFOIL faults (crash, hang or budget) at some Reynolds numbers".into());
-                }
-                m
-            })
-            .collect();
+        let v = p.blade.stations.iter().flat_map(station_problem_list).collect();
         add("polars", v);
     }
     add("predict", run.model.loaded.warnings.clone());
@@ -373,6 +359,13 @@ fn problems(run: &RunOutcome) -> Vec<(&'static str, usize, String)> {
 }
 
 fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
+    station_problem_list(s).join("; ")
+}
+
+/// Everything wrong at a station of the polars, for the table's problem column and the run's
+/// summary: the stage's own note, angles XFOIL did not converge, the QPROP fit's verdicts and
+/// fallbacks, XFOIL's faults (rungs without a polar: the tables interpolate across them).
+fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> {
     let mut v: Vec<String> = s.problem.iter().cloned().collect();
     let unconverged: usize = s.polars.iter().map(|p| p.unconverged_deg.len()).sum();
     if unconverged > 0 {
@@ -384,5 +377,8 @@ fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
     if let Some(f) = &s.fit {
         v.extend(f.unfit.iter().map(|u| format!("QPROP fit: {u}")));
     }
-    v.join("; ")
+    if s.polars.iter().any(|p| !p.faults.is_empty()) {
+        v.push("XFOIL faults (crash, hang or budget) at some Reynolds numbers".into());
+    }
+    v
 }
