@@ -413,6 +413,15 @@ fn apc_prediction_is_drawn_and_scored_beside_propbets() {
         dir.path(),
     );
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    // The terminal gives APC's errors under propbet's, per group.
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        stdout
+            .matches("  APC's prediction (PER3_10x47SF.dat): thrust mean error")
+            .count(),
+        2,
+        "{stdout}"
+    );
     let out = dir.path().join("out");
     let s = json(&out.join("summary.json"));
     assert!(s["command"].as_str().unwrap().contains("--per3 "));

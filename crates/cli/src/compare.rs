@@ -206,14 +206,15 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     }
     let model = load_model(&spec.model, false)?;
     let c = stages::compare(&model, &spec.measured)?;
-    write(&spec, &model, &c)?;
-    print(&spec, &c);
+    let (_, reference) = write(&spec, &model, &c)?;
+    print(&spec, &c, reference.as_ref());
     Ok(c.problems() == (0, 0))
 }
 
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
-/// plots) into the spec's directory; returns the report page.
-pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> {
+/// plots) into the spec's directory; returns the report page and, with a reference prediction,
+/// its name and headline (as `summary.json` holds them).
+pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<(String, Option<serde_json::Value>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
     let curves = propbet_compare::curves::curves(&setup, &c.points)?;
     let mut prop_notes = model.loaded.warnings.clone();
@@ -298,7 +299,8 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<String> 
         &inputs,
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
-    Ok(rep.html)
+    let reference = rep.json.get("reference").cloned();
+    Ok((rep.html, reference))
 }
 
 /// A QPROP output's summary rows as (rpm, J, CT, CP) in propbet's coefficients: from its
@@ -318,8 +320,9 @@ fn qprop_table(out: &propbet_qprop::output::QpropOutput, d: f64) -> propbet_comp
     }))
 }
 
-/// A short summary on the terminal.
-pub fn print(spec: &CompareSpec, c: &Compared) {
+/// A short summary on the terminal; `reference`: another code's name and headline (from
+/// [`write`]), printed under propbet's.
+pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Value>) {
     print_measured(&spec.measured, &c.sets);
     let m = &c.metrics;
     // The headline: the scored window, static and forward flight apart (as the report).
@@ -336,6 +339,18 @@ pub fn print(spec: &CompareSpec, c: &Compared) {
                     x.max_rel_at
                 );
             }
+        }
+        let theirs = reference.and_then(|r| {
+            let g = r["headline"]
+                .as_array()?
+                .iter()
+                .find(|h| h["points"] == g.name.as_str())?;
+            let e = |q: &str| g["errors"][q]["mean_error"].as_f64();
+            Some((r["name"].as_str()?.to_string(), e("thrust")?, e("torque")))
+        });
+        if let Some((name, t, q)) = theirs {
+            let torque = q.map_or(String::new(), |q| format!(", torque {:+.1} %", 100.0 * q));
+            println!("  {name}: thrust mean error {:+.1} %{torque}", 100.0 * t);
         }
     }
     if m.outside_window > 0 {

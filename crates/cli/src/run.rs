@@ -230,8 +230,8 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<O
             crate::predict::write_sweep(spec, model, points)?;
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
-            let page = crate::compare::write(spec, model, c)?;
-            crate::compare::print(spec, c);
+            let (page, reference) = crate::compare::write(spec, model, c)?;
+            crate::compare::print(spec, c, reference.as_ref());
             return Ok(Some(page));
         }
         (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {

@@ -179,8 +179,8 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             }
             StageSpec::Compare(s) => {
                 let (c, model) = compared.next().expect("two comparisons");
-                crate::compare::write(s, model, c)?;
-                crate::compare::print(s, c);
+                let (_, reference) = crate::compare::write(s, model, c)?;
+                crate::compare::print(s, c, reference.as_ref());
             }
             StageSpec::Diagnose(s) => {
                 crate::diagnose::write(s, &v.diagnosed)?;
