@@ -69,14 +69,11 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, steps: &[Step]) -
     let _ = writeln!(out, "OPER");
     let _ = writeln!(out, "VISC {:e}", s.reynolds);
     let _ = writeln!(out, "MACH {:.6}", s.mach);
-    match s.trip {
-        Some(x) => {
-            let _ = writeln!(out, "VPAR\nN {:.6}\nXTR {x:.6} {x:.6}\n", s.ncrit);
-        }
-        None => {
-            let _ = writeln!(out, "VPAR\nN {:.6}\n", s.ncrit);
-        }
+    let _ = writeln!(out, "VPAR\nN {:.6}", s.ncrit);
+    if let Some(x) = s.trip {
+        let _ = writeln!(out, "XTR {x:.6} {x:.6}");
     }
+    let _ = writeln!(out);
     let _ = writeln!(out, "ITER {}", s.max_iter);
     if let Some(a) = warm_up_deg {
         let _ = writeln!(out, "ALFA {a:.6}");

@@ -197,24 +197,25 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
-    // A PER3 file that cannot be read stops the command before anything is computed.
-    if let Some(p) = &spec.per3 {
-        stages::read_per3(p)?;
-    }
-    if let Some(p) = &spec.qprop_output {
-        stages::read_qprop_output(p)?;
-    }
     let model = load_model(&spec.model, false)?;
+    // A reference that cannot be read stops the command before anything is computed.
+    let other = Reference::load(&spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;
-    let (_, reference) = write(&spec, &model, &c)?;
+    let (_, reference) = write(&spec, &model, &c, other.as_ref())?;
     print(&spec, &c, reference.as_ref());
     Ok(c.problems() == (0, 0))
 }
 
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
-/// plots) into the spec's directory; returns the report page and, with a reference prediction,
-/// its name and headline (as `summary.json` holds them).
-pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<(String, Option<serde_json::Value>)> {
+/// plots) into the spec's directory, with `other`'s prediction beside propbet's; returns the
+/// report page and, with a reference prediction, its name and headline (as `summary.json` holds
+/// them).
+pub fn write(
+    spec: &CompareSpec,
+    model: &Model,
+    c: &Compared,
+    other: Option<&Reference>,
+) -> Result<(String, Option<serde_json::Value>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
     let curves = propbet_compare::curves::curves(&setup, &c.points)?;
     let mut prop_notes = model.loaded.warnings.clone();
@@ -227,29 +228,11 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<(String,
     if !model.effects.is_empty() {
         prop_notes.push(format!("model with effects: {}", model.effects.describe()));
     }
-    let per3 = spec.per3.as_deref().map(stages::read_per3).transpose()?;
-    let qprop = match &spec.qprop_output {
-        Some(p) => Some(qprop_table(&stages::read_qprop_output(p)?, model.diameter)),
-        None => None,
-    };
-    let reference_at = |rpm: f64, j: f64| match (&per3, &qprop) {
-        (Some(p), _) => p.at(rpm, j),
-        (None, Some(q)) => q.at(rpm, j),
-        (None, None) => None,
-    };
-    let file_name = |p: &std::path::Path| {
-        p.file_name()
-            .map_or(String::new(), |n| n.to_string_lossy().into_owned())
-    };
-    let reference_name = match (&spec.per3, &spec.qprop_output) {
-        (Some(p), _) => Some(format!("APC's prediction ({})", file_name(p))),
-        (None, Some(p)) => Some(format!("QPROP's prediction ({})", file_name(p))),
-        (None, None) => None,
-    };
+    let other_at = |rpm: f64, j: f64| other.and_then(|r| r.at(rpm, j));
     let rep = report::build(&ReportInput {
-        reference: reference_name.map(|name| ReferenceInput {
-            name,
-            at: &reference_at,
+        reference: other.map(|r| ReferenceInput {
+            name: r.name.clone(),
+            at: &other_at,
         }),
         prop: spec.model.prop.display().to_string(),
         prop_notes,
@@ -303,20 +286,58 @@ pub fn write(spec: &CompareSpec, model: &Model, c: &Compared) -> Result<(String,
     Ok((rep.html, reference))
 }
 
+/// Another code's prediction a comparison names (`--per3` or `--qprop-output`), read once.
+pub struct Reference {
+    /// What it is, for legends and the headline.
+    name: String,
+    table: ReferenceTable,
+}
+
+enum ReferenceTable {
+    Apc(propbet_qprop::apc::Per3),
+    Qprop(propbet_compare::curves::PerformanceTable),
+}
+
+impl Reference {
+    /// The reference `spec` names, if any (`diameter` [m]: the model's, which turns a QPROP
+    /// output's thrust and torque into coefficients); an error names a file that cannot be read.
+    pub fn load(spec: &CompareSpec, diameter: f64) -> Result<Option<Reference>> {
+        let file_name = |p: &std::path::Path| {
+            p.file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+        };
+        Ok(match (&spec.per3, &spec.qprop_output) {
+            (Some(p), _) => Some(Reference {
+                name: format!("APC's prediction ({})", file_name(p)),
+                table: ReferenceTable::Apc(stages::read_per3(p)?),
+            }),
+            (None, Some(p)) => Some(Reference {
+                name: format!("QPROP's prediction ({})", file_name(p)),
+                table: ReferenceTable::Qprop(qprop_table(&stages::read_qprop_output(p)?, diameter)),
+            }),
+            (None, None) => None,
+        })
+    }
+
+    /// (CT, CP) at `rpm` and `j`; None where it has no value.
+    fn at(&self, rpm: f64, j: f64) -> Option<(f64, f64)> {
+        match &self.table {
+            ReferenceTable::Apc(p) => p.at(rpm, j),
+            ReferenceTable::Qprop(q) => q.at(rpm, j),
+        }
+    }
+}
+
 /// A QPROP output's summary rows as (rpm, J, CT, CP) in propbet's coefficients: from its
 /// printed thrust and torque, the output's density and the model's diameter `d` (so that the
 /// radius QPROP's own coefficients use does not matter).
 fn qprop_table(out: &propbet_qprop::output::QpropOutput, d: f64) -> propbet_compare::curves::PerformanceTable {
     propbet_compare::curves::PerformanceTable::new(out.summary.iter().map(|r| {
         let (v, rpm, thrust, torque) = (r[0].value, r[1].value, r[3].value, r[4].value);
+        let omega = propbet_bemt::units::rpm_to_omega(rpm);
         let n = propbet_bemt::units::rpm_to_rev_per_s(rpm);
-        let s = propbet_bemt::units::Scales::new(out.rho, n, d);
-        [
-            rpm,
-            v / (n * d),
-            thrust / s.thrust,
-            torque * 2.0 * std::f64::consts::PI * n / s.power,
-        ]
+        let q = propbet_compare::Quantities::from_forces(thrust, Some(torque), omega, v, out.rho, d);
+        [rpm, v / (n * d), q.ct.unwrap_or(f64::NAN), q.cp.unwrap_or(f64::NAN)]
     }))
 }
 

@@ -230,7 +230,8 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<O
             crate::predict::write_sweep(spec, model, points)?;
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
-            let (page, reference) = crate::compare::write(spec, model, c)?;
+            let other = crate::compare::Reference::load(spec, model.diameter)?;
+            let (page, reference) = crate::compare::write(spec, model, c, other.as_ref())?;
             crate::compare::print(spec, c, reference.as_ref());
             return Ok(Some(page));
         }

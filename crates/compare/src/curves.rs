@@ -75,30 +75,31 @@ pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectE
 /// (CT, CP) at (rpm, J), None where it has no value.
 pub type Reference<'a> = &'a dyn Fn(f64, f64) -> Option<(f64, f64)>;
 
+/// `reference`'s quantities at `rpm` and `j` (speed `v` [m/s]) in air of density `rho`, for a
+/// propeller of diameter `diameter`: its CT and CP made thrust and torque.
+fn reference_at(reference: Reference<'_>, rpm: f64, j: f64, v: f64, rho: f64, diameter: f64) -> Option<Quantities> {
+    let (ct, cp) = reference(rpm, j)?;
+    let omega = propbet_units::rpm_to_omega(rpm);
+    let s = propbet_units::Scales::new(rho, propbet_units::omega_to_rev_per_s(omega), diameter);
+    Some(Quantities::from_forces(
+        ct * s.thrust,
+        Some(cp * s.power / omega),
+        omega,
+        v,
+        rho,
+        diameter,
+    ))
+}
+
 /// The compared points with `reference`'s prediction in place of the model's (all quantities
 /// None where the reference has no value), to be scored by [`crate::metrics::metrics`] on the
 /// same points, window and measure as the model.
 pub fn with_reference(points: &[ComparedPoint], reference: Reference<'_>, diameter: f64) -> Vec<ComparedPoint> {
     points
         .iter()
-        .map(|p| {
-            let omega = propbet_units::rpm_to_omega(p.rpm);
-            let predicted = match reference(p.rpm, p.j) {
-                Some((ct, cp)) => {
-                    let s =
-                        propbet_units::Scales::new(p.air.fluid.rho, propbet_units::omega_to_rev_per_s(omega), diameter);
-                    Quantities::from_forces(
-                        ct * s.thrust,
-                        Some(cp * s.power / omega),
-                        omega,
-                        p.v,
-                        p.air.fluid.rho,
-                        diameter,
-                    )
-                }
-                None => Quantities::default(),
-            };
-            ComparedPoint { predicted, ..p.clone() }
+        .map(|p| ComparedPoint {
+            predicted: reference_at(reference, p.rpm, p.j, p.v, p.air.fluid.rho, diameter).unwrap_or_default(),
+            ..p.clone()
         })
         .collect()
 }
@@ -107,18 +108,8 @@ pub fn with_reference(points: &[ComparedPoint], reference: Reference<'_>, diamet
 /// (rpm, quantities) static at `rho_static`, None where the reference has no value.
 pub fn reference_curves(curves: &Curves, reference: Reference<'_>, diameter: f64, rho_static: f64) -> Curves {
     let at = |rpm: f64, j: f64, rho: f64| {
-        let (ct, cp) = reference(rpm, j)?;
-        let omega = propbet_units::rpm_to_omega(rpm);
-        let n = propbet_units::omega_to_rev_per_s(omega);
-        let s = propbet_units::Scales::new(rho, n, diameter);
-        Some(Quantities::from_forces(
-            ct * s.thrust,
-            Some(cp * s.power / omega),
-            omega,
-            j * n * diameter,
-            rho,
-            diameter,
-        ))
+        let v = j * propbet_units::rpm_to_rev_per_s(rpm) * diameter;
+        reference_at(reference, rpm, j, v, rho, diameter)
     };
     Curves {
         j_sweeps: curves
@@ -168,11 +159,6 @@ impl PerformanceTable {
             }
         }
         PerformanceTable { groups }
-    }
-
-    /// True when the table has no row.
-    pub fn is_empty(&self) -> bool {
-        self.groups.is_empty()
     }
 
     /// (CT, CP) of one speed's rows at `j`: linear in J inside their range; a single row only

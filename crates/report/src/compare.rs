@@ -143,17 +143,15 @@ fn coefficient_figure(curves: &Curves, points: &[ComparedPoint], reference: Opti
         for (i, (panel, q)) in panels.iter_mut().zip(["ct", "cp", "eta"]).enumerate() {
             let legend = if i == 0 { name.clone() } else { String::new() };
             panel.series.push(measured_series(legend, pts, |p| p.j, q, k));
-            let line: Vec<(f64, f64)> = curve
-                .iter()
-                .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
-                .collect();
-            panel.series.push(Series::new("", line, Mark::Line, Some(k)));
-            if let Some(Some((_, c))) = reference.map(|r| &r.curves).and_then(|c| c.j_sweeps.get(k)) {
-                let line: Vec<(f64, f64)> = c
-                    .iter()
+            // Efficiency only where it is defined (positive).
+            let line = |c: &[(f64, propbet_compare::Quantities)]| -> Vec<(f64, f64)> {
+                c.iter()
                     .filter_map(|(j, c)| c.get(q).filter(|v| q != "eta" || *v > 0.0).map(|v| (*j, v)))
-                    .collect();
-                panel.series.push(Series::new("", line, Mark::Dashed, Some(k)));
+                    .collect()
+            };
+            panel.series.push(Series::new("", line(curve), Mark::Line, Some(k)));
+            if let Some(Some((_, c))) = reference.map(|r| &r.curves).and_then(|c| c.j_sweeps.get(k)) {
+                panel.series.push(Series::new("", line(c), Mark::Dashed, Some(k)));
             }
         }
     }
