@@ -1,14 +1,16 @@
 //! A fake `xfoil` for tests of code that runs XFOIL: a bash script that speaks just enough of
 //! XFOIL's dialogue (`PACC` + file names, `ALFA a` saving a point to the polar file, `INIT`,
 //! `QUIT`) and runs a chosen snippet at each angle, to crash, hang, babble or write garbage
-//! where a test wants it. Its polar is cl = 0.4 + 0.1 a, cd = 0.01 + 0.001 a^2 (a in degrees).
+//! where a test wants it. Its polar is cl = 0.4 + 0.1 a, cd = 0.01 + 0.001 a^2 (a in degrees)
+//! unless the snippet sets `cl` and `cd`.
 
 use std::path::{Path, PathBuf};
 
 /// Writes the fake as `dir/xfoil` (executable) and returns its path. `behaviour` is bash run
 /// at each `ALFA $arg` before the point is saved; it sees `$arg` (the angle as XFOIL's script
 /// writes it, `2.000000`), `$acc` (1 while the polar accumulates) and `$polar` (its file), and
-/// `$was_init` (1 when the boundary layer was just initialised).
+/// `$init` (1 when the boundary layer was just initialised), and may set `cl` and `cd` (the
+/// point saved; both unset or empty: the fake's own polar).
 pub fn write_fake_xfoil(dir: &Path, behaviour: &str) -> std::io::Result<PathBuf> {
     use std::os::unix::fs::PermissionsExt;
     let path = dir.join("xfoil");
@@ -25,10 +27,11 @@ while read -r cmd arg; do
       else acc=0; fi ;;
     ALFA)
       echo "       a =  $arg      CL =  0.5"
+      cl=""; cd=""
       {behaviour}
       was_init=$init; init=0
       if [ $acc = 1 ]; then
-        awk -v a="$arg" 'BEGIN {{ printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, 0.4 + 0.1 * a, 0.01 + 0.001 * a * a, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
+        awk -v a="$arg" -v cl="$cl" -v cd="$cd" 'BEGIN {{ if (cl == "") cl = 0.4 + 0.1 * a; if (cd == "") cd = 0.01 + 0.001 * a * a; printf "%8.3f %8.4f %9.5f %9.5f %8.4f %8.4f %8.4f\n", a, cl, cd, 0.005, -0.1, 0.5, 1.0 }}' >> "$polar"
       fi ;;
     INIT) init=1 ;;
     QUIT) exit 0 ;;

@@ -20,7 +20,8 @@ pub mod script;
 pub use find::{find_xfoil, FindXfoilError};
 pub use output::{parse_polar_file, XfoilPoint};
 pub use run::{
-    DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig, DEFAULT_MAX_ITER, DEFAULT_PANELS,
+    Branches, DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig, DEFAULT_MAX_ITER,
+    DEFAULT_PANELS,
 };
 
 use thiserror::Error;

@@ -212,6 +212,50 @@ pub struct SweepOutcome {
     pub faults: Vec<Fault>,
     /// XFOIL processes started.
     pub runs: usize,
+    /// Angles where the sweep's return ([`Xfoil::sweep`]) found another solution than its way
+    /// out: a hysteresis loop.
+    #[serde(default)]
+    pub hysteresis: Vec<Branches>,
+    /// Points of the returns, before they are set against the outward ones.
+    #[serde(skip)]
+    returned: Vec<XfoilPoint>,
+}
+
+/// Two converged solutions at one angle, from the two directions of approach; the one kept in
+/// the polar is the one with the lower drag (attached flow, which a disturbed stream such as a
+/// rotating blade's reattaches to), the other is kept here for the record.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Branches {
+    /// The solution in the polar.
+    pub kept: XfoilPoint,
+    /// The other one.
+    pub other: XfoilPoint,
+}
+
+/// Lift coefficients further apart than this at one angle are two branches [-] (XFOIL's
+/// converged lift repeats to 1e-4 from the same side; loops at low Re differ by 0.05-0.2).
+pub const HYSTERESIS_CL: f64 = 0.02;
+
+/// How far the sweep returns over the angles it came through: from the highest requested angle
+/// down over this many degrees (stall hysteresis lives within a few degrees past the lift
+/// peak), and from the lowest up over [`LOWER_RETURN_DEG`] [deg].
+pub const UPPER_RETURN_DEG: f64 = 8.0;
+/// See [`UPPER_RETURN_DEG`].
+pub const LOWER_RETURN_DEG: f64 = 4.0;
+
+/// Steps of a return over `alphas` (continuing, nothing re-initialised).
+fn returning<'a, I: Iterator<Item = &'a f64> + 'a>(alphas: I) -> impl Iterator<Item = Step> + 'a {
+    alphas.map(|&alpha_deg| Step {
+        alpha_deg,
+        init: false,
+        returning: true,
+    })
+}
+
+/// `points` sorted by angle, one per angle (the first of any repeated).
+fn sort_unique(points: &mut Vec<XfoilPoint>) {
+    points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
+    points.dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
 }
 
 /// An XFOIL installation ready to run sweeps; share it between threads.
@@ -292,9 +336,14 @@ impl Xfoil {
 
     /// Runs a viscous sweep: from the requested angle nearest zero upward, and from there
     /// downward, each direction one XFOIL process restarted beyond any angle where it crashed or
-    /// hung. Converged points come back with the angles that failed; an error only when the
-    /// request is invalid, XFOIL cannot be started, it writes unreadable output, or every run
-    /// faulted before converging anything.
+    /// hung, each direction returning at its end over the last angles it came through
+    /// ([`UPPER_RETURN_DEG`], [`LOWER_RETURN_DEG`]) so that a hysteresis loop (stall and laminar
+    /// bubbles at low Re) shows as a second solution, of which the lower-drag one is kept
+    /// ([`SweepOutcome::hysteresis`] has both) and angles the outward sweep missed are filled;
+    /// then the angles that failed, each from a fresh boundary layer.
+    /// Converged points come back with the angles that failed; an error only when the request
+    /// is invalid, XFOIL cannot be started, it writes unreadable output, or every run faulted
+    /// before converging anything.
     pub fn sweep(&self, req: &SweepRequest) -> Result<SweepOutcome, XfoilError> {
         self.sweep_until(req, Instant::now() + self.config.sweep_budget)
     }
@@ -318,19 +367,33 @@ impl Xfoil {
         let i0 = (0..a.len())
             .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
             .unwrap_or(0);
-        // One process: up from the angle nearest zero, then back to it from a fresh boundary
-        // layer, then down. Then the angles that failed, each from a fresh boundary layer.
+        // One process: up from the angle nearest zero and back over the last angles, then
+        // from a fresh boundary layer at it down and back. Then the angles that failed, each
+        // from a fresh boundary layer.
+        let n = a.len();
         let mut steps = Step::list(&a[i0..], false, false);
+        let top = a[n - 1];
+        steps.extend(returning(
+            a[i0 + 1..n - 1].iter().rev().filter(|&&x| x >= top - UPPER_RETURN_DEG),
+        ));
         let down: Vec<f64> = a[..=i0].iter().rev().copied().collect();
         if down.len() > 1 {
             steps.extend(Step::list(&down, true, false));
+            let bottom = a[0];
+            steps.extend(returning(a[1..i0].iter().filter(|&&x| x <= bottom + LOWER_RETURN_DEG)));
         }
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();
-        let failed = self.branch(&airfoil, &settings, &steps, &mut out, &mut last_tail, (start, deadline))?;
+        let clock = (start, deadline);
+        let failed = self.branch(&airfoil, &settings, None, &steps, &mut out, &mut last_tail, clock)?;
         let converged =
             |out: &SweepOutcome, x: f64| out.points.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
-        let mut retry: Vec<f64> = failed.into_iter().filter(|&x| !converged(&out, x)).collect();
+        // (An angle the return converged is not retried.)
+        let returned = |x: f64| out.returned.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
+        let mut retry: Vec<f64> = failed
+            .into_iter()
+            .filter(|&x| !converged(&out, x) && !returned(x))
+            .collect();
         retry.dedup();
         if !retry.is_empty() {
             // A fresh boundary layer converges within RETRY_ITER iterations or, in practice, not
@@ -342,18 +405,42 @@ impl Xfoil {
             self.branch(
                 &airfoil,
                 &retry_settings,
+                None,
                 &Step::list(&retry, false, true),
                 &mut out,
                 &mut last_tail,
-                (start, deadline),
+                clock,
             )?;
         }
         // A drag below 80 % of laminar flat-plate friction on both sides (2 x 1.328 / sqrt(Re))
         // is a spurious XFOIL solution, not a polar point.
         let floor = 0.8 * 2.0 * 1.328 / req.reynolds.sqrt();
         // Nor are values no section has (|cl| above 5, cd above 5): taken as not converged.
-        out.points
-            .retain(|p| p.cd >= floor && p.cd <= 5.0 && p.cl.abs() <= 5.0 && p.cm.abs() <= 5.0);
+        let plausible = |p: &XfoilPoint| p.cd >= floor && p.cd <= 5.0 && p.cl.abs() <= 5.0 && p.cm.abs() <= 5.0;
+        out.points.retain(plausible);
+        sort_unique(&mut out.points);
+        // The points of the returns, against the outward ones at the same angle.
+        let mut back = std::mem::take(&mut out.returned);
+        back.retain(plausible);
+        for p in back {
+            match out
+                .points
+                .iter_mut()
+                .find(|q| (q.alpha_deg - p.alpha_deg).abs() < ALPHA_MATCH_DEG)
+            {
+                Some(q) if (q.cl - p.cl).abs() > HYSTERESIS_CL => {
+                    let (kept, other) = if p.cd < q.cd { (p, *q) } else { (*q, p) };
+                    *q = kept;
+                    out.hysteresis.push(Branches { kept, other });
+                }
+                Some(_) => {}
+                None => out.points.push(p),
+            }
+        }
+        out.hysteresis
+            .sort_by(|x, y| x.kept.alpha_deg.total_cmp(&y.kept.alpha_deg));
+        out.hysteresis
+            .dedup_by(|x, y| (x.kept.alpha_deg - y.kept.alpha_deg).abs() < ALPHA_MATCH_DEG);
         out.unconverged_deg = a.iter().copied().filter(|&x| !converged(&out, x)).collect();
         if out.points.is_empty() && !out.faults.is_empty() {
             let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
@@ -362,30 +449,31 @@ impl Xfoil {
                 output_tail: last_tail,
             });
         }
-        out.points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
-        out.points
-            .dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
+        sort_unique(&mut out.points);
         Ok(out)
     }
 
     /// One pass over `steps` in order: runs until every angle is converged, failed or given
     /// up, restarting beyond crashes (with a warm-up at the last converged angle). Returns the
     /// angles that did not converge.
+    #[allow(clippy::too_many_arguments)]
     fn branch(
         &self,
         airfoil: &str,
         settings: &RunSettings,
+        mut warm_up: Option<f64>,
         steps: &[Step],
         out: &mut SweepOutcome,
         last_tail: &mut String,
         (start, deadline): (Instant, Instant),
     ) -> Result<Vec<f64>, XfoilError> {
-        let mut warm_up: Option<f64> = None;
         let mut failed = Vec::new();
-        let mut pos = 0;
+        // What is left to solve; after a fault, without the returns through the angle that
+        // faulted (XFOIL would fault there again).
+        let mut left: Vec<Step> = steps.to_vec();
         let mut restarts = 0;
-        while pos < steps.len() {
-            let todo_steps = &steps[pos..];
+        while !left.is_empty() {
+            let todo_steps = &left[..];
             let todo: Vec<f64> = todo_steps.iter().map(|s| s.alpha_deg).collect();
             let now = Instant::now();
             if now >= deadline {
@@ -419,7 +507,11 @@ impl Xfoil {
                         output_tail: run.output_tail.clone(),
                     })?;
                 last_done = Some(k);
-                out.points.push(*p);
+                if todo_steps[k].returning {
+                    out.returned.push(*p);
+                } else {
+                    out.points.push(*p);
+                }
             }
             let converged = |a: f64| run.points.iter().any(|p| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG);
             *last_tail = run.output_tail.clone();
@@ -458,10 +550,15 @@ impl Xfoil {
             if let Some(d) = last_done {
                 warm_up = Some(todo[d]);
             }
-            pos += failed_at + 1;
+            let at = todo[failed_at];
+            left = left[failed_at + 1..]
+                .iter()
+                .filter(|s| !(s.returning && (s.alpha_deg - at).abs() < ALPHA_MATCH_DEG))
+                .copied()
+                .collect();
             restarts += 1;
             if restarts > self.config.max_restarts {
-                failed.extend(steps[pos..].iter().map(|s| s.alpha_deg));
+                failed.extend(left.iter().map(|s| s.alpha_deg));
                 return Ok(failed);
             }
         }

@@ -19,6 +19,8 @@ pub struct Step {
     pub alpha_deg: f64,
     /// Re-initialise the boundary layer before this angle.
     pub init: bool,
+    /// A step of a return over angles already passed (hysteresis, [`crate::Xfoil::sweep`]).
+    pub returning: bool,
 }
 
 impl Step {
@@ -30,6 +32,7 @@ impl Step {
             .map(|(k, &alpha_deg)| Step {
                 alpha_deg,
                 init: init_each || (init_first && k == 0),
+                returning: false,
             })
             .collect()
     }

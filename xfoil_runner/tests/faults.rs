@@ -39,12 +39,50 @@ fn alphas(out: &xfoil_runner::SweepOutcome) -> Vec<f64> {
 }
 
 #[test]
-fn a_clean_fake_converges_everything_in_two_runs() {
+fn a_clean_fake_converges_everything_in_one_run() {
     let (_d, exe) = fake("");
     let out = runner(exe).sweep(&request()).unwrap();
     assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
-    assert_eq!(out.runs, 1, "up, then down in the same process");
+    assert_eq!(out.runs, 1, "up and back, then down and back, in the same process");
+    assert!(out.hysteresis.is_empty());
     assert!(out.faults.is_empty() && out.unconverged_deg.is_empty());
+}
+
+/// A section that stalls at 5 deg on the way up and reattaches only at 2 deg on the way down.
+const STALL_LOOP: &str = r#"a=${arg%%.*}; [ $init = 1 ] && st=0
+if [ $a -ge 5 ]; then st=1; elif [ $a -le 2 ]; then st=0; fi
+[ "$st" = 1 ] && { cl=0.3; cd=0.2; }"#;
+
+#[test]
+fn a_hysteresis_loop_is_seen_from_both_sides_and_the_attached_branch_kept() {
+    let (_d, exe) = fake(STALL_LOOP);
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    let at: Vec<f64> = out.hysteresis.iter().map(|b| b.kept.alpha_deg).collect();
+    assert_eq!(
+        at,
+        vec![3.0, 4.0],
+        "stalled on the return only there: {:?}",
+        out.hysteresis
+    );
+    for b in &out.hysteresis {
+        assert!((b.kept.cl - (0.4 + 0.1 * b.kept.alpha_deg)).abs() < 1e-9, "{b:?}");
+        assert_eq!((b.other.cl, b.other.cd), (0.3, 0.2));
+        let p = out.points.iter().find(|p| p.alpha_deg == b.kept.alpha_deg).unwrap();
+        assert_eq!(*p, b.kept);
+    }
+    assert_eq!(out.runs, 1);
+}
+
+#[test]
+fn an_angle_missed_on_the_way_out_is_filled_by_the_return() {
+    // 4 deg does not converge coming from below, does from above.
+    let (_d, exe) =
+        fake(r#"if [ "$arg" = "4.000000" ] && [ "${prev%%.*}" -lt 4 ]; then prev=$arg; continue; fi; prev=$arg"#);
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    assert!(out.unconverged_deg.is_empty() && out.hysteresis.is_empty());
+    assert_eq!(out.runs, 1, "no retry pass: the return converged it");
 }
 
 #[test]
@@ -66,7 +104,10 @@ fn a_crash_is_restarted_beyond_the_failed_angle() {
         "{}",
         out.faults[0].output_tail
     );
-    assert_eq!(out.runs, 3, "sweep, restart after the crash, retry pass");
+    assert_eq!(
+        out.runs, 3,
+        "sweep, restart after the crash (its return not through 3), retry pass"
+    );
 }
 
 #[test]
@@ -99,7 +140,7 @@ fn angles_lost_by_continuation_are_retried_from_a_fresh_boundary_layer() {
     let out = runner(exe).sweep(&request()).unwrap();
     assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
     assert!(out.unconverged_deg.is_empty() && out.faults.is_empty());
-    assert_eq!(out.runs, 2, "sweep, retry pass");
+    assert_eq!(out.runs, 2, "sweep (its returns lose them too), retry pass");
 }
 
 #[test]

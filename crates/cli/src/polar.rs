@@ -289,6 +289,9 @@ fn report_failures(what: &str, p: &Polar) {
             list.join(", ")
         );
     }
+    if let Some(text) = p.hysteresis_text() {
+        eprintln!("propbet: {what}: {text}");
+    }
     for f in &p.faults {
         eprintln!("propbet: {what}: {f}");
     }

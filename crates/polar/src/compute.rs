@@ -21,7 +21,7 @@ use crate::airfoil::{Airfoil, AirfoilError};
 use crate::table::Polar;
 
 /// Bumped whenever the XFOIL script or the meaning of a cached polar changes.
-const SCRIPT_VERSION: &str = "propbet-xfoil-script-1";
+const SCRIPT_VERSION: &str = "propbet-xfoil-script-2";
 
 /// One polar to compute.
 #[derive(Debug, Clone, PartialEq)]
@@ -294,6 +294,7 @@ impl PolarEngine {
             trip: job.trip,
             points: out.points,
             unconverged_deg: out.unconverged_deg,
+            hysteresis: out.hysteresis,
             faults: out.faults,
         };
         // A hang or a budget run out may be the machine's load, not XFOIL's answer (the limits

@@ -4,7 +4,7 @@
 use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
-pub use xfoil_runner::{Fault, XfoilPoint as PolarPoint};
+pub use xfoil_runner::{Branches, Fault, XfoilPoint as PolarPoint};
 
 /// Columns of a polar CSV.
 pub const CSV_HEADER: &str = "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom";
@@ -25,11 +25,32 @@ pub struct Polar {
     pub points: Vec<PolarPoint>,
     /// Angles requested that did not converge [deg].
     pub unconverged_deg: Vec<f64>,
+    /// Angles with two solutions, one from each direction of approach (the lower-drag one is
+    /// in `points`; `xfoil_runner::Xfoil::sweep`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub hysteresis: Vec<Branches>,
     /// Crashes and hangs of XFOIL while computing this polar.
     pub faults: Vec<Fault>,
 }
 
 impl Polar {
+    /// The angles with two solutions, in words (`None` without any): each angle with the lift
+    /// kept and the other branch's.
+    pub fn hysteresis_text(&self) -> Option<String> {
+        if self.hysteresis.is_empty() {
+            return None;
+        }
+        let list: Vec<String> = self
+            .hysteresis
+            .iter()
+            .map(|b| format!("{} (cl {:.3}, other {:.3})", b.kept.alpha_deg, b.kept.cl, b.other.cl))
+            .collect();
+        Some(format!(
+            "two solutions (hysteresis), the lower-drag one kept, at alpha [deg]: {}",
+            list.join(", ")
+        ))
+    }
+
     /// The point at `alpha_deg`, linear between converged points; `None` outside their range.
     pub fn at_alpha(&self, alpha_deg: f64) -> Option<PolarPoint> {
         let p = &self.points;
@@ -103,6 +124,7 @@ impl Polar {
             ncrit: 9.0,
             points,
             unconverged_deg: vec![],
+            hysteresis: vec![],
             faults: vec![],
         }
     }
@@ -114,6 +136,9 @@ impl Polar {
         if !self.unconverged_deg.is_empty() {
             let list: Vec<String> = self.unconverged_deg.iter().map(|a| a.to_string()).collect();
             let _ = writeln!(out, "# not converged at alpha [deg]: {}", list.join(" "));
+        }
+        if let Some(text) = self.hysteresis_text() {
+            let _ = writeln!(out, "# {text}");
         }
         for f in &self.faults {
             let _ = writeln!(out, "# {f}");
@@ -182,6 +207,7 @@ mod tests {
                 pt(14.0, 1.1, 0.08),
             ],
             unconverged_deg: vec![12.0],
+            hysteresis: vec![],
             faults: vec![],
         }
     }
@@ -218,8 +244,17 @@ mod tests {
 
     #[test]
     fn csv_names_failures() {
-        let csv = polar().to_csv();
+        let mut p = polar();
+        p.hysteresis.push(crate::table::Branches {
+            kept: pt(10.0, 1.3, 0.03),
+            other: pt(10.0, 1.05, 0.06),
+        });
+        let csv = p.to_csv();
         assert!(csv.contains("not converged at alpha [deg]: 12"));
+        assert!(
+            csv.contains("# two solutions (hysteresis), the lower-drag one kept, at alpha [deg]: 10 (cl 1.300, other 1.050)"),
+            "{csv}"
+        );
         assert_eq!(csv.lines().filter(|l| l.starts_with("100000,")).count(), 5);
     }
 }

@@ -374,6 +374,13 @@ fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> 
             s.polars.len()
         ));
     }
+    let loops: usize = s.polars.iter().map(|p| p.hysteresis.len()).sum();
+    if loops > 0 {
+        v.push(format!(
+            "{loops} angles with two XFOIL solutions (hysteresis) over {} polars: the lower-drag one kept",
+            s.polars.len()
+        ));
+    }
     if let Some(f) = &s.fit {
         v.extend(f.unfit.iter().map(|u| format!("QPROP fit: {u}")));
     }
