@@ -252,7 +252,9 @@ mod tests {
         let csv = p.to_csv();
         assert!(csv.contains("not converged at alpha [deg]: 12"));
         assert!(
-            csv.contains("# two solutions (hysteresis), the lower-drag one kept, at alpha [deg]: 10 (cl 1.300, other 1.050)"),
+            csv.contains(
+                "# two solutions (hysteresis), the lower-drag one kept, at alpha [deg]: 10 (cl 1.300, other 1.050)"
+            ),
             "{csv}"
         );
         assert_eq!(csv.lines().filter(|l| l.starts_with("100000,")).count(), 5);
