@@ -244,8 +244,8 @@ pub const UPPER_RETURN_DEG: f64 = 8.0;
 pub const LOWER_RETURN_DEG: f64 = 4.0;
 
 /// Steps of a return over `alphas` (continuing, nothing re-initialised).
-fn returning<'a, I: Iterator<Item = &'a f64> + 'a>(alphas: I) -> impl Iterator<Item = Step> + 'a {
-    alphas.map(|&alpha_deg| Step {
+fn returning(alphas: impl Iterator<Item = f64>) -> impl Iterator<Item = Step> {
+    alphas.map(|alpha_deg| Step {
         alpha_deg,
         init: false,
         returning: true,
@@ -374,13 +374,18 @@ impl Xfoil {
         let mut steps = Step::list(&a[i0..], false, false);
         let top = a[n - 1];
         steps.extend(returning(
-            a[i0 + 1..n - 1].iter().rev().filter(|&&x| x >= top - UPPER_RETURN_DEG),
+            (i0 + 1..n.saturating_sub(1))
+                .rev()
+                .map(|k| a[k])
+                .filter(|&x| x >= top - UPPER_RETURN_DEG),
         ));
         let down: Vec<f64> = a[..=i0].iter().rev().copied().collect();
         if down.len() > 1 {
             steps.extend(Step::list(&down, true, false));
             let bottom = a[0];
-            steps.extend(returning(a[1..i0].iter().filter(|&&x| x <= bottom + LOWER_RETURN_DEG)));
+            steps.extend(returning(
+                (1..i0).map(|k| a[k]).filter(|&x| x <= bottom + LOWER_RETURN_DEG),
+            ));
         }
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();

@@ -75,6 +75,19 @@ fn a_hysteresis_loop_is_seen_from_both_sides_and_the_attached_branch_kept() {
 }
 
 #[test]
+fn sweeps_that_end_or_start_at_zero_have_nothing_to_return_over_there() {
+    let (_d, exe) = fake(STALL_LOOP);
+    let x = runner(exe);
+    for range in [(-3..=0), (0..=6), (0..=0), (-1..=1)] {
+        let mut r = request();
+        r.alphas_deg = range.clone().map(f64::from).collect();
+        let out = x.sweep(&r).unwrap();
+        assert_eq!(alphas(&out), r.alphas_deg, "{range:?}");
+        assert!(out.unconverged_deg.is_empty(), "{range:?}");
+    }
+}
+
+#[test]
 fn an_angle_missed_on_the_way_out_is_filled_by_the_return() {
     // 4 deg does not converge coming from below, does from above.
     let (_d, exe) =
