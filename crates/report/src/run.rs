@@ -368,16 +368,25 @@ fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
 fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> {
     let mut v: Vec<String> = s.problem.iter().cloned().collect();
     let unconverged: usize = s.polars.iter().map(|p| p.unconverged_deg.len()).sum();
+    let angles = |n: usize| {
+        if n == 1 {
+            "1 angle".to_string()
+        } else {
+            format!("{n} angles")
+        }
+    };
     if unconverged > 0 {
         v.push(format!(
-            "{unconverged} angles did not converge in XFOIL over {} polars",
+            "{} did not converge in XFOIL over {} polars",
+            angles(unconverged),
             s.polars.len()
         ));
     }
     let loops: usize = s.polars.iter().map(|p| p.hysteresis.len()).sum();
     if loops > 0 {
         v.push(format!(
-            "{loops} angles with two XFOIL solutions (hysteresis) over {} polars: the lower-drag one kept",
+            "{} with two XFOIL solutions (hysteresis) over {} polars: the lower-drag one kept",
+            angles(loops),
             s.polars.len()
         ));
     }
@@ -388,4 +397,66 @@ fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> 
         v.push("XFOIL faults (crash, hang or budget) at some Reynolds numbers".into());
     }
     v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use propbet_polar::blade::StationPolars;
+    use propbet_polar::table::{Branches, Polar, PolarPoint};
+
+    fn pt(alpha_deg: f64, cl: f64, cd: f64) -> PolarPoint {
+        PolarPoint {
+            alpha_deg,
+            cl,
+            cd,
+            cdp: 0.0,
+            cm: 0.0,
+            xtr_top: 1.0,
+            xtr_bottom: 1.0,
+        }
+    }
+
+    #[test]
+    fn a_stations_problems_count_unconverged_angles_and_hysteresis_in_words() {
+        let polar = |unconverged: Vec<f64>, loops: usize| Polar {
+            re: 5e4,
+            mach: 0.05,
+            ncrit: 5.0,
+            trip: Some(0.5),
+            points: vec![pt(0.0, 0.5, 0.02), pt(12.0, 1.2, 0.1)],
+            unconverged_deg: unconverged,
+            hysteresis: (0..loops)
+                .map(|_| Branches {
+                    kept: pt(12.0, 1.2, 0.1),
+                    other: pt(12.0, 1.0, 0.12),
+                })
+                .collect(),
+            faults: vec![],
+        };
+        let station = |polars: Vec<Polar>| StationPolars {
+            r: 0.1,
+            chord: 0.02,
+            re: 5e4,
+            re_range: [4e4, 6e4],
+            mach: 0.05,
+            alpha_deg: 4.0,
+            alpha_range_deg: [0.0, 8.0],
+            polars,
+            fit: None,
+            problem: None,
+        };
+        let one = station_problem_list(&station(vec![polar(vec![14.0], 1), polar(vec![], 0)]));
+        assert_eq!(
+            one,
+            vec![
+                "1 angle did not converge in XFOIL over 2 polars".to_string(),
+                "1 angle with two XFOIL solutions (hysteresis) over 2 polars: the lower-drag one kept".to_string(),
+            ]
+        );
+        let more = station_problem_list(&station(vec![polar(vec![13.0, 14.0], 2)]));
+        assert!(more[0].starts_with("2 angles did not converge"), "{more:?}");
+        assert!(more[1].starts_with("2 angles with two XFOIL solutions"), "{more:?}");
+        assert!(station_problem_list(&station(vec![polar(vec![], 0)])).is_empty());
+    }
 }
