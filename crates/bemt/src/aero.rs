@@ -233,6 +233,14 @@ impl SectionAero for QpropAirfoil {
 /// Snel's coefficient of rotational augmentation (Snel, Houwink & Bosschers 1994: 3).
 pub const SNEL_A: f64 = 3.0;
 
+/// Most of the lift deficit the base model's rotational augmentation restores: half, which
+/// Snel's `3 (c/r)^2` reaches at c/r = 0.41. Small propellers have c/r 0.6-1.1 at the root,
+/// where the uncapped law restores the whole attached line (cl 2.5-2.8 at 22 deg and Re
+/// 15,000-35,000 on the 11x7 E statically). Chosen on the shared props with 1, 0.75, 0.5 and
+/// 0.25 measured (`docs/studies/rotational-augmentation.md`); the `stall-delay` effect, which
+/// fits `a`, keeps [`snel_fraction`]'s own cap of 1.
+pub const SNEL_MAX_FRACTION: f64 = 0.5;
+
 /// Lift of the attached-flow line at `alpha` and its slope, Prandtl-Glauert scaled: QPROP's
 /// linear law for a QPROP section, else 2 pi (alpha - alpha_0) through the section's zero-lift
 /// angle (thin-airfoil theory, the potential-flow lift Snel's correction restores a part of).
@@ -406,5 +414,6 @@ mod tests {
         // Snel's fraction: a (c/r)^2, capped at 1 (the line itself).
         assert_relative_eq!(snel_fraction(3.0, 0.02, 0.1), 0.12);
         assert_eq!(snel_fraction(3.0, 0.06, 0.1), 1.0);
+        const { assert!(SNEL_MAX_FRACTION > 0.0 && SNEL_MAX_FRACTION < 1.0) };
     }
 }

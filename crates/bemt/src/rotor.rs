@@ -116,11 +116,12 @@ pub enum RotorError {
 
 impl Rotor {
     /// Gives every station Snel's rotational augmentation with coefficient `a`
-    /// ([`crate::aero::snel_fraction`] of its chord and radius); `a = 0` leaves the rotor as it is.
+    /// ([`crate::aero::snel_fraction`] of its chord and radius, at most
+    /// [`crate::aero::SNEL_MAX_FRACTION`]); `a = 0` leaves the rotor as it is.
     pub fn with_rotational_augmentation(mut self, a: f64) -> Rotor {
         if a > 0.0 {
             for s in &mut self.stations {
-                let k = crate::aero::snel_fraction(a, s.chord, s.r);
+                let k = crate::aero::snel_fraction(a, s.chord, s.r).min(crate::aero::SNEL_MAX_FRACTION);
                 s.aero = Arc::new(crate::aero::Rotational {
                     inner: s.aero.clone(),
                     k,
@@ -348,5 +349,56 @@ impl QpropBlade {
         };
         rotor.validate()?;
         Ok(rotor)
+    }
+}
+
+#[cfg(test)]
+mod augmentation_tests {
+    use super::*;
+    use crate::aero::{DragInput, LiftEval, SNEL_A, SNEL_MAX_FRACTION};
+
+    /// A section stuck at cl 0.5: whatever rotation adds shows directly.
+    #[derive(Debug)]
+    struct Flat;
+
+    impl SectionAero for Flat {
+        fn lift(&self, _alpha: f64, _re: f64, _msq: f64) -> LiftEval {
+            LiftEval {
+                cl: 0.5,
+                dcl_dalpha: 0.0,
+                dcl_dmsq: 0.0,
+                dcl_dre: 0.0,
+                stalled: false,
+            }
+        }
+        fn drag(&self, _input: &DragInput) -> f64 {
+            0.02
+        }
+        fn alpha_zero_lift(&self) -> f64 {
+            0.0
+        }
+    }
+
+    #[test]
+    fn the_base_models_augmentation_restores_at_most_half_the_deficit() {
+        let station = |r: f64, chord: f64| Station {
+            r,
+            dr: 0.01,
+            chord,
+            beta: 0.3,
+            aero: Arc::new(Flat),
+        };
+        // c/r 0.8 (Snel's 3 (c/r)^2 = 1.92: capped) and 0.1 (0.03).
+        let rotor = Rotor {
+            blades: 2.0,
+            tip_radius: 0.2,
+            stations: vec![station(0.05, 0.04), station(0.1, 0.01)],
+        }
+        .with_rotational_augmentation(SNEL_A);
+        let alpha = 0.3;
+        let deficit = 2.0 * std::f64::consts::PI * alpha - 0.5;
+        let k = |s: &Station| (s.aero.lift(alpha, 5e4, 0.0).cl - 0.5) / deficit;
+        assert!((k(&rotor.stations[0]) - SNEL_MAX_FRACTION).abs() < 1e-12);
+        assert!((k(&rotor.stations[1]) - 0.03).abs() < 1e-12);
     }
 }
