@@ -60,14 +60,19 @@ fn overflow_px(report: &Path) -> i64 {
     v.parse().unwrap()
 }
 
+/// A CSV file's header and rows (quoted fields, such as a ladder's `q0=0,q1=...`, kept whole).
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header = lines.next().unwrap().split(',').map(String::from).collect();
-    (
-        header,
-        lines.map(|l| l.split(',').map(String::from).collect()).collect(),
-    )
+    let mut r = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .flexible(true)
+        .from_path(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let header = r.headers().unwrap().iter().map(String::from).collect();
+    let rows = r
+        .records()
+        .map(|rec| rec.unwrap().iter().map(String::from).collect())
+        .collect();
+    (header, rows)
 }
 
 fn col(header: &[String], name: &str) -> usize {
