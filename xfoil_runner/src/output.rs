@@ -23,6 +23,22 @@ pub struct XfoilPoint {
     pub xtr_bottom: f64,
 }
 
+impl XfoilPoint {
+    /// A point with lift and drag only (pressure drag and moment 0, laminar to the trailing
+    /// edge on both surfaces): synthetic polars and tests.
+    pub fn lift_drag(alpha_deg: f64, cl: f64, cd: f64) -> Self {
+        XfoilPoint {
+            alpha_deg,
+            cl,
+            cd,
+            cdp: 0.0,
+            cm: 0.0,
+            xtr_top: 1.0,
+            xtr_bottom: 1.0,
+        }
+    }
+}
+
 /// Parses the text of an XFOIL polar save file: header lines up to the dashed rule, then one
 /// row per point (`alpha CL CD CDp CM Top_Xtr Bot_Xtr [Top_Itr Bot_Itr]`). A file cut off after
 /// the header has no points; a row that is not seven numbers is an error naming the line.

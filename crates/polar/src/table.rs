@@ -107,13 +107,8 @@ impl Polar {
                 let alpha_deg = f64::from(a);
                 let (cl, cd) = law(alpha_deg);
                 PolarPoint {
-                    alpha_deg,
-                    cl,
-                    cd,
-                    cdp: 0.0,
-                    cm: 0.0,
                     xtr_top: 0.5,
-                    xtr_bottom: 1.0,
+                    ..PolarPoint::lift_drag(alpha_deg, cl, cd)
                 }
             })
             .collect();
@@ -182,15 +177,7 @@ mod tests {
     use super::*;
 
     fn pt(alpha_deg: f64, cl: f64, cd: f64) -> PolarPoint {
-        PolarPoint {
-            alpha_deg,
-            cl,
-            cd,
-            cdp: 0.0,
-            cm: 0.0,
-            xtr_top: 1.0,
-            xtr_bottom: 1.0,
-        }
+        PolarPoint::lift_drag(alpha_deg, cl, cd)
     }
 
     fn polar() -> Polar {

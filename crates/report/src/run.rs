@@ -398,17 +398,7 @@ mod tests {
     use propbet_polar::blade::StationPolars;
     use propbet_polar::table::{Branches, Polar, PolarPoint};
 
-    fn pt(alpha_deg: f64, cl: f64, cd: f64) -> PolarPoint {
-        PolarPoint {
-            alpha_deg,
-            cl,
-            cd,
-            cdp: 0.0,
-            cm: 0.0,
-            xtr_top: 1.0,
-            xtr_bottom: 1.0,
-        }
-    }
+    use PolarPoint as P;
 
     #[test]
     fn a_stations_problems_count_unconverged_angles_and_hysteresis_and_group_alike() {
@@ -417,12 +407,12 @@ mod tests {
             mach: 0.05,
             ncrit: 5.0,
             trip: Some(0.5),
-            points: vec![pt(0.0, 0.5, 0.02), pt(12.0, 1.2, 0.1)],
+            points: vec![P::lift_drag(0.0, 0.5, 0.02), P::lift_drag(12.0, 1.2, 0.1)],
             unconverged_deg: unconverged,
             hysteresis: (0..loops)
                 .map(|_| Branches {
-                    kept: pt(12.0, 1.2, 0.1),
-                    other: pt(12.0, 1.0, 0.12),
+                    kept: P::lift_drag(12.0, 1.2, 0.1),
+                    other: P::lift_drag(12.0, 1.0, 0.12),
                 })
                 .collect(),
             faults: vec![],
