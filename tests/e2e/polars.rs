@@ -212,8 +212,10 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
             "{}",
             stderr(&o)
         );
+        stderr(&o)
     };
-    polars(&["--out-prop", "fit.qprop", "--out-polars", "fit.json"]);
+    // What the run said (a rung without a polar is reported there, with XFOIL's reason).
+    let said = polars(&["--out-prop", "fit.qprop", "--out-polars", "fit.json"]);
     let text = std::fs::read_to_string(dir.path().join("fit.qprop")).unwrap();
     // Every row carries its own ten coefficients and fits QPROP's 128-character line.
     let rows: Vec<&str> = text
@@ -243,7 +245,7 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
             .iter()
             .map(|p| p["re"].as_f64().unwrap())
             .collect();
-        assert!(res.len() >= 3, "{res:?}");
+        assert!(res.len() >= 3, "{res:?}\n{said}");
         let ladder = |re: f64| (5.0 * re.log10() - (5.0 * re.log10()).round()).abs() < 1e-6;
         assert!(res.iter().all(|&re| ladder(re)), "{res:?}");
         assert!(
