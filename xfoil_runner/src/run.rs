@@ -252,10 +252,14 @@ fn returning(alphas: impl Iterator<Item = f64>) -> impl Iterator<Item = Step> {
     })
 }
 
-/// `points` sorted by angle, one per angle (the first of any repeated).
-fn sort_unique(points: &mut Vec<XfoilPoint>) {
-    points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
-    points.dedup_by(|p, q| (p.alpha_deg - q.alpha_deg).abs() < ALPHA_MATCH_DEG);
+/// Whether two angles are the same requested angle (XFOIL prints three decimals).
+fn same_angle(a: f64, b: f64) -> bool {
+    (a - b).abs() < ALPHA_MATCH_DEG
+}
+
+/// Whether `points` hold one at angle `x`.
+fn has_angle(points: &[XfoilPoint], x: f64) -> bool {
+    points.iter().any(|p| same_angle(p.alpha_deg, x))
 }
 
 /// An XFOIL installation ready to run sweeps; share it between threads.
@@ -390,14 +394,11 @@ impl Xfoil {
         let mut out = SweepOutcome::default();
         let mut last_tail = String::new();
         let clock = (start, deadline);
-        let failed = self.branch(&airfoil, &settings, None, &steps, &mut out, &mut last_tail, clock)?;
-        let converged =
-            |out: &SweepOutcome, x: f64| out.points.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
+        let failed = self.branch(&airfoil, &settings, &steps, &mut out, &mut last_tail, clock)?;
         // (An angle the return converged is not retried.)
-        let returned = |x: f64| out.returned.iter().any(|p| (p.alpha_deg - x).abs() < ALPHA_MATCH_DEG);
         let mut retry: Vec<f64> = failed
             .into_iter()
-            .filter(|&x| !converged(&out, x) && !returned(x))
+            .filter(|&x| !has_angle(&out.points, x) && !has_angle(&out.returned, x))
             .collect();
         retry.dedup();
         if !retry.is_empty() {
@@ -410,7 +411,6 @@ impl Xfoil {
             self.branch(
                 &airfoil,
                 &retry_settings,
-                None,
                 &Step::list(&retry, false, true),
                 &mut out,
                 &mut last_tail,
@@ -423,16 +423,12 @@ impl Xfoil {
         // Nor are values no section has (|cl| above 5, cd above 5): taken as not converged.
         let plausible = |p: &XfoilPoint| p.cd >= floor && p.cd <= 5.0 && p.cl.abs() <= 5.0 && p.cm.abs() <= 5.0;
         out.points.retain(plausible);
-        sort_unique(&mut out.points);
-        // The points of the returns, against the outward ones at the same angle.
+        // The points of the returns, against the outward ones at the same angle (the first of
+        // a repeated one, which the sort below keeps).
         let mut back = std::mem::take(&mut out.returned);
         back.retain(plausible);
         for p in back {
-            match out
-                .points
-                .iter_mut()
-                .find(|q| (q.alpha_deg - p.alpha_deg).abs() < ALPHA_MATCH_DEG)
-            {
+            match out.points.iter_mut().find(|q| same_angle(q.alpha_deg, p.alpha_deg)) {
                 Some(q) if (q.cl - p.cl).abs() > HYSTERESIS_CL => {
                     let (kept, other) = if p.cd < q.cd { (p, *q) } else { (*q, p) };
                     *q = kept;
@@ -445,8 +441,8 @@ impl Xfoil {
         out.hysteresis
             .sort_by(|x, y| x.kept.alpha_deg.total_cmp(&y.kept.alpha_deg));
         out.hysteresis
-            .dedup_by(|x, y| (x.kept.alpha_deg - y.kept.alpha_deg).abs() < ALPHA_MATCH_DEG);
-        out.unconverged_deg = a.iter().copied().filter(|&x| !converged(&out, x)).collect();
+            .dedup_by(|x, y| same_angle(x.kept.alpha_deg, y.kept.alpha_deg));
+        out.unconverged_deg = a.iter().copied().filter(|&x| !has_angle(&out.points, x)).collect();
         if out.points.is_empty() && !out.faults.is_empty() {
             let summary: Vec<String> = out.faults.iter().map(|f| f.to_string()).collect();
             return Err(XfoilError::NoPoints {
@@ -454,24 +450,24 @@ impl Xfoil {
                 output_tail: last_tail,
             });
         }
-        sort_unique(&mut out.points);
+        out.points.sort_by(|p, q| p.alpha_deg.total_cmp(&q.alpha_deg));
+        out.points.dedup_by(|p, q| same_angle(p.alpha_deg, q.alpha_deg));
         Ok(out)
     }
 
     /// One pass over `steps` in order: runs until every angle is converged, failed or given
     /// up, restarting beyond crashes (with a warm-up at the last converged angle). Returns the
     /// angles that did not converge.
-    #[allow(clippy::too_many_arguments)]
     fn branch(
         &self,
         airfoil: &str,
         settings: &RunSettings,
-        mut warm_up: Option<f64>,
         steps: &[Step],
         out: &mut SweepOutcome,
         last_tail: &mut String,
         (start, deadline): (Instant, Instant),
     ) -> Result<Vec<f64>, XfoilError> {
+        let mut warm_up: Option<f64> = None;
         let mut failed = Vec::new();
         // What is left to solve; after a fault, without the returns through the angle that
         // faulted (XFOIL would fault there again).
@@ -502,7 +498,7 @@ impl Xfoil {
                 let from = last_done.map_or(0, |d| d + 1);
                 let k = todo[from..]
                     .iter()
-                    .position(|&a| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG)
+                    .position(|&a| same_angle(a, p.alpha_deg))
                     .map(|k| k + from)
                     .ok_or_else(|| XfoilError::Garbage {
                         detail: format!(
@@ -518,7 +514,7 @@ impl Xfoil {
                     out.points.push(*p);
                 }
             }
-            let converged = |a: f64| run.points.iter().any(|p| (a - p.alpha_deg).abs() < ALPHA_MATCH_DEG);
+            let converged = |a: f64| has_angle(&run.points, a);
             *last_tail = run.output_tail.clone();
             let Some(kind) = run.ending.fault() else {
                 failed.extend(todo.iter().copied().filter(|&a| !converged(a)));
@@ -558,7 +554,7 @@ impl Xfoil {
             let at = todo[failed_at];
             left = left[failed_at + 1..]
                 .iter()
-                .filter(|s| !(s.returning && (s.alpha_deg - at).abs() < ALPHA_MATCH_DEG))
+                .filter(|s| !(s.returning && same_angle(s.alpha_deg, at)))
                 .copied()
                 .collect();
             restarts += 1;
