@@ -458,3 +458,159 @@ fn a_trip_forces_transition_and_keeps_the_lift_at_small_angles() {
         stderr(&o)
     );
 }
+
+/// `--ncrit-effect`: the same rungs at other Ncrit values, the `transition` effect built from
+/// them, hidden in synthetic data and found by `diagnose` with its Ncrit; bounds and bad values.
+#[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
+fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
+    let dir = tempfile::tempdir().unwrap();
+    let cam = cam6x3();
+    let o = run(
+        &[
+            "polars",
+            "--geometry",
+            cam.to_str().unwrap(),
+            "--airfoil",
+            "naca4412",
+            "--rpm",
+            "4000,10000",
+            "--j",
+            "0,0.4",
+            "--alpha",
+            "-6:12:1",
+            "--ncrit-effect",
+            "9,2",
+            "--quiet",
+            "--cache",
+            "cache",
+            "--out-prop",
+            "fit.qprop",
+            "--out-polars",
+            "fit.json",
+        ],
+        dir.path(),
+    );
+    assert!(
+        o.status.code() == Some(0) || o.status.code() == Some(1),
+        "{}",
+        stderr(&o)
+    );
+    // Every station has its own Ncrit's rungs and the same rungs at 2 and 9.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("fit.json")).unwrap()).unwrap();
+    for st in json["stations"].as_array().unwrap() {
+        let res = |key: &str, ncrit: f64| -> Vec<f64> {
+            st[key]
+                .as_array()
+                .map(|a| {
+                    a.iter()
+                        .filter(|p| p["ncrit"].as_f64() == Some(ncrit))
+                        .map(|p| p["re"].as_f64().unwrap())
+                        .collect()
+                })
+                .unwrap_or_default()
+        };
+        let own = res("polars", 5.0);
+        assert!(own.len() >= 2, "{}", stderr(&o));
+        for n in [2.0, 9.0] {
+            let other = res("other_ncrit", n);
+            assert!(
+                other.len() + 1 >= own.len() && other.iter().all(|re| own.contains(re)),
+                "Ncrit {n}: {other:?} against {own:?}\n{}",
+                stderr(&o)
+            );
+        }
+    }
+    // Hidden in synthetic data (1 % noise) at Ncrit 8, found first, with its value.
+    let o = run(
+        &[
+            "synth",
+            "--prop",
+            "fit.qprop",
+            "--polars",
+            "fit.json",
+            "--effect",
+            "transition:ncrit=8",
+            "--rpm",
+            "4000:10000/4",
+            "--j",
+            "0:0.4/9",
+            "--noise",
+            "1%",
+            "--seed",
+            "5",
+            "--out",
+            "hidden.csv",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run(
+        &[
+            "diagnose",
+            "--prop",
+            "fit.qprop",
+            "--polars",
+            "fit.json",
+            "--measured",
+            "hidden.csv",
+            "--max-steps",
+            "1",
+            "--out",
+            "d",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("d/diagnosis.json")).unwrap()).unwrap();
+    let ranking = &d["diagnosis"]["ranking"];
+    assert_eq!(ranking[0]["id"], "transition", "{ranking}");
+    let ncrit = d["final_params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["effect"] == "transition")
+        .and_then(|p| p["value"].as_f64())
+        .unwrap_or_else(|| panic!("{}", d["final_params"]));
+    assert!((ncrit - 8.0).abs() < 0.7, "fitted Ncrit {ncrit}");
+    // Beyond the computed tables: refused, naming the bounds; without them: not an effect.
+    let predict = |extra: &[&str]| {
+        let mut args = vec!["predict", "--prop", "fit.qprop", "--rpm", "6000", "--v", "0"];
+        args.extend_from_slice(extra);
+        run(&args, dir.path())
+    };
+    let o = predict(&["--polars", "fit.json", "--effect", "transition:ncrit=12"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("transition:ncrit = 12 is outside its bounds [2, 9]"),
+        "{}",
+        stderr(&o)
+    );
+    let o = predict(&["--effect", "transition:ncrit=3"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("unknown effect `transition`"), "{}", stderr(&o));
+    // An Ncrit the polars already have, or none XFOIL takes.
+    for (bad, says) in [("5", "the polars' own Ncrit"), ("30", "between 0 and 20")] {
+        let o = run(
+            &[
+                "polars",
+                "--geometry",
+                cam.to_str().unwrap(),
+                "--airfoil",
+                "naca4412",
+                "--rpm",
+                "6000",
+                "--ncrit-effect",
+                bad,
+                "--out-prop",
+                "x.qprop",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(stderr(&o).contains(says), "{bad}: {}", stderr(&o));
+        assert!(!dir.path().join("x.qprop").exists());
+    }
+}

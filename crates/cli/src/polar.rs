@@ -354,6 +354,11 @@ pub struct PolarsArgs {
     /// XFOIL settings.
     #[command(flatten)]
     pub xfoil: XfoilArgs,
+    /// Also compute every polar at these Ncrit values (comma-separated, e.g. `3,9`), for the
+    /// `transition` effect: `diagnose` then fits Ncrit between the lowest and highest, `predict
+    /// --effect transition:ncrit=N` applies it. Each value costs as much XFOIL time again.
+    #[arg(long, value_delimiter = ',')]
+    pub ncrit_effect: Vec<f64>,
     /// QPROP prop file with the fitted per-station coefficients.
     #[arg(long)]
     pub out_prop: PathBuf,
@@ -383,6 +388,7 @@ impl PolarsArgs {
                 propbet_pipeline::spec::DEFAULT_NCRIT,
                 propbet_pipeline::spec::DEFAULT_TRIP,
             )?,
+            ncrit_effect: self.ncrit_effect.clone(),
             out_prop: self.out_prop.clone(),
             out_polars: self.out_polars.clone(),
         })

@@ -49,6 +49,11 @@ pub struct ValidateArgs {
     /// Transition amplification ratio Ncrit of the polars.
     #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
     pub ncrit: f64,
+    /// Also compute every polar at these Ncrit values (comma-separated, e.g. `3,9`): the
+    /// `transition` effect (Ncrit fitted between them) is then a candidate of every ladder.
+    /// Each value costs as much XFOIL time again.
+    #[arg(long, value_delimiter = ',')]
+    pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
     /// model's default; off with `--section-model qprop`).
     #[arg(long, value_name = "off|snel")]
@@ -74,6 +79,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         xfoil: a.xfoil.spec(),
         tables: a.section_model == "tables",
         ncrit: a.ncrit,
+        ncrit_effect: propbet_pipeline::spec::check_ncrit_effect(&a.ncrit_effect, a.ncrit)?,
         rotation: Rotation::or_default(
             a.rotation.as_deref().map(Rotation::parse).transpose()?,
             a.section_model == "tables",
@@ -147,7 +153,14 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             ", transition forced at x/c {x} at the latest"
         )),
         spec.rotation.name()
-    );
+    ) + &if spec.ncrit_effect.is_empty() {
+        String::new()
+    } else {
+        format!(
+            ", transition effect from tables at Ncrit {}",
+            propbet_pipeline::spec::ncrit_effect_text(&spec.ncrit_effect)
+        )
+    };
     let (md, csv) = table(&rows, &skipped, &model);
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;

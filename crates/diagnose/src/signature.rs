@@ -147,7 +147,7 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                     "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm: the measured {name} grows {faster} \
                      with RPM than the model's (a Reynolds-number effect on the sections; Mach at high tip speeds). \
                      Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, mostly torque), \
-                     compressibility (tip Mach above 0.3), elastic-twist (thrust falling at high RPM); \
+                     transition (Ncrit, from polars at several: --ncrit-effect), compressibility (tip Mach above 0.3), elastic-twist (thrust falling at high RPM); \
                      not density, rpm-scale, chord-scale, pitch-offset or the tares, which act alike at every RPM",
                     pct(change)
                 ));

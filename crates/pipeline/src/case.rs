@@ -81,6 +81,9 @@ pub struct PolarSection {
     pub v: Option<NumberOrList>,
     /// Transition amplification ratio.
     pub ncrit: Option<f64>,
+    /// More Ncrit values to compute the same polars at, for the `transition` effect (a number
+    /// or a list, `"3,9"`); each doubles the XFOIL time.
+    pub ncrit_effect: Option<NumberOrList>,
     /// Forced transition x/c on both surfaces, or `"free"` (default:
     /// [`crate::spec::DEFAULT_TRIP`]).
     pub trip: Option<NumberOrList>,
@@ -389,6 +392,10 @@ impl Case {
                             alphas_deg: alphas,
                             panels: None,
                             iter: xfoil_runner::DEFAULT_MAX_ITER,
+                        },
+                        ncrit_effect: match &p.ncrit_effect {
+                            None => Vec::new(),
+                            Some(n) => n.values("--ncrit-effect").map_err(|e| at("[polars] ncrit_effect", e))?,
                         },
                         out_prop: out.join("polars/prop.qprop"),
                         out_polars: Some(out.join("polars/polars.json")),

@@ -123,14 +123,20 @@ impl Model {
                 qprop_reref_quirk: spec.qprop_compat,
             })
             .map_err(|e| Error::input(&spec.prop, e))?;
-        match (&spec.polars, polars) {
-            (Some(path), Some(blade)) => tabulate(&mut rotor, blade, path)?,
+        let read;
+        let blade = match (&spec.polars, polars) {
+            (Some(_), Some(blade)) => Some(blade),
             (Some(path), None) => {
                 let text = read_text(path)?;
-                let blade = propbet_polar::BladePolars::from_json(&text).map_err(|e| Error::input(path, e))?;
-                tabulate(&mut rotor, &blade, path)?;
+                read = propbet_polar::BladePolars::from_json(&text).map_err(|e| Error::input(path, e))?;
+                Some(&read)
             }
-            (None, _) => {}
+            (None, _) => None,
+        };
+        let mut transition = None;
+        if let (Some(path), Some(blade)) = (&spec.polars, blade) {
+            tabulate(&mut rotor, blade, path)?;
+            transition = transition_effect(blade, path)?;
         }
         let rotor = rotor.with_rotational_augmentation(spec.rotation.coefficient());
         if !spec.dbeta.is_finite() {
@@ -152,6 +158,8 @@ impl Model {
             }
             None => Registry::default(),
         };
+        let mut registry = registry;
+        registry.effects.extend(transition);
         let active = spec
             .effects
             .iter()
@@ -181,6 +189,46 @@ impl ModelSpec {
 
 /// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file
 /// (`path` names it in messages).
+/// The `transition` effect of polars that have tables at other Ncrit values than their own
+/// (`propbet polars --ncrit-effect`), None when they have none.
+fn transition_effect(
+    blade: &propbet_polar::BladePolars,
+    path: &Path,
+) -> Result<Option<std::sync::Arc<dyn propbet_effects::Effect>>> {
+    use propbet_effects::transition::{Level, Transition};
+    let others = blade.other_ncrits();
+    if others.is_empty() {
+        return Ok(None);
+    }
+    let level = |ncrit: f64, (r, models): propbet_polar::blade::StationModels| Level {
+        ncrit,
+        r,
+        models: models
+            .into_iter()
+            .map(|m| std::sync::Arc::new(m) as std::sync::Arc<dyn propbet_bemt::SectionAero>)
+            .collect(),
+    };
+    let own = blade
+        .stations
+        .iter()
+        .flat_map(|s| s.polars.first())
+        .map(|p| p.ncrit)
+        .next()
+        .ok_or_else(|| Error::input(path, "no station has a polar"))?;
+    let base = level(own, blade.models().map_err(|e| Error::input(path, e))?);
+    // A level whose every polar failed is left out (each failure is in its station's problem).
+    let levels: Vec<Level> = others
+        .iter()
+        .map(|&n| level(n, blade.models_at_ncrit(n)))
+        .filter(|l| !l.models.is_empty())
+        .collect();
+    if levels.is_empty() {
+        return Ok(None);
+    }
+    let t = Transition::new(base, levels).map_err(|e| Error::input(path, e))?;
+    Ok(Some(std::sync::Arc::new(t)))
+}
+
 fn tabulate(rotor: &mut Rotor, blade: &propbet_polar::BladePolars, path: &Path) -> Result<()> {
     let (r, models) = blade.models().map_err(|e| Error::input(path, e))?;
     let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);

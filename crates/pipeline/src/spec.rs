@@ -96,6 +96,26 @@ pub const DEFAULT_TRIP: Option<f64> = Some(0.5);
 /// tunnel.
 pub const AIRFOIL_NCRIT: f64 = 9.0;
 
+/// `3,9`: the values of `--ncrit-effect` as the command line takes them.
+pub fn ncrit_effect_text(v: &[f64]) -> String {
+    v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")
+}
+
+/// Checks `--ncrit-effect`'s values against the polars' own Ncrit: each an Ncrit XFOIL takes,
+/// none equal to `ncrit`; returns them ascending.
+pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>> {
+    let mut v = values.to_vec();
+    if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0 && **x <= 20.0)) {
+        crate::invalid!("--ncrit-effect {bad}: XFOIL's transition amplification ratio, between 0 and 20");
+    }
+    if v.contains(&ncrit) {
+        crate::invalid!("--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to");
+    }
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    Ok(v)
+}
+
 /// Default angles of attack of the polar commands [deg].
 pub const DEFAULT_ALPHA: &str = "-8:16:1";
 
@@ -471,6 +491,9 @@ pub struct PolarsSpec {
     pub air: AirSpec,
     /// XFOIL.
     pub xfoil: XfoilSpec,
+    /// More Ncrit values at which the same polars are computed, for the `transition` effect
+    /// (Ncrit fitted between them; `propbet_effects::transition`). Empty: none.
+    pub ncrit_effect: Vec<f64>,
     /// Output prop file with the fitted coefficients.
     pub out_prop: PathBuf,
     /// Output polars (JSON).
@@ -636,6 +659,9 @@ impl StageSpec {
                 }
                 s.air.push_argv(&mut v);
                 s.xfoil.push_argv(&mut v);
+                if !s.ncrit_effect.is_empty() {
+                    push_eq(&mut v, "--ncrit-effect", ncrit_effect_text(&s.ncrit_effect));
+                }
                 push(&mut v, "--out-prop", path(&s.out_prop));
                 if let Some(p) = &s.out_polars {
                     push(&mut v, "--out-polars", path(p));

@@ -370,6 +370,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         invalid!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
     }
     spec.xfoil.check()?;
+    let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.ncrit)?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
         ncrit: spec.xfoil.ncrit,
@@ -377,6 +378,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         alphas_deg: spec.xfoil.alphas_deg.clone(),
         panels: spec.xfoil.panels.unwrap_or(BLADE_PANELS),
         max_iter: spec.xfoil.iter,
+        ncrit_effect,
     };
     let job = BladeJob {
         blade: &blade,

@@ -35,6 +35,9 @@ pub struct ValidateSpec {
     pub tables: bool,
     /// Transition amplification ratio Ncrit of the polars.
     pub ncrit: f64,
+    /// More Ncrit values of the same polars, for the `transition` effect in the calibration
+    /// ladders (empty: none).
+    pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation of the section lift.
     pub rotation: crate::spec::Rotation,
     /// Forced transition x/c of the polars (None: free).
@@ -333,6 +336,7 @@ pub fn validate_prop(
             panels: None,
             iter: xfoil_runner::DEFAULT_MAX_ITER,
         },
+        ncrit_effect: spec.ncrit_effect.clone(),
         out_prop: dir.join("prop.qprop"),
         out_polars: Some(dir.join("polars.json")),
     };

@@ -66,6 +66,10 @@ pub struct StationPolars {
     pub alpha_range_deg: [f64; 2],
     /// Polars computed (the rungs of the Re ladder covering `re_range`).
     pub polars: Vec<Polar>,
+    /// The same rungs at other Ncrit values (each polar carries its own), for the `transition`
+    /// effect that fits Ncrit between them; empty unless asked for (`--ncrit-effect`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub other_ncrit: Vec<Polar>,
     /// QPROP fit, when the polars allowed one.
     pub fit: Option<QpropFit>,
     /// What went wrong at this station, if anything.
@@ -120,6 +124,33 @@ impl BladePolars {
         }
         Ok((r, m))
     }
+
+    /// Ncrit values of the stations' [`StationPolars::other_ncrit`] polars, ascending.
+    pub fn other_ncrits(&self) -> Vec<f64> {
+        let mut n: Vec<f64> = self
+            .stations
+            .iter()
+            .flat_map(|s| s.other_ncrit.iter().map(|p| p.ncrit))
+            .collect();
+        n.sort_by(f64::total_cmp);
+        n.dedup();
+        n
+    }
+
+    /// Tabulated section models at Ncrit `ncrit` from the stations' other-Ncrit polars: radii
+    /// and models of the stations that have one.
+    pub fn models_at_ncrit(&self, ncrit: f64) -> StationModels {
+        let mut r = Vec::new();
+        let mut m = Vec::new();
+        for s in &self.stations {
+            let at: Vec<Polar> = s.other_ncrit.iter().filter(|p| p.ncrit == ncrit).cloned().collect();
+            if let Some(t) = TabulatedAero::new(&at) {
+                r.push(s.r);
+                m.push(t);
+            }
+        }
+        (r, m)
+    }
 }
 
 /// How XFOIL is asked for a blade's polars: transition, angles, panels, iterations.
@@ -135,6 +166,9 @@ pub struct XfoilSettings {
     pub panels: u32,
     /// Viscous iteration limit per angle.
     pub max_iter: u32,
+    /// More Ncrit values at which every rung is also computed (for the `transition` effect;
+    /// no QPROP fit): [`StationPolars::other_ncrit`].
+    pub ncrit_effect: Vec<f64>,
 }
 
 /// A polar as the tabulated model needs it: a positive Re, and points of finite, plausible
@@ -275,19 +309,23 @@ pub fn compute_blade(
         let first = jobs.len();
         if re > 0.0 && chord > 0.0 && re.is_finite() {
             let foil = &job.foils[i.min(job.foils.len() - 1)];
-            for rung in re_rungs(re_range[0], re_range[1]) {
-                jobs.push(crate::PolarJob {
-                    trip: job.settings.trip,
-                    panels: job.settings.panels,
-                    max_iter: job.settings.max_iter,
-                    ..crate::PolarJob::new(
-                        foil.clone(),
-                        rung,
-                        mach_at(rung),
-                        job.settings.ncrit,
-                        job.settings.alphas_deg.clone(),
-                    )
-                });
+            let rungs = re_rungs(re_range[0], re_range[1]);
+            // The default Ncrit's rungs first (they make the fit), then each other Ncrit's.
+            for &ncrit in std::iter::once(&job.settings.ncrit).chain(&job.settings.ncrit_effect) {
+                for &rung in &rungs {
+                    jobs.push(crate::PolarJob {
+                        trip: job.settings.trip,
+                        panels: job.settings.panels,
+                        max_iter: job.settings.max_iter,
+                        ..crate::PolarJob::new(
+                            foil.clone(),
+                            rung,
+                            mach_at(rung),
+                            ncrit,
+                            job.settings.alphas_deg.clone(),
+                        )
+                    });
+                }
             }
         }
         stations.push((r, chord, re, re_range, mach_at(re), alphas, first..jobs.len()));
@@ -300,11 +338,14 @@ pub fn compute_blade(
     let mut out = Vec::new();
     for (r, chord, re, re_range, mach, alphas, range_k) in stations {
         let mut polars = Vec::new();
+        let mut other_ncrit = Vec::new();
         let mut problems = Vec::new();
         for k in range_k {
             match results[k].take() {
-                Some(Ok(p)) => polars.push(p),
-                Some(Err(e)) => problems.push(e),
+                Some(Ok(p)) if jobs[k].ncrit == job.settings.ncrit => polars.push(p),
+                Some(Ok(p)) => other_ncrit.push(p),
+                Some(Err(e)) if jobs[k].ncrit == job.settings.ncrit => problems.push(e),
+                Some(Err(e)) => problems.push(format!("at Ncrit {} (transition effect): {e}", jobs[k].ncrit)),
                 None => {}
             }
         }
@@ -338,6 +379,7 @@ pub fn compute_blade(
             alpha_deg,
             alpha_range_deg,
             polars,
+            other_ncrit,
             fit,
             problem: (!problems.is_empty()).then(|| problems.join("; ")),
         });

@@ -426,6 +426,7 @@ mod tests {
             alpha_deg: 4.0,
             alpha_range_deg: [0.0, 8.0],
             polars,
+            other_ncrit: vec![],
             fit: None,
             problem: None,
         };
