@@ -744,7 +744,7 @@ fn an_optical_rpm_is_not_scaled_like_an_electrical_one() {
     );
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
-        out.contains("rpm-scale        hit its bound (rpm-scale:factor = 0.9700)"),
+        out.contains("rpm-scale        hit its bound (rpm-scale:factor = 0.9900)"),
         "{out}"
     );
     let (o, j) = diagnose(&p, &[&dir.path().join("stand.csv")], &[], dir.path());
