@@ -100,10 +100,18 @@ fn shipped_hidden_effect_examples_name_their_answer() {
             "torque_tare" => assert!(
                 before[1].contains("torque under-predicted")
                     && before[1].contains("largest at low RPM")
-                    && before[1].contains("thrust unaffected"),
+                    && before[1].contains("thrust unaffected: torque alone (a friction torque, torque-tare"),
                 "{before:?}"
             ),
-            "pitch_offset" => assert!(before[0].starts_with("thrust under-predicted by 11"), "{before:?}"),
+            // A pitch offset's error grows with J: the words name it among the effects that can
+            // make that, and density as one that cannot.
+            "pitch_offset" => assert!(
+                before[0].starts_with("thrust under-predicted by 11")
+                    && before[0].contains("largest at J >")
+                    && before[0].contains("Effects that can make it: pitch-offset")
+                    && before[0].contains("not density"),
+                "{before:?}"
+            ),
             _ => assert!(before.iter().all(|s| s.contains("within 2 %")), "{before:?}"),
         }
         if id == "none" {

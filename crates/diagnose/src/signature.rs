@@ -33,6 +33,12 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
+/// Which effects can make an error that changes with J at fixed RPM, and which cannot.
+pub const J_TREND_EFFECTS: &str = "an error that changes with J at fixed RPM comes from the angles or the inflow. \
+     Effects that can make it: pitch-offset and elastic-twist (an angle error weighs more where the sections' \
+     angles are small, at high J), rpm-scale (a wrong RPM is a wrong J), tip-loss and hub-loss (the inflow), \
+     the tares (loads that do not scale as the propeller's); not density, which scales every load alike";
+
 /// Width of the J bins within which RPM trends are measured (static points are one bin).
 const J_BIN: f64 = 0.05;
 
@@ -76,6 +82,23 @@ pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<(f64, f64, f
         0.5 * (slopes[n / 2 - 1] + slopes[n / 2])
     };
     Some((median * (hi - lo), lo.exp(), hi.exp()))
+}
+
+/// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
+/// name), each other capitalised, all joined by full stops.
+fn sentences(parts: &[String]) -> String {
+    parts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let mut c = p.chars();
+            match c.next() {
+                Some(f) if i > 0 => f.to_uppercase().chain(c).collect(),
+                _ => p.clone(),
+            }
+        })
+        .collect::<Vec<String>>()
+        .join(". ")
 }
 
 /// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
@@ -134,7 +157,11 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                 } else {
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
-                parts.push(format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b)));
+                parts.push(format!(
+                    "largest at {side} ({} there, {} elsewhere): {J_TREND_EFFECTS}",
+                    pct(a),
+                    pct(b)
+                ));
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
@@ -191,16 +218,22 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             quantity: name.into(),
             mean: m,
             rms: r,
-            text: parts.join(", "),
+            text: sentences(&parts),
         });
     }
     // "thrust unaffected" where only torque is off, and the other way round.
     if out.len() == 2 {
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
         if quiet[0] && !quiet[1] {
-            out[1].text.push_str("; thrust unaffected");
+            out[1].text.push_str(
+                "; thrust unaffected: torque alone (a friction torque, torque-tare, or the sections' drag, \
+                 re-scaling), not what changes the angles, the air or the RPM, which move both",
+            );
         } else if quiet[1] && !quiet[0] {
-            out[0].text.push_str("; torque unaffected");
+            out[0].text.push_str(
+                "; torque unaffected: thrust alone (a load on the balance that is not the propeller's, \
+                 thrust-tare), not what changes the angles, the air or the RPM, which move both",
+            );
         }
     }
     out

@@ -209,7 +209,9 @@ fn make(kind: Kind) -> Builtin {
             )],
             &[Geometry],
             "Every blade angle is off by the same amount: a scan aligned to the wrong plane, a \
-             hub that seats the blades at another angle, a mould that differs from the design.",
+             hub that seats the blades at another angle, a mould that differs from the design; or \
+             every section's zero-lift angle is off by as much (a section of other camber than the \
+             polars', XFOIL's lift at small angles and low Re), which acts the same way.",
         ),
         Kind::ChordScale => (
             "chord-scale",
