@@ -28,44 +28,47 @@ pub struct Level {
     pub models: Vec<Arc<dyn SectionAero>>,
 }
 
-impl Level {
-    /// The two models around radius `r` and the fraction between them (the end model beyond
-    /// the ends).
-    fn around(&self, r: f64) -> (usize, usize, f64) {
-        let n = self.r.len();
-        let i = self.r.partition_point(|&x| x <= r);
-        if i == 0 {
-            (0, 0, 0.0)
-        } else if i == n {
-            (n - 1, n - 1, 0.0)
-        } else {
-            (i - 1, i, (r - self.r[i - 1]) / (self.r[i] - self.r[i - 1]))
-        }
-    }
-
-    fn lift(&self, r: f64, alpha: f64, re: f64, msq: f64) -> LiftEval {
-        let (i, j, f) = self.around(r);
-        let a = self.models[i].lift(alpha, re, msq);
-        if i == j {
-            return a;
-        }
-        mix_lift(&a, &self.models[j].lift(alpha, re, msq), f, 1.0)
-    }
-
-    fn drag(&self, r: f64, input: &DragInput) -> f64 {
-        let (i, j, f) = self.around(r);
-        let a = self.models[i].drag(input);
-        if i == j {
-            a
-        } else {
-            a + f * (self.models[j].drag(input) - a)
-        }
+/// The two entries of the ascending `xs` around `x` and the fraction between them (the end
+/// entry beyond the ends).
+fn bracket(xs: &[f64], x: f64) -> (usize, usize, f64) {
+    let n = xs.len();
+    let i = xs.partition_point(|&v| v <= x);
+    if i == 0 {
+        (0, 0, 0.0)
+    } else if i == n {
+        (n - 1, n - 1, 0.0)
+    } else {
+        (i - 1, i, (x - xs[i - 1]) / (xs[i] - xs[i - 1]))
     }
 }
 
-/// `a + f (b - a)` of every derivative, times `scale`.
-fn mix_lift(a: &LiftEval, b: &LiftEval, f: f64, scale: f64) -> LiftEval {
-    let m = |x: f64, y: f64| scale * (x + f * (y - x));
+/// `eval` at the entries `(i, j)` mixed with fraction `t` (`eval(i)` alone when they are one).
+fn between<T>((i, j, t): (usize, usize, f64), eval: impl Fn(usize) -> T, mix: impl Fn(T, T, f64) -> T) -> T {
+    let a = eval(i);
+    if i == j {
+        a
+    } else {
+        mix(a, eval(j), t)
+    }
+}
+
+fn mix_drag(a: f64, b: f64, t: f64) -> f64 {
+    a + t * (b - a)
+}
+
+impl Level {
+    fn lift(&self, r: f64, alpha: f64, re: f64, msq: f64) -> LiftEval {
+        between(bracket(&self.r, r), |k| self.models[k].lift(alpha, re, msq), mix_lift)
+    }
+
+    fn drag(&self, r: f64, input: &DragInput) -> f64 {
+        between(bracket(&self.r, r), |k| self.models[k].drag(input), mix_drag)
+    }
+}
+
+/// `a + f (b - a)` of every derivative.
+fn mix_lift(a: LiftEval, b: LiftEval, f: f64) -> LiftEval {
+    let m = |x: f64, y: f64| x + f * (y - x);
     LiftEval {
         cl: m(a.cl, b.cl),
         dcl_dalpha: m(a.dcl_dalpha, b.dcl_dalpha),
@@ -85,6 +88,8 @@ pub struct Transition {
     params: [Param; 1],
     /// Ascending in Ncrit; `levels[base]` is the model's own.
     levels: Vec<Level>,
+    /// Their Ncrit values.
+    ncrits: Vec<f64>,
     base: usize,
 }
 
@@ -129,6 +134,7 @@ impl Transition {
         );
         Ok(Transition {
             params: [param],
+            ncrits: levels.iter().map(|l| l.ncrit).collect(),
             levels,
             base,
         })
@@ -136,21 +142,7 @@ impl Transition {
 
     /// The Ncrit values of the tables, ascending.
     pub fn ncrits(&self) -> Vec<f64> {
-        self.levels.iter().map(|l| l.ncrit).collect()
-    }
-
-    /// The two levels around `n` and the fraction between them (clamped to the ends).
-    fn around(&self, n: f64) -> (usize, usize, f64) {
-        let k = self.levels.len();
-        let i = self.levels.partition_point(|l| l.ncrit <= n);
-        if i == 0 {
-            (0, 0, 0.0)
-        } else if i == k {
-            (k - 1, k - 1, 0.0)
-        } else {
-            let (a, b) = (self.levels[i - 1].ncrit, self.levels[i].ncrit);
-            (i - 1, i, (n - a) / (b - a))
-        }
+        self.ncrits.clone()
     }
 
     fn neutral(&self, n: f64) -> bool {
@@ -195,13 +187,11 @@ impl Effect for Transition {
             return Ok(base);
         }
         let r = ctx.geom.r;
-        let (i, j, t) = self.around(p[0]);
-        let a = self.levels[i].lift(r, alpha, re, msq);
-        let at_n = if i == j {
-            a
-        } else {
-            mix_lift(&a, &self.levels[j].lift(r, alpha, re, msq), t, 1.0)
-        };
+        let at_n = between(
+            bracket(&self.ncrits, p[0]),
+            |k| self.levels[k].lift(r, alpha, re, msq),
+            mix_lift,
+        );
         let own = self.levels[self.base].lift(r, alpha, re, msq);
         Ok(LiftEval {
             cl: base.cl + at_n.cl - own.cl,
@@ -224,13 +214,7 @@ impl Effect for Transition {
             return Ok(cd);
         }
         let r = ctx.geom.r;
-        let (i, j, t) = self.around(p[0]);
-        let a = self.levels[i].drag(r, input);
-        let at_n = if i == j {
-            a
-        } else {
-            a + t * (self.levels[j].drag(r, input) - a)
-        };
+        let at_n = between(bracket(&self.ncrits, p[0]), |k| self.levels[k].drag(r, input), mix_drag);
         let own = self.levels[self.base].drag(r, input);
         Ok((cd + at_n - own).max(MIN_DRAG_FRACTION * cd))
     }
