@@ -591,6 +591,13 @@ fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
     let o = predict(&["--effect", "transition:ncrit=3"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("unknown effect `transition`"), "{}", stderr(&o));
+    // `propbet effects` says where it comes from.
+    let o = run(&["effects"], dir.path());
+    let listed = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        listed.contains("transition (section)") && listed.contains("--ncrit-effect"),
+        "{listed}"
+    );
     // An Ncrit the polars already have, or none XFOIL takes.
     for (bad, says) in [("5", "the polars' own Ncrit"), ("30", "between 0 and 20")] {
         let o = run(

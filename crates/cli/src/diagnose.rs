@@ -186,6 +186,13 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
             e.explanation().split_whitespace().collect::<Vec<_>>().join(" ")
         );
     }
+    let _ = writeln!(
+        out,
+        "transition (section)\n    ncrit [-]  neutral: the polars' own Ncrit, bounds: the lowest and highest Ncrit \
+         computed. Known where the polars (--polars FILE, a case's tables) were also computed at other Ncrit values \
+         (propbet polars --ncrit-effect 3,9; [polars] ncrit_effect in a case): each station's lift and drag move by \
+         the difference between its tables at the fitted Ncrit and at the model's own."
+    );
     // A closed pipe (`propbet effects | head`) is not an error.
     let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
     Ok(true)
