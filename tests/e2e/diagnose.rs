@@ -99,7 +99,7 @@ fn shipped_hidden_effect_examples_name_their_answer() {
         match case {
             "torque_tare" => assert!(
                 before[1].contains("torque under-predicted")
-                    && before[1].contains("largest at low RPM")
+                    && before[1].contains("Largest at low RPM")
                     && before[1].contains("thrust unaffected: torque alone (a friction torque, torque-tare"),
                 "{before:?}"
             ),
@@ -107,7 +107,7 @@ fn shipped_hidden_effect_examples_name_their_answer() {
             // make that, and density as one that cannot.
             "pitch_offset" => assert!(
                 before[0].starts_with("thrust under-predicted by 11")
-                    && before[0].contains("largest at J >")
+                    && before[0].contains("Largest at J >")
                     && before[0].contains("Effects that can make it: pitch-offset")
                     && before[0].contains("not density"),
                 "{before:?}"
