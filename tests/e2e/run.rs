@@ -197,6 +197,14 @@ fn bad_cases_get_clear_errors() {
             format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nmodel = \"magic\"\n"),
             "`tables` or `qprop`",
         ),
+        (
+            format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nncrit_effect = 5\n"),
+            "[polars] ncrit_effect: --ncrit-effect 5: the polars' own Ncrit",
+        ),
+        (
+            format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nncrit_effect = \"3,abc\"\n"),
+            "'abc' is not a number",
+        ),
     ] {
         std::fs::write(case.join("case.toml"), &toml).unwrap();
         let o = run(&["run", "case", "-o", "out"], dir.path());

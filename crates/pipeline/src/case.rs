@@ -395,7 +395,12 @@ impl Case {
                         },
                         ncrit_effect: match &p.ncrit_effect {
                             None => Vec::new(),
-                            Some(n) => n.values("--ncrit-effect").map_err(|e| at("[polars] ncrit_effect", e))?,
+                            Some(n) => n
+                                .values("--ncrit-effect")
+                                .and_then(|v| {
+                                    crate::spec::check_ncrit_effect(&v, p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT))
+                                })
+                                .map_err(|e| at("[polars] ncrit_effect", e))?,
                         },
                         out_prop: out.join("polars/prop.qprop"),
                         out_polars: Some(out.join("polars/polars.json")),
