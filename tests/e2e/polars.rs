@@ -466,31 +466,29 @@ fn a_trip_forces_transition_and_keeps_the_lift_at_small_angles() {
 fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
     let dir = tempfile::tempdir().unwrap();
     let cam = cam6x3();
-    let o = run(
-        &[
-            "polars",
-            "--geometry",
-            cam.to_str().unwrap(),
-            "--airfoil",
-            "naca4412",
-            "--rpm",
-            "4000,10000",
-            "--j",
-            "0,0.4",
-            "--alpha",
-            "-6:12:1",
-            "--ncrit-effect",
-            "9,2",
-            "--quiet",
-            "--cache",
-            "cache",
-            "--out-prop",
-            "fit.qprop",
-            "--out-polars",
-            "fit.json",
-        ],
-        dir.path(),
-    );
+    // `propbet polars` of the CAM 6x3 with NACA 4412 sections and `extra`.
+    let polars = |extra: &[&str]| {
+        let mut args = vec!["polars", "--geometry", cam.to_str().unwrap(), "--airfoil", "naca4412"];
+        args.extend_from_slice(extra);
+        run(&args, dir.path())
+    };
+    let o = polars(&[
+        "--rpm",
+        "4000,10000",
+        "--j",
+        "0,0.4",
+        "--alpha",
+        "-6:12:1",
+        "--ncrit-effect",
+        "9,2",
+        "--quiet",
+        "--cache",
+        "cache",
+        "--out-prop",
+        "fit.qprop",
+        "--out-polars",
+        "fit.json",
+    ]);
     assert!(
         o.status.code() == Some(0) || o.status.code() == Some(1),
         "{}",
@@ -600,22 +598,7 @@ fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
     );
     // An Ncrit the polars already have, or none XFOIL takes.
     for (bad, says) in [("5", "the polars' own Ncrit"), ("30", "between 0 and 20")] {
-        let o = run(
-            &[
-                "polars",
-                "--geometry",
-                cam.to_str().unwrap(),
-                "--airfoil",
-                "naca4412",
-                "--rpm",
-                "6000",
-                "--ncrit-effect",
-                bad,
-                "--out-prop",
-                "x.qprop",
-            ],
-            dir.path(),
-        );
+        let o = polars(&["--rpm", "6000", "--ncrit-effect", bad, "--out-prop", "x.qprop"]);
         assert_eq!(o.status.code(), Some(2), "{bad}");
         assert!(stderr(&o).contains(says), "{bad}: {}", stderr(&o));
         assert!(!dir.path().join("x.qprop").exists());
