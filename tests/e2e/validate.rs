@@ -69,6 +69,49 @@ fn validation_table_on_the_shipped_subset() {
     // beyond r/R 0.15 = 0.675 in, so the first station takes the first PE0 row).
     let first = std::fs::read_to_string(dir.path().join("val/apcsf_9x4.7/airfoils/station_00.dat")).unwrap();
     assert!(first.lines().next().unwrap().contains("t/c"), "{first}");
+
+    // `--geometry pe0`: APC's design chord and twist at UIUC's stations (the polars from the
+    // cache the first run filled).
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            data.join("uiuc").to_str().unwrap(),
+            "--pe0",
+            data.join("pe0").to_str().unwrap(),
+            "--airfoils",
+            repo().join("props/airfoils").to_str().unwrap(),
+            "--cache",
+            "cache",
+            "--quiet",
+            "--geometry",
+            "pe0",
+            "-o",
+            "val_pe0",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let stations = |d: &str| -> Vec<[f64; 3]> {
+        let t = std::fs::read_to_string(dir.path().join(d).join("apcsf_9x4.7/geometry.qprop")).unwrap();
+        t.lines()
+            .filter(|l| !l.contains('!'))
+            .filter_map(|l| {
+                let v: Vec<f64> = l.split_whitespace().map_while(|x| x.parse().ok()).collect();
+                (v.len() == 3).then(|| [v[0], v[1], v[2]])
+            })
+            .collect()
+    };
+    let (uiuc, pe0) = (stations("val"), stations("val_pe0"));
+    assert_eq!(uiuc.len(), 18, "{uiuc:?}");
+    assert_eq!(pe0.len(), 18, "{pe0:?}");
+    // Same radii; at r/R 0.95 (4.275 in) UIUC measured 6.72 deg where APC's design twist is
+    // 9.2 deg (tests/data/validate/pe0/9x47SF-PERF.PE0, linear between 4.2531 in, 9.3189 deg
+    // and 4.3312 in, 8.9373 deg).
+    let i = uiuc.iter().position(|s| (s[0] - 0.95 * 0.1143).abs() < 1e-4).unwrap();
+    assert_eq!(uiuc[i][0], pe0[i][0]);
+    assert!((uiuc[i][2] - 6.72).abs() < 1e-9, "{:?}", uiuc[i]);
+    assert!((pe0[i][2] - 9.21).abs() < 0.01, "{:?}", pe0[i]);
 }
 
 #[test]

@@ -11,7 +11,7 @@ use anyhow::{bail, Result};
 use clap::Args;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{Rotation, StageSpec};
-use propbet_pipeline::validate::{uiuc_props, validate_prop, Row, ValidateSpec, Validated};
+use propbet_pipeline::validate::{uiuc_props, validate_prop, GeometrySource, Row, ValidateSpec, Validated};
 use propbet_qprop::apc::pe0_name;
 
 use crate::output::write_atomic;
@@ -62,6 +62,10 @@ pub struct ValidateArgs {
     /// Ncrit alone). Default: 0.5 (docs/studies/transition-trip.md).
     #[arg(long, value_name = "X/C|free")]
     pub trip: Option<String>,
+    /// Where each station's chord and twist come from: `uiuc` (UIUC's measured geometry file) or
+    /// `pe0` (APC's design chord and twist, at UIUC's stations).
+    #[arg(long, value_parser = ["uiuc", "pe0"], default_value = "uiuc")]
+    pub geometry: String,
 }
 
 /// Runs `propbet validate`.
@@ -89,6 +93,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             Some(t) => propbet_pipeline::values::parse_trip(t)?,
         },
         per3: a.per3.clone(),
+        geometry: GeometrySource::parse(&a.geometry)?,
     };
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
@@ -146,7 +151,11 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         );
     }
     let model = format!(
-        "section model {}, Ncrit {}{}, rotational augmentation {}",
+        "{}, section model {}, Ncrit {}{}, rotational augmentation {}",
+        match spec.geometry {
+            GeometrySource::Uiuc => "UIUC's measured chord and twist",
+            GeometrySource::Pe0 => "APC's design chord and twist (PE0) at UIUC's stations",
+        },
         a.section_model,
         a.ncrit,
         spec.trip.map_or(", free transition".to_string(), |x| format!(
@@ -225,6 +234,7 @@ struct CsvRow<'a> {
     apc_ct_p90: Option<f64>,
     apc_cp_median: Option<f64>,
     apc_cp_p90: Option<f64>,
+    twist_gap_deg: f64,
     ladder: &'a str,
     held_out_ladders: String,
 }
@@ -251,6 +261,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_ct_p90: r.per3.as_ref().map(|p| p.ct.1),
             apc_cp_median: r.per3.as_ref().map(|p| p.cp.0),
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
+            twist_gap_deg: r.twist_gap,
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
         });

@@ -44,6 +44,36 @@ pub struct ValidateSpec {
     pub trip: Option<f64>,
     /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
     pub per3: Option<PathBuf>,
+    /// Where each station's chord and twist come from.
+    pub geometry: GeometrySource,
+}
+
+/// Where validate takes the blade's chord and twist from (the stations are UIUC's either way).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GeometrySource {
+    /// UIUC's measured r/R, c/R, β (`<prop>_geom.txt`).
+    Uiuc,
+    /// APC's design chord and twist (the PE0 file) at UIUC's stations.
+    Pe0,
+}
+
+impl GeometrySource {
+    /// Parses `uiuc` or `pe0`.
+    pub fn parse(s: &str) -> Result<Self> {
+        match s {
+            "uiuc" => Ok(Self::Uiuc),
+            "pe0" => Ok(Self::Pe0),
+            _ => Err(Error::Invalid(format!("geometry {s:?}: `uiuc` or `pe0`"))),
+        }
+    }
+
+    /// The name `parse` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Uiuc => "uiuc",
+            Self::Pe0 => "pe0",
+        }
+    }
 }
 
 /// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
@@ -132,6 +162,28 @@ pub struct Row {
     /// The ladders fitted to each half of the files, whose predictions of the other half are
     /// the "after" columns.
     pub held_out_ladders: [String; 2],
+    /// APC's design twist minus UIUC's measured β [deg], the mean over UIUC's stations at
+    /// r/R 0.6-0.9 (where most of the thrust is made): what a `pitch-offset` fitted on UIUC's
+    /// geometry is to be compared with (docs/studies/geometry-source.md).
+    pub twist_gap: f64,
+}
+
+/// Where [`Row::twist_gap`] is averaged: r/R from 0.6 to 0.9.
+pub const TWIST_GAP_SPAN: (f64, f64) = (0.6, 0.9);
+
+/// Mean of APC's design twist minus the measured β [deg] over the stations of `table` within
+/// [`TWIST_GAP_SPAN`] (NaN if none is).
+pub fn twist_gap(table: &[propbet_measure::uiuc::GeometryRow], pe0: &propbet_qprop::apc::Pe0, big_r: f64) -> f64 {
+    let d: Vec<f64> = table
+        .iter()
+        .filter(|row| row.r_r >= TWIST_GAP_SPAN.0 - 1e-9 && row.r_r <= TWIST_GAP_SPAN.1 + 1e-9)
+        .map(|row| pe0.twist_at(row.r_r * big_r) - row.beta.to_degrees())
+        .collect();
+    if d.is_empty() {
+        f64::NAN
+    } else {
+        d.iter().sum::<f64>() / d.len() as f64
+    }
 }
 
 /// The two halves of a prop's files for the held-out calibration: sorted by the RPM in their
@@ -259,10 +311,14 @@ pub fn validate_prop(
     let mut airfoils = Vec::new();
     for (i, row) in table.iter().enumerate() {
         let r = row.r_r * big_r;
+        let (chord, beta) = match spec.geometry {
+            GeometrySource::Uiuc => (row.c_r * big_r, row.beta.to_degrees()),
+            GeometrySource::Pe0 => (pe0.chord_at(r), pe0.twist_at(r)),
+        };
         rows.push(PropRow {
             r,
-            chord: row.c_r * big_r,
-            beta: row.beta.to_degrees(),
+            chord,
+            beta,
             coeffs: Vec::new(),
         });
         let frac = pe0.blend_at(r);
@@ -286,7 +342,18 @@ pub fn validate_prop(
         foil.name = format!("{} t/c {:.3}", base.name, tc);
         airfoils.push((i, foil.to_selig()));
     }
-    let file = PropFile::metric(format!("{prop} (UIUC geometry, APC PE0 sections)"), 2.0, big_r, rows);
+    let file = PropFile::metric(
+        format!(
+            "{prop} ({}, APC PE0 sections)",
+            match spec.geometry {
+                GeometrySource::Uiuc => "UIUC geometry",
+                GeometrySource::Pe0 => "APC PE0 chord and twist at UIUC's stations",
+            }
+        ),
+        2.0,
+        big_r,
+        rows,
+    );
     let geometry_path = dir.join("geometry.qprop");
     let geometry = as_written(&file, &geometry_path)?;
     let foil_dir = dir.join("airfoils");
@@ -462,6 +529,7 @@ pub fn validate_prop(
         per3,
         ladder: ladder_text(&effects),
         held_out_ladders,
+        twist_gap: twist_gap(&table, &pe0, big_r),
     };
     Ok(Validated {
         geometry,

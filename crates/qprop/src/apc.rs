@@ -75,6 +75,10 @@ pub fn uiuc_diameter(uiuc: &str) -> Option<f64> {
 pub struct Pe0 {
     /// (station radius [m], thickness ratio [-]).
     pub thickness: Vec<(f64, f64)>,
+    /// (station radius [m], chord [m]): APC's design chord, between the mould's LE and TE parting lines.
+    pub chord: Vec<(f64, f64)>,
+    /// (station radius [m], twist [deg]): APC's design angle of the LE-TE line (the chord line).
+    pub twist: Vec<(f64, f64)>,
     /// (radius [m], APC's airfoil name) at the start and end of the transition.
     pub airfoils: [(f64, String); 2],
 }
@@ -82,17 +86,17 @@ pub struct Pe0 {
 impl Pe0 {
     /// Thickness ratio at radius `r` [m], linear between stations, held beyond them.
     pub fn thickness_at(&self, r: f64) -> f64 {
-        let t = &self.thickness;
-        if r <= t[0].0 {
-            return t[0].1;
-        }
-        for w in t.windows(2) {
-            if r <= w[1].0 {
-                let f = (r - w[0].0) / (w[1].0 - w[0].0);
-                return w[0].1 + f * (w[1].1 - w[0].1);
-            }
-        }
-        t[t.len() - 1].1
+        linear_held(&self.thickness, r)
+    }
+
+    /// Design chord at radius `r` [m], linear between stations, held beyond them.
+    pub fn chord_at(&self, r: f64) -> f64 {
+        linear_held(&self.chord, r)
+    }
+
+    /// Design twist (chord-line angle) [deg] at radius `r` [m], linear between stations, held beyond them.
+    pub fn twist_at(&self, r: f64) -> f64 {
+        linear_held(&self.twist, r)
     }
 
     /// How far `r` [m] is through the transition from the first airfoil (0) to the second (1).
@@ -106,11 +110,26 @@ impl Pe0 {
     }
 }
 
+/// `t`'s value at `x`, linear between its (ascending) abscissas, held beyond them.
+fn linear_held(t: &[(f64, f64)], x: f64) -> f64 {
+    if x <= t[0].0 {
+        return t[0].1;
+    }
+    for w in t.windows(2) {
+        if x <= w[1].0 {
+            let f = (x - w[0].0) / (w[1].0 - w[0].0);
+            return w[0].1 + f * (w[1].1 - w[0].1);
+        }
+    }
+    t[t.len() - 1].1
+}
+
 /// Reads a PE0 file (inches inside, metres out): the station table's first and seventh columns
 /// (rows of 13 numbers before the AIRFOIL lines), and the AIRFOIL1/2 lines.
 pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
     const IN: f64 = 0.0254;
     let mut thickness = Vec::new();
+    let (mut chord, mut twist) = (Vec::new(), Vec::new());
     let mut foils: Vec<(f64, String)> = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let t = line.trim();
@@ -130,7 +149,7 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
         // The station table comes before the AIRFOIL lines; the performance tables after them
         // have as many columns.
         if v.len() >= 13 && foils.is_empty() {
-            if !(v[0].is_finite() && v[0] >= 0.0 && v[6] > 0.0 && v[6] < 1.0) {
+            if !(v[0].is_finite() && v[0] >= 0.0 && v[6] > 0.0 && v[6] < 1.0 && v[1] >= 0.0 && v[7].abs() < 90.0) {
                 return Err(ReadPe0Error::StationRow {
                     name: name.to_string(),
                     line: i + 1,
@@ -138,6 +157,8 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
                 });
             }
             thickness.push((v[0] * IN, v[6]));
+            chord.push((v[0] * IN, v[1] * IN));
+            twist.push((v[0] * IN, v[7]));
         }
     }
     if thickness.len() < 2 || foils.len() != 2 {
@@ -149,6 +170,8 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
     }
     Ok(Pe0 {
         thickness,
+        chord,
+        twist,
         airfoils: [foils[0].clone(), foils[1].clone()],
     })
 }
@@ -312,6 +335,14 @@ mod tests {
         assert!((p.thickness_at(0.5 * (0.9567 + 1.0164) * 0.0254) - 0.20295).abs() < 1e-12);
         assert_eq!(p.blend_at(0.0), 0.0);
         assert_eq!(p.blend_at(1.0), 1.0);
+        // Chord (second column, inches) and twist (eighth, degrees), linear between stations.
+        assert_eq!(
+            p.chord,
+            vec![(0.9567 * 0.0254, 0.7943 * 0.0254), (1.0164 * 0.0254, 0.8324 * 0.0254)]
+        );
+        assert!((p.twist_at(0.5 * (0.9567 + 1.0164) * 0.0254) - 36.25).abs() < 1e-12);
+        assert_eq!(p.twist_at(1.0), 35.7);
+        assert!((p.chord_at(0.0) - 0.7943 * 0.0254).abs() < 1e-15);
         let e = read_pe0("nothing here\n", "y.PE0").unwrap_err().to_string();
         assert!(e.contains("y.PE0") && e.contains("not an APC PE0 file"), "{e}");
         let e = read_pe0("AIRFOIL1: x, E63\n", "z.PE0").unwrap_err().to_string();

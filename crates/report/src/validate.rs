@@ -31,6 +31,7 @@ fn head(apc: bool) -> Vec<&'static str> {
         "CT p90 after",
         "CP median after",
         "CP p90 after",
+        "APC design − measured twist, r/R 0.6-0.9",
         "ladder (all files)",
         "held-out ladders (each half of the files)",
     ]);
@@ -57,6 +58,11 @@ fn numbers(r: &Row, apc: bool) -> Vec<f64> {
 fn cells(r: &Row, apc: bool) -> Vec<String> {
     let mut v = vec![r.prop.clone(), family(&r.prop), r.points.to_string()];
     v.extend(numbers(r, apc).into_iter().map(pct));
+    v.push(if r.twist_gap.is_finite() {
+        format!("{:+.1}°", r.twist_gap)
+    } else {
+        "–".into()
+    });
     v.push(r.ladder.clone());
     v.push(format!("{} / {}", r.held_out_ladders[0], r.held_out_ladders[1]));
     v
@@ -74,7 +80,7 @@ fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
         v.push(pct(quantile(col, 0.5)));
     }
-    v.extend([String::new(), String::new()]);
+    v.extend([String::new(), String::new(), String::new()]);
     v
 }
 
@@ -86,7 +92,8 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     let mut out: Vec<(Vec<String>, bool)> = rows.iter().map(|r| (cells(r, apc), false)).collect();
     for (prop, why) in skipped {
         let mut v = vec![prop.clone(), family(prop), "0".into()];
-        v.resize(h.len() - 2, "–".into());
+        v.resize(h.len() - 3, "–".into());
+        v.push(String::new());
         v.push(format!("not validated: {why}"));
         v.push(String::new());
         out.push((v, false));
@@ -111,10 +118,12 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
 fn intro(model: &str) -> String {
     format!(
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
-         (static points included). Before: UIUC geometry + APC sections + XFOIL polars covering each \
+         (static points included). Before: the blade + APC sections + XFOIL polars covering each \
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
          measurements) on the same points; after: held out, each half of a prop's files (sorted by \
-         RPM, alternately) predicted with the effects the ladder fitted to the other half."
+         RPM, alternately) predicted with the effects the ladder fitted to the other half. The twist \
+         column is APC's design twist (PE0) minus UIUC's measured β, averaged over r/R 0.6-0.9: a \
+         pitch-offset fitted on UIUC's geometry near it is that difference found from the loads."
     )
 }
 
@@ -166,7 +175,9 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         s.push_str("</tr>\n");
     }
     s.push_str("</table>\n");
-    page("propbet validate", "", &s)
+    // A wide table: the page takes the window's width, so that the ladders are seen without
+    // scrolling on a desktop screen.
+    page("propbet validate", "body{max-width:none}", &s)
 }
 
 #[cfg(test)]
@@ -188,6 +199,7 @@ mod tests {
             }),
             ladder: "none".into(),
             held_out_ladders: ["none".into(), "none".into()],
+            twist_gap: -1.24,
         }
     }
 
@@ -201,6 +213,7 @@ mod tests {
         let skipped = [("apc29ff_9x5".to_string(), "no PE0 file".to_string())];
         let md = markdown(&rows, &skipped, "tables");
         assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
+        assert!(md.contains("| 10.0 % | -1.2° | none | none / none |"), "{md}");
         assert!(md.contains("| **E (median of 2)** |  | 20 | 30.0 % |"), "{md}");
         assert!(!md.contains("SF (median"), "a family of one has no median row: {md}");
         assert!(
