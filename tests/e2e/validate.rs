@@ -9,25 +9,26 @@ use super::*;
 fn validation_table_on_the_shipped_subset() {
     let dir = tempfile::tempdir().unwrap();
     let data = repo().join("tests/data/validate");
-    let o = run(
-        &[
+    let (uiuc, pe0, per3) = (data.join("uiuc"), data.join("pe0"), data.join("per3"));
+    let airfoils = repo().join("props/airfoils");
+    // validate on the subset, one polar cache for every run, with `extra` arguments.
+    let validate = |extra: &[&str]| {
+        let mut args = vec![
             "validate",
             "--uiuc",
-            data.join("uiuc").to_str().unwrap(),
+            uiuc.to_str().unwrap(),
             "--pe0",
-            data.join("pe0").to_str().unwrap(),
+            pe0.to_str().unwrap(),
             "--airfoils",
-            repo().join("props/airfoils").to_str().unwrap(),
-            "--per3",
-            data.join("per3").to_str().unwrap(),
+            airfoils.to_str().unwrap(),
             "--cache",
             "cache",
             "--quiet",
-            "-o",
-            "val",
-        ],
-        dir.path(),
-    );
+        ];
+        args.extend_from_slice(extra);
+        run(&args, dir.path())
+    };
+    let o = validate(&["--per3", per3.to_str().unwrap(), "-o", "val"]);
     // Exit 0 or 1 (a station solution that did not converge near windmilling is reported).
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     let md = std::fs::read_to_string(dir.path().join("val/validation.md")).unwrap();
@@ -72,25 +73,7 @@ fn validation_table_on_the_shipped_subset() {
 
     // `--geometry pe0`: APC's design chord and twist at UIUC's stations (the polars from the
     // cache the first run filled).
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            data.join("uiuc").to_str().unwrap(),
-            "--pe0",
-            data.join("pe0").to_str().unwrap(),
-            "--airfoils",
-            repo().join("props/airfoils").to_str().unwrap(),
-            "--cache",
-            "cache",
-            "--quiet",
-            "--geometry",
-            "pe0",
-            "-o",
-            "val_pe0",
-        ],
-        dir.path(),
-    );
+    let o = validate(&["--geometry", "pe0", "-o", "val_pe0"]);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     let stations = |d: &str| -> Vec<[f64; 3]> {
         let t = std::fs::read_to_string(dir.path().join(d).join("apcsf_9x4.7/geometry.qprop")).unwrap();
