@@ -1,5 +1,6 @@
 //! `propbet validate`: every UIUC propeller that has a geometry file and a matching APC PE0
-//! file is predicted (UIUC's r/R, c/R, β; APC's airfoils scaled to the PE0 thickness ratio at
+//! file is predicted (UIUC's r/R, c/R, β, or with `--geometry pe0` APC's design c and β at
+//! UIUC's r/R; APC's airfoils scaled to the PE0 thickness ratio at
 //! each station; XFOIL polars at each station's Re) and compared with every static and J-sweep
 //! file, before and after the diagnosis' ladder. Each prop is run as the documented commands
 //! (`polars`, `compare`, `diagnose`, `compare --effect ...`) in its own directory; the table of
@@ -152,10 +153,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     }
     let model = format!(
         "{}, section model {}, Ncrit {}{}, rotational augmentation {}",
-        match spec.geometry {
-            GeometrySource::Uiuc => "UIUC's measured chord and twist",
-            GeometrySource::Pe0 => "APC's design chord and twist (PE0) at UIUC's stations",
-        },
+        spec.geometry.description(),
         a.section_model,
         a.ncrit,
         spec.trip.map_or(", free transition".to_string(), |x| format!(

@@ -1,4 +1,5 @@
-//! `validate_prop`: one UIUC propeller predicted from its UIUC geometry with APC's sections
+//! `validate_prop`: one UIUC propeller predicted from its UIUC geometry (or APC's design chord
+//! and twist at UIUC's stations, [`GeometrySource`]) with APC's sections
 //! (PE0 file: airfoils blended across APC's transition, scaled to the PE0 thickness ratio),
 //! XFOIL polars at each station's Re, compared with every static and J-sweep file of it,
 //! diagnosed, and compared again with the diagnosis' ladder of effects.
@@ -67,11 +68,11 @@ impl GeometrySource {
         }
     }
 
-    /// The name `parse` takes.
-    pub fn name(self) -> &'static str {
+    /// What the blade is, in words (the validation table's intro, the prop file's title).
+    pub fn description(self) -> &'static str {
         match self {
-            Self::Uiuc => "uiuc",
-            Self::Pe0 => "pe0",
+            Self::Uiuc => "UIUC's measured chord and twist",
+            Self::Pe0 => "APC's design chord and twist (PE0) at UIUC's stations",
         }
     }
 }
@@ -343,13 +344,7 @@ pub fn validate_prop(
         airfoils.push((i, foil.to_selig()));
     }
     let file = PropFile::metric(
-        format!(
-            "{prop} ({}, APC PE0 sections)",
-            match spec.geometry {
-                GeometrySource::Uiuc => "UIUC geometry",
-                GeometrySource::Pe0 => "APC PE0 chord and twist at UIUC's stations",
-            }
-        ),
+        format!("{prop} ({}, APC PE0 sections)", spec.geometry.description()),
         2.0,
         big_r,
         rows,
