@@ -331,14 +331,10 @@ pub fn validate_prop(
             f1.blend(&f2, frac, 80).map_err(|e| Error::Invalid(e.to_string()))?
         };
         let tc = pe0.thickness_at(r);
-        // APC scales its sections "based on thickness ratio" and defines pitch on a flat bottom:
-        // a flat-bottomed section (Clark-Y) is scaled as a whole, keeping its flat bottom;
-        // others about their camber line (docs/studies/section-scaling.md has both on every prop).
-        let scaled = if base.has_flat_bottom() {
-            base.scale_whole(tc)
-        } else {
-            base.scale_thickness(tc)
-        };
+        // APC scales its sections "based on thickness ratio" and defines pitch on a flat bottom
+        // (`Airfoil::scale_as_apc`: thinned or flat-bottomed sections as a whole, thickened
+        // cambered ones about their camber line; docs/studies/section-scaling.md).
+        let scaled = base.scale_as_apc(tc);
         let mut foil = scaled.map_err(|e| Error::Invalid(e.to_string()))?;
         foil.name = format!("{} t/c {:.3}", base.name, tc);
         airfoils.push((i, foil.to_selig()));

@@ -372,6 +372,23 @@ impl Airfoil {
         })
     }
 
+    /// Scales a normalised contour to thickness `target` (t/c) as APC's PE0 files imply
+    /// ("airfoils are scaled based on thickness ratio"): as a whole ([`Self::scale_whole`], every
+    /// y by one factor) where the section is made thinner or has a flat bottom, so a thinned
+    /// section's camber falls with its thickness (NACA 4412 at t/c 0.10: camber 3.3 %) and a
+    /// flat bottom, on which APC defines pitch, stays flat; about the camber line
+    /// ([`Self::scale_thickness`]) where a cambered section is thickened, so its camber never
+    /// grows past its own (E63, 4.3 % thick, made 21 % thick at an electric prop's root would
+    /// otherwise carry 27 % camber). docs/studies/section-scaling.md has the candidates on the
+    /// shared props.
+    pub fn scale_as_apc(&self, target: f64) -> Result<Airfoil, AirfoilError> {
+        if self.has_flat_bottom() || target <= self.max_thickness().0 {
+            self.scale_whole(target)
+        } else {
+            self.scale_thickness(target)
+        }
+    }
+
     /// Resamples the contour with `n` points (odd counts put a node exactly at the leading edge;
     /// even counts are rounded up), cosine-clustered towards both edges along the arc length on
     /// each surface. The leading edge and trailing-edge points are kept exactly.
@@ -694,6 +711,47 @@ mod tests {
         // About the camber line the bottom bulges.
         assert!(!clarky.scale_thickness(0.20).unwrap().has_flat_bottom());
         assert!(clarky.scale_whole(0.0).is_err() && clarky.scale_whole(f64::NAN).is_err());
+    }
+
+    /// The largest camber (mid-line height) of a normalised contour.
+    fn max_camber(a: &Airfoil) -> f64 {
+        let (upper, lower) = a.surfaces();
+        upper
+            .iter()
+            .filter(|q| q[0] > 0.01 && q[0] < 0.99)
+            .map(|q| 0.5 * (q[1] + interp_surface(&lower, q[0])))
+            .fold(f64::MIN, f64::max)
+    }
+
+    #[test]
+    fn apc_scaling_thins_as_a_whole_and_thickens_about_the_camber_line() {
+        let naca = naca4_from_name("naca4412").unwrap().unwrap();
+        assert!((max_camber(&naca) - 0.04).abs() < 0.002, "{}", max_camber(&naca));
+        // Thinned (APC12 at an electric prop's t/c 0.10): camber falls with the thickness.
+        let thin = naca.scale_as_apc(0.10).unwrap();
+        assert!((thin.max_thickness().0 - 0.10).abs() < 1e-9);
+        let want = 0.04 * 0.10 / naca.max_thickness().0;
+        assert!(
+            (max_camber(&thin) - want).abs() < 0.002,
+            "{} vs {want}",
+            max_camber(&thin)
+        );
+        // Thickened (E63 at a root's 0.20): its own camber kept, not scaled 4.7 times.
+        let mut e63 = Airfoil::parse(E63, "e63.dat").unwrap().0;
+        e63.normalise();
+        let thick = e63.scale_as_apc(0.20).unwrap();
+        assert!((thick.max_thickness().0 - 0.20).abs() < 0.002);
+        assert!(
+            (max_camber(&thick) - max_camber(&e63)).abs() < 0.003,
+            "{} vs {}",
+            max_camber(&thick),
+            max_camber(&e63)
+        );
+        // Flat-bottomed (Clark-Y) thickened: as a whole, the bottom stays flat.
+        let mut clarky = Airfoil::parse(CLARKY, "clarky.dat").unwrap().0;
+        clarky.normalise();
+        assert!(clarky.scale_as_apc(0.20).unwrap().has_flat_bottom());
+        assert!(naca.scale_as_apc(0.0).is_err() && e63.scale_as_apc(0.7).is_err());
     }
 
     #[test]
