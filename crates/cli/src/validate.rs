@@ -233,6 +233,7 @@ struct CsvRow<'a> {
     apc_cp_median: Option<f64>,
     apc_cp_p90: Option<f64>,
     twist_gap_deg: f64,
+    static_fm_error: f64,
     ladder: &'a str,
     held_out_ladders: String,
 }
@@ -260,6 +261,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_cp_median: r.per3.as_ref().map(|p| p.cp.0),
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             twist_gap_deg: r.twist_gap,
+            static_fm_error: r.static_fm,
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
         });

@@ -258,6 +258,31 @@ pub fn window_errors(points: &[ComparedPoint], window: f64) -> (Vec<f64>, Vec<f6
     (ect, ecp)
 }
 
+/// A static point's figure of merit from its coefficients: CT^1.5 / CP · sqrt(2/π), the ideal
+/// (actuator-disc) power of its thrust over its power, T^1.5 / (P sqrt(2 ρ A)) with A = π D²/4
+/// (1 for a lossless rotor; `propbet_bemt::check` flags a prediction above it).
+pub fn figure_of_merit(ct: f64, cp: f64) -> f64 {
+    ct.powf(1.5) / cp * (2.0 / std::f64::consts::PI).sqrt()
+}
+
+/// The median over the static points (V = 0) of the predicted figure of merit over the
+/// measured one, minus 1 (the median as validate's, [`quantile`]): how far the model's hover
+/// efficiency is off, whatever the split between thrust and power. NaN without a static point with positive CT and CP on both sides.
+pub fn static_figure_of_merit_error(points: &[ComparedPoint]) -> f64 {
+    let ratios: Vec<f64> = points
+        .iter()
+        .filter(|p| p.v == 0.0)
+        .filter_map(|p| {
+            let (m, q) = (&p.measured, &p.predicted);
+            let (mt, mp, qt, qp) = (m.ct?, m.cp?, q.ct?, q.cp?);
+            (mt > 0.0 && mp > 0.0 && qt > 0.0 && qp > 0.0)
+                .then(|| figure_of_merit(qt, qp) / figure_of_merit(mt, mp) - 1.0)
+        })
+        .filter(|r| r.is_finite())
+        .collect();
+    quantile(ratios, 0.5)
+}
+
 /// The `q`-quantile of `v` (the sample nearest to rank q (n − 1)); NaN for no samples.
 pub fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
     if v.is_empty() {
@@ -273,6 +298,38 @@ mod tests {
     use crate::{PointAir, Quantities};
     use approx::assert_relative_eq;
     use propbet_bemt::Fluid;
+
+    #[test]
+    fn the_figure_of_merit_is_one_for_an_actuator_disc_and_compared_at_static_points() {
+        // An actuator disc's power P = T^1.5 / sqrt(2 rho A): FM 1 from its coefficients.
+        let (rho, d, n, t) = (1.2, 0.25, 100.0, 5.0);
+        let area = std::f64::consts::PI * d * d / 4.0;
+        let p = t * f64::sqrt(t) / (2.0 * rho * area).sqrt();
+        let (ct, cp) = (t / (rho * n * n * d.powi(4)), p / (rho * n.powi(3) * d.powi(5)));
+        assert_relative_eq!(figure_of_merit(ct, cp), 1.0, epsilon = 1e-12);
+        // Thrust 10 % high at the same power: FM 1.1^1.5 - 1 = 15.4 % high; forward points and
+        // points without power are left out.
+        let with = |v: f64, ct: [f64; 2], cp: [Option<f64>; 2]| {
+            let mut x = pt("s", 5000.0, 0.0, 1.0, 1.0);
+            x.v = v;
+            x.measured.ct = Some(ct[0]);
+            x.predicted.ct = Some(ct[1]);
+            x.measured.cp = cp[0];
+            x.predicted.cp = cp[1];
+            x
+        };
+        let pts = [
+            with(0.0, [0.10, 0.11], [Some(0.04), Some(0.04)]),
+            with(0.0, [0.10, 0.11], [Some(0.04), None]),
+            with(5.0, [0.05, 0.10], [Some(0.03), Some(0.03)]),
+        ];
+        assert_relative_eq!(
+            static_figure_of_merit_error(&pts),
+            1.1f64.powf(1.5) - 1.0,
+            epsilon = 1e-12
+        );
+        assert!(static_figure_of_merit_error(&pts[2..]).is_nan(), "no static point: NaN");
+    }
 
     fn pt(label: &str, rpm: f64, j: f64, meas: f64, pred: f64) -> ComparedPoint {
         let q = |t: f64| Quantities {

@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_compare::metrics::{quantile, window_errors, VALIDATION_J_WINDOW};
+use propbet_compare::metrics::{quantile, static_figure_of_merit_error, window_errors, VALIDATION_J_WINDOW};
 use propbet_polar::{naca4_from_name, Airfoil};
 use propbet_qprop::apc::{read_pe0, uiuc_diameter};
 use propbet_qprop::{PropFile, PropRow};
@@ -167,6 +167,11 @@ pub struct Row {
     /// r/R 0.6-0.9 (where most of the thrust is made): what a `pitch-offset` fitted on UIUC's
     /// geometry is to be compared with (docs/studies/geometry-source.md).
     pub twist_gap: f64,
+    /// The static points' predicted figure of merit over the measured, minus 1 (median;
+    /// [`static_figure_of_merit_error`]): the hover efficiency's error, whatever its split
+    /// between thrust and power (docs/studies/section-scaling.md: +11 to +19 % on every shared
+    /// prop). NaN without static points.
+    pub static_fm: f64,
 }
 
 /// Where [`Row::twist_gap`] is averaged: r/R from 0.6 to 0.9.
@@ -521,6 +526,7 @@ pub fn validate_prop(
         ladder: ladder_text(&effects),
         held_out_ladders,
         twist_gap: twist_gap(&table, &pe0, big_r),
+        static_fm: static_figure_of_merit_error(&compared.points),
     };
     Ok(Validated {
         geometry,

@@ -31,6 +31,7 @@ fn head(apc: bool) -> Vec<&'static str> {
         "CT p90 after",
         "CP median after",
         "CP p90 after",
+        "static figure of merit, predicted / measured − 1",
         "APC design − measured twist, r/R 0.6-0.9",
         "ladder (all files)",
         "held-out ladders (each half of the files)",
@@ -58,6 +59,11 @@ fn numbers(r: &Row, apc: bool) -> Vec<f64> {
 fn cells(r: &Row, apc: bool) -> Vec<String> {
     let mut v = vec![r.prop.clone(), family(&r.prop), r.points.to_string()];
     v.extend(numbers(r, apc).into_iter().map(pct));
+    v.push(if r.static_fm.is_finite() {
+        format!("{:+.1} %", 100.0 * r.static_fm)
+    } else {
+        "–".into()
+    });
     v.push(if r.twist_gap.is_finite() {
         format!("{:+.1}°", r.twist_gap)
     } else {
@@ -80,7 +86,8 @@ fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
         v.push(pct(quantile(col, 0.5)));
     }
-    v.extend([String::new(), String::new(), String::new()]);
+    // The signed columns (figure of merit, twist) and the ladders have no median.
+    v.extend([String::new(), String::new(), String::new(), String::new()]);
     v
 }
 
@@ -121,8 +128,10 @@ fn intro(model: &str) -> String {
          (static points included). Before: the blade + APC sections + XFOIL polars covering each \
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
          measurements) on the same points; after: held out, each half of a prop's files (sorted by \
-         RPM, alternately) predicted with the effects the ladder fitted to the other half. The twist \
-         column is APC's design twist (PE0) minus UIUC's measured β, averaged over r/R 0.6-0.9: a \
+         RPM, alternately) predicted with the effects the ladder fitted to the other half. The static \
+         figure of merit (CT^1.5 / CP · sqrt(2/π)) column is the median over the static points of the \
+         predicted over the measured, minus 1: the hover efficiency's error, whatever its split \
+         between thrust and power. The twist column is APC's design twist (PE0) minus UIUC's measured β, averaged over r/R 0.6-0.9: a \
          pitch-offset fitted on UIUC's geometry near it is that difference found from the loads."
     )
 }
@@ -200,6 +209,7 @@ mod tests {
             ladder: "none".into(),
             held_out_ladders: ["none".into(), "none".into()],
             twist_gap: -1.24,
+            static_fm: 0.131,
         }
     }
 
@@ -213,7 +223,7 @@ mod tests {
         let skipped = [("apc29ff_9x5".to_string(), "no PE0 file".to_string())];
         let md = markdown(&rows, &skipped, "tables");
         assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
-        assert!(md.contains("| 10.0 % | -1.2° | none | none / none |"), "{md}");
+        assert!(md.contains("| 10.0 % | +13.1 % | -1.2° | none | none / none |"), "{md}");
         assert!(md.contains("| **E (median of 2)** |  | 20 | 30.0 % |"), "{md}");
         assert!(!md.contains("SF (median"), "a family of one has no median row: {md}");
         assert!(
