@@ -189,9 +189,9 @@ fn make(kind: Kind) -> Builtin {
                 "k",
                 "deg",
                 0.0,
-                (-5.0, 5.0),
+                (0.0, 5.0),
                 0.5,
-                "untwist at the tip at 10,000 rpm (physical bounds: +-5 deg, a plastic blade's at most); -k (rpm/10^4)^2 r/R is added to the blade angle",
+                "untwist at the tip at 10,000 rpm (physical bounds: 0-5 deg: a plastic blade's at most, and only ever flattened by its propeller moment, never pitched up); -k (rpm/10^4)^2 r/R is added to the blade angle",
             )],
             &[Geometry],
             "Thin plastic blades twist under centrifugal and aerodynamic load (the propeller moment \
