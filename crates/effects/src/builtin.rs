@@ -191,7 +191,7 @@ fn make(kind: Kind) -> Builtin {
                 0.0,
                 (0.0, 5.0),
                 0.5,
-                "untwist at the tip at 10,000 rpm (physical bounds: 0-5 deg: a plastic blade's at most, and only ever flattened by its propeller moment, never pitched up); -k (rpm/10^4)^2 r/R is added to the blade angle",
+                "untwist at the tip at 10,000 rpm (physical bounds: 0-5 deg: a plastic blade's at most; the propeller moment and a cambered section's nose-down moment both flatten it, so a pitch rising with RPM is left to the Reynolds-number effects); -k (rpm/10^4)^2 r/R is added to the blade angle",
             )],
             &[Geometry],
             "Thin plastic blades twist under centrifugal and aerodynamic load (the propeller moment \
