@@ -26,7 +26,7 @@ pub fn implausible(p: &PointResult, rho: f64, tip_radius: f64) -> Vec<String> {
     }
     if t > 0.0 && power > 0.0 {
         if v.abs() < 1e-9 {
-            let fm = t.powf(1.5) / (power * (2.0 * rho * area).sqrt());
+            let fm = figure_of_merit(t, power, rho, area);
             if fm > 1.0 {
                 said.push(format!(
                     "static thrust beyond momentum theory (figure of merit {fm:.2} > 1)"
@@ -41,6 +41,13 @@ pub fn implausible(p: &PointResult, rho: f64, tip_radius: f64) -> Vec<String> {
         }
     }
     said
+}
+
+/// The figure of merit T^1.5 / (P sqrt(2 rho A)): the ideal (actuator-disc) power of the
+/// thrust `t` [N] over the power `power` [W], with air density `rho` [kg/m^3] and disc area
+/// `area` [m^2]; at most 1 for any rotor.
+pub fn figure_of_merit(t: f64, power: f64, rho: f64, area: f64) -> f64 {
+    t.powf(1.5) / (power * (2.0 * rho * area).sqrt())
 }
 
 /// Stations of `p` (solved with `keep_stations`) whose Reynolds number lies below half the

@@ -258,11 +258,11 @@ pub fn window_errors(points: &[ComparedPoint], window: f64) -> (Vec<f64>, Vec<f6
     (ect, ecp)
 }
 
-/// A static point's figure of merit from its coefficients: CT^1.5 / CP · sqrt(2/π), the ideal
-/// (actuator-disc) power of its thrust over its power, T^1.5 / (P sqrt(2 ρ A)) with A = π D²/4
-/// (1 for a lossless rotor; `propbet_bemt::check` flags a prediction above it).
+/// A static point's figure of merit from its coefficients, CT^1.5 / CP · sqrt(2/π):
+/// [`propbet_bemt::check::figure_of_merit`] of the loads at ρ = n = D = 1 (T = CT, P = CP,
+/// A = π/4); 1 for a lossless rotor, and `propbet_bemt::check` flags a prediction above it.
 pub fn figure_of_merit(ct: f64, cp: f64) -> f64 {
-    ct.powf(1.5) / cp * (2.0 / std::f64::consts::PI).sqrt()
+    propbet_bemt::check::figure_of_merit(ct, cp, 1.0, std::f64::consts::FRAC_PI_4)
 }
 
 /// The median over the static points (V = 0) of the predicted figure of merit over the
