@@ -48,7 +48,7 @@ impl PrivateDisplay {
     /// Starting is serialised, so that threads never race for a display number.
     pub fn shared(xvfb: &Path) -> Result<Arc<Self>, XfoilError> {
         let mut guard = SHARED.lock().unwrap_or_else(|p| p.into_inner());
-        if let Some(d) = guard.upgrade() {
+        if let Some(d) = guard.upgrade().filter(|d| d.is_alive()) {
             return Ok(d);
         }
         let d = Arc::new(PrivateDisplay::start(xvfb, Duration::from_secs(10))?);
@@ -132,6 +132,20 @@ impl PrivateDisplay {
     pub fn name(&self) -> String {
         format!(":{}", self.number)
     }
+
+    /// Whether the server still runs and owns its display (its lock file names it, its socket
+    /// is there).
+    pub fn is_alive(&self) -> bool {
+        let lock = std::fs::read_to_string(format!("/tmp/.X{}-lock", self.number)).unwrap_or_default();
+        // The state follows the command name's closing parenthesis: Z is a zombie.
+        let running = std::fs::read_to_string(format!("/proc/{}/stat", self.server_pid))
+            .ok()
+            .and_then(|s| s.rsplit_once(')').map(|(_, rest)| !rest.trim_start().starts_with('Z')))
+            .unwrap_or(false);
+        running
+            && lock.trim().parse::<u32>().ok() == Some(self.server_pid)
+            && Path::new(&format!("/tmp/.X11-unix/X{}", self.number)).exists()
+    }
 }
 
 impl Drop for PrivateDisplay {
@@ -177,8 +191,32 @@ mod tests {
         let d = PrivateDisplay::start(&xvfb, Duration::from_secs(10)).unwrap();
         let n = d.number;
         assert!(Path::new(&format!("/tmp/.X11-unix/X{n}")).exists());
+        assert!(d.is_alive());
         drop(d);
         assert!(!Path::new(&format!("/tmp/.X11-unix/X{n}")).exists());
         assert!(!Path::new(&format!("/tmp/.X{n}-lock")).exists());
+    }
+
+    #[test]
+    fn a_dead_server_is_seen_and_replaced() {
+        let xvfb = crate::find::find_on_path("Xvfb", std::env::var_os("PATH").as_deref())
+            .expect("Xvfb must be installed (scripts/setup.sh)");
+        let first = PrivateDisplay::shared(&xvfb).unwrap();
+        assert!(first.is_alive());
+        // The server dies under the runner (killed, crashed): the shared display is not
+        // handed out again, a new server is.
+        let status = Command::new("kill")
+            .args(["-KILL", &first.server_pid.to_string()])
+            .status()
+            .unwrap();
+        assert!(status.success());
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while first.is_alive() && Instant::now() < deadline {
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        assert!(!first.is_alive(), "a killed server is not alive");
+        let second = PrivateDisplay::shared(&xvfb).unwrap();
+        assert!(second.is_alive());
+        assert_ne!(second.server_pid, first.server_pid);
     }
 }

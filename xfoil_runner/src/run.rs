@@ -296,6 +296,20 @@ struct RunOutput {
     reached_sweep: bool,
     points: Vec<XfoilPoint>,
     output_tail: String,
+    /// XFOIL stopped because it could not connect to its X display (Xlib's `XOpenDisplay`).
+    display_refused: bool,
+}
+
+/// What Debian's XFOIL prints (then exits 1) when it cannot connect to its X display.
+const DISPLAY_REFUSED: &[u8] = b"Cannot open display";
+/// Runs started in all when XFOIL cannot open its display ([`Xfoil::run_once`]).
+pub const DISPLAY_ATTEMPTS: u32 = 4;
+/// Pause before the second attempt, doubled before each next one (0.1 + 0.2 + 0.4 s in all).
+const DISPLAY_RETRY_PAUSE: Duration = Duration::from_millis(100);
+
+/// Whether `haystack` holds `needle`.
+fn contains(haystack: &[u8], needle: &[u8]) -> bool {
+    haystack.windows(needle.len()).any(|w| w == needle)
 }
 
 const TAIL_BYTES: usize = 3000;
@@ -566,7 +580,52 @@ impl Xfoil {
         Ok(failed)
     }
 
+    /// One XFOIL process over `steps` ([`Xfoil::run_process`]), started again when XFOIL could
+    /// not open its X display: a transient refusal (seen a few times in a validate run, at
+    /// random rungs) would otherwise lose a whole polar and make the results depend on the
+    /// machine's luck. A private display whose server has died is replaced before the next
+    /// attempt; after [`DISPLAY_ATTEMPTS`] refusals it is an error naming the display.
     fn run_once(
+        &self,
+        airfoil: &str,
+        settings: &RunSettings,
+        warm_up: Option<f64>,
+        steps: &[Step],
+        left: Duration,
+    ) -> Result<RunOutput, XfoilError> {
+        let start = Instant::now();
+        let mut pause = DISPLAY_RETRY_PAUSE;
+        let mut attempt = 1;
+        loop {
+            let run = self.run_process(airfoil, settings, warm_up, steps, left.saturating_sub(start.elapsed()))?;
+            if !run.display_refused {
+                return Ok(run);
+            }
+            if attempt == DISPLAY_ATTEMPTS || start.elapsed() + pause >= left {
+                let name = self.display_name()?.unwrap_or_else(|| "(none: DISPLAY unset)".into());
+                return Err(XfoilError::Display(format!(
+                    "XFOIL could not open the X display {name} ({attempt} attempts)\n--- end of XFOIL's output ---\n{}",
+                    run.output_tail
+                )));
+            }
+            self.forget_dead_display();
+            std::thread::sleep(pause);
+            pause *= 2;
+            attempt += 1;
+        }
+    }
+
+    /// Drops this runner's private display if its server has died, so that the next run
+    /// starts (or shares) a live one.
+    fn forget_dead_display(&self) {
+        let mut guard = self.display.lock().unwrap_or_else(|p| p.into_inner());
+        if guard.as_ref().is_some_and(|d| !d.is_alive()) {
+            *guard = None;
+        }
+    }
+
+    /// Starts XFOIL once over `steps` and waits for it (the watchdog's budget at most `left`).
+    fn run_process(
         &self,
         airfoil: &str,
         settings: &RunSettings,
@@ -612,6 +671,16 @@ impl Xfoil {
         let ending = watch(&mut child, &log_path, self.config.stall_timeout, budget)?;
         let output = std::fs::read(&log_path).unwrap_or_default();
         let output_tail = tail(&output);
+        let display_refused = !matches!(ending, Ending::Finished) && contains(&output, DISPLAY_REFUSED);
+        if display_refused {
+            return Ok(RunOutput {
+                ending,
+                reached_sweep: false,
+                points: Vec::new(),
+                output_tail,
+                display_refused,
+            });
+        }
         let polar = match std::fs::read(path.join(script::POLAR_FILE)) {
             Ok(b) => String::from_utf8_lossy(&b).into_owned(),
             Err(_) => String::new(),
@@ -623,13 +692,12 @@ impl Xfoil {
                 output_tail,
             });
         }
-        let marker = b"Polar accumulation enabled";
-        let reached_sweep = output.windows(marker.len()).any(|w| w == marker);
         Ok(RunOutput {
             ending,
-            reached_sweep,
+            reached_sweep: contains(&output, b"Polar accumulation enabled"),
             points,
             output_tail,
+            display_refused,
         })
     }
 }

@@ -187,6 +187,43 @@ fn crashing_before_the_first_angle_is_a_startup_error() {
     assert!(e.to_string().contains("Paneling airfoil"), "{e}");
 }
 
+/// What Debian's XFOIL prints when its X display refuses the connection (seen at random
+/// rungs of validate runs, 2026-11-25), then exits 1.
+const REFUSE: &str = r#"echo " XFOIL   c>   Cannot open display...aborting"; exit 1"#;
+
+#[test]
+fn a_display_that_refuses_once_costs_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let flag = dir.path().join("refused");
+    let (_d, exe) = fake(&format!(
+        r#"[ -e "{}" ] || {{ touch "{}"; {REFUSE}; }}"#,
+        flag.display(),
+        flag.display()
+    ));
+    let out = runner(exe).sweep(&request()).unwrap();
+    assert!(flag.exists(), "the fake refused its first run");
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    assert!(
+        out.faults.is_empty() && out.unconverged_deg.is_empty(),
+        "{:?}",
+        out.faults
+    );
+}
+
+#[test]
+fn a_display_that_always_refuses_is_an_error_naming_it() {
+    let (_d, exe) = fake(REFUSE);
+    let e = runner(exe).sweep(&request()).unwrap_err();
+    assert!(matches!(e, XfoilError::Display(_)), "{e}");
+    let text = e.to_string();
+    assert!(text.contains("could not open the X display"), "{text}");
+    assert!(
+        text.contains(&format!("{} attempts", xfoil_runner::DISPLAY_ATTEMPTS)),
+        "{text}"
+    );
+    assert!(text.contains("Cannot open display"), "XFOIL's own words: {text}");
+}
+
 #[test]
 fn garbage_in_the_polar_file_is_an_error() {
     let (_d, exe) = fake(r#"[ "$arg" = "2.000000" ] && echo "  2.000  NaN-ish garbage" >> "$polar""#);
