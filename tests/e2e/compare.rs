@@ -380,6 +380,14 @@ fn bad_flags_and_missing_files() {
         (vec!["--poles", "7"], "even number of poles"),
         (vec!["--rho", "-1"], "plausible air density"),
         (
+            vec!["--drag-factor=0"],
+            "--drag-factor: must be a positive number, found 0",
+        ),
+        (
+            vec!["--drag-factor", "inf"],
+            "--drag-factor: must be a positive number, found inf",
+        ),
+        (
             vec!["--rpm-source", "optical"],
             "'Motor Optical Speed (RPM)' is zero in every row",
         ),

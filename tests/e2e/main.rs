@@ -195,6 +195,40 @@ fn air_state_changes_density() {
     assert!(((t1 / t0) / (rho1 / rho0) - 1.0).abs() < 0.02, "{t0} {t1}");
 }
 
+/// `--drag-factor` multiplies the section drag: the torque rises by about the profile share of
+/// it, the thrust hardly moves (only through the drag's component along the axis).
+#[test]
+fn the_drag_factor_scales_profile_torque() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = cam6x3();
+    let base = [
+        "predict",
+        "--prop",
+        prop.to_str().unwrap(),
+        "--rpm",
+        "8000",
+        "--j",
+        "0.3",
+        "--format",
+        "json",
+    ];
+    let load = |extra: &[&str]| -> (f64, f64) {
+        let mut args = base.to_vec();
+        args.extend(extra);
+        let o = run(&args, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let p = &d["points"][0];
+        (p["thrust"].as_f64().unwrap(), p["torque"].as_f64().unwrap())
+    };
+    // QPROP's law keeps its own drag unless asked.
+    let (t1, q1) = load(&[]);
+    assert_eq!((t1, q1), load(&["--drag-factor", "1"]));
+    let (t2, q2) = load(&["--drag-factor", "1.5"]);
+    assert!(q2 / q1 > 1.1 && q2 / q1 < 1.5, "torque {q1} -> {q2}");
+    assert!(t2 < t1 && t2 / t1 > 0.95, "thrust {t1} -> {t2}");
+}
+
 #[test]
 fn qprop_compat_reads_line_two_radius_as_qprop_does() {
     // photofoil_8x4.5 gives R = 4 (inches) on line 2; QPROP 1.22 takes 4 m, so its CT is

@@ -314,6 +314,34 @@ impl SectionAero for Rotational {
     }
 }
 
+/// A section whose drag is its own times `factor` (the base model's drag factor,
+/// `docs/studies/drag-factor.md`); lift as the section's own.
+#[derive(Debug, Clone)]
+pub struct ScaledDrag {
+    /// The section.
+    pub inner: std::sync::Arc<dyn SectionAero>,
+    /// Drag multiplier [-].
+    pub factor: f64,
+}
+
+impl SectionAero for ScaledDrag {
+    fn lift(&self, alpha: f64, re: f64, msq: f64) -> LiftEval {
+        self.inner.lift(alpha, re, msq)
+    }
+
+    fn drag(&self, input: &DragInput) -> f64 {
+        self.factor * self.inner.drag(input)
+    }
+
+    fn alpha_zero_lift(&self) -> f64 {
+        self.inner.alpha_zero_lift()
+    }
+
+    fn reynolds_range(&self) -> Option<(f64, f64)> {
+        self.inner.reynolds_range()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

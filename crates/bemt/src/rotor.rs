@@ -131,6 +131,19 @@ impl Rotor {
         self
     }
 
+    /// Multiplies every station's drag by `factor` (1: unchanged); lift is untouched.
+    pub fn with_drag_factor(mut self, factor: f64) -> Rotor {
+        if factor != 1.0 {
+            for s in &mut self.stations {
+                s.aero = Arc::new(crate::aero::ScaledDrag {
+                    inner: s.aero.clone(),
+                    factor,
+                });
+            }
+        }
+        self
+    }
+
     /// Checks the invariants the solver relies on.
     pub fn validate(&self) -> Result<(), RotorError> {
         check_blades_and_tip(self.blades, self.tip_radius)?;
@@ -400,5 +413,32 @@ mod augmentation_tests {
         let k = |s: &Station| (s.aero.lift(alpha, 5e4, 0.0).cl - 0.5) / deficit;
         assert!((k(&rotor.stations[0]) - SNEL_MAX_FRACTION).abs() < 1e-12);
         assert!((k(&rotor.stations[1]) - 0.03).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_drag_factor_scales_drag_and_leaves_lift() {
+        let rotor = Rotor {
+            blades: 2.0,
+            tip_radius: 0.2,
+            stations: vec![Station {
+                r: 0.1,
+                dr: 0.01,
+                chord: 0.02,
+                beta: 0.3,
+                aero: Arc::new(Flat),
+            }],
+        };
+        let input = DragInput {
+            alpha: 0.1,
+            cl: 0.5,
+            stalled: false,
+            re: 5e4,
+            mach: 0.1,
+        };
+        let same = rotor.clone().with_drag_factor(1.0);
+        assert_eq!(same.stations[0].aero.drag(&input), 0.02);
+        let scaled = rotor.with_drag_factor(1.25);
+        assert!((scaled.stations[0].aero.drag(&input) - 0.025).abs() < 1e-15);
+        assert_eq!(scaled.stations[0].aero.lift(0.1, 5e4, 0.0).cl, 0.5);
     }
 }

@@ -74,6 +74,10 @@ pub struct ModelArgs {
     /// --polars, off with the prop file's QPROP law.
     #[arg(long, value_name = "off|snel")]
     pub rotation: Option<String>,
+    /// Every section's drag times this. Default: the tabulated model's (1.25,
+    /// docs/studies/drag-factor.md) with --polars, 1 with the prop file's QPROP law.
+    #[arg(long, value_name = "K")]
+    pub drag_factor: Option<f64>,
     /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
     /// `propbet effects` for the list). Parameters not given take their neutral value.
@@ -98,6 +102,7 @@ impl ModelArgs {
                 self.rotation.as_deref().map(Rotation::parse).transpose()?,
                 self.polars.is_some(),
             ),
+            drag_factor: propbet_pipeline::spec::drag_factor_or_default(self.drag_factor, self.polars.is_some()),
             effects: self.effect.clone(),
             user_effects: self.user_effects.clone(),
         })

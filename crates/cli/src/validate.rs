@@ -59,6 +59,10 @@ pub struct ValidateArgs {
     /// model's default; off with `--section-model qprop`).
     #[arg(long, value_name = "off|snel")]
     pub rotation: Option<String>,
+    /// Every section's drag times this (default: the tabulated model's, 1.25,
+    /// docs/studies/drag-factor.md; 1 with `--section-model qprop`).
+    #[arg(long, value_name = "K")]
+    pub drag_factor: Option<f64>,
     /// Force transition at this chord fraction on both surfaces of every polar, or `free` (by
     /// Ncrit alone). Default: 0.5 (docs/studies/transition-trip.md).
     #[arg(long, value_name = "X/C|free")]
@@ -89,6 +93,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             a.rotation.as_deref().map(Rotation::parse).transpose()?,
             a.section_model == "tables",
         ),
+        drag_factor: propbet_pipeline::spec::drag_factor_or_default(a.drag_factor, a.section_model == "tables"),
         trip: match &a.trip {
             None => propbet_pipeline::spec::DEFAULT_TRIP,
             Some(t) => propbet_pipeline::values::parse_trip(t)?,
@@ -152,14 +157,15 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         );
     }
     let model = format!(
-        "{}, section model {}, Ncrit {}{}, rotational augmentation {}",
+        "{}, section model {}, Ncrit {}{}, rotational augmentation {}, drag factor {}",
         spec.geometry.description(),
         a.section_model,
         a.ncrit,
         spec.trip.map_or(", free transition".to_string(), |x| format!(
             ", transition forced at x/c {x} at the latest"
         )),
-        spec.rotation.name()
+        spec.rotation.name(),
+        spec.drag_factor
     ) + &if spec.ncrit_effect.is_empty() {
         String::new()
     } else {

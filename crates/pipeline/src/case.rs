@@ -97,6 +97,9 @@ pub struct PolarSection {
     /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
     /// model's default; off with `model = "qprop"`).
     pub rotation: Option<String>,
+    /// Every section's drag times this (default: the tabulated model's default,
+    /// `propbet_pipeline::spec::DEFAULT_DRAG_FACTOR`; 1 with `model = "qprop"`).
+    pub drag_factor: Option<f64>,
 }
 
 /// A number, or a list as the command line writes it (`"2000:7000:1000"`).
@@ -427,6 +430,7 @@ impl Case {
             units: model_units,
             polars: tables.then(|| out.join("polars/polars.json")),
             rotation: crate::spec::Rotation::or_default(rotation, tables),
+            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
             ..ModelSpec::prop(prop)
         };
         let a = &self.atmosphere;

@@ -138,7 +138,12 @@ impl Model {
             tabulate(&mut rotor, blade, path)?;
             transition = transition_effect(blade, path)?;
         }
-        let rotor = rotor.with_rotational_augmentation(spec.rotation.coefficient());
+        if !(spec.drag_factor.is_finite() && spec.drag_factor > 0.0) {
+            invalid!("--drag-factor: must be a positive number, found {}", spec.drag_factor);
+        }
+        let rotor = rotor
+            .with_rotational_augmentation(spec.rotation.coefficient())
+            .with_drag_factor(spec.drag_factor);
         if !spec.dbeta.is_finite() {
             invalid!("--dbeta: not a finite number");
         }

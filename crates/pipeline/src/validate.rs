@@ -41,6 +41,8 @@ pub struct ValidateSpec {
     pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation of the section lift.
     pub rotation: crate::spec::Rotation,
+    /// Drag multiplier of the section model.
+    pub drag_factor: f64,
     /// Forced transition x/c of the polars (None: free).
     pub trip: Option<f64>,
     /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
@@ -420,6 +422,7 @@ pub fn validate_prop(
     let model_spec = ModelSpec {
         polars: spec.tables.then(|| dir.join("polars.json")),
         rotation: spec.rotation,
+        drag_factor: spec.drag_factor,
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
