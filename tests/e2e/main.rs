@@ -163,23 +163,31 @@ fn predict_sweeps_j_and_writes_json_and_stations() {
     assert!(rows.iter().all(|r| r[col(&h, "convergence")] == "newton"));
 }
 
+/// `propbet predict --prop cam6x3.qprop --format json` with `args`.
+fn predict_json(args: &[&str], dir: &Path) -> Output {
+    let prop = cam6x3();
+    let mut all = vec!["predict", "--prop", prop.to_str().unwrap(), "--format", "json"];
+    all.extend(args);
+    run(&all, dir)
+}
+
 #[test]
 fn air_state_changes_density() {
     let dir = tempfile::tempdir().unwrap();
-    let prop = cam6x3();
-    let base = [
-        "predict",
-        "--prop",
-        prop.to_str().unwrap(),
-        "--rpm",
-        "10000",
-        "--format",
-        "json",
-    ];
-    let std_air = run(&base, dir.path());
-    let mut hot = base.to_vec();
-    hot.extend(["--temp", "35C", "--pressure", "950hPa", "--humidity", "60%"]);
-    let hot = run(&hot, dir.path());
+    let std_air = predict_json(&["--rpm", "10000"], dir.path());
+    let hot = predict_json(
+        &[
+            "--rpm",
+            "10000",
+            "--temp",
+            "35C",
+            "--pressure",
+            "950hPa",
+            "--humidity",
+            "60%",
+        ],
+        dir.path(),
+    );
     assert!(std_air.status.success() && hot.status.success(), "{}", stderr(&hot));
     let t = |o: &Output| -> (f64, f64) {
         let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
@@ -200,22 +208,10 @@ fn air_state_changes_density() {
 #[test]
 fn the_drag_factor_scales_profile_torque() {
     let dir = tempfile::tempdir().unwrap();
-    let prop = cam6x3();
-    let base = [
-        "predict",
-        "--prop",
-        prop.to_str().unwrap(),
-        "--rpm",
-        "8000",
-        "--j",
-        "0.3",
-        "--format",
-        "json",
-    ];
     let load = |extra: &[&str]| -> (f64, f64) {
-        let mut args = base.to_vec();
+        let mut args = vec!["--rpm", "8000", "--j", "0.3"];
         args.extend(extra);
-        let o = run(&args, dir.path());
+        let o = predict_json(&args, dir.path());
         assert!(o.status.success(), "{}", stderr(&o));
         let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         let p = &d["points"][0];

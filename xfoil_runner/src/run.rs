@@ -302,7 +302,7 @@ struct RunOutput {
 
 /// What Debian's XFOIL prints (then exits 1) when it cannot connect to its X display.
 const DISPLAY_REFUSED: &[u8] = b"Cannot open display";
-/// Runs started in all when XFOIL cannot open its display ([`Xfoil::run_once`]).
+/// Runs started in all when XFOIL cannot open its display ([`Xfoil::with_display_retries`]).
 pub const DISPLAY_ATTEMPTS: u32 = 4;
 /// Pause before the second attempt, doubled before each next one (0.1 + 0.2 + 0.4 s in all).
 const DISPLAY_RETRY_PAUSE: Duration = Duration::from_millis(100);
@@ -502,7 +502,9 @@ impl Xfoil {
                 failed.extend(todo);
                 return Ok(failed);
             }
-            let run = self.run_once(airfoil, settings, warm_up, todo_steps, deadline - now)?;
+            let run = self.with_display_retries(deadline - now, |left| {
+                self.run_process(airfoil, settings, warm_up, todo_steps, left)
+            })?;
             out.runs += 1;
             // Match saved points to requested angles; anything else is garbage.
             let mut last_done: Option<usize> = None;
@@ -580,24 +582,21 @@ impl Xfoil {
         Ok(failed)
     }
 
-    /// One XFOIL process over `steps` ([`Xfoil::run_process`]), started again when XFOIL could
-    /// not open its X display: a transient refusal (seen a few times in a validate run, at
-    /// random rungs) would otherwise lose a whole polar and make the results depend on the
-    /// machine's luck. A private display whose server has died is replaced before the next
-    /// attempt; after [`DISPLAY_ATTEMPTS`] refusals it is an error naming the display.
-    fn run_once(
+    /// One XFOIL process (`run`, given the time left: [`Xfoil::run_process`]), started again
+    /// when XFOIL could not open its X display: a transient refusal (seen a few times in a
+    /// validate run, at random rungs) would otherwise lose a whole polar and make the results
+    /// depend on the machine's luck. A private display whose server has died is replaced before
+    /// the next attempt; after [`DISPLAY_ATTEMPTS`] refusals it is an error naming the display.
+    fn with_display_retries(
         &self,
-        airfoil: &str,
-        settings: &RunSettings,
-        warm_up: Option<f64>,
-        steps: &[Step],
         left: Duration,
+        run: impl Fn(Duration) -> Result<RunOutput, XfoilError>,
     ) -> Result<RunOutput, XfoilError> {
         let start = Instant::now();
         let mut pause = DISPLAY_RETRY_PAUSE;
         let mut attempt = 1;
         loop {
-            let run = self.run_process(airfoil, settings, warm_up, steps, left.saturating_sub(start.elapsed()))?;
+            let run = run(left.saturating_sub(start.elapsed()))?;
             if !run.display_refused {
                 return Ok(run);
             }
