@@ -121,6 +121,8 @@ fn default_case_from_scan_to_report() {
     assert!(html.contains(
         "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, transition by x/c 0.5) of the e63.dat section"
     ));
+    // The base model's settings are named with it.
+    assert!(html.contains("used as tables in alpha and Re; rotational augmentation snel, section drag times 1.25;"));
     let top = &html[..html.find("How this report was made").expect("stage table")];
     assert!(top.contains("Problems the stages reported"), "no summary");
     assert!(

@@ -286,6 +286,12 @@ pub fn what_it_does(plan: &RunPlan) -> String {
                     "QPROP's fitted law"
                 }
             ));
+            let m = &plan.predict.model;
+            parts.push(format!(
+                "rotational augmentation {}, section drag times {}",
+                m.rotation.name(),
+                m.drag_factor
+            ));
         }
         None => parts.push("the prop file's own QPROP coefficients".into()),
     }
