@@ -105,7 +105,8 @@ fn absurd_measured_values_are_dropped_and_listed() {
         stderr(&o)
     );
     outputs_finite(&dir.path().join("static"));
-    // A J sweep with CT and CP of 1e308: the diagnosis runs on the rest.
+    // A J sweep with CT and CP of 1e308: the diagnosis runs on the rest; exit 1 as compare's, and
+    // its page lists the dropped rows with their lines.
     let o = run(
         &[
             "diagnose",
@@ -118,11 +119,16 @@ fn absurd_measured_values_are_dropped_and_listed() {
         ],
         dir.path(),
     );
-    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("2 beyond any small propeller's values"),
         "{}",
         stderr(&o)
+    );
+    let page = std::fs::read_to_string(dir.path().join("sweep/report.html")).unwrap();
+    assert!(
+        page.contains("2 dropped rows") && page.contains("<h2>Measured files</h2>"),
+        "{page}"
     );
     outputs_finite(&dir.path().join("sweep"));
     // A thrust of 1e308 N in every row of a thrust-stand log: nothing is left, and that is said.

@@ -167,6 +167,11 @@ fn shipped_cases_without_a_scan() {
         for p in parts {
             assert!(html.contains(p), "{case}: report lacks {p}");
         }
+        // One document: the stages' pages are nested by their bodies, not as whole pages
+        // (each with its head, style sheet and embedded font).
+        for tag in ["<!DOCTYPE", "<html", "<style>", "</body>"] {
+            assert_eq!(html.matches(tag).count(), 1, "{case}: {tag} more than once");
+        }
         let (_, rows) = read_csv(&dir.path().join(case).join("predict/sweep.csv"));
         assert!(rows.len() >= 60, "{case}: {} sweep rows", rows.len());
     }

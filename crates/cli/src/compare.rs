@@ -208,8 +208,8 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
 
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
 /// plots) into the spec's directory, with `other`'s prediction beside propbet's; returns the
-/// report page and, with a reference prediction, its name and headline (as `summary.json` holds
-/// them).
+/// report page's body (for the run's page, which nests it) and, with a reference prediction, its
+/// name and headline (as `summary.json` holds them).
 pub fn write(
     spec: &CompareSpec,
     model: &Model,
@@ -283,7 +283,7 @@ pub fn write(
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     let reference = rep.json.get("reference").cloned();
-    Ok((rep.html, reference))
+    Ok((rep.body, reference))
 }
 
 /// Another code's prediction a comparison names (`--per3` or `--qprop-output`), read once.

@@ -7,6 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::spec::{DiagnoseSpec, StageSpec};
 use propbet_pipeline::stages::{self, Diagnosed};
+use propbet_report::compare::FileEntry;
 use propbet_report::diagnose::{self as report, JsonOut};
 
 use crate::compare::{print_measured, MeasuredArgs};
@@ -56,7 +57,8 @@ impl DiagnoseArgs {
     }
 }
 
-/// Runs `propbet diagnose`.
+/// Runs `propbet diagnose`; returns false (exit 1, as `compare`) when measured rows were
+/// dropped as faulty: the diagnosis ran on the rest, the report lists them.
 pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let spec = args.spec()?;
     let mut inputs = spec.model.inputs();
@@ -66,18 +68,30 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let d = stages::diagnose(&model, &spec)?;
     write(&spec, &d)?;
     print(&spec, &d);
-    Ok(true)
+    let faults: usize = d.sets.iter().map(propbet_measure::MeasuredSet::faults).sum();
+    if faults > 0 {
+        eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
+    }
+    Ok(faults == 0)
 }
 
 /// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,
 /// plots);
-/// returns the report page.
+/// returns the report page's body (for the run's page, which nests it).
 pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let prop = spec.model.prop.display().to_string();
     let measured: Vec<String> = spec.measured.files.iter().map(|p| p.display().to_string()).collect();
     let command = StageSpec::Diagnose(spec.clone()).command();
     let dg = &d.diagnosis;
-    let rep = report::build(&d.data, dg, &prop, &measured, &command)?;
+    let files: Vec<FileEntry> = measured
+        .iter()
+        .zip(&d.sets)
+        .map(|(path, set)| FileEntry {
+            path: path.clone(),
+            set,
+        })
+        .collect();
+    let rep = report::build(&d.data, dg, &prop, &files, &command)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     let plots = spec.out.join("plots");
@@ -109,7 +123,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     write_atomic(&spec.out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
-    Ok(rep.html)
+    Ok(rep.body)
 }
 
 /// The diagnosis on the terminal.

@@ -317,6 +317,71 @@ pub fn summary_json(
     })
 }
 
+/// The "Measured files" section of a page: each file's format, rows, points, notes, and its
+/// dropped rows as line ranges with their reasons.
+pub fn measured_files_html(files: &[FileEntry]) -> String {
+    let mut h = String::from("<h2>Measured files</h2>\n");
+    for (i, f) in files.iter().enumerate() {
+        let s = f.set;
+        let _ = write!(
+            h,
+            "<h3>{}. <code>{}</code></h3>\n<p>{:?} file, reduced as {:?}: {} rows → {} points; {}.</p>\n<ul>",
+            i + 1,
+            esc(&f.path),
+            s.format,
+            s.reduction,
+            s.rows,
+            s.points.len(),
+            esc(&propbet_measure::summarise_dropped(&s.dropped))
+        );
+        for n in &s.notes {
+            let _ = write!(h, "<li>{}</li>", esc(n));
+        }
+        h.push_str("</ul>\n");
+        if !s.dropped.is_empty() {
+            let _ = writeln!(
+                h,
+                "<details><summary>{} dropped rows</summary><table><tr><th>lines</th><th>rows</th><th>reason</th><th>detail</th></tr>",
+                s.dropped.len()
+            );
+            for (a, b, n, r, d) in dropped_ranges(&s.dropped) {
+                let lines = if a == b { a.to_string() } else { format!("{a}–{b}") };
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{lines}</td><td>{n}</td><td>{}</td><td>{}</td></tr>",
+                    r.text(),
+                    esc(&d)
+                );
+            }
+            h.push_str("</table></details>\n");
+        }
+    }
+    h
+}
+
+/// The "Measured files" section of a Markdown summary.
+pub fn measured_files_md(files: &[FileEntry]) -> String {
+    let mut md = String::new();
+    md.push_str("## Measured files\n\n");
+    for (i, f) in files.iter().enumerate() {
+        let _ = writeln!(
+            md,
+            "{}. `{}`: {:?}, {:?}; {} rows → {} points; {}.",
+            i + 1,
+            f.path,
+            f.set.format,
+            f.set.reduction,
+            f.set.rows,
+            f.set.points.len(),
+            propbet_measure::summarise_dropped(&f.set.dropped)
+        );
+        for n in &f.set.notes {
+            let _ = writeln!(md, "   - {n}");
+        }
+    }
+    md
+}
+
 /// Consecutive dropped rows of one reason, as line ranges.
 pub fn dropped_ranges(dropped: &[Dropped]) -> Vec<(usize, usize, usize, DropReason, String)> {
     let mut out: Vec<(usize, usize, usize, DropReason, String)> = Vec::new();
@@ -598,42 +663,8 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
             esc(&p.flags.iter().chain(&p.model_flags).cloned().collect::<Vec<_>>().join("; "))
         );
     }
-    h.push_str("</table></details>\n<h2>Measured files</h2>\n");
-    for (i, f) in input.files.iter().enumerate() {
-        let s = f.set;
-        let _ = write!(
-            h,
-            "<h3>{}. <code>{}</code></h3>\n<p>{:?} file, reduced as {:?}: {} rows → {} points; {}.</p>\n<ul>",
-            i + 1,
-            esc(&f.path),
-            s.format,
-            s.reduction,
-            s.rows,
-            s.points.len(),
-            esc(&propbet_measure::summarise_dropped(&s.dropped))
-        );
-        for n in &s.notes {
-            let _ = write!(h, "<li>{}</li>", esc(n));
-        }
-        h.push_str("</ul>\n");
-        if !s.dropped.is_empty() {
-            let _ = writeln!(
-                h,
-                "<details><summary>{} dropped rows</summary><table><tr><th>lines</th><th>rows</th><th>reason</th><th>detail</th></tr>",
-                s.dropped.len()
-            );
-            for (a, b, n, r, d) in dropped_ranges(&s.dropped) {
-                let lines = if a == b { a.to_string() } else { format!("{a}–{b}") };
-                let _ = writeln!(
-                    h,
-                    "<tr><td>{lines}</td><td>{n}</td><td>{}</td><td>{}</td></tr>",
-                    r.text(),
-                    esc(&d)
-                );
-            }
-            h.push_str("</table></details>\n");
-        }
-    }
+    h.push_str("</table></details>\n");
+    h.push_str(&measured_files_html(&input.files));
     h.push_str("<h2>Air</h2>\n<ul>");
     for s in &air_sources {
         let _ = write!(h, "<li>{}</li>", esc(s));
@@ -681,23 +712,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for g in &m.per_rpm {
         md_table(&mut md, g);
     }
-    md.push_str("## Measured files\n\n");
-    for (i, f) in input.files.iter().enumerate() {
-        let _ = writeln!(
-            md,
-            "{}. `{}`: {:?}, {:?}; {} rows → {} points; {}.",
-            i + 1,
-            f.path,
-            f.set.format,
-            f.set.reduction,
-            f.set.rows,
-            f.set.points.len(),
-            propbet_measure::summarise_dropped(&f.set.dropped)
-        );
-        for n in &f.set.notes {
-            let _ = writeln!(md, "   - {n}");
-        }
-    }
+    md.push_str(&measured_files_md(&input.files));
 
     let json = serde_json::to_value(Json {
         prop: &input.prop,

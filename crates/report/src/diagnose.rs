@@ -11,6 +11,7 @@ use propbet_effects::fmt_value;
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
+use crate::compare::{measured_files_html, measured_files_md, FileEntry};
 use crate::page::{esc, page, sig};
 
 /// The report in its forms.
@@ -227,8 +228,10 @@ fn ranking_row(i: usize, s: &Scored) -> String {
     }
 }
 
-/// Builds the report.
-pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], command: &str) -> Result<Report, PlotError> {
+/// Builds the report. The measured files (with their dropped rows) are listed on the page and
+/// in the Markdown, not in the body that the run's page nests (its compare section lists them).
+pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], command: &str) -> Result<Report, PlotError> {
+    let measured: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     let residuals = Figure {
         panels: residual_panels(data, d),
         columns: 2,
@@ -324,8 +327,14 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, measured: &[String], comman
     for s in &d.after {
         let _ = writeln!(md, "- {}", s.text);
     }
+    md.push('\n');
+    md.push_str(&measured_files_md(files));
     Ok(Report {
-        html: page(&format!("propbet diagnosis: {prop}"), "", &h),
+        html: page(
+            &format!("propbet diagnosis: {prop}"),
+            "",
+            &format!("{h}{}", measured_files_html(files)),
+        ),
         body: h,
         markdown: md,
         figures: vec![("ladder".into(), ladder), ("residuals".into(), residuals)],
