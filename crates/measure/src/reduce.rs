@@ -109,7 +109,8 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
 }
 
 /// Orients thrust and torque so that both are positive for a propeller pulling and absorbing
-/// power, then drops rows of negative thrust.
+/// power, then drops rows of negative thrust: a fault without airspeed, the end of a J sweep
+/// (windmilling) with it.
 fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<String>) -> Vec<Sample> {
     let mut thrusts: Vec<f64> = samples.iter().map(|s| s.thrust).collect();
     let flip_t = median(&mut thrusts) < 0.0;
@@ -136,11 +137,16 @@ fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<Stri
         if s.thrust < 0.0 {
             dropped.push(Dropped {
                 line: s.line,
-                reason: DropReason::NegativeThrust,
+                reason: if s.airspeed > 0.0 {
+                    DropReason::Windmilling
+                } else {
+                    DropReason::NegativeThrust
+                },
                 detail: format!(
-                    "thrust {:.4} N at {:.0} rpm",
+                    "thrust {:.4} N at {:.0} rpm, {:.2} m/s",
                     s.thrust,
-                    propbet_units::omega_to_rpm(s.omega)
+                    propbet_units::omega_to_rpm(s.omega),
+                    s.airspeed
                 ),
             });
             continue;
@@ -455,6 +461,31 @@ mod tests {
                 (52, DropReason::TimeOutOfOrder),
                 (72, DropReason::NegativeRpm),
                 (62, DropReason::NegativeThrust),
+            ]
+        );
+    }
+
+    /// Negative thrust in a stream is the end of a J sweep (windmilling), dropped but not a
+    /// fault; without airspeed it is one.
+    #[test]
+    fn negative_thrust_in_a_stream_is_windmilling_not_a_fault() {
+        // Mostly positive thrust (the column's sign is taken from the median).
+        let mut rows: Vec<Sample> = (5..9).map(|i| sample(i, i as f64, 1500.0, 5000.0, 2.0)).collect();
+        rows.push(sample(3, 1.0, 1500.0, 5000.0, -0.3));
+        rows[4].airspeed = 12.0;
+        rows.push(sample(4, 2.0, 1500.0, 5000.0, -0.2));
+        let mut dropped = Vec::new();
+        let out = orient(rows, &mut dropped, &mut Vec::new());
+        assert_eq!(out.len(), 4);
+        let reasons: Vec<(usize, DropReason, bool)> = dropped
+            .iter()
+            .map(|d| (d.line, d.reason, d.reason.is_fault()))
+            .collect();
+        assert_eq!(
+            reasons,
+            vec![
+                (3, DropReason::Windmilling, false),
+                (4, DropReason::NegativeThrust, true)
             ]
         );
     }

@@ -141,8 +141,11 @@ pub enum DropReason {
     NotANumber,
     /// Negative RPM reading.
     NegativeRpm,
-    /// Thrust against the propeller's direction (after orienting the column).
+    /// Thrust against the propeller's direction (after orienting the column) with no airspeed.
     NegativeThrust,
+    /// Negative thrust in a stream: past the zero-thrust J, the propeller windmills (expected
+    /// at the end of a J sweep, not a fault; outside what the model scores).
+    Windmilling,
     /// Same time stamp as the row before.
     DuplicateTime,
     /// Time stamp out of order (a stray row).
@@ -180,7 +183,7 @@ pub mod limits {
 impl DropReason {
     /// True for rows that are wrong, as opposed to rows that are expected not to count.
     pub fn is_fault(self) -> bool {
-        !matches!(self, DropReason::NotSpinning)
+        !matches!(self, DropReason::NotSpinning | DropReason::Windmilling)
     }
 
     /// Short text.
@@ -191,6 +194,7 @@ impl DropReason {
             DropReason::NotANumber => "not a number",
             DropReason::NegativeRpm => "negative RPM",
             DropReason::NegativeThrust => "negative thrust",
+            DropReason::Windmilling => "negative thrust in a stream (windmilling, past zero thrust)",
             DropReason::DuplicateTime => "duplicate time",
             DropReason::TimeOutOfOrder => "time out of order",
             DropReason::Implausible => "beyond any small propeller's values",

@@ -615,6 +615,14 @@ pub struct Diagnosed {
 /// (Validation on real propellers).
 pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
 
+/// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab
+/// reduced its loads with the density it measured, so the ratio is only that measurement's
+/// error. Density from a barometer and a thermometer (ideal gas) is good to a few tenths of a
+/// percent (1 hPa is 0.1 %, 1 K 0.35 %); humidity left out makes dry-air density up to about
+/// 1 % high at 30 C and 60 % RH (moist air's gas constant): ±2 % holds both with room. The
+/// wide bounds (0.75-1.2) are those of a stand log whose air nobody wrote down.
+pub const LAB_DENSITY_RATIO: (f64, f64) = (0.98, 1.02);
+
 /// Runs the diagnose stage.
 pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     if spec.folds < 2 {
@@ -635,25 +643,33 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     let (air, sets) = load_measured(&spec.measured)?;
     // An optical RPM sensor (a wind tunnel's, a thrust stand's optical probe) has no pole count
     // to get wrong: an RPM scale is then only its calibration.
-    let optical = sets.iter().all(|s| {
+    let uiuc = |s: &MeasuredSet| {
         matches!(
             s.format,
             propbet_measure::Format::UiucStatic | propbet_measure::Format::UiucSweep
-        ) || s.rpm_source == Some(propbet_measure::RpmSource::Optical)
-    });
-    if optical {
-        for c in &mut candidates {
-            if c.id() == "rpm-scale" {
-                *c = std::sync::Arc::new(propbet_effects::Narrowed::new(
-                    c.clone(),
-                    &[(
-                        "factor",
-                        OPTICAL_RPM_SCALE.0,
-                        OPTICAL_RPM_SCALE.1,
-                        "an optical RPM sensor: no pole count to get wrong",
-                    )],
-                ));
-            }
+        )
+    };
+    let optical = sets
+        .iter()
+        .all(|s| uiuc(s) || s.rpm_source == Some(propbet_measure::RpmSource::Optical));
+    // Coefficients reduced with the lab's measured air: a density ratio is only its error.
+    let lab_air = sets.iter().all(uiuc);
+    for c in &mut candidates {
+        let narrowed = match c.id() {
+            "rpm-scale" if optical => Some((
+                "factor",
+                OPTICAL_RPM_SCALE,
+                "an optical RPM sensor: no pole count to get wrong",
+            )),
+            "density" if lab_air => Some((
+                "ratio",
+                LAB_DENSITY_RATIO,
+                "coefficients the lab reduced with the density it measured",
+            )),
+            _ => None,
+        };
+        if let Some((param, (lo, hi), why)) = narrowed {
+            *c = std::sync::Arc::new(propbet_effects::Narrowed::new(c.clone(), &[(param, lo, hi, why)]));
         }
     }
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
