@@ -240,7 +240,8 @@ fn make(kind: Kind) -> Builtin {
             &[Measurement],
             "The air was not what the model assumed (temperature, altitude, humidity): thrust and \
              torque scale together at every point. Where the files log temperature, pressure and \
-             humidity the comparison already uses them; the ratio is what remains.",
+             humidity the comparison already uses them; the ratio is what remains. Coefficients a \
+             lab reduced with its measured air (UIUC's files) bound it to +-2 % in diagnose.",
         ),
         Kind::RpmScale => (
             "rpm-scale",
