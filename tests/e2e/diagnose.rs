@@ -104,12 +104,16 @@ fn shipped_hidden_effect_examples_name_their_answer() {
                 "{before:?}"
             ),
             // A pitch offset's error grows with J: the words name it among the effects that can
-            // make that, and density as one that cannot.
+            // make that, and density as one that cannot; torque, with the same pattern, refers
+            // to that list instead of repeating it.
             "pitch_offset" => assert!(
                 before[0].starts_with("thrust under-predicted by 11")
                     && before[0].contains("Largest at J >")
                     && before[0].contains("Effects that can make it: pitch-offset")
-                    && before[0].contains("not density"),
+                    && before[0].contains("not density")
+                    && before[1].contains("Largest at J >")
+                    && before[1].contains("The effects named for thrust can make it")
+                    && !before[1].contains("Effects that can make it"),
                 "{before:?}"
             ),
             _ => assert!(before.iter().all(|s| s.contains("within 2 %")), "{before:?}"),

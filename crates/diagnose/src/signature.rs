@@ -34,10 +34,20 @@ fn mean(v: &[f64]) -> f64 {
 }
 
 /// Which effects can make an error that changes with J at fixed RPM, and which cannot.
-pub const J_TREND_EFFECTS: &str = "an error that changes with J at fixed RPM comes from the angles or the inflow. \
-     Effects that can make it: pitch-offset and elastic-twist (an angle error weighs more where the sections' \
+pub const J_TREND_EFFECTS: &str =
+    "Effects that can make it: pitch-offset and elastic-twist (an angle error weighs more where the sections' \
      angles are small, at high J), rpm-scale (a wrong RPM is a wrong J), tip-loss and hub-loss (the inflow), \
      the tares (loads that do not scale as the propeller's); not density, which scales every load alike";
+
+/// Which effects can make an error that changes with RPM at fixed J, and which cannot.
+pub const RPM_TREND_EFFECTS: &str =
+    "Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, \
+     mostly torque), transition (Ncrit, from polars at several: --ncrit-effect), compressibility (tip Mach above 0.3), \
+     elastic-twist (thrust falling at high RPM); not density, rpm-scale, chord-scale, pitch-offset or the tares, which \
+     act alike at every RPM";
+
+/// What the torque's pattern says in place of an effect list the thrust's already gave.
+const SAME_EFFECTS: &str = "The effects named for thrust can make it";
 
 /// Width of the J bins within which RPM trends are measured (static points are one bin).
 const J_BIN: f64 = 0.05;
@@ -158,7 +168,8 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
                 parts.push(format!(
-                    "largest at {side} ({} there, {} elsewhere): {J_TREND_EFFECTS}",
+                    "largest at {side} ({} there, {} elsewhere): an error that changes with J at fixed RPM comes \
+                     from the angles or the inflow. {J_TREND_EFFECTS}",
                     pct(a),
                     pct(b)
                 ));
@@ -173,9 +184,7 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                 parts.push(format!(
                     "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm: the measured {name} grows {faster} \
                      with RPM than the model's (a Reynolds-number effect on the sections; Mach at high tip speeds). \
-                     Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, mostly torque), \
-                     transition (Ncrit, from polars at several: --ncrit-effect), compressibility (tip Mach above 0.3), elastic-twist (thrust falling at high RPM); \
-                     not density, rpm-scale, chord-scale, pitch-offset or the tares, which act alike at every RPM",
+                     {RPM_TREND_EFFECTS}",
                     pct(change)
                 ));
             }
@@ -222,6 +231,14 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
         });
     }
     // "thrust unaffected" where only torque is off, and the other way round.
+    // An effect list is given once: where torque's pattern repeats one thrust's named, it says so.
+    if out.len() == 2 {
+        for list in [J_TREND_EFFECTS, RPM_TREND_EFFECTS] {
+            if out[0].text.contains(list) {
+                out[1].text = out[1].text.replace(list, SAME_EFFECTS);
+            }
+        }
+    }
     if out.len() == 2 {
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
         if quiet[0] && !quiet[1] {
