@@ -153,6 +153,9 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             100.0 * r
         )];
         let threshold = QUIET.max(0.3 * r);
+        // Torque off with thrust right: only what moves torque alone can make its patterns (said
+        // once below), not the angles, air or RPM the general lists name.
+        let torque_alone = torque && out.first().is_some_and(|s| s.rms < QUIET);
         // Advance ratio: split at the median J.
         let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
         js.sort_by(f64::total_cmp);
@@ -167,12 +170,16 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                 } else {
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
-                parts.push(format!(
-                    "largest at {side} ({} there, {} elsewhere): an error that changes with J at fixed RPM comes \
-                     from the angles or the inflow. {J_TREND_EFFECTS}",
-                    pct(a),
-                    pct(b)
-                ));
+                parts.push(if torque_alone {
+                    format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b))
+                } else {
+                    format!(
+                        "largest at {side} ({} there, {} elsewhere): an error that changes with J at fixed RPM comes \
+                         from the angles or the inflow. {J_TREND_EFFECTS}",
+                        pct(a),
+                        pct(b)
+                    )
+                });
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
@@ -181,12 +188,18 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             // under a larger error of another kind.
             if change.abs() > 0.5 * QUIET {
                 let faster = if change < 0.0 { "faster" } else { "slower" };
-                parts.push(format!(
+                let head = format!(
                     "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm: the measured {name} grows {faster} \
-                     with RPM than the model's (a Reynolds-number effect on the sections; Mach at high tip speeds). \
-                     {RPM_TREND_EFFECTS}",
+                     with RPM than the model's",
                     pct(change)
-                ));
+                );
+                parts.push(if torque_alone {
+                    head
+                } else {
+                    format!(
+                        "{head} (a Reynolds-number effect on the sections; Mach at high tip speeds). {RPM_TREND_EFFECTS}"
+                    )
+                });
             }
         }
         // RPM: first against last group.
