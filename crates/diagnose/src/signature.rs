@@ -43,8 +43,8 @@ pub const J_TREND_EFFECTS: &str =
 pub const RPM_TREND_EFFECTS: &str =
     "Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, \
      mostly torque), transition (Ncrit, from polars at several: --ncrit-effect), compressibility (tip Mach above 0.3), \
-     elastic-twist (thrust falling at high RPM); not density, rpm-scale, chord-scale, pitch-offset or the tares, which \
-     act alike at every RPM";
+     elastic-twist (thrust falling at high RPM), torque-tare (a friction torque weighs most at low RPM: torque \
+     alone); not density, rpm-scale, chord-scale, pitch-offset or thrust-tare, which act alike at every RPM";
 
 /// What the torque's pattern says in place of an effect list the thrust's already gave.
 const SAME_EFFECTS: &str = "The effects named for thrust can make it";
