@@ -544,7 +544,8 @@ fn refine(
             break;
         }
     }
-    // Backward: drop effects the data does not need once the others are in.
+    // Backward: drop effects the data does not need once the others are in; never into a fit
+    // that leaves one of the others on a bound.
     loop {
         let current = chosen.effects();
         if current.len() < 2 {
@@ -556,7 +557,7 @@ fn refine(
             let gone = effects.remove(i);
             let ev = evaluate(model, data, effects, &chosen.fit.stack, f)?;
             let (_, p) = f_test(ev.fit.sse, &chosen.fit, gone.params().len());
-            if p >= alpha / current.len() as f64 || ev.kfold <= chosen.kfold {
+            if (p >= alpha / current.len() as f64 || ev.kfold <= chosen.kfold) && ev.fit.beyond_bounds().is_empty() {
                 drop = Some(ev);
                 break;
             }
