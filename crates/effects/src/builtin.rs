@@ -264,9 +264,9 @@ fn make(kind: Kind) -> Builtin {
                 "k",
                 "-",
                 0.0,
-                (-0.15, 0.15),
+                (0.0, 0.15),
                 0.02,
-                "blockage area (CdS) over disc area; thrust - k q_slip pi R^2 (physical bounds: +-0.15)",
+                "blockage area (CdS) over disc area; thrust - k q_slip pi R^2 (physical bounds: 0-0.15: a drag area is not negative)",
             )],
             &[Loads],
             "The motor, its mount and the stand sit in the slipstream: they take back a drag force \
