@@ -175,12 +175,16 @@ fn txt_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 fn synth(prop: &Path, effects: &[String], extra: &[&str], seed: u64, out: &Path, dir: &Path) {
+    synth_with_noise(prop, effects, extra, seed, "1%", out, dir);
+}
+
+fn synth_with_noise(prop: &Path, effects: &[String], extra: &[&str], seed: u64, noise: &str, out: &Path, dir: &Path) {
     let mut args = vec![
         "synth",
         "--prop",
         prop.to_str().unwrap(),
         "--noise",
-        "1%",
+        noise,
         "--out",
         out.to_str().unwrap(),
     ];
@@ -192,6 +196,20 @@ fn synth(prop: &Path, effects: &[String], extra: &[&str], seed: u64, out: &Path,
     args.extend_from_slice(extra);
     let o = run(&args, dir);
     assert!(o.status.success(), "synth failed: {}", stderr(&o));
+}
+
+/// Two runs of one test on the CAM 6x3 (two seeds of 0.5 % noise, `effect` hidden, `extra`
+/// synth flags), written to `dir/<stem>_<seed>.csv`: the repeated points let the diagnosis
+/// measure the repeatability.
+fn two_runs(effect: &str, extra: &[&str], seeds: [u64; 2], stem: &str, dir: &Path) -> Vec<PathBuf> {
+    seeds
+        .iter()
+        .map(|&seed| {
+            let f = dir.join(format!("{stem}_{seed}.csv"));
+            synth_with_noise(&cam6x3(), &[effect.to_string()], extra, seed, "0.5%", &f, dir);
+            f
+        })
+        .collect()
 }
 
 /// Each built-in effect, hidden in synthetic data on two propellers with a random magnitude and
@@ -679,32 +697,13 @@ fn a_fit_on_a_physical_bound_is_never_the_answer() {
 fn a_weak_stall_delay_is_nothing_significant_and_a_stronger_one_is_found() {
     let dir = tempfile::tempdir().unwrap();
     for (a, found) in [("0.6", false), ("1", true)] {
-        let mut files = Vec::new();
-        for seed in [1u64, 2] {
-            let f = dir.path().join(format!("sd{a}_{seed}.csv"));
-            let effect = format!("stall-delay:a={a}");
-            let seed = seed.to_string();
-            let o = run(
-                &[
-                    "synth",
-                    "--prop",
-                    cam6x3().to_str().unwrap(),
-                    "--dbeta",
-                    "10",
-                    "--noise",
-                    "0.5%",
-                    "--seed",
-                    &seed,
-                    "--effect",
-                    &effect,
-                    "--out",
-                    f.to_str().unwrap(),
-                ],
-                dir.path(),
-            );
-            assert!(o.status.success(), "{}", stderr(&o));
-            files.push(f);
-        }
+        let files = two_runs(
+            &format!("stall-delay:a={a}"),
+            &["--dbeta", "10"],
+            [1, 2],
+            &format!("sd{a}"),
+            dir.path(),
+        );
         let measured: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
         let (o, j) = diagnose(&cam6x3(), &measured, &["--dbeta", "10"], dir.path());
         let out = String::from_utf8_lossy(&o.stdout);
@@ -729,28 +728,13 @@ fn a_weak_stall_delay_is_nothing_significant_and_a_stronger_one_is_found() {
 fn effects_weaker_than_the_measured_repeatability_are_not_found() {
     let dir = tempfile::tempdir().unwrap();
     for (ratio, found) in [("0.99", false), ("0.9", true)] {
-        let mut files = Vec::new();
-        for seed in [21u64, 22] {
-            let f = dir.path().join(format!("d{ratio}_{seed}.csv"));
-            let mut args = vec![
-                "synth".to_string(),
-                "--prop".into(),
-                cam6x3().display().to_string(),
-                "--noise".into(),
-                "0.5%".into(),
-                "--seed".into(),
-                seed.to_string(),
-                "--effect".into(),
-                format!("density:ratio={ratio}"),
-                "--out".into(),
-                f.display().to_string(),
-            ];
-            args.shrink_to_fit();
-            let a: Vec<&str> = args.iter().map(String::as_str).collect();
-            let o = run(&a, dir.path());
-            assert!(o.status.success(), "{}", stderr(&o));
-            files.push(f);
-        }
+        let files = two_runs(
+            &format!("density:ratio={ratio}"),
+            &[],
+            [21, 22],
+            &format!("d{ratio}"),
+            dir.path(),
+        );
         let measured: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
         let (o, j) = diagnose(&cam6x3(), &measured, &[], dir.path());
         let out = String::from_utf8_lossy(&o.stdout);

@@ -104,6 +104,16 @@ pub fn print_measured(spec: &MeasuredSpec, sets: &[MeasuredSet]) {
     }
 }
 
+/// Says on the terminal how many measured rows were dropped as faulty (the report lists them);
+/// returns that count (`compare` and `diagnose` exit 1 when it is not zero).
+pub fn warn_faulty_rows(sets: &[MeasuredSet]) -> usize {
+    let faults = sets.iter().map(MeasuredSet::faults).sum();
+    if faults > 0 {
+        eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
+    }
+    faults
+}
+
 impl CompareArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<CompareSpec> {
@@ -395,10 +405,8 @@ pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Va
         );
     }
     println!("report: {}", spec.out.join("report.html").display());
-    let (faults, unconverged) = c.problems();
-    if faults > 0 {
-        eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
-    }
+    let (_, unconverged) = c.problems();
+    warn_faulty_rows(&c.sets);
     if unconverged > 0 {
         eprintln!("propbet: {unconverged} station solutions did not converge");
     }

@@ -10,7 +10,7 @@ use propbet_pipeline::stages::{self, Diagnosed};
 use propbet_report::compare::FileEntry;
 use propbet_report::diagnose::{self as report, JsonOut};
 
-use crate::compare::{print_measured, MeasuredArgs};
+use crate::compare::{print_measured, warn_faulty_rows, MeasuredArgs};
 use crate::output::{write_atomic, write_figure};
 use crate::predict::{load_model, ModelArgs};
 
@@ -68,11 +68,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let d = stages::diagnose(&model, &spec)?;
     write(&spec, &d)?;
     print(&spec, &d);
-    let faults: usize = d.sets.iter().map(propbet_measure::MeasuredSet::faults).sum();
-    if faults > 0 {
-        eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
-    }
-    Ok(faults == 0)
+    Ok(warn_faulty_rows(&d.sets) == 0)
 }
 
 /// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,

@@ -243,16 +243,15 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             text: sentences(&parts),
         });
     }
-    // "thrust unaffected" where only torque is off, and the other way round.
-    // An effect list is given once: where torque's pattern repeats one thrust's named, it says so.
     if out.len() == 2 {
+        // An effect list is given once: where torque's pattern repeats one thrust's named, it
+        // says so.
         for list in [J_TREND_EFFECTS, RPM_TREND_EFFECTS] {
             if out[0].text.contains(list) {
                 out[1].text = out[1].text.replace(list, SAME_EFFECTS);
             }
         }
-    }
-    if out.len() == 2 {
+        // "thrust unaffected" where only torque is off, and the other way round.
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
         if quiet[0] && !quiet[1] {
             out[1].text.push_str(
