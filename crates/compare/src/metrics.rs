@@ -212,19 +212,8 @@ pub const VALIDATION_J_WINDOW: f64 = 0.85;
 /// every point of a file whose CT never crosses zero, static files included). The one window
 /// of validate, diagnose's ladder and the report's headline.
 pub fn in_window(points: &[ComparedPoint], window: f64) -> Vec<bool> {
-    let nan = f64::NAN;
     let mut inside = vec![true; points.len()];
-    let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
-    files.sort_unstable();
-    files.dedup();
-    for f in files {
-        let mut pts: Vec<usize> = (0..points.len()).filter(|&i| points[i].file == f).collect();
-        pts.sort_by(|&a, &b| points[a].j.total_cmp(&points[b].j));
-        let ct = |i: usize| points[i].measured.ct.unwrap_or(nan);
-        let j0 = pts.windows(2).find(|w| ct(w[0]) > 0.0 && ct(w[1]) <= 0.0).map(|w| {
-            let (a, b) = (ct(w[0]), ct(w[1]));
-            points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
-        });
+    for (pts, j0) in zero_thrust_js(points) {
         if let Some(j0) = j0 {
             for i in pts {
                 inside[i] = points[i].j < window * j0;
@@ -232,6 +221,83 @@ pub fn in_window(points: &[ComparedPoint], window: f64) -> Vec<bool> {
         }
     }
     inside
+}
+
+/// Each file's points (indices, by J) and its measured zero-thrust J: linear between the last
+/// positive and the first non-positive measured CT; None where CT never crosses zero.
+fn zero_thrust_js(points: &[ComparedPoint]) -> Vec<(Vec<usize>, Option<f64>)> {
+    let nan = f64::NAN;
+    let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
+    files.sort_unstable();
+    files.dedup();
+    files
+        .into_iter()
+        .map(|f| {
+            let mut pts: Vec<usize> = (0..points.len()).filter(|&i| points[i].file == f).collect();
+            pts.sort_by(|&a, &b| points[a].j.total_cmp(&points[b].j));
+            let ct = |i: usize| points[i].measured.ct.unwrap_or(nan);
+            let j0 = pts.windows(2).find(|w| ct(w[0]) > 0.0 && ct(w[1]) <= 0.0).map(|w| {
+                let (a, b) = (ct(w[0]), ct(w[1]));
+                points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
+            });
+            (pts, j0)
+        })
+        .collect()
+}
+
+/// Where a prop's error lies: the median signed error (predicted / measured − 1) of CT and CP
+/// over one regime's points inside the scored window.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RegimeError {
+    /// Points in the regime.
+    pub points: usize,
+    /// CT's median signed error (NaN without points).
+    pub ct: f64,
+    /// CP's median signed error (NaN without points).
+    pub cp: f64,
+}
+
+/// The regimes of [`regime_errors`], in order (J0: the prop's zero-thrust J).
+pub const REGIMES: [&str; 3] = ["static", "forward, J < J0/2", "forward, J0/2 to 0.85 J0"];
+
+/// The signed errors of the scored window ([`in_window`]) by regime ([`REGIMES`]): static
+/// points; forward flight below half the prop's zero-thrust J; from there to the window's end.
+/// The prop's zero-thrust J is the median of its files' (a UIUC sweep is often two files, one
+/// of which never reaches zero thrust); without one, forward points are all in the first
+/// regime. Where the validation's unsigned medians say how far, these say which way and where:
+/// a pitch error grows towards zero thrust, a hover-efficiency error sits in the static points.
+pub fn regime_errors(points: &[ComparedPoint], window: f64) -> [RegimeError; 3] {
+    let j0s: Vec<f64> = zero_thrust_js(points).into_iter().filter_map(|(_, j0)| j0).collect();
+    let j0 = quantile(j0s, 0.5);
+    let mut err: [(Vec<f64>, Vec<f64>); 3] = Default::default();
+    for (p, inside) in points.iter().zip(in_window(points, window)) {
+        if !inside {
+            continue;
+        }
+        let k = if p.is_static() {
+            0
+        } else if j0.is_finite() && p.j >= 0.5 * j0 {
+            2
+        } else {
+            1
+        };
+        let (ect, ecp) = &mut err[k];
+        for (m, q, out) in [
+            (p.measured.ct, p.predicted.ct, &mut *ect),
+            (p.measured.cp, p.predicted.cp, &mut *ecp),
+        ] {
+            if let (Some(m), Some(q)) = (m, q) {
+                if m.is_finite() && q.is_finite() && m > 0.0 {
+                    out.push(q / m - 1.0);
+                }
+            }
+        }
+    }
+    err.map(|(ct, cp)| RegimeError {
+        points: ct.len(),
+        ct: quantile(ct, 0.5),
+        cp: quantile(cp, 0.5),
+    })
 }
 
 /// The validation metric's samples: |predicted/measured − 1| of CT and of CP at every point
@@ -389,6 +455,44 @@ mod tests {
         assert_eq!(in_window(&pts, 0.95), vec![true, true, true, false]);
         assert_eq!(quantile(vec![3.0, 1.0, 2.0], 0.5), 2.0);
         assert!(quantile(vec![], 0.5).is_nan());
+    }
+
+    #[test]
+    fn regime_errors_are_signed_and_split_at_half_the_prop_s_zero_thrust_j() {
+        let mk = |file: usize, j: f64, ct: [f64; 2], cp: [f64; 2]| {
+            let mut p = pt("x", 5000.0, j, 1.0, 1.0);
+            p.file = file;
+            p.measured.ct = Some(ct[0]);
+            p.predicted.ct = Some(ct[1]);
+            p.measured.cp = Some(cp[0]);
+            p.predicted.cp = Some(cp[1]);
+            p
+        };
+        // File 0: static, thrust 10 % high, power 5 % low. File 1: a low-J sweep that never
+        // reaches zero thrust (no zero-thrust J of its own). File 2: crosses zero at J = 0.6.
+        let pts = vec![
+            mk(0, 0.0, [0.10, 0.11], [0.05, 0.0475]),
+            mk(0, 0.0, [0.10, 0.11], [0.05, 0.0475]),
+            mk(1, 0.1, [0.09, 0.0855], [0.05, 0.05]),
+            mk(1, 0.25, [0.08, 0.076], [0.05, 0.05]),
+            mk(2, 0.35, [0.05, 0.06], [0.04, 0.044]),
+            mk(2, 0.55, [0.01, 0.02], [0.02, 0.02]),
+            mk(2, 0.65, [-0.01, 0.0], [0.01, 0.01]),
+        ];
+        let [st, low, high] = regime_errors(&pts, VALIDATION_J_WINDOW);
+        assert_eq!((st.points, low.points, high.points), (2, 2, 1));
+        assert!((st.ct - 0.1).abs() < 1e-12 && (st.cp + 0.05).abs() < 1e-12, "{st:?}");
+        // File 1's points are below half of the prop's zero-thrust J (0.6, file 2's).
+        assert!((low.ct + 0.05).abs() < 1e-12 && low.cp.abs() < 1e-12, "{low:?}");
+        // J = 0.35 is above 0.3; J = 0.55 is outside the window (0.85 x 0.6 = 0.51).
+        assert!(
+            (high.ct - 0.2).abs() < 1e-12 && (high.cp - 0.1).abs() < 1e-12,
+            "{high:?}"
+        );
+        // Without a zero-thrust J every forward point is in the first regime; no static: NaN.
+        let [st, low, high] = regime_errors(&pts[2..4], VALIDATION_J_WINDOW);
+        assert_eq!((st.points, low.points, high.points), (0, 2, 0));
+        assert!(st.ct.is_nan() && high.cp.is_nan());
     }
 
     #[test]

@@ -6,7 +6,9 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_compare::metrics::{quantile, static_figure_of_merit_error, window_errors, VALIDATION_J_WINDOW};
+use propbet_compare::metrics::{
+    quantile, regime_errors, static_figure_of_merit_error, window_errors, RegimeError, VALIDATION_J_WINDOW,
+};
 use propbet_polar::{naca4_from_name, Airfoil};
 use propbet_qprop::apc::{read_pe0, uiuc_diameter};
 use propbet_qprop::{PropFile, PropRow};
@@ -174,6 +176,9 @@ pub struct Row {
     /// between thrust and power (docs/studies/section-scaling.md: +11 to +19 % on every shared
     /// prop). NaN without static points.
     pub static_fm: f64,
+    /// Before calibration, the median signed errors by regime (static, forward flight below and
+    /// above half the zero-thrust J: [`propbet_compare::metrics::REGIMES`]): which way and where.
+    pub regimes: [RegimeError; 3],
 }
 
 /// Where [`Row::twist_gap`] is averaged: r/R from 0.6 to 0.9.
@@ -530,6 +535,7 @@ pub fn validate_prop(
         held_out_ladders,
         twist_gap: twist_gap(&table, &pe0, big_r),
         static_fm: static_figure_of_merit_error(&compared.points),
+        regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
     };
     Ok(Validated {
         geometry,

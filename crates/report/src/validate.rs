@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use propbet_compare::metrics::quantile;
+use propbet_compare::metrics::{quantile, REGIMES};
 use propbet_pipeline::validate::{family, Row};
 
 use crate::page::{esc, page};
@@ -122,6 +122,41 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     (h, out)
 }
 
+/// The second table: each prop's median signed error (predicted / measured − 1) of CT and CP
+/// by regime, before calibration, with the points in each.
+fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
+    let mut h = vec!["prop".to_string()];
+    h.extend(REGIMES.iter().map(|r| format!("{r}: CT / CP (points)")));
+    let signed = |x: f64| {
+        if x.is_finite() {
+            format!("{:+.1}", 100.0 * x)
+        } else {
+            "–".into()
+        }
+    };
+    let body = rows
+        .iter()
+        .map(|r| {
+            let mut v = vec![r.prop.clone()];
+            v.extend(r.regimes.iter().map(|g| {
+                if g.points == 0 {
+                    "–".into()
+                } else {
+                    format!("{} / {} % ({})", signed(g.ct), signed(g.cp), g.points)
+                }
+            }));
+            v
+        })
+        .collect();
+    (h, body)
+}
+
+const REGIME_INTRO: &str =
+    "Where the error is, before calibration: the median signed error (predicted / measured − 1) \
+     of CT and CP over the same points, static, in forward flight below half the prop's zero-thrust J, \
+     J0 (the median of its sweeps'), and from there to 85 % of J0. A hover-efficiency error sits in the \
+     static column; a pitch error (or a section's zero-lift angle) grows towards zero thrust, in the last.";
+
 fn intro(model: &str) -> String {
     format!(
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
@@ -151,6 +186,18 @@ pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
             cells[0] = format!("**{}**", cells[0]);
         }
         let _ = writeln!(md, "| {} |", cells.join(" | "));
+    }
+    let (h, body) = regime_table(rows);
+    if !body.is_empty() {
+        let _ = write!(
+            md,
+            "\n{REGIME_INTRO}\n\n| {} |\n|{}\n",
+            h.join(" | "),
+            "---|".repeat(h.len())
+        );
+        for cells in body {
+            let _ = writeln!(md, "| {} |", cells.join(" | "));
+        }
     }
     md
 }
@@ -184,6 +231,26 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         s.push_str("</tr>\n");
     }
     s.push_str("</table>\n");
+    let (h, body) = regime_table(rows);
+    if !body.is_empty() {
+        let _ = write!(
+            s,
+            "<h2>Where the error is</h2>\n<p class=\"note\">{}</p>\n<table><tr>",
+            esc(REGIME_INTRO)
+        );
+        for c in &h {
+            let _ = write!(s, "<th>{}</th>", esc(c));
+        }
+        s.push_str("</tr>\n");
+        for cells in body {
+            s.push_str("<tr>");
+            for c in cells {
+                let _ = write!(s, "<td style=\"white-space:nowrap\">{}</td>", esc(&c));
+            }
+            s.push_str("</tr>\n");
+        }
+        s.push_str("</table>\n");
+    }
     // A wide table: the page takes the window's width, so that the ladders are seen without
     // scrolling on a desktop screen.
     page("propbet validate", "body{max-width:none}", &s)
@@ -192,6 +259,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use propbet_compare::metrics::RegimeError;
     use propbet_pipeline::validate::Per3Score;
 
     fn row(p: &str, x: f64, apc: bool) -> Row {
@@ -210,6 +278,23 @@ mod tests {
             held_out_ladders: ["none".into(), "none".into()],
             twist_gap: -1.24,
             static_fm: 0.131,
+            regimes: [
+                RegimeError {
+                    points: 4,
+                    ct: 0.076,
+                    cp: -0.03,
+                },
+                RegimeError {
+                    points: 0,
+                    ct: f64::NAN,
+                    cp: f64::NAN,
+                },
+                RegimeError {
+                    points: 6,
+                    ct: -x,
+                    cp: 0.0,
+                },
+            ],
         }
     }
 
@@ -235,8 +320,15 @@ mod tests {
             "{md}"
         );
         assert!(!md.contains("APC CT"), "no PER3, no APC columns");
+        // Where the error is: signed, a row per validated prop, "–" for a regime without points.
+        assert!(
+            md.contains("| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) |"),
+            "{md}"
+        );
         let page = html(&rows, &skipped, "tables");
-        assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 7);
+        // 7 rows in the first table, 1 + 3 in the second.
+        assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 11);
+        assert!(page.contains("<h2>Where the error is</h2>"), "{page}");
     }
 
     #[test]
