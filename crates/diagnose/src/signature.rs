@@ -183,7 +183,8 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
-        if let Some((change, rl, rh)) = rpm_trend_at_fixed_j(&pts) {
+        let trend = rpm_trend_at_fixed_j(&pts);
+        if let Some((change, rl, rh)) = trend {
             // Its own threshold: a trend with RPM is the signature of missing physics even
             // under a larger error of another kind.
             if change.abs() > 0.5 * QUIET {
@@ -202,18 +203,23 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                 });
             }
         }
-        // RPM: first against last group.
-        let mut groups: BTreeMap<i64, (Vec<f64>, Vec<f64>)> = BTreeMap::new();
+        // RPM: first against last group. Their errors mix RPM with the J each group covers (a J
+        // sweep reaching higher J at the highest RPM is not an RPM trend): where their mean J
+        // differ, the comparison is left to the trend at fixed J above, or said with both J
+        // where there is none.
+        let mut groups: BTreeMap<i64, (Vec<f64>, Vec<f64>, Vec<f64>)> = BTreeMap::new();
         for p in &pts {
             let g = groups.entry(p.2).or_default();
             g.0.push(p.1);
             g.1.push(p.3);
+            g.2.push(p.0);
         }
         if groups.len() >= 2 {
-            let first = groups.values().next().map(|g| (mean(&g.0), mean(&g.1)));
-            let last = groups.values().last().map(|g| (mean(&g.0), mean(&g.1)));
-            if let (Some((rl, el)), Some((rh, eh))) = (first, last) {
-                if (eh - el).abs() > threshold && rh > rl {
+            let first = groups.values().next().map(|g| (mean(&g.0), mean(&g.1), mean(&g.2)));
+            let last = groups.values().last().map(|g| (mean(&g.0), mean(&g.1), mean(&g.2)));
+            if let (Some((rl, el, jl)), Some((rh, eh, jh))) = (first, last) {
+                let confounded = (jh - jl).abs() > J_BIN;
+                if (eh - el).abs() > threshold && rh > rl && !(confounded && trend.is_some()) {
                     let growing = eh.abs() > el.abs();
                     let mut s = format!(
                         "{} ({} at {rl:.0} rpm, {} at {rh:.0} rpm",
@@ -225,7 +231,11 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                         pct(el),
                         pct(eh)
                     );
-                    if el * eh > 0.0 {
+                    if confounded {
+                        s.push_str(&format!(
+                            "; at mean J {jl:.2} and {jh:.2}: RPM and J are not told apart"
+                        ));
+                    } else if el * eh > 0.0 {
                         let n = (eh / el).ln() / (rh / rl).ln();
                         if n.abs() >= 0.7 {
                             s.push_str(&format!(", about RPM^{n:.0}"));
@@ -271,6 +281,68 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::Observation;
+
+    /// Thrust-only data: (rpm group's RPM, J) per point.
+    fn data(points: &[(f64, f64)]) -> Data {
+        let obs = points
+            .iter()
+            .enumerate()
+            .map(|(index, &(rpm, j))| Observation {
+                index,
+                file: 0,
+                label: format!("line {index}"),
+                omega: propbet_units::rpm_to_omega(rpm),
+                v: 0.0,
+                j,
+                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
+                thrust: 1.0,
+                torque: None,
+                rpm_group: rpm as i64,
+                rpm_name: format!("{rpm} rpm"),
+                mach_tip: 0.1,
+            })
+            .collect();
+        Data {
+            obs,
+            thrust_floor: 0.05,
+            torque_floor: 0.0,
+        }
+    }
+
+    #[test]
+    fn rpm_groups_at_other_j_are_not_called_an_rpm_trend() {
+        // A low-J sweep at 3000 rpm and a high-J one at 6000 rpm, the error a function of J
+        // alone: no J bin holds both speeds, and the groups' errors differ through J only.
+        let pts: Vec<(f64, f64)> = (0..6)
+            .map(|k| (3000.0, 0.05 * k as f64))
+            .chain((0..6).map(|k| (6000.0, 0.42 + 0.05 * k as f64)))
+            .collect();
+        let e: Vec<f64> = pts.iter().map(|p| -p.1).collect();
+        let text = &signatures(&data(&pts), &e)[0].text;
+        assert!(text.contains("RPM and J are not told apart"), "{text}");
+        assert!(!text.contains("about RPM^"), "{text}");
+        // Both speeds at the same J: the trend at fixed J says it, once.
+        let pts: Vec<(f64, f64)> = [3000.0, 6000.0]
+            .into_iter()
+            .flat_map(|r| (0..6).map(move |k| (r, 0.05 * k as f64)))
+            .collect();
+        let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0)).collect();
+        let text = &signatures(&data(&pts), &e)[0].text;
+        assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
+        assert!(!text.contains("not told apart"), "{text}");
+        // The high-J sweep reaching further at 6000 rpm, the error growing with J: the trend at
+        // fixed J is measured on the J both speeds share, the groups are not compared.
+        let mut pts = pts;
+        pts.extend((1..5).map(|k| (6000.0, 0.25 + 0.1 * k as f64)));
+        let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0) - p.1).collect();
+        let text = &signatures(&data(&pts), &e)[0].text;
+        assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
+        assert!(
+            !text.contains("growing with RPM") && !text.contains("not told apart"),
+            "{text}"
+        );
+    }
 
     #[test]
     fn the_rpm_trend_is_measured_at_fixed_j() {
