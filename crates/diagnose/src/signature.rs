@@ -207,16 +207,18 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
         // sweep reaching higher J at the highest RPM is not an RPM trend): where their mean J
         // differ, the comparison is left to the trend at fixed J above, or said with both J
         // where there is none.
-        let mut groups: BTreeMap<i64, (Vec<f64>, Vec<f64>, Vec<f64>)> = BTreeMap::new();
+        // Each group's points as (J, rpm, error); their means (rpm, error, J).
+        let mut groups: BTreeMap<i64, Vec<[f64; 3]>> = BTreeMap::new();
         for p in &pts {
-            let g = groups.entry(p.2).or_default();
-            g.0.push(p.1);
-            g.1.push(p.3);
-            g.2.push(p.0);
+            groups.entry(p.2).or_default().push([p.0, p.1, p.3]);
         }
+        let means = |g: &Vec<[f64; 3]>| {
+            let m = |k: usize| mean(&g.iter().map(|p| p[k]).collect::<Vec<_>>());
+            (m(1), m(2), m(0))
+        };
         if groups.len() >= 2 {
-            let first = groups.values().next().map(|g| (mean(&g.0), mean(&g.1), mean(&g.2)));
-            let last = groups.values().last().map(|g| (mean(&g.0), mean(&g.1), mean(&g.2)));
+            let first = groups.values().next().map(means);
+            let last = groups.values().last().map(means);
             if let (Some((rl, el, jl)), Some((rh, eh, jh))) = (first, last) {
                 let confounded = (jh - jl).abs() > J_BIN;
                 if (eh - el).abs() > threshold && rh > rl && !(confounded && trend.is_some()) {
