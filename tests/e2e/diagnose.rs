@@ -273,6 +273,8 @@ fn every_builtin_effect_is_found_on_two_props() {
             &[],
             &[],
         ),
+        (0, ("drag-scale", vec![("factor", 1.4, 1.8)]), &[], &[]),
+        (1, ("drag-scale", vec![("factor", 0.6, 0.75)]), &[], &[]),
     ];
     let props = [cam6x3(), apc8x6()];
     let mut seen = std::collections::BTreeMap::<&str, usize>::new();
@@ -306,7 +308,7 @@ fn every_builtin_effect_is_found_on_two_props() {
         );
         *seen.entry(id).or_default() += 1;
     }
-    assert_eq!(seen.len(), 14, "every built-in effect is tested");
+    assert_eq!(seen.len(), 15, "every built-in effect is tested");
     assert!(seen.values().all(|&n| n >= 2));
 }
 

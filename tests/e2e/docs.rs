@@ -85,20 +85,24 @@ fn every_documented_command_runs() {
         "pf_compare/report.html",
         "pf_run/report.html",
         "cam_run/report.html",
-        "pf_with_tip_loss/metrics.json",
+        "pf_with_effects/metrics.json",
     ] {
         assert!(dir.path().join(f).is_file(), "{f} missing");
     }
-    // Adding the effect the diagnosis names lowers both errors (thrust most).
+    // Adding the effects the diagnosis names lowers both errors (the guide: thrust 9.2 -> 1.3 %,
+    // torque 20 -> 1.2 %).
     let err = |d: &str, q: &str| -> f64 {
         let m: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.path().join(d).join("metrics.json")).unwrap()).unwrap();
         m["metrics"]["overall"]["metrics"][q]["mean_abs_rel"].as_f64().unwrap()
     };
-    let (t0, t1) = (err("pf_compare", "thrust"), err("pf_with_tip_loss", "thrust"));
-    let (q0, q1) = (err("pf_compare", "torque"), err("pf_with_tip_loss", "torque"));
-    eprintln!("PhotoFoil mean |error| with the tip loss: thrust {t0:.3} -> {t1:.3}, torque {q0:.3} -> {q1:.3}");
-    assert!(t1 < 0.5 * t0 && q1 < q0, "thrust {t0} -> {t1}, torque {q0} -> {q1}");
+    let (t0, t1) = (err("pf_compare", "thrust"), err("pf_with_effects", "thrust"));
+    let (q0, q1) = (err("pf_compare", "torque"), err("pf_with_effects", "torque"));
+    eprintln!("PhotoFoil mean |error| with the effects: thrust {t0:.3} -> {t1:.3}, torque {q0:.3} -> {q1:.3}");
+    assert!(
+        t1 < 0.25 * t0 && q1 < 0.25 * q0,
+        "thrust {t0} -> {t1}, torque {q0} -> {q1}"
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@
 //! | `tip-loss` | inflow | `strength` (1 = the baseline's Prandtl factor, 0 = none) |
 //! | `hub-loss` | inflow | `strength` (0 = none, 1 = Prandtl's hub factor at the blade root) |
 //! | `re-scaling` | section drag | `dexp`: change of the drag's Reynolds exponent |
+//! | `drag-scale` | section drag | `factor`: every section's drag times it |
 //! | `re-lift` | section lift | `n`: lift times (Re/1e5)^n |
 //! | `compressibility` | section lift and drag | `mcrit` (drag-rise Mach), `pg` (Prandtl-Glauert exponent) |
 //! | `stall-delay` | section lift | `a` (Snel's rotational augmentation, 3 in Snel) |
@@ -37,6 +38,7 @@ enum Kind {
     TipLoss,
     HubLoss,
     ReScaling,
+    DragScale,
     ReLift,
     Compressibility,
     StallDelay,
@@ -106,6 +108,22 @@ fn make(kind: Kind) -> Builtin {
             "At the Reynolds numbers of small propellers (20k-100k) laminar separation bubbles make the \
              section drag depend on Re more strongly than the polar's exponent says: torque errors that change \
              with RPM at a fixed advance ratio.",
+        ),
+        Kind::DragScale => (
+            "drag-scale",
+            vec![Param::new(
+                "factor",
+                "-",
+                1.0,
+                (0.5, 2.5),
+                0.1,
+                "multiplies every section's drag (physical bounds: 0.5-2.5: XFOIL's or a wind tunnel's low-Re drag against a real blade's, rough or smooth)",
+            )],
+            &[Section],
+            "The sections' profile drag is not the polars': surface roughness (a printed or scanned blade, \
+             paint, mould lines), a finite trailing edge, unsteady laminar bubbles and three-dimensional flow \
+             that 2-D polars do not hold. Torque (and the hover efficiency) off at every RPM and J alike, thrust \
+             barely.",
         ),
         Kind::ReLift => (
             "re-lift",
@@ -307,10 +325,11 @@ fn make(kind: Kind) -> Builtin {
     }
 }
 
-const KINDS: [Kind; 14] = [
+const KINDS: [Kind; 15] = [
     Kind::TipLoss,
     Kind::HubLoss,
     Kind::ReScaling,
+    Kind::DragScale,
     Kind::ReLift,
     Kind::Compressibility,
     Kind::StallDelay,
@@ -496,6 +515,7 @@ impl Effect for Builtin {
                 let re_ref = inner.as_qprop().map_or(RE_SCALING_REF, |q| q.coeffs.re_ref);
                 cd * (d.re.max(1.0) / re_ref).powf(p[0])
             }
+            Kind::DragScale => cd * p[0],
             Kind::Compressibility => {
                 let rise = |mc: f64| if d.mach > mc { 10.0 * (d.mach - mc).powi(3) } else { 0.0 };
                 let base_mcrit = inner.as_qprop().map_or(MCRIT0, |q| q.mcrit);

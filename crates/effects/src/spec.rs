@@ -168,6 +168,6 @@ mod tests {
         assert!(e.to_string().contains("not name=value"), "{e}");
         let e = parse_spec("pitch-offset:deg=abc").unwrap_err();
         assert!(e.to_string().contains("`abc` is not a number"), "{e}");
-        assert_eq!(builtin::ids().len(), 14);
+        assert_eq!(builtin::ids().len(), 15);
     }
 }
