@@ -327,6 +327,25 @@ fn bad_prop_files_get_clear_errors_and_exit_2() {
     let o = run(&["predict", "--prop", "missing.qprop", "--rpm", "5000"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("missing.qprop: cannot read"), "{}", stderr(&o));
+    // The reason once, not repeated by the error chain (it said "... (os error 2): ... (os error 2)").
+    assert_eq!(stderr(&o).matches("os error").count(), 1, "{}", stderr(&o));
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "no_dir",
+            "--pe0",
+            ".",
+            "--airfoils",
+            ".",
+            "-o",
+            "v",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no_dir: cannot read"), "{}", stderr(&o));
+    assert_eq!(stderr(&o).matches("os error").count(), 1, "{}", stderr(&o));
 }
 
 #[test]

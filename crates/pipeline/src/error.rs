@@ -8,12 +8,12 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 pub enum Error {
     /// A file could not be read.
-    #[error("{}: cannot read: {source}", path.display())]
+    #[error("{}: cannot read: {reason}", path.display())]
     Read {
         /// The file.
         path: PathBuf,
-        /// Why.
-        source: std::io::Error,
+        /// Why (in the message, not a `source`: the error chain would print it twice).
+        reason: std::io::Error,
     },
     /// A file's content is wrong (the parser's message, with its line where it has one).
     #[error("{}: {message}", path.display())]
@@ -61,9 +61,9 @@ macro_rules! invalid {
 
 /// Reads a file as text, naming it in the error.
 pub fn read_text(path: &std::path::Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     String::from_utf8(bytes)
         .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))
@@ -77,9 +77,9 @@ fn e_at(bytes: &[u8]) -> usize {
 /// A text file whose first line is a free-text title (prop files, airfoil coordinates): the
 /// title may be Latin-1 (older tools write it so) and is decoded as such; the rest must be UTF-8.
 pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
         path: path.to_path_buf(),
-        source,
+        reason,
     })?;
     match String::from_utf8(bytes) {
         Ok(s) => Ok(s),

@@ -56,9 +56,9 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
         invalid!("--slab {}: must be a positive thickness in mm", 1000.0 * o.slab);
     }
     let path = &spec.input;
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
+    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
         path: path.clone(),
-        source,
+        reason,
     })?;
     let label = path.display().to_string();
     let is_stl = path

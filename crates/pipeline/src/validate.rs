@@ -84,9 +84,9 @@ impl GeometrySource {
 /// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
 pub fn uiuc_props(uiuc: &Path) -> Result<Vec<String>> {
     let mut geoms: Vec<String> = std::fs::read_dir(uiuc)
-        .map_err(|source| Error::Read {
+        .map_err(|reason| Error::Read {
             path: uiuc.to_path_buf(),
-            source,
+            reason,
         })?
         .filter_map(|e| {
             e.ok()?
@@ -371,9 +371,9 @@ pub fn validate_prop(
 
     // The measurements: every file of this prop but the geometry.
     let mut measured: Vec<PathBuf> = std::fs::read_dir(&spec.uiuc)
-        .map_err(|source| Error::Read {
+        .map_err(|reason| Error::Read {
             path: spec.uiuc.clone(),
-            source,
+            reason,
         })?
         .filter_map(|e| {
             let n = e.ok()?.file_name().to_str()?.to_string();
