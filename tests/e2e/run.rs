@@ -98,6 +98,15 @@ fn default_case_from_scan_to_report() {
         .map(|r| r["kfold_rms"].as_f64().unwrap())
         .collect();
     eprintln!("default case, ladder held-out RMS: {ladder:.4?}");
+    // Issue 17: the report names the static test's RPM trend at fixed J with its size (the
+    // measured static CT grows faster with RPM than the model's: -12.5 % from 2377 to 6528 rpm
+    // on 2026-11-25), beside the J sweeps' own.
+    let thrust = d["diagnosis"]["before"][0]["text"].as_str().unwrap();
+    let at = thrust.find("(statically by -").expect(thrust);
+    let size: f64 = thrust[at + 16..].split(' ').next().unwrap().parse().unwrap();
+    assert!(size > 5.0, "{thrust}");
+    assert!(thrust[at..].contains("from 2377 to 6528 rpm)"), "{thrust}");
+    assert!(thrust.contains("grows faster with RPM than the model's"), "{thrust}");
     assert!(
         ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
         "{ladder:?}"

@@ -52,11 +52,21 @@ const SAME_EFFECTS: &str = "The effects named for thrust can make it";
 /// Width of the J bins within which RPM trends are measured (static points are one bin).
 const J_BIN: f64 = 0.05;
 
-/// The error's trend with RPM at fixed J: within J bins, the least-squares slope of the error
-/// against ln RPM; the median over the bins that span at least 5 % in RPM (one bin of large
-/// errors near zero thrust does not outvote the others), returned as the change over the RPM
-/// range of those bins, with the range. `pts`: (J, rpm, group, error).
-pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<(f64, f64, f64)> {
+/// An error's trend with RPM at fixed J: its change over an RPM range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RpmTrend {
+    /// The change of the relative error from `lo` to `hi`.
+    pub change: f64,
+    /// The RPM range it is measured over.
+    pub lo: f64,
+    /// The RPM range's upper end.
+    pub hi: f64,
+}
+
+/// Each J bin's least-squares slope of the error against ln RPM, with the bin's ln-RPM range
+/// `(slope, ln rpm min, ln rpm max)`, for the bins that span at least 5 % in RPM. The static
+/// points (J < 0.01) are bin `-1`.
+fn rpm_slopes(pts: &[(f64, f64, i64, f64)]) -> BTreeMap<i64, (f64, f64, f64)> {
     let mut bins: BTreeMap<i64, Vec<(f64, f64)>> = BTreeMap::new();
     for &(j, rpm, _, e) in pts {
         let key = if j < 0.01 { -1 } else { (j / J_BIN).floor() as i64 };
@@ -64,9 +74,8 @@ pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<(f64, f64, f
             bins.entry(key).or_default().push((rpm.ln(), e));
         }
     }
-    let mut slopes = Vec::new();
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for b in bins.values() {
+    let mut out = BTreeMap::new();
+    for (key, b) in bins {
         let xs: Vec<f64> = b.iter().map(|p| p.0).collect();
         let (xmin, xmax) = xs
             .iter()
@@ -77,21 +86,57 @@ pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<(f64, f64, f
         let (mx, me) = (mean(&xs), mean(&b.iter().map(|p| p.1).collect::<Vec<_>>()));
         let sxx: f64 = b.iter().map(|p| (p.0 - mx).powi(2)).sum();
         let sxy: f64 = b.iter().map(|p| (p.0 - mx) * (p.1 - me)).sum();
-        slopes.push(sxy / sxx);
-        lo = lo.min(xmin);
-        hi = hi.max(xmax);
+        out.insert(key, (sxy / sxx, xmin, xmax));
     }
-    if slopes.is_empty() || hi - lo < 1.3f64.ln() {
+    out
+}
+
+/// The median of a non-empty list.
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// The error's trend with RPM at fixed J: within J bins, the least-squares slope of the error
+/// against ln RPM; the median over the bins that span at least 5 % in RPM (one bin of large
+/// errors near zero thrust does not outvote the others), as the change over the RPM range the
+/// bins typically span (the medians of their lowest and highest RPM: a slope of J sweeps at
+/// 4,000-6,500 rpm is not stretched over a static test's 2,000-6,500). `pts`: (J, rpm, group,
+/// error). None where that range is below 1.3x.
+pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
+    let bins = rpm_slopes(pts);
+    if bins.is_empty() {
         return None;
     }
-    slopes.sort_by(f64::total_cmp);
-    let n = slopes.len();
-    let median = if n % 2 == 1 {
-        slopes[n / 2]
-    } else {
-        0.5 * (slopes[n / 2 - 1] + slopes[n / 2])
-    };
-    Some((median * (hi - lo), lo.exp(), hi.exp()))
+    let slope = median(bins.values().map(|b| b.0).collect());
+    let lo = median(bins.values().map(|b| b.1).collect());
+    let hi = median(bins.values().map(|b| b.2).collect());
+    (hi - lo >= 1.3f64.ln()).then(|| RpmTrend {
+        change: slope * (hi - lo),
+        lo: lo.exp(),
+        hi: hi.exp(),
+    })
+}
+
+/// The static points' own trend with RPM (a static test spans a wider RPM range than J sweeps
+/// and holds no J to confound it), where there are also J bins to set it beside; None where
+/// the static points span less than 1.3x.
+pub fn static_rpm_trend(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
+    let bins = rpm_slopes(pts);
+    if bins.len() < 2 {
+        return None;
+    }
+    let &(slope, lo, hi) = bins.get(&-1)?;
+    (hi - lo >= 1.3f64.ln()).then(|| RpmTrend {
+        change: slope * (hi - lo),
+        lo: lo.exp(),
+        hi: hi.exp(),
+    })
 }
 
 /// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
@@ -184,16 +229,27 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
         let trend = rpm_trend_at_fixed_j(&pts);
-        if let Some((change, rl, rh)) = trend {
+        if let Some(RpmTrend { change, lo: rl, hi: rh }) = trend {
             // Its own threshold: a trend with RPM is the signature of missing physics even
             // under a larger error of another kind.
-            if change.abs() > 0.5 * QUIET {
+            let stat = static_rpm_trend(&pts);
+            if change.abs() > 0.5 * QUIET || stat.is_some_and(|t| t.change.abs() > 0.5 * QUIET) {
                 let faster = if change < 0.0 { "faster" } else { "slower" };
-                let head = format!(
-                    "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm: the measured {name} grows {faster} \
-                     with RPM than the model's",
+                let mut head = format!(
+                    "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm",
                     pct(change)
                 );
+                if let Some(t) = stat {
+                    head.push_str(&format!(
+                        " (statically by {} from {:.0} to {:.0} rpm)",
+                        pct(t.change),
+                        t.lo,
+                        t.hi
+                    ));
+                }
+                head.push_str(&format!(
+                    ": the measured {name} grows {faster} with RPM than the model's"
+                ));
                 parts.push(if torque_alone {
                     head
                 } else {
@@ -357,9 +413,39 @@ mod tests {
                 pts.push((j, rpm, 0, e));
             }
         }
-        let (change, lo, hi) = rpm_trend_at_fixed_j(&pts).unwrap();
-        assert!((change + 0.05).abs() < 1e-9, "{change}");
-        assert_eq!((lo.round(), hi.round()), (3000.0, 6000.0));
+        let t = rpm_trend_at_fixed_j(&pts).unwrap();
+        assert!((t.change + 0.05).abs() < 1e-9, "{t:?}");
+        assert_eq!((t.lo.round(), t.hi.round()), (3000.0, 6000.0));
+        // J sweeps at 4000-6000 rpm with that trend, a static test at 2000-6000 rpm without
+        // one (an 11x7 E's pattern): the sweeps' slope is told over their own range, not
+        // stretched over the static test's, and the static trend beside it.
+        let mut mixed = Vec::new();
+        for k in 0..5 {
+            for rpm in [4000.0f64, 5000.0, 6000.0] {
+                mixed.push((0.1 + 0.1 * k as f64, rpm, 0, -0.1 * (rpm / 4000.0).ln()));
+            }
+        }
+        for k in 0..5 {
+            mixed.push((0.0, 2000.0 + 1000.0 * k as f64, 1, 0.08));
+        }
+        let t = rpm_trend_at_fixed_j(&mixed).unwrap();
+        assert!((t.change + 0.1 * 1.5f64.ln()).abs() < 1e-9, "{t:?}");
+        assert_eq!((t.lo.round(), t.hi.round()), (4000.0, 6000.0));
+        let s = static_rpm_trend(&mixed).unwrap();
+        assert!(
+            s.change.abs() < 1e-9 && s.lo.round() == 2000.0 && s.hi.round() == 6000.0,
+            "{s:?}"
+        );
+        let obs: Vec<(f64, f64)> = mixed.iter().map(|p| (p.1, p.0)).collect();
+        let e: Vec<f64> = mixed.iter().map(|p| p.3).collect();
+        let text = &signatures(&data(&obs), &e)[0].text;
+        assert!(
+            text.contains("At fixed J the error changes by -4.1 % from 4000 to 6000 rpm (statically by +0.0 % from 2000 to 6000 rpm)"),
+            "{text}"
+        );
+        // No static test: no static trend.
+        let forward: Vec<_> = pts.iter().filter(|p| p.0 > 0.0).copied().collect();
+        assert!(rpm_trend_at_fixed_j(&forward).is_some() && static_rpm_trend(&forward).is_none());
         // No bin spans 1.3x in RPM: no trend to tell.
         let narrow: Vec<_> = pts.iter().filter(|p| p.1 == 3000.0).copied().collect();
         assert!(rpm_trend_at_fixed_j(&narrow).is_none());
