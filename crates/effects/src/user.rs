@@ -4,7 +4,7 @@
 //! ```toml
 //! [[effect]]
 //! id = "motor-windage"
-//! hook = "torque"                  # beta | chord | cl | cd | thrust | torque | rpm | rho
+//! hook = "torque"                  # beta | chord | cl | cd | thrust | torque | rpm | rho | v
 //! formula = "torque + c * omega^2" # the new value of the hooked quantity
 //! explanation = "Motor windage grows with the square of the speed."
 //!
@@ -54,6 +54,8 @@ pub enum Target {
     Rpm,
     /// Density [kg/m^3].
     Rho,
+    /// Axial speed [m/s] (true from logged: a wind tunnel's or a stand's airspeed reading).
+    V,
 }
 
 impl Target {
@@ -62,7 +64,7 @@ impl Target {
             Target::Beta | Target::Chord => Hook::Geometry,
             Target::Cl | Target::Cd => Hook::Section,
             Target::Thrust | Target::Torque => Hook::Loads,
-            Target::Rpm | Target::Rho => Hook::Measurement,
+            Target::Rpm | Target::Rho | Target::V => Hook::Measurement,
         }
     }
 
@@ -73,7 +75,7 @@ impl Target {
             Target::Cl => v.extend(["r", "x", "chord", "beta", "alpha", "re", "mach", "cl"]),
             Target::Cd => v.extend(["r", "x", "chord", "beta", "alpha", "re", "mach", "cl", "cd"]),
             Target::Thrust | Target::Torque => v.extend(["thrust", "torque", "dv"]),
-            Target::Rpm | Target::Rho => {}
+            Target::Rpm | Target::Rho | Target::V => {}
         }
         v
     }
@@ -88,6 +90,7 @@ impl Target {
             Target::Torque => "torque",
             Target::Rpm => "rpm",
             Target::Rho => "rho",
+            Target::V => "v",
         }
     }
 }
@@ -384,6 +387,7 @@ impl Effect for UserEffect {
         match self.target {
             Target::Rpm => point.omega = propbet_units::rpm_to_omega(out),
             Target::Rho => point.fluid.rho = out,
+            Target::V => point.v = out,
             _ => {}
         }
     }
@@ -525,6 +529,32 @@ neutral = 0.0
 lower = -1e-6
 upper = 1e-6
 "#;
+
+    #[test]
+    fn an_airspeed_formula_moves_the_point_and_leaves_static_alone() {
+        // A wind tunnel reading its speed 1 m/s high: the true speed is the logged one minus 1,
+        // a static point stays static.
+        let toml = GOOD
+            .replace("hook = \"torque\"", "hook = \"v\"")
+            .replace("torque + c * omega^2", "if(v > 0.0, v + c, 0.0)")
+            .replace("lower = -1e-6", "lower = -2.0")
+            .replace("upper = 1e-6", "upper = 2.0");
+        let e = parse(&toml, "u.toml").unwrap();
+        assert_eq!(e[0].hooks(), &[Hook::Measurement]);
+        let mut point = PointState {
+            omega: 500.0,
+            v: 10.0,
+            fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
+            tip_radius: 0.125,
+            blades: 2.0,
+            diameter: 0.25,
+        };
+        e[0].measurement(&[-1.0], &mut point);
+        assert_eq!((point.v, point.omega), (9.0, 500.0));
+        point.v = 0.0;
+        e[0].measurement(&[-1.0], &mut point);
+        assert_eq!(point.v, 0.0);
+    }
 
     #[test]
     fn reads_and_rejects() {
