@@ -396,7 +396,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         }
     }
     file.name = format!(
-        "{} / {} polars for {:.0}-{:.0} rpm, {}-{} m/s",
+        "{} / {} polars for {:.0}-{:.0} rpm, {:.1}-{:.1} m/s",
         file.name, input.foil_name, b.rpm[0], b.rpm[1], b.v[0], b.v[1]
     );
     let prop = as_written(&file, &spec.out_prop)?;

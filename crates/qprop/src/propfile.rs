@@ -598,8 +598,18 @@ pub fn write_prop(file: &PropFile) -> String {
     } else {
         name
     };
+    // QPROP reads 128 characters of the line: a longer name is cut, with "..." where it was.
+    let mut name = name.trim().to_string();
+    if name.len() > QPROP_LINE_MAX - 1 {
+        let mut end = QPROP_LINE_MAX - 4;
+        while !name.is_char_boundary(end) {
+            end -= 1;
+        }
+        name.truncate(end);
+        name.push_str("...");
+    }
     // A leading blank keeps a name starting with # from being read as a comment.
-    out.push_str(&format!(" {}\n\n", name.trim()));
+    out.push_str(&format!(" {name}\n\n"));
     let mut l2 = vec![file.blades];
     l2.extend(file.radius);
     out.push_str(&format!(" {}   ! Nblades [R]\n\n", join(&l2)));
@@ -758,6 +768,21 @@ mod tests {
         };
         let (k, _) = parse_prop(&write_prop(&h)).unwrap();
         assert_eq!(k.name, "two lines  name");
+        // A name longer than QPROP reads is cut to its line, on a character boundary, and
+        // the file reads back without the long-line warning.
+        let long = PropFile {
+            name: "é".repeat(100),
+            ..k
+        };
+        let text = write_prop(&long);
+        assert!(text.lines().all(|l| l.len() <= QPROP_LINE_MAX), "{text}");
+        let (back, w) = parse_prop(&text).unwrap();
+        assert!(
+            back.name.ends_with("...") && back.name.starts_with("éé"),
+            "{}",
+            back.name
+        );
+        assert!(w.iter().all(|w| !w.message.contains("characters long")), "{w:?}");
     }
 
     fn finite() -> impl Strategy<Value = f64> {
