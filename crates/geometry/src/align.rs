@@ -358,6 +358,7 @@ pub fn align_about<S: Surface>(
             "thrust the other way along the axis: the thicker end (the nose) is there".into()
         });
     }
-    frame.notes.push(format!("{n} blades, tip radius {tip:.3}"));
+    // The blade count and tip radius are the scan's summary line (with the length unit), not
+    // a note of the alignment's choices.
     Ok(frame)
 }
