@@ -59,6 +59,17 @@ fn validation_table_on_the_shipped_subset() {
         md.contains("Where the error is") && md.contains("| apcsf_9x4.7 | +"),
         "{md}"
     );
+    // Its static CT rise from 2763 to 6768 rpm, measured +5.5 %, predicted +8.1 % on the
+    // shared set (2026-11-25): both grow, and the Markdown says over which RPM.
+    assert!(
+        v("static_ct_rise_measured") > 0.02 && v("static_ct_rise_measured") < 0.1,
+        "{r:?}"
+    );
+    assert!(
+        v("static_ct_rise_predicted") > 0.0 && v("static_ct_rise_predicted") < 0.2,
+        "{r:?}"
+    );
+    assert!(md.contains("(2763-6768 rpm) |"), "{md}");
     // APC's own prediction scored on the same points (PER3 covers 1000 rpm steps and J to
     // about 0.9: every point of the window).
     assert!(v("apc_points") >= v("points") - 2.0, "{r:?}");

@@ -246,6 +246,8 @@ struct CsvRow<'a> {
     low_j_cp_error: f64,
     high_j_ct_error: f64,
     high_j_cp_error: f64,
+    static_ct_rise_measured: Option<f64>,
+    static_ct_rise_predicted: Option<f64>,
     ladder: &'a str,
     held_out_ladders: String,
 }
@@ -280,6 +282,8 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             low_j_cp_error: r.regimes[1].cp,
             high_j_ct_error: r.regimes[2].ct,
             high_j_cp_error: r.regimes[2].cp,
+            static_ct_rise_measured: r.static_rise.map(|s| s.measured),
+            static_ct_rise_predicted: r.static_rise.map(|s| s.predicted),
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
         });

@@ -300,6 +300,40 @@ pub fn regime_errors(points: &[ComparedPoint], window: f64) -> [RegimeError; 3] 
     })
 }
 
+/// How much a prop's static CT grows from its lowest to its highest static RPM, measured and
+/// predicted: the Reynolds-number signature a static test holds (issue 16 asks the default case
+/// to follow its measured rise within a third).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StaticRise {
+    /// The lowest static RPM.
+    pub rpm_lo: f64,
+    /// The highest static RPM.
+    pub rpm_hi: f64,
+    /// Measured CT at `rpm_hi` over CT at `rpm_lo`, minus 1.
+    pub measured: f64,
+    /// The same of the prediction.
+    pub predicted: f64,
+}
+
+/// [`StaticRise`] of the static points with a measured and a predicted CT above zero; None
+/// where there are fewer than two or they span less than 1.3x in RPM.
+pub fn static_rise(points: &[ComparedPoint]) -> Option<StaticRise> {
+    let ok = |x: Option<f64>| x.filter(|v| v.is_finite() && *v > 0.0);
+    let mut s: Vec<(f64, f64, f64)> = points
+        .iter()
+        .filter(|p| p.is_static() && p.rpm.is_finite() && p.rpm > 0.0)
+        .filter_map(|p| Some((p.rpm, ok(p.measured.ct)?, ok(p.predicted.ct)?)))
+        .collect();
+    s.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (lo, hi) = (s.first()?, s.last()?);
+    (hi.0 >= 1.3 * lo.0).then(|| StaticRise {
+        rpm_lo: lo.0,
+        rpm_hi: hi.0,
+        measured: hi.1 / lo.1 - 1.0,
+        predicted: hi.2 / lo.2 - 1.0,
+    })
+}
+
 /// The validation metric's samples: |predicted/measured − 1| of CT and of CP at every point
 /// inside the window ([`in_window`]). Points without a measured or predicted value are left
 /// out.
@@ -493,6 +527,36 @@ mod tests {
         let [st, low, high] = regime_errors(&pts[2..4], VALIDATION_J_WINDOW);
         assert_eq!((st.points, low.points, high.points), (0, 2, 0));
         assert!(st.ct.is_nan() && high.cp.is_nan());
+    }
+
+    #[test]
+    fn the_static_rise_is_from_the_lowest_to_the_highest_static_rpm() {
+        let mk = |rpm: f64, j: f64, ct: [f64; 2]| {
+            let mut p = pt("x", rpm, j, 1.0, 1.0);
+            p.measured.ct = Some(ct[0]);
+            p.predicted.ct = Some(ct[1]);
+            p
+        };
+        // Out of order, with a forward point (not static) at a higher RPM and a point without
+        // a prediction.
+        let mut none = mk(7000.0, 0.0, [0.13, 0.1]);
+        none.predicted.ct = None;
+        let pts = vec![
+            mk(6000.0, 0.0, [0.12, 0.105]),
+            mk(2400.0, 0.0, [0.10, 0.1]),
+            mk(4000.0, 0.0, [0.11, 0.102]),
+            mk(8000.0, 0.3, [0.05, 0.06]),
+            none,
+        ];
+        let r = static_rise(&pts).unwrap();
+        assert_eq!((r.rpm_lo, r.rpm_hi), (2400.0, 6000.0));
+        assert!(
+            (r.measured - 0.2).abs() < 1e-12 && (r.predicted - 0.05).abs() < 1e-12,
+            "{r:?}"
+        );
+        // Less than 1.3x in RPM, or one point: none.
+        assert!(static_rise(&[mk(2400.0, 0.0, [0.1, 0.1]), mk(3000.0, 0.0, [0.1, 0.1])]).is_none());
+        assert!(static_rise(&pts[..1]).is_none());
     }
 
     #[test]

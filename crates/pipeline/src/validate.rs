@@ -7,7 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use propbet_compare::metrics::{
-    quantile, regime_errors, static_figure_of_merit_error, window_errors, RegimeError, VALIDATION_J_WINDOW,
+    quantile, regime_errors, static_figure_of_merit_error, static_rise, window_errors, RegimeError, StaticRise,
+    VALIDATION_J_WINDOW,
 };
 use propbet_polar::{naca4_from_name, Airfoil};
 use propbet_qprop::apc::{read_pe0, uiuc_diameter};
@@ -179,6 +180,9 @@ pub struct Row {
     /// Before calibration, the median signed errors by regime (static, forward flight below and
     /// above half the zero-thrust J: [`propbet_compare::metrics::REGIMES`]): which way and where.
     pub regimes: [RegimeError; 3],
+    /// The static CT's rise from the lowest to the highest static RPM, measured and predicted
+    /// ([`static_rise`]); None without a static test spanning 1.3x.
+    pub static_rise: Option<StaticRise>,
 }
 
 /// Where [`Row::twist_gap`] is averaged: r/R from 0.6 to 0.9.
@@ -536,6 +540,7 @@ pub fn validate_prop(
         twist_gap: twist_gap(&table, &pe0, big_r),
         static_fm: static_figure_of_merit_error(&compared.points),
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
+        static_rise: static_rise(&compared.points),
     };
     Ok(Validated {
         geometry,

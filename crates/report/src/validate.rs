@@ -127,6 +127,7 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
 fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
     let mut h = vec!["prop".to_string()];
     h.extend(REGIMES.iter().map(|r| format!("{r}: CT / CP (points)")));
+    h.push("static CT rise with RPM: measured / predicted".into());
     let signed = |x: f64| {
         if x.is_finite() {
             format!("{:+.1}", 100.0 * x)
@@ -145,6 +146,16 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
                     format!("{} / {} % ({})", signed(g.ct), signed(g.cp), g.points)
                 }
             }));
+            v.push(match r.static_rise {
+                Some(s) => format!(
+                    "{} / {} % ({:.0}-{:.0} rpm)",
+                    signed(s.measured),
+                    signed(s.predicted),
+                    s.rpm_lo,
+                    s.rpm_hi
+                ),
+                None => "–".into(),
+            });
             v
         })
         .collect();
@@ -155,7 +166,9 @@ const REGIME_INTRO: &str =
     "Where the error is, before calibration: the median signed error (predicted / measured − 1) \
      of CT and CP over the same points, static, in forward flight below half the prop's zero-thrust J, \
      J0 (the median of its sweeps'), and from there to 85 % of J0. A hover-efficiency error sits in the \
-     static column; a pitch error (or a section's zero-lift angle) grows towards zero thrust, in the last.";
+     static column; a pitch error (or a section's zero-lift angle) grows towards zero thrust, in the third. \
+     The last: how much the static CT grows from the lowest to the highest static RPM, measured and \
+     predicted (the sections' Reynolds-number dependence, and whatever else grows with RPM).";
 
 fn intro(model: &str) -> String {
     format!(
@@ -259,7 +272,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use propbet_compare::metrics::RegimeError;
+    use propbet_compare::metrics::{RegimeError, StaticRise};
     use propbet_pipeline::validate::Per3Score;
 
     fn row(p: &str, x: f64, apc: bool) -> Row {
@@ -295,6 +308,12 @@ mod tests {
                     cp: 0.0,
                 },
             ],
+            static_rise: (x > 0.15).then_some(StaticRise {
+                rpm_lo: 2377.0,
+                rpm_hi: 6528.0,
+                measured: 0.227,
+                predicted: 0.094,
+            }),
         }
     }
 
@@ -322,7 +341,12 @@ mod tests {
         assert!(!md.contains("APC CT"), "no PER3, no APC columns");
         // Where the error is: signed, a row per validated prop, "–" for a regime without points.
         assert!(
-            md.contains("| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) |"),
+            md.contains("| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) | +22.7 / +9.4 % (2377-6528 rpm) |"),
+            "{md}"
+        );
+        // No static test spanning 1.3x: "–".
+        assert!(
+            md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – |"),
             "{md}"
         );
         let page = html(&rows, &skipped, "tables");
