@@ -113,6 +113,34 @@ fn validation_table_on_the_shipped_subset() {
     assert_eq!(uiuc[i][0], pe0[i][0]);
     assert!((uiuc[i][2] - 6.72).abs() < 1e-9, "{:?}", uiuc[i]);
     assert!((pe0[i][2] - 9.21).abs() < 0.01, "{:?}", pe0[i]);
+
+    // `--user-effects`: a user effect is a candidate of every ladder (a lift offset changing
+    // with Re, docs/studies/diagnosis-trades.md), ranked in the prop's diagnosis; the table
+    // says it was among the candidates.
+    std::fs::write(
+        dir.path().join("u.toml"),
+        "[[effect]]\nid = \"re-cl0\"\nhook = \"cl\"\nformula = \"cl + dcl * math::ln(re / 60000.0)\"\n\
+         [[effect.param]]\nname = \"dcl\"\nneutral = 0.0\nlower = -0.3\nupper = 0.3\n",
+    )
+    .unwrap();
+    let o = validate(&["--user-effects", "u.toml", "-o", "val_user"]);
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let md = std::fs::read_to_string(dir.path().join("val_user/validation.md")).unwrap();
+    assert!(md.contains("user effects of u.toml among the candidates"), "{md}");
+    let d: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(dir.path().join("val_user/apcsf_9x4.7/diagnose/diagnosis.json")).unwrap(),
+    )
+    .unwrap();
+    let ranked: Vec<&str> = d["diagnosis"]["ranking"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap())
+        .collect();
+    assert!(
+        ranked.contains(&"re-cl0") && ranked.contains(&"pitch-offset"),
+        "{ranked:?}"
+    );
 }
 
 #[test]
@@ -152,4 +180,35 @@ fn validate_bad_input() {
     );
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("missing"), "{}", stderr(&o));
+    // A user-effects file that does not read stops validate before any prop, naming the file
+    // and what is wrong; nothing is written.
+    std::fs::write(
+        dir.path().join("bad.toml"),
+        "[[effect]]\nid = \"x\"\nhook = \"lift\"\nformula = \"cl\"\n",
+    )
+    .unwrap();
+    let repo_data = repo().join("tests/data/validate");
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            repo_data.join("uiuc").to_str().unwrap(),
+            "--pe0",
+            repo_data.join("pe0").to_str().unwrap(),
+            "--airfoils",
+            "empty",
+            "--user-effects",
+            "bad.toml",
+            "-o",
+            "v_user",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("bad.toml") && stderr(&o).contains("unknown variant `lift`"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.path().join("v_user").exists());
 }

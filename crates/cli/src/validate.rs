@@ -71,6 +71,11 @@ pub struct ValidateArgs {
     /// `pe0` (APC's design chord and twist, at UIUC's stations).
     #[arg(long, value_parser = ["uiuc", "pe0"], default_value = "uiuc")]
     pub geometry: String,
+    /// TOML file of user-defined effects (docs/effects.md): candidates of every prop's ladders
+    /// (all files and each held-out half) beside the built-ins, to measure a new effect on
+    /// every prop at once.
+    #[arg(long)]
+    pub user_effects: Option<PathBuf>,
 }
 
 /// Runs `propbet validate`.
@@ -100,7 +105,13 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         },
         per3: a.per3.clone(),
         geometry: GeometrySource::parse(&a.geometry)?,
+        user_effects: a.user_effects.clone(),
     };
+    // A user-effects file that does not read stops here, before any prop, naming the file.
+    if let Some(path) = &a.user_effects {
+        let text = propbet_pipeline::read_text(path)?;
+        propbet_effects::user::parse(&text, &path.display().to_string())?;
+    }
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
             "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
@@ -110,6 +121,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let inputs: Vec<&Path> = [a.uiuc.as_path(), a.pe0.as_path(), a.airfoils.as_path()]
         .into_iter()
         .chain(a.per3.as_deref())
+        .chain(a.user_effects.as_deref())
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
@@ -166,7 +178,9 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         )),
         spec.rotation.name(),
         spec.drag_factor
-    ) + &if spec.ncrit_effect.is_empty() {
+    ) + &spec.user_effects.as_ref().map_or(String::new(), |p| {
+        format!(", user effects of {} among the candidates", p.display())
+    }) + &if spec.ncrit_effect.is_empty() {
         String::new()
     } else {
         format!(

@@ -52,6 +52,8 @@ pub struct ValidateSpec {
     pub per3: Option<PathBuf>,
     /// Where each station's chord and twist come from.
     pub geometry: GeometrySource,
+    /// TOML file of user-defined effects: candidates of every ladder beside the built-ins.
+    pub user_effects: Option<PathBuf>,
 }
 
 /// Where validate takes the blade's chord and twist from (the stations are UIUC's either way).
@@ -432,6 +434,7 @@ pub fn validate_prop(
         polars: spec.tables.then(|| dir.join("polars.json")),
         rotation: spec.rotation,
         drag_factor: spec.drag_factor,
+        user_effects: spec.user_effects.clone(),
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
