@@ -138,3 +138,28 @@ fn the_guides_pictures_exist() {
     }
     assert!(seen >= 3, "the guide shows the report ({seen} pictures)");
 }
+
+#[test]
+fn every_documented_user_effects_file_reads() {
+    // docs/user_effects.toml and the studies' effects (docs/studies/*.toml), which their
+    // commands pass to diagnose and validate: each lists its effects.
+    let mut files = vec![repo().join("docs/user_effects.toml")];
+    let mut studies: Vec<PathBuf> = std::fs::read_dir(repo().join("docs/studies"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    studies.sort();
+    assert!(studies.len() >= 2, "{studies:?}");
+    files.extend(studies);
+    for f in &files {
+        let text = std::fs::read_to_string(f).unwrap();
+        let o = run(&["effects", "--user-effects", f.to_str().unwrap()], &repo());
+        assert!(o.status.success(), "{}: {}", f.display(), stderr(&o));
+        let listed = String::from_utf8_lossy(&o.stdout).into_owned();
+        for id in text.lines().filter_map(|l| l.trim().strip_prefix("id = \"")) {
+            let id = id.trim_end_matches('"');
+            assert!(listed.contains(id), "{}: {id} not listed", f.display());
+        }
+    }
+}
