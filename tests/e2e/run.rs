@@ -293,3 +293,58 @@ fn verbose_prints_each_stage_in_full() {
         "no generated description"
     );
 }
+
+#[test]
+fn a_case_s_user_effects_are_candidates_of_its_diagnosis() {
+    // The PhotoFoil case (a QPROP file, no XFOIL) with docs/user_effects.toml named in
+    // [measured]: its effects are ranked beside the built-ins, and the diagnose stage's
+    // command says so.
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("pf");
+    std::fs::create_dir(&case).unwrap();
+    let src = repo().join("props/photofoil_8x4.5");
+    for f in ["QProp_8x4_5.txt", "StepsTestV2_2022-01-18_153833.csv"] {
+        std::fs::copy(src.join(f), case.join(f)).unwrap();
+    }
+    std::fs::copy(repo().join("docs/user_effects.toml"), case.join("u.toml")).unwrap();
+    let toml = std::fs::read_to_string(src.join("case.toml")).unwrap().replace(
+        "files = [\"StepsTestV2_2022-01-18_153833.csv\"]",
+        "files = [\"StepsTestV2_2022-01-18_153833.csv\"]\nuser_effects = \"u.toml\"",
+    );
+    assert!(toml.contains("user_effects"));
+    std::fs::write(case.join("case.toml"), &toml).unwrap();
+    let o = run(&["run", "pf", "-o", "out", "--quiet"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/diagnose/diagnosis.json")).unwrap())
+            .unwrap();
+    let ranked: Vec<&str> = d["diagnosis"]["ranking"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap())
+        .collect();
+    assert!(
+        ranked.contains(&"windage") && ranked.contains(&"drag-scale"),
+        "{ranked:?}"
+    );
+    let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
+    assert!(
+        html.contains("--user-effects pf/u.toml"),
+        "the diagnose command names the file"
+    );
+    // A user-effects file that does not read stops the run before its first stage.
+    std::fs::write(
+        case.join("u.toml"),
+        "[[effect]]\nid = \"x\"\nhook = \"lift\"\nformula = \"cl\"\n",
+    )
+    .unwrap();
+    let o = run(&["run", "pf", "-o", "out2", "--quiet"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("case.toml") && e.contains("[measured] user_effects") && e.contains("unknown variant `lift`"),
+        "{e}"
+    );
+    assert!(!dir.path().join("out2/diagnose").exists());
+}

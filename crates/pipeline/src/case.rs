@@ -157,6 +157,9 @@ pub struct MeasuredSection {
     pub max_steps: Option<usize>,
     /// APC's predictions for the prop (a PER3 file), drawn and scored beside propbet's.
     pub per3: Option<String>,
+    /// User-defined effects (TOML, docs/effects.md): candidates of the diagnosis beside the
+    /// built-ins.
+    pub user_effects: Option<String>,
 }
 
 /// `[atmosphere]`.
@@ -469,6 +472,12 @@ impl Case {
                         ))
                     }
                 };
+                // A user-effects file that does not read stops the run before its first stage.
+                if let Some(u) = m.user_effects.as_deref().map(f) {
+                    let text = crate::read_text(&u)?;
+                    propbet_effects::user::parse(&text, &u.display().to_string())
+                        .map_err(|e| at("[measured] user_effects", Error::Invalid(e.to_string())))?;
+                }
                 let measured = MeasuredSpec {
                     files: m.files.iter().map(|x| f(x)).collect(),
                     poles: m.poles,
@@ -486,7 +495,10 @@ impl Case {
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {
-                        model,
+                        model: ModelSpec {
+                            user_effects: m.user_effects.as_deref().map(f),
+                            ..model
+                        },
                         measured,
                         effects: vec!["all".into()],
                         folds: m.folds.unwrap_or(crate::spec::DEFAULT_FOLDS),

@@ -212,11 +212,11 @@ pub fn run_case(
     // 3. Sweeps: the polars' prop file in memory, else the case's own.
     let spec = &plan.predict;
     let t = book.start(StageSpec::Predict(spec.clone()));
-    let model = match &polars {
-        Some(p) => Model::from_parts(&spec.model, p.prop.clone(), Some(&p.blade), false),
-        None => Model::load(&spec.model, false),
-    }
-    .map_err(|e| stage_err("predict", e))?;
+    let build = |m: &crate::spec::ModelSpec| match &polars {
+        Some(p) => Model::from_parts(m, p.prop.clone(), Some(&p.blade), false),
+        None => Model::load(m, false),
+    };
+    let model = build(&spec.model).map_err(|e| stage_err("predict", e))?;
     let fluid = spec.air.fluid().map_err(|e| stage_err("predict", e))?;
     let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
     let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
@@ -231,7 +231,12 @@ pub fn run_case(
         book.done(t, c.problems() == (0, 0), Finished::Compare(&c, &model));
         compared = Some(c);
         let t = book.start(StageSpec::Diagnose(dspec.clone()));
-        let d = stages::diagnose(&model, dspec).map_err(|e| stage_err("diagnose", e))?;
+        // The case's user effects (`[measured] user_effects`) are the diagnosis's alone.
+        let d = match dspec.model.user_effects {
+            Some(_) => build(&dspec.model).and_then(|m| stages::diagnose(&m, dspec)),
+            None => stages::diagnose(&model, dspec),
+        }
+        .map_err(|e| stage_err("diagnose", e))?;
         book.done(t, true, Finished::Diagnose(&d));
         diagnosed = Some(d);
     }
