@@ -808,3 +808,34 @@ fn hidden_in_a_tunnel_not_on_a_stand(effect: &str, bound: &str) {
     let (o, j) = diagnose(&p, &[&dir.path().join("stand.csv")], &[], dir.path());
     assert_eq!(top(&j), id, "{}", String::from_utf8_lossy(&o.stdout));
 }
+
+/// A model much further from its measurements than any effect can physically bridge (the
+/// blades 8 deg steeper than the prop file, where a pitch offset is bounded to 3 deg): nothing
+/// is named, and the verdict says that candidates hit their bounds, how far the first would
+/// go, and what to check; not that no effect changes the loads enough.
+#[test]
+fn a_model_beyond_every_bound_is_told_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let files: Vec<PathBuf> = [1u64, 2]
+        .iter()
+        .map(|&seed| {
+            let f = dir.path().join(format!("steep_{seed}.csv"));
+            synth_with_noise(&cam6x3(), &[], &["--dbeta", "8"], seed, "0.5%", &f, dir.path());
+            f
+        })
+        .collect();
+    let measured: Vec<&Path> = files.iter().map(PathBuf::as_path).collect();
+    let (o, j) = diagnose(&cam6x3(), &measured, &[], dir.path());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(j["diagnosis"]["found"], false, "{out}");
+    assert!(
+        out.starts_with("No effect is significant")
+            && out.contains("no effect within its physical bounds describes it"),
+        "{out}"
+    );
+    assert!(
+        out.contains("pitch-offset") && out.contains("hit their physical bounds") && out.contains("check the geometry"),
+        "{out}"
+    );
+    assert!(!out.contains("none changes the loads by 3x"), "{out}");
+}

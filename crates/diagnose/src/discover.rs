@@ -103,6 +103,13 @@ pub struct Scored {
     pub fit: Option<FitOutcome>,
 }
 
+impl Scored {
+    /// True when its fit ended on a physical bound: not an answer ([`bound_note`]).
+    pub fn hit_bound(&self) -> bool {
+        self.fit.as_ref().is_some_and(|f| !f.beyond_bounds().is_empty())
+    }
+}
+
 /// The model at one rung of the ladder.
 #[derive(Debug, Clone, Serialize)]
 pub struct Rung {
@@ -160,6 +167,17 @@ impl Diagnosis {
         self.final_stack.active.iter().map(|a| a.describe()).collect()
     }
 
+    /// The first step's candidates whose fits ended on a physical bound while lowering the
+    /// held-out error by at least [`MIN_GAIN`]: effects the data want more of than is physical
+    /// (a model far from its measurements), best first.
+    pub fn bounded_helpful(&self) -> Vec<&Scored> {
+        let base = self.ladder.first().map_or(f64::NAN, |r| r.kfold_rms);
+        self.ranking
+            .iter()
+            .filter(|s| s.hit_bound() && s.kfold_rms <= (1.0 - MIN_GAIN) * base)
+            .collect()
+    }
+
     /// What the final model leaves unexplained, against how well the measurements repeat:
     /// "2.1 % unexplained, above the 0.6 % the measurements repeat to (14 pairs)".
     pub fn unexplained(&self) -> String {
@@ -172,6 +190,8 @@ impl Diagnosis {
                 r.pairs,
                 if self.found {
                     "something the ladder's effects do not describe is still missing"
+                } else if !self.bounded_helpful().is_empty() {
+                    "no effect within its physical bounds describes it"
                 } else {
                     "an effect may be there, but none changes the loads by 3x the repeatability, the least \
                      propbet names"

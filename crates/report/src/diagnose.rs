@@ -85,16 +85,45 @@ pub fn diagnosis_json(d: &Diagnosis) -> serde_json::Value {
 pub fn verdict(d: &Diagnosis) -> String {
     let base = &d.ladder[0];
     if !d.found {
-        let best = d.ranking.first().map_or(String::new(), |s| {
-            format!(
-                " The best candidate, {}, lowers the held-out error only from {} to {} (p = {}).",
+        // Candidates whose fits ended on a physical bound are not answers: said first, with
+        // how far the first of them would go at its bound; then the best within its bounds.
+        let helpful = d.bounded_helpful();
+        let bounded: Vec<&str> = helpful.iter().map(|s| s.id.as_str()).collect();
+        let mut text = format!("No effect is significant ({}).", d.unexplained());
+        if let Some(first) = helpful.first() {
+            text.push_str(&format!(
+                " {} hit {} physical bound{} ({}): the data want more than {} can give (at its bound {} takes \
+                 the held-out error from {} to {}). The model is further from these measurements than a missing \
+                 effect explains: check the geometry, the sections and the units.",
+                if bounded.len() == 1 {
+                    "One candidate".to_string()
+                } else {
+                    format!("{} candidates", bounded.len())
+                },
+                if bounded.len() == 1 { "its" } else { "their" },
+                if bounded.len() == 1 { "" } else { "s" },
+                bounded.join(", "),
+                if bounded.len() == 1 { "it" } else { "they" },
+                first.id,
+                pct(base.kfold_rms),
+                pct(first.kfold_rms),
+            ));
+        }
+        let inside = d
+            .ranking
+            .iter()
+            .find(|s| s.fit.is_some() && !s.hit_bound() && s.kfold_rms.is_finite());
+        if let Some(s) = inside {
+            text.push_str(&format!(
+                " The best candidate{}, {}, lowers the held-out error only from {} to {} (p = {}).",
+                if bounded.is_empty() { "" } else { " within its bounds" },
                 s.id,
                 pct(base.kfold_rms),
                 pct(s.kfold_rms),
                 sig(s.p_value)
-            )
-        });
-        return format!("No effect is significant ({}).{best}", d.unexplained());
+            ));
+        }
+        return text;
     }
     // The ladder's final answer, with its values: what the user should add.
     let last = d.ladder.last().expect("found implies a rung");
