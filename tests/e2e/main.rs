@@ -24,6 +24,17 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The ids of a `diagnosis.json`'s first-step ranking, best first.
+fn ranked_ids(diagnosis_json: &Path) -> Vec<String> {
+    let d: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(diagnosis_json).unwrap()).unwrap();
+    d["diagnosis"]["ranking"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["id"].as_str().unwrap().to_string())
+        .collect()
+}
+
 /// Reads a CSV written by propbet into (header, rows).
 /// How far the page at `report` runs wider than a 1300-px window, in headless Chromium
 /// (package `chromium`, installed by scripts/setup.sh): a probe copy of the page with one line
