@@ -339,4 +339,13 @@ fn a_case_s_user_effects_are_candidates_of_its_diagnosis() {
         "{e}"
     );
     assert!(!dir.path().join("out2/diagnose").exists());
+    // A file that is not there: named, with the key that names it.
+    std::fs::remove_file(case.join("u.toml")).unwrap();
+    let o = run(&["run", "pf", "-o", "out3", "--quiet"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("case.toml: [measured] user_effects:") && e.contains("u.toml: cannot read"),
+        "{e}"
+    );
 }

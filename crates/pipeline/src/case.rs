@@ -474,7 +474,7 @@ impl Case {
                 };
                 // A user-effects file that does not read stops the run before its first stage.
                 if let Some(u) = m.user_effects.as_deref().map(f) {
-                    let text = crate::read_text(&u)?;
+                    let text = crate::read_text(&u).map_err(|e| at("[measured] user_effects", e))?;
                     propbet_effects::user::parse(&text, &u.display().to_string())
                         .map_err(|e| at("[measured] user_effects", Error::Invalid(e.to_string())))?;
                 }
