@@ -235,8 +235,11 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             let stat = static_rpm_trend(&pts);
             if change.abs() > 0.5 * QUIET || stat.is_some_and(|t| t.change.abs() > 0.5 * QUIET) {
                 let faster = if change < 0.0 { "faster" } else { "slower" };
+                // A static test alone (a stand's step test) has one J: said as such.
+                let all_static = pts.iter().all(|p| p.0 < 0.01);
                 let mut head = format!(
-                    "at fixed J the error changes by {} from {rl:.0} to {rh:.0} rpm",
+                    "{} the error changes by {} from {rl:.0} to {rh:.0} rpm",
+                    if all_static { "statically" } else { "at fixed J" },
                     pct(change)
                 );
                 if let Some(t) = stat {
@@ -441,6 +444,14 @@ mod tests {
         let text = &signatures(&data(&obs), &e)[0].text;
         assert!(
             text.contains("At fixed J the error changes by -4.1 % from 4000 to 6000 rpm (statically by +0.0 % from 2000 to 6000 rpm)"),
+            "{text}"
+        );
+        // A static test alone: its trend is said as static.
+        let stat_only: Vec<(f64, f64)> = (0..5).map(|k| (2000.0 + 1000.0 * k as f64, 0.0)).collect();
+        let e: Vec<f64> = stat_only.iter().map(|p| -0.1 * (p.0 / 2000.0).ln()).collect();
+        let text = &signatures(&data(&stat_only), &e)[0].text;
+        assert!(
+            text.contains("Statically the error changes by -11.0 % from 2000 to 6000 rpm"),
             "{text}"
         );
         // No static test: no static trend.
