@@ -839,3 +839,34 @@ fn a_model_beyond_every_bound_is_told_so() {
     );
     assert!(!out.contains("none changes the loads by 3x"), "{out}");
 }
+
+/// A parameter the data cannot determine is said so, not given an interval thousands of times
+/// its physical range: on the PhotoFoil step test (static, 11 steps) a hub loss changes
+/// nothing (it said "strength = 0 ± 1.030e5" until 2026-11-25).
+#[test]
+fn undetermined_parameters_are_said_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let pf = repo().join("props/photofoil_8x4.5");
+    let o = run(
+        &[
+            "diagnose",
+            "--prop",
+            pf.join("QProp_8x4_5.txt").to_str().unwrap(),
+            "--measured",
+            pf.join("StepsTestV2_2022-01-18_153833.csv").to_str().unwrap(),
+            "--rho",
+            "1.1648",
+            "--out",
+            "d",
+        ],
+        dir.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = std::fs::read_to_string(dir.path().join("d/summary.md")).unwrap();
+    let row = md
+        .lines()
+        .find(|l| l.contains("| hub-loss |"))
+        .expect("hub-loss ranked");
+    assert!(row.contains("strength = 0 (not determined by the data)"), "{row}");
+    assert!(!md.contains("e5 |") && !md.contains("e5,"), "{md}");
+}

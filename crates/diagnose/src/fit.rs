@@ -228,12 +228,16 @@ impl FitOutcome {
         for a in &self.stack.active {
             for p in a.effect.params() {
                 let sd = self.sd[k];
+                // An interval many times wider than the physical range says the data do not
+                // determine the parameter (hub-loss 0 ± 1.03e5 on a static step test).
+                let range = p.upper - p.lower;
+                let determined = sd.is_finite() && (!range.is_finite() || 1.96 * sd <= 10.0 * range);
                 out.push(FittedParam {
                     effect: a.effect.id().to_string(),
                     name: p.name.clone(),
                     unit: p.unit.clone(),
                     value: self.p[k],
-                    ci95: sd.is_finite().then_some(1.96 * sd),
+                    ci95: determined.then_some(1.96 * sd),
                     at_bound: self.at_bound[k]
                         && p.neutral
                             .is_none_or(|n| (self.p[k] - n).abs() >= bound_tolerance(p.lower, p.upper, p.scale)),
