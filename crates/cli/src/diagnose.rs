@@ -166,13 +166,7 @@ pub struct EffectsArgs {
 
 /// Lists the effects with their parameters, bounds and physics.
 pub fn list(args: &EffectsArgs) -> Result<bool> {
-    let registry = match &args.user_effects {
-        Some(p) => {
-            let text = std::fs::read_to_string(p).map_err(|e| anyhow::anyhow!("{}: cannot read: {e}", p.display()))?;
-            propbet_effects::spec::Registry::with_user(propbet_effects::user::parse(&text, &p.display().to_string())?)?
-        }
-        None => propbet_effects::spec::Registry::default(),
-    };
+    let registry = propbet_pipeline::model::effect_registry(args.user_effects.as_deref())?;
     use std::fmt::Write as _;
     let mut out = String::new();
     for e in &registry.effects {

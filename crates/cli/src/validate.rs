@@ -108,10 +108,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         user_effects: a.user_effects.clone(),
     };
     // A user-effects file that does not read stops here, before any prop, naming the file.
-    if let Some(path) = &a.user_effects {
-        let text = propbet_pipeline::read_text(path)?;
-        propbet_effects::user::parse(&text, &path.display().to_string())?;
-    }
+    propbet_pipeline::model::effect_registry(a.user_effects.as_deref())?;
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
         bail!(
             "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",

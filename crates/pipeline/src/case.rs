@@ -473,11 +473,8 @@ impl Case {
                     }
                 };
                 // A user-effects file that does not read stops the run before its first stage.
-                if let Some(u) = m.user_effects.as_deref().map(f) {
-                    let text = crate::read_text(&u).map_err(|e| at("[measured] user_effects", e))?;
-                    propbet_effects::user::parse(&text, &u.display().to_string())
-                        .map_err(|e| at("[measured] user_effects", Error::Invalid(e.to_string())))?;
-                }
+                let user_effects = m.user_effects.as_deref().map(f);
+                crate::model::effect_registry(user_effects.as_deref()).map_err(|e| at("[measured] user_effects", e))?;
                 let measured = MeasuredSpec {
                     files: m.files.iter().map(|x| f(x)).collect(),
                     poles: m.poles,
@@ -495,10 +492,7 @@ impl Case {
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {
-                        model: ModelSpec {
-                            user_effects: m.user_effects.as_deref().map(f),
-                            ..model
-                        },
+                        model: ModelSpec { user_effects, ..model },
                         measured,
                         effects: vec!["all".into()],
                         folds: m.folds.unwrap_or(crate::spec::DEFAULT_FOLDS),

@@ -154,16 +154,7 @@ impl Model {
             ..SolverOptions::default()
         };
         let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
-        let registry = match &spec.user_effects {
-            Some(path) => {
-                let text = read_text(path)?;
-                let user = propbet_effects::user::parse(&text, &path.display().to_string())
-                    .map_err(|e| Error::Invalid(e.to_string()))?;
-                Registry::with_user(user).map_err(|e| Error::Invalid(e.to_string()))?
-            }
-            None => Registry::default(),
-        };
-        let mut registry = registry;
+        let mut registry = effect_registry(spec.user_effects.as_deref())?;
         registry.effects.extend(transition);
         let active = spec
             .effects
@@ -180,6 +171,18 @@ impl Model {
             effects: Stack { active },
         })
     }
+}
+
+/// The built-in effects and those of a user file (read, parsed and checked against the
+/// built-ins' ids: what `--user-effects` and a case's `user_effects` name).
+pub fn effect_registry(user_effects: Option<&Path>) -> Result<Registry> {
+    let Some(path) = user_effects else {
+        return Ok(Registry::default());
+    };
+    let text = read_text(path)?;
+    let user =
+        propbet_effects::user::parse(&text, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    Registry::with_user(user).map_err(|e| Error::Invalid(e.to_string()))
 }
 
 impl ModelSpec {
