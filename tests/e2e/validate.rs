@@ -173,33 +173,36 @@ fn validate_bad_input() {
     assert!(stderr(&o).contains("missing"), "{}", stderr(&o));
     // A user-effects file that does not read stops validate before any prop, naming the file
     // and what is wrong; nothing is written.
-    std::fs::write(
-        dir.path().join("bad.toml"),
-        "[[effect]]\nid = \"x\"\nhook = \"lift\"\nformula = \"cl\"\n",
-    )
-    .unwrap();
     let repo_data = repo().join("tests/data/validate");
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            repo_data.join("uiuc").to_str().unwrap(),
-            "--pe0",
-            repo_data.join("pe0").to_str().unwrap(),
-            "--airfoils",
-            "empty",
-            "--user-effects",
-            "bad.toml",
-            "-o",
-            "v_user",
-        ],
-        dir.path(),
+    let refused = |toml: &str, expect: &[&str]| {
+        std::fs::write(dir.path().join("bad.toml"), toml).unwrap();
+        let o = run(
+            &[
+                "validate",
+                "--uiuc",
+                repo_data.join("uiuc").to_str().unwrap(),
+                "--pe0",
+                repo_data.join("pe0").to_str().unwrap(),
+                "--airfoils",
+                "empty",
+                "--user-effects",
+                "bad.toml",
+                "-o",
+                "v_user",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2));
+        assert!(expect.iter().all(|x| stderr(&o).contains(x)), "{}", stderr(&o));
+        assert!(!dir.path().join("v_user").exists());
+    };
+    refused(
+        "[[effect]]\nid = \"x\"\nhook = \"lift\"\nformula = \"cl\"\n",
+        &["bad.toml", "unknown variant `lift`"],
     );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("bad.toml") && stderr(&o).contains("unknown variant `lift`"),
-        "{}",
-        stderr(&o)
+    // An effect id a built-in has: refused up front too, naming the file.
+    refused(
+        "[[effect]]\nid = \"pitch-offset\"\nhook = \"cl\"\nformula = \"cl\"\n",
+        &["bad.toml: user effect id `pitch-offset` is already taken"],
     );
-    assert!(!dir.path().join("v_user").exists());
 }

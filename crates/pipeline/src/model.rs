@@ -182,7 +182,7 @@ pub fn effect_registry(user_effects: Option<&Path>) -> Result<Registry> {
     let text = read_text(path)?;
     let user =
         propbet_effects::user::parse(&text, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
-    Registry::with_user(user).map_err(|e| Error::Invalid(e.to_string()))
+    Registry::with_user(user).map_err(|e| Error::input(path, e.to_string()))
 }
 
 impl ModelSpec {
