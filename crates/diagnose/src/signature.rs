@@ -102,6 +102,38 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
+impl RpmTrend {
+    /// The change of a slope (per unit ln RPM) over ln-RPM `lo` to `hi`; None where that range
+    /// is below 1.3x.
+    fn over(slope: f64, lo: f64, hi: f64) -> Option<RpmTrend> {
+        (hi - lo >= 1.3f64.ln()).then(|| RpmTrend {
+            change: slope * (hi - lo),
+            lo: lo.exp(),
+            hi: hi.exp(),
+        })
+    }
+}
+
+/// The trend at fixed J of [`rpm_slopes`]' bins: the median slope over the median range.
+fn fixed_j_trend(bins: &BTreeMap<i64, (f64, f64, f64)>) -> Option<RpmTrend> {
+    if bins.is_empty() {
+        return None;
+    }
+    let slope = median(bins.values().map(|b| b.0).collect());
+    let lo = median(bins.values().map(|b| b.1).collect());
+    let hi = median(bins.values().map(|b| b.2).collect());
+    RpmTrend::over(slope, lo, hi)
+}
+
+/// The static bin's own trend of [`rpm_slopes`]' bins, where there are J bins beside it.
+fn static_trend(bins: &BTreeMap<i64, (f64, f64, f64)>) -> Option<RpmTrend> {
+    if bins.len() < 2 {
+        return None;
+    }
+    let &(slope, lo, hi) = bins.get(&-1)?;
+    RpmTrend::over(slope, lo, hi)
+}
+
 /// The error's trend with RPM at fixed J: within J bins, the least-squares slope of the error
 /// against ln RPM; the median over the bins that span at least 5 % in RPM (one bin of large
 /// errors near zero thrust does not outvote the others), as the change over the RPM range the
@@ -109,34 +141,14 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// 4,000-6,500 rpm is not stretched over a static test's 2,000-6,500). `pts`: (J, rpm, group,
 /// error). None where that range is below 1.3x.
 pub fn rpm_trend_at_fixed_j(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
-    let bins = rpm_slopes(pts);
-    if bins.is_empty() {
-        return None;
-    }
-    let slope = median(bins.values().map(|b| b.0).collect());
-    let lo = median(bins.values().map(|b| b.1).collect());
-    let hi = median(bins.values().map(|b| b.2).collect());
-    (hi - lo >= 1.3f64.ln()).then(|| RpmTrend {
-        change: slope * (hi - lo),
-        lo: lo.exp(),
-        hi: hi.exp(),
-    })
+    fixed_j_trend(&rpm_slopes(pts))
 }
 
 /// The static points' own trend with RPM (a static test spans a wider RPM range than J sweeps
 /// and holds no J to confound it), where there are also J bins to set it beside; None where
 /// the static points span less than 1.3x.
 pub fn static_rpm_trend(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
-    let bins = rpm_slopes(pts);
-    if bins.len() < 2 {
-        return None;
-    }
-    let &(slope, lo, hi) = bins.get(&-1)?;
-    (hi - lo >= 1.3f64.ln()).then(|| RpmTrend {
-        change: slope * (hi - lo),
-        lo: lo.exp(),
-        hi: hi.exp(),
-    })
+    static_trend(&rpm_slopes(pts))
 }
 
 /// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
@@ -228,11 +240,12 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
-        let trend = rpm_trend_at_fixed_j(&pts);
+        let bins = rpm_slopes(&pts);
+        let trend = fixed_j_trend(&bins);
         if let Some(RpmTrend { change, lo: rl, hi: rh }) = trend {
             // Its own threshold: a trend with RPM is the signature of missing physics even
             // under a larger error of another kind.
-            let stat = static_rpm_trend(&pts);
+            let stat = static_trend(&bins);
             if change.abs() > 0.5 * QUIET || stat.is_some_and(|t| t.change.abs() > 0.5 * QUIET) {
                 let faster = if change < 0.0 { "faster" } else { "slower" };
                 // A static test alone (a stand's step test) has one J: said as such.
