@@ -847,21 +847,8 @@ fn a_model_beyond_every_bound_is_told_so() {
 fn undetermined_parameters_are_said_so() {
     let dir = tempfile::tempdir().unwrap();
     let pf = repo().join("props/photofoil_8x4.5");
-    let o = run(
-        &[
-            "diagnose",
-            "--prop",
-            pf.join("QProp_8x4_5.txt").to_str().unwrap(),
-            "--measured",
-            pf.join("StepsTestV2_2022-01-18_153833.csv").to_str().unwrap(),
-            "--rho",
-            "1.1648",
-            "--out",
-            "d",
-        ],
-        dir.path(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
+    let log = pf.join("StepsTestV2_2022-01-18_153833.csv");
+    diagnose(&pf.join("QProp_8x4_5.txt"), &[&log], &["--rho", "1.1648"], dir.path());
     let md = std::fs::read_to_string(dir.path().join("d/summary.md")).unwrap();
     let row = md
         .lines()
