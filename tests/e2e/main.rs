@@ -35,6 +35,21 @@ fn ranked_ids(diagnosis_json: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The effects a signature's text names as able to make the first pattern after `after`, and
+/// those it names as not ("Effects that can make it (...): a, b; not c, d. ...").
+fn effect_lists<'a>(text: &'a str, after: &str) -> (Vec<&'a str>, Vec<&'a str>) {
+    let from = text.find(after).expect(text);
+    let rest = &text[from..];
+    let rest = &rest[rest.find("Effects that can make it").expect(text)..];
+    let rest = &rest[rest.find("): ").expect(text) + 3..];
+    let rest = rest.split(". ").next().unwrap_or(rest);
+    let (can, cannot) = rest.split_once("; not ").unwrap_or((rest, ""));
+    fn split(s: &str) -> Vec<&str> {
+        s.split(", ").filter(|x| !x.is_empty()).collect()
+    }
+    (split(can), split(cannot))
+}
+
 /// Reads a CSV written by propbet into (header, rows).
 /// How far the page at `report` runs wider than a 1300-px window, in headless Chromium
 /// (package `chromium`, installed by scripts/setup.sh): a probe copy of the page with one line

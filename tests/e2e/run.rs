@@ -107,6 +107,12 @@ fn default_case_from_scan_to_report() {
     assert!(size > 5.0, "{thrust}");
     assert!(thrust[at..].contains("from 2377 to 6528 rpm)"), "{thrust}");
     assert!(thrust.contains("grows faster with RPM than the model's"), "{thrust}");
+    // Which effects can make that trend, from the model's own response to each: re-lift (the
+    // sections' lift with Re) can; pitch-offset, the ladder's first step (it takes the J
+    // pattern: the blade's pitch gap), cannot.
+    let (can, cannot) = effect_lists(thrust, "At fixed J");
+    assert!(can.contains(&"re-lift") && cannot.contains(&"pitch-offset"), "{thrust}");
+    assert!(effect_lists(thrust, "").0.contains(&"pitch-offset"), "{thrust}");
     assert!(
         ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
         "{ladder:?}"

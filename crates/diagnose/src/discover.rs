@@ -39,7 +39,7 @@ use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{bounds, fit, stack_at, FitOutcome, FittedParam};
-use crate::signature::{signatures, Signature};
+use crate::signature::{signatures, Response, Signature};
 use crate::{rms, Data, DiagnoseError, Model, Repeatability};
 
 /// Smallest relative fall of the held-out RMS error that counts.
@@ -665,6 +665,64 @@ fn check_overlap(data: &Data, baseline: &[propbet_effects::Loads]) -> Result<(),
     Ok(())
 }
 
+/// Where between a parameter's reference (its neutral value, or its start) and each bound the
+/// signatures probe an effect.
+const PROBES: [f64; 3] = [0.25, 0.5, 1.0];
+
+/// How each of `candidates` not in `base` moves the residual rows on top of it (`r_base` its
+/// residual rows): one parameter at a time at [`PROBES`] of the way from its reference to each
+/// bound, the others at theirs. A probe the model cannot evaluate is left out.
+fn responses(
+    model: &Model,
+    data: &Data,
+    base: &Stack,
+    r_base: &[f64],
+    candidates: &[Arc<dyn Effect>],
+) -> Vec<Response> {
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let mut effects: Vec<Arc<dyn Effect>> = base.active.iter().map(|a| a.effect.clone()).collect();
+    let p_base: Vec<f64> = base.active.iter().flat_map(|a| a.values.clone()).collect();
+    let mut out = Vec::new();
+    for cand in candidates {
+        if base.active.iter().any(|a| a.effect.id() == cand.id()) {
+            continue;
+        }
+        let params = cand.params();
+        let reference: Vec<f64> = params.iter().map(|p| p.neutral.unwrap_or(p.start)).collect();
+        let mut values: Vec<Vec<f64>> = Vec::new();
+        for (i, p) in params.iter().enumerate() {
+            if p.neutral.is_none() {
+                values.push(reference.clone());
+            }
+            for bound in [p.lower, p.upper] {
+                for f in PROBES {
+                    let mut v = reference.clone();
+                    v[i] += f * (bound - reference[i]);
+                    if v[i] != reference[i] {
+                        values.push(v);
+                    }
+                }
+            }
+        }
+        effects.push(cand.clone());
+        let probes = values
+            .into_iter()
+            .filter_map(|v| {
+                let mut p = p_base.clone();
+                p.extend(v);
+                let r = model.residuals(data, &stack_at(&effects, &p), &all).ok()?;
+                Some(r.iter().zip(r_base).map(|(a, b)| a - b).collect())
+            })
+            .collect();
+        effects.pop();
+        out.push(Response {
+            id: cand.id().to_string(),
+            probes,
+        });
+    }
+    out
+}
+
 /// Runs the diagnosis: ranking on top of the baseline, then the ladder.
 pub fn diagnose(
     model: &Model,
@@ -777,8 +835,12 @@ pub fn diagnose(
     Ok(Diagnosis {
         rows,
         points: data.obs.len(),
-        before: signatures(data, &r0),
-        after: signatures(data, &final_residuals),
+        before: signatures(data, &r0, &responses(model, data, &Stack::baseline(), &r0, candidates)),
+        after: signatures(
+            data,
+            &final_residuals,
+            &responses(model, data, &current.fit.stack, &final_residuals, candidates),
+        ),
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         repeatability,

@@ -33,18 +33,97 @@ fn mean(v: &[f64]) -> f64 {
     v.iter().sum::<f64>() / v.len().max(1) as f64
 }
 
-/// Which effects can make an error that changes with J at fixed RPM, and which cannot.
-pub const J_TREND_EFFECTS: &str =
-    "Effects that can make it: pitch-offset and elastic-twist (an angle error weighs more where the sections' \
-     angles are small, at high J), rpm-scale (a wrong RPM is a wrong J), tip-loss and hub-loss (the inflow), \
-     the tares (loads that do not scale as the propeller's); not density, which scales every load alike";
+/// Root-mean-square deviation from the mean.
+fn spread(v: &[f64]) -> f64 {
+    let m = mean(v);
+    (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len().max(1) as f64).sqrt()
+}
 
-/// Which effects can make an error that changes with RPM at fixed J, and which cannot.
-pub const RPM_TREND_EFFECTS: &str =
-    "Effects that can make it: re-lift (section lift with Re), re-scaling (drag with Re, \
-     mostly torque), transition (Ncrit, from polars at several: --ncrit-effect), compressibility (tip Mach above 0.3), \
-     elastic-twist (thrust falling at high RPM), torque-tare (a friction torque weighs most at low RPM: torque \
-     alone); not density, rpm-scale, chord-scale, pitch-offset or thrust-tare, which act alike at every RPM";
+/// How much of a pattern an effect must be able to take away to be named as one that can
+/// make it: the best of its probes that do not make the error vary more leaves at most this
+/// fraction of the pattern's size.
+pub const CAN_MAKE: f64 = 0.5;
+
+/// How one candidate effect moves the residual rows, from the model itself: the change of every
+/// row (in [`Data::rows`] order) with the effect at each probe value of its parameters (within
+/// their bounds), from the model without it.
+#[derive(Debug, Clone)]
+pub struct Response {
+    /// The effect's id.
+    pub id: String,
+    /// Each probe's change of every residual row.
+    pub probes: Vec<Vec<f64>>,
+}
+
+/// A quantity's pattern as numbers, each part where the points show it: what the words say,
+/// and what an effect's response is matched against.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Parts {
+    /// Mean error above the median J minus below it.
+    dj: Option<f64>,
+    /// The J sweeps' median slope of the error against ln RPM at fixed J.
+    forward: Option<f64>,
+    /// The static test's slope against ln RPM.
+    stat: Option<f64>,
+}
+
+/// The parts of the pattern of `pts` (J, rpm, group, error), split at J `jm`.
+fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
+    let lo: Vec<f64> = pts.iter().filter(|p| p.0 <= jm).map(|p| p.3).collect();
+    let hi: Vec<f64> = pts.iter().filter(|p| p.0 > jm).map(|p| p.3).collect();
+    let bins = rpm_slopes(pts);
+    let forward: Vec<f64> = bins.iter().filter(|(k, _)| **k >= 0).map(|(_, b)| b.0).collect();
+    Parts {
+        dj: (lo.len() >= 2 && hi.len() >= 2).then(|| mean(&hi) - mean(&lo)),
+        forward: (!forward.is_empty()).then(|| median(forward)),
+        stat: bins.get(&-1).map(|b| b.0),
+    }
+}
+
+/// Which candidates can make a pattern: each response's best probe against the observed parts
+/// `seen` (the parts of `of` that are there), as "Effects that can make it (...): a, b; not c".
+/// None without responses (nothing to match).
+fn effect_list(seen: &[f64], of: impl Fn(&Parts) -> Vec<f64>, responses: &[(String, Vec<Parts>)]) -> Option<String> {
+    if responses.is_empty() {
+        return None;
+    }
+    let size = seen.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let mut can: Vec<(f64, &str)> = Vec::new();
+    let mut cannot: Vec<&str> = Vec::new();
+    for (id, probes) in responses {
+        let left = probes
+            .iter()
+            .map(|p| {
+                let r = of(p);
+                seen.iter().zip(&r).map(|(o, r)| (o + r).powi(2)).sum::<f64>().sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        if size > 0.0 && left <= CAN_MAKE * size {
+            can.push((left, id));
+        } else {
+            cannot.push(id);
+        }
+    }
+    can.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let can: Vec<&str> = can.into_iter().map(|c| c.1).collect();
+    let mut s = if can.is_empty() {
+        "No candidate effect can make it within its bounds (from the model's response to each)".to_string()
+    } else {
+        format!(
+            "Effects that can make it (from the model's response to each, within its bounds): {}",
+            can.join(", ")
+        )
+    };
+    if !cannot.is_empty() && !can.is_empty() {
+        s.push_str(&format!("; not {}", cannot.join(", ")));
+    }
+    Some(s)
+}
+
+/// The RPM trend's qualifier where the J sweeps show it and the static test does not.
+const FORWARD_ONLY: &str = " in forward flight, not statically";
+/// ... and the other way round.
+const STATIC_ONLY: &str = " statically, not in forward flight";
 
 /// What the torque's pattern says in place of an effect list the thrust's already gave.
 const SAME_EFFECTS: &str = "The effects named for thrust can make it";
@@ -169,22 +248,26 @@ fn sentences(parts: &[String]) -> String {
 }
 
 /// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
-/// relative errors with the floors).
-pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
+/// relative errors with the floors), with the candidates that can make each part of them
+/// (from their `responses`; none named without).
+pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec<Signature> {
     let mut out: Vec<Signature> = Vec::new();
+    // The effect lists thrust's pattern named, which torque's refers to where it names the same.
+    let mut named: Vec<String> = Vec::new();
+    let rows = data.rows();
     for torque in [false, true] {
         let name = if torque { "torque" } else { "thrust" };
-        // (J, rpm, group, relative error)
-        let pts: Vec<(f64, f64, i64, f64)> = data
-            .rows()
-            .iter()
-            .zip(residuals)
-            .filter(|(row, _)| row.torque == torque)
-            .map(|(row, &e)| {
-                let o = &data.obs[row.point];
-                (o.j, o.rpm(), o.rpm_group, e)
-            })
-            .collect();
+        let idx: Vec<usize> = (0..rows.len()).filter(|&k| rows[k].torque == torque).collect();
+        // (J, rpm, group, value of row k)
+        let at = |values: &[f64]| -> Vec<(f64, f64, i64, f64)> {
+            idx.iter()
+                .map(|&k| {
+                    let o = &data.obs[rows[k].point];
+                    (o.j, o.rpm(), o.rpm_group, values[k])
+                })
+                .collect()
+        };
+        let pts = at(residuals);
         if pts.is_empty() {
             continue;
         }
@@ -217,26 +300,60 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
         let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
         js.sort_by(f64::total_cmp);
         let jm = js[js.len() / 2];
-        let lo: Vec<f64> = pts.iter().filter(|p| p.0 <= jm).map(|p| p.3).collect();
-        let hi: Vec<f64> = pts.iter().filter(|p| p.0 > jm).map(|p| p.3).collect();
-        if lo.len() >= 2 && hi.len() >= 2 {
+        let seen = parts_of(&pts, jm);
+        // Each candidate's probes, as the same parts; a probe that makes this quantity's error
+        // vary more (a tare at its bound swamping the loads near zero thrust) does not count as
+        // making a part of it. Its mean is left out: where an effect's neutral level sits (re-lift's
+        // Re of 1e5) is not its pattern.
+        let resp: Vec<(String, Vec<Parts>)> = if torque_alone {
+            Vec::new()
+        } else {
+            responses
+                .iter()
+                .map(|resp| {
+                    let probes = resp
+                        .probes
+                        .iter()
+                        .map(|p| at(p))
+                        .filter(|d| {
+                            let moved: Vec<f64> = d.iter().zip(&e).map(|(d, e)| d.3 + e).collect();
+                            spread(&moved) <= spread(&e)
+                        })
+                        .map(|d| parts_of(&d, jm))
+                        .collect();
+                    (resp.id.clone(), probes)
+                })
+                .collect()
+        };
+        // An effect list once: torque's refers to thrust's where it is the same.
+        let mut refer = |list: String| -> String {
+            if torque && named.contains(&list) && list.starts_with("Effects") {
+                SAME_EFFECTS.to_string()
+            } else {
+                if !torque {
+                    named.push(list.clone());
+                }
+                list
+            }
+        };
+        if let Some(dj) = seen.dj {
+            let lo: Vec<f64> = pts.iter().filter(|p| p.0 <= jm).map(|p| p.3).collect();
+            let hi: Vec<f64> = pts.iter().filter(|p| p.0 > jm).map(|p| p.3).collect();
             let (ml, mh) = (mean(&lo), mean(&hi));
-            if (mh - ml).abs() > threshold {
+            if dj.abs() > threshold {
                 let (side, a, b) = if mh.abs() > ml.abs() {
                     (format!("J > {jm:.2}"), mh, ml)
                 } else {
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
-                parts.push(if torque_alone {
-                    format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b))
-                } else {
-                    format!(
-                        "largest at {side} ({} there, {} elsewhere): an error that changes with J at fixed RPM comes \
-                         from the angles or the inflow. {J_TREND_EFFECTS}",
-                        pct(a),
-                        pct(b)
-                    )
-                });
+                let mut s = format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b));
+                if !torque_alone {
+                    s.push_str(": an error that changes with J at fixed RPM comes from the angles or the inflow");
+                    if let Some(list) = effect_list(&[dj], |p| vec![p.dj.unwrap_or(0.0)], &resp) {
+                        s.push_str(&format!(". {}", refer(list)));
+                    }
+                }
+                parts.push(s);
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
@@ -247,7 +364,24 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
             // under a larger error of another kind.
             let stat = static_trend(&bins);
             if change.abs() > 0.5 * QUIET || stat.is_some_and(|t| t.change.abs() > 0.5 * QUIET) {
-                let faster = if change < 0.0 { "faster" } else { "slower" };
+                // The J sweeps and the static test disagreeing (opposite signs, or one a third
+                // of the other): the larger says the direction, and where it is.
+                // (The static test's sign where it alone makes the trend worth saying.)
+                let (mut sign, mut only) = match stat {
+                    Some(t) if change.abs() <= 0.5 * QUIET => (t.change, ""),
+                    _ => (change, ""),
+                };
+                if let (Some(f), Some(s)) = (seen.forward, seen.stat) {
+                    let big = f.abs().max(s.abs());
+                    if big * 2f64.ln() > QUIET && (f * s < 0.0 || f.abs().min(s.abs()) < big / 3.0) {
+                        (sign, only) = if f.abs() > s.abs() {
+                            (f, FORWARD_ONLY)
+                        } else {
+                            (s, STATIC_ONLY)
+                        };
+                    }
+                }
+                let faster = if sign < 0.0 { "faster" } else { "slower" };
                 // A static test alone (a stand's step test) has one J: said as such.
                 let all_static = pts.iter().all(|p| p.0 < 0.01);
                 let mut head = format!(
@@ -264,15 +398,35 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
                     ));
                 }
                 head.push_str(&format!(
-                    ": the measured {name} grows {faster} with RPM than the model's"
+                    ": the measured {name} grows {faster} with RPM than the model's{only}"
                 ));
-                parts.push(if torque_alone {
-                    head
-                } else {
-                    format!(
-                        "{head} (a Reynolds-number effect on the sections; Mach at high tip speeds). {RPM_TREND_EFFECTS}"
-                    )
-                });
+                if !torque_alone {
+                    head.push_str(match only {
+                        "" => " (a Reynolds-number effect on the sections; Mach at high tip speeds)",
+                        FORWARD_ONLY => {
+                            " (what moves with Reynolds number at the small angles of forward flight and not near \
+                             stall: the sections' zero-lift angle, a laminar bubble's camber; or an airspeed off by a \
+                             constant, J off by dv/(nD), nothing statically; propbet's docs/studies/re-zero-lift.toml \
+                             and airspeed-offset.toml are user effects to test each)"
+                        }
+                        _ => {
+                            " (what moves with Reynolds number near stall, where the static blade works, and not at \
+                             the small angles of forward flight: the sections' maximum lift and stall)"
+                        }
+                    });
+                    let seen_rpm: Vec<f64> = [seen.forward, seen.stat].into_iter().flatten().collect();
+                    let of = |p: &Parts| -> Vec<f64> {
+                        [(seen.forward, p.forward), (seen.stat, p.stat)]
+                            .into_iter()
+                            .filter(|(o, _)| o.is_some())
+                            .map(|(_, r)| r.unwrap_or(0.0))
+                            .collect()
+                    };
+                    if let Some(list) = effect_list(&seen_rpm, of, &resp) {
+                        head.push_str(&format!(". {}", refer(list)));
+                    }
+                }
+                parts.push(head);
             }
         }
         // RPM: first against last group. Their errors mix RPM with the J each group covers (a J
@@ -328,13 +482,6 @@ pub fn signatures(data: &Data, residuals: &[f64]) -> Vec<Signature> {
         });
     }
     if out.len() == 2 {
-        // An effect list is given once: where torque's pattern repeats one thrust's named, it
-        // says so.
-        for list in [J_TREND_EFFECTS, RPM_TREND_EFFECTS] {
-            if out[0].text.contains(list) {
-                out[1].text = out[1].text.replace(list, SAME_EFFECTS);
-            }
-        }
         // "thrust unaffected" where only torque is off, and the other way round.
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
         if quiet[0] && !quiet[1] {
@@ -393,7 +540,7 @@ mod tests {
             .chain((0..6).map(|k| (6000.0, 0.42 + 0.05 * k as f64)))
             .collect();
         let e: Vec<f64> = pts.iter().map(|p| -p.1).collect();
-        let text = &signatures(&data(&pts), &e)[0].text;
+        let text = &signatures(&data(&pts), &e, &[])[0].text;
         assert!(text.contains("RPM and J are not told apart"), "{text}");
         assert!(!text.contains("about RPM^"), "{text}");
         // Both speeds at the same J: the trend at fixed J says it, once.
@@ -402,7 +549,7 @@ mod tests {
             .flat_map(|r| (0..6).map(move |k| (r, 0.05 * k as f64)))
             .collect();
         let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0)).collect();
-        let text = &signatures(&data(&pts), &e)[0].text;
+        let text = &signatures(&data(&pts), &e, &[])[0].text;
         assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
         assert!(!text.contains("not told apart"), "{text}");
         // The high-J sweep reaching further at 6000 rpm, the error growing with J: the trend at
@@ -410,7 +557,7 @@ mod tests {
         let mut pts = pts;
         pts.extend((1..5).map(|k| (6000.0, 0.25 + 0.1 * k as f64)));
         let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0) - p.1).collect();
-        let text = &signatures(&data(&pts), &e)[0].text;
+        let text = &signatures(&data(&pts), &e, &[])[0].text;
         assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
         assert!(
             !text.contains("growing with RPM") && !text.contains("not told apart"),
@@ -454,7 +601,7 @@ mod tests {
         );
         let obs: Vec<(f64, f64)> = mixed.iter().map(|p| (p.1, p.0)).collect();
         let e: Vec<f64> = mixed.iter().map(|p| p.3).collect();
-        let text = &signatures(&data(&obs), &e)[0].text;
+        let text = &signatures(&data(&obs), &e, &[])[0].text;
         assert!(
             text.contains("At fixed J the error changes by -4.1 % from 4000 to 6000 rpm (statically by +0.0 % from 2000 to 6000 rpm)"),
             "{text}"
@@ -462,7 +609,7 @@ mod tests {
         // A static test alone: its trend is said as static.
         let stat_only: Vec<(f64, f64)> = (0..5).map(|k| (2000.0 + 1000.0 * k as f64, 0.0)).collect();
         let e: Vec<f64> = stat_only.iter().map(|p| -0.1 * (p.0 / 2000.0).ln()).collect();
-        let text = &signatures(&data(&stat_only), &e)[0].text;
+        let text = &signatures(&data(&stat_only), &e, &[])[0].text;
         assert!(
             text.contains("Statically the error changes by -11.0 % from 2000 to 6000 rpm"),
             "{text}"
@@ -473,5 +620,81 @@ mod tests {
         // No bin spans 1.3x in RPM: no trend to tell.
         let narrow: Vec<_> = pts.iter().filter(|p| p.1 == 3000.0).copied().collect();
         assert!(rpm_trend_at_fixed_j(&narrow).is_none());
+    }
+
+    #[test]
+    fn the_effects_that_can_make_a_trend_come_from_their_responses() {
+        // J sweeps at 3000-6000 rpm whose error falls with RPM, a static test at 2000-6000 rpm
+        // without it: the trend is the J sweeps' alone.
+        let mut pts: Vec<(f64, f64)> = Vec::new();
+        for j in [0.2, 0.3, 0.4] {
+            for rpm in [3000.0, 4500.0, 6000.0] {
+                pts.push((rpm, j));
+            }
+        }
+        for rpm in [2000.0, 3000.0, 4000.0, 5000.0, 6000.0] {
+            pts.push((rpm, 0.0));
+        }
+        let e: Vec<f64> = pts
+            .iter()
+            .map(|&(rpm, j)| if j > 0.0 { -0.1 * (rpm / 3000.0).ln() } else { 0.0 })
+            .collect();
+        let probe = |f: &dyn Fn(f64, f64) -> f64| -> Vec<Vec<f64>> {
+            [0.5, 1.0]
+                .iter()
+                .map(|s| pts.iter().map(|&(rpm, j)| s * f(rpm, j)).collect())
+                .collect()
+        };
+        let responses = vec![
+            // Moves the J sweeps' loads with RPM and not the static ones: can.
+            Response {
+                id: "forward".into(),
+                probes: probe(&|rpm, j| if j > 0.0 { 0.1 * (rpm / 3000.0).ln() } else { 0.0 }),
+            },
+            // Moves every load alike with RPM: takes the J sweeps' trend and makes a static one
+            // as large: cannot.
+            Response {
+                id: "everywhere".into(),
+                probes: probe(&|rpm, _| 0.1 * (rpm / 3000.0).ln()),
+            },
+            // Takes the trend away but swamps one point: the error varies more, cannot.
+            Response {
+                id: "swamping".into(),
+                probes: probe(&|rpm, j| {
+                    let base = if j > 0.0 { 0.1 * (rpm / 3000.0).ln() } else { 0.0 };
+                    if j == 0.4 && rpm == 3000.0 {
+                        base + 5.0
+                    } else {
+                        base
+                    }
+                }),
+            },
+            // Moves nothing: cannot.
+            Response {
+                id: "nothing".into(),
+                probes: probe(&|_, _| 0.0),
+            },
+        ];
+        let text = &signatures(&data(&pts), &e, &responses)[0].text;
+        assert!(
+            text.contains(
+                "the measured thrust grows faster with RPM than the model's in forward flight, not statically"
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains(
+                "Effects that can make it (from the model's response to each, within its bounds): forward; \
+                 not everywhere, swamping, nothing"
+            ),
+            "{text}"
+        );
+        // Without responses no list; with only those that cannot, that is said.
+        assert!(!signatures(&data(&pts), &e, &[])[0].text.contains("can make it"));
+        let text = &signatures(&data(&pts), &e, &responses[1..])[0].text;
+        assert!(
+            text.contains("No candidate effect can make it within its bounds"),
+            "{text}"
+        );
     }
 }
