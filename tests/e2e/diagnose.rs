@@ -102,7 +102,8 @@ fn shipped_hidden_effect_examples_name_their_answer() {
             "torque_tare" => assert!(
                 before[1].contains("torque under-predicted")
                     && before[1].contains("Largest at low RPM")
-                    && before[1].contains("thrust unaffected: torque alone (a friction torque, torque-tare")
+                    && before[1].contains("thrust unaffected: what moves torque alone (")
+                    && before[1].contains("torque-tare")
                     && !before[1].contains("Effects that can make it"),
                 "{before:?}"
             ),

@@ -666,8 +666,9 @@ fn check_overlap(data: &Data, baseline: &[propbet_effects::Loads]) -> Result<(),
 }
 
 /// Where between a parameter's reference (its neutral value, or its start) and each bound the
-/// signatures probe an effect.
-const PROBES: [f64; 3] = [0.25, 0.5, 1.0];
+/// signatures probe an effect: spaced by factors of 2 to 4 down to 1/64, since the bounds of some
+/// are wide for a small propeller (a friction torque of up to 0.2 N m).
+const PROBES: [f64; 5] = [1.0 / 64.0, 1.0 / 16.0, 0.25, 0.5, 1.0];
 
 /// How each of `candidates` not in `base` moves the residual rows on top of it (`r_base` its
 /// residual rows): one parameter at a time at [`PROBES`] of the way from its reference to each

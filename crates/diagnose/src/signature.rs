@@ -482,18 +482,48 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
         });
     }
     if out.len() == 2 {
-        // "thrust unaffected" where only torque is off, and the other way round.
+        // "thrust unaffected" where only torque is off, and the other way round, with the
+        // candidates that move the one alone: in the model, half of its error away with the
+        // other kept within QUIET.
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
-        if quiet[0] && !quiet[1] {
-            out[1].text.push_str(
-                "; thrust unaffected: torque alone (a friction torque, torque-tare, or the sections' drag, \
-                 re-scaling), not what changes the angles, the air or the RPM, which move both",
-            );
-        } else if quiet[1] && !quiet[0] {
-            out[0].text.push_str(
-                "; torque unaffected: thrust alone (a load on the balance that is not the propeller's, \
-                 thrust-tare), not what changes the angles, the air or the RPM, which move both",
-            );
+        if quiet[0] != quiet[1] {
+            let off_torque = quiet[0];
+            let rows_of =
+                |torque: bool| -> Vec<usize> { (0..rows.len()).filter(|&k| rows[k].torque == torque).collect() };
+            let (off, on) = (rows_of(off_torque), rows_of(!off_torque));
+            let rms_at = |idx: &[usize], add: Option<&Vec<f64>>| -> f64 {
+                let v: Vec<f64> = idx.iter().map(|&k| residuals[k] + add.map_or(0.0, |a| a[k])).collect();
+                crate::rms(&v)
+            };
+            let base = rms_at(&off, None);
+            let alone: Vec<&str> = responses
+                .iter()
+                .filter(|resp| {
+                    resp.probes
+                        .iter()
+                        .any(|p| rms_at(&off, Some(p)) <= CAN_MAKE * base && rms_at(&on, Some(p)) < QUIET)
+                })
+                .map(|resp| resp.id.as_str())
+                .collect();
+            let (moved, kept) = if off_torque {
+                ("torque", "thrust")
+            } else {
+                ("thrust", "torque")
+            };
+            let which = if responses.is_empty() {
+                String::new()
+            } else if alone.is_empty() {
+                " (no candidate does, in the model within its bounds)".to_string()
+            } else {
+                format!(
+                    " ({} can, from the model's response to each within its bounds)",
+                    alone.join(", ")
+                )
+            };
+            out[usize::from(off_torque)].text.push_str(&format!(
+                "; {kept} unaffected: what moves {moved} alone{which}, not what changes the angles, the air or \
+                 the RPM, which move both"
+            ));
         }
     }
     out
