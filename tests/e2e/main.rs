@@ -40,7 +40,7 @@ fn ranked_ids(diagnosis_json: &Path) -> Vec<String> {
 fn effect_lists<'a>(text: &'a str, after: &str) -> (Vec<&'a str>, Vec<&'a str>) {
     let from = text.find(after).expect(text);
     let rest = &text[from..];
-    let rest = &rest[rest.find("Effects that can make it").expect(text)..];
+    let rest = &rest[rest.find("Effects that can make").expect(text)..];
     let rest = &rest[rest.find("): ").expect(text) + 3..];
     let rest = rest.split(". ").next().unwrap_or(rest);
     let (can, cannot) = rest.split_once("; not ").unwrap_or((rest, ""));

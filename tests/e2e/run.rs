@@ -113,6 +113,11 @@ fn default_case_from_scan_to_report() {
     let (can, cannot) = effect_lists(thrust, "At fixed J");
     assert!(can.contains(&"re-lift") && cannot.contains(&"pitch-offset"), "{thrust}");
     assert!(effect_lists(thrust, "").0.contains(&"pitch-offset"), "{thrust}");
+    // Thrust against torque (-21 % and -14 % on average): the same way, which the angles, the
+    // inflow, the air or the RPM make; from the model, pitch-offset can make both.
+    let torque = d["diagnosis"]["before"][1]["text"].as_str().unwrap();
+    assert!(torque.contains("Thrust and torque are off the same way"), "{torque}");
+    assert!(effect_lists(torque, "Thrust and torque").0.contains(&"pitch-offset"), "{torque}");
     assert!(
         ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
         "{ladder:?}"

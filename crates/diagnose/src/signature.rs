@@ -83,7 +83,7 @@ fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
 /// Which candidates can make a pattern: each response's best probe against the observed parts
 /// `seen` (the parts of `of` that are there), as "Effects that can make it (...): a, b; not c".
 /// None without responses (nothing to match).
-fn effect_list(seen: &[f64], of: impl Fn(&Parts) -> Vec<f64>, responses: &[(String, Vec<Parts>)]) -> Option<String> {
+fn effect_list<P>(seen: &[f64], of: impl Fn(&P) -> Vec<f64>, responses: &[(String, Vec<P>)]) -> Option<String> {
     if responses.is_empty() {
         return None;
     }
@@ -486,15 +486,58 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
         // candidates that move the one alone: in the model, half of its error away with the
         // other kept within QUIET.
         let quiet: Vec<bool> = out.iter().map(|s| s.rms < QUIET).collect();
+        let rows_of = |torque: bool| -> Vec<usize> { (0..rows.len()).filter(|&k| rows[k].torque == torque).collect() };
+        let at = |idx: &[usize], add: Option<&Vec<f64>>| -> Vec<f64> {
+            idx.iter().map(|&k| residuals[k] + add.map_or(0.0, |a| a[k])).collect()
+        };
+        let rms_at = |idx: &[usize], add: Option<&Vec<f64>>| -> f64 { crate::rms(&at(idx, add)) };
+        if !quiet[0] && !quiet[1] {
+            // Thrust against torque: their mean errors' signs and sizes, and the candidates
+            // that can make the pair (probes that do not make the error larger overall).
+            let (t, q) = (rows_of(false), rows_of(true));
+            let (mt, mq) = (out[0].mean, out[1].mean);
+            let physics = if mt * mq < 0.0 {
+                "in opposite directions: the sections' drag (more drag, less thrust and more torque) or a load \
+                 on the balance, not an angle, the inflow, the air or the RPM, which move both the same way"
+            } else if mq.abs() > 2.0 * mt.abs() {
+                "the same way, torque more than twice as much: the sections' drag more than their lift"
+            } else if mt.abs() > 2.0 * mq.abs() {
+                "the same way, thrust more than twice as much: the thrust a power makes (the inflow, the tip \
+                 loss) or a load on the balance more than the sections' drag"
+            } else {
+                "the same way by similar amounts: what changes the angles, the inflow, the air or the RPM moves both"
+            };
+            let levels: Vec<(String, Vec<[f64; 2]>)> = responses
+                .iter()
+                .map(|resp| {
+                    let probes = resp
+                        .probes
+                        .iter()
+                        .filter(|p| {
+                            let both: Vec<usize> = (0..rows.len()).collect();
+                            rms_at(&both, Some(p)) <= rms_at(&both, None)
+                        })
+                        .map(|p| {
+                            let m = |idx: &[usize]| mean(&idx.iter().map(|&k| p[k]).collect::<Vec<f64>>());
+                            [m(&t), m(&q)]
+                        })
+                        .collect();
+                    (resp.id.clone(), probes)
+                })
+                .collect();
+            let mut s = format!(
+                ". Thrust and torque are off {physics} ({} and {} on average)",
+                pct(mt),
+                pct(mq)
+            );
+            if let Some(list) = effect_list(&[mt, mq], |p: &[f64; 2]| p.to_vec(), &levels) {
+                s.push_str(&format!(". {}", list.replacen("make it", "make both", 1)));
+            }
+            out[1].text.push_str(&s);
+        }
         if quiet[0] != quiet[1] {
             let off_torque = quiet[0];
-            let rows_of =
-                |torque: bool| -> Vec<usize> { (0..rows.len()).filter(|&k| rows[k].torque == torque).collect() };
             let (off, on) = (rows_of(off_torque), rows_of(!off_torque));
-            let rms_at = |idx: &[usize], add: Option<&Vec<f64>>| -> f64 {
-                let v: Vec<f64> = idx.iter().map(|&k| residuals[k] + add.map_or(0.0, |a| a[k])).collect();
-                crate::rms(&v)
-            };
             let base = rms_at(&off, None);
             let alone: Vec<&str> = responses
                 .iter()
@@ -726,5 +769,51 @@ mod tests {
             text.contains("No candidate effect can make it within its bounds"),
             "{text}"
         );
+    }
+
+    #[test]
+    fn thrust_against_torque_names_what_can_make_both() {
+        // Thrust 10 % high and torque 20 % low at every point: in opposite directions.
+        let mut d = data(&[(3000.0, 0.0), (4000.0, 0.0), (5000.0, 0.0), (6000.0, 0.0)]);
+        for o in &mut d.obs {
+            o.torque = Some(1.0);
+        }
+        d.torque_floor = 0.05;
+        let e: Vec<f64> = (0..8).map(|k| if k % 2 == 0 { 0.1 } else { -0.2 }).collect();
+        let rows = |t: f64, q: f64| -> Vec<Vec<f64>> { vec![(0..8).map(|k| if k % 2 == 0 { t } else { q }).collect()] };
+        let responses = vec![
+            // More drag: less thrust, more torque.
+            Response {
+                id: "drag".into(),
+                probes: rows(-0.05, 0.2),
+            },
+            // An angle: both the same way.
+            Response {
+                id: "angle".into(),
+                probes: rows(0.1, 0.1),
+            },
+        ];
+        let s = signatures(&d, &e, &responses);
+        assert!(
+            s[1].text.contains("Thrust and torque are off in opposite directions"),
+            "{}",
+            s[1].text
+        );
+        assert!(
+            s[1].text.contains(
+                "Effects that can make both (from the model's response to each, within its bounds): drag; not angle"
+            ),
+            "{}",
+            s[1].text
+        );
+        // Both high by similar amounts: the angles, the air, the RPM.
+        let e: Vec<f64> = (0..8).map(|k| if k % 2 == 0 { 0.1 } else { 0.12 }).collect();
+        let s = signatures(&d, &e, &[]);
+        assert!(
+            s[1].text.contains("off the same way by similar amounts"),
+            "{}",
+            s[1].text
+        );
+        assert!(!s[1].text.contains("can make both"), "{}", s[1].text);
     }
 }
