@@ -1,7 +1,9 @@
-//! Where the model fails, in words: bias, dependence on advance ratio and on RPM, per
-//! quantity ("thrust over-predicted by 12 % on average, largest at J > 0.5 (+18 %), growing
-//! with RPM (about RPM^2)"; "torque under-predicted ..., largest at low RPM; thrust
-//! unaffected").
+//! Where the model fails, in words: bias, dependence on advance ratio and on RPM at fixed J (the
+//! J sweeps' and the static test's apart where they differ), thrust against torque, per
+//! quantity ("thrust over-predicted by 12 % on average, largest at J > 0.5 (+18 %) ...";
+//! "torque under-predicted ..., largest at low RPM; thrust unaffected"). Each part names the
+//! candidate effects that can make it and those that cannot, from the model's own response to
+//! each ([`Response`], probed within its bounds by `discover`), not from a list.
 
 use std::collections::BTreeMap;
 
