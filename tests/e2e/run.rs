@@ -117,7 +117,10 @@ fn default_case_from_scan_to_report() {
     // inflow, the air or the RPM make; from the model, pitch-offset can make both.
     let torque = d["diagnosis"]["before"][1]["text"].as_str().unwrap();
     assert!(torque.contains("Thrust and torque are off the same way"), "{torque}");
-    assert!(effect_lists(torque, "Thrust and torque").0.contains(&"pitch-offset"), "{torque}");
+    assert!(
+        effect_lists(torque, "Thrust and torque").0.contains(&"pitch-offset"),
+        "{torque}"
+    );
     assert!(
         ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
         "{ladder:?}"
