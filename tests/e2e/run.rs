@@ -125,6 +125,24 @@ fn default_case_from_scan_to_report() {
         ladder.len() >= 2 && ladder[ladder.len() - 1] < 0.5 * ladder[0],
         "{ladder:?}"
     );
+    // Which step takes which trend (the ladder's columns): pitch-offset, first, the J trend
+    // (−27.4 → −5.1 % on 2026-11-25); re-lift, where it is added, the RPM trend at fixed J
+    // (−6.3 → −0.8 %).
+    let rungs = d["diagnosis"]["ladder"].as_array().unwrap();
+    let t = |i: usize, k: &str| rungs[i][k].as_f64().unwrap();
+    assert_eq!(rungs[1]["added"], "pitch-offset");
+    assert!(
+        t(1, "thrust_j_trend").abs() < 0.5 * t(0, "thrust_j_trend").abs(),
+        "{rungs:?}"
+    );
+    let k = rungs
+        .iter()
+        .position(|r| r["added"] == "re-lift")
+        .expect("re-lift in the ladder");
+    assert!(
+        t(k, "thrust_rpm_trend").abs() < 0.5 * t(k - 1, "thrust_rpm_trend").abs(),
+        "{rungs:?}"
+    );
     // One report with every part.
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     for part in [

@@ -150,9 +150,16 @@ pub fn print_result(d: &propbet_diagnose::discover::Diagnosis) {
             ),
         }
     }
-    println!("ladder:");
+    println!("ladder (held-out error; the thrust error's trend with J at fixed RPM and with RPM at fixed J):");
+    let trend = |t: Option<f64>| t.map_or("–".to_string(), |t| format!("{:+.1} %", 100.0 * t));
     for r in &d.ladder {
-        println!("  {:<60} held-out {:>6.2} %", r.stack, 100.0 * r.kfold_rms);
+        println!(
+            "  {:<60} held-out {:>6.2} %  J trend {:>7}  RPM trend {:>7}",
+            r.stack,
+            100.0 * r.kfold_rms,
+            trend(r.thrust_j_trend),
+            trend(r.thrust_rpm_trend)
+        );
     }
 }
 

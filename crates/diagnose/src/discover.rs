@@ -127,6 +127,11 @@ pub struct Rung {
     pub loro_rms: Option<f64>,
     /// p value of the step (None for the baseline).
     pub p_value: Option<f64>,
+    /// The thrust error's change with J at fixed RPM with this rung's effects
+    /// ([`crate::signature::thrust_trends`]): what an angle or the inflow makes.
+    pub thrust_j_trend: Option<f64>,
+    /// The thrust error's change with RPM at fixed J: what the sections' Reynolds number makes.
+    pub thrust_rpm_trend: Option<f64>,
 }
 
 /// Everything a diagnosis finds.
@@ -318,8 +323,11 @@ impl Evaluated {
     }
 
     /// The ladder's rung for this model ("baseline" when it has no effect).
-    fn rung(&self, p_value: Option<f64>) -> Rung {
+    fn rung(&self, data: &Data, p_value: Option<f64>) -> Rung {
+        let (thrust_j_trend, thrust_rpm_trend) = crate::signature::thrust_trends(data, &self.fit.residuals);
         Rung {
+            thrust_j_trend,
+            thrust_rpm_trend,
             added: self
                 .fit
                 .stack
@@ -754,7 +762,7 @@ pub fn diagnose(
         loro: f.loro.as_ref().map(|_| rms(&r0)),
         fit: base_fit,
     };
-    let mut ladder = vec![baseline.rung(None)];
+    let mut ladder = vec![baseline.rung(data, None)];
     let mut ranking = Vec::new();
     let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
     let mut current = baseline.clone();
@@ -798,7 +806,7 @@ pub fn diagnose(
     }
     match current.fit.stack.active.len() {
         0 => {}
-        1 => ladder.push(current.rung(last_p)),
+        1 => ladder.push(current.rung(data, last_p)),
         _ => {
             // Swaps and backward elimination, then the ladder rebuilt along the final set: at
             // each rung the effect of the set that helps most.
@@ -826,7 +834,7 @@ pub fn diagnose(
                 };
                 let gone = set.remove(i);
                 let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
-                ladder.push(ev.rung(Some(p)));
+                ladder.push(ev.rung(data, Some(p)));
                 cur = ev;
             }
             current = cur;

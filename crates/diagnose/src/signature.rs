@@ -232,6 +232,30 @@ pub fn static_rpm_trend(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
     static_trend(&rpm_slopes(pts))
 }
 
+/// The thrust error's two trends that point at physics, for the ladder's rungs: its change
+/// with J at fixed RPM (mean above the median J minus below) and with RPM at fixed J (over the
+/// RPM range its J bins typically span, [`rpm_trend_at_fixed_j`]). Thrust rows of `residuals`
+/// (in [`Data::rows`] order); None where the points do not show one.
+pub fn thrust_trends(data: &Data, residuals: &[f64]) -> (Option<f64>, Option<f64>) {
+    let pts: Vec<(f64, f64, i64, f64)> = data
+        .rows()
+        .iter()
+        .zip(residuals)
+        .filter(|(row, _)| !row.torque)
+        .map(|(row, &e)| {
+            let o = &data.obs[row.point];
+            (o.j, o.rpm(), o.rpm_group, e)
+        })
+        .collect();
+    if pts.is_empty() {
+        return (None, None);
+    }
+    let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
+    js.sort_by(f64::total_cmp);
+    let jm = js[js.len() / 2];
+    (parts_of(&pts, jm).dj, rpm_trend_at_fixed_j(&pts).map(|t| t.change))
+}
+
 /// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
 /// name), each other capitalised, all joined by full stops.
 fn sentences(parts: &[String]) -> String {

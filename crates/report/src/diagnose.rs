@@ -186,6 +186,11 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
     panels
 }
 
+/// A rung's trend, signed, or a dash where the points show none.
+fn trend(t: Option<f64>) -> String {
+    t.map_or("–".into(), |t| format!("{:+.1} %", 100.0 * t))
+}
+
 fn ladder_figure(d: &Diagnosis) -> Figure {
     let k: Vec<(f64, f64)> = d
         .ladder
@@ -292,18 +297,24 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     for (i, s) in d.ranking.iter().enumerate() {
         h.push_str(&ranking_row(i, s));
     }
-    h.push_str("</table>\n<h2>Ladder: effects added while they help</h2>\n<table><tr><th>step</th><th>added</th><th>model</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>p</th></tr>\n");
+    h.push_str("</table>\n<h2>Ladder: effects added while they help</h2>\n<p class=\"note\">The last two columns: the thrust error's \
+        change with J at fixed RPM (mean above the median J minus below: what an angle or the inflow makes) and with RPM at fixed J \
+        (what the sections' Reynolds number makes), with each rung's effects: which step takes which.</p>\n\
+        <table><tr><th>step</th><th>added</th><th>model</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>p</th>\
+        <th>thrust: J trend</th><th>thrust: RPM trend at fixed J</th></tr>\n");
     for (i, r) in d.ladder.iter().enumerate() {
         let _ = writeln!(
             h,
-            "<tr><td>{i}</td><td>{}</td><td>{}<br><span class=\"note\">{}</span></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{i}</td><td>{}</td><td>{}<br><span class=\"note\">{}</span></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             esc(&r.added),
             esc(&r.stack),
             esc(&params_text(&r.params, None)),
             pct(r.rms),
             pct(r.kfold_rms),
             r.loro_rms.map_or("–".into(), pct),
-            r.p_value.map_or("–".into(), sig)
+            r.p_value.map_or("–".into(), sig),
+            trend(r.thrust_j_trend),
+            trend(r.thrust_rpm_trend)
         );
     }
     h.push_str("</table>\n");
@@ -348,9 +359,19 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
             }
         }
     }
-    md.push_str("\n## Ladder\n\n| step | model | RMS | held-out |\n|---|---|---|---|\n");
+    md.push_str(
+        "\n## Ladder\n\n| step | model | RMS | held-out | thrust: J trend | thrust: RPM trend at fixed J |\n|---|---|---|---|---|---|\n",
+    );
     for (i, r) in d.ladder.iter().enumerate() {
-        let _ = writeln!(md, "| {i} | {} | {} | {} |", r.stack, pct(r.rms), pct(r.kfold_rms));
+        let _ = writeln!(
+            md,
+            "| {i} | {} | {} | {} | {} | {} |",
+            r.stack,
+            pct(r.rms),
+            pct(r.kfold_rms),
+            trend(r.thrust_j_trend),
+            trend(r.thrust_rpm_trend)
+        );
     }
     md.push_str("\n## What is left\n\n");
     for s in &d.after {
