@@ -305,7 +305,8 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     for (i, r) in d.ladder.iter().enumerate() {
         let _ = writeln!(
             h,
-            "<tr><td>{i}</td><td>{}</td><td>{}<br><span class=\"note\">{}</span></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{i}</td><td>{}</td><td>{}<br><span class=\"note\">{}</span></td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td></tr>",
             esc(&r.added),
             esc(&r.stack),
             esc(&params_text(&r.params, None)),

@@ -12,7 +12,7 @@ th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\
 .note{color:#555}figure{margin:1em 0}figure svg{max-width:100%;height:auto}code{background:#f4f4f4;padding:0 .3em}\
 tr.flagged td{color:#999}tr.sig td{background:#eef7ee}nav a{margin-right:1em}\
 section{border-top:2px solid #888;margin-top:2em}svg{max-width:100%;height:auto}\
-td.cmd,td.text,th.text{text-align:left}td.text,th.text{min-width:14em}td.cmd code{white-space:normal;overflow-wrap:anywhere;font-size:.85em}\
+td.num{white-space:nowrap}td.cmd,td.text,th.text{text-align:left}td.text,th.text{min-width:14em}td.cmd code{white-space:normal;overflow-wrap:anywhere;font-size:.85em}\
 p,li{overflow-wrap:anywhere}pre{overflow-x:auto}";
 
 /// A whole page: `title`, extra CSS (empty for none), and the body's markup.
