@@ -186,6 +186,62 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
     panels
 }
 
+/// One quantity's pattern as a list item: its first sentence (the bias), the others (the J
+/// trend, the RPM trend, thrust against torque) as a list under it, the effects each names as
+/// able to make it in bold.
+fn signature_html(text: &str) -> String {
+    // Sentences end at ". " before a capital (the signature capitalises each part).
+    let mut parts: Vec<&str> = Vec::new();
+    let mut start = 0;
+    for (i, _) in text.match_indices(". ") {
+        if text[i + 2..].starts_with(|c: char| c.is_uppercase()) {
+            parts.push(&text[start..i]);
+            start = i + 2;
+        }
+    }
+    parts.push(&text[start..]);
+    let bold = |sentence: &str| -> String {
+        for key in ["can make it (", "can make both ("] {
+            if let Some(k) = sentence.find(key) {
+                if let Some(c) = sentence[k..].find("): ") {
+                    let at = k + c + 3;
+                    let end = sentence[at..].find(';').map_or(sentence.len(), |e| at + e);
+                    return format!(
+                        "{}<b>{}</b>{}",
+                        esc(&sentence[..at]),
+                        esc(&sentence[at..end]),
+                        esc(&sentence[end..])
+                    );
+                }
+            }
+        }
+        esc(sentence)
+    };
+    // A sentence naming effects goes with the pattern before it, on a line of its own.
+    let mut items: Vec<String> = Vec::new();
+    for p in &parts[1..] {
+        let names = ["Effects that can make", "No candidate effect", "The effects named for"]
+            .iter()
+            .any(|k| p.starts_with(k));
+        match items.last_mut() {
+            Some(last) if names => {
+                let _ = write!(last, ".<br>{}", bold(p));
+            }
+            _ => items.push(bold(p)),
+        }
+    }
+    let mut h = format!("<li>{}", bold(parts[0]));
+    if !items.is_empty() {
+        h.push_str("<ul>");
+        for item in &items {
+            let _ = write!(h, "<li>{item}</li>");
+        }
+        h.push_str("</ul>");
+    }
+    h.push_str("</li>\n");
+    h
+}
+
 /// A rung's trend, signed, or a dash where the points show none.
 fn trend(t: Option<f64>) -> String {
     t.map_or("–".into(), |t| format!("{:+.1} %", 100.0 * t))
@@ -288,7 +344,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     );
     h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
     for s in &d.before {
-        let _ = writeln!(h, "<li>{}</li>", esc(&s.text));
+        h.push_str(&signature_html(&s.text));
     }
     h.push_str("</ul>\n<h2>Candidate effects, ranked</h2>\n<p class=\"note\">Each effect fitted on its own on top of the baseline \
         (Levenberg-Marquardt; ± is the 95 % interval). Held-out errors: 5-fold and leave-one-RPM-out. Ranked by \
@@ -324,7 +380,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     h.push_str(&propbet_plot::svg_inline(&residuals)?);
     h.push_str("\n<h3>What is left</h3>\n<ul>\n");
     for s in &d.after {
-        let _ = writeln!(h, "<li>{}</li>", esc(&s.text));
+        h.push_str(&signature_html(&s.text));
     }
     let last = d.ladder.last().map(|r| r.stack.clone()).unwrap_or_default();
     let _ = write!(
@@ -399,4 +455,31 @@ pub fn effect_args(d: &Diagnosis) -> Vec<String> {
         .iter()
         .map(|a| format!("--effect {}", a.describe()))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::signature_html;
+
+    #[test]
+    fn a_pattern_is_a_list_with_its_effects_in_bold() {
+        let text = "thrust under-predicted by 21.1 % on average (RMS 28.7 %). Largest at J > 0.32 (-35.1 % there, \
+                    -7.7 % elsewhere): from the angles. Effects that can make it (from the model's response to each, \
+                    within its bounds): pitch-offset, rpm-scale; not density. At fixed J the error changes by -4.3 % \
+                    from 4014 to 6512 rpm. No candidate effect can make it within its bounds";
+        let h = signature_html(text);
+        assert_eq!(
+            h,
+            "<li>thrust under-predicted by 21.1 % on average (RMS 28.7 %)<ul>\
+             <li>Largest at J &gt; 0.32 (-35.1 % there, -7.7 % elsewhere): from the angles.<br>Effects that can make \
+             it (from the model's response to each, within its bounds): <b>pitch-offset, rpm-scale</b>; not \
+             density</li><li>At fixed J the error changes by -4.3 % from 4014 to 6512 rpm.<br>No candidate effect \
+             can make it within its bounds</li></ul></li>\n"
+        );
+        // One sentence: one item, nothing nested.
+        assert_eq!(
+            signature_html("thrust within 2 % everywhere"),
+            "<li>thrust within 2 % everywhere</li>\n"
+        );
+    }
 }
