@@ -127,7 +127,7 @@ fn default_case_from_scan_to_report() {
     );
     // Which step takes which trend (the ladder's columns): pitch-offset, first, the J trend
     // (−27.4 → −5.1 % on 2026-11-25); re-lift, where it is added, the RPM trend at fixed J
-    // (−6.3 → −0.8 %).
+    // (−6.2 → −1.0 %).
     let rungs = d["diagnosis"]["ladder"].as_array().unwrap();
     let t = |i: usize, k: &str| rungs[i][k].as_f64().unwrap();
     assert_eq!(rungs[1]["added"], "pitch-offset");

@@ -195,14 +195,22 @@ impl RpmTrend {
     }
 }
 
-/// The trend at fixed J of [`rpm_slopes`]' bins: the median slope over the median range.
+/// The trend at fixed J of [`rpm_slopes`]' bins: the median slope over the median range of the
+/// J sweeps' bins (the static test's is told beside it, [`static_trend`]), or of the static
+/// bin where it is the only one.
 fn fixed_j_trend(bins: &BTreeMap<i64, (f64, f64, f64)>) -> Option<RpmTrend> {
-    if bins.is_empty() {
+    let forward: Vec<&(f64, f64, f64)> = bins.iter().filter(|(k, _)| **k >= 0).map(|(_, b)| b).collect();
+    let used: Vec<&(f64, f64, f64)> = if forward.is_empty() {
+        bins.values().collect()
+    } else {
+        forward
+    };
+    if used.is_empty() {
         return None;
     }
-    let slope = median(bins.values().map(|b| b.0).collect());
-    let lo = median(bins.values().map(|b| b.1).collect());
-    let hi = median(bins.values().map(|b| b.2).collect());
+    let slope = median(used.iter().map(|b| b.0).collect());
+    let lo = median(used.iter().map(|b| b.1).collect());
+    let hi = median(used.iter().map(|b| b.2).collect());
     RpmTrend::over(slope, lo, hi)
 }
 
@@ -216,7 +224,8 @@ fn static_trend(bins: &BTreeMap<i64, (f64, f64, f64)>) -> Option<RpmTrend> {
 }
 
 /// The error's trend with RPM at fixed J: within J bins, the least-squares slope of the error
-/// against ln RPM; the median over the bins that span at least 5 % in RPM (one bin of large
+/// against ln RPM; the median over the J sweeps' bins that span at least 5 % in RPM (the static
+/// test's where there are none; one bin of large
 /// errors near zero thrust does not outvote the others), as the change over the RPM range the
 /// bins typically span (the medians of their lowest and highest RPM: a slope of J sweeps at
 /// 4,000-6,500 rpm is not stretched over a static test's 2,000-6,500). `pts`: (J, rpm, group,
@@ -397,14 +406,13 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                     Some(t) if change.abs() <= 0.5 * QUIET => (t.change, ""),
                     _ => (change, ""),
                 };
-                if let (Some(f), Some(s)) = (seen.forward, seen.stat) {
+                // (Compared per unit ln RPM, the ranges differing; said where the larger changes
+                // the error by more than QUIET over its own range.)
+                if let (Some(f), Some(s), Some(t)) = (seen.forward, seen.stat, stat) {
                     let big = f.abs().max(s.abs());
-                    if big * 2f64.ln() > QUIET && (f * s < 0.0 || f.abs().min(s.abs()) < big / 3.0) {
-                        (sign, only) = if f.abs() > s.abs() {
-                            (f, FORWARD_ONLY)
-                        } else {
-                            (s, STATIC_ONLY)
-                        };
+                    let (dominant, its_change) = if f.abs() > s.abs() { (f, change) } else { (s, t.change) };
+                    if its_change.abs() > QUIET && (f * s < 0.0 || f.abs().min(s.abs()) < big / 3.0) {
+                        (sign, only) = (dominant, if f.abs() > s.abs() { FORWARD_ONLY } else { STATIC_ONLY });
                     }
                 }
                 let faster = if sign < 0.0 { "faster" } else { "slower" };
