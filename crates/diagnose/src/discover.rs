@@ -841,15 +841,19 @@ pub fn diagnose(
         }
     }
     let final_residuals = current.fit.residuals.clone();
+    // The candidates' responses on the baseline, and on the final model where the ladder
+    // added something (the same ones otherwise).
+    let first = responses(model, data, &Stack::baseline(), &r0, candidates);
+    let last = if current.fit.stack.active.is_empty() {
+        first.clone()
+    } else {
+        responses(model, data, &current.fit.stack, &final_residuals, candidates)
+    };
     Ok(Diagnosis {
         rows,
         points: data.obs.len(),
-        before: signatures(data, &r0, &responses(model, data, &Stack::baseline(), &r0, candidates)),
-        after: signatures(
-            data,
-            &final_residuals,
-            &responses(model, data, &current.fit.stack, &final_residuals, candidates),
-        ),
+        before: signatures(data, &r0, &first),
+        after: signatures(data, &final_residuals, &last),
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         repeatability,
