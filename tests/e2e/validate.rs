@@ -70,6 +70,10 @@ fn validation_table_on_the_shipped_subset() {
         "{r:?}"
     );
     assert!(md.contains("(2763-6768 rpm) |"), "{md}");
+    // One J sweep: no trend with RPM at fixed J to tell, "–" and an empty cell (the shared
+    // set's two sweeps of this prop: +12.4 % from 4008 to 6815 rpm).
+    assert!(r[col(&h, "forward_ct_error_rpm_change")].is_empty(), "{r:?}");
+    assert!(md.contains("(2763-6768 rpm) | – |"), "{md}");
     // APC's own prediction scored on the same points (PER3 covers 1000 rpm steps and J to
     // about 0.9: every point of the window).
     assert!(v("apc_points") >= v("points") - 2.0, "{r:?}");

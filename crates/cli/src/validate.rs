@@ -259,6 +259,7 @@ struct CsvRow<'a> {
     high_j_cp_error: f64,
     static_ct_rise_measured: Option<f64>,
     static_ct_rise_predicted: Option<f64>,
+    forward_ct_error_rpm_change: Option<f64>,
     ladder: &'a str,
     held_out_ladders: String,
 }
@@ -295,6 +296,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             high_j_cp_error: r.regimes[2].cp,
             static_ct_rise_measured: r.static_rise.map(|s| s.measured),
             static_ct_rise_predicted: r.static_rise.map(|s| s.predicted),
+            forward_ct_error_rpm_change: r.forward_rpm_trend.map(|t| t.change),
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
         });

@@ -134,7 +134,7 @@ const SAME_EFFECTS: &str = "The effects named for thrust can make it";
 const J_BIN: f64 = 0.05;
 
 /// An error's trend with RPM at fixed J: its change over an RPM range.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct RpmTrend {
     /// The change of the relative error from `lo` to `hi`.
     pub change: f64,

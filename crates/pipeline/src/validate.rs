@@ -7,9 +7,11 @@
 use std::path::{Path, PathBuf};
 
 use propbet_compare::metrics::{
-    quantile, regime_errors, static_figure_of_merit_error, static_rise, window_errors, RegimeError, StaticRise,
-    VALIDATION_J_WINDOW,
+    in_window, quantile, regime_errors, static_figure_of_merit_error, static_rise, window_errors, RegimeError,
+    StaticRise, VALIDATION_J_WINDOW,
 };
+use propbet_compare::ComparedPoint;
+use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
 use propbet_polar::{naca4_from_name, Airfoil};
 use propbet_qprop::apc::{read_pe0, uiuc_diameter};
 use propbet_qprop::{PropFile, PropRow};
@@ -185,6 +187,32 @@ pub struct Row {
     /// The static CT's rise from the lowest to the highest static RPM, measured and predicted
     /// ([`static_rise`]); None without a static test spanning 1.3x.
     pub static_rise: Option<StaticRise>,
+    /// Before calibration, the CT error's change with RPM at fixed J over the J sweeps' points
+    /// in the window ([`forward_rpm_trend`]): the sections' Reynolds-number dependence in
+    /// forward flight, where the static rise shows it statically; None where no J bin's RPMs
+    /// span 1.3x.
+    pub forward_rpm_trend: Option<RpmTrend>,
+}
+
+/// The CT error's (predicted / measured − 1) change with RPM at fixed J over the J sweeps'
+/// points inside the validation window ([`propbet_diagnose::signature::rpm_trend_at_fixed_j`]:
+/// the median over J bins of the slope against ln RPM, over the range the bins typically span).
+pub fn forward_rpm_trend(points: &[ComparedPoint], window: f64) -> Option<RpmTrend> {
+    let ok = |x: Option<f64>| x.filter(|v| v.is_finite() && *v > 0.0);
+    let pts: Vec<(f64, f64, i64, f64)> = points
+        .iter()
+        .zip(in_window(points, window))
+        .filter(|(p, inside)| *inside && !p.is_static() && p.rpm.is_finite() && p.rpm > 0.0)
+        .filter_map(|(p, _)| {
+            Some((
+                p.j,
+                p.rpm,
+                0,
+                p.predicted.ct.filter(|c| c.is_finite())? / ok(p.measured.ct)? - 1.0,
+            ))
+        })
+        .collect();
+    rpm_trend_at_fixed_j(&pts)
 }
 
 /// Where [`Row::twist_gap`] is averaged: r/R from 0.6 to 0.9.
@@ -544,6 +572,7 @@ pub fn validate_prop(
         static_fm: static_figure_of_merit_error(&compared.points),
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
         static_rise: static_rise(&compared.points),
+        forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
     };
     Ok(Validated {
         geometry,
@@ -561,6 +590,62 @@ pub fn validate_prop(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_forward_rpm_trend_is_the_j_sweeps_in_the_window() {
+        use propbet_compare::{PointAir, Quantities};
+        // (file, rpm, J, measured CT, CT error)
+        let mk = |file: usize, rpm: f64, j: f64, ct: f64, e: f64| ComparedPoint {
+            file,
+            label: String::new(),
+            lines: (1, 1),
+            rpm,
+            rpm_sd: None,
+            nominal_rpm: None,
+            v: 0.0,
+            j,
+            air: PointAir {
+                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
+                source: String::new(),
+                standard: true,
+            },
+            measured: Quantities {
+                ct: Some(ct),
+                ..Default::default()
+            },
+            measured_sd: Quantities::default(),
+            predicted: Quantities {
+                ct: Some(ct * (1.0 + e)),
+                ..Default::default()
+            },
+            re75: 0.0,
+            mach_tip: 0.0,
+            not_converged: 0,
+            model_flags: vec![],
+            flags: vec![],
+            rel_floor: Quantities::default(),
+        };
+        // Two sweeps whose CT error falls by 0.1 per e-fold of RPM at every J, each with a
+        // point past 85 % of its zero-thrust J (J0 = 0.5) whose error is huge, and a static
+        // test with a trend of its own: only the sweeps' points in the window count.
+        let mut pts = Vec::new();
+        for (file, rpm) in [(1, 3000.0f64), (2, 6000.0)] {
+            let e = -0.1 * (rpm / 3000.0).ln();
+            for j in [0.1, 0.2, 0.3] {
+                pts.push(mk(file, rpm, j, 0.1 * (1.0 - 2.0 * j), e));
+            }
+            pts.push(mk(file, rpm, 0.45, 0.01, 5.0 * rpm / 3000.0));
+            pts.push(mk(file, rpm, 0.55, -0.01, 0.0));
+        }
+        for rpm in [2000.0, 4000.0, 6000.0] {
+            pts.push(mk(0, rpm, 0.0, 0.1, 0.3 * (rpm / 2000.0).ln()));
+        }
+        let t = forward_rpm_trend(&pts, VALIDATION_J_WINDOW).unwrap();
+        assert!((t.change + 0.1 * 2f64.ln()).abs() < 1e-9, "{t:?}");
+        assert_eq!((t.lo.round(), t.hi.round()), (3000.0, 6000.0));
+        // One sweep: no trend.
+        assert!(forward_rpm_trend(&pts[..5], VALIDATION_J_WINDOW).is_none());
+    }
 
     #[test]
     fn halves_alternate_by_rpm_static_first() {

@@ -128,6 +128,7 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
     let mut h = vec!["prop".to_string()];
     h.extend(REGIMES.iter().map(|r| format!("{r}: CT / CP (points)")));
     h.push("static CT rise with RPM: measured / predicted".into());
+    h.push("CT error's change with RPM at fixed J, J sweeps".into());
     let signed = |x: f64| {
         if x.is_finite() {
             format!("{:+.1}", 100.0 * x)
@@ -156,6 +157,10 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
                 ),
                 None => "–".into(),
             });
+            v.push(match r.forward_rpm_trend {
+                Some(t) => format!("{} % ({:.0}-{:.0} rpm)", signed(t.change), t.lo, t.hi),
+                None => "–".into(),
+            });
             v
         })
         .collect();
@@ -167,8 +172,11 @@ const REGIME_INTRO: &str =
      of CT and CP over the same points, static, in forward flight below half the prop's zero-thrust J, \
      J0 (the median of its sweeps'), and from there to 85 % of J0. A hover-efficiency error sits in the \
      static column; a pitch error (or a section's zero-lift angle) grows towards zero thrust, in the third. \
-     The last: how much the static CT grows from the lowest to the highest static RPM, measured and \
-     predicted (the sections' Reynolds-number dependence, and whatever else grows with RPM).";
+     Then: how much the static CT grows from the lowest to the highest static RPM, measured and \
+     predicted (the sections' Reynolds-number dependence, and whatever else grows with RPM); and in \
+     forward flight, how the CT error changes with RPM at fixed J over the J sweeps (the median over J \
+     bins of its slope against ln RPM, over the RPM range they typically span: negative where the \
+     measured CT grows faster with RPM than the model's).";
 
 fn intro(model: &str) -> String {
     format!(
@@ -273,6 +281,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 mod tests {
     use super::*;
     use propbet_compare::metrics::{RegimeError, StaticRise};
+    use propbet_diagnose::signature::RpmTrend;
     use propbet_pipeline::validate::Per3Score;
 
     fn row(p: &str, x: f64, apc: bool) -> Row {
@@ -314,6 +323,11 @@ mod tests {
                 measured: 0.227,
                 predicted: 0.094,
             }),
+            forward_rpm_trend: (x > 0.15).then_some(RpmTrend {
+                change: -0.123,
+                lo: 4005.0,
+                hi: 6707.0,
+            }),
         }
     }
 
@@ -341,12 +355,14 @@ mod tests {
         assert!(!md.contains("APC CT"), "no PER3, no APC columns");
         // Where the error is: signed, a row per validated prop, "–" for a regime without points.
         assert!(
-            md.contains("| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) | +22.7 / +9.4 % (2377-6528 rpm) |"),
+            md.contains(
+                "| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) | +22.7 / +9.4 % (2377-6528 rpm) | -12.3 % (4005-6707 rpm) |"
+            ),
             "{md}"
         );
         // No static test spanning 1.3x: "–".
         assert!(
-            md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – |"),
+            md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – | – |"),
             "{md}"
         );
         let page = html(&rows, &skipped, "tables");
