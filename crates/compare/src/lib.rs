@@ -38,6 +38,17 @@ pub struct PointAir {
     pub standard: bool,
 }
 
+/// Standard air (QPROP's defaults), assumed: a point's air before anything says otherwise.
+impl Default for PointAir {
+    fn default() -> Self {
+        Self {
+            fluid: Fluid::QPROP_DEFAULT,
+            source: String::new(),
+            standard: true,
+        }
+    }
+}
+
 /// The air of one point: given values first, then logged ones, then ISA sea level.
 pub fn point_air(p: &MeasuredPoint, choice: &AirChoice) -> PointAir {
     let isa = AirState::ISA;
@@ -127,8 +138,9 @@ impl Quantities {
     }
 }
 
-/// One measured point with its prediction.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// One measured point with its prediction (`Default`: a blank point in standard air, for tests
+/// and builders to fill).
+#[derive(Debug, Clone, Default, PartialEq, Serialize)]
 pub struct ComparedPoint {
     /// Index of the measured file.
     pub file: usize,

@@ -395,9 +395,8 @@ pub fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PointAir, Quantities};
+    use crate::Quantities;
     use approx::assert_relative_eq;
-    use propbet_bemt::Fluid;
 
     #[test]
     fn the_figure_of_merit_is_one_for_an_actuator_disc_and_compared_at_static_points() {
@@ -437,28 +436,13 @@ mod tests {
             ..Default::default()
         };
         ComparedPoint {
-            file: 0,
             label: label.into(),
             lines: (1, 1),
             rpm,
-            rpm_sd: None,
-            nominal_rpm: None,
-            v: 0.0,
             j,
-            air: PointAir {
-                fluid: Fluid::QPROP_DEFAULT,
-                source: String::new(),
-                standard: true,
-            },
             measured: q(meas),
-            measured_sd: Quantities::default(),
             predicted: q(pred),
-            re75: 0.0,
-            mach_tip: 0.0,
-            not_converged: 0,
-            model_flags: vec![],
-            flags: vec![],
-            rel_floor: Quantities::default(),
+            ..Default::default()
         }
     }
 

@@ -593,37 +593,21 @@ mod tests {
 
     #[test]
     fn the_forward_rpm_trend_is_the_j_sweeps_in_the_window() {
-        use propbet_compare::{PointAir, Quantities};
+        use propbet_compare::Quantities;
         // (file, rpm, J, measured CT, CT error)
         let mk = |file: usize, rpm: f64, j: f64, ct: f64, e: f64| ComparedPoint {
             file,
-            label: String::new(),
-            lines: (1, 1),
             rpm,
-            rpm_sd: None,
-            nominal_rpm: None,
-            v: 0.0,
             j,
-            air: PointAir {
-                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
-                source: String::new(),
-                standard: true,
-            },
             measured: Quantities {
                 ct: Some(ct),
                 ..Default::default()
             },
-            measured_sd: Quantities::default(),
             predicted: Quantities {
                 ct: Some(ct * (1.0 + e)),
                 ..Default::default()
             },
-            re75: 0.0,
-            mach_tip: 0.0,
-            not_converged: 0,
-            model_flags: vec![],
-            flags: vec![],
-            rel_floor: Quantities::default(),
+            ..Default::default()
         };
         // Two sweeps whose CT error falls by 0.1 per e-fold of RPM at every J, each with a
         // point past 85 % of its zero-thrust J (J0 = 0.5) whose error is huge, and a static
