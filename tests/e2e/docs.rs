@@ -33,6 +33,17 @@ fn commands(text: &str) -> Vec<String> {
     out
 }
 
+/// The files of `dir` with the extension `ext`, sorted.
+fn files_ending(dir: &Path, ext: &str) -> Vec<PathBuf> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == ext))
+        .collect();
+    files.sort();
+    files
+}
+
 #[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn every_documented_command_runs() {
@@ -42,12 +53,7 @@ fn every_documented_command_runs() {
     }
     let bin_dir = Path::new(env!("CARGO_BIN_EXE_propbet")).parent().unwrap().to_path_buf();
     let path = format!("{}:{}", bin_dir.display(), std::env::var("PATH").unwrap_or_default());
-    let mut pages: Vec<PathBuf> = std::fs::read_dir(repo().join("docs/guide"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "md"))
-        .collect();
-    pages.sort();
+    let mut pages = files_ending(&repo().join("docs/guide"), "md");
     pages.push(repo().join("docs/effects.md"));
     let mut ran = 0;
     for page in &pages {
@@ -144,12 +150,7 @@ fn every_documented_user_effects_file_reads() {
     // docs/user_effects.toml and the studies' effects (docs/studies/*.toml), which their
     // commands pass to diagnose and validate: each lists its effects.
     let mut files = vec![repo().join("docs/user_effects.toml")];
-    let mut studies: Vec<PathBuf> = std::fs::read_dir(repo().join("docs/studies"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    studies.sort();
+    let studies = files_ending(&repo().join("docs/studies"), "toml");
     assert!(studies.len() >= 2, "{studies:?}");
     files.extend(studies);
     for f in &files {

@@ -69,14 +69,40 @@ struct Parts {
     stat: Option<f64>,
 }
 
-/// The parts of the pattern of `pts` (J, rpm, group, error), split at J `jm`.
-fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
+/// The mean error of the points of `pts` at J up to `jm` and above it, where each side has at
+/// least two.
+fn j_halves(pts: &[(f64, f64, i64, f64)], jm: f64) -> Option<(f64, f64)> {
     let lo: Vec<f64> = pts.iter().filter(|p| p.0 <= jm).map(|p| p.3).collect();
     let hi: Vec<f64> = pts.iter().filter(|p| p.0 > jm).map(|p| p.3).collect();
+    (lo.len() >= 2 && hi.len() >= 2).then(|| (mean(&lo), mean(&hi)))
+}
+
+/// The median J of `pts` (non-empty), where [`j_halves`] splits them.
+fn median_j(pts: &[(f64, f64, i64, f64)]) -> f64 {
+    let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
+    js.sort_by(f64::total_cmp);
+    js[js.len() / 2]
+}
+
+/// The rows of one quantity (thrust, or torque) of `data` as (J, rpm, group, value), the
+/// value of each from `values` (one per residual row, in [`Data::rows`] order).
+fn quantity_points(data: &Data, rows: &[crate::Row], torque: bool, values: &[f64]) -> Vec<(f64, f64, i64, f64)> {
+    rows.iter()
+        .zip(values)
+        .filter(|(row, _)| row.torque == torque)
+        .map(|(row, &v)| {
+            let o = &data.obs[row.point];
+            (o.j, o.rpm(), o.rpm_group, v)
+        })
+        .collect()
+}
+
+/// The parts of the pattern of `pts` (J, rpm, group, error), split at J `jm`.
+fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
     let bins = rpm_slopes(pts);
     let forward: Vec<f64> = bins.iter().filter(|(k, _)| **k >= 0).map(|(_, b)| b.0).collect();
     Parts {
-        dj: (lo.len() >= 2 && hi.len() >= 2).then(|| mean(&hi) - mean(&lo)),
+        dj: j_halves(pts, jm).map(|(lo, hi)| hi - lo),
         forward: (!forward.is_empty()).then(|| median(forward)),
         stat: bins.get(&-1).map(|b| b.0),
     }
@@ -246,23 +272,14 @@ pub fn static_rpm_trend(pts: &[(f64, f64, i64, f64)]) -> Option<RpmTrend> {
 /// RPM range its J bins typically span, [`rpm_trend_at_fixed_j`]). Thrust rows of `residuals`
 /// (in [`Data::rows`] order); None where the points do not show one.
 pub fn thrust_trends(data: &Data, residuals: &[f64]) -> (Option<f64>, Option<f64>) {
-    let pts: Vec<(f64, f64, i64, f64)> = data
-        .rows()
-        .iter()
-        .zip(residuals)
-        .filter(|(row, _)| !row.torque)
-        .map(|(row, &e)| {
-            let o = &data.obs[row.point];
-            (o.j, o.rpm(), o.rpm_group, e)
-        })
-        .collect();
+    let pts = quantity_points(data, &data.rows(), false, residuals);
     if pts.is_empty() {
         return (None, None);
     }
-    let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
-    js.sort_by(f64::total_cmp);
-    let jm = js[js.len() / 2];
-    (parts_of(&pts, jm).dj, rpm_trend_at_fixed_j(&pts).map(|t| t.change))
+    (
+        parts_of(&pts, median_j(&pts)).dj,
+        rpm_trend_at_fixed_j(&pts).map(|t| t.change),
+    )
 }
 
 /// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
@@ -292,16 +309,7 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
     let rows = data.rows();
     for torque in [false, true] {
         let name = if torque { "torque" } else { "thrust" };
-        let idx: Vec<usize> = (0..rows.len()).filter(|&k| rows[k].torque == torque).collect();
-        // (J, rpm, group, value of row k)
-        let at = |values: &[f64]| -> Vec<(f64, f64, i64, f64)> {
-            idx.iter()
-                .map(|&k| {
-                    let o = &data.obs[rows[k].point];
-                    (o.j, o.rpm(), o.rpm_group, values[k])
-                })
-                .collect()
-        };
+        let at = |values: &[f64]| quantity_points(data, &rows, torque, values);
         let pts = at(residuals);
         if pts.is_empty() {
             continue;
@@ -332,9 +340,7 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
         // once below), not the angles, air or RPM the general lists name.
         let torque_alone = torque && out.first().is_some_and(|s| s.rms < QUIET);
         // Advance ratio: split at the median J.
-        let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
-        js.sort_by(f64::total_cmp);
-        let jm = js[js.len() / 2];
+        let jm = median_j(&pts);
         let seen = parts_of(&pts, jm);
         // Each candidate's probes, as the same parts; a probe that makes this quantity's error
         // vary more (a tare at its bound swamping the loads near zero thrust) does not count as
@@ -371,10 +377,8 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                 list
             }
         };
-        if let Some(dj) = seen.dj {
-            let lo: Vec<f64> = pts.iter().filter(|p| p.0 <= jm).map(|p| p.3).collect();
-            let hi: Vec<f64> = pts.iter().filter(|p| p.0 > jm).map(|p| p.3).collect();
-            let (ml, mh) = (mean(&lo), mean(&hi));
+        if let Some((ml, mh)) = j_halves(&pts, jm) {
+            let dj = mh - ml;
             if dj.abs() > threshold {
                 let (side, a, b) = if mh.abs() > ml.abs() {
                     (format!("J > {jm:.2}"), mh, ml)
