@@ -23,8 +23,53 @@ pub struct Signature {
     pub mean: f64,
     /// RMS relative error.
     pub rms: f64,
-    /// The pattern in words.
+    /// The pattern in words: its parts' sentences, each followed by its effects'.
     pub text: String,
+    /// The same, part by part (the bias first), for a page to lay out.
+    pub parts: Vec<Part>,
+}
+
+/// One part of a pattern: what it says, and the candidates it names where they were matched.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Part {
+    /// The sentence, without its full stop.
+    pub text: String,
+    /// The candidates that can make it.
+    pub effects: Option<EffectList>,
+}
+
+/// The candidates a part names, from their responses: "{lead}{can, ...}{rest}", as in
+/// "Effects that can make it (...): a, b; not c".
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EffectList {
+    /// The words before the effects that can make it (all of the sentence where none can).
+    pub lead: String,
+    /// The effects that can make it, best first.
+    pub can: Vec<String>,
+    /// The words after them ("; not c, d").
+    pub rest: String,
+}
+
+impl EffectList {
+    /// The list as a sentence.
+    pub fn sentence(&self) -> String {
+        format!("{}{}{}", self.lead, self.can.join(", "), self.rest)
+    }
+}
+
+impl Part {
+    fn new(text: String, effects: Option<EffectList>) -> Self {
+        Self { text, effects }
+    }
+}
+
+/// The words of `parts`: each part's sentence, then its effects', joined by full stops.
+fn render(parts: &[Part]) -> String {
+    parts
+        .iter()
+        .flat_map(|p| std::iter::once(p.text.clone()).chain(p.effects.as_ref().map(EffectList::sentence)))
+        .collect::<Vec<String>>()
+        .join(". ")
 }
 
 fn pct(x: f64) -> String {
@@ -109,9 +154,14 @@ fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
 }
 
 /// Which candidates can make a pattern: each response's best probe against the observed parts
-/// `seen` (the parts of `of` that are there), as "Effects that can make it (...): a, b; not c".
-/// None without responses (nothing to match).
-fn effect_list<P>(seen: &[f64], of: impl Fn(&P) -> Vec<f64>, responses: &[(String, Vec<P>)]) -> Option<String> {
+/// `seen` (the parts of `of` that are there), as "Effects that can make {object} (...): a, b;
+/// not c". None without responses (nothing to match).
+fn effect_list<P>(
+    seen: &[f64],
+    of: impl Fn(&P) -> Vec<f64>,
+    responses: &[(String, Vec<P>)],
+    object: &str,
+) -> Option<EffectList> {
     if responses.is_empty() {
         return None;
     }
@@ -133,19 +183,26 @@ fn effect_list<P>(seen: &[f64], of: impl Fn(&P) -> Vec<f64>, responses: &[(Strin
         }
     }
     can.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let can: Vec<&str> = can.into_iter().map(|c| c.1).collect();
-    let mut s = if can.is_empty() {
-        "No candidate effect can make it within its bounds (from the model's response to each)".to_string()
+    let can: Vec<String> = can.into_iter().map(|c| c.1.to_string()).collect();
+    Some(if can.is_empty() {
+        EffectList {
+            lead: format!(
+                "No candidate effect can make {object} within its bounds (from the model's response to each)"
+            ),
+            can,
+            rest: String::new(),
+        }
     } else {
-        format!(
-            "Effects that can make it (from the model's response to each, within its bounds): {}",
-            can.join(", ")
-        )
-    };
-    if !cannot.is_empty() && !can.is_empty() {
-        s.push_str(&format!("; not {}", cannot.join(", ")));
-    }
-    Some(s)
+        EffectList {
+            lead: format!("Effects that can make {object} (from the model's response to each, within its bounds): "),
+            rest: if cannot.is_empty() {
+                String::new()
+            } else {
+                format!("; not {}", cannot.join(", "))
+            },
+            can,
+        }
+    })
 }
 
 /// The RPM trend's qualifier where the J sweeps show it and the static test does not.
@@ -282,21 +339,10 @@ pub fn thrust_trends(data: &Data, residuals: &[f64]) -> (Option<f64>, Option<f64
     )
 }
 
-/// The parts of a pattern as sentences: the first as it is (it starts with the quantity's
-/// name), each other capitalised, all joined by full stops.
-fn sentences(parts: &[String]) -> String {
-    parts
-        .iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let mut c = p.chars();
-            match c.next() {
-                Some(f) if i > 0 => f.to_uppercase().chain(c).collect(),
-                _ => p.clone(),
-            }
-        })
-        .collect::<Vec<String>>()
-        .join(". ")
+/// `s` with its first letter a capital.
+fn capitalised(s: &str) -> String {
+    let mut c = s.chars();
+    c.next().map_or(String::new(), |f| f.to_uppercase().chain(c).collect())
 }
 
 /// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
@@ -305,7 +351,7 @@ fn sentences(parts: &[String]) -> String {
 pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec<Signature> {
     let mut out: Vec<Signature> = Vec::new();
     // The effect lists thrust's pattern named, which torque's refers to where it names the same.
-    let mut named: Vec<String> = Vec::new();
+    let mut named: Vec<EffectList> = Vec::new();
     let rows = data.rows();
     for torque in [false, true] {
         let name = if torque { "torque" } else { "thrust" };
@@ -321,19 +367,26 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                 quantity: name.into(),
                 mean: m,
                 rms: r,
-                text: format!(
-                    "{name} within {:.0} % everywhere (RMS {:.1} %)",
-                    100.0 * QUIET,
-                    100.0 * r
-                ),
+                text: String::new(),
+                parts: vec![Part::new(
+                    format!(
+                        "{name} within {:.0} % everywhere (RMS {:.1} %)",
+                        100.0 * QUIET,
+                        100.0 * r
+                    ),
+                    None,
+                )],
             });
             continue;
         }
         let word = if m > 0.0 { "over-predicted" } else { "under-predicted" };
-        let mut parts = vec![format!(
-            "{name} {word} by {:.1} % on average (RMS {:.1} %)",
-            100.0 * m.abs(),
-            100.0 * r
+        let mut parts = vec![Part::new(
+            format!(
+                "{name} {word} by {:.1} % on average (RMS {:.1} %)",
+                100.0 * m.abs(),
+                100.0 * r
+            ),
+            None,
         )];
         let threshold = QUIET.max(0.3 * r);
         // Torque off with thrust right: only what moves torque alone can make its patterns (said
@@ -367,9 +420,13 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                 .collect()
         };
         // An effect list once: torque's refers to thrust's where it is the same.
-        let mut refer = |list: String| -> String {
-            if torque && named.contains(&list) && list.starts_with("Effects") {
-                SAME_EFFECTS.to_string()
+        let mut refer = |list: EffectList| -> EffectList {
+            if torque && named.contains(&list) && !list.can.is_empty() {
+                EffectList {
+                    lead: SAME_EFFECTS.to_string(),
+                    can: Vec::new(),
+                    rest: String::new(),
+                }
             } else {
                 if !torque {
                     named.push(list.clone());
@@ -386,13 +443,12 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                     (format!("J <= {jm:.2}"), ml, mh)
                 };
                 let mut s = format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b));
+                let mut effects = None;
                 if !torque_alone {
                     s.push_str(": an error that changes with J at fixed RPM comes from the angles or the inflow");
-                    if let Some(list) = effect_list(&[dj], |p| vec![p.dj.unwrap_or(0.0)], &resp) {
-                        s.push_str(&format!(". {}", refer(list)));
-                    }
+                    effects = effect_list(&[dj], |p| vec![p.dj.unwrap_or(0.0)], &resp, "it").map(&mut refer);
                 }
-                parts.push(s);
+                parts.push(Part::new(s, effects));
             }
         }
         // RPM at fixed J: what Reynolds (and Mach) number dependence shows.
@@ -438,6 +494,7 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                 head.push_str(&format!(
                     ": the measured {name} grows {faster} with RPM than the model's{only}"
                 ));
+                let mut effects = None;
                 if !torque_alone {
                     head.push_str(match only {
                         "" => " (a Reynolds-number effect on the sections; Mach at high tip speeds)",
@@ -460,11 +517,9 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                             .map(|(_, r)| r.unwrap_or(0.0))
                             .collect()
                     };
-                    if let Some(list) = effect_list(&seen_rpm, of, &resp) {
-                        head.push_str(&format!(". {}", refer(list)));
-                    }
+                    effects = effect_list(&seen_rpm, of, &resp, "it").map(&mut refer);
                 }
-                parts.push(head);
+                parts.push(Part::new(head, effects));
             }
         }
         // RPM: first against last group. Their errors mix RPM with the J each group covers (a J
@@ -508,7 +563,7 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                         }
                     }
                     s.push(')');
-                    parts.push(s);
+                    parts.push(Part::new(s, None));
                 }
             }
         }
@@ -516,7 +571,8 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
             quantity: name.into(),
             mean: m,
             rms: r,
-            text: sentences(&parts),
+            text: String::new(),
+            parts,
         });
     }
     if out.len() == 2 {
@@ -545,16 +601,15 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
             } else {
                 "the same way by similar amounts: what changes the angles, the inflow, the air or the RPM moves both"
             };
+            let both: Vec<usize> = (0..rows.len()).collect();
+            let before = rms_at(&both, None);
             let levels: Vec<(String, Vec<[f64; 2]>)> = responses
                 .iter()
                 .map(|resp| {
                     let probes = resp
                         .probes
                         .iter()
-                        .filter(|p| {
-                            let both: Vec<usize> = (0..rows.len()).collect();
-                            rms_at(&both, Some(p)) <= rms_at(&both, None)
-                        })
+                        .filter(|p| rms_at(&both, Some(p)) <= before)
                         .map(|p| {
                             let m = |idx: &[usize]| mean(&idx.iter().map(|&k| p[k]).collect::<Vec<f64>>());
                             [m(&t), m(&q)]
@@ -563,15 +618,14 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                     (resp.id.clone(), probes)
                 })
                 .collect();
-            let mut s = format!(
-                ". Thrust and torque are off {physics} ({} and {} on average)",
-                pct(mt),
-                pct(mq)
-            );
-            if let Some(list) = effect_list(&[mt, mq], |p: &[f64; 2]| p.to_vec(), &levels) {
-                s.push_str(&format!(". {}", list.replacen("make it", "make both", 1)));
-            }
-            out[1].text.push_str(&s);
+            out[1].parts.push(Part::new(
+                format!(
+                    "Thrust and torque are off {physics} ({} and {} on average)",
+                    pct(mt),
+                    pct(mq)
+                ),
+                effect_list(&[mt, mq], |p: &[f64; 2]| p.to_vec(), &levels, "both"),
+            ));
         }
         if quiet[0] != quiet[1] {
             let off_torque = quiet[0];
@@ -601,11 +655,26 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
                     alone.join(", ")
                 )
             };
-            out[usize::from(off_torque)].text.push_str(&format!(
+            let unaffected = format!(
                 "; {kept} unaffected: what moves {moved} alone{which}, not what changes the angles, the air or \
                  the RPM, which move both"
-            ));
+            );
+            // After the last words of the pattern: its last part's effects where it names some.
+            if let Some(last) = out[usize::from(off_torque)].parts.last_mut() {
+                match &mut last.effects {
+                    Some(e) => e.rest.push_str(&unaffected),
+                    None => last.text.push_str(&unaffected),
+                }
+            }
         }
+    }
+    // The parts' sentences capitalised after the first (which starts with the quantity's
+    // name), and the words.
+    for sig in &mut out {
+        for p in sig.parts.iter_mut().skip(1) {
+            p.text = capitalised(&p.text);
+        }
+        sig.text = render(&sig.parts);
     }
     out
 }

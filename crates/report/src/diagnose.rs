@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use propbet_diagnose::discover::{Diagnosis, Scored};
 use propbet_diagnose::fit::FittedParam;
+use propbet_diagnose::signature::{Part, Signature};
 use propbet_diagnose::{Data, Row};
 use propbet_effects::fmt_value;
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
@@ -186,55 +187,30 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
     panels
 }
 
-/// One quantity's pattern as a list item: its first sentence (the bias), the others (the J
-/// trend, the RPM trend, thrust against torque) as a list under it, the effects each names as
-/// able to make it in bold.
-fn signature_html(text: &str) -> String {
-    // Sentences end at ". " before a capital (the signature capitalises each part).
-    let mut parts: Vec<&str> = Vec::new();
-    let mut start = 0;
-    for (i, _) in text.match_indices(". ") {
-        if text[i + 2..].starts_with(|c: char| c.is_uppercase()) {
-            parts.push(&text[start..i]);
-            start = i + 2;
+/// One quantity's pattern as a list item: its first part (the bias), the others (the J trend,
+/// the RPM trend, thrust against torque) as a list under it, each with the effects it names on
+/// a line of its own, the ones that can make it in bold.
+fn signature_html(s: &Signature) -> String {
+    let part = |p: &Part| -> String {
+        let mut h = esc(&p.text);
+        if let Some(e) = &p.effects {
+            let can = if e.can.is_empty() {
+                String::new()
+            } else {
+                format!("<b>{}</b>", esc(&e.can.join(", ")))
+            };
+            let _ = write!(h, ".<br>{}{can}{}", esc(&e.lead), esc(&e.rest));
         }
-    }
-    parts.push(&text[start..]);
-    let bold = |sentence: &str| -> String {
-        for key in ["can make it (", "can make both ("] {
-            if let Some(k) = sentence.find(key) {
-                if let Some(c) = sentence[k..].find("): ") {
-                    let at = k + c + 3;
-                    let end = sentence[at..].find(';').map_or(sentence.len(), |e| at + e);
-                    return format!(
-                        "{}<b>{}</b>{}",
-                        esc(&sentence[..at]),
-                        esc(&sentence[at..end]),
-                        esc(&sentence[end..])
-                    );
-                }
-            }
-        }
-        esc(sentence)
+        h
     };
-    // A sentence naming effects goes with the pattern before it, on a line of its own.
-    let mut items: Vec<String> = Vec::new();
-    for p in &parts[1..] {
-        let names = ["Effects that can make", "No candidate effect", "The effects named for"]
-            .iter()
-            .any(|k| p.starts_with(k));
-        match items.last_mut() {
-            Some(last) if names => {
-                let _ = write!(last, ".<br>{}", bold(p));
-            }
-            _ => items.push(bold(p)),
-        }
-    }
-    let mut h = format!("<li>{}", bold(parts[0]));
-    if !items.is_empty() {
+    let Some((first, rest)) = s.parts.split_first() else {
+        return format!("<li>{}</li>\n", esc(&s.text));
+    };
+    let mut h = format!("<li>{}", part(first));
+    if !rest.is_empty() {
         h.push_str("<ul>");
-        for item in &items {
-            let _ = write!(h, "<li>{item}</li>");
+        for p in rest {
+            let _ = write!(h, "<li>{}</li>", part(p));
         }
         h.push_str("</ul>");
     }
@@ -344,7 +320,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     );
     h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
     for s in &d.before {
-        h.push_str(&signature_html(&s.text));
+        h.push_str(&signature_html(s));
     }
     h.push_str("</ul>\n<h2>Candidate effects, ranked</h2>\n<p class=\"note\">Each effect fitted on its own on top of the baseline \
         (Levenberg-Marquardt; ± is the 95 % interval). Held-out errors: 5-fold and leave-one-RPM-out. Ranked by \
@@ -380,7 +356,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     h.push_str(&propbet_plot::svg_inline(&residuals)?);
     h.push_str("\n<h3>What is left</h3>\n<ul>\n");
     for s in &d.after {
-        h.push_str(&signature_html(&s.text));
+        h.push_str(&signature_html(s));
     }
     let last = d.ladder.last().map(|r| r.stack.clone()).unwrap_or_default();
     let _ = write!(
@@ -460,14 +436,43 @@ pub fn effect_args(d: &Diagnosis) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::signature_html;
+    use propbet_diagnose::signature::{EffectList, Part, Signature};
+
+    fn sig(parts: Vec<Part>) -> Signature {
+        Signature {
+            quantity: "thrust".into(),
+            mean: -0.211,
+            rms: 0.287,
+            text: String::new(),
+            parts,
+        }
+    }
 
     #[test]
     fn a_pattern_is_a_list_with_its_effects_in_bold() {
-        let text = "thrust under-predicted by 21.1 % on average (RMS 28.7 %). Largest at J > 0.32 (-35.1 % there, \
-                    -7.7 % elsewhere): from the angles. Effects that can make it (from the model's response to each, \
-                    within its bounds): pitch-offset, rpm-scale; not density. At fixed J the error changes by -4.3 % \
-                    from 4014 to 6512 rpm. No candidate effect can make it within its bounds";
-        let h = signature_html(text);
+        let list = |lead: &str, can: &[&str], rest: &str| EffectList {
+            lead: lead.into(),
+            can: can.iter().map(|c| c.to_string()).collect(),
+            rest: rest.into(),
+        };
+        let h = signature_html(&sig(vec![
+            Part {
+                text: "thrust under-predicted by 21.1 % on average (RMS 28.7 %)".into(),
+                effects: None,
+            },
+            Part {
+                text: "Largest at J > 0.32 (-35.1 % there, -7.7 % elsewhere): from the angles".into(),
+                effects: Some(list(
+                    "Effects that can make it (from the model's response to each, within its bounds): ",
+                    &["pitch-offset", "rpm-scale"],
+                    "; not density",
+                )),
+            },
+            Part {
+                text: "At fixed J the error changes by -4.3 % from 4014 to 6512 rpm".into(),
+                effects: Some(list("No candidate effect can make it within its bounds", &[], "")),
+            },
+        ]));
         assert_eq!(
             h,
             "<li>thrust under-predicted by 21.1 % on average (RMS 28.7 %)<ul>\
@@ -476,9 +481,13 @@ mod tests {
              density</li><li>At fixed J the error changes by -4.3 % from 4014 to 6512 rpm.<br>No candidate effect \
              can make it within its bounds</li></ul></li>\n"
         );
-        // One sentence: one item, nothing nested.
+        // One part: one item, nothing nested.
+        let one = Part {
+            text: "thrust within 2 % everywhere".into(),
+            effects: None,
+        };
         assert_eq!(
-            signature_html("thrust within 2 % everywhere"),
+            signature_html(&sig(vec![one])),
             "<li>thrust within 2 % everywhere</li>\n"
         );
     }
