@@ -1,6 +1,7 @@
 //! `propbet validate` on a shipped subset of the UIUC and APC data (tests/data/validate): one
 //! APC prop predicted from UIUC geometry and PE0 sections, compared before and after the
-//! ladder; a prop without a PE0 file listed as not validated; bad directories.
+//! ladder; a prop without a PE0 file listed as not validated, one without a UIUC geometry file
+//! predicted from APC's design blade; bad directories.
 
 use super::*;
 
@@ -10,6 +11,7 @@ fn validation_table_on_the_shipped_subset() {
     let dir = tempfile::tempdir().unwrap();
     let data = repo().join("tests/data/validate");
     let (uiuc, pe0, per3) = (data.join("uiuc"), data.join("pe0"), data.join("per3"));
+    let (uiuc_dir, pe0_dir) = (uiuc.clone(), pe0.clone());
     let airfoils = repo().join("props/airfoils");
     // validate on the subset, one polar cache for every run, with `extra` arguments.
     let validate = |extra: &[&str]| {
@@ -118,6 +120,44 @@ fn validation_table_on_the_shipped_subset() {
     assert!((uiuc[i][2] - 6.72).abs() < 1e-9, "{:?}", uiuc[i]);
     assert!((pe0[i][2] - 9.21).abs() < 0.01, "{:?}", pe0[i]);
 
+    // A prop whose UIUC geometry file is missing is predicted from APC's design blade at
+    // UIUC's stations (the same blade as `--geometry pe0`, the polars from the cache), and
+    // its row says so where the twist gap would be.
+    let nogeom = dir.path().join("uiuc_nogeom");
+    std::fs::create_dir(&nogeom).unwrap();
+    for f in ["apcsf_9x4.7_kt1035_6029.txt", "apcsf_9x4.7_static_kt1032.txt"] {
+        std::fs::copy(uiuc_dir.join(f), nogeom.join(f)).unwrap();
+    }
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "uiuc_nogeom",
+            "--pe0",
+            pe0_dir.to_str().unwrap(),
+            "--airfoils",
+            airfoils.to_str().unwrap(),
+            "--cache",
+            "cache",
+            "--quiet",
+            "-o",
+            "val_nogeom",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert_eq!(stations("val_nogeom"), pe0);
+    let md = std::fs::read_to_string(dir.path().join("val_nogeom/validation.md")).unwrap();
+    assert!(
+        md.contains("| apcsf_9x4.7 | SF |") && md.contains("no UIUC geometry file: APC's design blade used"),
+        "{md}"
+    );
+    let (h2, rows2) = read_csv(&dir.path().join("val_nogeom/validation.csv"));
+    let (hp, rowsp) = read_csv(&dir.path().join("val_pe0/validation.csv"));
+    assert_eq!(rows2[0][col(&h2, "uiuc_geometry")], "false");
+    assert_eq!(rowsp[0][col(&hp, "uiuc_geometry")], "true");
+    assert_eq!(rows2[0][col(&h2, "ct_median")], rowsp[0][col(&hp, "ct_median")]);
+
     // `--user-effects`: a user effect is a candidate of every ladder (a lift offset changing
     // with Re, docs/studies/diagnosis-trades.md), ranked in the prop's diagnosis; the table
     // says it was among the candidates.
@@ -158,7 +198,39 @@ fn validate_bad_input() {
         dir.path(),
     );
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("no propeller could be validated"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("empty: no UIUC propeller files in it"),
+        "{}",
+        stderr(&o)
+    );
+    // Measurements of a prop without its geometry file or a PE0 file: the prop is found and
+    // the reason it could not be predicted given (it was dropped without a word).
+    let only_data = dir.path().join("only_data");
+    std::fs::create_dir(&only_data).unwrap();
+    let shipped = repo().join("tests/data/validate/uiuc");
+    for f in ["apcsf_9x4.7_kt1035_6029.txt", "apcsf_9x4.7_static_kt1032.txt"] {
+        std::fs::copy(shipped.join(f), only_data.join(f)).unwrap();
+    }
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "only_data",
+            "--pe0",
+            "empty",
+            "--airfoils",
+            "empty",
+            "-o",
+            "v",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("no propeller could be validated: apcsf_9x4.7: no PE0 file 9x47SF-PERF.PE0 in empty"),
+        "{}",
+        stderr(&o)
+    );
     let o = run(
         &[
             "validate",

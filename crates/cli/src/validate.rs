@@ -81,9 +81,18 @@ pub struct ValidateArgs {
 /// Runs `propbet validate`.
 pub fn run(a: &ValidateArgs) -> Result<bool> {
     let mut geoms = uiuc_props(&a.uiuc)?;
+    if geoms.is_empty() {
+        bail!(
+            "{}: no UIUC propeller files in it (<family>_<D>x<P>_geom.txt, _static_*.txt or _<run>_<rpm>.txt)",
+            a.uiuc.display()
+        );
+    }
     if let Some(only) = &a.only {
         let keys: Vec<&str> = only.split(',').map(str::trim).collect();
         geoms.retain(|g| keys.iter().any(|k| g.contains(k)));
+        if geoms.is_empty() {
+            bail!("{}: no UIUC propeller matches --only {only}", a.uiuc.display());
+        }
     }
     let spec = ValidateSpec {
         uiuc: a.uiuc.clone(),
@@ -250,6 +259,7 @@ struct CsvRow<'a> {
     apc_cp_median: Option<f64>,
     apc_cp_p90: Option<f64>,
     twist_gap_deg: f64,
+    uiuc_geometry: bool,
     static_fm_error: f64,
     static_ct_error: f64,
     static_cp_error: f64,
@@ -287,6 +297,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_cp_median: r.per3.as_ref().map(|p| p.cp.0),
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             twist_gap_deg: r.twist_gap,
+            uiuc_geometry: r.uiuc_geometry,
             static_fm_error: r.static_fm,
             static_ct_error: r.regimes[0].ct,
             static_cp_error: r.regimes[0].cp,

@@ -86,23 +86,53 @@ impl GeometrySource {
     }
 }
 
-/// The props of a UIUC directory that have a geometry file (`<prop>_geom.txt`), sorted.
+/// The UIUC name of a file of a UIUC directory: `<family>_<D>x<P>` from `<family>_<D>x<P>_*.txt`
+/// (`apcsf_10x4.7_static_kt0835.txt` → `apcsf_10x4.7`); None for a file that is not one.
+pub fn uiuc_name(file: &str) -> Option<String> {
+    let stem = file.strip_suffix(".txt")?;
+    let mut parts = stem.splitn(3, '_');
+    let (family, size, rest) = (parts.next()?, parts.next()?, parts.next()?);
+    let (d, p) = size.split_once('x')?;
+    let number = |s: &str| s.parse::<f64>().is_ok_and(|x| x.is_finite() && x > 0.0);
+    (!family.is_empty() && number(d) && number(p) && !rest.is_empty()).then(|| format!("{family}_{size}"))
+}
+
+/// The props of a UIUC directory: every name with a geometry file (`<prop>_geom.txt`) or a
+/// static or J-sweep file, sorted; a prop without a geometry file is still validated (from
+/// APC's design blade) or listed with the reason, never dropped.
 pub fn uiuc_props(uiuc: &Path) -> Result<Vec<String>> {
-    let mut geoms: Vec<String> = std::fs::read_dir(uiuc)
+    let mut props: Vec<String> = std::fs::read_dir(uiuc)
         .map_err(|reason| Error::Read {
             path: uiuc.to_path_buf(),
             reason,
         })?
-        .filter_map(|e| {
-            e.ok()?
-                .file_name()
-                .to_str()?
-                .strip_suffix("_geom.txt")
-                .map(String::from)
-        })
+        .filter_map(|e| uiuc_name(e.ok()?.file_name().to_str()?))
         .collect();
-    geoms.sort();
-    Ok(geoms)
+    props.sort();
+    props.dedup();
+    Ok(props)
+}
+
+/// UIUC's stations (r/R 0.15 to 1 in steps of 0.05, as its geometry files give them), in
+/// hundredths (k / 100 is the double a file's "0.35" reads as): where a prop has no UIUC
+/// geometry file, the blade validate predicts is APC's design chord and twist there.
+const UIUC_STATIONS: (u32, u32, u32) = (15, 5, 18);
+
+/// APC's design blade (PE0 chord and twist) at UIUC's stations, as a UIUC geometry table: the
+/// stations from one step inboard of APC's first (whose chord and twist are held there, as
+/// `--geometry pe0` holds them) to the tip.
+pub fn pe0_table(pe0: &propbet_qprop::apc::Pe0, big_r: f64) -> Vec<propbet_measure::uiuc::GeometryRow> {
+    let (start, step, n) = UIUC_STATIONS;
+    let first = pe0.chord.first().map_or(0.0, |c| c.0 / big_r);
+    (0..n)
+        .map(|k| f64::from(start + step * k) / 100.0)
+        .filter(|&x| x > first - f64::from(step) / 100.0 - 1e-9)
+        .map(|x| propbet_measure::uiuc::GeometryRow {
+            r_r: x,
+            c_r: pe0.chord_at(x * big_r) / big_r,
+            beta: pe0.twist_at(x * big_r).to_radians(),
+        })
+        .collect()
 }
 
 /// APC's airfoil name → a section: E63 and CLARK-Y from the directory, APC12 = NACA 4412.
@@ -176,6 +206,9 @@ pub struct Row {
     /// r/R 0.6-0.9 (where most of the thrust is made): what a `pitch-offset` fitted on UIUC's
     /// geometry is to be compared with (docs/studies/geometry-source.md).
     pub twist_gap: f64,
+    /// UIUC has a geometry file of the prop; without one the blade is APC's design (PE0) at
+    /// UIUC's stations, whatever `--geometry` asks.
+    pub uiuc_geometry: bool,
     /// The static points' predicted figure of merit over the measured, minus 1 (median;
     /// [`static_figure_of_merit_error`]): the hover efficiency's error, whatever its split
     /// between thrust and power (docs/studies/section-scaling.md: +11 to +19 % on every shared
@@ -344,11 +377,22 @@ pub fn validate_prop(
     progress: &propbet_polar::Progress<'_>,
 ) -> Result<Validated> {
     let dir = spec.out.join(prop);
-    let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
-    let table = stages::read_geometry_table(&geom_path)?;
     let d = uiuc_diameter(prop).ok_or_else(|| Error::Invalid(format!("{prop}: no diameter in the name")))?;
     let big_r = 0.5 * d;
     let pe0 = read_pe0(&read_text(pe0)?, &pe0.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    // UIUC's measured blade, or APC's design where UIUC has no geometry file of the prop.
+    let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
+    let uiuc_geometry = geom_path.exists();
+    let (table, geometry_used) = if uiuc_geometry {
+        (stages::read_geometry_table(&geom_path)?, spec.geometry)
+    } else {
+        (pe0_table(&pe0, big_r), GeometrySource::Pe0)
+    };
+    if table.len() < 2 {
+        return Err(Error::Invalid(format!(
+            "{prop}: no UIUC geometry file, and APC's PE0 blade covers fewer than two of UIUC's stations (r/R 0.15 to 1)"
+        )));
+    }
     let (f1, f2) = (
         apc_airfoil(&pe0.airfoils[0].1, &spec.airfoils)?,
         apc_airfoil(&pe0.airfoils[1].1, &spec.airfoils)?,
@@ -358,7 +402,7 @@ pub fn validate_prop(
     let mut airfoils = Vec::new();
     for (i, row) in table.iter().enumerate() {
         let r = row.r_r * big_r;
-        let (chord, beta) = match spec.geometry {
+        let (chord, beta) = match geometry_used {
             GeometrySource::Uiuc => (row.c_r * big_r, row.beta.to_degrees()),
             GeometrySource::Pe0 => (pe0.chord_at(r), pe0.twist_at(r)),
         };
@@ -386,7 +430,7 @@ pub fn validate_prop(
         airfoils.push((i, foil.to_selig()));
     }
     let file = PropFile::metric(
-        format!("{prop} ({}, APC PE0 sections)", spec.geometry.description()),
+        format!("{prop} ({}, APC PE0 sections)", geometry_used.description()),
         2.0,
         big_r,
         rows,
@@ -568,7 +612,12 @@ pub fn validate_prop(
         per3,
         ladder: ladder_text(&effects),
         held_out_ladders,
-        twist_gap: twist_gap(&table, &pe0, big_r),
+        twist_gap: if uiuc_geometry {
+            twist_gap(&table, &pe0, big_r)
+        } else {
+            f64::NAN
+        },
+        uiuc_geometry,
         static_fm: static_figure_of_merit_error(&compared.points),
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
         static_rise: static_rise(&compared.points),
@@ -644,5 +693,56 @@ mod tests {
         let [a, b] = halves(&files);
         assert_eq!(a, vec![f("p_static_kt0"), f("p_kt3_5000"), f("p_kt1_6000")]);
         assert_eq!(b, vec![f("p_kt2_4000"), f("p_kt4_5010")]);
+    }
+
+    #[test]
+    fn every_uiuc_file_names_its_prop() {
+        assert_eq!(
+            uiuc_name("apcsf_10x4.7_static_kt0835.txt").as_deref(),
+            Some("apcsf_10x4.7")
+        );
+        assert_eq!(uiuc_name("apcff_4.2x4_0617rd_6043.txt").as_deref(), Some("apcff_4.2x4"));
+        assert_eq!(uiuc_name("apce_10x5_geom.txt").as_deref(), Some("apce_10x5"));
+        for not in [
+            "README.txt",
+            "apce_10x5.txt",
+            "apce_tenx5_geom.txt",
+            "apce_10x5_geom.dat",
+            "_10x5_a.txt",
+        ] {
+            assert_eq!(uiuc_name(not), None, "{not}");
+        }
+        // A prop with J sweeps and no geometry file is a prop of the directory, once.
+        let dir = tempfile::tempdir().unwrap();
+        for f in [
+            "apce_10x5_kt0821_5000.txt",
+            "apce_10x5_static_pg0819.txt",
+            "apcsf_9x4.7_geom.txt",
+            "notes.txt",
+        ] {
+            std::fs::write(dir.path().join(f), "").unwrap();
+        }
+        assert_eq!(uiuc_props(dir.path()).unwrap(), ["apce_10x5", "apcsf_9x4.7"]);
+    }
+
+    #[test]
+    fn pe0_blade_at_uiucs_stations() {
+        let inch = 0.0254;
+        let pe0 = propbet_qprop::apc::Pe0 {
+            thickness: vec![(1.0 * inch, 0.1), (5.0 * inch, 0.1)],
+            chord: vec![(1.0 * inch, 1.0 * inch), (5.0 * inch, 0.5 * inch)],
+            twist: vec![(1.0 * inch, 30.0), (5.0 * inch, 10.0)],
+            airfoils: [(1.0 * inch, "E63".into()), (2.0 * inch, "E63".into())],
+        };
+        // R = 5 in: APC's first station at r/R 0.2, so 0.15 is the one held inboard of it.
+        let t = pe0_table(&pe0, 5.0 * inch);
+        assert_eq!(t.len(), 18);
+        assert!((t[0].r_r - 0.15).abs() < 1e-12 && (t[17].r_r - 1.0).abs() < 1e-12);
+        assert!((t[0].c_r - 0.2).abs() < 1e-12 && (t[0].beta.to_degrees() - 30.0).abs() < 1e-9);
+        // r/R 0.6 = 3 in: halfway, chord 0.75 in, twist 20 deg.
+        assert!((t[9].c_r - 0.15).abs() < 1e-12 && (t[9].beta.to_degrees() - 20.0).abs() < 1e-9);
+        // R = 3 in: the first station at r/R 1/3, the table from 0.3.
+        let t = pe0_table(&pe0, 3.0 * inch);
+        assert!((t[0].r_r - 0.3).abs() < 1e-12, "{:?}", t[0]);
     }
 }

@@ -64,7 +64,9 @@ fn cells(r: &Row, apc: bool) -> Vec<String> {
     } else {
         "–".into()
     });
-    v.push(if r.twist_gap.is_finite() {
+    v.push(if !r.uiuc_geometry {
+        "no UIUC geometry file: APC's design blade used".into()
+    } else if r.twist_gap.is_finite() {
         format!("{:+.1}°", r.twist_gap)
     } else {
         "–".into()
@@ -299,6 +301,7 @@ mod tests {
             ladder: "none".into(),
             held_out_ladders: ["none".into(), "none".into()],
             twist_gap: -1.24,
+            uiuc_geometry: true,
             static_fm: 0.131,
             regimes: [
                 RegimeError {
