@@ -12,7 +12,9 @@ use anyhow::{bail, Result};
 use clap::Args;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{Rotation, StageSpec};
-use propbet_pipeline::validate::{uiuc_props, validate_prop, GeometrySource, Row, ValidateSpec, Validated};
+use propbet_pipeline::validate::{
+    find_apc_file, uiuc_props, validate_prop, GeometrySource, Row, ValidateSpec, Validated,
+};
 use propbet_qprop::apc::pe0_name;
 
 use crate::output::write_atomic;
@@ -137,11 +139,13 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let total = geoms.len();
     for (k, prop) in geoms.iter().enumerate() {
         let pe0_path = match pe0_name(prop) {
-            Some(n) if a.pe0.join(&n).is_file() => a.pe0.join(n),
-            Some(n) => {
-                skipped.push((prop.clone(), format!("no PE0 file {n} in {}", a.pe0.display())));
-                continue;
-            }
+            Some(n) => match find_apc_file(&a.pe0, &n) {
+                Some(path) => path,
+                None => {
+                    skipped.push((prop.clone(), format!("no PE0 file {n} in {}", a.pe0.display())));
+                    continue;
+                }
+            },
             None => {
                 skipped.push((prop.clone(), propbet_qprop::apc::pe0_unknown(prop)));
                 continue;

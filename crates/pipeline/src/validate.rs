@@ -113,6 +113,27 @@ pub fn uiuc_props(uiuc: &Path) -> Result<Vec<String>> {
     Ok(props)
 }
 
+/// The file of `dir` named `name` as APC names it, or as it is often saved: in another case, or
+/// with the size's decimal point (`10x4.7SF-PERF.PE0`, `10x47sf-perf.pe0` for
+/// `10x47SF-PERF.PE0`); the exact name first. None where the directory has none.
+pub fn find_apc_file(dir: &Path, name: &str) -> Option<PathBuf> {
+    let exact = dir.join(name);
+    if exact.is_file() {
+        return Some(exact);
+    }
+    let key = |s: &str| s.to_ascii_uppercase().replace('.', "");
+    let want = key(name);
+    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| {
+            let e = e.ok()?;
+            (key(e.file_name().to_str()?) == want && e.path().is_file()).then(|| e.path())
+        })
+        .collect();
+    found.sort();
+    found.into_iter().next()
+}
+
 /// UIUC's stations (r/R 0.15 to 1 in steps of 0.05, as its geometry files give them), in
 /// hundredths (k / 100 is the double a file's "0.35" reads as): where a prop has no UIUC
 /// geometry file, the blade validate predicts is APC's design chord and twist there.
@@ -522,8 +543,7 @@ pub fn validate_prop(
     let per3_file = spec
         .per3
         .as_ref()
-        .and_then(|dir| propbet_qprop::apc::per3_name(prop).map(|n| dir.join(n)))
-        .filter(|p| p.is_file());
+        .and_then(|dir| find_apc_file(dir, &propbet_qprop::apc::per3_name(prop)?));
     let compared = compare_stage(
         CompareSpec {
             per3: per3_file.clone(),
@@ -744,5 +764,26 @@ mod tests {
         // R = 3 in: the first station at r/R 1/3, the table from 0.3.
         let t = pe0_table(&pe0, 3.0 * inch);
         assert!((t[0].r_r - 0.3).abs() < 1e-12, "{:?}", t[0]);
+    }
+
+    #[test]
+    fn apc_files_are_found_as_they_are_often_saved() {
+        let dir = tempfile::tempdir().unwrap();
+        for f in [
+            "10x4.7SF-PERF.PE0",
+            "per3_10x47sf.dat",
+            "11x7E-PERF.PE0",
+            "11X7E-PERF.PE0",
+        ] {
+            std::fs::write(dir.path().join(f), "").unwrap();
+        }
+        let found =
+            |n: &str| find_apc_file(dir.path(), n).map(|p| p.file_name().unwrap().to_string_lossy().into_owned());
+        assert_eq!(found("10x47SF-PERF.PE0").as_deref(), Some("10x4.7SF-PERF.PE0"));
+        assert_eq!(found("PER3_10x47SF.dat").as_deref(), Some("per3_10x47sf.dat"));
+        // The exact name first where several match.
+        assert_eq!(found("11x7E-PERF.PE0").as_deref(), Some("11x7E-PERF.PE0"));
+        assert_eq!(found("10x6-PERF.PE0"), None);
+        assert_eq!(find_apc_file(&dir.path().join("missing"), "10x6-PERF.PE0"), None);
     }
 }
