@@ -156,23 +156,45 @@ pub fn pe0_table(pe0: &propbet_qprop::apc::Pe0, big_r: f64) -> Vec<propbet_measu
         .collect()
 }
 
-/// APC's airfoil name → a section: E63 and CLARK-Y from the directory, APC12 = NACA 4412.
+/// APC's airfoil name → a section: `APC12` is NACA 4412 (APC's note), a NACA 4-digit name is
+/// generated, and any other name is looked for in the directory as coordinates whose file
+/// stem is the name without case, spaces, hyphens or underscores (`CLARK-Y` → `clarky.dat`,
+/// `E63` → `e63.dat`, `SD7037` → `sd7037.dat`).
 fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
-    let file = match name.to_ascii_uppercase().as_str() {
-        "APC12" => {
-            return naca4_from_name("naca4412")
-                .expect("a NACA name")
-                .map_err(|e| Error::Invalid(e.to_string()))
-        }
-        "E63" => "e63.dat",
-        "CLARK-Y" | "CLARKY" => "clarky.dat",
-        other => {
-            return Err(Error::Invalid(format!(
-                "APC airfoil {other}: no coordinates known (E63, CLARK-Y, APC12)"
-            )))
-        }
+    let key = |s: &str| -> String {
+        s.chars()
+            .filter(|c| c.is_ascii_alphanumeric())
+            .map(|c| c.to_ascii_lowercase())
+            .collect()
     };
-    Ok(stages::read_airfoil(&dir.join(file))?.0)
+    let k = key(name);
+    let naca = if k == "apc12" {
+        "naca4412".to_string()
+    } else {
+        k.clone()
+    };
+    if let Some(foil) = naca4_from_name(&naca) {
+        return foil.map_err(|e| Error::Invalid(e.to_string()));
+    }
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|reason| Error::Read {
+            path: dir.to_path_buf(),
+            reason,
+        })?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
+                && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
+        })
+        .collect();
+    files.sort();
+    match files.first() {
+        Some(file) => Ok(stages::read_airfoil(file)?.0),
+        None => Err(Error::Invalid(format!(
+            "APC airfoil {name:?}: no coordinates for it in {} (a file {k}.dat; APC12 and NACA 4-digit names are generated)",
+            dir.display()
+        ))),
+    }
 }
 
 /// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
@@ -785,5 +807,20 @@ mod tests {
         assert_eq!(found("11x7E-PERF.PE0").as_deref(), Some("11x7E-PERF.PE0"));
         assert_eq!(found("10x6-PERF.PE0"), None);
         assert_eq!(find_apc_file(&dir.path().join("missing"), "10x6-PERF.PE0"), None);
+    }
+
+    #[test]
+    fn apc_airfoil_names_find_their_sections() {
+        let foils = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../props/airfoils");
+        let name = |n: &str| apc_airfoil(n, &foils).map(|a| a.name);
+        // APC12 and NACA names are generated (the same section), the others read from files.
+        let apc12 = apc_airfoil("APC12", &foils).unwrap();
+        let naca = apc_airfoil("NACA 4412", &foils).unwrap();
+        assert_eq!(apc12.points, naca.points);
+        for n in ["E63", "CLARK-Y", "Clark Y", "SD7037", "e387"] {
+            assert!(name(n).is_ok(), "{n}: {:?}", name(n));
+        }
+        let e = name("APC-X9").unwrap_err().to_string();
+        assert!(e.contains("APC airfoil \"APC-X9\"") && e.contains("apcx9.dat"), "{e}");
     }
 }

@@ -141,7 +141,11 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
             };
             let (r, n) = rest.split_once(',').ok_or_else(bad)?;
             let r: f64 = r.trim().parse().ok().filter(|r: &f64| r.is_finite()).ok_or_else(bad)?;
-            let n = n.split_whitespace().next().unwrap_or_default().to_string();
+            // The name runs to APC's "(Transition ...)" note, and may have a space ("NACA 4412").
+            let n = n.split('(').next().unwrap_or_default().trim().to_string();
+            if n.is_empty() {
+                return Err(bad());
+            }
             foils.push((r * IN, n));
             continue;
         }
@@ -331,6 +335,13 @@ mod tests {
         let p = read_pe0(text, "x.PE0").unwrap();
         assert_eq!(p.thickness, vec![(0.9567 * 0.0254, 0.2086), (1.0164 * 0.0254, 0.1973)]);
         assert_eq!(p.airfoils[1], (3.66 * 0.0254, "APC12".to_string()));
+        // A name with a space runs to APC's "(Transition ...)" note; a line with no name is bad.
+        let spaced = read_pe0(&text.replacen("APC12  (End)", "NACA 4412  (End)", 1), "x.PE0").unwrap();
+        assert_eq!(spaced.airfoils[1].1, "NACA 4412");
+        let e = read_pe0(&text.replacen(", E63 ", ",  ", 1), "u.PE0")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("u.PE0") && e.contains("line 3"), "{e}");
         assert_eq!(p.thickness_at(0.0), 0.2086);
         assert!((p.thickness_at(0.5 * (0.9567 + 1.0164) * 0.0254) - 0.20295).abs() < 1e-12);
         assert_eq!(p.blend_at(0.0), 0.0);
