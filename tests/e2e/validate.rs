@@ -11,10 +11,11 @@ fn validation_table_on_the_shipped_subset() {
     let dir = tempfile::tempdir().unwrap();
     let data = repo().join("tests/data/validate");
     let (uiuc, pe0, per3) = (data.join("uiuc"), data.join("pe0"), data.join("per3"));
-    let (uiuc_dir, pe0_dir) = (uiuc.clone(), pe0.clone());
+    let uiuc_dir = uiuc.clone();
     let airfoils = repo().join("props/airfoils");
-    // validate on the subset, one polar cache for every run, with `extra` arguments.
-    let validate = |extra: &[&str]| {
+    // validate on a UIUC directory (the subset unless said), one polar cache for every run,
+    // with `extra` arguments.
+    let validate_dir = |uiuc: &Path, extra: &[&str]| {
         let mut args = vec![
             "validate",
             "--uiuc",
@@ -30,6 +31,7 @@ fn validation_table_on_the_shipped_subset() {
         args.extend_from_slice(extra);
         run(&args, dir.path())
     };
+    let validate = |extra: &[&str]| validate_dir(&uiuc, extra);
     let o = validate(&["--per3", per3.to_str().unwrap(), "-o", "val"]);
     // Exit 0 or 1 (a station solution that did not converge near windmilling is reported).
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
@@ -128,23 +130,7 @@ fn validation_table_on_the_shipped_subset() {
     for f in ["apcsf_9x4.7_kt1035_6029.txt", "apcsf_9x4.7_static_kt1032.txt"] {
         std::fs::copy(uiuc_dir.join(f), nogeom.join(f)).unwrap();
     }
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            "uiuc_nogeom",
-            "--pe0",
-            pe0_dir.to_str().unwrap(),
-            "--airfoils",
-            airfoils.to_str().unwrap(),
-            "--cache",
-            "cache",
-            "--quiet",
-            "-o",
-            "val_nogeom",
-        ],
-        dir.path(),
-    );
+    let o = validate_dir(&nogeom, &["-o", "val_nogeom"]);
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     assert_eq!(stations("val_nogeom"), pe0);
     let md = std::fs::read_to_string(dir.path().join("val_nogeom/validation.md")).unwrap();
@@ -183,26 +169,27 @@ fn validate_bad_input() {
     let dir = tempfile::tempdir().unwrap();
     let empty = dir.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            "empty",
-            "--pe0",
-            "empty",
-            "--airfoils",
-            "empty",
-            "-o",
-            "v",
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(
-        stderr(&o).contains("empty: no UIUC propeller files in it"),
-        "{}",
+    // validate on `uiuc` with nothing else to read: exit 2, and what it says.
+    let refused_dir = |uiuc: &str| -> String {
+        let o = run(
+            &[
+                "validate",
+                "--uiuc",
+                uiuc,
+                "--pe0",
+                "empty",
+                "--airfoils",
+                "empty",
+                "-o",
+                "v",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(2), "{uiuc}");
         stderr(&o)
-    );
+    };
+    let e = refused_dir("empty");
+    assert!(e.contains("empty: no UIUC propeller files in it"), "{e}");
     // Measurements of a prop without its geometry file or a PE0 file: the prop is found and
     // the reason it could not be predicted given (it was dropped without a word).
     let only_data = dir.path().join("only_data");
@@ -211,42 +198,13 @@ fn validate_bad_input() {
     for f in ["apcsf_9x4.7_kt1035_6029.txt", "apcsf_9x4.7_static_kt1032.txt"] {
         std::fs::copy(shipped.join(f), only_data.join(f)).unwrap();
     }
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            "only_data",
-            "--pe0",
-            "empty",
-            "--airfoils",
-            "empty",
-            "-o",
-            "v",
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2));
+    let e = refused_dir("only_data");
     assert!(
-        stderr(&o).contains("no propeller could be validated: apcsf_9x4.7: no PE0 file 9x47SF-PERF.PE0 in empty"),
-        "{}",
-        stderr(&o)
+        e.contains("no propeller could be validated: apcsf_9x4.7: no PE0 file 9x47SF-PERF.PE0 in empty"),
+        "{e}"
     );
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            "missing",
-            "--pe0",
-            "empty",
-            "--airfoils",
-            "empty",
-            "-o",
-            "v",
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("missing"), "{}", stderr(&o));
+    let e = refused_dir("missing");
+    assert!(e.contains("missing"), "{e}");
     // A user-effects file that does not read stops validate before any prop, naming the file
     // and what is wrong; nothing is written.
     let repo_data = repo().join("tests/data/validate");

@@ -737,6 +737,15 @@ mod tests {
         assert_eq!(b, vec![f("p_kt2_4000"), f("p_kt4_5010")]);
     }
 
+    /// A temporary directory with an empty file of each name.
+    fn dir_of(names: &[&str]) -> tempfile::TempDir {
+        let dir = tempfile::tempdir().unwrap();
+        for f in names {
+            std::fs::write(dir.path().join(f), "").unwrap();
+        }
+        dir
+    }
+
     #[test]
     fn every_uiuc_file_names_its_prop() {
         assert_eq!(
@@ -755,15 +764,12 @@ mod tests {
             assert_eq!(uiuc_name(not), None, "{not}");
         }
         // A prop with J sweeps and no geometry file is a prop of the directory, once.
-        let dir = tempfile::tempdir().unwrap();
-        for f in [
+        let dir = dir_of(&[
             "apce_10x5_kt0821_5000.txt",
             "apce_10x5_static_pg0819.txt",
             "apcsf_9x4.7_geom.txt",
             "notes.txt",
-        ] {
-            std::fs::write(dir.path().join(f), "").unwrap();
-        }
+        ]);
         assert_eq!(uiuc_props(dir.path()).unwrap(), ["apce_10x5", "apcsf_9x4.7"]);
     }
 
@@ -790,15 +796,12 @@ mod tests {
 
     #[test]
     fn apc_files_are_found_as_they_are_often_saved() {
-        let dir = tempfile::tempdir().unwrap();
-        for f in [
+        let dir = dir_of(&[
             "10x4.7SF-PERF.PE0",
             "per3_10x47sf.dat",
             "11x7E-PERF.PE0",
             "11X7E-PERF.PE0",
-        ] {
-            std::fs::write(dir.path().join(f), "").unwrap();
-        }
+        ]);
         let found =
             |n: &str| find_apc_file(dir.path(), n).map(|p| p.file_name().unwrap().to_string_lossy().into_owned());
         assert_eq!(found("10x47SF-PERF.PE0").as_deref(), Some("10x4.7SF-PERF.PE0"));
