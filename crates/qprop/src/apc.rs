@@ -45,7 +45,11 @@ pub fn pe0_name(uiuc: &str) -> Option<String> {
     let suffix = match kind {
         "apcsf" => "SF",
         "apce" => "E",
+        "apcmr" => "MR",
         "apcsp" | "apcff" => "",
+        // UIUC's other free-flight families (apc29ff): APC names its free-flight props by size
+        // alone, as the apcff ones.
+        k if k.starts_with("apc") && k.ends_with("ff") => "",
         _ => return None,
     };
     Some(format!("{}{suffix}-PERF.PE0", size.replace('.', "")))
@@ -57,7 +61,8 @@ pub fn pe0_unknown(uiuc: &str) -> String {
     if family.starts_with("apc") {
         format!(
             "UIUC family {family}: APC's PE0 file name for it is not known (known: apce -> <D><P>E, \
-             apcsf -> <D><P>SF, apcsp and apcff -> <D><P>); no APC sections to predict it with"
+             apcsf -> <D><P>SF, apcmr -> <D><P>MR, apcsp and apc*ff -> <D><P>); no APC sections to \
+             predict it with"
         )
     } else {
         format!("UIUC family {family}: not an APC propeller, no PE0 file with its sections")
@@ -288,8 +293,10 @@ mod tests {
         assert_eq!(pe0_name("gwsdd_9x5"), None);
         assert!((uiuc_diameter("apcff_4.2x4").unwrap() - 4.2 * 0.0254).abs() < 1e-15);
         assert_eq!(per3_name("apcsf_10x4.7").as_deref(), Some("PER3_10x47SF.dat"));
-        assert_eq!(pe0_name("apc29ff_9x5"), None);
-        assert!(pe0_unknown("apc29ff_9x5").contains("apc29ff: APC's PE0 file name for it is not known"));
+        assert_eq!(pe0_name("apc29ff_9x5").as_deref(), Some("9x5-PERF.PE0"));
+        assert_eq!(pe0_name("apcmr_10x4.5").as_deref(), Some("10x45MR-PERF.PE0"));
+        assert_eq!(pe0_name("apcc_7.4x8.25"), None);
+        assert!(pe0_unknown("apcc_7.4x8.25").contains("apcc: APC's PE0 file name for it is not known"));
         assert!(pe0_unknown("gwsdd_9x5").contains("not an APC propeller"));
     }
 
