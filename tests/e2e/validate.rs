@@ -130,8 +130,20 @@ fn validation_table_on_the_shipped_subset() {
     for f in ["apcsf_9x4.7_kt1035_6029.txt", "apcsf_9x4.7_static_kt1032.txt"] {
         std::fs::copy(uiuc_dir.join(f), nogeom.join(f)).unwrap();
     }
+    // And a sweep whose name lost its RPM: left out with the reader's reason, exit 1, the
+    // prop validated from its other files.
+    std::fs::copy(
+        uiuc_dir.join("apcsf_9x4.7_kt1035_6029.txt"),
+        nogeom.join("apcsf_9x4.7_kt1035.txt"),
+    )
+    .unwrap();
     let o = validate_dir(&nogeom, &["-o", "val_nogeom"]);
-    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("apcsf_9x4.7: apcsf_9x4.7_kt1035.txt left out:") && stderr(&o).contains("needs its RPM"),
+        "{}",
+        stderr(&o)
+    );
     assert_eq!(stations("val_nogeom"), pe0);
     let md = std::fs::read_to_string(dir.path().join("val_nogeom/validation.md")).unwrap();
     assert!(
@@ -141,6 +153,11 @@ fn validation_table_on_the_shipped_subset() {
     let (h2, rows2) = read_csv(&dir.path().join("val_nogeom/validation.csv"));
     let (hp, rowsp) = read_csv(&dir.path().join("val_pe0/validation.csv"));
     assert_eq!(rows2[0][col(&h2, "uiuc_geometry")], "false");
+    assert_eq!(rows2[0][col(&h2, "files_left_out")], "1");
+    assert!(
+        md.contains("Files left out") && md.contains("apcsf_9x4.7_kt1035.txt: a UIUC J sweep needs its RPM"),
+        "{md}"
+    );
     assert_eq!(rowsp[0][col(&hp, "uiuc_geometry")], "true");
     assert_eq!(rows2[0][col(&h2, "ct_median")], rowsp[0][col(&hp, "ct_median")]);
 

@@ -158,6 +158,9 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
             .and_then(|v| write_prop_outputs(&spec, prop, &v).map(|()| v));
         match result {
             Ok(v) => {
+                for (f, why) in &v.row.left_out {
+                    eprintln!("propbet: warning: {prop}: {f} left out: {why}");
+                }
                 all_clean &= v.clean();
                 rows.push(v.row);
             }
@@ -264,6 +267,7 @@ struct CsvRow<'a> {
     apc_cp_p90: Option<f64>,
     twist_gap_deg: f64,
     uiuc_geometry: bool,
+    files_left_out: usize,
     static_fm_error: f64,
     static_ct_error: f64,
     static_cp_error: f64,
@@ -302,6 +306,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             twist_gap_deg: r.twist_gap,
             uiuc_geometry: r.uiuc_geometry,
+            files_left_out: r.left_out.len(),
             static_fm_error: r.static_fm,
             static_ct_error: r.regimes[0].ct,
             static_cp_error: r.regimes[0].cp,

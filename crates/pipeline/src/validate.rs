@@ -252,6 +252,8 @@ pub struct Row {
     /// UIUC has a geometry file of the prop; without one the blade is APC's design (PE0) at
     /// UIUC's stations, whatever `--geometry` asks.
     pub uiuc_geometry: bool,
+    /// The prop's files that did not read (file name, why): left out of every stage.
+    pub left_out: Vec<(String, String)>,
     /// The static points' predicted figure of merit over the measured, minus 1 (median;
     /// [`static_figure_of_merit_error`]): the hover efficiency's error, whatever its split
     /// between thrust and power (docs/studies/section-scaling.md: +11 to +19 % on every shared
@@ -406,9 +408,9 @@ pub struct Validated {
 }
 
 impl Validated {
-    /// Every stage ran clean.
+    /// Every file read and every stage ran clean.
     pub fn clean(&self) -> bool {
-        self.stages.iter().all(|s| s.clean)
+        self.row.left_out.is_empty() && self.stages.iter().all(|s| s.clean)
     }
 }
 
@@ -505,6 +507,29 @@ pub fn validate_prop(
     measured.sort();
     if measured.is_empty() {
         return Err(Error::Invalid("no static or J-sweep file".into()));
+    }
+    // A file that does not read is left out with its reason (the row and the table say so,
+    // and the command's exit is 1); the prop is validated from its others, if any.
+    let mut left_out = Vec::new();
+    measured.retain(|f| match stages::load_measured(&MeasuredSpec::files(vec![f.clone()])) {
+        Ok(_) => true,
+        Err(e) => {
+            left_out.push((
+                f.file_name().unwrap_or_default().to_string_lossy().into_owned(),
+                e.to_string(),
+            ));
+            false
+        }
+    });
+    if measured.is_empty() {
+        return Err(Error::Invalid(format!(
+            "no file of it reads: {}",
+            left_out
+                .iter()
+                .map(|(_, why)| why.as_str())
+                .collect::<Vec<_>>()
+                .join("; ")
+        )));
     }
     let measured = MeasuredSpec::files(measured);
     let (omegas, js) = cover(&measured)?;
@@ -660,6 +685,7 @@ pub fn validate_prop(
             f64::NAN
         },
         uiuc_geometry,
+        left_out,
         static_fm: static_figure_of_merit_error(&compared.points),
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
         static_rise: static_rise(&compared.points),

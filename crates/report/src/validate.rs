@@ -210,6 +210,13 @@ pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         }
         let _ = writeln!(md, "| {} |", cells.join(" | "));
     }
+    let lost = left_out(rows);
+    if !lost.is_empty() {
+        let _ = writeln!(md, "\n{LEFT_OUT_INTRO}\n");
+        for l in &lost {
+            let _ = writeln!(md, "- {l}");
+        }
+    }
     let (h, body) = regime_table(rows);
     if !body.is_empty() {
         let _ = write!(
@@ -224,6 +231,27 @@ pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     }
     md
 }
+
+/// The files left out of the props' validation, one line each ("prop: file: why", the file
+/// once); empty
+/// where every file read.
+fn left_out(rows: &[Row]) -> Vec<String> {
+    rows.iter()
+        .flat_map(|r| {
+            r.left_out.iter().map(move |(f, why)| {
+                // The reader's message names the file as a rule: once is enough.
+                if why.contains(f.as_str()) {
+                    format!("{}: {why}", r.prop)
+                } else {
+                    format!("{}: {f}: {why}", r.prop)
+                }
+            })
+        })
+        .collect()
+}
+
+/// What precedes the list of files left out.
+const LEFT_OUT_INTRO: &str = "Files left out (they did not read; each prop was validated from its other files):";
 
 /// The table as a page.
 pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
@@ -254,6 +282,14 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         s.push_str("</tr>\n");
     }
     s.push_str("</table>\n");
+    let lost = left_out(rows);
+    if !lost.is_empty() {
+        let _ = write!(s, "<p class=\"note\">{}</p>\n<ul>", esc(LEFT_OUT_INTRO));
+        for l in &lost {
+            let _ = write!(s, "<li>{}</li>", esc(l));
+        }
+        s.push_str("</ul>\n");
+    }
     let (h, body) = regime_table(rows);
     if !body.is_empty() {
         let _ = write!(
@@ -302,6 +338,7 @@ mod tests {
             held_out_ladders: ["none".into(), "none".into()],
             twist_gap: -1.24,
             uiuc_geometry: true,
+            left_out: Vec::new(),
             static_fm: 0.131,
             regimes: [
                 RegimeError {
@@ -341,7 +378,7 @@ mod tests {
             row("apce_b", 0.3, false),
             row("apcsf_c", 0.2, false),
         ];
-        let skipped = [("apc29ff_9x5".to_string(), "no PE0 file".to_string())];
+        let skipped = [("apcc_7.4x8.25".to_string(), "no PE0 file".to_string())];
         let md = markdown(&rows, &skipped, "tables");
         assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
         assert!(md.contains("| 10.0 % | +13.1 % | -1.2° | none | none / none |"), "{md}");
@@ -352,7 +389,7 @@ mod tests {
             "{md}"
         );
         assert!(
-            md.contains("| apc29ff_9x5 | apc29ff | 0 | – |") && md.contains("not validated: no PE0 file"),
+            md.contains("| apcc_7.4x8.25 | apcc | 0 | – |") && md.contains("not validated: no PE0 file"),
             "{md}"
         );
         assert!(!md.contains("APC CT"), "no PER3, no APC columns");
@@ -372,6 +409,36 @@ mod tests {
         // 7 rows in the first table, 1 + 3 in the second.
         assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 11);
         assert!(page.contains("<h2>Where the error is</h2>"), "{page}");
+    }
+
+    #[test]
+    fn a_blade_without_uiuc_geometry_and_files_left_out_are_said() {
+        let mut a = row("apce_a", 0.1, false);
+        a.uiuc_geometry = false;
+        a.twist_gap = f64::NAN;
+        a.left_out = vec![
+            ("apce_a_kt1.txt".into(), "a UIUC J sweep needs its RPM".into()),
+            ("x.txt".into(), "d/x.txt: line 3: not a number".into()),
+        ];
+        let rows = [a, row("apce_b", 0.3, false)];
+        let md = markdown(&rows, &[], "tables");
+        assert!(
+            md.contains("| +13.1 % | no UIUC geometry file: APC's design blade used | none |"),
+            "{md}"
+        );
+        assert!(
+            md.contains(&format!(
+                "{LEFT_OUT_INTRO}\n\n- apce_a: apce_a_kt1.txt: a UIUC J sweep needs its RPM\n- apce_a: d/x.txt: line 3: not a number\n"
+            )),
+            "{md}"
+        );
+        let page = html(&rows, &[], "tables");
+        assert!(
+            page.contains("<li>apce_a: apce_a_kt1.txt: a UIUC J sweep needs its RPM</li>"),
+            "{page}"
+        );
+        // Every file read: no list.
+        assert!(!markdown(&rows[1..], &[], "tables").contains(LEFT_OUT_INTRO));
     }
 
     #[test]
