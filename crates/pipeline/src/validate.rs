@@ -123,15 +123,23 @@ pub fn find_apc_file(dir: &Path, name: &str) -> Option<PathBuf> {
     }
     let key = |s: &str| s.to_ascii_uppercase().replace('.', "");
     let want = key(name);
+    first_file(dir, |n| key(n) == want).ok().flatten()
+}
+
+/// The first (by name) file of `dir` whose name passes `wanted`.
+fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<PathBuf>> {
     let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
-        .ok()?
+        .map_err(|reason| Error::Read {
+            path: dir.to_path_buf(),
+            reason,
+        })?
         .filter_map(|e| {
             let e = e.ok()?;
-            (key(e.file_name().to_str()?) == want && e.path().is_file()).then(|| e.path())
+            (wanted(e.file_name().to_str()?) && e.path().is_file()).then(|| e.path())
         })
         .collect();
     found.sort();
-    found.into_iter().next()
+    Ok(found.into_iter().next())
 }
 
 /// UIUC's stations (r/R 0.15 to 1 in steps of 0.05, as its geometry files give them), in
@@ -176,20 +184,13 @@ fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
     if let Some(foil) = naca4_from_name(&naca) {
         return foil.map_err(|e| Error::Invalid(e.to_string()));
     }
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|reason| Error::Read {
-            path: dir.to_path_buf(),
-            reason,
-        })?
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
-                && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
-        })
-        .collect();
-    files.sort();
-    match files.first() {
-        Some(file) => Ok(stages::read_airfoil(file)?.0),
+    let coordinates = first_file(dir, |n| {
+        let p = Path::new(n);
+        p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
+            && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
+    })?;
+    match coordinates {
+        Some(file) => Ok(stages::read_airfoil(&file)?.0),
         None => Err(Error::Invalid(format!(
             "APC airfoil {name:?}: no coordinates for it in {} (a file {k}.dat; APC12 and NACA 4-digit names are generated)",
             dir.display()
