@@ -110,7 +110,7 @@ pub(crate) enum Command {
         "Exit status: 0 done; 2 error."
     ))]
     Synth(Box<synth::SynthArgs>),
-    /// Validation on real data: every UIUC propeller with a geometry file and an APC PE0 file,
+    /// Validation on real data: every UIUC propeller of the directory with an APC PE0 file,
     /// predicted and compared with its static and J-sweep files, before and after calibration.
     #[command(after_help = concat!(
         "Example:\n  propbet validate --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",

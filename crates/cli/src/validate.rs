@@ -23,13 +23,15 @@ use crate::polar::{Bar, XfoilProcess};
 /// Arguments of `propbet validate`.
 #[derive(Debug, Args)]
 pub struct ValidateArgs {
-    /// UIUC directory: `<prop>_geom.txt` and the prop's static and J-sweep files.
+    /// UIUC directory: each prop's static and J-sweep files and its `<prop>_geom.txt` (without
+    /// one, the blade is APC's design from the PE0 file).
     #[arg(long)]
     pub uiuc: PathBuf,
-    /// APC PE0 directory (`<D><P><type>-PERF.PE0`).
+    /// APC PE0 directory (`<D><P><type>-PERF.PE0`, in any case, with or without the size's point).
     #[arg(long)]
     pub pe0: PathBuf,
-    /// Airfoil coordinates: `e63.dat`, `clarky.dat` (APC12 is NACA 4412, generated).
+    /// Airfoil coordinates of APC's sections: `e63.dat`, `clarky.dat`, or `<name>.dat` for
+    /// another (APC12 is NACA 4412, and NACA 4-digit names are generated).
     #[arg(long)]
     pub airfoils: PathBuf,
     /// Only the props whose name contains one of these (comma-separated).
