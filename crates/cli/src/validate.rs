@@ -13,7 +13,7 @@ use clap::Args;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{Rotation, StageSpec};
 use propbet_pipeline::validate::{
-    find_apc_file, uiuc_props, validate_prop, GeometrySource, Row, ValidateSpec, Validated,
+    find_apc_file, uiuc_props, validate_prop, GeometrySource, Row, Sections, ValidateSpec, Validated,
 };
 use propbet_qprop::apc::pe0_name;
 
@@ -75,6 +75,12 @@ pub struct ValidateArgs {
     /// `pe0` (APC's design chord and twist, at UIUC's stations).
     #[arg(long, value_parser = ["uiuc", "pe0"], default_value = "uiuc")]
     pub geometry: String,
+    /// The section of a prop without APC's (another maker's, or no PE0 file for it): an airfoil
+    /// of `--airfoils` (or a NACA 4-digit name) at every station of UIUC's blade, `NAME` (as
+    /// drawn) or `NAME:T/C`; `none` lists such props as not validated. Their rows are marked
+    /// and kept out of the median over props (docs/studies/other-makers.md).
+    #[arg(long, value_name = "NAME[:T/C]|none", default_value = propbet_pipeline::validate::DEFAULT_GENERIC_SECTION)]
+    pub generic_section: String,
     /// TOML file of user-defined effects (docs/effects.md): candidates of every prop's ladders
     /// (all files and each held-out half) beside the built-ins, to measure a new effect on
     /// every prop at once.
@@ -135,27 +141,34 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
+    let generic = Sections::parse_generic(&a.generic_section)?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
     let mut all_clean = true;
     let total = geoms.len();
     for (k, prop) in geoms.iter().enumerate() {
-        let pe0_path = match pe0_name(prop) {
-            Some(n) => match find_apc_file(&a.pe0, &n) {
-                Some(path) => path,
-                None => {
-                    skipped.push((prop.clone(), format!("no PE0 file {n} in {}", a.pe0.display())));
-                    continue;
-                }
+        // APC's sections from its PE0 file; without one, the generic section (or the reason).
+        let apc: std::result::Result<Sections, String> = match pe0_name(prop) {
+            Some(n) => find_apc_file(&a.pe0, &n)
+                .map(Sections::Apc)
+                .ok_or_else(|| format!("no PE0 file {n} in {}", a.pe0.display())),
+            None => Err(propbet_qprop::apc::pe0_unknown(prop)),
+        };
+        let sections = match (apc, &generic) {
+            (Ok(apc), _) => apc,
+            (Err(why), Some(Sections::Assumed { airfoil, thickness, .. })) => Sections::Assumed {
+                airfoil: airfoil.clone(),
+                thickness: *thickness,
+                why,
             },
-            None => {
-                skipped.push((prop.clone(), propbet_qprop::apc::pe0_unknown(prop)));
+            (Err(why), _) => {
+                skipped.push((prop.clone(), why));
                 continue;
             }
         };
         eprintln!("propbet validate [{}/{total}] {prop}", k + 1);
         let bar = Bar::new(a.xfoil.quiet);
-        let result = validate_prop(&spec, prop, &pe0_path, &|d, t| bar.tick(d, t))
+        let result = validate_prop(&spec, prop, &sections, &|d, t| bar.tick(d, t))
             .map_err(anyhow::Error::from)
             .and_then(|v| write_prop_outputs(&spec, prop, &v).map(|()| v));
         match result {
@@ -269,6 +282,7 @@ struct CsvRow<'a> {
     apc_cp_p90: Option<f64>,
     twist_gap_deg: f64,
     uiuc_geometry: bool,
+    assumed_section: Option<&'a str>,
     files_left_out: usize,
     static_fm_error: f64,
     static_ct_error: f64,
@@ -308,6 +322,7 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             apc_cp_p90: r.per3.as_ref().map(|p| p.cp.1),
             twist_gap_deg: r.twist_gap,
             uiuc_geometry: r.uiuc_geometry,
+            assumed_section: r.assumed_section.as_deref(),
             files_left_out: r.left_out.len(),
             static_fm_error: r.static_fm,
             static_ct_error: r.regimes[0].ct,

@@ -13,7 +13,7 @@ use propbet_compare::metrics::{
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
 use propbet_polar::{naca4_from_name, Airfoil};
-use propbet_qprop::apc::{read_pe0, uiuc_diameter};
+use propbet_qprop::apc::{read_pe0, uiuc_diameter, Pe0};
 use propbet_qprop::{PropFile, PropRow};
 
 use crate::model::{as_written, LoadedProp, Model};
@@ -253,6 +253,9 @@ pub struct Row {
     /// UIUC has a geometry file of the prop; without one the blade is APC's design (PE0) at
     /// UIUC's stations, whatever `--geometry` asks.
     pub uiuc_geometry: bool,
+    /// The section assumed for a prop without APC's sections, and why ("sd7037 t/c 0.092 (UIUC
+    /// family gwsdd: not an APC propeller)"); None for APC's (PE0).
+    pub assumed_section: Option<String>,
     /// The prop's files that did not read (file name, why): left out of every stage.
     pub left_out: Vec<(String, String)>,
     /// The static points' predicted figure of merit over the measured, minus 1 (median;
@@ -415,20 +418,113 @@ impl Validated {
     }
 }
 
-/// Validates one prop; `pe0` is its PE0 file.
+/// Where a prop's sections come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Sections {
+    /// APC's PE0 file: its airfoils across the transition, scaled to its thickness ratios.
+    Apc(PathBuf),
+    /// No section data (another maker's prop): one airfoil from `--airfoils` at every station,
+    /// at this thickness ratio (None: the airfoil's own), on UIUC's measured blade.
+    Assumed {
+        /// The airfoil's name, as `--generic-section` gives it.
+        airfoil: String,
+        /// Thickness ratio (None: as drawn).
+        thickness: Option<f64>,
+        /// Why APC's are not used (another maker; no PE0 file in the directory).
+        why: String,
+    },
+}
+
+impl Sections {
+    /// Parses `--generic-section`: `none`, `NAME` or `NAME:T/C` (the airfoil from
+    /// `--airfoils`, or a NACA 4-digit name); None for `none`. `why` is left empty.
+    pub fn parse_generic(text: &str) -> Result<Option<Sections>> {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("none") {
+            return Ok(None);
+        }
+        let (name, tc) = match t.split_once(':') {
+            None => (t, None),
+            Some((n, x)) => match x.trim().parse::<f64>() {
+                Ok(v) if (0.01..=0.4).contains(&v) => (n, Some(v)),
+                _ => {
+                    return Err(Error::Invalid(format!(
+                        "--generic-section '{}': the thickness ratio after ':' must be a number in 0.01..0.4",
+                        propbet_bemt::units::excerpt(t)
+                    )))
+                }
+            },
+        };
+        if name.trim().is_empty() {
+            return Err(Error::Invalid(format!(
+                "--generic-section '{}': an airfoil name, NAME or NAME:T/C, or `none`",
+                propbet_bemt::units::excerpt(t)
+            )));
+        }
+        Ok(Some(Sections::Assumed {
+            airfoil: name.trim().to_string(),
+            thickness: tc,
+            why: String::new(),
+        }))
+    }
+}
+
+/// The default of `--generic-section`: SD7037 as drawn (t/c 0.092), the best of four thin
+/// low-Re sections on the two shared props of other makers (docs/studies/other-makers.md).
+pub const DEFAULT_GENERIC_SECTION: &str = "sd7037";
+
+/// A PE0 file in memory for a prop whose sections are assumed: UIUC's chord and twist, one
+/// airfoil from root to tip at one thickness ratio.
+fn assumed_pe0(table: &[propbet_measure::uiuc::GeometryRow], big_r: f64, airfoil: &str, tc: f64) -> Pe0 {
+    let at = |f: &dyn Fn(&propbet_measure::uiuc::GeometryRow) -> f64| -> Vec<(f64, f64)> {
+        table.iter().map(|row| (row.r_r * big_r, f(row))).collect()
+    };
+    let r0 = table.first().map_or(0.0, |row| row.r_r * big_r);
+    Pe0 {
+        thickness: at(&|_| tc),
+        chord: at(&|row| row.c_r * big_r),
+        twist: at(&|row| row.beta.to_degrees()),
+        airfoils: [(r0, airfoil.to_string()), (r0, airfoil.to_string())],
+    }
+}
+
+/// Validates one prop with its `sections`.
 pub fn validate_prop(
     spec: &ValidateSpec,
     prop: &str,
-    pe0: &Path,
+    sections: &Sections,
     progress: &propbet_polar::Progress<'_>,
 ) -> Result<Validated> {
     let dir = spec.out.join(prop);
     let d = uiuc_diameter(prop).ok_or_else(|| Error::Invalid(format!("{prop}: no diameter in the name")))?;
     let big_r = 0.5 * d;
-    let pe0 = read_pe0(&read_text(pe0)?, &pe0.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
-    // UIUC's measured blade, or APC's design where UIUC has no geometry file of the prop.
     let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
     let uiuc_geometry = geom_path.exists();
+    let (pe0, assumed) = match sections {
+        Sections::Apc(path) => (
+            read_pe0(&read_text(path)?, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?,
+            None,
+        ),
+        Sections::Assumed {
+            airfoil,
+            thickness,
+            why,
+        } => {
+            if !uiuc_geometry {
+                return Err(Error::Invalid(
+                    "no APC PE0 file and no UIUC geometry file: no blade to predict".into(),
+                ));
+            }
+            let table = stages::read_geometry_table(&geom_path)?;
+            let tc = match thickness {
+                Some(t) => *t,
+                None => apc_airfoil(airfoil, &spec.airfoils)?.max_thickness().0,
+            };
+            let text = format!("{airfoil} t/c {tc:.3} ({why})");
+            (assumed_pe0(&table, big_r, airfoil, tc), Some(text))
+        }
+    };
+    // UIUC's measured blade, or APC's design where UIUC has no geometry file of the prop.
     let (table, geometry_used) = if uiuc_geometry {
         (stages::read_geometry_table(&geom_path)?, spec.geometry)
     } else {
@@ -476,7 +572,13 @@ pub fn validate_prop(
         airfoils.push((i, foil.to_selig()));
     }
     let file = PropFile::metric(
-        format!("{prop} ({}, APC PE0 sections)", geometry_used.description()),
+        format!(
+            "{prop} ({}, {})",
+            geometry_used.description(),
+            assumed
+                .as_deref()
+                .map_or("APC PE0 sections".to_string(), |a| format!("sections assumed: {a}"))
+        ),
         2.0,
         big_r,
         rows,
@@ -680,12 +782,13 @@ pub fn validate_prop(
         per3,
         ladder: ladder_text(&effects),
         held_out_ladders,
-        twist_gap: if uiuc_geometry {
+        twist_gap: if uiuc_geometry && assumed.is_none() {
             twist_gap(&table, &pe0, big_r)
         } else {
             f64::NAN
         },
         uiuc_geometry,
+        assumed_section: assumed,
         left_out,
         static_fm: static_figure_of_merit_error(&compared.points),
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
@@ -852,5 +955,45 @@ mod tests {
         }
         let e = name("APC-X9").unwrap_err().to_string();
         assert!(e.contains("APC airfoil \"APC-X9\"") && e.contains("apcx9.dat"), "{e}");
+    }
+
+    #[test]
+    fn generic_sections_parse() {
+        let assumed = |t: &str| match Sections::parse_generic(t).unwrap() {
+            Some(Sections::Assumed { airfoil, thickness, .. }) => Some((airfoil, thickness)),
+            _ => None,
+        };
+        assert_eq!(assumed("sd7037"), Some(("sd7037".into(), None)));
+        assert_eq!(assumed(" naca4412:0.08 "), Some(("naca4412".into(), Some(0.08))));
+        assert!(Sections::parse_generic("none").unwrap().is_none());
+        for bad in ["clarky:0.9", "clarky:x", ":0.1", ""] {
+            let e = Sections::parse_generic(bad).unwrap_err().to_string();
+            assert!(e.contains("--generic-section"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn an_assumed_section_rides_on_uiucs_blade() {
+        let rows = [
+            propbet_measure::uiuc::GeometryRow {
+                r_r: 0.2,
+                c_r: 0.1,
+                beta: 0.5,
+            },
+            propbet_measure::uiuc::GeometryRow {
+                r_r: 1.0,
+                c_r: 0.05,
+                beta: 0.2,
+            },
+        ];
+        let p = assumed_pe0(&rows, 0.1, "sd7037", 0.092);
+        assert_eq!(p.thickness_at(0.05), 0.092);
+        assert!((p.chord_at(0.1) - 0.005).abs() < 1e-15 && (p.twist_at(0.02) - 0.5f64.to_degrees()).abs() < 1e-12);
+        assert_eq!(p.airfoils[0].1, "sd7037");
+        assert_eq!(
+            p.blend_at(0.05),
+            1.0,
+            "one airfoil: the blend is all the second, the same"
+        );
     }
 }

@@ -64,7 +64,9 @@ fn cells(r: &Row, apc: bool) -> Vec<String> {
     } else {
         "–".into()
     });
-    v.push(if !r.uiuc_geometry {
+    v.push(if let Some(a) = &r.assumed_section {
+        format!("sections assumed: {a}")
+    } else if !r.uiuc_geometry {
         "no UIUC geometry file: APC's design blade used".into()
     } else if r.twist_gap.is_finite() {
         format!("{:+.1}°", r.twist_gap)
@@ -107,11 +109,14 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
         v.push(String::new());
         out.push((v, false));
     }
-    let mut families: Vec<String> = rows.iter().map(|r| family(&r.prop)).collect();
+    // The medians are over props predicted with their maker's sections; those whose section
+    // was assumed get a median of their own.
+    let apc_rows: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
+    let mut families: Vec<String> = apc_rows.iter().map(|r| family(&r.prop)).collect();
     families.sort();
     families.dedup();
     for f in families {
-        let members: Vec<&Row> = rows.iter().filter(|r| family(&r.prop) == f).collect();
+        let members: Vec<&Row> = apc_rows.iter().copied().filter(|r| family(&r.prop) == f).collect();
         if members.len() >= 2 {
             out.push((
                 median_row(format!("{f} (median of {})", members.len()), &members, apc),
@@ -119,8 +124,16 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
             ));
         }
     }
-    let all: Vec<&Row> = rows.iter().collect();
-    out.push((median_row("all (median over props)".into(), &all, apc), true));
+    let assumed: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_some()).collect();
+    if assumed.len() >= 2 {
+        out.push((
+            median_row(format!("sections assumed (median of {})", assumed.len()), &assumed, apc),
+            true,
+        ));
+    }
+    if !apc_rows.is_empty() {
+        out.push((median_row("all (median over props)".into(), &apc_rows, apc), true));
+    }
     (h, out)
 }
 
@@ -194,12 +207,28 @@ fn intro(model: &str) -> String {
     )
 }
 
+/// What the intro adds where some prop's sections were assumed.
+const ASSUMED_NOTE: &str = "Props without APC's sections (other makers, or no PE0 file) are predicted \
+     with one assumed airfoil at every station of UIUC's blade (--generic-section), marked in the \
+     twist column and kept out of the family medians and the median over props: a prediction from \
+     a guessed section, not a validation of propbet's section model.";
+
+/// The intro, with [`ASSUMED_NOTE`] where a row needs it.
+fn intro_for(rows: &[Row], model: &str) -> String {
+    let mut s = intro(model);
+    if rows.iter().any(|r| r.assumed_section.is_some()) {
+        s.push(' ');
+        s.push_str(ASSUMED_NOTE);
+    }
+    s
+}
+
 /// The table as Markdown.
 pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     let (h, body) = table(rows, skipped);
     let mut md = format!(
         "{}\n\n| {} |\n|{}\n",
-        intro(model),
+        intro_for(rows, model),
         h.join(" | "),
         "---|".repeat(h.len())
     );
@@ -258,7 +287,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     let (h, body) = table(rows, skipped);
     let mut s = format!(
         "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
-        esc(&intro(model))
+        esc(&intro_for(rows, model))
     );
     // The last two columns (the ladders) are text: left-aligned; numbers keep their "%" on
     // their line.
@@ -338,6 +367,7 @@ mod tests {
             held_out_ladders: ["none".into(), "none".into()],
             twist_gap: -1.24,
             uiuc_geometry: true,
+            assumed_section: None,
             left_out: Vec::new(),
             static_fm: 0.131,
             regimes: [
@@ -439,6 +469,29 @@ mod tests {
         );
         // Every file read: no list.
         assert!(!markdown(&rows[1..], &[], "tables").contains(LEFT_OUT_INTRO));
+    }
+
+    #[test]
+    fn assumed_sections_have_their_own_median() {
+        let mut g = row("gwsdd_9x5", 0.5, false);
+        g.assumed_section = Some("sd7037 t/c 0.092 (another maker)".into());
+        let mut d = row("da4002_9x6.75", 0.7, false);
+        d.assumed_section = g.assumed_section.clone();
+        let rows = [row("apce_a", 0.1, false), row("apce_b", 0.3, false), g, d];
+        let md = markdown(&rows, &[], "tables");
+        assert!(
+            md.contains("sections assumed: sd7037 t/c 0.092 (another maker)"),
+            "{md}"
+        );
+        assert!(md.contains("Props without APC's sections"), "{md}");
+        // The median over props is the APC props' (10 and 30 %: 30 %, the upper), the assumed
+        // ones' (50 and 70 %) apart.
+        assert!(md.contains("| **all (median over props)** |  | 20 | 30.0 % |"), "{md}");
+        assert!(
+            md.contains("| **sections assumed (median of 2)** |  | 20 | 70.0 % |"),
+            "{md}"
+        );
+        assert!(!markdown(&rows[..2], &[], "tables").contains("Props without APC's sections"));
     }
 
     #[test]
