@@ -245,7 +245,9 @@ fn validate_bad_input() {
     }
     let e = refused_dir("only_data");
     assert!(
-        e.contains("no propeller could be validated: apcsf_9x4.7: no PE0 file 9x47SF-PERF.PE0 in empty"),
+        e.contains(
+            "no propeller could be validated: apcsf_9x4.7: no PE0 file 9x47SF-PERF.PE0 in empty, and no UIUC geometry file: no blade to predict"
+        ),
         "{e}"
     );
     let e = refused_dir("missing");

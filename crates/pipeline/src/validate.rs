@@ -511,9 +511,9 @@ pub fn validate_prop(
             why,
         } => {
             if !uiuc_geometry {
-                return Err(Error::Invalid(
-                    "no APC PE0 file and no UIUC geometry file: no blade to predict".into(),
-                ));
+                return Err(Error::Invalid(format!(
+                    "{why}, and no UIUC geometry file: no blade to predict"
+                )));
             }
             let table = stages::read_geometry_table(&geom_path)?;
             let tc = match thickness {
