@@ -290,10 +290,11 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         esc(&intro_for(rows, model))
     );
     // The last two columns (the ladders) are text: left-aligned; numbers keep their "%" on
-    // their line.
+    // their line. A note where a number would be (a row not validated, a section assumed, no
+    // UIUC geometry) is text too: it wraps instead of widening its column.
     let text = |k: usize| k + 2 >= h.len();
-    let class = |k: usize| {
-        if text(k) {
+    let class = |k: usize, c: &str| {
+        if text(k) || c.split_whitespace().count() > 3 {
             " class=\"text\""
         } else {
             " style=\"white-space:nowrap\""
@@ -306,7 +307,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     for (cells, summary) in &body {
         s.push_str(if *summary { "<tr class=\"sig\">" } else { "<tr>" });
         for (k, c) in cells.iter().enumerate() {
-            let _ = write!(s, "<td{}>{}</td>", class(k), esc(c));
+            let _ = write!(s, "<td{}>{}</td>", class(k, c), esc(c));
         }
         s.push_str("</tr>\n");
     }
@@ -492,6 +493,10 @@ mod tests {
             "{md}"
         );
         assert!(!markdown(&rows[..2], &[], "tables").contains("Props without APC's sections"));
+        // On the page the note wraps as text; the numbers beside it stay on their line.
+        let page = html(&rows, &[], "tables");
+        assert!(page.contains("<td class=\"text\">sections assumed: sd7037"), "{page}");
+        assert!(page.contains("<td style=\"white-space:nowrap\">-1.2°</td>"), "{page}");
     }
 
     #[test]
