@@ -252,6 +252,26 @@ fn validate_bad_input() {
     );
     let e = refused_dir("missing");
     assert!(e.contains("missing"), "{e}");
+    // A generic section whose thickness is not one: refused before anything is written.
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            "only_data",
+            "--pe0",
+            "empty",
+            "--airfoils",
+            "empty",
+            "--generic-section",
+            "clarky:0.9",
+            "-o",
+            "v_generic",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--generic-section 'clarky:0.9'"), "{}", stderr(&o));
+    assert!(!dir.path().join("v_generic").exists());
     // A user-effects file that does not read stops validate before any prop, naming the file
     // and what is wrong; nothing is written.
     let repo_data = repo().join("tests/data/validate");

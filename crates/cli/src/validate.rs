@@ -126,6 +126,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         geometry: GeometrySource::parse(&a.geometry)?,
         user_effects: a.user_effects.clone(),
     };
+    let generic = Sections::parse_generic(&a.generic_section)?;
     // A user-effects file that does not read stops here, before any prop, naming the file.
     propbet_pipeline::model::effect_registry(a.user_effects.as_deref())?;
     if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
@@ -141,7 +142,6 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
-    let generic = Sections::parse_generic(&a.generic_section)?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
     let mut all_clean = true;
