@@ -500,6 +500,11 @@ pub fn validate_prop(
     let big_r = 0.5 * d;
     let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
     let uiuc_geometry = geom_path.exists();
+    let uiuc_table = if uiuc_geometry {
+        Some(stages::read_geometry_table(&geom_path)?)
+    } else {
+        None
+    };
     let (pe0, assumed) = match sections {
         Sections::Apc(path) => (
             read_pe0(&read_text(path)?, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?,
@@ -510,25 +515,23 @@ pub fn validate_prop(
             thickness,
             why,
         } => {
-            if !uiuc_geometry {
+            let Some(table) = &uiuc_table else {
                 return Err(Error::Invalid(format!(
                     "{why}, and no UIUC geometry file: no blade to predict"
                 )));
-            }
-            let table = stages::read_geometry_table(&geom_path)?;
+            };
             let tc = match thickness {
                 Some(t) => *t,
                 None => apc_airfoil(airfoil, &spec.airfoils)?.max_thickness().0,
             };
             let text = format!("{airfoil} t/c {tc:.3} ({why})");
-            (assumed_pe0(&table, big_r, airfoil, tc), Some(text))
+            (assumed_pe0(table, big_r, airfoil, tc), Some(text))
         }
     };
     // UIUC's measured blade, or APC's design where UIUC has no geometry file of the prop.
-    let (table, geometry_used) = if uiuc_geometry {
-        (stages::read_geometry_table(&geom_path)?, spec.geometry)
-    } else {
-        (pe0_table(&pe0, big_r), GeometrySource::Pe0)
+    let (table, geometry_used) = match uiuc_table {
+        Some(table) => (table, spec.geometry),
+        None => (pe0_table(&pe0, big_r), GeometrySource::Pe0),
     };
     if table.len() < 2 {
         return Err(Error::Invalid(format!(

@@ -262,8 +262,7 @@ pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 }
 
 /// The files left out of the props' validation, one line each ("prop: file: why", the file
-/// once); empty
-/// where every file read.
+/// named once); empty where every file read.
 fn left_out(rows: &[Row]) -> Vec<String> {
     rows.iter()
         .flat_map(|r| {
