@@ -294,6 +294,11 @@ struct CsvRow<'a> {
     static_ct_rise_measured: Option<f64>,
     static_ct_rise_predicted: Option<f64>,
     forward_ct_error_rpm_change: Option<f64>,
+    /// The J sweeps' zero-thrust J from the lowest to the highest sweep RPM, measured, relative
+    /// (`ZeroThrustShift`); empty without two sweeps reaching zero thrust.
+    zero_thrust_j_change_measured: Option<f64>,
+    /// The same, predicted.
+    zero_thrust_j_change_predicted: Option<f64>,
     ladder: &'a str,
     held_out_ladders: String,
 }
@@ -334,6 +339,8 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             static_ct_rise_measured: r.static_rise.map(|s| s.measured),
             static_ct_rise_predicted: r.static_rise.map(|s| s.predicted),
             forward_ct_error_rpm_change: r.forward_rpm_trend.map(|t| t.change),
+            zero_thrust_j_change_measured: r.zero_thrust_shift.map(|z| z.measured_change()),
+            zero_thrust_j_change_predicted: r.zero_thrust_shift.and_then(|z| z.predicted_change()),
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
         });

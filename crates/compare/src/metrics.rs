@@ -226,7 +226,15 @@ pub fn in_window(points: &[ComparedPoint], window: f64) -> Vec<bool> {
 /// Each file's points (indices, by J) and its measured zero-thrust J: linear between the last
 /// positive and the first non-positive measured CT; None where CT never crosses zero.
 fn zero_thrust_js(points: &[ComparedPoint]) -> Vec<(Vec<usize>, Option<f64>)> {
-    let nan = f64::NAN;
+    zero_crossings(points, |p| p.measured.ct)
+}
+
+/// Each file's points (indices, by J) and where `ct` of them (measured or predicted) first
+/// crosses zero: linear between the last positive and the first non-positive value.
+fn zero_crossings(
+    points: &[ComparedPoint],
+    ct: impl Fn(&ComparedPoint) -> Option<f64>,
+) -> Vec<(Vec<usize>, Option<f64>)> {
     let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
     files.sort_unstable();
     files.dedup();
@@ -235,14 +243,98 @@ fn zero_thrust_js(points: &[ComparedPoint]) -> Vec<(Vec<usize>, Option<f64>)> {
         .map(|f| {
             let mut pts: Vec<usize> = (0..points.len()).filter(|&i| points[i].file == f).collect();
             pts.sort_by(|&a, &b| points[a].j.total_cmp(&points[b].j));
-            let ct = |i: usize| points[i].measured.ct.unwrap_or(nan);
-            let j0 = pts.windows(2).find(|w| ct(w[0]) > 0.0 && ct(w[1]) <= 0.0).map(|w| {
-                let (a, b) = (ct(w[0]), ct(w[1]));
+            let c = |i: usize| ct(&points[i]).unwrap_or(f64::NAN);
+            let j0 = pts.windows(2).find(|w| c(w[0]) > 0.0 && c(w[1]) <= 0.0).map(|w| {
+                let (a, b) = (c(w[0]), c(w[1]));
                 points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
             });
             (pts, j0)
         })
         .collect()
+}
+
+/// How a prop's zero-thrust J moves with RPM over its J sweeps, measured and predicted: the
+/// blade's effective pitch at each speed. The sections' Reynolds-number dependence moves it up
+/// a little as the RPM rises (a zero-lift angle that grows more negative); a blade that twists
+/// nose-down under load (a flexible blade's elastic washout) moves it down. Each is the
+/// least-squares line of the sweeps' zero-thrust J against ln RPM, given at the lowest and the
+/// highest sweep's RPM.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ZeroThrustShift {
+    /// The lowest sweep's RPM (the median of its points').
+    pub rpm_lo: f64,
+    /// The highest sweep's RPM.
+    pub rpm_hi: f64,
+    /// Sweeps whose measured CT crosses zero.
+    pub sweeps: usize,
+    /// Measured zero-thrust J at `rpm_lo` and at `rpm_hi` (the fitted line's).
+    pub measured: (f64, f64),
+    /// The same of the prediction, over the sweeps where it crosses zero too; None where fewer
+    /// than two do or they span less than 1.2x in RPM (a model that makes thrust beyond the
+    /// measured J range).
+    pub predicted: Option<(f64, f64)>,
+}
+
+impl ZeroThrustShift {
+    /// Measured change from `rpm_lo` to `rpm_hi`, relative.
+    pub fn measured_change(&self) -> f64 {
+        self.measured.1 / self.measured.0 - 1.0
+    }
+
+    /// Predicted change, relative.
+    pub fn predicted_change(&self) -> Option<f64> {
+        self.predicted.map(|p| p.1 / p.0 - 1.0)
+    }
+}
+
+/// The least-squares line of `y` against ln `rpm` over `s` (rpm, y), at `lo` and `hi` RPM;
+/// None with fewer than two points or an RPM span below 1.2x.
+fn line_in_ln_rpm(s: &[(f64, f64)], lo: f64, hi: f64) -> Option<(f64, f64)> {
+    let (a, b) = s
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    if s.len() < 2 || b < 1.2 * a {
+        return None;
+    }
+    let n = s.len() as f64;
+    let mx = s.iter().map(|p| p.0.ln()).sum::<f64>() / n;
+    let my = s.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = s.iter().map(|p| (p.0.ln() - mx).powi(2)).sum();
+    let slope = s.iter().map(|p| (p.0.ln() - mx) * (p.1 - my)).sum::<f64>() / sxx;
+    Some((my + slope * (lo.ln() - mx), my + slope * (hi.ln() - mx)))
+}
+
+/// [`ZeroThrustShift`] of the J sweeps (files without static points) whose measured CT crosses
+/// zero; None with fewer than two such sweeps or an RPM span below 1.2x.
+pub fn zero_thrust_shift(points: &[ComparedPoint]) -> Option<ZeroThrustShift> {
+    let measured = zero_crossings(points, |p| p.measured.ct);
+    let predicted = zero_crossings(points, |p| p.predicted.ct);
+    // (rpm, measured J0, predicted J0) of each sweep whose measured CT crosses zero.
+    let mut s: Vec<(f64, f64, Option<f64>)> = measured
+        .into_iter()
+        .zip(predicted)
+        .filter(|((pts, _), _)| !pts.iter().any(|&i| points[i].is_static()))
+        .filter_map(|((pts, m), (_, q))| {
+            let mut rpm: Vec<f64> = pts
+                .iter()
+                .map(|&i| points[i].rpm)
+                .filter(|r| r.is_finite() && *r > 0.0)
+                .collect();
+            rpm.sort_by(f64::total_cmp);
+            Some((*rpm.get(rpm.len() / 2)?, m?, q))
+        })
+        .collect();
+    s.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (lo, hi) = (s.first()?.0, s.last()?.0);
+    let m: Vec<(f64, f64)> = s.iter().map(|p| (p.0, p.1)).collect();
+    let q: Vec<(f64, f64)> = s.iter().filter_map(|p| Some((p.0, p.2?))).collect();
+    Some(ZeroThrustShift {
+        rpm_lo: lo,
+        rpm_hi: hi,
+        sweeps: s.len(),
+        measured: line_in_ln_rpm(&m, lo, hi)?,
+        predicted: line_in_ln_rpm(&q, lo, hi),
+    })
 }
 
 /// Where a prop's error lies: the median signed error (predicted / measured − 1) of CT and CP
@@ -541,6 +633,65 @@ mod tests {
         // Less than 1.3x in RPM, or one point: none.
         assert!(static_rise(&[mk(2400.0, 0.0, [0.1, 0.1]), mk(3000.0, 0.0, [0.1, 0.1])]).is_none());
         assert!(static_rise(&pts[..1]).is_none());
+    }
+
+    #[test]
+    fn the_zero_thrust_shift_follows_the_sweeps_crossings() {
+        // Three J sweeps (files by label) whose measured CT crosses zero at 0.65, 0.64, 0.62
+        // and whose predicted CT at 0.60, 0.61, 0.62 (CT = k (J0 - J) through J = 0.5 and 0.7),
+        // and a static file at a higher RPM.
+        let mut pts = Vec::new();
+        for (f, (rpm, jm, jp)) in [(4000.0, 0.65, 0.60), (5000.0, 0.64, 0.61), (6800.0, 0.62, 0.62)]
+            .into_iter()
+            .enumerate()
+        {
+            for j in [0.5, 0.7] {
+                let mut p = pt("x", rpm, j, 1.0, 1.0);
+                p.file = f;
+                p.measured.ct = Some(0.3 * (jm - j));
+                p.predicted.ct = Some(0.3 * (jp - j));
+                pts.push(p);
+            }
+        }
+        let mut st = pt("s", 9000.0, 0.0, 1.0, 1.0);
+        st.file = 3;
+        st.measured.ct = Some(0.1);
+        st.predicted.ct = Some(-0.1);
+        pts.push(st);
+        let z = zero_thrust_shift(&pts).unwrap();
+        assert_eq!((z.rpm_lo, z.sweeps), (4000.0, 3));
+        assert_eq!(z.rpm_hi, 6800.0);
+        // Falling measured, rising predicted: the fitted lines' ends, near the sweeps' own.
+        let q = z.predicted.unwrap();
+        assert!(
+            z.measured_change() < -0.03 && z.predicted_change().unwrap() > 0.02,
+            "{z:?}"
+        );
+        assert!(
+            (z.measured.0 - 0.652).abs() < 0.005 && (q.1 - 0.621).abs() < 0.005,
+            "{z:?}"
+        );
+        // One sweep, or sweeps within 1.2x in RPM: none.
+        assert!(zero_thrust_shift(&pts[..2]).is_none());
+        let mut near: Vec<ComparedPoint> = pts[..4].to_vec();
+        near[2].rpm = 4400.0;
+        near[3].rpm = 4400.0;
+        assert!(zero_thrust_shift(&near).is_none());
+        // A sweep whose prediction never reaches zero thrust is left out of the predicted line
+        // (the other two still span 1.7x); with two such sweeps there is no predicted line,
+        // and the measured one stays.
+        let mut short = pts.clone();
+        short[3].predicted.ct = Some(0.01);
+        let z = zero_thrust_shift(&short).unwrap();
+        assert_eq!(z.sweeps, 3);
+        assert!(
+            z.predicted
+                .is_some_and(|q| (q.0 - 0.60).abs() < 1e-9 && (q.1 - 0.62).abs() < 1e-9),
+            "{z:?}"
+        );
+        short[5].predicted.ct = Some(0.01);
+        let z = zero_thrust_shift(&short).unwrap();
+        assert!(z.predicted.is_none() && z.measured_change() < -0.03, "{z:?}");
     }
 
     #[test]

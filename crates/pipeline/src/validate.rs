@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use propbet_compare::metrics::{
-    in_window, quantile, regime_errors, static_figure_of_merit_error, static_rise, window_errors, RegimeError,
-    StaticRise, VALIDATION_J_WINDOW,
+    in_window, quantile, regime_errors, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift,
+    RegimeError, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW,
 };
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
@@ -274,6 +274,11 @@ pub struct Row {
     /// forward flight, where the static rise shows it statically; None where no J bin's RPMs
     /// span 1.3x.
     pub forward_rpm_trend: Option<RpmTrend>,
+    /// How the J sweeps' zero-thrust J moves with RPM, measured and predicted
+    /// ([`zero_thrust_shift`]): a blade that twists nose-down as it speeds up moves the
+    /// measured one down where the sections' Reynolds numbers move the model's up; None with
+    /// fewer than two sweeps reaching zero thrust.
+    pub zero_thrust_shift: Option<ZeroThrustShift>,
 }
 
 /// The CT error's (predicted / measured − 1) change with RPM at fixed J over the J sweeps'
@@ -797,6 +802,7 @@ pub fn validate_prop(
         regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
         static_rise: static_rise(&compared.points),
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
+        zero_thrust_shift: zero_thrust_shift(&compared.points),
     };
     Ok(Validated {
         geometry,

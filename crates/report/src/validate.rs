@@ -144,6 +144,7 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
     h.extend(REGIMES.iter().map(|r| format!("{r}: CT / CP (points)")));
     h.push("static CT rise with RPM: measured / predicted".into());
     h.push("CT error's change with RPM at fixed J, J sweeps".into());
+    h.push("zero-thrust J from the lowest to the highest sweep RPM: measured / predicted".into());
     let signed = |x: f64| {
         if x.is_finite() {
             format!("{:+.1}", 100.0 * x)
@@ -176,6 +177,21 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
                 Some(t) => format!("{} % ({:.0}-{:.0} rpm)", signed(t.change), t.lo, t.hi),
                 None => "–".into(),
             });
+            v.push(match r.zero_thrust_shift {
+                Some(z) => format!(
+                    "{:.3} → {:.3} ({} %) / {} ({:.0}-{:.0} rpm)",
+                    z.measured.0,
+                    z.measured.1,
+                    signed(z.measured_change()),
+                    match (z.predicted, z.predicted_change()) {
+                        (Some(q), Some(c)) => format!("{:.3} → {:.3} ({} %)", q.0, q.1, signed(c)),
+                        _ => "the model's beyond the measured J".into(),
+                    },
+                    z.rpm_lo,
+                    z.rpm_hi
+                ),
+                None => "–".into(),
+            });
             v
         })
         .collect();
@@ -191,7 +207,12 @@ const REGIME_INTRO: &str =
      predicted (the sections' Reynolds-number dependence, and whatever else grows with RPM); and in \
      forward flight, how the CT error changes with RPM at fixed J over the J sweeps (the median over J \
      bins of its slope against ln RPM, over the RPM range they typically span: negative where the \
-     measured CT grows faster with RPM than the model's).";
+     measured CT grows faster with RPM than the model's). Last, where the J sweeps reach zero thrust, \
+     how their zero-thrust J moves from the lowest to the highest sweep RPM (a line against ln RPM \
+     through the sweeps'), measured and predicted: the blade's effective pitch at each speed. The \
+     sections' Reynolds numbers move it up a little as the RPM rises; a measured one that falls \
+     while the model's rises is a blade that twists nose-down as it speeds up (a flexible blade's \
+     elastic washout, the diagnosis's elastic-twist), which no section model makes.";
 
 fn intro(model: &str) -> String {
     format!(
@@ -347,7 +368,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use propbet_compare::metrics::{RegimeError, StaticRise};
+    use propbet_compare::metrics::{RegimeError, StaticRise, ZeroThrustShift};
     use propbet_diagnose::signature::RpmTrend;
     use propbet_pipeline::validate::Per3Score;
 
@@ -398,6 +419,13 @@ mod tests {
                 lo: 4005.0,
                 hi: 6707.0,
             }),
+            zero_thrust_shift: (x > 0.15).then_some(ZeroThrustShift {
+                rpm_lo: 4008.0,
+                rpm_hi: 6819.0,
+                sweeps: 4,
+                measured: (0.651, 0.615),
+                predicted: Some((0.612, 0.631)),
+            }),
         }
     }
 
@@ -426,19 +454,33 @@ mod tests {
         // Where the error is: signed, a row per validated prop, "–" for a regime without points.
         assert!(
             md.contains(
-                "| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) | +22.7 / +9.4 % (2377-6528 rpm) | -12.3 % (4005-6707 rpm) |"
+                "| apce_b | +7.6 / -3.0 % (4) | – | -30.0 / +0.0 % (6) | +22.7 / +9.4 % (2377-6528 rpm) | -12.3 % (4005-6707 rpm) \
+                 | 0.651 → 0.615 (-5.5 %) / 0.612 → 0.631 (+3.1 %) (4008-6819 rpm) |"
             ),
             "{md}"
         );
         // No static test spanning 1.3x: "–".
         assert!(
-            md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – | – |"),
+            md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – | – | – |"),
             "{md}"
         );
         let page = html(&rows, &skipped, "tables");
         // 7 rows in the first table, 1 + 3 in the second.
         assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 11);
         assert!(page.contains("<h2>Where the error is</h2>"), "{page}");
+    }
+
+    #[test]
+    fn a_model_that_never_reaches_zero_thrust_has_no_predicted_zero_thrust_j() {
+        let mut a = row("apce_a", 0.3, false);
+        if let Some(z) = a.zero_thrust_shift.as_mut() {
+            z.predicted = None;
+        }
+        let md = markdown(&[a], &[], "tables");
+        assert!(
+            md.contains("| 0.651 → 0.615 (-5.5 %) / the model's beyond the measured J (4008-6819 rpm) |"),
+            "{md}"
+        );
     }
 
     #[test]
