@@ -195,7 +195,19 @@ fn uiuc_static_and_sweeps_give_a_report() {
         m["metrics"]["headline"][0]["metrics"]["thrust"]["mean_rel"]
     );
     assert!(s["problems"]["dropped_rows"].is_u64() && s["clean"].is_boolean());
+    // With speed: the static test's rise (measured +22.7 % from 2377 to 6528 rpm); no zero-thrust
+    // J's shift, the 6023 rpm sweep stopping before zero thrust.
+    let trends = m["speed_trends"].as_array().unwrap();
+    assert_eq!(trends.len(), 1, "{trends:?}");
+    assert!(
+        trends[0]
+            .as_str()
+            .unwrap()
+            .starts_with("Static CT grows by +22.7 % from 2377 to 6528 rpm"),
+        "{trends:?}"
+    );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("<h2>With speed</h2>"));
     assert!(html.contains("static thrust, mean error") && html.contains("not in these numbers"));
     // The long points table folds, saying how many points are flagged.
     assert!(

@@ -46,6 +46,20 @@ fn default_case_from_scan_to_report() {
     let st = pol["stations"].as_array().unwrap();
     let fitted = st.iter().filter(|s| !s["fit"].is_null()).count();
     assert!(fitted >= 18, "{fitted} of {} stations fitted", st.len());
+    // "With speed": the measured static rise and zero-thrust J (the data's, fixed), beside the
+    // model's; the model's zero-thrust J lower at every speed (its pitch, the diagnosis's first
+    // step), not falling with RPM.
+    let md = std::fs::read_to_string(out.join("compare/summary.md")).unwrap();
+    assert!(
+        md.contains("## With speed\n\n- Static CT grows by +22.7 % from 2377 to 6528 rpm, faster than the model's"),
+        "{md}"
+    );
+    assert!(
+        md.contains("zero-thrust J moves from 0.642 at 4014 rpm to 0.661 at 6513 rpm (+2.8 %); the model's from")
+            && md.contains("The model's is lower by")
+            && !md.contains("nose-down"),
+        "{md}"
+    );
     // Prediction against UIUC's static test: the right size (a unit or frame mistake would be
     // off by far more).
     let (h, rows) = read_csv(&out.join("compare/points.csv"));

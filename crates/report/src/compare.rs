@@ -6,7 +6,7 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{group_points, sweep_group, MetricGroup, Metrics};
+use propbet_compare::metrics::{group_points, static_rise, sweep_group, zero_thrust_shift, MetricGroup, Metrics};
 use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
@@ -413,6 +413,8 @@ struct Json<'a> {
     command: &'a str,
     files: Vec<FileJson<'a>>,
     metrics: &'a Metrics,
+    /// [`speed_trends`]' sentences.
+    speed_trends: &'a [String],
     points: &'a [ComparedPoint],
 }
 
@@ -471,6 +473,73 @@ fn html_metric_table(out: &mut String, groups: &[&MetricGroup]) {
         metric_rows(out, g, true);
         out.push_str("</table>\n");
     }
+}
+
+/// What the measurements show as the speed changes, beside the model, in sentences: the static
+/// CT's rise from the lowest to the highest static RPM ([`static_rise`]) and the J sweeps'
+/// zero-thrust J at their lowest and highest RPM ([`zero_thrust_shift`]), each read for what
+/// it says of the blade. Empty where the points span too little RPM for either.
+pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(s) = static_rise(points) {
+        let gap = s.measured - s.predicted;
+        let reading = if gap.abs() <= 0.03 {
+            "as the model's does (within 3 points)".to_string()
+        } else {
+            format!(
+                "{} than the model's ({} %; the diagnosis's RPM trend names what can make it)",
+                if gap > 0.0 { "faster" } else { "slower" },
+                signed(s.predicted)
+            )
+        };
+        out.push(format!(
+            "Static CT grows by {} % from {:.0} to {:.0} rpm, {reading}.",
+            signed(s.measured),
+            s.rpm_lo,
+            s.rpm_hi
+        ));
+    }
+    if let Some(z) = zero_thrust_shift(points) {
+        let mc = z.measured_change();
+        let mut s = format!(
+            "The J sweeps' zero-thrust J moves from {:.3} at {:.0} rpm to {:.3} at {:.0} rpm ({} %)",
+            z.measured.0,
+            z.rpm_lo,
+            z.measured.1,
+            z.rpm_hi,
+            signed(mc)
+        );
+        match (z.predicted, z.predicted_change()) {
+            (Some(q), Some(pc)) => {
+                let _ = write!(s, "; the model's from {:.3} to {:.3} ({} %)", q.0, q.1, signed(pc));
+                let offset = 0.5 * (q.0 + q.1 - z.measured.0 - z.measured.1);
+                if mc < -0.01 && pc > mc + 0.02 {
+                    s.push_str(
+                        ". The measured blade loses pitch as it speeds up where the sections' Reynolds numbers give \
+                         the model a little more: a blade that twists nose-down under load (a flexible blade's \
+                         washout, the diagnosis's elastic-twist), which no section model makes",
+                    );
+                } else if offset.abs() > 0.02 {
+                    let _ = write!(
+                        s,
+                        ". The model's is {} by {:.3} at every speed: the blade's pitch (or its sections' zero-lift \
+                         angle) is off, not its change with speed",
+                        if offset < 0.0 { "lower" } else { "higher" },
+                        offset.abs()
+                    );
+                }
+            }
+            _ => s.push_str("; the model's thrust does not reach zero in the measured J range of two sweeps"),
+        }
+        s.push('.');
+        out.push(s);
+    }
+    out
+}
+
+/// A signed percentage without its sign's space: "+3.1".
+fn signed(x: f64) -> String {
+    format!("{:+.1}", 100.0 * x)
 }
 
 /// Builds the report.
@@ -594,6 +663,14 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for w in &warnings {
         let _ = writeln!(h, "<p class=\"warn\">{}</p>", esc(w));
     }
+    let trends = speed_trends(pts);
+    if !trends.is_empty() {
+        h.push_str("<h2>With speed</h2>\n<ul>");
+        for t in &trends {
+            let _ = write!(h, "<li>{}</li>", esc(t));
+        }
+        h.push_str("</ul>\n");
+    }
     h.push_str("<h2>Figures</h2>\n");
     for (name, f) in &figures {
         let caption = match name.as_str() {
@@ -704,6 +781,13 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
             md_table(&mut md, g);
         }
     }
+    if !trends.is_empty() {
+        md.push_str("## With speed\n\n");
+        for t in &trends {
+            let _ = writeln!(md, "- {t}");
+        }
+        md.push('\n');
+    }
     md.push_str("## Metrics\n\n");
     for g in &top {
         md_table(&mut md, g);
@@ -728,6 +812,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
             })
             .collect(),
         metrics: m,
+        speed_trends: &trends,
         points: pts,
     })
     .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
@@ -748,4 +833,61 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         json,
         figures,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A point of file `file` at `rpm` and `j` with measured and predicted CT.
+    fn pt(file: usize, rpm: f64, j: f64, ct: [f64; 2]) -> ComparedPoint {
+        let mut p = ComparedPoint {
+            file,
+            rpm,
+            j,
+            ..Default::default()
+        };
+        p.measured.ct = Some(ct[0]);
+        p.predicted.ct = Some(ct[1]);
+        p
+    }
+
+    #[test]
+    fn speed_trends_read_the_static_rise_and_the_zero_thrust_j() {
+        // A static test rising 20 % measured, 8 % predicted; two J sweeps whose measured
+        // zero-thrust J falls 0.65 → 0.62 and the model's rises 0.61 → 0.63.
+        let mut pts = vec![pt(0, 2500.0, 0.0, [0.10, 0.10]), pt(0, 6500.0, 0.0, [0.12, 0.108])];
+        for (f, rpm, jm, jp) in [(1, 4000.0, 0.65, 0.61), (2, 6800.0, 0.62, 0.63)] {
+            for j in [0.5, 0.7] {
+                pts.push(pt(f, rpm, j, [0.3 * (jm - j), 0.3 * (jp - j)]));
+            }
+        }
+        let t = speed_trends(&pts);
+        assert_eq!(t.len(), 2, "{t:?}");
+        assert!(
+            t[0].starts_with("Static CT grows by +20.0 % from 2500 to 6500 rpm, faster than the model's (+8.0 %;"),
+            "{t:?}"
+        );
+        assert!(
+            t[1].starts_with("The J sweeps' zero-thrust J moves from 0.650 at 4000 rpm to 0.620 at 6800 rpm (-4.6 %); the model's from 0.610 to 0.630 (+3.3 %)"),
+            "{t:?}"
+        );
+        assert!(t[1].contains("twists nose-down"), "{t:?}");
+        // Both rising (0.65 → 0.66, 0.60 → 0.62), the model's 0.045 lower: an offset, not a trend.
+        let mut offset = pts.clone();
+        for p in offset.iter_mut().filter(|p| p.file == 2) {
+            p.measured.ct = p.measured.ct.map(|c| c + 0.3 * 0.04);
+            p.predicted.ct = p.predicted.ct.map(|c| c - 0.3 * 0.01);
+        }
+        for p in offset.iter_mut().filter(|p| p.file == 1) {
+            p.predicted.ct = p.predicted.ct.map(|c| c - 0.3 * 0.01);
+        }
+        let t = speed_trends(&offset);
+        assert!(
+            !t[1].contains("nose-down") && t[1].contains("The model's is lower by 0.045"),
+            "{t:?}"
+        );
+        // A static test alone spanning little RPM, and no sweeps: nothing to say.
+        assert!(speed_trends(&pts[..1]).is_empty());
+    }
 }
