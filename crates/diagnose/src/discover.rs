@@ -598,6 +598,17 @@ fn refine(
     Ok(chosen)
 }
 
+/// Which of a rung's options (score, lower is better; whether its fit stays inside its bounds)
+/// the ladder takes: the best inside its bounds, else the best of all; None without options.
+fn rung_choice(options: &[(f64, bool)]) -> Option<usize> {
+    let best = |inside_only: bool| {
+        (0..options.len())
+            .filter(|&i| !inside_only || options[i].1)
+            .min_by(|&a, &b| options[a].0.total_cmp(&options[b].0))
+    };
+    best(true).or_else(|| best(false))
+}
+
 /// Most candidates (best of the first step first) whose pairs are all tried: every built-in.
 const PAIR_POOL: usize = 14;
 
@@ -809,14 +820,17 @@ pub fn diagnose(
         1 => ladder.push(current.rung(data, last_p)),
         _ => {
             // Swaps and backward elimination, then the ladder rebuilt along the final set: at
-            // each rung the effect of the set that helps most.
+            // each rung the effect of the set that helps most among those whose fit stays inside
+            // its bounds (a rung is an answer too: an effect on its bound is none, and the set's
+            // others can free it at a later rung); only where every one would end on a bound,
+            // the best of them.
             let refined = refine(model, data, current, candidates, &f, opts.alpha)?;
             let refined = best_pair(model, data, refined, &ranking, candidates, &f)?;
             let mut set = refined.effects();
             let mut cur = baseline;
             while !set.is_empty() {
-                let mut best: Option<(usize, Evaluated)> = None;
-                for (i, e) in set.iter().enumerate() {
+                let mut tried: Vec<Evaluated> = Vec::with_capacity(set.len());
+                for e in &set {
                     let mut effects = cur.effects();
                     effects.push(e.clone());
                     let warm = if set.len() == 1 {
@@ -824,14 +838,16 @@ pub fn diagnose(
                     } else {
                         &cur.fit.stack
                     };
-                    let ev = evaluate(model, data, effects, warm, &f)?;
-                    if best.as_ref().is_none_or(|b| ev.score() < b.1.score()) {
-                        best = Some((i, ev));
-                    }
+                    tried.push(evaluate(model, data, effects, warm, &f)?);
                 }
-                let Some((i, ev)) = best else {
+                let options: Vec<(f64, bool)> = tried
+                    .iter()
+                    .map(|ev| (ev.score(), ev.fit.beyond_bounds().is_empty()))
+                    .collect();
+                let Some(i) = rung_choice(&options) else {
                     break;
                 };
+                let ev = tried.swap_remove(i);
                 let gone = set.remove(i);
                 let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
                 ladder.push(ev.rung(data, Some(p)));
@@ -907,6 +923,18 @@ mod tests {
             at_bound: vec![false; params],
             stop: crate::fit::Stop::Converged,
         }
+    }
+
+    #[test]
+    fn a_rung_takes_the_best_effect_inside_its_bounds() {
+        // The best score ends on a bound (the 9x4.7 SF's chord-scale alone at 0.85, held out
+        // 5.8 %, against elastic-twist's 7.6 %): the rung takes the best inside.
+        // (Scores lower is better, here the held-out errors themselves.)
+        assert_eq!(rung_choice(&[(5.8, false), (8.9, true), (7.6, true)]), Some(2));
+        assert_eq!(rung_choice(&[(7.6, true), (9.0, true)]), Some(0));
+        // Every option on a bound: the best of them.
+        assert_eq!(rung_choice(&[(4.0, false), (3.0, false)]), Some(1));
+        assert_eq!(rung_choice(&[]), None);
     }
 
     #[test]
