@@ -20,9 +20,9 @@
 //! in-sample RMS error): an effect weaker than the measurements repeat is not found, however
 //! small its p value.
 //!
-//! **Bounds.** Every parameter has physical bounds; a candidate whose fit ends on one (other
-//! than its neutral value) is never significant: it "hit its bound", the data want more than
-//! it can physically give.
+//! **Bounds.** Every parameter has physical bounds; a candidate whose fit ends on one, or whose
+//! 95 % interval reaches one (other than its neutral value; `fit::on_bound`), is never
+//! significant: it "hit its bound", the data want more than it can physically give.
 //!
 //! **Ladder.** Starting from the baseline, the best significant candidate is added, all
 //! parameters of the stack are refitted together, and the remaining candidates are tried on
@@ -505,7 +505,10 @@ fn try_candidate(
 pub fn bound_note(beyond: &[FittedParam]) -> String {
     let list: Vec<String> = beyond
         .iter()
-        .map(|p| format!("{}:{} = {:.4}", p.effect, p.name, p.value))
+        .map(|p| match p.ci95 {
+            Some(c) => format!("{}:{} = {:.4} ± {:.2}", p.effect, p.name, p.value, c),
+            None => format!("{}:{} = {:.4}", p.effect, p.name, p.value),
+        })
         .collect();
     format!(
         "hit its bound ({}): the data want more than this effect can physically give; not an answer",

@@ -200,9 +200,31 @@ pub struct FittedParam {
     pub value: f64,
     /// Half-width of the 95 % interval (None: the data cannot determine it).
     pub ci95: Option<f64>,
-    /// True when it ended on one of its physical bounds (other than its neutral value: a
-    /// friction torque of zero is no torque tare, not one that wants to be negative).
+    /// True when it ended on one of its physical bounds or its 95 % interval reaches one
+    /// ([`on_bound`]; other than its neutral value: a friction torque of zero is no torque
+    /// tare, not one that wants to be negative).
     pub at_bound: bool,
+}
+
+/// Whether a fitted parameter sits on one of its physical bounds: the fit ended on it
+/// (`lm_at_bound`, within [`AT_BOUND_FRACTION`] of the range), or its 95 % interval (1.96 `sd`,
+/// where the data determine it) reaches it, so that the data cannot tell the value from the
+/// bound (the 9x4.7 SF's chord-scale 0.8536 ± 0.0063 against its bound 0.85). A bound that is
+/// the parameter's neutral value does not count (an interval reaching a friction torque of zero
+/// says the effect may be absent, which its significance test judges), nor does a value that
+/// is the neutral one.
+pub fn on_bound(value: f64, sd: Option<f64>, lm_at_bound: bool, p: &propbet_effects::Param) -> bool {
+    let tol = bound_tolerance(p.lower, p.upper, p.scale);
+    let neutral = |x: f64| p.neutral.is_some_and(|n| (x - n).abs() < tol);
+    if neutral(value) {
+        return false;
+    }
+    lm_at_bound
+        || sd.is_some_and(|sd| {
+            [p.lower, p.upper]
+                .into_iter()
+                .any(|b| b.is_finite() && !neutral(b) && (value - b).abs() < 1.96 * sd)
+        })
 }
 
 /// How close to a bound a fitted value counts as on it: a thousandth of the parameter's range.
@@ -238,9 +260,7 @@ impl FitOutcome {
                     unit: p.unit.clone(),
                     value: self.p[k],
                     ci95: determined.then_some(1.96 * sd),
-                    at_bound: self.at_bound[k]
-                        && p.neutral
-                            .is_none_or(|n| (self.p[k] - n).abs() >= bound_tolerance(p.lower, p.upper, p.scale)),
+                    at_bound: on_bound(self.p[k], determined.then_some(sd), self.at_bound[k], p),
                 });
                 k += 1;
             }
@@ -421,6 +441,23 @@ mod tests {
         let (x, y) = decay(2.0, 0.495);
         let r = levenberg_marquardt(residuals(&x, &y), &[1.0, 0.2], &[0.0, 0.0], &[5.0, 0.5], &[1.0, 1.0]).unwrap();
         assert_eq!(r.at_bound, vec![false, false]);
+    }
+
+    #[test]
+    fn a_fit_whose_interval_reaches_a_bound_is_on_it() {
+        let chord = propbet_effects::Param::new("factor", "-", 1.0, (0.85, 1.15), 0.05, "");
+        // The 9x4.7 SF's chord-scale: 0.8536 ± 0.0063 (1.96 sd) reaches 0.85; ± 0.003 does not.
+        assert!(on_bound(0.8536, Some(0.0063 / 1.96), false, &chord));
+        assert!(!on_bound(0.8536, Some(0.003 / 1.96), false, &chord));
+        // Undetermined (no interval): only the fit's own end counts.
+        assert!(!on_bound(0.8536, None, false, &chord));
+        assert!(on_bound(0.85, None, true, &chord));
+        // A friction torque whose lower bound is its neutral 0: an interval reaching 0 is not
+        // "on its bound", nor is the neutral value itself; the upper bound still counts.
+        let q0 = propbet_effects::Param::new("q0", "N m", 0.0, (0.0, 0.5), 0.01, "");
+        assert!(!on_bound(0.0052, Some(0.01), false, &q0));
+        assert!(!on_bound(0.0, None, true, &q0));
+        assert!(on_bound(0.49, Some(0.01), false, &q0));
     }
 
     #[test]
