@@ -506,7 +506,11 @@ pub fn bound_note(beyond: &[FittedParam]) -> String {
     let list: Vec<String> = beyond
         .iter()
         .map(|p| match p.ci95 {
-            Some(c) => format!("{}:{} = {:.4} ± {:.2}", p.effect, p.name, p.value, c),
+            Some(c) => {
+                // The interval to two significant digits.
+                let decimals = (1 - c.abs().max(1e-12).log10().floor() as i32).max(0) as usize;
+                format!("{}:{} = {:.4} ± {:.*}", p.effect, p.name, p.value, decimals, c)
+            }
             None => format!("{}:{} = {:.4}", p.effect, p.name, p.value),
         })
         .collect();
