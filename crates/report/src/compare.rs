@@ -487,14 +487,14 @@ pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
             "as the model's does (within 3 points)".to_string()
         } else {
             format!(
-                "{} than the model's ({} %; the diagnosis's RPM trend names what can make it)",
+                "{} than the model's ({}; the diagnosis's RPM trend names what can make it)",
                 if gap > 0.0 { "faster" } else { "slower" },
-                signed(s.predicted)
+                pct(s.predicted)
             )
         };
         out.push(format!(
-            "Static CT grows by {} % from {:.0} to {:.0} rpm, {reading}.",
-            signed(s.measured),
+            "Static CT grows by {} from {:.0} to {:.0} rpm, {reading}.",
+            pct(s.measured),
             s.rpm_lo,
             s.rpm_hi
         ));
@@ -502,16 +502,16 @@ pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
     if let Some(z) = zero_thrust_shift(points) {
         let mc = z.measured_change();
         let mut s = format!(
-            "The J sweeps' zero-thrust J moves from {:.3} at {:.0} rpm to {:.3} at {:.0} rpm ({} %)",
+            "The J sweeps' zero-thrust J moves from {:.3} at {:.0} rpm to {:.3} at {:.0} rpm ({})",
             z.measured.0,
             z.rpm_lo,
             z.measured.1,
             z.rpm_hi,
-            signed(mc)
+            pct(mc)
         );
         match (z.predicted, z.predicted_change()) {
             (Some(q), Some(pc)) => {
-                let _ = write!(s, "; the model's from {:.3} to {:.3} ({} %)", q.0, q.1, signed(pc));
+                let _ = write!(s, "; the model's from {:.3} to {:.3} ({})", q.0, q.1, pct(pc));
                 let offset = 0.5 * (q.0 + q.1 - z.measured.0 - z.measured.1);
                 if mc < -0.01 && pc > mc + 0.02 {
                     s.push_str(
@@ -535,11 +535,6 @@ pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
         out.push(s);
     }
     out
-}
-
-/// A signed percentage without its sign's space: "+3.1".
-fn signed(x: f64) -> String {
-    format!("{:+.1}", 100.0 * x)
 }
 
 /// Builds the report.
