@@ -287,20 +287,31 @@ impl ZeroThrustShift {
     }
 }
 
+/// The least-squares line through the points `(x, y)`: the means of x and y and the slope;
+/// None with fewer than two points or no spread in x.
+pub fn least_squares(s: &[(f64, f64)]) -> Option<(f64, f64, f64)> {
+    if s.len() < 2 {
+        return None;
+    }
+    let n = s.len() as f64;
+    let mx = s.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = s.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxx: f64 = s.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    let sxy: f64 = s.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    (sxx > 0.0).then(|| (mx, my, sxy / sxx))
+}
+
 /// The least-squares line of `y` against ln `rpm` over `s` (rpm, y), at `lo` and `hi` RPM;
 /// None with fewer than two points or an RPM span below 1.2x.
 fn line_in_ln_rpm(s: &[(f64, f64)], lo: f64, hi: f64) -> Option<(f64, f64)> {
     let (a, b) = s
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
-    if s.len() < 2 || b < 1.2 * a {
+    if b < 1.2 * a {
         return None;
     }
-    let n = s.len() as f64;
-    let mx = s.iter().map(|p| p.0.ln()).sum::<f64>() / n;
-    let my = s.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = s.iter().map(|p| (p.0.ln() - mx).powi(2)).sum();
-    let slope = s.iter().map(|p| (p.0.ln() - mx) * (p.1 - my)).sum::<f64>() / sxx;
+    let ln: Vec<(f64, f64)> = s.iter().map(|p| (p.0.ln(), p.1)).collect();
+    let (mx, my, slope) = least_squares(&ln)?;
     Some((my + slope * (lo.ln() - mx), my + slope * (hi.ln() - mx)))
 }
 

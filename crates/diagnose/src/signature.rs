@@ -240,17 +240,15 @@ fn rpm_slopes(pts: &[(f64, f64, i64, f64)]) -> BTreeMap<i64, (f64, f64, f64)> {
     }
     let mut out = BTreeMap::new();
     for (key, b) in bins {
-        let xs: Vec<f64> = b.iter().map(|p| p.0).collect();
-        let (xmin, xmax) = xs
+        let (xmin, xmax) = b
             .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| (a.0.min(x), a.1.max(x)));
-        if b.len() < 2 || xmax - xmin < 0.05 {
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+        if xmax - xmin < 0.05 {
             continue;
         }
-        let (mx, me) = (mean(&xs), mean(&b.iter().map(|p| p.1).collect::<Vec<_>>()));
-        let sxx: f64 = b.iter().map(|p| (p.0 - mx).powi(2)).sum();
-        let sxy: f64 = b.iter().map(|p| (p.0 - mx) * (p.1 - me)).sum();
-        out.insert(key, (sxy / sxx, xmin, xmax));
+        if let Some((_, _, slope)) = propbet_compare::metrics::least_squares(&b) {
+            out.insert(key, (slope, xmin, xmax));
+        }
     }
     out
 }
