@@ -220,24 +220,15 @@ fn validate_bad_input() {
     let empty = dir.path().join("empty");
     std::fs::create_dir(&empty).unwrap();
     // validate on `uiuc` with nothing else to read: exit 2, and what it says.
-    let refused_dir = |uiuc: &str| -> String {
-        let o = run(
-            &[
-                "validate",
-                "--uiuc",
-                uiuc,
-                "--pe0",
-                "empty",
-                "--airfoils",
-                "empty",
-                "-o",
-                "v",
-            ],
-            dir.path(),
-        );
-        assert_eq!(o.status.code(), Some(2), "{uiuc}");
+    let refused = |uiuc: &str, extra: &[&str], out: &str| -> String {
+        let mut args = vec!["validate", "--uiuc", uiuc, "--pe0", "empty", "--airfoils", "empty"];
+        args.extend_from_slice(extra);
+        args.extend(["-o", out]);
+        let o = run(&args, dir.path());
+        assert_eq!(o.status.code(), Some(2), "{uiuc} {extra:?}");
         stderr(&o)
     };
+    let refused_dir = |uiuc: &str| refused(uiuc, &[], "v");
     let e = refused_dir("empty");
     assert!(e.contains("empty: no UIUC propeller files in it"), "{e}");
     // Measurements of a prop without its geometry file or a PE0 file: the prop is found and
@@ -258,24 +249,8 @@ fn validate_bad_input() {
     let e = refused_dir("missing");
     assert!(e.contains("missing"), "{e}");
     // A generic section whose thickness is not one: refused before anything is written.
-    let o = run(
-        &[
-            "validate",
-            "--uiuc",
-            "only_data",
-            "--pe0",
-            "empty",
-            "--airfoils",
-            "empty",
-            "--generic-section",
-            "clarky:0.9",
-            "-o",
-            "v_generic",
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("--generic-section 'clarky:0.9'"), "{}", stderr(&o));
+    let e = refused("only_data", &["--generic-section", "clarky:0.9"], "v_generic");
+    assert!(e.contains("--generic-section 'clarky:0.9'"), "{e}");
     assert!(!dir.path().join("v_generic").exists());
     // A user-effects file that does not read stops validate before any prop, naming the file
     // and what is wrong; nothing is written.
