@@ -8,38 +8,39 @@ apcsf_9x4.7, apcsp_10x6, as the studies print them; each row one `propbet valida
 prints, per row, the medians over props (validate's: the 4th smallest of six), how many props
 are at or below 7 % in CT and in CP, and the worst prop's larger median. Rows of held-out
 ("after") tables and the per-prop transposed tables are left out: they are not one model's
-pure prediction of all six. Issue 16 asks CT and CP medians <= 7 %, i.e. four props at or
+pure prediction of all six (`pure`). Issue 16 asks CT and CP medians <= 7 %, i.e. four props at or
 below 7 % in each."""
 import glob
 import os
 import re
 import sys
 
-# Rows of tables that hold validate's held-out "after" columns (diagnosis-trades.md) or another
-# ladder rule, not a model's pure prediction.
-HELD_OUT = [
-    "no trade check", "trades refused", "5-fold", "leave-one-RPM-out", "twist-slope",
-    "static rows split", "the 15 built-ins", "and re-zero-lift", "minimum gain", "before (pure",
-    "10 % (default)", "8 %", "7 %", "5 % (3 %",
-]
 PAIR = re.compile(r"\**(\d+\.\d+) / (\d+\.\d+) ?%?\**")
+
+
+def pure(header):
+    """Whether a table (by its header row) holds pure predictions of the six props: its second
+    column is a prop's "CT / CP" and no column is a held-out ("after") one. The held-out tables
+    of diagnosis-trades.md name "after" or give bare prop names."""
+    cells = [c.strip() for c in header.strip().strip("|").split("|")]
+    return len(cells) > 1 and "CT / CP" in cells[1] and "after" not in header
 
 
 def rows(d):
     for path in sorted(glob.glob(os.path.join(d, "*.md"))):
         name = os.path.basename(path)
+        header, prev = "", ""
         for line in open(path, encoding="utf-8"):
-            if not line.startswith("|"):
+            if line.startswith("|") and not prev.startswith("|"):
+                header = line
+            prev = line
+            if not line.startswith("|") or line is header or not pure(header):
                 continue
             cells = [c.strip() for c in line.strip().strip("|").split("|")]
             label = cells[0]
             pairs = [tuple(map(float, m.groups())) for c in cells if (m := PAIR.fullmatch(c))]
             if len(pairs) < 6 or label.startswith("apc"):
-                continue
-            if any(h in label for h in HELD_OUT):
-                continue
-            if name == "diagnosis-trades.md" and label == "**default**":
-                continue  # the held-out table's default row
+                continue  # not a six-prop row; a prop's row of a transposed table
             yield name, label, pairs[:6]
 
 
