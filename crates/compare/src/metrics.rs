@@ -226,15 +226,17 @@ pub fn in_window(points: &[ComparedPoint], window: f64) -> Vec<bool> {
 /// Each file's points (indices, by J) and its measured zero-thrust J: linear between the last
 /// positive and the first non-positive measured CT; None where CT never crosses zero.
 fn zero_thrust_js(points: &[ComparedPoint]) -> Vec<(Vec<usize>, Option<f64>)> {
-    zero_crossings(points, |p| p.measured.ct)
+    files_by_j(points)
+        .into_iter()
+        .map(|pts| {
+            let j0 = first_zero(points, &pts, |p| p.measured.ct);
+            (pts, j0)
+        })
+        .collect()
 }
 
-/// Each file's points (indices, by J) and where `ct` of them (measured or predicted) first
-/// crosses zero: linear between the last positive and the first non-positive value.
-fn zero_crossings(
-    points: &[ComparedPoint],
-    ct: impl Fn(&ComparedPoint) -> Option<f64>,
-) -> Vec<(Vec<usize>, Option<f64>)> {
+/// Each file's points (indices), sorted by J.
+fn files_by_j(points: &[ComparedPoint]) -> Vec<Vec<usize>> {
     let mut files: Vec<usize> = points.iter().map(|p| p.file).collect();
     files.sort_unstable();
     files.dedup();
@@ -243,14 +245,19 @@ fn zero_crossings(
         .map(|f| {
             let mut pts: Vec<usize> = (0..points.len()).filter(|&i| points[i].file == f).collect();
             pts.sort_by(|&a, &b| points[a].j.total_cmp(&points[b].j));
-            let c = |i: usize| ct(&points[i]).unwrap_or(f64::NAN);
-            let j0 = pts.windows(2).find(|w| c(w[0]) > 0.0 && c(w[1]) <= 0.0).map(|w| {
-                let (a, b) = (c(w[0]), c(w[1]));
-                points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
-            });
-            (pts, j0)
+            pts
         })
         .collect()
+}
+
+/// Where `ct` (measured or predicted) of one file's points `pts` (by J) first crosses zero:
+/// linear between the last positive and the first non-positive value.
+fn first_zero(points: &[ComparedPoint], pts: &[usize], ct: impl Fn(&ComparedPoint) -> Option<f64>) -> Option<f64> {
+    let c = |i: usize| ct(&points[i]).unwrap_or(f64::NAN);
+    pts.windows(2).find(|w| c(w[0]) > 0.0 && c(w[1]) <= 0.0).map(|w| {
+        let (a, b) = (c(w[0]), c(w[1]));
+        points[w[0]].j + a / (a - b) * (points[w[1]].j - points[w[0]].j)
+    })
 }
 
 /// How a prop's zero-thrust J moves with RPM over its J sweeps, measured and predicted: the
@@ -318,21 +325,20 @@ fn line_in_ln_rpm(s: &[(f64, f64)], lo: f64, hi: f64) -> Option<(f64, f64)> {
 /// [`ZeroThrustShift`] of the J sweeps (files without static points) whose measured CT crosses
 /// zero; None with fewer than two such sweeps or an RPM span below 1.2x.
 pub fn zero_thrust_shift(points: &[ComparedPoint]) -> Option<ZeroThrustShift> {
-    let measured = zero_crossings(points, |p| p.measured.ct);
-    let predicted = zero_crossings(points, |p| p.predicted.ct);
     // (rpm, measured J0, predicted J0) of each sweep whose measured CT crosses zero.
-    let mut s: Vec<(f64, f64, Option<f64>)> = measured
+    let mut s: Vec<(f64, f64, Option<f64>)> = files_by_j(points)
         .into_iter()
-        .zip(predicted)
-        .filter(|((pts, _), _)| !pts.iter().any(|&i| points[i].is_static()))
-        .filter_map(|((pts, m), (_, q))| {
+        .filter(|pts| !pts.iter().any(|&i| points[i].is_static()))
+        .filter_map(|pts| {
+            let m = first_zero(points, &pts, |p| p.measured.ct)?;
+            let q = first_zero(points, &pts, |p| p.predicted.ct);
             let mut rpm: Vec<f64> = pts
                 .iter()
                 .map(|&i| points[i].rpm)
                 .filter(|r| r.is_finite() && *r > 0.0)
                 .collect();
             rpm.sort_by(f64::total_cmp);
-            Some((*rpm.get(rpm.len() / 2)?, m?, q))
+            Some((*rpm.get(rpm.len() / 2)?, m, q))
         })
         .collect();
     s.sort_by(|a, b| a.0.total_cmp(&b.0));
