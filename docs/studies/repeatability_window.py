@@ -4,27 +4,14 @@
 (gap <= 0.1), as diagnose pairs them (thrust above a quarter of the largest: "current") and over
 every scored point, normalised as the diagnosis's residuals are (floor 5 % of the largest load).
 Usage: repeatability_window.py VAL_DIR PROP [PROP ...]   (VAL_DIR: a `propbet validate -o` folder)"""
-import csv, sys, math, collections
-def load(path):
-    rows=list(csv.DictReader(open(path)))
-    pts=[]
-    for r in rows:
-        if r['scored']!='1': continue
-        pts.append(dict(file=r['file'], rpm=float(r['rpm']), j=float(r['j']), T=float(r['thrust_n']),
-                        Q=float(r['torque_nm']) if r['torque_nm'] else None, ct=float(r['ct'])))
-    # window
-    byf=collections.defaultdict(list)
-    for p in pts: byf[p['file']].append(p)
-    keep=[]
-    for f,ps in byf.items():
-        ps.sort(key=lambda p:p['j'])
-        if all(p['j']<0.01 for p in ps): keep+=ps; continue
-        j0=None
-        for a,b in zip(ps,ps[1:]):
-            if a['ct']>0 and b['ct']<=0:
-                j0=a['j']+(b['j']-a['j'])*a['ct']/(a['ct']-b['ct']); break
-        keep+=[p for p in ps if j0 is None or p['j']<0.85*j0]
-    return keep
+import os, sys, math
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sf_pair import load as window_rows  # validate's window, as compare::metrics::in_window
+def load(d, prop):
+    """The scored points of validate's window, parsed."""
+    return [dict(file=r['file'], rpm=float(r['rpm']), j=float(r['j']), T=float(r['thrust_n']),
+                 Q=float(r['torque_nm']) if r['torque_nm'] else None, ct=float(r['ct']))
+            for r in window_rows(d, prop) if r['scored']=='1']
 def rep(pts, floor_frac, pair_floor):
     maxT=max(abs(p['T']) for p in pts); maxQ=max(abs(p['Q']) for p in pts if p['Q'] is not None)
     fl=(floor_frac or 0)*maxT; flq=(floor_frac or 0)*maxQ
@@ -64,6 +51,6 @@ def rep(pts, floor_frac, pair_floor):
     if len(d2)<3: return None
     return math.sqrt(sum(d2)/(2*len(d2))), len(d2), math.sqrt(sum(d2t)/(2*len(d2t)))
 for prop in sys.argv[2:]:
-    pts=load(f"{sys.argv[1]}/{prop}/compare/points.csv")
+    pts=load(sys.argv[1], prop)
     cur=rep(pts,None,0.25); alt=rep(pts,0.05,0.0)
     print(prop, 'current sd %.2f%% (%d rows)'%(100*cur[0],cur[1]) if cur else 'current none', '| all window pairs, residual normalisation: sd %.2f%% (%d rows), thrust alone %.2f%%'%(100*alt[0],alt[1],100*alt[2]) if alt else 'alt none')

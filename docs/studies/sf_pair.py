@@ -96,4 +96,5 @@ def main():
         print(f"| {name} | " + " | ".join(cells) + " |")
 
 
-main()
+if __name__ == "__main__":
+    main()
