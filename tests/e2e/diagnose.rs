@@ -129,7 +129,7 @@ fn shipped_hidden_effect_examples_name_their_answer() {
                 "{case}: {}",
                 String::from_utf8_lossy(&o.stdout)
             );
-            assert!(String::from_utf8_lossy(&o.stdout).contains("No effect is significant"));
+            assert!(String::from_utf8_lossy(&o.stdout).contains("Nothing significant"));
             continue;
         }
         assert_eq!(&top(&j), id, "{case}");
@@ -717,7 +717,7 @@ fn a_weak_stall_delay_is_nothing_significant_and_a_stronger_one_is_found() {
             assert!((0.8..1.2).contains(&v), "a = {v}: {out}");
         } else {
             assert!(
-                out.starts_with("No effect is significant") && out.contains("The best candidate, stall-delay"),
+                out.starts_with("Nothing significant") && out.contains("The best candidate, stall-delay"),
                 "{out}"
             );
         }
@@ -831,7 +831,7 @@ fn a_model_beyond_every_bound_is_told_so() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert_eq!(j["diagnosis"]["found"], false, "{out}");
     assert!(
-        out.starts_with("No effect is significant")
+        out.starts_with("Nothing significant")
             && out.contains("no effect within its physical bounds describes it"),
         "{out}"
     );

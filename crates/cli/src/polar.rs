@@ -415,38 +415,43 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     Ok(p.all_fitted())
 }
 
-/// The polars stage in a few lines (for `propbet run`, whose report holds every station's
-/// details): each kind of problem once, with the number of stations it concerns.
-pub fn print_polars_brief(input: &PolarsInput, p: &Polars) {
-    for n in &input.notes {
-        eprintln!("propbet: {n}");
-    }
-    let mut messages = Vec::new();
-    let (mut unconverged, mut faults) = (0usize, 0usize);
-    for s in &p.blade.stations {
-        unconverged += s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count();
-        faults += s.polars.iter().map(|pol| pol.faults.len()).sum::<usize>();
-        let lines: Vec<String> = match &s.fit {
-            Some(f) => f.unfit.iter().map(|u| format!("UNFIT: {u}")).collect(),
-            None => vec![format!("no fit: {}", s.problem.as_deref().unwrap_or("no polar"))],
-        };
-        messages.extend(lines);
-    }
-    eprintln!(
-        "propbet: polars: {} stations, {} polars; {unconverged} with angles XFOIL did not converge, {faults} XFOIL faults (every station in the report)",
-        p.blade.stations.len(),
-        p.blade.stations.iter().map(|s| s.polars.len()).sum::<usize>()
-    );
-    for (n, example) in propbet_report::page::group_alike(messages) {
-        if n > 1 {
-            eprintln!("propbet:   {n} stations, for example: {example}");
+/// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL made and
+/// how often it failed (the tables interpolate across), and how far the exported QPROP file's
+/// law is from the tables the prediction uses; every station's detail is in the report.
+pub fn polars_brief(p: &Polars) -> Vec<String> {
+    let stations = &p.blade.stations;
+    let polars: usize = stations.iter().map(|s| s.polars.len()).sum();
+    let unconverged: usize = stations
+        .iter()
+        .map(|s| s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count())
+        .sum();
+    let faults: usize = stations
+        .iter()
+        .map(|s| s.polars.iter().map(|pol| pol.faults.len()).sum::<usize>())
+        .sum();
+    let without = stations.iter().filter(|s| s.polars.is_empty()).count();
+    let mut out = vec![format!(
+        "{} stations, {polars} XFOIL polars used as tables{}",
+        stations.len(),
+        if without > 0 {
+            format!(", {without} stations without a polar")
         } else {
-            eprintln!("propbet:   1 station: {example}");
+            String::new()
         }
+    )];
+    if unconverged + faults > 0 {
+        out.push(format!(
+            "XFOIL missed some angles in {unconverged} polars and failed {faults} times: the tables interpolate across"
+        ));
     }
     if let Some(e) = &p.export {
-        eprintln!("{}", e.sentence());
+        out.push(format!(
+            "the exported QPROP file's law differs from these tables by {:.1} % in CT, {:.1} % in CP (median)",
+            100.0 * e.ct[0],
+            100.0 * e.cp[0]
+        ));
     }
+    out
 }
 
 /// Every station's polar faults and fit on the terminal.

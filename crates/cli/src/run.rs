@@ -143,25 +143,45 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     )?;
     let bar = Bar::new(a.xfoil.quiet);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
+    let mut reference: Option<serde_json::Value> = None;
     let mut write_err: Option<anyhow::Error> = None;
+    let verbose = a.verbose;
     let outcome = run_case(&plan, &|d, t| bar.tick(d, t), &mut |e| match e {
         Event::Start { n, total, spec } => {
-            eprintln!("propbet [{n}/{total}] {}: {}", spec.name(), spec.command());
+            if verbose {
+                eprintln!("propbet [{n}/{total}] {}: {}", spec.name(), spec.command());
+            }
         }
         Event::Done { n, total, record, made } => {
+            let mut lines = Vec::new();
             if write_err.is_none() {
-                match write_stage(record, &made, a.verbose) {
-                    Ok(Some(page)) => pages.push((record.spec.name(), page)),
-                    Ok(None) => {}
+                match write_stage(record, &made, verbose) {
+                    Ok(w) => {
+                        if let Some(page) = w.page {
+                            pages.push((record.spec.name(), page));
+                        }
+                        if w.reference.is_some() {
+                            reference = w.reference;
+                        }
+                        lines = w.brief;
+                    }
                     Err(e) => write_err = Some(e),
                 }
             }
-            eprintln!(
-                "propbet [{n}/{total}] {}: {:.1} s{}",
-                record.spec.name(),
-                record.seconds,
-                if record.clean { "" } else { " (with reported problems)" }
-            );
+            if verbose {
+                eprintln!(
+                    "propbet [{n}/{total}] {}: {:.1} s{}",
+                    record.spec.name(),
+                    record.seconds,
+                    if record.clean { "" } else { " (with reported problems)" }
+                );
+            } else {
+                let (first, rest) = lines.split_first().map_or(("", &[][..]), |(f, r)| (f.as_str(), r));
+                eprintln!("propbet [{n}/{total}] {}: {first} ({:.1} s)", record.spec.name(), record.seconds);
+                for l in rest {
+                    eprintln!("  {l}");
+                }
+            }
         }
     })?;
     if let Some(e) = write_err {
@@ -171,7 +191,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // The report.
     let t0 = Instant::now();
     let total = outcome.stages.len() + 1;
-    let html = propbet_report::run::page(&plan, &outcome, &pages)?;
+    let html = propbet_report::run::page(&plan, &outcome, &pages, reference.as_ref())?;
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
     let mut summary = serde_json::to_vec_pretty(&propbet_report::run::summary_json(&plan, &outcome))?;
@@ -181,7 +201,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         &[summary],
         &[dir.join("case.toml").as_path()],
     )?;
-    eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
+    if a.verbose {
+        eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
+    }
     std::fs::remove_file(&marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", marker.display()))?;
     println!(
         "{}: {} stages in {:.1} s; report: {}",
@@ -203,49 +225,84 @@ fn create_parent(path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Writes a finished stage's outputs and prints its summary, as its own command does; the
-/// compare and diagnose pages come back for the report.
-fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<Option<String>> {
+/// What a stage left for the terminal and the report.
+struct Written {
+    /// The compare or diagnose page's body, for the run's report.
+    page: Option<String>,
+    /// Another code's prediction scored beside propbet's (compare's reference headline).
+    reference: Option<serde_json::Value>,
+    /// The stage's short status: its first line, then a few details (empty with `--verbose`,
+    /// which prints the stage's own full output instead).
+    brief: Vec<String>,
+}
+
+/// Writes a finished stage's outputs and prints its summary: with `verbose` the stage's own
+/// full output, as its command prints it; otherwise a few short lines (`Written::brief`).
+fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<Written> {
+    let mut w = Written {
+        page: None,
+        reference: None,
+        brief: Vec::new(),
+    };
     match (&record.spec, made) {
         (StageSpec::Scan(spec), Finished::Scan(s)) => {
             crate::scan::write(spec, s)?;
-            crate::scan::print_summary(s);
+            if verbose {
+                crate::scan::print_summary(s);
+            }
+            w.brief.push(propbet_report::scan::summary(&s.geometry));
         }
         (StageSpec::Polars(spec), Finished::Polars(p, input)) => {
             if verbose {
                 crate::polar::print_polars(spec, input, p);
-            } else {
-                crate::polar::print_polars_brief(input, p);
             }
             create_parent(&spec.out_prop)?;
             crate::polar::write_polars(spec, p)?;
+            w.brief = crate::polar::polars_brief(p);
         }
         (StageSpec::Predict(spec), Finished::Predict(points, model)) => {
-            for w in &model.loaded.warnings {
-                eprintln!("propbet: warning: {w}");
+            if verbose {
+                for warning in &model.loaded.warnings {
+                    eprintln!("propbet: warning: {warning}");
+                }
             }
             if let Some(o) = &spec.out {
                 create_parent(o)?;
             }
             crate::predict::write_sweep(spec, model, points)?;
+            let unconverged = points.iter().filter(|p| p.not_converged > 0).count();
+            w.brief.push(format!(
+                "{} operating points at {} speeds{}{}",
+                points.len(),
+                spec.omegas.len(),
+                if unconverged > 0 {
+                    format!(", {unconverged} with stations that did not converge")
+                } else {
+                    String::new()
+                },
+                spec.out
+                    .as_ref()
+                    .map_or(String::new(), |o| format!(" -> {}", o.display()))
+            ));
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::Reference::load(spec, model.diameter)?;
             let (page, reference) = crate::compare::write(spec, model, c, other.as_ref())?;
-            crate::compare::print(spec, c, reference.as_ref());
-            return Ok(Some(page));
+            if verbose {
+                crate::compare::print(spec, c, reference.as_ref());
+            }
+            w.brief = propbet_report::compare::brief(&c.sets, &c.metrics, reference.as_ref());
+            w.page = Some(page);
+            w.reference = reference;
         }
         (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {
-            let page = crate::diagnose::write(spec, d)?;
+            w.page = Some(crate::diagnose::write(spec, d)?);
             if verbose {
                 crate::diagnose::print(spec, d);
-            } else {
-                // The measured files were summarised by the compare stage.
-                crate::diagnose::print_result(&d.diagnosis);
             }
-            return Ok(Some(page));
+            w.brief = propbet_report::diagnose::brief(&d.diagnosis);
         }
         _ => unreachable!("a stage's record and artifact match"),
     }
-    Ok(None)
+    Ok(w)
 }

@@ -110,6 +110,15 @@ impl Scored {
     }
 }
 
+/// An effect the ladder did not take, and why.
+#[derive(Debug, Clone, Serialize)]
+pub struct NotTaken {
+    /// The effect's id.
+    pub id: String,
+    /// Why.
+    pub why: String,
+}
+
 /// The model at one rung of the ladder.
 #[derive(Debug, Clone, Serialize)]
 pub struct Rung {
@@ -155,6 +164,14 @@ pub struct Diagnosis {
     pub noise_estimate: f64,
     /// How well the measurements repeat, where they show it.
     pub repeatability: Option<Repeatability>,
+    /// Effects of the refined selection that the rebuilt ladder did not take, with the reason
+    /// (on a bound, weaker than the repeatability, or indistinguishable from their absence).
+    pub not_taken: Vec<NotTaken>,
+    /// The first step's other significant candidates that explain the data about as well as
+    /// the effect the ladder took first ([`alike`]): the data cannot tell them apart.
+    pub alike: Vec<String>,
+    /// The measurement that would tell the alike candidates apart (None without any).
+    pub tell_apart: Option<String>,
     /// The final stack.
     #[serde(skip)]
     pub final_stack: Stack,
@@ -473,18 +490,18 @@ fn try_candidate(
         .max(0.0)
         .sqrt();
     let weak = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd);
+    let own = ev.fit.params().split_off(current.fit.p.len());
+    let neutral_held = neutral_held(&own);
     let note = if !beyond.is_empty() {
         Some(bound_note(&beyond))
+    } else if let Some(r) = weak {
+        Some(weak_note(size, r))
+    } else if neutral_held {
+        Some(neutral_note(&own))
     } else {
-        weak.map(|r| {
-            format!(
-                "changes the loads by {:.1} %, less than {REPEATABILITY_FACTOR} times the {:.1} % the measurements repeat to",
-                100.0 * size,
-                100.0 * r.sd
-            )
-        })
+        None
     };
-    let significant = p_value < p_max && gain >= MIN_GAIN && beyond.is_empty() && weak.is_none();
+    let significant = p_value < p_max && gain >= MIN_GAIN && note.is_none();
     Ok(Scored {
         note,
         params: ev.fit.params(),
@@ -499,6 +516,63 @@ fn try_candidate(
         fit: Some(ev.fit),
         ..base
     })
+}
+
+/// The words for an effect that changes the loads less than [`REPEATABILITY_FACTOR`] times
+/// the measurements' repeatability.
+fn weak_note(size: f64, r: &Repeatability) -> String {
+    format!(
+        "changes the loads by {:.1} %, less than {REPEATABILITY_FACTOR} times the {:.1} % the measurements repeat to",
+        100.0 * size,
+        100.0 * r.sd
+    )
+}
+
+/// True when every parameter of an effect that has a neutral value holds it in its 95 %
+/// interval (`own`: the effect's own fitted parameters): the data cannot tell the effect from
+/// its absence, and it is not added.
+fn neutral_held(own: &[FittedParam]) -> bool {
+    let with_neutral: Vec<&FittedParam> = own.iter().filter(|p| p.neutral.is_some()).collect();
+    !with_neutral.is_empty() && with_neutral.iter().all(|p| p.holds_neutral)
+}
+
+/// The words for [`neutral_held`].
+fn neutral_note(own: &[FittedParam]) -> String {
+    let list: Vec<String> = own
+        .iter()
+        .filter(|p| p.neutral.is_some())
+        .map(|p| match p.ci95 {
+            Some(c) => format!(
+                "{} = {} ± {}",
+                p.name,
+                propbet_effects::fmt_value(p.value),
+                propbet_effects::fmt_value(c)
+            ),
+            None => format!("{} = {} (undetermined)", p.name, propbet_effects::fmt_value(p.value)),
+        })
+        .collect();
+    format!(
+        "its 95 % interval holds its neutral value ({}): the data cannot tell it from its absence",
+        list.join(", ")
+    )
+}
+
+/// Why a rung of the rebuilt ladder is not taken, if it is not: its fit ends on a bound, the
+/// effect it adds changes the loads less than the repeatability allows to see, or its interval
+/// holds its neutral value. The same tests as a candidate's in the ranking.
+fn rung_refusal(prev: &Evaluated, ev: &Evaluated, rep: Option<&Repeatability>) -> Option<String> {
+    let beyond = ev.fit.beyond_bounds();
+    if !beyond.is_empty() {
+        return Some(bound_note(&beyond));
+    }
+    let size = (rms(&prev.fit.residuals).powi(2) - rms(&ev.fit.residuals).powi(2))
+        .max(0.0)
+        .sqrt();
+    if let Some(r) = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd) {
+        return Some(weak_note(size, r));
+    }
+    let own = ev.fit.params().split_off(prev.fit.p.len());
+    neutral_held(&own).then(|| neutral_note(&own))
 }
 
 /// The words for a fit that ended on physical bounds.
@@ -605,8 +679,10 @@ fn refine(
     Ok(chosen)
 }
 
-/// Which of a rung's options (score, lower is better; whether its fit stays inside its bounds)
-/// the ladder takes: the best inside its bounds, else the best of all; None without options.
+/// Which of a rung's options (score, lower is better; whether it can be a rung: inside its
+/// bounds, stronger than the repeatability, distinguishable from its absence) the ladder
+/// takes: the best that can, else the best of all (which the ladder then refuses, and stops);
+/// None without options.
 fn rung_choice(options: &[(f64, bool)]) -> Option<usize> {
     let best = |inside_only: bool| {
         (0..options.len())
@@ -655,6 +731,45 @@ fn best_pair(
         }
     }
     Ok(best)
+}
+
+/// The first step's significant candidates other than `first` (the ladder's first effect)
+/// whose held-out error is within the spread of `first`'s: closer than the measurements'
+/// repeatability, or than the held-out error's own sampling spread, rms / sqrt(2 n) over n
+/// residual rows (the standard error of an RMS estimated from n values).
+fn alike(ranking: &[Scored], first: &str, rep: Option<&Repeatability>) -> Vec<String> {
+    let Some(a) = ranking.iter().find(|s| s.id == first) else {
+        return Vec::new();
+    };
+    let rows = a.fit.as_ref().map_or(1, |f| f.residuals.len().max(1)) as f64;
+    let spread = |x: f64| x / (2.0 * rows).sqrt();
+    ranking
+        .iter()
+        .filter(|s| s.id != first && s.significant)
+        .filter(|s| {
+            let gap = (s.kfold_rms - a.kfold_rms).abs();
+            gap < rep.map_or(0.0, |r| r.sd) || gap < spread(a.kfold_rms).max(spread(s.kfold_rms))
+        })
+        .map(|s| s.id.clone())
+        .collect()
+}
+
+/// The measurement that would tell alike candidates apart, from what the data lack: forward
+/// flight (static points only), a second RPM range (speeds within a factor 1.5), else logged
+/// air and repeated points.
+fn tell_apart(data: &Data) -> String {
+    let all_static = data.obs.iter().all(|o| o.j < 0.01);
+    let (lo, hi) = data
+        .obs
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
+    if all_static {
+        "forward-flight sweeps (J above 0), where the candidates differ most".into()
+    } else if hi < 1.5 * lo {
+        format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)")
+    } else {
+        "a logged air temperature and pressure, and repeated points to measure the scatter".into()
+    }
 }
 
 /// Checks that the measurements are in the propeller's operating range and of its size.
@@ -785,6 +900,7 @@ pub fn diagnose(
     let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
     let mut current = baseline.clone();
     let mut last_p = None;
+    let mut dropped: Vec<(String, String)> = Vec::new();
     // Forward: add the best significant candidate while there is one.
     for step in 0..opts.max_steps {
         if remaining.is_empty() {
@@ -849,13 +965,18 @@ pub fn diagnose(
                 }
                 let options: Vec<(f64, bool)> = tried
                     .iter()
-                    .map(|ev| (ev.score(), ev.fit.beyond_bounds().is_empty()))
+                    .map(|ev| (ev.score(), rung_refusal(&cur, ev, repeatability.as_ref()).is_none()))
                     .collect();
                 let Some(i) = rung_choice(&options) else {
                     break;
                 };
                 let ev = tried.swap_remove(i);
                 let gone = set.remove(i);
+                if let Some(why) = rung_refusal(&cur, &ev, repeatability.as_ref()) {
+                    // No effect of the set can be a rung here: the ladder stops, and says why.
+                    dropped.push((gone.id().to_string(), why));
+                    break;
+                }
                 let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
                 ladder.push(ev.rung(data, Some(p)));
                 cur = ev;
@@ -863,6 +984,9 @@ pub fn diagnose(
             current = cur;
         }
     }
+    let first_id = ladder.get(1).map(|r| r.added.clone());
+    let alike = first_id.as_deref().map_or_else(Vec::new, |id| alike(&ranking, id, repeatability.as_ref()));
+    let tell_apart = (!alike.is_empty()).then(|| tell_apart(data));
     let final_residuals = current.fit.residuals.clone();
     // The candidates' responses on the baseline, and on the final model where the ladder
     // added something (the same ones otherwise).
@@ -880,6 +1004,12 @@ pub fn diagnose(
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         repeatability,
+        not_taken: dropped
+            .into_iter()
+            .map(|(id, why)| NotTaken { id, why })
+            .collect(),
+        alike,
+        tell_apart,
         final_stack: current.fit.stack.clone(),
         ranking,
         ladder,

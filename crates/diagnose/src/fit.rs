@@ -204,6 +204,15 @@ pub struct FittedParam {
     /// ([`on_bound`]; other than its neutral value: a friction torque of zero is no torque
     /// tare, not one that wants to be negative).
     pub at_bound: bool,
+    /// The value at which the effect changes nothing, if it has one.
+    pub neutral: Option<f64>,
+    /// The range a physical cause would give ([`propbet_effects::Param::expected_range`]).
+    pub expected: (f64, f64),
+    /// The 95 % interval holds the neutral value: the data cannot tell the effect from its
+    /// absence.
+    pub holds_neutral: bool,
+    /// The value lies outside the expected range: a calibration factor, not found physics.
+    pub outside_expected: bool,
 }
 
 /// Whether a fitted parameter sits on one of its physical bounds: the fit ended on it
@@ -225,6 +234,24 @@ pub fn on_bound(value: f64, sd: Option<f64>, lm_at_bound: bool, p: &propbet_effe
                 .into_iter()
                 .any(|b| b.is_finite() && !neutral(b) && (value - b).abs() < 1.96 * sd)
         })
+}
+
+/// Whether a fitted value's 95 % interval (`ci95`, its half-width; None where the data do not
+/// determine it) holds the parameter's neutral value: the data cannot tell the effect from its
+/// absence; an undetermined interval does too. A parameter without a neutral value never does.
+pub fn holds_neutral(value: f64, ci95: Option<f64>, p: &propbet_effects::Param) -> bool {
+    match (p.neutral, ci95) {
+        (None, _) => false,
+        (Some(n), Some(c)) => (value - n).abs() <= c,
+        (Some(_), None) => true,
+    }
+}
+
+/// Whether a fitted value lies outside the parameter's physically expected range.
+pub fn outside_expected(value: f64, p: &propbet_effects::Param) -> bool {
+    let (lo, hi) = p.expected_range();
+    let tol = bound_tolerance(p.lower, p.upper, p.scale);
+    value < lo - tol || value > hi + tol
 }
 
 /// How close to a bound a fitted value counts as on it: a thousandth of the parameter's range.
@@ -261,6 +288,10 @@ impl FitOutcome {
                     value: self.p[k],
                     ci95: determined.then_some(1.96 * sd),
                     at_bound: on_bound(self.p[k], determined.then_some(sd), self.at_bound[k], p),
+                    neutral: p.neutral,
+                    expected: p.expected_range(),
+                    holds_neutral: holds_neutral(self.p[k], determined.then_some(1.96 * sd), p),
+                    outside_expected: outside_expected(self.p[k], p),
                 });
                 k += 1;
             }

@@ -74,7 +74,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.0, 4.0),
                 0.2,
                 "divides the tip-loss exponent: 1 = Prandtl (the baseline), 0 = no tip loss",
-            )],
+            ).expecting(0.7, 1.5)],
             &[Inflow],
             "Near the tip air flows round from the pressure to the suction side and the blade loses lift; \
              Prandtl's factor models it for a helical wake. Measured loads above the model near its limit of \
@@ -89,7 +89,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.0, 10.0),
                 0.2,
                 "0 = no hub loss (the baseline), 1 = Prandtl's hub factor",
-            )],
+            ).expecting(0.0, 1.5)],
             &[Inflow],
             "At the blade root the hub and the spinner shed a vortex like the tip does, and the inner \
              sections carry less load than strip theory gives.",
@@ -103,7 +103,7 @@ fn make(kind: Kind) -> Builtin {
                 (-1.5, 1.5),
                 0.1,
                 "added to the drag's Reynolds-number exponent: cd * (Re/REref)^dexp",
-            )],
+            ).expecting(-0.5, 0.5)],
             &[Section],
             "At the Reynolds numbers of small propellers (20k-100k) laminar separation bubbles make the \
              section drag depend on Re more strongly than the polar's exponent says: torque errors that change \
@@ -118,7 +118,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.5, 2.5),
                 0.1,
                 "multiplies every section's drag (physical bounds: 0.5-2.5: XFOIL's or a wind tunnel's low-Re drag against a real blade's, rough or smooth)",
-            )],
+            ).expecting(0.8, 1.4)],
             &[Section],
             "The sections' profile drag is not the polars': surface roughness (a printed or scanned blade, \
              paint, mould lines), a finite trailing edge, unsteady laminar bubbles and three-dimensional flow \
@@ -134,7 +134,7 @@ fn make(kind: Kind) -> Builtin {
                 (-0.4, 0.4),
                 0.02,
                 "section lift times (Re/1e5)^n (physical bounds: +-0.4, lift halving or doubling over a decade at most)",
-            )],
+            ).expecting(-0.2, 0.2)],
             &[Section],
             "At 20k-100k the sections' lift depends on Reynolds number (laminar separation and bubbles \
              thin as Re grows) more or less than the polars say: thrust errors that change with RPM at a fixed \
@@ -152,7 +152,7 @@ fn make(kind: Kind) -> Builtin {
                         (0.2, 0.95),
                         0.05,
                         "drag-rise Mach number: cd + 10 (M - mcrit)^3 above it (baseline 0.70)",
-                    )
+                    ).expecting(0.5, 0.9)
                 },
                 Param::new(
                     "pg",
@@ -161,7 +161,7 @@ fn make(kind: Kind) -> Builtin {
                     (0.0, 4.0),
                     0.3,
                     "Prandtl-Glauert exponent: cl / (1 - M^2)^(pg/2) (baseline 1)",
-                ),
+                ).expecting(0.5, 2.0),
             ],
             &[Section],
             "Near the tip the local Mach number reaches 0.3-0.6: lift grows by the Prandtl-Glauert factor \
@@ -177,7 +177,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.0, 12.0),
                 0.5,
                 "Snel's coefficient: cl + a (c/r)^2 (cl_attached - cl) where the section lifts less than its attached-flow line (Snel: 3)",
-            )],
+            ).expecting(0.0, 6.0)],
             &[Section],
             "Rotation delays stall near the root: centrifugal pumping thins the boundary layer and \
              the inner sections keep lifting beyond the 2-D stall angle (Snel et al. 1994). Visible at low \
@@ -195,7 +195,7 @@ fn make(kind: Kind) -> Builtin {
                     (0.3, 2.5),
                     0.1,
                     "Viterna's flat-plate drag at 90 deg (1.11 + 0.018 AR)",
-                )
+                ).expecting(1.0, 2.0)
             }],
             &[Section],
             "Beyond stall the section behaves like a flat plate: Viterna and Corrigan's lift and drag \
@@ -210,7 +210,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.0, 5.0),
                 0.5,
                 "untwist at the tip at 10,000 rpm (physical bounds: 0-5 deg: a plastic blade's at most; the propeller moment and a cambered section's nose-down moment both flatten it, so a pitch rising with RPM is left to the Reynolds-number effects); -k (rpm/10^4)^2 r/R is added to the blade angle",
-            )],
+            ).expecting(0.0, 2.0)],
             &[Geometry],
             "Thin plastic blades twist under centrifugal and aerodynamic load (the propeller moment \
              flattens them): the pitch falls with RPM^2, most at the tip. Thrust falls short at high RPM.",
@@ -224,7 +224,7 @@ fn make(kind: Kind) -> Builtin {
                 (-3.0, 3.0),
                 0.3,
                 "added to every blade angle (physical bounds: +-3 deg, a scan's or a mould's error)",
-            )],
+            ).expecting(-2.0, 2.0)],
             &[Geometry],
             "Every blade angle is off by the same amount: a scan aligned to the wrong plane, a \
              hub that seats the blades at another angle, a mould that differs from the design; or \
@@ -240,7 +240,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.85, 1.15),
                 0.05,
                 "multiplies every chord (physical bounds: +-15 %, a scan's scale or a production run)",
-            )],
+            ).expecting(0.93, 1.07)],
             &[Geometry],
             "The blades are wider or narrower than the geometry says (scan scale, a different \
              production run): thrust and torque change nearly in proportion, less at high load.",
@@ -254,7 +254,7 @@ fn make(kind: Kind) -> Builtin {
                 (0.75, 1.2),
                 0.02,
                 "true density / assumed density (physical bounds: 0.75-1.2, 2,500 m at 40 C to sea level at -30 C against ISA)",
-            )],
+            ).expecting(0.9, 1.1)],
             &[Measurement],
             "The air was not what the model assumed (temperature, altitude, humidity): thrust and \
              torque scale together at every point. Where the files log temperature, pressure and \

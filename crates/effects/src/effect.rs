@@ -41,6 +41,10 @@ pub struct Param {
     pub scale: f64,
     /// What the parameter means.
     pub doc: String,
+    /// The range a physical cause would give (narrower than the bounds, which are what the fit
+    /// may reach): a fitted value outside it makes the effect a calibration factor, one that
+    /// imitates something the model misses, not found physics. None: the bounds are it.
+    pub expected: Option<(f64, f64)>,
 }
 
 impl Param {
@@ -55,7 +59,21 @@ impl Param {
             upper,
             scale,
             doc: doc.to_string(),
+            expected: None,
         }
+    }
+
+    /// The same parameter with its physically expected range.
+    pub fn expecting(self, lower: f64, upper: f64) -> Self {
+        Self {
+            expected: Some((lower, upper)),
+            ..self
+        }
+    }
+
+    /// The physically expected range: [`Param::expected`], else the bounds.
+    pub fn expected_range(&self) -> (f64, f64) {
+        self.expected.unwrap_or((self.lower, self.upper))
     }
 }
 

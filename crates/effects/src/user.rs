@@ -126,6 +126,8 @@ struct ParamDef {
     scale: Option<f64>,
     #[serde(default)]
     doc: String,
+    /// The physically expected range, `[lower, upper]` inside the bounds.
+    expected: Option<[f64; 2]>,
 }
 
 /// A user effect: one formula on one hook.
@@ -219,6 +221,14 @@ impl UserEffect {
                     }
                 }
             }
+            if let Some([a, b]) = p.expected {
+                if !(p.lower <= a && a < b && b <= p.upper) {
+                    return Err(bad(format!(
+                        "parameter `{}`: expected range [{a}, {b}] must lie inside the bounds [{}, {}] with lower < upper",
+                        p.name, p.lower, p.upper
+                    )));
+                }
+            }
             names.push(p.name.clone());
             params.push(Param {
                 name: p.name.clone(),
@@ -229,6 +239,7 @@ impl UserEffect {
                 upper: p.upper,
                 scale: p.scale.unwrap_or(0.1 * (p.upper - p.lower)),
                 doc: p.doc.clone(),
+                expected: p.expected.map(|[a, b]| (a, b)),
             });
         }
         for id in tree.iter_read_variable_identifiers() {

@@ -6,7 +6,9 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{group_points, static_rise, sweep_group, zero_thrust_shift, MetricGroup, Metrics};
+use propbet_compare::metrics::{
+    group_points, static_rise, sweep_group, zero_thrust_shift, Metric, MetricGroup, Metrics,
+};
 use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
@@ -290,6 +292,97 @@ pub fn headline_json(m: &Metrics) -> serde_json::Value {
         })
         .collect();
     json!(groups)
+}
+
+/// The headline groups with another code's beside them: per group (static, forward flight) its
+/// name, scored points, and per quantity (thrust, torque) propbet's mean relative error and the
+/// other code's on the same points (from its `headline_json`), where there is one.
+pub struct HeadlineRow {
+    /// "static", "forward flight, below 85 % of the zero-thrust J".
+    pub name: String,
+    /// Scored points.
+    pub points: usize,
+    /// (quantity, propbet's metric, the other code's mean relative error).
+    pub errors: Vec<(&'static str, Metric, Option<f64>)>,
+}
+
+/// The rows of [`HeadlineRow`] from the metrics and an optional reference JSON
+/// (`{"name": ..., "headline": headline_json(..)}`).
+pub fn headline_rows(m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<HeadlineRow> {
+    m.headline
+        .iter()
+        .map(|g| {
+            let theirs = reference.and_then(|r| {
+                r["headline"]
+                    .as_array()?
+                    .iter()
+                    .find(|h| h["points"] == g.name.as_str())
+                    .cloned()
+            });
+            HeadlineRow {
+                name: g.name.clone(),
+                points: g.points,
+                errors: ["thrust", "torque"]
+                    .into_iter()
+                    .filter_map(|q| {
+                        let x = g.metrics.get(q)?.clone();
+                        let other = theirs.as_ref().and_then(|t| t["errors"][q]["mean_error"].as_f64());
+                        Some((q, x, other))
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// The reference's short name ("APC's prediction" of "APC's prediction (PER3_10x47SF.dat)").
+pub fn reference_name(reference: &serde_json::Value) -> String {
+    let name = reference["name"].as_str().unwrap_or("the reference");
+    name.split(" (").next().unwrap_or(name).to_string()
+}
+
+/// The comparison in a few short lines (the terminal of `propbet run`): the files read and rows
+/// dropped, then per headline group the mean thrust and torque error, another code's beside.
+pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<String> {
+    let rows: usize = sets.iter().map(|s| s.rows).sum();
+    let points: usize = sets.iter().map(|s| s.points.len()).sum();
+    let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
+    let dropped: usize = sets.iter().map(|s| s.dropped.len()).sum();
+    let mut out = vec![format!(
+        "{} files, {rows} rows -> {points} points{}",
+        sets.len(),
+        match (dropped, faults) {
+            (0, _) => ", none dropped".to_string(),
+            (d, 0) => format!(", {d} rows dropped (why: in the report)"),
+            (d, f) => format!(", {d} rows dropped, {f} of them as faulty (in the report)"),
+        }
+    )];
+    for r in headline_rows(m, reference) {
+        let ours: Vec<String> = r
+            .errors
+            .iter()
+            .map(|(q, x, _)| format!("{q} {}", pct(x.mean_rel)))
+            .collect();
+        let theirs: Vec<String> = r
+            .errors
+            .iter()
+            .filter_map(|(_, _, o)| o.map(pct))
+            .collect();
+        let name = r.name.split(',').next().unwrap_or(&r.name).to_string();
+        out.push(format!(
+            "{name} ({} points): {} mean error{}",
+            r.points,
+            ours.join(", "),
+            match (reference, theirs.is_empty()) {
+                (Some(rf), false) => format!("; {}: {}", reference_name(rf), theirs.join(", ")),
+                _ => String::new(),
+            }
+        ));
+    }
+    if m.overall.points == 0 {
+        out.push("no point could be scored (every point is flagged: see the report)".into());
+    }
+    out
 }
 
 /// `summary.json` of `propbet compare`: the command, the headline, the points outside the

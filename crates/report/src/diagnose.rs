@@ -90,7 +90,7 @@ pub fn verdict(d: &Diagnosis) -> String {
         // how far the first of them would go at its bound; then the best within its bounds.
         let helpful = d.bounded_helpful();
         let bounded: Vec<&str> = helpful.iter().map(|s| s.id.as_str()).collect();
-        let mut text = format!("No effect is significant ({}).", d.unexplained());
+        let mut text = format!("Nothing significant: no effect passes the tests ({}).", d.unexplained());
         if let Some(first) = helpful.first() {
             text.push_str(&format!(
                 " {} hit {} physical bound{} ({}): the data want more than {} can give (at its bound {} takes \
@@ -126,21 +126,176 @@ pub fn verdict(d: &Diagnosis) -> String {
         }
         return text;
     }
-    // The ladder's final answer, with its values: what the user should add.
+    // The ladder's final answer, with its values: what the user should add. Effects whose
+    // fitted value lies outside their physically expected range are calibration factors: they
+    // imitate something the model misses, and are not called found physics.
     let last = d.ladder.last().expect("found implies a rung");
-    let answer: Vec<String> = d.ladder[1..]
-        .iter()
-        .map(|r| format!("{} ({})", r.added, params_text(&last.params, Some(&r.added))))
-        .collect();
-    format!(
-        "Missing: {}. With {} the held-out error falls from {} to {} ({:.0} % less); {}.",
-        answer.join(" and "),
-        if answer.len() == 1 { "it" } else { "them" },
+    let (physics, calibration) = answer_parts(d);
+    let named = |v: &[&str]| -> Vec<String> {
+        v.iter()
+            .map(|id| format!("{id} ({})", params_text(&last.params, Some(id))))
+            .collect()
+    };
+    let mut text = String::new();
+    if !physics.is_empty() {
+        let _ = write!(text, "Missing: {}.", named(&physics).join(" and "));
+    }
+    if !calibration.is_empty() {
+        let ranges: Vec<String> = calibration
+            .iter()
+            .flat_map(|id| last.params.iter().filter(move |p| p.effect == *id && p.outside_expected))
+            .map(|p| format!("{}:{} expected {}-{}", p.effect, p.name, fmt_value(p.expected.0), fmt_value(p.expected.1)))
+            .collect();
+        let _ = write!(
+            text,
+            "{}{} {}: outside the physically expected range ({}), {} a calibration factor: the model misses something \
+             {} only imitate{}.",
+            if text.is_empty() { "" } else { " " },
+            if physics.is_empty() { "Found no physics;" } else { "Also" },
+            named(&calibration).join(" and "),
+            ranges.join(", "),
+            if calibration.len() == 1 { "it is" } else { "each is" },
+            if calibration.len() == 1 { "this effect" } else { "these effects" },
+            if calibration.len() == 1 { "s" } else { "" },
+        );
+    }
+    if let (false, Some(first)) = (d.alike.is_empty(), d.ladder.get(1)) {
+        let err = |id: &str| {
+            d.ranking
+                .iter()
+                .find(|s| s.id == id)
+                .map_or("–".to_string(), |s| pct(s.kfold_rms))
+        };
+        let others: Vec<String> = d.alike.iter().map(|id| format!("{id} ({})", err(id))).collect();
+        let _ = write!(
+            text,
+            " The data cannot tell {} ({} held out alone) from {}: {} would.",
+            first.added,
+            err(&first.added),
+            others.join(" or "),
+            d.tell_apart.as_deref().unwrap_or("another measurement")
+        );
+    }
+    let _ = write!(
+        text,
+        " With {} the held-out error falls from {} to {} ({:.0} % less); {}.",
+        if d.ladder.len() == 2 { "it" } else { "them" },
         pct(base.kfold_rms),
         pct(last.kfold_rms),
         100.0 * (1.0 - last.kfold_rms / base.kfold_rms.max(1e-300)),
         d.unexplained()
-    )
+    );
+    text
+}
+
+/// One step of the ladder as the verdict shows it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// The effect added.
+    pub id: String,
+    /// Its fitted values in the final model, with their intervals ("deg = 1.817 ± 0.056 deg").
+    pub values: String,
+    /// Its physically expected ranges ("deg -2-2").
+    pub expected: String,
+    /// A value lies outside its expected range: a calibration factor, not found physics.
+    pub calibration: bool,
+    /// Held-out error before and after the step [-].
+    pub before: f64,
+    /// Held-out error after it [-].
+    pub after: f64,
+}
+
+/// The ladder's steps, first first, with the final model's values.
+pub fn steps(d: &Diagnosis) -> Vec<Step> {
+    let Some(last) = d.ladder.last() else {
+        return Vec::new();
+    };
+    d.ladder
+        .windows(2)
+        .map(|w| {
+            let id = w[1].added.clone();
+            let own: Vec<&FittedParam> = last.params.iter().filter(|p| p.effect == id).collect();
+            Step {
+                values: params_text(&last.params, Some(&id)),
+                expected: own
+                    .iter()
+                    .map(|p| {
+                        let range = format!("{} to {}", fmt_value(p.expected.0), fmt_value(p.expected.1));
+                        if own.len() == 1 {
+                            range
+                        } else {
+                            format!("{} {range}", p.name)
+                        }
+                    })
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                calibration: own.iter().any(|p| p.outside_expected),
+                before: w[0].kfold_rms,
+                after: w[1].kfold_rms,
+                id,
+            }
+        })
+        .collect()
+}
+
+/// The diagnosis in a few short lines (the terminal of `propbet run`): one per step, then
+/// what the data cannot tell apart and what is left.
+pub fn brief(d: &Diagnosis) -> Vec<String> {
+    let mut out = Vec::new();
+    if !d.found {
+        out.push(format!("nothing significant; {}", d.unexplained()));
+        return out;
+    }
+    let steps = steps(d);
+    let calibration = steps.iter().filter(|s| s.calibration).count();
+    out.push(format!(
+        "held-out error {} -> {} with {} effect{}{}",
+        pct(d.ladder[0].kfold_rms),
+        pct(d.ladder.last().map_or(f64::NAN, |r| r.kfold_rms)),
+        steps.len(),
+        if steps.len() == 1 { "" } else { "s" },
+        match calibration {
+            0 => String::new(),
+            1 if steps.len() == 1 => ", a calibration factor".to_string(),
+            n => format!(" ({n} a calibration factor outside its expected range)"),
+        }
+    ));
+    for (i, s) in steps.iter().enumerate() {
+        out.push(format!(
+            "{}. {} {} (expected {}){}: {} -> {}",
+            i + 1,
+            s.id,
+            s.values,
+            s.expected,
+            if s.calibration { ", a calibration factor" } else { "" },
+            pct(s.before),
+            pct(s.after)
+        ));
+    }
+    if !d.alike.is_empty() {
+        out.push(format!(
+            "the data cannot tell {} from {}: {} would",
+            d.ladder[1].added,
+            d.alike.join(" or "),
+            d.tell_apart.as_deref().unwrap_or("another measurement")
+        ));
+    }
+    let left = d.unexplained();
+    // The sentence's first clause ("2.2 % unexplained, above the 0.3 % ...").
+    out.push(left.split(": ").next().unwrap_or(&left).to_string());
+    out
+}
+
+/// The ladder's effects, split into found physics (every fitted value inside its physically
+/// expected range) and calibration factors (some value outside it), in ladder order.
+pub fn answer_parts(d: &Diagnosis) -> (Vec<&str>, Vec<&str>) {
+    let Some(last) = d.ladder.last() else {
+        return (Vec::new(), Vec::new());
+    };
+    d.ladder[1..]
+        .iter()
+        .map(|r| r.added.as_str())
+        .partition(|id| !last.params.iter().any(|p| p.effect == *id && p.outside_expected))
 }
 
 fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {

@@ -12,7 +12,12 @@ use crate::page::{esc, nest};
 
 /// The run's page: how it was made, the geometry, the polars, the sweeps, and the compare and
 /// diagnose pages' bodies (`pages`: stage name and body) one level down.
-pub fn page(plan: &RunPlan, run: &RunOutcome, pages: &[(&'static str, String)]) -> Result<String, PlotError> {
+pub fn page(
+    plan: &RunPlan,
+    run: &RunOutcome,
+    pages: &[(&'static str, String)],
+    reference: Option<&serde_json::Value>,
+) -> Result<String, PlotError> {
     let mut h = String::with_capacity(4_000_000);
     let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
     if !plan.description.is_empty() {
