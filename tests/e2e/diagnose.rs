@@ -597,7 +597,9 @@ fn bad_input_gets_clear_messages() {
         .as_str()
         .unwrap()
         .contains("too few points to fit torque-tare (q0, q1)"));
-    assert!(note("pitch-offset").is_null());
+    // Three points are enough to fit a pitch offset (whether the data tell it from none is
+    // another matter, which its note may say).
+    assert!(!note("pitch-offset").as_str().unwrap_or("").contains("too few points"));
     // User formulas that do not parse, use unknown names or divide by zero.
     for (formula, msg) in [
         ("torque + * c", "fails"),

@@ -138,6 +138,7 @@ pub fn print_result(d: &propbet_diagnose::discover::Diagnosis) {
     }
     println!("ranking (held-out RMS, p, significant):");
     for (i, s) in d.ranking.iter().enumerate() {
+        let remark = report::ladder_remark(d, s);
         match &s.note {
             Some(n) => println!("  {:>2}. {:<16} {n}", i + 1, s.id),
             None => println!(
@@ -148,6 +149,9 @@ pub fn print_result(d: &propbet_diagnose::discover::Diagnosis) {
                 s.p_value,
                 if s.significant { "significant" } else { "-" }
             ),
+        }
+        if let Some(r) = remark {
+            println!("      ({r})");
         }
     }
     println!("ladder (held-out error; the thrust error's trend with J at fixed RPM and with RPM at fixed J):");

@@ -167,8 +167,8 @@ pub struct Diagnosis {
     /// Effects of the refined selection that the rebuilt ladder did not take, with the reason
     /// (on a bound, weaker than the repeatability, or indistinguishable from their absence).
     pub not_taken: Vec<NotTaken>,
-    /// The first step's other significant candidates that explain the data about as well as
-    /// the effect the ladder took first ([`alike`]): the data cannot tell them apart.
+    /// Where the answer is one effect: the other significant candidates that explain the data
+    /// about as well ([`alike`]): the data cannot tell them apart.
     pub alike: Vec<String>,
     /// The measurement that would tell the alike candidates apart (None without any).
     pub tell_apart: Option<String>,
@@ -528,12 +528,13 @@ fn weak_note(size: f64, r: &Repeatability) -> String {
     )
 }
 
-/// True when every parameter of an effect that has a neutral value holds it in its 95 %
-/// interval (`own`: the effect's own fitted parameters): the data cannot tell the effect from
-/// its absence, and it is not added.
+/// True when a one-parameter effect's 95 % interval holds its neutral value (`own`: the
+/// effect's own fitted parameters): the data cannot tell the effect from its absence, and it
+/// is not added. An effect of several parameters is judged by the nested F test of all of them
+/// together (its parameters' separate intervals are wide where they are correlated: a
+/// friction torque's q0 and q1).
 fn neutral_held(own: &[FittedParam]) -> bool {
-    let with_neutral: Vec<&FittedParam> = own.iter().filter(|p| p.neutral.is_some()).collect();
-    !with_neutral.is_empty() && with_neutral.iter().all(|p| p.holds_neutral)
+    matches!(own, [p] if p.neutral.is_some() && p.holds_neutral)
 }
 
 /// The words for [`neutral_held`].
@@ -548,7 +549,7 @@ fn neutral_note(own: &[FittedParam]) -> String {
                 propbet_effects::fmt_value(p.value),
                 propbet_effects::fmt_value(c)
             ),
-            None => format!("{} = {} (undetermined)", p.name, propbet_effects::fmt_value(p.value)),
+            None => format!("{} = {} (not determined by the data)", p.name, propbet_effects::fmt_value(p.value)),
         })
         .collect();
     format!(
@@ -984,7 +985,9 @@ pub fn diagnose(
             current = cur;
         }
     }
-    let first_id = ladder.get(1).map(|r| r.added.clone());
+    // Alike candidates are looked for where the answer is one effect: a ladder of several is
+    // chosen by the joint fit, where a first step's near tie is settled by the steps after it.
+    let first_id = (ladder.len() == 2).then(|| ladder[1].added.clone());
     let alike = first_id.as_deref().map_or_else(Vec::new, |id| alike(&ranking, id, repeatability.as_ref()));
     let tell_apart = (!alike.is_empty()).then(|| tell_apart(data));
     let final_residuals = current.fit.residuals.clone();

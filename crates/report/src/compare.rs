@@ -349,10 +349,12 @@ pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::V
     let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
     let dropped: usize = sets.iter().map(|s| s.dropped.len()).sum();
     let mut out = vec![format!(
-        "{} files, {rows} rows -> {points} points{}",
+        "{} file{}, {rows} rows -> {points} points{}",
         sets.len(),
+        if sets.len() == 1 { "" } else { "s" },
         match (dropped, faults) {
             (0, _) => ", none dropped".to_string(),
+            (1, 0) => ", 1 row dropped (why: in the report)".to_string(),
             (d, 0) => format!(", {d} rows dropped (why: in the report)"),
             (d, f) => format!(", {d} rows dropped, {f} of them as faulty (in the report)"),
         }

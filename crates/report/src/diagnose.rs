@@ -257,7 +257,9 @@ pub fn brief(d: &Diagnosis) -> Vec<String> {
         match calibration {
             0 => String::new(),
             1 if steps.len() == 1 => ", a calibration factor".to_string(),
-            n => format!(" ({n} a calibration factor outside its expected range)"),
+            1 => " (one a calibration factor, outside its expected range)".to_string(),
+            n if n == steps.len() => " (all calibration factors, outside their expected ranges)".to_string(),
+            n => format!(" ({n} calibration factors, outside their expected ranges)"),
         }
     ));
     for (i, s) in steps.iter().enumerate() {
@@ -300,6 +302,8 @@ pub fn answer_parts(d: &Diagnosis) -> (Vec<&str>, Vec<&str>) {
 
 fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
     let rows = data.rows();
+    // Static data (every point at J = 0) get no panel against J.
+    let forward = data.obs.iter().any(|o| o.j >= 0.01);
     let mut panels = Vec::new();
     for torque in [false, true] {
         if !rows.iter().any(|r| r.torque == torque) {
@@ -313,6 +317,9 @@ fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
             ),
             ("RPM", |o: &propbet_diagnose::Observation| o.rpm()),
         ] {
+            if x_name == "J" && !forward {
+                continue;
+            }
             let pts = |res: &[f64]| -> Vec<(f64, f64)> {
                 rows.iter()
                     .zip(res)
@@ -354,7 +361,19 @@ fn signature_html(s: &Signature) -> String {
             } else {
                 format!("<b>{}</b>", esc(&e.can.join(", ")))
             };
-            let _ = write!(h, ".<br>{}{can}{}", esc(&e.lead), esc(&e.rest));
+            // The effects that cannot make it go on a line of their own, in small print: the
+            // sentence names what can.
+            let (rest, cannot) = match e.rest.strip_prefix("; not ") {
+                Some(r) => match r.split_once("; ") {
+                    Some((list, more)) => (format!("; {more}"), list.to_string()),
+                    None => (String::new(), r.to_string()),
+                },
+                None => (e.rest.clone(), String::new()),
+            };
+            let _ = write!(h, ".<br>{}{can}{}", esc(&e.lead), esc(&rest));
+            if !cannot.is_empty() {
+                let _ = write!(h, "<br><span class=\"note\">Cannot: {}</span>", esc(&cannot));
+            }
         }
         h
     };
@@ -427,13 +446,53 @@ fn ladder_figure(d: &Diagnosis) -> Figure {
     }
 }
 
-fn ranking_row(i: usize, s: &Scored) -> String {
+/// What the ranking's line of a candidate (fitted alone on the baseline) must add when the
+/// candidate is on the ladder: that its note (a bound, too weak, its neutral value) is about it
+/// alone, or that its fitted value changes sign once the ladder's earlier effects are in. None
+/// for a candidate not on the ladder, or whose line needs no word.
+pub fn ladder_remark(d: &Diagnosis, s: &Scored) -> Option<String> {
+    let k = d.ladder.iter().position(|r| r.added == s.id).filter(|&k| k > 0)?;
+    let last = d.ladder.last()?;
+    let before: Vec<&str> = d.ladder[1..k].iter().map(|r| r.added.as_str()).collect();
+    let after = if before.is_empty() {
+        "first".to_string()
+    } else {
+        format!("after {}", before.join(" and "))
+    };
+    let values = params_text(&last.params, Some(&s.id));
+    if s.note.is_some() {
+        return Some(format!(
+            "That is it alone on the baseline; on the ladder (step {k}, {after}) it fits {values}, inside its bounds and \
+             stronger than the repeatability: the earlier effects take what it could not."
+        ));
+    }
+    let alone = s.params.iter().find(|p| p.effect == s.id)?;
+    let final_value = last.params.iter().find(|p| p.effect == s.id && p.name == alone.name)?;
+    (alone.value * final_value.value < 0.0).then(|| {
+        format!(
+            "Alone it fits {} = {}; on the ladder (step {k}, {after}) {} = {}: alone it imitates part of what the earlier \
+             effects do, and the sign it takes then is not its own.",
+            alone.name,
+            fmt_value(alone.value),
+            alone.name,
+            fmt_value(final_value.value)
+        )
+    })
+}
+
+fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
     let loro = s.loro_rms.map_or("–".into(), pct);
+    let remark = remark.map_or(String::new(), |r| format!("<br><span class=\"note\">{}</span>", esc(&r)));
     match &s.note {
-        Some(n) => format!("<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\">{}</td></tr>\n", i + 1, esc(&s.id), esc(n)),
+        Some(n) => format!(
+            "<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\">{}{remark}</td></tr>\n",
+            i + 1,
+            esc(&s.id),
+            esc(n)
+        ),
         None => format!(
             "<tr class=\"{}\"><td>{}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:+.0} %</td><td>{}</td><td>{}</td></tr>\n\
-             <tr><td></td><td colspan=\"8\" class=\"note\">{}</td></tr>\n",
+             <tr><td></td><td colspan=\"8\" class=\"note\">{}{remark}</td></tr>\n",
             if s.significant { "sig" } else { "" },
             i + 1,
             esc(&s.id),
@@ -453,11 +512,13 @@ fn ranking_row(i: usize, s: &Scored) -> String {
 /// in the Markdown, not in the body that the run's page nests (its compare section lists them).
 pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], command: &str) -> Result<Report, PlotError> {
     let measured: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
+    let panels = residual_panels(data, d);
+    let rows = panels.len().div_ceil(2) as u32;
     let residuals = Figure {
-        panels: residual_panels(data, d),
+        panels,
         columns: 2,
         width: 1400,
-        height: 900,
+        height: 450 * rows,
     };
     let ladder = ladder_figure(d);
     let verdict = verdict(d);
@@ -465,13 +526,13 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     let _ = write!(
         h,
         "<h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
-         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n<p><b>{}</b></p>\n",
+         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n{}",
         esc(prop),
         esc(&measured.join(", ")),
         d.points,
         d.rows,
         esc(command),
-        esc(&verdict)
+        crate::answer::diagnosis_html(d)
     );
     h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
     for s in &d.before {
@@ -482,7 +543,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
         n ln(held-out MSE) + k ln(n); significant: F test p &lt; 0.01/(number of candidates) and the held-out error falls by at least 10 %.</p>\n\
         <table><tr><th>#</th><th>effect</th><th>fitted</th><th>RMS</th><th>held-out</th><th>leave-RPM-out</th><th>gain</th><th>p</th><th>significant</th></tr>\n");
     for (i, s) in d.ranking.iter().enumerate() {
-        h.push_str(&ranking_row(i, s));
+        h.push_str(&ranking_row(i, s, ladder_remark(d, s)));
     }
     h.push_str("</table>\n<h2>Ladder: effects added while they help</h2>\n<p class=\"note\">The last two columns: the thrust error's \
         change with J at fixed RPM (mean above the median J minus below: what an angle or the inflow makes) and with RPM at fixed J \
@@ -529,7 +590,8 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     for (i, s) in d.ranking.iter().enumerate() {
         match &s.note {
             Some(n) => {
-                let _ = writeln!(md, "| {} | {} | {n} | | | | | |", i + 1, s.id);
+                let remark = ladder_remark(d, s).map_or(String::new(), |r| format!(" {r}"));
+                let _ = writeln!(md, "| {} | {} | {n}{remark} | | | | | |", i + 1, s.id);
             }
             None => {
                 let _ = writeln!(
@@ -632,8 +694,8 @@ mod tests {
             h,
             "<li>thrust under-predicted by 21.1 % on average (RMS 28.7 %)<ul>\
              <li>Largest at J &gt; 0.32 (-35.1 % there, -7.7 % elsewhere): from the angles.<br>Effects that can make \
-             it (from the model's response to each, within its bounds): <b>pitch-offset, rpm-scale</b>; not \
-             density</li><li>At fixed J the error changes by -4.3 % from 4014 to 6512 rpm.<br>No candidate effect \
+             it (from the model's response to each, within its bounds): <b>pitch-offset, rpm-scale</b><br>\
+             <span class=\"note\">Cannot: density</span></li><li>At fixed J the error changes by -4.3 % from 4014 to 6512 rpm.<br>No candidate effect \
              can make it within its bounds</li></ul></li>\n"
         );
         // One part: one item, nothing nested.

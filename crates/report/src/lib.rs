@@ -1,9 +1,11 @@
-//! The pages people read, built from the pipeline's typed artifacts: one page skeleton
+//! The pages people read, built from the pipeline's typed artifacts: the answer they lead with
+//! ([`answer`]: how close the prediction is, what is missing), one page skeleton
 //! ([`page`]: head, font, stylesheet, escaping), the comparison ([`compare`]), the diagnosis
 //! ([`diagnose`]), the run ([`run`], holding the other two), the validation table
 //! ([`validate`]), and the figures of a scan ([`scan`]) and of polars ([`polar`]). Pages are strings; the CLI writes them.
 #![deny(missing_docs)]
 
+pub mod answer;
 pub mod compare;
 pub mod diagnose;
 pub mod page;

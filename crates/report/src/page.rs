@@ -13,7 +13,10 @@ th{background:#eef4fa}td:first-child,th:first-child{text-align:left}\
 tr.flagged td{color:#999}tr.sig td{background:#eef7ee}nav a{margin-right:1em}\
 section{border-top:2px solid #888;margin-top:2em}svg{max-width:100%;height:auto}\
 td.num{white-space:nowrap}td.cmd,td.text,th.text{text-align:left}td.text,th.text{min-width:14em}td.cmd code{white-space:normal;overflow-wrap:anywhere;font-size:.85em}\
-p,li{overflow-wrap:anywhere}pre{overflow-x:auto}";
+p,li{overflow-wrap:anywhere}pre{overflow-x:auto}\
+section#answer,section#outputs{border-top:none;margin-top:0}section#answer h2,section#outputs h2{margin-top:.6em}\
+table.headline,table.steps{margin:.3em 0 .6em}p.verdict{font-weight:bold}tr.calibration td{background:#fff4e0}\
+section#outputs ul{margin:.2em 0}section#answer p{margin:.4em 0}";
 
 /// A whole page: `title`, extra CSS (empty for none), and the body's markup.
 pub fn page(title: &str, extra_css: &str, body: &str) -> String {

@@ -23,6 +23,25 @@ pub fn page(
     if !plan.description.is_empty() {
         let _ = writeln!(h, "<p>{}</p>", esc(&plan.description));
     }
+    // The answer first: how close the prediction is, what is missing, and the outputs.
+    if let Some(c) = &run.compared {
+        h.push_str("<section id=\"answer\"><h2>How close the prediction is</h2>\n");
+        h.push_str(&crate::answer::headline_html(&c.metrics, reference, &c.points));
+        let standard = c.points.iter().filter(|p| p.air.standard).count();
+        if standard > 0 {
+            let _ = writeln!(
+                h,
+                "<p class=\"note\">The measurements log no air temperature or pressure: standard air is assumed at {standard} of {} points (<code>[atmosphere] air</code> in case.toml gives the real air).</p>",
+                c.points.len()
+            );
+        }
+        if let Some(d) = &run.diagnosed {
+            h.push_str("<h2>What is missing</h2>\n");
+            h.push_str(&crate::answer::diagnosis_html(&d.diagnosis));
+        }
+        h.push_str("</section>\n");
+    }
+    h.push_str(&outputs_html(plan, run));
     let _ = writeln!(
         h,
         "<p class=\"note\">What this run did: {}.</p>",
@@ -30,32 +49,14 @@ pub fn page(
     );
     let _ = writeln!(
         h,
-        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}</nav>",
+        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}<a href=\"#problems\">every stage note</a></nav>",
         if pages.is_empty() {
             String::new()
         } else {
-            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing</a>".into()
+            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing, in detail</a>".into()
         }
     );
-    // Every stage's problems, once, at the top; each is also shown where its result is.
     let problems = problems(run);
-    if problems.is_empty() {
-        h.push_str("<p class=\"note\">No stage reported a problem.</p>\n");
-    } else {
-        let _ = writeln!(
-            h,
-            "<section id=\"problems\"><h2>Problems the stages reported</h2>\n<ul class=\"problems\">"
-        );
-        for (stage, n, text) in &problems {
-            let count = if *n > 1 {
-                format!("{n}×, for example: ")
-            } else {
-                String::new()
-            };
-            let _ = writeln!(h, "<li><b>{}</b>: {count}{}</li>", esc(stage), esc(text));
-        }
-        h.push_str("</ul></section>\n");
-    }
     // Stages.
     h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
     for s in &run.stages {
@@ -166,7 +167,115 @@ pub fn page(
     for (id, body) in pages {
         let _ = writeln!(h, "<section id=\"{id}\">\n{}\n</section>", nest(body));
     }
+    // Every stage's notes, grouped alike, collapsed at the end: each is also said beside the
+    // result it affects (the QPROP fit's beside the exported file, XFOIL's in the polars table).
+    h.push_str("<section id=\"problems\"><h2>Every note of the stages</h2>\n");
+    if problems.is_empty() {
+        h.push_str("<p class=\"note\">No stage reported a problem.</p>\n");
+    } else {
+        let _ = writeln!(
+            h,
+            "<details><summary>{} notes (grouped alike): open the list</summary>\n<ul class=\"problems\">",
+            problems.len()
+        );
+        for (stage, n, text) in &problems {
+            let count = if *n > 1 {
+                format!("{n}×, for example: ")
+            } else {
+                String::new()
+            };
+            let _ = writeln!(h, "<li><b>{}</b>: {count}{}</li>", esc(stage), esc(text));
+        }
+        h.push_str("</ul></details>\n");
+    }
+    h.push_str("</section>\n");
     Ok(crate::page::page(&format!("propbet run: {}", plan.name), "", &h))
+}
+
+/// A path under the run's output folder as a link relative to its report.
+fn link(out: &std::path::Path, path: &std::path::Path) -> String {
+    let rel = path.strip_prefix(out).unwrap_or(path);
+    let text = rel.display().to_string();
+    format!("<a href=\"{}\"><code>{}</code></a>", esc(&text), esc(&text))
+}
+
+/// The outputs a user takes away, each with what it is: the prediction's table, the exported
+/// QPROP file (with how far its law is from the prediction's tables and the notes on its fit,
+/// which concern that file only), the calibrated model, and the stages' own pages.
+fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
+    let out = &plan.out;
+    let mut h = String::from("<section id=\"outputs\"><h2>Outputs</h2>\n<ul>");
+    if let Some(o) = &plan.predict.out {
+        let _ = write!(
+            h,
+            "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep</li>",
+            link(out, o)
+        );
+    }
+    if let (Some((spec, _)), Some(p)) = (&plan.polars, &run.polars) {
+        let notes: Vec<String> = p
+            .blade
+            .stations
+            .iter()
+            .flat_map(|s| s.fit.iter().flat_map(|f| f.unfit.iter().cloned()))
+            .chain(run.model.loaded.warnings.iter().cloned())
+            .collect();
+        let _ = write!(
+            h,
+            "<li>{}: the exported QPROP prop file, QPROP's law fitted to the polars at each station{}",
+            link(out, &spec.out_prop),
+            p.export.as_ref().map_or(String::new(), |e| format!(
+                "; it differs from the tables this report's prediction uses by {:.1} % in CT and {:.1} % in CP (median; {:.1} % and {:.1} % at most)",
+                100.0 * e.ct[0],
+                100.0 * e.cp[0],
+                100.0 * e.ct[1],
+                100.0 * e.cp[1]
+            ))
+        );
+        let grouped = crate::page::group_alike(notes);
+        if !grouped.is_empty() {
+            let _ = write!(
+                h,
+                "<details><summary>{} notes on this file's fit (they concern the exported file, not the prediction above)</summary><ul>",
+                grouped.len()
+            );
+            for (n, text) in &grouped {
+                let count = if *n > 1 { format!("{n} stations, for example: ") } else { String::new() };
+                let _ = write!(h, "<li>{count}{}</li>", esc(text));
+            }
+            h.push_str("</ul></details>");
+        }
+        h.push_str("</li>");
+    }
+    if let (Some((_, dspec)), Some(d)) = (&plan.compare, &run.diagnosed) {
+        if d.diagnosis.found {
+            // Written beside the sweep, never over it.
+            let mut spec = plan.predict.clone();
+            spec.out = Some(out.join("predict").join("calibrated_sweep.csv"));
+            let mut cmd = propbet_pipeline::spec::StageSpec::Predict(spec).command();
+            for e in crate::diagnose::effect_args(&d.diagnosis) {
+                cmd.push(' ');
+                cmd.push_str(&e);
+            }
+            let _ = write!(
+                h,
+                "<li>the calibrated model (the prediction with the diagnosis's effects): {}; as a command: <code>{}</code></li>",
+                link(out, &dspec.out.join("diagnosis.json")),
+                esc(&cmd)
+            );
+        }
+    }
+    if let Some((cspec, dspec)) = &plan.compare {
+        let _ = write!(
+            h,
+            "<li>the stages' own pages: {} (every point), {} (every candidate effect); {} (this run, machine-readable)</li>",
+            link(out, &cspec.out.join("report.html")),
+            link(out, &dspec.out.join("report.html")),
+            link(out, &out.join("summary.json"))
+        );
+    }
+    h.push_str("</ul></section>\n");
+    h
 }
 
 /// CT, CP and efficiency against J, one line per RPM.

@@ -1,0 +1,257 @@
+//! The answer a page leads with: how far the prediction is from the measurements (static and
+//! forward flight, thrust and torque, the maker's prediction beside it), the hover metrics a
+//! stand user reads (figure of merit, thrust per watt), and what the diagnosis found, step by
+//! step. `run` and `compare` open with it; the details follow below it.
+
+use std::fmt::Write as _;
+
+use propbet_compare::curves::Curves;
+use propbet_compare::metrics::{figure_of_merit, quantile, Metrics};
+use propbet_compare::ComparedPoint;
+use propbet_diagnose::discover::Diagnosis;
+use propbet_plot::{Figure, Mark, Panel, Series};
+
+use crate::compare::{headline_rows, reference_name};
+use crate::page::{esc, sig};
+
+/// Standard gravity [m/s²], for thrust in grams.
+const G0: f64 = 9.80665;
+
+fn pct(x: f64) -> String {
+    if x.is_finite() {
+        format!("{:+.1} %", 100.0 * x)
+    } else {
+        "–".into()
+    }
+}
+
+/// Figure of merit and thrust per watt [g/W] of thrust `t` [N] and power `p` [W], with the
+/// point's coefficients; None where thrust or power is not positive.
+fn hover_of(ct: Option<f64>, cp: Option<f64>, t: Option<f64>, p: Option<f64>) -> Option<(f64, f64)> {
+    let (ct, cp, t, p) = (ct?, cp?, t?, p?);
+    (ct > 0.0 && cp > 0.0 && t > 0.0 && p > 0.0).then(|| (figure_of_merit(ct, cp), 1000.0 * t / G0 / p))
+}
+
+/// The hover metrics over the static points with thrust and power measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Hover {
+    /// Static points used.
+    pub points: usize,
+    /// Median figure of merit, measured and predicted.
+    pub fm: (f64, f64),
+    /// Thrust per watt [g/W] at the point of highest measured thrust, measured and predicted.
+    pub g_per_w: (f64, f64),
+    /// That point's measured thrust [N].
+    pub at_thrust: f64,
+}
+
+/// The hover metrics of the static points (None without a static point with thrust and power
+/// measured and predicted).
+pub fn hover(points: &[ComparedPoint]) -> Option<Hover> {
+    let pairs: Vec<(f64, (f64, f64), (f64, f64))> = points
+        .iter()
+        .filter(|p| p.is_static() && p.scored())
+        .filter_map(|p| {
+            let (m, q) = (&p.measured, &p.predicted);
+            Some((
+                m.thrust?,
+                hover_of(m.ct, m.cp, m.thrust, m.power)?,
+                hover_of(q.ct, q.cp, q.thrust, q.power)?,
+            ))
+        })
+        .collect();
+    let top = pairs.iter().max_by(|a, b| a.0.total_cmp(&b.0))?;
+    Some(Hover {
+        points: pairs.len(),
+        fm: (
+            quantile(pairs.iter().map(|p| p.1 .0).collect(), 0.5),
+            quantile(pairs.iter().map(|p| p.2 .0).collect(), 0.5),
+        ),
+        g_per_w: (top.1 .1, top.2 .1),
+        at_thrust: top.0,
+    })
+}
+
+/// Figure of merit and thrust per watt against thrust at the static points: measured dots,
+/// the prediction's static curve as a line (None without static points with power).
+pub fn hover_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure> {
+    let measured: Vec<(f64, (f64, f64))> = points
+        .iter()
+        .filter(|p| p.is_static())
+        .filter_map(|p| {
+            let m = &p.measured;
+            Some((m.thrust?, hover_of(m.ct, m.cp, m.thrust, m.power)?))
+        })
+        .collect();
+    if measured.is_empty() {
+        return None;
+    }
+    let line: Vec<(f64, (f64, f64))> = curves
+        .statics
+        .as_deref()
+        .unwrap_or_default()
+        .iter()
+        .filter_map(|(_, q)| Some((q.thrust?, hover_of(q.ct, q.cp, q.thrust, q.power)?)))
+        .collect();
+    let panel = |k: usize, title: &str, y: &str| Panel {
+        title: title.into(),
+        x_label: "thrust [N]".into(),
+        y_label: y.into(),
+        series: vec![
+            Series::new(
+                "measured",
+                measured.iter().map(|(t, h)| (*t, if k == 0 { h.0 } else { h.1 })).collect(),
+                Mark::Dots,
+                Some(0),
+            ),
+            Series::new(
+                "predicted",
+                line.iter().map(|(t, h)| (*t, if k == 0 { h.0 } else { h.1 })).collect(),
+                Mark::Line,
+                Some(1),
+            ),
+        ],
+        zero_line: false,
+        y_clip: None,
+        equal_aspect: false,
+    };
+    Some(Figure {
+        panels: vec![
+            panel(0, "Hover: figure of merit against thrust", "figure of merit"),
+            panel(1, "Hover: thrust per watt against thrust", "thrust per shaft power [g/W]"),
+        ],
+        columns: 2,
+        width: 1200,
+        height: 420,
+    })
+}
+
+/// The headline table: per group (static, forward flight) propbet's mean thrust and torque
+/// errors with the worst point, the reference's beside them; then the hover metrics.
+pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points: &[ComparedPoint]) -> String {
+    let rows = headline_rows(m, reference);
+    let mut h = String::new();
+    if rows.is_empty() {
+        h.push_str("<p class=\"warn\">No measured point could be scored (every point is flagged: see the point table).</p>\n");
+        return h;
+    }
+    let theirs = reference.map(reference_name);
+    h.push_str("<table class=\"headline\"><tr><th class=\"text\">points</th><th>n</th>");
+    for q in ["thrust", "torque"] {
+        let _ = write!(h, "<th>{q}, propbet</th>");
+        if let Some(t) = &theirs {
+            let _ = write!(h, "<th>{q}, {}</th>", esc(t));
+        }
+    }
+    h.push_str("</tr>\n");
+    for r in &rows {
+        let _ = write!(h, "<tr><td class=\"text\">{}</td><td>{}</td>", esc(&r.name), r.points);
+        for q in ["thrust", "torque"] {
+            match r.errors.iter().find(|e| e.0 == q) {
+                Some((_, x, other)) => {
+                    let _ = write!(
+                        h,
+                        "<td><b>{}</b> <span class=\"note\">(worst {} at {})</span></td>",
+                        pct(x.mean_rel),
+                        pct(x.max_rel),
+                        esc(&x.max_rel_at)
+                    );
+                    if theirs.is_some() {
+                        let _ = write!(h, "<td>{}</td>", other.map_or("–".into(), pct));
+                    }
+                }
+                None => {
+                    h.push_str("<td>–</td>");
+                    if theirs.is_some() {
+                        h.push_str("<td>–</td>");
+                    }
+                }
+            }
+        }
+        h.push_str("</tr>\n");
+    }
+    h.push_str("</table>\n<p class=\"note\">Mean relative error, predicted − measured over measured; forward flight below 85 % of each sweep's zero-thrust J, where a relative error means something.</p>\n");
+    if let Some(hv) = hover(points) {
+        let _ = writeln!(
+            h,
+            "<p>Hover ({} static points): figure of merit measured {}, predicted {} ({}); thrust per watt at the highest thrust ({} N) measured {} g/W, predicted {} g/W ({}).</p>",
+            hv.points,
+            sig(hv.fm.0),
+            sig(hv.fm.1),
+            pct(hv.fm.1 / hv.fm.0 - 1.0),
+            sig(hv.at_thrust),
+            sig(hv.g_per_w.0),
+            sig(hv.g_per_w.1),
+            pct(hv.g_per_w.1 / hv.g_per_w.0 - 1.0),
+        );
+    }
+    h
+}
+
+/// What the diagnosis found, as a table of its steps (effect, fitted value, physically expected
+/// range, held-out error after it) and the verdict's sentence.
+pub fn diagnosis_html(d: &Diagnosis) -> String {
+    let mut h = String::new();
+    let steps = crate::diagnose::steps(d);
+    if !steps.is_empty() {
+        let _ = write!(
+            h,
+            "<table class=\"steps\"><tr><th>step</th><th class=\"text\">effect added</th><th class=\"text\">fitted value (95 %)</th><th class=\"text\">physically expected</th><th>held-out error after</th></tr>\n<tr><td>0</td><td class=\"text\">the prediction as it is</td><td></td><td></td><td>{:.2} %</td></tr>\n",
+            100.0 * d.ladder[0].kfold_rms
+        );
+        for (i, s) in steps.iter().enumerate() {
+            let _ = writeln!(
+                h,
+                "<tr{}><td>{}</td><td class=\"text\"><b>{}</b>{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td>{:.2} %</td></tr>",
+                if s.calibration { " class=\"calibration\"" } else { "" },
+                i + 1,
+                esc(&s.id),
+                if s.calibration {
+                    "<br><span class=\"note\">a calibration factor, not found physics</span>"
+                } else {
+                    ""
+                },
+                esc(&s.values),
+                esc(&s.expected),
+                100.0 * s.after
+            );
+        }
+        h.push_str("</table>\n");
+    }
+    let _ = writeln!(h, "<p class=\"verdict\">{}</p>", esc(&meaning(d)));
+    h
+}
+
+/// What the diagnosis means, in one sentence: what the model misses, what only imitates it,
+/// and what is left; the verdict where nothing was found.
+pub fn meaning(d: &Diagnosis) -> String {
+    if !d.found {
+        return crate::diagnose::verdict(d);
+    }
+    let (physics, calibration) = crate::diagnose::answer_parts(d);
+    let mut parts = Vec::new();
+    if !physics.is_empty() {
+        parts.push(format!("the model misses {}", physics.join(" and ")));
+    }
+    if !calibration.is_empty() {
+        parts.push(format!(
+            "{} only imitate{} something it misses (fitted outside the physically expected range)",
+            calibration.join(" and "),
+            if calibration.len() == 1 { "s" } else { "" }
+        ));
+    }
+    if !d.alike.is_empty() {
+        parts.push(format!(
+            "the data cannot tell {} from {} ({} would)",
+            d.ladder[1].added,
+            d.alike.join(" or "),
+            d.tell_apart.as_deref().unwrap_or("another measurement")
+        ));
+    }
+    let left = d.unexplained();
+    let mut text = parts.join("; ");
+    if let Some(first) = text.get(..1) {
+        text = first.to_uppercase() + &text[1..];
+    }
+    format!("{text}. {}.", left.split(": ").next().unwrap_or(&left))
+}
