@@ -39,6 +39,12 @@ for comp in rustfmt clippy; do
   fi
 done
 
+# The book (docs/, `mdbook build docs`): mdBook from crates.io, built once.
+if ! command -v mdbook >/dev/null 2>&1; then
+  echo "setup: installing mdBook (cargo install, a few minutes once)"
+  cargo install mdbook --version 0.5.4 --locked
+fi
+
 if [ "${1:-}" != "--no-build" ]; then
   cargo build --release --locked -p propbet-cli
   echo "setup: built target/release/propbet"

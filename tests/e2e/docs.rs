@@ -44,21 +44,51 @@ fn files_ending(dir: &Path, ext: &str) -> Vec<PathBuf> {
     files
 }
 
+/// The pages whose commands run: the README and every page of the book (`docs/SUMMARY.md`)
+/// except the studies, which are records of measurements whose commands take minutes to hours
+/// (a whole validation per candidate, a 10-minute fuzzing run) and say when they were run.
+fn pages_with_commands() -> Vec<PathBuf> {
+    let summary = std::fs::read_to_string(repo().join("docs/SUMMARY.md")).unwrap();
+    let mut pages = vec![repo().join("README.md")];
+    for line in summary.lines() {
+        let Some((_, rest)) = line.split_once("](") else { continue };
+        let Some((target, _)) = rest.split_once(')') else { continue };
+        if target.starts_with("studies/") || target == "architecture.md" || target == "changelog.md" {
+            continue;
+        }
+        pages.push(repo().join("docs").join(target));
+    }
+    pages
+}
+
 #[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn every_documented_command_runs() {
-    let dir = tempfile::tempdir().unwrap();
+    // The commands run from `work/`, which sees the repository's props/, docs/ and tests/, with
+    // the shared data at `../shared` as the validation page names it.
+    let root = tempfile::tempdir().unwrap();
+    let dir = root.path().join("work");
+    std::fs::create_dir(&dir).unwrap();
     for d in ["props", "docs", "tests"] {
-        std::os::unix::fs::symlink(repo().join(d).canonicalize().unwrap(), dir.path().join(d)).unwrap();
+        std::os::unix::fs::symlink(repo().join(d).canonicalize().unwrap(), dir.join(d)).unwrap();
     }
+    std::os::unix::fs::symlink(repo().join("../shared").canonicalize().unwrap(), root.path().join("shared")).unwrap();
     let bin_dir = Path::new(env!("CARGO_BIN_EXE_propbet")).parent().unwrap().to_path_buf();
     let path = format!("{}:{}", bin_dir.display(), std::env::var("PATH").unwrap_or_default());
-    let mut pages = files_ending(&repo().join("docs/guide"), "md");
-    pages.push(repo().join("docs/effects.md"));
+    let ci = std::fs::read_to_string(repo().join(".ci/run")).unwrap();
     let mut ran = 0;
-    for page in &pages {
+    for page in &pages_with_commands() {
         let text = std::fs::read_to_string(page).unwrap();
         for cmd in commands(&text) {
+            // The README's set-up and test commands are CI's own steps: .ci/run runs both
+            // scripts (this test runs inside the second).
+            if cmd.starts_with("scripts/") {
+                for script in cmd.split("&&").map(str::trim).filter(|c| c.starts_with("scripts/")) {
+                    let name = script.split_whitespace().next().unwrap();
+                    assert!(ci.contains(name), "{}: `{cmd}`: .ci/run does not run {name}", page.display());
+                }
+                continue;
+            }
             assert!(
                 cmd.starts_with("propbet "),
                 "{}: not a propbet command: {cmd}",
@@ -67,8 +97,8 @@ fn every_documented_command_runs() {
             let o = Command::new("bash")
                 .args(["-c", &cmd])
                 .env("PATH", &path)
-                .env("PROPBET_CACHE_DIR", dir.path().join("cache"))
-                .current_dir(dir.path())
+                .env("PROPBET_CACHE_DIR", root.path().join("cache"))
+                .current_dir(&dir)
                 .output()
                 .unwrap();
             assert!(
@@ -78,11 +108,8 @@ fn every_documented_command_runs() {
                 o.status.code(),
                 stderr(&o)
             );
-            ran += 1;
-        }
-    }
     // The guide's pages hold commands (a page that lost its blocks would pass silently).
-    assert!(ran >= 12, "only {ran} documented commands found");
+    assert!(ran >= 30, "only {ran} documented commands found");
     // What the pages promise is there.
     for f in [
         "apc_scan/plots/sections.svg",
@@ -93,13 +120,13 @@ fn every_documented_command_runs() {
         "cam_run/report.html",
         "pf_with_effects/metrics.json",
     ] {
-        assert!(dir.path().join(f).is_file(), "{f} missing");
+        assert!(dir.join(f).is_file(), "{f} missing");
     }
     // Adding the effects the diagnosis names lowers both errors (the guide: thrust 9.2 -> 1.3 %,
     // torque 20 -> 1.2 %).
     let err = |d: &str, q: &str| -> f64 {
         let m: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(dir.path().join(d).join("metrics.json")).unwrap()).unwrap();
+            serde_json::from_str(&std::fs::read_to_string(dir.join(d).join("metrics.json")).unwrap()).unwrap();
         m["metrics"]["overall"]["metrics"][q]["mean_abs_rel"].as_f64().unwrap()
     };
     let (t0, t1) = (err("pf_compare", "thrust"), err("pf_with_effects", "thrust"));
@@ -162,5 +189,76 @@ fn every_documented_user_effects_file_reads() {
             let id = id.trim_end_matches('"');
             assert!(listed.contains(id), "{}: {id} not listed", f.display());
         }
+    }
+}
+
+/// The book builds with mdBook, and every link of its pages (and of the README) reaches a file:
+/// the relative `href`s of the built HTML, fragments dropped, and the README's Markdown links.
+#[test]
+fn the_book_builds_and_its_links_resolve() {
+    let out = tempfile::tempdir().unwrap();
+    let o = Command::new("mdbook")
+        .args(["build", "docs", "-d"])
+        .arg(out.path())
+        .current_dir(repo())
+        .output()
+        .expect("mdbook is installed by scripts/setup.sh");
+    assert!(o.status.success(), "mdbook build: {}", stderr(&o));
+    let mut broken = Vec::new();
+    let mut checked = 0;
+    let mut stack = vec![out.path().to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+                continue;
+            }
+            if p.extension().is_none_or(|x| x != "html") {
+                continue;
+            }
+            let html = std::fs::read_to_string(&p).unwrap();
+            for part in html.split("href=\"").skip(1) {
+                let target = part.split('"').next().unwrap();
+                let file = target.split('#').next().unwrap();
+                if file.is_empty() || file.contains("://") || file.starts_with("mailto:") {
+                    continue;
+                }
+                checked += 1;
+                if !p.parent().unwrap().join(file).exists() {
+                    broken.push(format!("{}: {target}", p.strip_prefix(out.path()).unwrap().display()));
+                }
+            }
+        }
+    }
+    assert!(checked > 100, "only {checked} links found");
+    // The README's own links, relative to the repository.
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    for part in readme.split("](").skip(1) {
+        let target = part.split(')').next().unwrap();
+        if target.contains("://") {
+            continue;
+        }
+        if !repo().join(target.split('#').next().unwrap()).exists() {
+            broken.push(format!("README.md: {target}"));
+        }
+    }
+    assert!(broken.is_empty(), "broken links: {broken:#?}");
+}
+
+/// The README is a user's page: at most 200 lines, none over 200 characters, no dates and no
+/// issue numbers (history is the CHANGELOG's).
+#[test]
+fn the_readme_is_short() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    let lines: Vec<&str> = readme.lines().collect();
+    assert!(lines.len() <= 200, "{} lines", lines.len());
+    for (i, l) in lines.iter().enumerate() {
+        assert!(l.chars().count() <= 200, "line {}: {} characters", i + 1, l.chars().count());
+        let date = l.as_bytes().windows(10).any(|w| {
+            w[4] == b'-' && w[7] == b'-' && w.iter().enumerate().all(|(k, c)| k == 4 || k == 7 || c.is_ascii_digit())
+        });
+        assert!(!date, "line {}: a date: {l}", i + 1);
+        assert!(!l.to_lowercase().contains("issue "), "line {}: an issue number: {l}", i + 1);
     }
 }

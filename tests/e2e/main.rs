@@ -35,6 +35,55 @@ fn ranked_ids(diagnosis_json: &Path) -> Vec<String> {
         .collect()
 }
 
+/// The ranking, the ladder and the verdict of a diagnosis agree (the diagnose stage's output
+/// folder `dir`, and the page `html` that shows it): no rung's effect sits on a bound; no one-parameter rung holds
+/// its neutral value in its interval; an effect fitted outside its expected range is called a
+/// calibration factor, never "Missing"; a ladder effect whose ranking line has a note (alone
+/// on the baseline) is explained on the page; an effect the ladder did not take is not in the
+/// answer.
+fn diagnosis_agrees(dir: &Path, html: &str) {
+    let read = |f: &str| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join(f)).unwrap()).unwrap()
+    };
+    let j = read("diagnosis.json");
+    let d = &j["diagnosis"];
+    let ladder = d["ladder"].as_array().unwrap();
+    let last = &ladder.last().unwrap()["params"];
+    let summary = read("summary.json");
+    let verdict = summary["diagnosis"]["verdict"].as_str().unwrap().to_string();
+    let missing = verdict
+        .strip_prefix("Missing: ")
+        .map_or("", |m| m.split(". ").next().unwrap_or(""));
+    for rung in &ladder[1..] {
+        let id = rung["added"].as_str().unwrap();
+        let own: Vec<&serde_json::Value> = last.as_array().unwrap().iter().filter(|p| p["effect"] == id).collect();
+        assert!(!own.is_empty(), "{id}: no parameters in the final rung");
+        for p in &own {
+            assert_eq!(p["at_bound"], false, "{id} on a rung at its bound: {p}");
+        }
+        if own.len() == 1 {
+            assert_eq!(own[0]["holds_neutral"], false, "{id} on a rung holds its neutral value: {}", own[0]);
+        }
+        let calibration = own.iter().any(|p| p["outside_expected"] == true);
+        if calibration {
+            assert!(!missing.contains(id) && verdict.contains("calibration factor"), "{id}: {verdict}");
+        } else {
+            assert!(missing.contains(id), "{id} is physics, not in the answer: {verdict}");
+        }
+        let ranked = d["ranking"].as_array().unwrap().iter().find(|s| s["id"] == id).unwrap();
+        if !ranked["note"].is_null() {
+            assert!(
+                html.contains("on the ladder (step") && html.contains("That is it alone on the baseline"),
+                "{id}: its ranking note is not explained"
+            );
+        }
+    }
+    for nt in d["not_taken"].as_array().unwrap() {
+        let id = nt["id"].as_str().unwrap();
+        assert!(!j["final_effects"].as_array().unwrap().iter().any(|e| e.as_str().unwrap().starts_with(id)), "{id}");
+    }
+}
+
 /// The effects a signature's text names as able to make the first pattern after `after`, and
 /// those it names as not ("Effects that can make it (...): a, b; not c, d. ...").
 fn effect_lists<'a>(text: &'a str, after: &str) -> (Vec<&'a str>, Vec<&'a str>) {

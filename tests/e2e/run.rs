@@ -19,6 +19,20 @@ fn default_case_from_scan_to_report() {
     let out = dir.path().join("out");
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(text.contains("APC 10x4.7 Slow Flyer: 6 stages"), "{text}");
+    // A short terminal: at most 25 lines, none over 160 characters.
+    let terminal = format!("{}{text}", stderr(&o));
+    let lines: Vec<&str> = terminal.lines().collect();
+    assert!(lines.len() <= 25, "{} lines:\n{terminal}", lines.len());
+    assert!(lines.iter().all(|l| l.chars().count() <= 160), "{terminal}");
+    assert!(terminal.contains("APC's prediction: +14.4 %"), "{terminal}");
+    // The report leads with the answer: the headline, the diagnosis and the outputs before the
+    // geometry; the ranking, the ladder and the verdict agree.
+    let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
+    let at = |s: &str| html.find(s).unwrap_or_else(|| panic!("{s} missing"));
+    for s in ["How close the prediction is", "What is missing", "id=\"outputs\"", "polars/prop.qprop"] {
+        assert!(at(s) < at("id=\"geometry\""), "{s} after the geometry");
+    }
+    diagnosis_agrees(&dir.path().join("out/diagnose"), &html);
     // Every stage's outputs.
     for f in [
         "scan/geometry.csv",
@@ -230,6 +244,13 @@ fn shipped_cases_without_a_scan() {
         let (_, rows) = read_csv(&dir.path().join(case).join("predict/sweep.csv"));
         assert!(rows.len() >= 60, "{case}: {} sweep rows", rows.len());
     }
+    // The PhotoFoil step test is static: its pages draw nothing against J, and give the hover
+    // metrics; its diagnosis agrees with itself.
+    let pf = dir.path().join("photofoil_8x4.5");
+    let html = std::fs::read_to_string(pf.join("report.html")).unwrap();
+    assert!(!html.contains("error against J") && !html.contains("vs advance ratio"), "J panels on static data");
+    assert!(html.contains("Hover (11 static points): figure of merit measured"), "no hover metrics");
+    diagnosis_agrees(&pf.join("diagnose"), &html);
     // No measurements: no comparison in the report.
     let html = std::fs::read_to_string(dir.path().join("cam6x3/report.html")).unwrap();
     assert!(!html.contains("id=\"compare\""));

@@ -177,7 +177,11 @@ pub fn run(a: &RunArgs) -> Result<bool> {
                 );
             } else {
                 let (first, rest) = lines.split_first().map_or(("", &[][..]), |(f, r)| (f.as_str(), r));
-                eprintln!("propbet [{n}/{total}] {}: {first} ({:.1} s)", record.spec.name(), record.seconds);
+                eprintln!(
+                    "propbet [{n}/{total}] {}: {first} ({:.1} s)",
+                    record.spec.name(),
+                    record.seconds
+                );
                 for l in rest {
                     eprintln!("  {l}");
                 }

@@ -549,7 +549,11 @@ fn neutral_note(own: &[FittedParam]) -> String {
                 propbet_effects::fmt_value(p.value),
                 propbet_effects::fmt_value(c)
             ),
-            None => format!("{} = {} (not determined by the data)", p.name, propbet_effects::fmt_value(p.value)),
+            None => format!(
+                "{} = {} (not determined by the data)",
+                p.name,
+                propbet_effects::fmt_value(p.value)
+            ),
         })
         .collect();
     format!(
@@ -988,7 +992,9 @@ pub fn diagnose(
     // Alike candidates are looked for where the answer is one effect: a ladder of several is
     // chosen by the joint fit, where a first step's near tie is settled by the steps after it.
     let first_id = (ladder.len() == 2).then(|| ladder[1].added.clone());
-    let alike = first_id.as_deref().map_or_else(Vec::new, |id| alike(&ranking, id, repeatability.as_ref()));
+    let alike = first_id
+        .as_deref()
+        .map_or_else(Vec::new, |id| alike(&ranking, id, repeatability.as_ref()));
     let tell_apart = (!alike.is_empty()).then(|| tell_apart(data));
     let final_residuals = current.fit.residuals.clone();
     // The candidates' responses on the baseline, and on the final model where the ladder
@@ -1007,10 +1013,7 @@ pub fn diagnose(
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         repeatability,
-        not_taken: dropped
-            .into_iter()
-            .map(|(id, why)| NotTaken { id, why })
-            .collect(),
+        not_taken: dropped.into_iter().map(|(id, why)| NotTaken { id, why }).collect(),
         alike,
         tell_apart,
         final_stack: current.fit.stack.clone(),

@@ -100,7 +100,10 @@ pub fn hover_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure>
         series: vec![
             Series::new(
                 "measured",
-                measured.iter().map(|(t, h)| (*t, if k == 0 { h.0 } else { h.1 })).collect(),
+                measured
+                    .iter()
+                    .map(|(t, h)| (*t, if k == 0 { h.0 } else { h.1 }))
+                    .collect(),
                 Mark::Dots,
                 Some(0),
             ),
@@ -118,7 +121,11 @@ pub fn hover_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure>
     Some(Figure {
         panels: vec![
             panel(0, "Hover: figure of merit against thrust", "figure of merit"),
-            panel(1, "Hover: thrust per watt against thrust", "thrust per shaft power [g/W]"),
+            panel(
+                1,
+                "Hover: thrust per watt against thrust",
+                "thrust per shaft power [g/W]",
+            ),
         ],
         columns: 2,
         width: 1200,
@@ -132,7 +139,9 @@ pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points:
     let rows = headline_rows(m, reference);
     let mut h = String::new();
     if rows.is_empty() {
-        h.push_str("<p class=\"warn\">No measured point could be scored (every point is flagged: see the point table).</p>\n");
+        h.push_str(
+            "<p class=\"warn\">No measured point could be scored (every point is flagged: see the point table).</p>\n",
+        );
         return h;
     }
     let theirs = reference.map(reference_name);

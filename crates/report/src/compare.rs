@@ -365,11 +365,7 @@ pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::V
             .iter()
             .map(|(q, x, _)| format!("{q} {}", pct(x.mean_rel)))
             .collect();
-        let theirs: Vec<String> = r
-            .errors
-            .iter()
-            .filter_map(|(_, _, o)| o.map(pct))
-            .collect();
+        let theirs: Vec<String> = r.errors.iter().filter_map(|(_, _, o)| o.map(pct)).collect();
         let name = r.name.split(',').next().unwrap_or(&r.name).to_string();
         out.push(format!(
             "{name} ({} points): {} mean error{}",
@@ -660,6 +656,9 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     }
     if let Some(f) = static_figure(input.curves, pts, reference.as_ref()) {
         figures.push(("static".to_string(), f));
+    }
+    if let Some(f) = crate::answer::hover_figure(input.curves, pts) {
+        figures.push(("hover".to_string(), f));
     }
     figures.push(("residuals".to_string(), residual_figure(pts)));
 

@@ -143,10 +143,23 @@ pub fn verdict(d: &Diagnosis) -> String {
     if !calibration.is_empty() {
         let ranges: Vec<String> = calibration
             .iter()
-            .flat_map(|id| last.params.iter().filter(move |p| p.effect == *id && p.outside_expected))
-            .map(|p| format!("{}:{} expected {}-{}", p.effect, p.name, fmt_value(p.expected.0), fmt_value(p.expected.1)))
+            .flat_map(|id| {
+                last.params
+                    .iter()
+                    .filter(move |p| p.effect == *id && p.outside_expected)
+            })
+            .map(|p| {
+                format!(
+                    "{}:{} expected {}-{}",
+                    p.effect,
+                    p.name,
+                    fmt_value(p.expected.0),
+                    fmt_value(p.expected.1)
+                )
+            })
             .collect();
-        let _ = write!(
+        let _ =
+            write!(
             text,
             "{}{} {}: outside the physically expected range ({}), {} a calibration factor: the model misses something \
              {} only imitate{}.",
@@ -482,7 +495,9 @@ pub fn ladder_remark(d: &Diagnosis, s: &Scored) -> Option<String> {
 
 fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
     let loro = s.loro_rms.map_or("–".into(), pct);
-    let remark = remark.map_or(String::new(), |r| format!("<br><span class=\"note\">{}</span>", esc(&r)));
+    let remark = remark.map_or(String::new(), |r| {
+        format!("<br><span class=\"note\">{}</span>", esc(&r))
+    });
     match &s.note {
         Some(n) => format!(
             "<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\">{}{remark}</td></tr>\n",

@@ -240,7 +240,11 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
                 grouped.len()
             );
             for (n, text) in &grouped {
-                let count = if *n > 1 { format!("{n} stations, for example: ") } else { String::new() };
+                let count = if *n > 1 {
+                    format!("{n} stations, for example: ")
+                } else {
+                    String::new()
+                };
                 let _ = write!(h, "<li>{count}{}</li>", esc(text));
             }
             h.push_str("</ul></details>");
