@@ -833,8 +833,7 @@ fn a_model_beyond_every_bound_is_told_so() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert_eq!(j["diagnosis"]["found"], false, "{out}");
     assert!(
-        out.starts_with("Nothing significant")
-            && out.contains("no effect within its physical bounds describes it"),
+        out.starts_with("Nothing significant") && out.contains("no effect within its physical bounds describes it"),
         "{out}"
     );
     assert!(

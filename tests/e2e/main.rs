@@ -62,11 +62,18 @@ fn diagnosis_agrees(dir: &Path, html: &str) {
             assert_eq!(p["at_bound"], false, "{id} on a rung at its bound: {p}");
         }
         if own.len() == 1 {
-            assert_eq!(own[0]["holds_neutral"], false, "{id} on a rung holds its neutral value: {}", own[0]);
+            assert_eq!(
+                own[0]["holds_neutral"], false,
+                "{id} on a rung holds its neutral value: {}",
+                own[0]
+            );
         }
         let calibration = own.iter().any(|p| p["outside_expected"] == true);
         if calibration {
-            assert!(!missing.contains(id) && verdict.contains("calibration factor"), "{id}: {verdict}");
+            assert!(
+                !missing.contains(id) && verdict.contains("calibration factor"),
+                "{id}: {verdict}"
+            );
         } else {
             assert!(missing.contains(id), "{id} is physics, not in the answer: {verdict}");
         }
@@ -80,7 +87,14 @@ fn diagnosis_agrees(dir: &Path, html: &str) {
     }
     for nt in d["not_taken"].as_array().unwrap() {
         let id = nt["id"].as_str().unwrap();
-        assert!(!j["final_effects"].as_array().unwrap().iter().any(|e| e.as_str().unwrap().starts_with(id)), "{id}");
+        assert!(
+            !j["final_effects"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|e| e.as_str().unwrap().starts_with(id)),
+            "{id}"
+        );
     }
 }
 

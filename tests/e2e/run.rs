@@ -29,7 +29,12 @@ fn default_case_from_scan_to_report() {
     // geometry; the ranking, the ladder and the verdict agree.
     let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
     let at = |s: &str| html.find(s).unwrap_or_else(|| panic!("{s} missing"));
-    for s in ["How close the prediction is", "What is missing", "id=\"outputs\"", "polars/prop.qprop"] {
+    for s in [
+        "How close the prediction is",
+        "What is missing",
+        "id=\"outputs\"",
+        "polars/prop.qprop",
+    ] {
         assert!(at(s) < at("id=\"geometry\""), "{s} after the geometry");
     }
     diagnosis_agrees(&dir.path().join("out/diagnose"), &html);
@@ -248,8 +253,14 @@ fn shipped_cases_without_a_scan() {
     // metrics; its diagnosis agrees with itself.
     let pf = dir.path().join("photofoil_8x4.5");
     let html = std::fs::read_to_string(pf.join("report.html")).unwrap();
-    assert!(!html.contains("error against J") && !html.contains("vs advance ratio"), "J panels on static data");
-    assert!(html.contains("Hover (11 static points): figure of merit measured"), "no hover metrics");
+    assert!(
+        !html.contains("error against J") && !html.contains("vs advance ratio"),
+        "J panels on static data"
+    );
+    assert!(
+        html.contains("Hover (11 static points): figure of merit measured"),
+        "no hover metrics"
+    );
     diagnosis_agrees(&pf.join("diagnose"), &html);
     // No measurements: no comparison in the report.
     let html = std::fs::read_to_string(dir.path().join("cam6x3/report.html")).unwrap();
