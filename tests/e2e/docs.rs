@@ -113,8 +113,9 @@ fn every_documented_command_runs() {
                 .current_dir(&dir)
                 .output()
                 .unwrap();
+            // Done (0), or done with problems it reports (1: XFOIL's unconverged angles).
             assert!(
-                o.status.success(),
+                matches!(o.status.code(), Some(0 | 1)),
                 "{}: `{cmd}` exited {:?}: {}",
                 page.display(),
                 o.status.code(),
@@ -275,12 +276,19 @@ fn the_readme_is_short() {
             i + 1,
             l.chars().count()
         );
-        let date = l.as_bytes().windows(10).any(|w| {
+        // A date stands alone (a file name that holds one, `StepsTest_2022-01-18_1538.csv`, is
+        // no date of the project's history).
+        let b = l.as_bytes();
+        let alone = |c: Option<&u8>| c.is_none_or(|c| !c.is_ascii_alphanumeric() && *c != b'_');
+        let date = (0..b.len().saturating_sub(9)).any(|i| {
+            let w = &b[i..i + 10];
             w[4] == b'-'
                 && w[7] == b'-'
                 && w.iter()
                     .enumerate()
                     .all(|(k, c)| k == 4 || k == 7 || c.is_ascii_digit())
+                && alone(i.checked_sub(1).map(|j| &b[j]))
+                && alone(b.get(i + 10))
         });
         assert!(!date, "line {}: a date: {l}", i + 1);
         assert!(

@@ -197,11 +197,18 @@ fn default_case_from_scan_to_report() {
     ));
     // The base model's settings are named with it.
     assert!(html.contains("used as tables in alpha and Re; rotational augmentation snel, section drag times 1.25;"));
+    // The stages' notes: those on the exported QPROP file's fit beside that file, the standard
+    // air beside the headline, and every note collapsed at the end.
     let top = &html[..html.find("How this report was made").expect("stage table")];
-    assert!(top.contains("Problems the stages reported"), "no summary");
     assert!(
-        top.contains("<b>polars</b>: ") && top.contains("standard air assumed"),
+        top.contains("notes on this file's fit (they concern the exported file"),
         "{top}"
+    );
+    assert!(top.contains("standard air is assumed at 129 of 129 points"), "{top}");
+    let end = &html[html.find("id=\"problems\"").expect("the notes at the end")..];
+    assert!(
+        end.contains("<details>") && end.contains("<b>polars</b>: ") && end.contains("standard air assumed"),
+        "{end}"
     );
     let err = stderr(&o);
     assert!(err.lines().count() < 60, "the terminal repeats itself: {err}");

@@ -295,7 +295,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());
             }
-            w.brief = propbet_report::compare::brief(&c.sets, &c.metrics, reference.as_ref());
+            w.brief = propbet_report::answer::brief(&c.sets, &c.metrics, reference.as_ref());
             w.page = Some(page);
             w.reference = reference;
         }

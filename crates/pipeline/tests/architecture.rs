@@ -227,3 +227,47 @@ fn no_crate_depends_on_one_above_it_in_the_data_flow() {
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
+
+/// The Rust sources (not tests) of the workspace's crates and of `xfoil_runner`, with their paths.
+fn sources() -> Vec<(PathBuf, String)> {
+    let mut out = Vec::new();
+    let mut stack: Vec<PathBuf> = crates().into_iter().map(|c| c.join("src")).collect();
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                out.push((p, text));
+            }
+        }
+    }
+    out
+}
+
+/// ARCHITECTURE.md's invariants that grep can see: no `unsafe`; the solver prints nothing,
+/// reads no file and starts no process; only `xfoil_runner` starts a process (XFOIL, Xvfb).
+#[test]
+fn the_invariants_grep_can_see_hold() {
+    let mut broken = Vec::new();
+    for (path, text) in sources() {
+        let code = code(&text);
+        let rel = path.strip_prefix(workspace()).unwrap().display().to_string();
+        if code.contains("unsafe ") || code.contains("unsafe{") {
+            broken.push(format!("{rel}: unsafe"));
+        }
+        if rel.starts_with("crates/bemt/") {
+            for pat in ["println!", "eprintln!", "std::fs::", "File::open", "Command::new"] {
+                if code.contains(pat) {
+                    broken.push(format!("{rel}: the solver uses {pat}"));
+                }
+            }
+        }
+        if !rel.starts_with("xfoil_runner/") && (code.contains("Command::new") || code.contains("process::Command")) {
+            broken.push(format!("{rel}: starts a process outside xfoil_runner"));
+        }
+    }
+    assert!(broken.is_empty(), "{broken:#?}");
+}

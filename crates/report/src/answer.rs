@@ -6,18 +6,18 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{figure_of_merit, quantile, Metrics};
+use propbet_compare::metrics::{figure_of_merit, quantile, Metric, Metrics};
 use propbet_compare::ComparedPoint;
-use propbet_diagnose::discover::Diagnosis;
+use propbet_measure::MeasuredSet;
 use propbet_plot::{Figure, Mark, Panel, Series};
 
-use crate::compare::{headline_rows, reference_name};
 use crate::page::{esc, sig};
 
 /// Standard gravity [m/s²], for thrust in grams.
 const G0: f64 = 9.80665;
 
-fn pct(x: f64) -> String {
+/// A signed relative error in percent ("+1.2 %"), a dash where it is not finite.
+pub fn pct(x: f64) -> String {
     if x.is_finite() {
         format!("{:+.1} %", 100.0 * x)
     } else {
@@ -48,7 +48,9 @@ pub struct Hover {
 /// The hover metrics of the static points (None without a static point with thrust and power
 /// measured and predicted).
 pub fn hover(points: &[ComparedPoint]) -> Option<Hover> {
-    let pairs: Vec<(f64, (f64, f64), (f64, f64))> = points
+    // (measured thrust, measured (FM, g/W), predicted (FM, g/W)) per static point.
+    type Pair = (f64, (f64, f64), (f64, f64));
+    let pairs: Vec<Pair> = points
         .iter()
         .filter(|p| p.is_static() && p.scored())
         .filter_map(|p| {
@@ -197,70 +199,91 @@ pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points:
     h
 }
 
-/// What the diagnosis found, as a table of its steps (effect, fitted value, physically expected
-/// range, held-out error after it) and the verdict's sentence.
-pub fn diagnosis_html(d: &Diagnosis) -> String {
-    let mut h = String::new();
-    let steps = crate::diagnose::steps(d);
-    if !steps.is_empty() {
-        let _ = write!(
-            h,
-            "<table class=\"steps\"><tr><th>step</th><th class=\"text\">effect added</th><th class=\"text\">fitted value (95 %)</th><th class=\"text\">physically expected</th><th>held-out error after</th></tr>\n<tr><td>0</td><td class=\"text\">the prediction as it is</td><td></td><td></td><td>{:.2} %</td></tr>\n",
-            100.0 * d.ladder[0].kfold_rms
-        );
-        for (i, s) in steps.iter().enumerate() {
-            let _ = writeln!(
-                h,
-                "<tr{}><td>{}</td><td class=\"text\"><b>{}</b>{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td>{:.2} %</td></tr>",
-                if s.calibration { " class=\"calibration\"" } else { "" },
-                i + 1,
-                esc(&s.id),
-                if s.calibration {
-                    "<br><span class=\"note\">a calibration factor, not found physics</span>"
-                } else {
-                    ""
-                },
-                esc(&s.values),
-                esc(&s.expected),
-                100.0 * s.after
-            );
-        }
-        h.push_str("</table>\n");
-    }
-    let _ = writeln!(h, "<p class=\"verdict\">{}</p>", esc(&meaning(d)));
-    h
+/// The headline groups with another code's beside them: per group (static, forward flight) its
+/// name, scored points, and per quantity (thrust, torque) propbet's mean relative error and the
+/// other code's on the same points (from its `headline_json`), where there is one.
+pub struct HeadlineRow {
+    /// "static", "forward flight, below 85 % of the zero-thrust J".
+    pub name: String,
+    /// Scored points.
+    pub points: usize,
+    /// (quantity, propbet's metric, the other code's mean relative error).
+    pub errors: Vec<(&'static str, Metric, Option<f64>)>,
 }
 
-/// What the diagnosis means, in one sentence: what the model misses, what only imitates it,
-/// and what is left; the verdict where nothing was found.
-pub fn meaning(d: &Diagnosis) -> String {
-    if !d.found {
-        return crate::diagnose::verdict(d);
-    }
-    let (physics, calibration) = crate::diagnose::answer_parts(d);
-    let mut parts = Vec::new();
-    if !physics.is_empty() {
-        parts.push(format!("the model misses {}", physics.join(" and ")));
-    }
-    if !calibration.is_empty() {
-        parts.push(format!(
-            "{} only imitate{} something it misses (fitted outside the physically expected range)",
-            calibration.join(" and "),
-            if calibration.len() == 1 { "s" } else { "" }
+/// The rows of [`HeadlineRow`] from the metrics and an optional reference JSON
+/// (`{"name": ..., "headline": headline_json(..)}`).
+pub fn headline_rows(m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<HeadlineRow> {
+    m.headline
+        .iter()
+        .map(|g| {
+            let theirs = reference.and_then(|r| {
+                r["headline"]
+                    .as_array()?
+                    .iter()
+                    .find(|h| h["points"] == g.name.as_str())
+                    .cloned()
+            });
+            HeadlineRow {
+                name: g.name.clone(),
+                points: g.points,
+                errors: ["thrust", "torque"]
+                    .into_iter()
+                    .filter_map(|q| {
+                        let x = g.metrics.get(q)?.clone();
+                        let other = theirs.as_ref().and_then(|t| t["errors"][q]["mean_error"].as_f64());
+                        Some((q, x, other))
+                    })
+                    .collect(),
+            }
+        })
+        .collect()
+}
+
+/// The reference's short name ("APC's prediction" of "APC's prediction (PER3_10x47SF.dat)").
+pub fn reference_name(reference: &serde_json::Value) -> String {
+    let name = reference["name"].as_str().unwrap_or("the reference");
+    name.split(" (").next().unwrap_or(name).to_string()
+}
+
+/// The comparison in a few short lines (the terminal of `propbet run`): the files read and rows
+/// dropped, then per headline group the mean thrust and torque error, another code's beside.
+pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<String> {
+    let rows: usize = sets.iter().map(|s| s.rows).sum();
+    let points: usize = sets.iter().map(|s| s.points.len()).sum();
+    let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
+    let dropped: usize = sets.iter().map(|s| s.dropped.len()).sum();
+    let mut out = vec![format!(
+        "{} file{}, {rows} rows -> {points} points{}",
+        sets.len(),
+        if sets.len() == 1 { "" } else { "s" },
+        match (dropped, faults) {
+            (0, _) => ", none dropped".to_string(),
+            (1, 0) => ", 1 row dropped (why: in the report)".to_string(),
+            (d, 0) => format!(", {d} rows dropped (why: in the report)"),
+            (d, f) => format!(", {d} rows dropped, {f} of them as faulty (in the report)"),
+        }
+    )];
+    for r in headline_rows(m, reference) {
+        let ours: Vec<String> = r
+            .errors
+            .iter()
+            .map(|(q, x, _)| format!("{q} {}", pct(x.mean_rel)))
+            .collect();
+        let theirs: Vec<String> = r.errors.iter().filter_map(|(_, _, o)| o.map(pct)).collect();
+        let name = r.name.split(',').next().unwrap_or(&r.name).to_string();
+        out.push(format!(
+            "{name} ({} points): {} mean error{}",
+            r.points,
+            ours.join(", "),
+            match (reference, theirs.is_empty()) {
+                (Some(rf), false) => format!("; {}: {}", reference_name(rf), theirs.join(", ")),
+                _ => String::new(),
+            }
         ));
     }
-    if !d.alike.is_empty() {
-        parts.push(format!(
-            "the data cannot tell {} from {} ({} would)",
-            d.ladder[1].added,
-            d.alike.join(" or "),
-            d.tell_apart.as_deref().unwrap_or("another measurement")
-        ));
+    if m.overall.points == 0 {
+        out.push("no point could be scored (every point is flagged: see the report)".into());
     }
-    let left = d.unexplained();
-    let mut text = parts.join("; ");
-    if let Some(first) = text.get(..1) {
-        text = first.to_uppercase() + &text[1..];
-    }
-    format!("{text}. {}.", left.split(": ").next().unwrap_or(&left))
+    out
 }

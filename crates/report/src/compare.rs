@@ -6,9 +6,7 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{
-    group_points, static_rise, sweep_group, zero_thrust_shift, Metric, MetricGroup, Metrics,
-};
+use propbet_compare::metrics::{group_points, static_rise, sweep_group, zero_thrust_shift, MetricGroup, Metrics};
 use propbet_compare::{ComparedPoint, QUANTITIES};
 use propbet_measure::{DropReason, Dropped, MeasuredSet};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
@@ -88,13 +86,7 @@ fn label(q: &str) -> (&'static str, &'static str) {
     LABELS.iter().find(|l| l.0 == q).map_or(("?", ""), |l| (l.1, l.2))
 }
 
-fn pct(x: f64) -> String {
-    if x.is_finite() {
-        format!("{:+.1} %", 100.0 * x)
-    } else {
-        "–".into()
-    }
-}
+use crate::answer::pct;
 
 fn measured_series(
     name: String,
@@ -292,95 +284,6 @@ pub fn headline_json(m: &Metrics) -> serde_json::Value {
         })
         .collect();
     json!(groups)
-}
-
-/// The headline groups with another code's beside them: per group (static, forward flight) its
-/// name, scored points, and per quantity (thrust, torque) propbet's mean relative error and the
-/// other code's on the same points (from its `headline_json`), where there is one.
-pub struct HeadlineRow {
-    /// "static", "forward flight, below 85 % of the zero-thrust J".
-    pub name: String,
-    /// Scored points.
-    pub points: usize,
-    /// (quantity, propbet's metric, the other code's mean relative error).
-    pub errors: Vec<(&'static str, Metric, Option<f64>)>,
-}
-
-/// The rows of [`HeadlineRow`] from the metrics and an optional reference JSON
-/// (`{"name": ..., "headline": headline_json(..)}`).
-pub fn headline_rows(m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<HeadlineRow> {
-    m.headline
-        .iter()
-        .map(|g| {
-            let theirs = reference.and_then(|r| {
-                r["headline"]
-                    .as_array()?
-                    .iter()
-                    .find(|h| h["points"] == g.name.as_str())
-                    .cloned()
-            });
-            HeadlineRow {
-                name: g.name.clone(),
-                points: g.points,
-                errors: ["thrust", "torque"]
-                    .into_iter()
-                    .filter_map(|q| {
-                        let x = g.metrics.get(q)?.clone();
-                        let other = theirs.as_ref().and_then(|t| t["errors"][q]["mean_error"].as_f64());
-                        Some((q, x, other))
-                    })
-                    .collect(),
-            }
-        })
-        .collect()
-}
-
-/// The reference's short name ("APC's prediction" of "APC's prediction (PER3_10x47SF.dat)").
-pub fn reference_name(reference: &serde_json::Value) -> String {
-    let name = reference["name"].as_str().unwrap_or("the reference");
-    name.split(" (").next().unwrap_or(name).to_string()
-}
-
-/// The comparison in a few short lines (the terminal of `propbet run`): the files read and rows
-/// dropped, then per headline group the mean thrust and torque error, another code's beside.
-pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<String> {
-    let rows: usize = sets.iter().map(|s| s.rows).sum();
-    let points: usize = sets.iter().map(|s| s.points.len()).sum();
-    let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
-    let dropped: usize = sets.iter().map(|s| s.dropped.len()).sum();
-    let mut out = vec![format!(
-        "{} file{}, {rows} rows -> {points} points{}",
-        sets.len(),
-        if sets.len() == 1 { "" } else { "s" },
-        match (dropped, faults) {
-            (0, _) => ", none dropped".to_string(),
-            (1, 0) => ", 1 row dropped (why: in the report)".to_string(),
-            (d, 0) => format!(", {d} rows dropped (why: in the report)"),
-            (d, f) => format!(", {d} rows dropped, {f} of them as faulty (in the report)"),
-        }
-    )];
-    for r in headline_rows(m, reference) {
-        let ours: Vec<String> = r
-            .errors
-            .iter()
-            .map(|(q, x, _)| format!("{q} {}", pct(x.mean_rel)))
-            .collect();
-        let theirs: Vec<String> = r.errors.iter().filter_map(|(_, _, o)| o.map(pct)).collect();
-        let name = r.name.split(',').next().unwrap_or(&r.name).to_string();
-        out.push(format!(
-            "{name} ({} points): {} mean error{}",
-            r.points,
-            ours.join(", "),
-            match (reference, theirs.is_empty()) {
-                (Some(rf), false) => format!("; {}: {}", reference_name(rf), theirs.join(", ")),
-                _ => String::new(),
-            }
-        ));
-    }
-    if m.overall.points == 0 {
-        out.push("no point could be scored (every point is flagged: see the report)".into());
-    }
-    out
 }
 
 /// `summary.json` of `propbet compare`: the command, the headline, the points outside the
@@ -698,50 +601,21 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let mut h = String::with_capacity(2_000_000);
     let _ = write!(
         h,
-        "<h1>Prediction vs measurement</h1>\n<p class=\"note\">prop <code>{}</code> (D = {} m) against {} file(s); {} points ({} scored); air: {}.<br>command: <code>{}</code></p>\n",
+        "<h1>Prediction vs measurement</h1>\n<p class=\"note\">prop <code>{}</code> (D = {} m) against {} file(s); {} points ({} scored); air: {}.</p>\n",
         esc(&input.prop),
         sig(input.diameter),
         input.files.len(),
         pts.len(),
         pts.len() - m.unscored,
         air_line,
-        esc(&input.command)
     );
     // The headline: the scored window (validate's and diagnose's), static and forward flight
-    // apart, per quantity, with the worst point named.
-    h.push_str("<div class=\"cards\">");
-    for g in &m.headline {
-        for q in ["thrust", "torque"] {
-            if let Some(x) = g.metrics.get(q) {
-                let beside = reference
-                    .as_ref()
-                    .and_then(|r| {
-                        let rg = r.metrics.headline.iter().find(|rg| rg.name == g.name)?;
-                        let y = rg.metrics.get(q)?;
-                        Some(format!(
-                            "<br>{}: mean error {}, mean |error| {:.1} % over {} points",
-                            esc(r.name),
-                            pct(y.mean_rel),
-                            100.0 * y.mean_abs_rel,
-                            y.n
-                        ))
-                    })
-                    .unwrap_or_default();
-                let _ = write!(
-                    h,
-                    "<div class=\"card\">{} {}, mean error<b>{}</b>mean |error| {:.1} % over {} points · worst {} at {}{beside}</div>",
-                    esc(&g.name),
-                    label(q).0,
-                    pct(x.mean_rel),
-                    100.0 * x.mean_abs_rel,
-                    x.n,
-                    pct(x.max_rel),
-                    esc(&x.max_rel_at)
-                );
-            }
-        }
-    }
-    h.push_str("</div>\n");
+    // apart, per quantity, with the worst point named and the other code's error beside it;
+    // then the hover metrics where there are static points.
+    let reference_json = reference
+        .as_ref()
+        .map(|r| serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}));
+    h.push_str(&crate::answer::headline_html(m, reference_json.as_ref(), pts));
     if m.outside_window > 0 {
         let _ = writeln!(
             h,
@@ -752,6 +626,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     for w in &warnings {
         let _ = writeln!(h, "<p class=\"warn\">{}</p>", esc(w));
     }
+    let _ = writeln!(h, "<p class=\"note\">command: <code>{}</code></p>", esc(&input.command));
     let trends = speed_trends(pts);
     if !trends.is_empty() {
         h.push_str("<h2>With speed</h2>\n<ul>");

@@ -500,14 +500,14 @@ fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
     });
     match &s.note {
         Some(n) => format!(
-            "<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\">{}{remark}</td></tr>\n",
+            "<tr><td>{}</td><td><b>{}</b></td><td colspan=\"7\" class=\"text\">{}{remark}</td></tr>\n",
             i + 1,
             esc(&s.id),
             esc(n)
         ),
         None => format!(
             "<tr class=\"{}\"><td>{}</td><td><b>{}</b></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:+.0} %</td><td>{}</td><td>{}</td></tr>\n\
-             <tr><td></td><td colspan=\"8\" class=\"note\">{}{remark}</td></tr>\n",
+             <tr><td></td><td colspan=\"8\" class=\"note text\">{}{remark}</td></tr>\n",
             if s.significant { "sig" } else { "" },
             i + 1,
             esc(&s.id),
@@ -541,13 +541,14 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     let _ = write!(
         h,
         "<h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
-         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n{}",
+         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n{}<p>{}</p>\n",
         esc(prop),
         esc(&measured.join(", ")),
         d.points,
         d.rows,
         esc(command),
-        crate::answer::diagnosis_html(d)
+        diagnosis_html(d),
+        esc(&verdict)
     );
     h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
     for s in &d.before {
@@ -663,6 +664,75 @@ pub fn effect_args(d: &Diagnosis) -> Vec<String> {
         .iter()
         .map(|a| format!("--effect {}", a.describe()))
         .collect()
+}
+
+/// What the diagnosis found, as a table of its steps (effect, fitted value, physically expected
+/// range, held-out error after it) and the verdict's sentence.
+pub fn diagnosis_html(d: &Diagnosis) -> String {
+    let mut h = String::new();
+    let steps = steps(d);
+    if !steps.is_empty() {
+        let _ = write!(
+            h,
+            "<table class=\"steps\"><tr><th>step</th><th class=\"text\">effect added</th><th class=\"text\">fitted value (95 %)</th><th class=\"text\">physically expected</th><th>held-out error after</th></tr>\n<tr><td>0</td><td class=\"text\">the prediction as it is</td><td></td><td></td><td>{:.2} %</td></tr>\n",
+            100.0 * d.ladder[0].kfold_rms
+        );
+        for (i, s) in steps.iter().enumerate() {
+            let _ = writeln!(
+                h,
+                "<tr{}><td>{}</td><td class=\"text\"><b>{}</b>{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td>{:.2} %</td></tr>",
+                if s.calibration { " class=\"calibration\"" } else { "" },
+                i + 1,
+                esc(&s.id),
+                if s.calibration {
+                    "<br><span class=\"note\">a calibration factor, not found physics</span>"
+                } else {
+                    ""
+                },
+                esc(&s.values),
+                esc(&s.expected),
+                100.0 * s.after
+            );
+        }
+        h.push_str("</table>\n");
+    }
+    let _ = writeln!(h, "<p class=\"verdict\">{}</p>", esc(&meaning(d)));
+    h
+}
+
+/// What the diagnosis means, in one sentence: what the model misses, what only imitates it,
+/// and what is left; the verdict where nothing was found.
+pub fn meaning(d: &Diagnosis) -> String {
+    if !d.found {
+        return verdict(d);
+    }
+    let (physics, calibration) = answer_parts(d);
+    let mut parts = Vec::new();
+    if !physics.is_empty() {
+        parts.push(format!("the model misses {}", physics.join(" and ")));
+    }
+    if !calibration.is_empty() {
+        parts.push(format!(
+            "{} only imitate{} something {} misses (fitted outside the physically expected range)",
+            calibration.join(" and "),
+            if calibration.len() == 1 { "s" } else { "" },
+            if physics.is_empty() { "the model" } else { "it" }
+        ));
+    }
+    if !d.alike.is_empty() {
+        parts.push(format!(
+            "the data cannot tell {} from {} ({} would)",
+            d.ladder[1].added,
+            d.alike.join(" or "),
+            d.tell_apart.as_deref().unwrap_or("another measurement")
+        ));
+    }
+    let left = d.unexplained();
+    let mut text = parts.join("; ");
+    if let Some(first) = text.get(..1) {
+        text = first.to_uppercase() + &text[1..];
+    }
+    format!("{text}. {}.", left.split(": ").next().unwrap_or(&left))
 }
 
 #[cfg(test)]

@@ -37,7 +37,7 @@ pub fn page(
         }
         if let Some(d) = &run.diagnosed {
             h.push_str("<h2>What is missing</h2>\n");
-            h.push_str(&crate::answer::diagnosis_html(&d.diagnosis));
+            h.push_str(&crate::diagnose::diagnosis_html(&d.diagnosis));
         }
         h.push_str("</section>\n");
     }
