@@ -208,7 +208,16 @@ fn uiuc_static_and_sweeps_give_a_report() {
     );
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("<h2>With speed</h2>"));
-    assert!(html.contains("static thrust, mean error") && html.contains("not in these numbers"));
+    // The headline leads: a table of static and forward-flight errors, with the hover metrics.
+    assert!(html.contains("<table class=\"headline\">") && html.contains("not in these numbers"));
+    assert!(
+        html.contains("<tr><td class=\"text\">static</td><td>16</td>"),
+        "no static row"
+    );
+    assert!(
+        html.contains("Hover (16 static points): figure of merit measured"),
+        "no hover metrics"
+    );
     // The long points table folds, saying how many points are flagged.
     assert!(
         html.contains("<details><summary>") && html.contains(" flagged (the reader"),
@@ -463,7 +472,7 @@ fn apc_prediction_is_drawn_and_scored_beside_propbets() {
     assert!(apc > 0.05 && apc < 0.25, "APC static thrust error {apc}");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(html.contains("dashed: APC's prediction (PER3_10x47SF.dat)"));
-    assert!(html.contains("APC's prediction (PER3_10x47SF.dat): mean error"));
+    assert!(html.contains("<th>thrust, APC's prediction</th>"));
     // Not a PER3 file: exit 2, the file named, nothing written.
     let bad = dir.path().join("bad.dat");
     std::fs::write(&bad, "this is not APC's table\n").unwrap();

@@ -860,3 +860,64 @@ fn undetermined_parameters_are_said_so() {
     assert!(row.contains("strength = 0 (not determined by the data)"), "{row}");
     assert!(!md.contains("e5 |") && !md.contains("e5,"), "{md}");
 }
+
+/// A friction torque hidden in a static stand log of a narrow RPM range (the PhotoFoil prop,
+/// 8,000-10,000 rpm, 1 % noise): the drag's scale, the friction and the drag's Reynolds
+/// exponent explain it about equally well. The verdict names them and the measurement that
+/// would tell them apart (forward-flight sweeps), instead of picking one as found.
+#[test]
+fn candidates_the_data_cannot_tell_apart_are_named_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = repo().join("props/photofoil_8x4.5/QProp_8x4_5.txt");
+    let data = dir.path().join("friction.csv");
+    synth(
+        &prop,
+        &["torque-tare:q0=0.003,q1=0".to_string()],
+        &["--rpm", "8000:10000/11", "--j", "0"],
+        4,
+        &data,
+        dir.path(),
+    );
+    let (o, j) = diagnose(&prop, &[&data], &[], dir.path());
+    let out = String::from_utf8_lossy(&o.stdout);
+    let alike: Vec<&str> = j["diagnosis"]["alike"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_str().unwrap())
+        .collect();
+    let first = ladder_ids(&j);
+    assert_eq!(first.len(), 1, "{out}");
+    assert!(
+        first[0] == "torque-tare" || alike.contains(&"torque-tare"),
+        "the friction is neither the answer nor alike to it: {out}"
+    );
+    assert!(!alike.is_empty(), "{out}");
+    assert!(
+        out.starts_with("Missing: one of ")
+            && out.contains("the data cannot tell them apart; forward-flight sweeps (J above 0) would."),
+        "{out}"
+    );
+    // On the same prop with forward-flight sweeps the friction is told from the drag.
+    let data = dir.path().join("friction_sweeps.csv");
+    synth(
+        &prop,
+        &["torque-tare:q0=0.003,q1=0".to_string()],
+        &["--rpm", "6000,9000,12000", "--j", "0:0.5:0.05"],
+        4,
+        &data,
+        dir.path(),
+    );
+    let (o, j) = diagnose(&prop, &[&data], &[], dir.path());
+    assert_eq!(
+        ladder_ids(&j),
+        vec!["torque-tare".to_string()],
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    assert!(
+        j["diagnosis"]["alike"].as_array().unwrap().is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+}

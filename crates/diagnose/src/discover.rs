@@ -740,20 +740,21 @@ fn best_pair(
 
 /// The first step's significant candidates other than `first` (the ladder's first effect)
 /// whose held-out error is within the spread of `first`'s: closer than the measurements'
-/// repeatability, or than the held-out error's own sampling spread, rms / sqrt(2 n) over n
-/// residual rows (the standard error of an RMS estimated from n values).
+/// repeatability (where they repeat themselves), or than twice the held-out error's own
+/// standard error, rms / sqrt(2 n) over n residual rows (the standard error of an RMS): the two
+/// errors are then the same within what the data can resolve.
 fn alike(ranking: &[Scored], first: &str, rep: Option<&Repeatability>) -> Vec<String> {
     let Some(a) = ranking.iter().find(|s| s.id == first) else {
         return Vec::new();
     };
     let rows = a.fit.as_ref().map_or(1, |f| f.residuals.len().max(1)) as f64;
-    let spread = |x: f64| x / (2.0 * rows).sqrt();
+    let se = |x: f64| x / (2.0 * rows).sqrt();
     ranking
         .iter()
         .filter(|s| s.id != first && s.significant)
         .filter(|s| {
             let gap = (s.kfold_rms - a.kfold_rms).abs();
-            gap < rep.map_or(0.0, |r| r.sd) || gap < spread(a.kfold_rms).max(spread(s.kfold_rms))
+            gap < rep.map_or(0.0, |r| r.sd) || gap < 2.0 * se(a.kfold_rms).max(se(s.kfold_rms))
         })
         .map(|s| s.id.clone())
         .collect()
@@ -769,7 +770,7 @@ fn tell_apart(data: &Data) -> String {
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
     if all_static {
-        "forward-flight sweeps (J above 0), where the candidates differ most".into()
+        "forward-flight sweeps (J above 0)".into()
     } else if hi < 1.5 * lo {
         format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)")
     } else {

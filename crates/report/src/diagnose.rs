@@ -137,10 +137,35 @@ pub fn verdict(d: &Diagnosis) -> String {
             .collect()
     };
     let mut text = String::new();
-    if !physics.is_empty() {
+    // Alike candidates (the answer is one effect and others explain the data as well): the
+    // verdict names them all, not one.
+    let alike = !d.alike.is_empty() && d.ladder.len() == 2;
+    if alike {
+        let first = &d.ladder[1].added;
+        let err = |id: &str| {
+            d.ranking
+                .iter()
+                .find(|s| s.id == id)
+                .map_or("–".to_string(), |s| pct(s.kfold_rms))
+        };
+        let others: Vec<String> = d
+            .alike
+            .iter()
+            .map(|id| format!("{id} ({} held out)", err(id)))
+            .collect();
+        let _ = write!(
+            text,
+            "Missing: one of {} ({}; {} held out) or {}: the data cannot tell them apart; {} would.",
+            first,
+            params_text(&last.params, Some(first)),
+            err(first),
+            others.join(" or "),
+            d.tell_apart.as_deref().unwrap_or("another measurement")
+        );
+    } else if !physics.is_empty() {
         let _ = write!(text, "Missing: {}.", named(&physics).join(" and "));
     }
-    if !calibration.is_empty() {
+    if !calibration.is_empty() && !alike {
         let ranges: Vec<String> = calibration
             .iter()
             .flat_map(|id| {
@@ -170,23 +195,6 @@ pub fn verdict(d: &Diagnosis) -> String {
             if calibration.len() == 1 { "it is" } else { "each is" },
             if calibration.len() == 1 { "this effect" } else { "these effects" },
             if calibration.len() == 1 { "s" } else { "" },
-        );
-    }
-    if let (false, Some(first)) = (d.alike.is_empty(), d.ladder.get(1)) {
-        let err = |id: &str| {
-            d.ranking
-                .iter()
-                .find(|s| s.id == id)
-                .map_or("–".to_string(), |s| pct(s.kfold_rms))
-        };
-        let others: Vec<String> = d.alike.iter().map(|id| format!("{id} ({})", err(id))).collect();
-        let _ = write!(
-            text,
-            " The data cannot tell {} ({} held out alone) from {}: {} would.",
-            first.added,
-            err(&first.added),
-            others.join(" or "),
-            d.tell_apart.as_deref().unwrap_or("another measurement")
         );
     }
     let _ = write!(
@@ -289,7 +297,7 @@ pub fn brief(d: &Diagnosis) -> Vec<String> {
     }
     if !d.alike.is_empty() {
         out.push(format!(
-            "the data cannot tell {} from {}: {} would",
+            "the data cannot tell {} from {}: {} would tell them apart",
             d.ladder[1].added,
             d.alike.join(" or "),
             d.tell_apart.as_deref().unwrap_or("another measurement")
@@ -721,7 +729,7 @@ pub fn meaning(d: &Diagnosis) -> String {
     }
     if !d.alike.is_empty() {
         parts.push(format!(
-            "the data cannot tell {} from {} ({} would)",
+            "the data cannot tell {} from {} ({} would tell them apart)",
             d.ladder[1].added,
             d.alike.join(" or "),
             d.tell_apart.as_deref().unwrap_or("another measurement")
