@@ -185,13 +185,16 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
         let _ = writeln!(out, "{} ({})", e.id(), hooks.join(", "));
         for p in e.params() {
             let neutral = p.neutral.map_or("none".to_string(), propbet_effects::fmt_value);
+            let (lo, hi) = p.expected_range();
             let _ = writeln!(
                 out,
-                "    {} [{}]  neutral {neutral}, bounds [{}, {}]: {}",
+                "    {} [{}]  neutral {neutral}, bounds [{}, {}], physically expected [{}, {}]: {}",
                 p.name,
                 p.unit,
                 propbet_effects::fmt_value(p.lower),
                 propbet_effects::fmt_value(p.upper),
+                propbet_effects::fmt_value(lo),
+                propbet_effects::fmt_value(hi),
                 p.doc
             );
         }
