@@ -869,16 +869,20 @@ fn undetermined_parameters_are_said_so() {
 fn candidates_the_data_cannot_tell_apart_are_named_together() {
     let dir = tempfile::tempdir().unwrap();
     let prop = repo().join("props/photofoil_8x4.5/QProp_8x4_5.txt");
-    let data = dir.path().join("friction.csv");
-    synth(
-        &prop,
-        &["torque-tare:q0=0.003,q1=0".to_string()],
-        &["--rpm", "8000:10000/11", "--j", "0"],
-        4,
-        &data,
-        dir.path(),
-    );
-    let (o, j) = diagnose(&prop, &[&data], &[], dir.path());
+    // The friction hidden in a log of `points`, diagnosed.
+    let friction = |name: &str, points: &[&str]| {
+        let data = dir.path().join(name);
+        synth(
+            &prop,
+            &["torque-tare:q0=0.003,q1=0".to_string()],
+            points,
+            4,
+            &data,
+            dir.path(),
+        );
+        diagnose(&prop, &[&data], &[], dir.path())
+    };
+    let (o, j) = friction("friction.csv", &["--rpm", "8000:10000/11", "--j", "0"]);
     let out = String::from_utf8_lossy(&o.stdout);
     let alike: Vec<&str> = j["diagnosis"]["alike"]
         .as_array()
@@ -899,16 +903,10 @@ fn candidates_the_data_cannot_tell_apart_are_named_together() {
         "{out}"
     );
     // On the same prop with forward-flight sweeps the friction is told from the drag.
-    let data = dir.path().join("friction_sweeps.csv");
-    synth(
-        &prop,
-        &["torque-tare:q0=0.003,q1=0".to_string()],
+    let (o, j) = friction(
+        "friction_sweeps.csv",
         &["--rpm", "6000,9000,12000", "--j", "0:0.5:0.05"],
-        4,
-        &data,
-        dir.path(),
     );
-    let (o, j) = diagnose(&prop, &[&data], &[], dir.path());
     assert_eq!(
         ladder_ids(&j),
         vec!["torque-tare".to_string()],

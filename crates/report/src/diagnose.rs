@@ -295,18 +295,28 @@ pub fn brief(d: &Diagnosis) -> Vec<String> {
             pct(s.after)
         ));
     }
-    if !d.alike.is_empty() {
-        out.push(format!(
+    out.extend(alike_clause(d));
+    out.push(unexplained_clause(d));
+    out
+}
+
+/// "the data cannot tell a from b or c: <measurement> would tell them apart", where the answer
+/// has alike candidates.
+fn alike_clause(d: &Diagnosis) -> Option<String> {
+    (!d.alike.is_empty() && d.ladder.len() > 1).then(|| {
+        format!(
             "the data cannot tell {} from {}: {} would tell them apart",
             d.ladder[1].added,
             d.alike.join(" or "),
             d.tell_apart.as_deref().unwrap_or("another measurement")
-        ));
-    }
+        )
+    })
+}
+
+/// The first clause of [`Diagnosis::unexplained`] ("2.2 % unexplained, above the 0.3 % ...").
+fn unexplained_clause(d: &Diagnosis) -> String {
     let left = d.unexplained();
-    // The sentence's first clause ("2.2 % unexplained, above the 0.3 % ...").
-    out.push(left.split(": ").next().unwrap_or(&left).to_string());
-    out
+    left.split(": ").next().unwrap_or(&left).to_string()
 }
 
 /// The ladder's effects, split into found physics (every fitted value inside its physically
@@ -727,20 +737,12 @@ pub fn meaning(d: &Diagnosis) -> String {
             if physics.is_empty() { "the model" } else { "it" }
         ));
     }
-    if !d.alike.is_empty() {
-        parts.push(format!(
-            "the data cannot tell {} from {} ({} would tell them apart)",
-            d.ladder[1].added,
-            d.alike.join(" or "),
-            d.tell_apart.as_deref().unwrap_or("another measurement")
-        ));
-    }
-    let left = d.unexplained();
+    parts.extend(alike_clause(d));
     let mut text = parts.join("; ");
     if let Some(first) = text.get(..1) {
         text = first.to_uppercase() + &text[1..];
     }
-    format!("{text}. {}.", left.split(": ").next().unwrap_or(&left))
+    format!("{text}. {}.", unexplained_clause(d))
 }
 
 #[cfg(test)]
