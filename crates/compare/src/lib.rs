@@ -6,8 +6,6 @@
 pub mod curves;
 pub mod metrics;
 
-use std::f64::consts::PI;
-
 use propbet_atmosphere::AirState;
 use propbet_bemt::{Fluid, OperatingPoint, PointResult, Rotor, SolverOptions};
 use propbet_effects::{EffectError, Stack};
@@ -301,7 +299,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
                 power: Some(power),
                 ct: Some(ct),
                 cp: Some(cp),
-                cq: Some(cp / (2.0 * PI)),
+                cq: Some(propbet_units::cq_of_cp(cp)),
                 eta: (v > 0.0 && cp > 0.0 && ct > 0.0).then(|| thrust * v / power),
             };
             (m, Quantities::default())

@@ -2,8 +2,6 @@
 //! CSV, UIUC files or an RCbenchmark log, with an answer key. For tests, and for users
 //! learning what each effect looks like.
 
-use std::f64::consts::PI;
-
 use propbet_bemt::{Fluid, OperatingPoint};
 use propbet_effects::{EffectError, Stack};
 use rand::SeedableRng;
@@ -46,7 +44,8 @@ pub struct Point {
 
 /// The default RPMs: four from 40 % to 100 % of the RPM that gives a 150 m/s tip speed.
 pub fn default_rpms(diameter: f64) -> Vec<f64> {
-    let top = 150.0 / (PI * diameter) * 60.0;
+    // A tip speed of 150 m/s: omega = 150 / R.
+    let top = propbet_units::omega_to_rpm(150.0 / (0.5 * diameter));
     [0.4, 0.6, 0.8, 1.0]
         .iter()
         .map(|f| (f * top / 100.0).round() * 100.0)

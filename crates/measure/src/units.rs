@@ -148,9 +148,9 @@ pub fn conversion(q: Quantity, unit: &str) -> Option<Conversion> {
             _ => return None,
         },
         Quantity::Rotation => match u {
-            "rpm" | "1/min" | "revmin" | "revs/min" => Conversion::mul(std::f64::consts::PI / 30.0),
+            "rpm" | "1/min" | "revmin" | "revs/min" => Conversion::mul(propbet_units::rpm_to_omega(1.0)),
             "rad/s" | "rads" => Conversion::mul(1.0),
-            "hz" | "rps" | "rev/s" | "revs" => Conversion::mul(2.0 * std::f64::consts::PI),
+            "hz" | "rps" | "rev/s" | "revs" => Conversion::mul(propbet_units::rpm_to_omega(60.0)),
             _ => return None,
         },
         Quantity::Airspeed => match u {

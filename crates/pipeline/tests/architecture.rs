@@ -248,7 +248,8 @@ fn sources() -> Vec<(PathBuf, String)> {
 }
 
 /// ARCHITECTURE.md's invariants that grep can see: no `unsafe`; the solver prints nothing,
-/// reads no file and starts no process; only `xfoil_runner` starts a process (XFOIL, Xvfb).
+/// reads no file and starts no process; only `xfoil_runner` starts a process (XFOIL, Xvfb); no
+/// conversion between rpm, rev/s and rad/s outside `propbet-units` (its factors written out).
 #[test]
 fn the_invariants_grep_can_see_hold() {
     let mut broken = Vec::new();
@@ -262,6 +263,15 @@ fn the_invariants_grep_can_see_hold() {
             for pat in ["println!", "eprintln!", "std::fs::", "File::open", "Command::new"] {
                 if code.contains(pat) {
                     broken.push(format!("{rel}: the solver uses {pat}"));
+                }
+            }
+        }
+        if !rel.starts_with("crates/units/") {
+            for pat in ["PI / 30", "30.0 / PI", "/ (2.0 * PI)", "/ 60.0", "* 60.0"] {
+                if code.contains(pat) {
+                    broken.push(format!(
+                        "{rel}: `{pat}`, a conversion of rpm or rev/s outside propbet-units"
+                    ));
                 }
             }
         }

@@ -23,6 +23,11 @@ pub fn omega_to_rev_per_s(omega: f64) -> f64 {
     omega / (2.0 * PI)
 }
 
+/// The torque coefficient of a power coefficient: P = 2π n Q, so CQ = CP / (2π).
+pub fn cq_of_cp(cp: f64) -> f64 {
+    cp / (2.0 * PI)
+}
+
 /// Revolutions per second [1/s] of `rpm` revolutions per minute.
 pub fn rpm_to_rev_per_s(rpm: f64) -> f64 {
     rpm / 60.0
