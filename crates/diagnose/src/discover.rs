@@ -485,22 +485,7 @@ fn try_candidate(
     } else {
         0.0
     };
-    let beyond = ev.fit.beyond_bounds();
-    let size = (rms(&current.fit.residuals).powi(2) - rms(&ev.fit.residuals).powi(2))
-        .max(0.0)
-        .sqrt();
-    let weak = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd);
-    let own = ev.fit.params().split_off(current.fit.p.len());
-    let neutral_held = neutral_held(&own);
-    let note = if !beyond.is_empty() {
-        Some(bound_note(&beyond))
-    } else if let Some(r) = weak {
-        Some(weak_note(size, r))
-    } else if neutral_held {
-        Some(neutral_note(&own))
-    } else {
-        None
-    };
+    let note = refusal(&current.fit, &ev.fit, rep);
     let significant = p_value < p_max && gain >= MIN_GAIN && note.is_none();
     Ok(Scored {
         note,
@@ -562,22 +547,24 @@ fn neutral_note(own: &[FittedParam]) -> String {
     )
 }
 
-/// Why a rung of the rebuilt ladder is not taken, if it is not: its fit ends on a bound, the
-/// effect it adds changes the loads less than the repeatability allows to see, or its interval
-/// holds its neutral value. The same tests as a candidate's in the ranking.
-fn rung_refusal(prev: &Evaluated, ev: &Evaluated, rep: Option<&Repeatability>) -> Option<String> {
-    let beyond = ev.fit.beyond_bounds();
+/// Why the effect `next` adds on top of `prev` cannot be an answer, if it cannot: its fit
+/// ends on a bound, it changes the loads less than [`REPEATABILITY_FACTOR`] times the measured
+/// repeatability, or its interval holds its neutral value. One set of tests for a candidate of
+/// the ranking and for a rung of the rebuilt ladder.
+fn refusal(prev: &FitOutcome, next: &FitOutcome, rep: Option<&Repeatability>) -> Option<String> {
+    let params = next.params();
+    let beyond: Vec<FittedParam> = params.iter().filter(|p| p.at_bound).cloned().collect();
     if !beyond.is_empty() {
         return Some(bound_note(&beyond));
     }
-    let size = (rms(&prev.fit.residuals).powi(2) - rms(&ev.fit.residuals).powi(2))
+    let size = (rms(&prev.residuals).powi(2) - rms(&next.residuals).powi(2))
         .max(0.0)
         .sqrt();
     if let Some(r) = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd) {
         return Some(weak_note(size, r));
     }
-    let own = ev.fit.params().split_off(prev.fit.p.len());
-    neutral_held(&own).then(|| neutral_note(&own))
+    let own = &params[prev.p.len()..];
+    neutral_held(own).then(|| neutral_note(own))
 }
 
 /// The words for a fit that ended on physical bounds.
@@ -969,16 +956,21 @@ pub fn diagnose(
                     };
                     tried.push(evaluate(model, data, effects, warm, &f)?);
                 }
+                let mut refusals: Vec<Option<String>> = tried
+                    .iter()
+                    .map(|ev| refusal(&cur.fit, &ev.fit, repeatability.as_ref()))
+                    .collect();
                 let options: Vec<(f64, bool)> = tried
                     .iter()
-                    .map(|ev| (ev.score(), rung_refusal(&cur, ev, repeatability.as_ref()).is_none()))
+                    .zip(&refusals)
+                    .map(|(ev, why)| (ev.score(), why.is_none()))
                     .collect();
                 let Some(i) = rung_choice(&options) else {
                     break;
                 };
                 let ev = tried.swap_remove(i);
                 let gone = set.remove(i);
-                if let Some(why) = rung_refusal(&cur, &ev, repeatability.as_ref()) {
+                if let Some(why) = refusals.swap_remove(i) {
                     // No effect of the set can be a rung here: the ladder stops, and says why.
                     dropped.push((gone.id().to_string(), why));
                     break;
