@@ -501,10 +501,19 @@ impl PropFile {
             .last()
             .map(|r| r.r * self.scale[0] + self.offset[0])
             .unwrap_or(0.0);
+        let documented = |r: f64| {
+            // A tip radius that equals the last station's but for rounding (a file written
+            // from inches, say) is that station's radius: r / R must not exceed 1.
+            if r < last && within_rounding(r, last) {
+                last
+            } else {
+                r
+            }
+        };
         match (self.radius, reading) {
             (None, _) => last,
-            (Some(r), RadiusReading::Documented) if self.radius_in_metres => r,
-            (Some(r), RadiusReading::Documented) => r * self.scale[0] + self.offset[0],
+            (Some(r), RadiusReading::Documented) if self.radius_in_metres => documented(r),
+            (Some(r), RadiusReading::Documented) => documented(r * self.scale[0] + self.offset[0]),
             (Some(r), RadiusReading::Qprop122) => r,
         }
     }
@@ -583,6 +592,12 @@ fn join(vals: &[f64]) -> String {
 /// (a row that would be longer is written with the most significant digits, 9 down to 4, that
 /// fit: thirteen numbers share 126 characters).
 ///
+/// Two lengths that differ only by the rounding of a decimal written and read back
+/// (0.1524 and 0.15239999999999998), relative to their size.
+fn within_rounding(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
 /// Note that QPROP 1.22 reads R on line 2 unscaled; with Rfac != 1 the file means R in r units.
 pub fn write_prop(file: &PropFile) -> String {
     let mut out = String::new();
@@ -680,6 +695,21 @@ mod tests {
             }
             assert!((g.rows[i].r / f.rows[i].r - 1.0).abs() < 1e-4);
         }
+    }
+
+    #[test]
+    fn a_tip_radius_off_by_rounding_is_the_last_station_and_a_shorter_one_is_refused() {
+        // What validate wrote for APC's 12x10E: 12 in / 2 as metres, and the last station.
+        let text = |rad: &str| {
+            format!(
+                "apce 12x10\n 2 {rad}\n\n 0.5 5.8\n -0.3 1.2\n 0.028 0.05 0.05 0.5\n 70000 -0.7\n\n \
+                 1 1 1\n 0 0 0\n\n 0.05 0.02 20\n 0.1524 0.01 10\n"
+            )
+        };
+        let (f, _) = parse_prop(&text("0.15239999999999998")).unwrap();
+        assert_eq!(f.tip_radius(RadiusReading::Documented), 0.1524);
+        let e = err(&text("0.1523"));
+        assert!(e.contains("tip radius R = 0.1523") && e.contains("less than the last radius 0.1524"), "{e}");
     }
 
     #[test]
