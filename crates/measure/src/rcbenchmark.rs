@@ -76,6 +76,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         })?,
         humidity: column(&table, Quantity::Humidity, |n| n.contains("humidity"))?,
         rotation: None,
+        rotation_other: None,
     };
     if cols.thrust.is_none() {
         return Err(missing("thrust"));
@@ -93,7 +94,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     }
     let electrical = column(&table, Quantity::Rotation, |n| n.contains("electrical speed"))?;
     let optical = column(&table, Quantity::Rotation, |n| n.contains("optical speed"))?;
-    let (source, mut rot) = match (opts.rpm_source, optical, electrical) {
+    let (source, mut rot) = match (opts.rpm_source, optical.clone(), electrical.clone()) {
         (Some(RpmSource::Optical), Some(o), _) => (RpmSource::Optical, o),
         (Some(RpmSource::Optical), None, _) => {
             return Err(ReadError::Option(
@@ -139,6 +140,10 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         (RpmSource::Optical, Some(_)) => notes.push("pole count ignored: RPM from the optical sensor".into()),
         (RpmSource::Optical, None) => notes.push(format!("RPM from the optical sensor ('{}')", rot.header)),
     }
+    cols.rotation_other = match source {
+        RpmSource::Optical => electrical,
+        RpmSource::Electrical => optical,
+    };
     cols.rotation = Some(rot);
     let mut dropped = Vec::new();
     let s = samples(&table, &cols, &mut dropped);

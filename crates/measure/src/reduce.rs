@@ -229,6 +229,159 @@ fn steady_part(s: &[Sample], opts: &ReduceOptions) -> (Vec<Sample>, usize, usize
     (steady, start, outliers)
 }
 
+/// Consecutive samples at one ESC command; none when a sample has no ESC value.
+fn esc_runs(samples: &[Sample]) -> Vec<std::ops::Range<usize>> {
+    let mut runs = Vec::new();
+    if samples.is_empty() || samples.iter().any(|s| s.esc.is_none()) {
+        return runs;
+    }
+    let mut start = 0;
+    for i in 1..=samples.len() {
+        let same = i < samples.len()
+            && samples[i]
+                .esc
+                .zip(samples[start].esc)
+                .is_some_and(|(a, b)| (a - b).abs() < 0.5);
+        if !same {
+            runs.push(start..i);
+            start = i;
+        }
+    }
+    runs
+}
+
+/// The densest cluster of positive readings whose largest is within `width` (relative) of its
+/// smallest: (median of the cluster, its size). The steady reading of a sensor that misses
+/// pulses (an optical probe reads low or zero, never high) or now and then doubles them.
+fn densest(readings: &[f64], width: f64) -> Option<(f64, usize)> {
+    let mut x: Vec<f64> = readings.iter().copied().filter(|v| *v > 0.0).collect();
+    x.sort_by(f64::total_cmp);
+    let mut best = (0, 0);
+    let mut j = 0;
+    for i in 0..x.len() {
+        j = j.max(i);
+        while j + 1 < x.len() && x[j + 1] <= x[i] * (1.0 + width) {
+            j += 1;
+        }
+        if j + 1 - i > best.1 - best.0 {
+            best = (i, j + 1);
+        }
+    }
+    (best.1 > best.0).then(|| (median(&mut x[best.0..best.1].to_vec()), best.1 - best.0))
+}
+
+/// A reading this far (relative) below its step's steady RPM, while the thrust holds steady, is
+/// a sensor dropout: thrust goes with RPM squared, so a real 10 % change moves it by 20 %.
+const DROPOUT: f64 = 0.1;
+
+/// Fills RPM sensor dropouts instead of dropping the rows (thrust, torque and air of the row
+/// are good): first from the log's other RPM sensor, scaled by the two sensors' median ratio
+/// where both read; then, within an ESC step, a reading of zero or far below the step's steady
+/// reading, on a row whose thrust is the step's steady thrust, takes that steady reading. Says
+/// what it filled; a zero reading on a row whose thrust is not steady is dropped as a dropout.
+fn fill_dropouts(
+    mut samples: Vec<Sample>,
+    opts: &ReduceOptions,
+    dropped: &mut Vec<Dropped>,
+    notes: &mut Vec<String>,
+) -> Vec<Sample> {
+    let mut ratios: Vec<f64> = samples
+        .iter()
+        .filter_map(|s| s.omega_other.filter(|o| *o > 0.0 && s.omega > 0.0).map(|o| s.omega / o))
+        .collect();
+    if ratios.len() >= 3 {
+        let ratio = median(&mut ratios);
+        let mut filled = 0;
+        for s in samples.iter_mut() {
+            if let Some(o) = s.omega_other.filter(|o| *o > 0.0 && s.omega == 0.0) {
+                s.omega = o * ratio;
+                filled += 1;
+            }
+        }
+        if filled > 0 {
+            notes.push(format!(
+                "{filled} rows where the RPM sensor read 0 take the other RPM sensor's reading times {ratio:.4} \
+                 (the two sensors' median ratio over {} rows where both read)",
+                ratios.len()
+            ));
+        }
+    }
+    let mut filled = Vec::new();
+    let mut lost = Vec::new();
+    for run in esc_runs(&samples) {
+        let step = &mut samples[run];
+        if step.len() < opts.min_step_samples {
+            continue;
+        }
+        let omegas: Vec<f64> = step.iter().map(|s| s.omega).collect();
+        let Some((steady, n)) = densest(&omegas, 2.0 * opts.unsteady_rpm) else {
+            continue;
+        };
+        if n < 5.max(step.len() / 20) || n == step.len() {
+            continue;
+        }
+        let near = |w: f64| (w - steady).abs() <= opts.unsteady_rpm * steady;
+        let mut thrusts: Vec<f64> = step.iter().filter(|s| near(s.omega)).map(|s| s.thrust).collect();
+        let t = median(&mut thrusts);
+        let mut dev: Vec<f64> = step.iter().map(|s| (s.thrust - t).abs()).collect();
+        let band = (4.0 * 1.4826 * median(&mut dev)).max(DROPOUT * t.abs());
+        // A dropout reads low (missed pulses) after the step has settled; a high reading or
+        // one before the step first reaches its steady RPM is the motor getting there.
+        let settled = step.iter().position(|s| near(s.omega)).unwrap_or(step.len());
+        let mut count = 0;
+        for s in step[settled..].iter_mut() {
+            if s.omega >= (1.0 - DROPOUT) * steady || s.omega < 0.0 {
+                continue;
+            }
+            if (s.thrust - t).abs() <= band {
+                s.omega = steady;
+                count += 1;
+            } else if s.omega == 0.0 {
+                lost.push(s.line);
+            }
+        }
+        if count > 0 {
+            filled.push((step[0].esc.unwrap_or(f64::NAN), count, steady, n));
+        }
+    }
+    if !filled.is_empty() {
+        let total: usize = filled.iter().map(|f| f.1).sum();
+        let steps: Vec<String> = filled
+            .iter()
+            .take(5)
+            .map(|(esc, count, steady, n)| {
+                format!(
+                    "ESC {esc} µs: {count} rows at {:.0} rpm, from {n} readings within {:.0} %",
+                    propbet_units::omega_to_rpm(*steady),
+                    200.0 * opts.unsteady_rpm
+                )
+            })
+            .collect();
+        notes.push(format!(
+            "RPM sensor dropouts: {total} rows read 0 or more than {:.0} % below their ESC step's steady RPM while their \
+             thrust held steady; their RPM is the step's steady reading ({}{})",
+            100.0 * DROPOUT,
+            steps.join("; "),
+            if filled.len() > 5 { format!("; and {} more steps", filled.len() - 5) } else { String::new() }
+        ));
+    }
+    if lost.is_empty() {
+        return samples;
+    }
+    samples.retain(|s| {
+        let drop = lost.binary_search(&s.line).is_ok();
+        if drop {
+            dropped.push(Dropped {
+                line: s.line,
+                reason: DropReason::RpmDropout,
+                detail: format!("RPM 0, thrust {:.4} N", s.thrust),
+            });
+        }
+        !drop
+    });
+    samples
+}
+
 /// Reduces checked samples of a log to points.
 ///
 /// `rows_are_points`: each row is already a steady point (tables, averaged exports).
@@ -239,6 +392,10 @@ pub fn reduce_log(
     notes: &mut Vec<String>,
     opts: &ReduceOptions,
 ) -> (Reduction, Vec<MeasuredPoint>) {
+    let mut samples = samples;
+    if !rows_are_points {
+        samples = fill_dropouts(samples, opts, dropped, notes);
+    }
     let samples = check_rows(samples, dropped);
     let samples = orient(samples, dropped, notes);
     if samples.is_empty() {
@@ -253,22 +410,7 @@ pub fn reduce_log(
     if rows_are_points {
         return (Reduction::Rows, rows(&samples));
     }
-    // Consecutive samples at one ESC command.
-    let mut groups: Vec<&[Sample]> = Vec::new();
-    if samples.iter().all(|s| s.esc.is_some()) {
-        let mut start = 0;
-        for i in 1..=samples.len() {
-            let same = i < samples.len()
-                && samples[i]
-                    .esc
-                    .zip(samples[start].esc)
-                    .is_some_and(|(a, b)| (a - b).abs() < 0.5);
-            if !same {
-                groups.push(&samples[start..i]);
-                start = i;
-            }
-        }
-    }
+    let groups: Vec<&[Sample]> = esc_runs(&samples).into_iter().map(|r| &samples[r]).collect();
     let n = samples.len();
     let largest = groups.iter().map(|g| g.len()).max().unwrap_or(0);
     if !groups.is_empty() && largest <= 2 && n <= 200 {
@@ -309,13 +451,12 @@ pub fn reduce_log(
                 opts,
                 false,
             );
-            if o > 0 {
-                p.flags
-                    .push(format!("{o} samples with RPM far from the step's median left out"));
-                if o * 4 > steady.len() {
-                    p.flags
-                        .push("RPM sensor dropouts in more than a fifth of the step".into());
-                }
+            // A few readings far from the step's median are left out (the count is in the
+            // notes); a step of which a fifth is left out is not trusted.
+            if o * 4 > steady.len() {
+                p.flags.push(format!(
+                    "{o} samples with RPM far from the step's median left out: more than a fifth of the step"
+                ));
             }
             pts.push(p);
         }
@@ -386,6 +527,7 @@ mod tests {
             time: Some(t),
             esc: Some(esc),
             omega: propbet_units::rpm_to_omega(rpm),
+            omega_other: None,
             thrust,
             torque: Some(-thrust * 0.01),
             airspeed: 0.0,
@@ -437,6 +579,53 @@ mod tests {
             panic!()
         };
         assert!(q.mean > 0.0);
+    }
+
+    #[test]
+    fn rpm_dropouts_are_filled_from_the_other_sensor_or_the_steady_step_and_said() {
+        // The electrical sensor reads 7/2 of the optical (the app's pole pairs left at 2 on a
+        // 14-pole motor); the optical reads 0 on every fifth row.
+        let mut log = step_log();
+        for (i, s) in log.iter_mut().enumerate() {
+            s.omega_other = Some(s.omega * 3.5);
+            if i % 5 == 4 {
+                s.omega = 0.0;
+            }
+        }
+        let (mut dropped, mut notes) = (Vec::new(), Vec::new());
+        let (_, pts) = reduce_log(log, false, &mut dropped, &mut notes, &ReduceOptions::default());
+        assert_eq!(pts.len(), 3);
+        assert_eq!(dropped.len(), 20, "only the idle step: {dropped:?}");
+        assert!(pts.iter().all(|p| p.omega.n >= 16 && p.flags.is_empty()), "{pts:?}");
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.contains("take the other RPM sensor's reading times 0.2857")),
+            "{notes:?}"
+        );
+        // One sensor: zero and low readings while thrust holds take the step's steady RPM; a
+        // zero where the thrust is not the step's is dropped as a dropout, not "not spinning".
+        let mut log = step_log();
+        for i in [25, 30, 35] {
+            log[i].omega = 0.0;
+        }
+        log[45].omega *= 0.5;
+        log[50].omega = 0.0;
+        log[50].thrust *= 0.5;
+        let (mut dropped, mut notes) = (Vec::new(), Vec::new());
+        let (_, pts) = reduce_log(log, false, &mut dropped, &mut notes, &ReduceOptions::default());
+        assert!(pts.iter().all(|p| p.flags.is_empty()), "{pts:?}");
+        assert_eq!(pts[0].omega.n, 17, "the step of rows 20-39 keeps its dropouts");
+        assert!(
+            notes.iter().any(|n| n.starts_with("RPM sensor dropouts: 4 rows")),
+            "{notes:?}"
+        );
+        let lost: Vec<(usize, DropReason)> = dropped
+            .iter()
+            .filter(|d| d.reason != DropReason::NotSpinning)
+            .map(|d| (d.line, d.reason))
+            .collect();
+        assert_eq!(lost, vec![(52, DropReason::RpmDropout)]);
     }
 
     #[test]

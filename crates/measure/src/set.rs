@@ -152,6 +152,9 @@ pub enum DropReason {
     TimeOutOfOrder,
     /// A value no small propeller can have (see [`limits`]): a file error, not a measurement.
     Implausible,
+    /// The RPM sensor read 0 in a step that spins, and the row's thrust was too far from the
+    /// step's steady thrust to take the step's steady RPM.
+    RpmDropout,
 }
 
 /// Magnitudes beyond which a measured value is not a small propeller's: a row holding one is
@@ -198,6 +201,7 @@ impl DropReason {
             DropReason::DuplicateTime => "duplicate time",
             DropReason::TimeOutOfOrder => "time out of order",
             DropReason::Implausible => "beyond any small propeller's values",
+            DropReason::RpmDropout => "RPM sensor dropout (read 0 while its step spins; thrust not steady)",
         }
     }
 }

@@ -170,6 +170,9 @@ pub struct Columns {
     pub esc: Option<Column>,
     /// Rotation.
     pub rotation: Option<Column>,
+    /// A second rotation sensor (the electrical speed beside the optical one), read to fill the
+    /// first's dropouts.
+    pub rotation_other: Option<Column>,
     /// Thrust.
     pub thrust: Option<Column>,
     /// Torque.
@@ -195,6 +198,8 @@ pub struct Sample {
     pub esc: Option<f64>,
     /// Rotation rate [rad/s].
     pub omega: f64,
+    /// The second rotation sensor's reading [rad/s], as logged, where the log has one.
+    pub omega_other: Option<f64>,
     /// Thrust [N] (as logged; oriented later).
     pub thrust: f64,
     /// Torque [N m] (as logged; oriented later).
@@ -238,8 +243,13 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
     let optional = |row: &CsvRow, c: &Option<Column>| c.as_ref().and_then(|c| cell(row, c).ok());
     let mut out = Vec::with_capacity(table.rows.len());
     for row in &table.rows {
+        let other = optional(row, &cols.rotation_other);
         let needed = (|| {
-            let omega = cell(row, rot)?;
+            // An empty reading of one sensor is a dropout when the other reads.
+            let omega = match cell(row, rot) {
+                Err(_) if other.is_some_and(|o| o > 0.0) => 0.0,
+                read => read?,
+            };
             let thrust = cell(row, thr)?;
             let torque = cols.torque.as_ref().map(|c| cell(row, c)).transpose()?;
             let airspeed = cols.airspeed.as_ref().map(|c| cell(row, c)).transpose()?.unwrap_or(0.0);
@@ -261,6 +271,7 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
                 time,
                 esc: optional(row, &cols.esc),
                 omega,
+                omega_other: other,
                 thrust,
                 torque,
                 airspeed,

@@ -709,7 +709,10 @@ mod tests {
         let (f, _) = parse_prop(&text("0.15239999999999998")).unwrap();
         assert_eq!(f.tip_radius(RadiusReading::Documented), 0.1524);
         let e = err(&text("0.1523"));
-        assert!(e.contains("tip radius R = 0.1523") && e.contains("less than the last radius 0.1524"), "{e}");
+        assert!(
+            e.contains("tip radius R = 0.1523") && e.contains("less than the last radius 0.1524"),
+            "{e}"
+        );
     }
 
     #[test]
