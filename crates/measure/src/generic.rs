@@ -172,7 +172,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
             });
         }
     }
-    let mut notes = Vec::new();
+    let mut notes: Vec<String> = table.dialect.iter().map(|d| format!("{d}: read as such")).collect();
     let mut used: Vec<String> = [
         &cols.time,
         &cols.rotation,
@@ -197,7 +197,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let (reduction, points) = reduce_log(s, cols.time.is_none(), &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
+        return Err(crate::set::no_points(&dropped, rows, &notes));
     }
     Ok(MeasuredSet {
         format: Format::Generic,
@@ -255,6 +255,57 @@ mod tests {
             panic!()
         };
         assert_relative_eq!(thrust.mean, 0.2 * 9.80665);
+    }
+
+    #[test]
+    fn semicolons_and_decimal_commas_read_as_the_comma_file_and_said() {
+        let semi = HIDDEN.replace(',', ";").replace('.', ",");
+        let a = read(HIDDEN, &ReadOptions::default()).unwrap();
+        let b = read(&semi, &ReadOptions::default()).unwrap();
+        assert_eq!(a.points, b.points);
+        assert!(
+            b.notes[0].starts_with("semicolon-separated values, with decimal commas"),
+            "{:?}",
+            b.notes
+        );
+        let tabbed = "Rotation speed (rpm)\tThrust (N)\n5000\t0,1\n6000\t0,2\n";
+        let t = read(tabbed, &ReadOptions::default()).unwrap();
+        assert_eq!(t.points.len(), 2);
+        assert!(
+            t.notes[0].starts_with("tab-separated values, with decimal commas"),
+            "{:?}",
+            t.notes
+        );
+    }
+
+    #[test]
+    fn a_time_column_over_rows_of_distinct_points_keeps_every_row() {
+        let mut csv = String::from("t,rpm,thrust_N\n");
+        for k in 0..12 {
+            csv.push_str(&format!(
+                "{},{},{}\n",
+                k as f64 * 0.5,
+                3000 + 500 * k,
+                0.1 + 0.05 * k as f64
+            ));
+        }
+        let map = "time = \"t\"\nrpm = \"rpm\"\nthrust = \"thrust_N\"\n";
+        let set = read(
+            &csv,
+            &ReadOptions {
+                column_map: Some(map.into()),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(set.points.len(), 12);
+        assert!(
+            set.notes.iter().any(|n| n.contains("each row is used as a point")),
+            "{:?}",
+            set.notes
+        );
+        let e = read("rpm,thrust_N\n", &ReadOptions::default()).unwrap_err().to_string();
+        assert!(e.contains("a header and no data rows"), "{e}");
     }
 
     #[test]

@@ -35,7 +35,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     if opts.column_map.is_some() {
         return generic::read(text, opts);
     }
-    if !first.contains(',') {
+    if table::delimiter(first) == b',' && !first.contains(',') {
         return uiuc::read(text, opts.name.as_deref());
     }
     if rcbenchmark::looks_like(first) {

@@ -57,7 +57,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         what,
         columns: all.clone(),
     };
-    let mut notes = Vec::new();
+    let mut notes: Vec<String> = table.dialect.iter().map(|d| format!("{d}: read as such")).collect();
     let mut cols = Columns {
         time: column(&table, Quantity::Time, |n| n == "time")?,
         esc: column(&table, Quantity::Esc, |n| n.starts_with("esc"))?,
@@ -158,7 +158,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let (reduction, points) = reduce_log(s, false, &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
+        return Err(crate::set::no_points(&dropped, rows, &notes));
     }
     Ok(MeasuredSet {
         format: Format::RcBenchmark,

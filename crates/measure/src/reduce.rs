@@ -498,6 +498,16 @@ pub fn reduce_log(
         );
         pts.push(point(label, s, 0, opts, false));
     }
+    if sparse * 2 > n {
+        // Rows of distinct operating points with a time column (a table of averaged points,
+        // a hand log): binning would leave most of them alone in their bins.
+        notes.push(format!(
+            "the RPM changes from row to row with no ESC column and {sparse} of {n} rows would be alone in \
+             their {:.0} rpm bins: each row is used as a point",
+            propbet_units::omega_to_rpm(width)
+        ));
+        return (Reduction::Rows, rows(&samples));
+    }
     notes.push(format!(
         "ESC changes continuously: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
         propbet_units::omega_to_rpm(width),

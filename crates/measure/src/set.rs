@@ -315,6 +315,22 @@ pub enum ReadError {
 }
 
 /// "12 rows: 10 not spinning (RPM 0), 2 not a number (first at line 7)".
+/// The error of a file that gave no point: what was dropped, and when nothing was, why the
+/// rows left made no point (the reduction's last note) or that there were none.
+pub fn no_points(dropped: &[Dropped], rows: usize, notes: &[String]) -> ReadError {
+    if !dropped.is_empty() {
+        return ReadError::NoUsableRows(summarise_dropped(dropped));
+    }
+    if rows == 0 {
+        return ReadError::Empty("a header and no data rows".into());
+    }
+    ReadError::NoUsableRows(format!(
+        "no row was dropped, but {rows} rows made no point: {}",
+        notes.last().map_or("no reduction applied", String::as_str)
+    ))
+}
+
+/// "N rows dropped: ..." by reason, with the first line of each.
 pub fn summarise_dropped(dropped: &[Dropped]) -> String {
     let mut by: std::collections::BTreeMap<DropReason, (usize, usize)> = Default::default();
     for d in dropped {
@@ -322,7 +338,7 @@ pub fn summarise_dropped(dropped: &[Dropped]) -> String {
         e.0 += 1;
     }
     if by.is_empty() {
-        return "no rows were dropped".into();
+        return "no row was dropped".into();
     }
     let parts: Vec<String> = by
         .iter()

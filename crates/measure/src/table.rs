@@ -13,6 +13,9 @@ pub struct CsvTable {
     pub rows: Vec<CsvRow>,
     /// Rows with more cells than the header has names.
     pub long_rows: Vec<usize>,
+    /// How the file differs from plain CSV ("semicolon-separated values, with decimal
+    /// commas"), for the notes.
+    pub dialect: Option<String>,
 }
 
 impl CsvTable {
@@ -59,10 +62,43 @@ pub fn split_header(h: &str) -> (String, Option<String>) {
 /// few; a row of thousands is not a measurement table (and would cost memory per field).
 pub const MAX_FIELDS: usize = 1000;
 
-/// Reads CSV text (BOM, trailing commas and rows longer than the header allowed).
+/// The field separator of a CSV whose first line is `header`: a semicolon (spreadsheets in
+/// locales with a decimal comma) or a tab when the header holds more of them than commas, else a
+/// comma.
+pub fn delimiter(header: &str) -> u8 {
+    let count = |c: char| header.matches(c).count();
+    let commas = count(',');
+    if count(';') > commas {
+        b';'
+    } else if count('\t') > commas && header.split('\t').any(|f| f.trim().contains(' ')) {
+        // Tab-separated with names of several words ("Thrust (N)"); a UIUC file's header is
+        // separated by whitespace of any kind and has one-word names.
+        b'\t'
+    } else {
+        b','
+    }
+}
+
+/// "1,25" or "-0,5e-3" as "1.25", "-0.5e-3": a decimal comma in a file whose separator is not
+/// a comma. None when the cell is not such a number.
+fn decimal_comma(cell: &str) -> Option<String> {
+    if cell.matches(',').count() != 1 || cell.contains('.') {
+        return None;
+    }
+    let dotted = cell.replacen(',', ".", 1);
+    dotted.parse::<f64>().is_ok().then_some(dotted)
+}
+
+/// Reads CSV text (BOM, trailing commas and rows longer than the header allowed); the
+/// separator is found from the header ([`delimiter`]), and with a semicolon or a tab, decimal
+/// commas are read as decimal points. [`CsvTable::dialect`] says which when it is not plain CSV.
 pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let first = text.lines().find(|l| !l.trim().is_empty()).unwrap_or("");
+    let sep = delimiter(first);
+    let mut commas = 0usize;
     let mut rdr = csv::ReaderBuilder::new()
+        .delimiter(sep)
         .has_headers(false)
         .flexible(true)
         .trim(csv::Trim::All)
@@ -110,7 +146,16 @@ pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
                 headers = Some(h);
             }
             Some(h) => {
-                let mut cells: Vec<String> = rec.iter().map(str::to_string).collect();
+                let mut cells: Vec<String> = rec
+                    .iter()
+                    .map(|c| match decimal_comma(c).filter(|_| sep != b',') {
+                        Some(d) => {
+                            commas += 1;
+                            d
+                        }
+                        None => c.to_string(),
+                    })
+                    .collect();
                 if cells.len() > h.len() {
                     if cells[h.len()..].iter().any(|c| !c.is_empty()) {
                         long_rows.push(line);
@@ -125,10 +170,19 @@ pub fn read_csv(text: &str) -> Result<CsvTable, ReadError> {
     if rows.is_empty() {
         return Err(ReadError::Empty("a header and no data rows".into()));
     }
+    let dialect = match (sep, commas > 0) {
+        (b',', _) => None,
+        (sep, comma) => Some(format!(
+            "{}-separated values{}",
+            if sep == b';' { "semicolon" } else { "tab" },
+            if comma { ", with decimal commas" } else { "" }
+        )),
+    };
     Ok(CsvTable {
         headers,
         rows,
         long_rows,
+        dialect,
     })
 }
 

@@ -55,7 +55,9 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
         return Err(ReadError::Line {
             line: hline + 1,
             message: format!(
-                "header '{}': expected 'J CT CP eta' (sweep) or 'RPM CT CP' (static), as UIUC files have",
+                "header '{}': expected 'J CT CP eta' (sweep) or 'RPM CT CP' (static), as UIUC files have; \
+                 a log or table is read as CSV when its header separates names by commas, semicolons or tabs \
+                 (name its columns with --columns map.toml)",
                 propbet_units::excerpt(header)
             ),
         });
@@ -166,7 +168,7 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
         });
     }
     if points.is_empty() {
-        return Err(ReadError::NoUsableRows(crate::set::summarise_dropped(&dropped)));
+        return Err(crate::set::no_points(&dropped, rows, &[]));
     }
     Ok(MeasuredSet {
         format: if sweep { Format::UiucSweep } else { Format::UiucStatic },
