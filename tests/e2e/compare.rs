@@ -578,3 +578,32 @@ fn a_qprop_output_is_drawn_and_scored_beside_propbets() {
         stderr(&o)
     );
 }
+
+#[test]
+fn measurements_of_another_propeller_are_warned_about_first_with_exit_1() {
+    // A 6-inch folder's prediction against the Series 1780 log of a far larger prop (about
+    // 9 N at 3,470 rpm): measured thrust a median 47 times the prediction.
+    let dir = tempfile::tempdir().unwrap();
+    let log = repo().join("tests/data/thrust_stand/series1780_log.csv");
+    let o = compare(&[], &[&log], &cam6x3(), dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains(
+            "warning: the measurements do not overlap the propeller's operating range: measured thrust is a median"
+        ),
+        "{e}"
+    );
+    let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
+    let warn = html.find("do not overlap the propeller's operating range").unwrap();
+    assert!(
+        warn < html.find("<table").unwrap(),
+        "the warning comes before the numbers"
+    );
+    let md = std::fs::read_to_string(dir.path().join("out/summary.md")).unwrap();
+    assert!(md.contains("> the measurements do not overlap"), "{md}");
+    // The right prop passes: the PhotoFoil study's log against its own prop file.
+    let (prop, steps) = photofoil();
+    let o = compare(&["--rho", "1.1648"], &[&steps], &prop, dir.path());
+    assert!(!stderr(&o).contains("do not overlap"), "{}", stderr(&o));
+}

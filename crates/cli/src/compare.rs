@@ -198,8 +198,8 @@ fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec
     )
 }
 
-/// Runs `propbet compare`; returns false when rows were dropped as faulty or the solver did
-/// not converge somewhere (all reported).
+/// Runs `propbet compare`; returns false when rows were dropped as faulty, the solver did not
+/// converge somewhere or the measurements cannot be of this propeller (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
     let spec = args.spec()?;
     let mut inputs = spec.model.inputs();
@@ -213,7 +213,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     let c = stages::compare(&model, &spec.measured)?;
     let (_, reference) = write(&spec, &model, &c, other.as_ref())?;
     print(&spec, &c, reference.as_ref());
-    Ok(c.problems() == (0, 0))
+    Ok(c.clean())
 }
 
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
@@ -405,6 +405,9 @@ pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Va
         );
     }
     println!("report: {}", spec.out.join("report.html").display());
+    if let Some(m) = c.mismatch() {
+        eprintln!("propbet: warning: {}", m.message());
+    }
     let (_, unconverged) = c.problems();
     warn_faulty_rows(&c.sets);
     if unconverged > 0 {

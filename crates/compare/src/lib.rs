@@ -5,6 +5,7 @@
 
 pub mod curves;
 pub mod metrics;
+pub mod plausible;
 
 use propbet_atmosphere::AirState;
 use propbet_bemt::{Fluid, OperatingPoint, PointResult, Rotor, SolverOptions};

@@ -765,38 +765,32 @@ fn tell_apart(data: &Data) -> String {
     }
 }
 
-/// Checks that the measurements are in the propeller's operating range and of its size.
+/// Checks that the measurements are in the propeller's operating range and of its size (the
+/// check `compare` warns with: [`propbet_compare::plausible`]).
 fn check_overlap(data: &Data, baseline: &[propbet_effects::Loads]) -> Result<(), DiagnoseError> {
-    let n = data.obs.len();
-    let outside: Vec<usize> = (0..n)
-        .filter(|&i| baseline[i].thrust <= 0.0 && data.obs[i].thrust > 0.0)
+    use propbet_compare::plausible::{mismatch, Mismatch};
+    let pairs: Vec<(f64, f64)> = data
+        .obs
+        .iter()
+        .zip(baseline)
+        .map(|(o, b)| (o.thrust, b.thrust))
         .collect();
-    if 2 * outside.len() > n {
-        let jmax = data.obs.iter().map(|o| o.j).fold(0.0, f64::max);
-        return Err(DiagnoseError::NoOverlap(format!(
-            "the measurements do not overlap the propeller's operating range: at {} of {n} points (J up to {jmax:.2}) \
-             the model gives no thrust where the stand measured some (first: {}, {:.0} rpm, V = {:.2} m/s). \
-             Wrong prop file, diameter or airspeed units?",
-            outside.len(),
-            data.obs[outside[0]].label,
-            data.obs[outside[0]].rpm(),
-            data.obs[outside[0]].v
-        )));
-    }
-    let mut ratios: Vec<f64> = (0..n)
-        .filter(|&i| baseline[i].thrust > 0.0 && data.obs[i].thrust > 0.0)
-        .map(|i| data.obs[i].thrust / baseline[i].thrust)
-        .collect();
-    ratios.sort_by(f64::total_cmp);
-    if let Some(&med) = ratios.get(ratios.len() / 2) {
-        if !(1.0 / 3.0..=3.0).contains(&med) {
-            return Err(DiagnoseError::NoOverlap(format!(
-                "the measurements do not overlap the propeller's operating range: measured thrust is a median {med:.2} \
-                 times the prediction, beyond what any effect explains. Wrong prop file, units, RPM column or pole count?"
-            )));
+    match mismatch(&pairs) {
+        None => Ok(()),
+        Some(Mismatch::NoThrust(k, n, first)) => {
+            let jmax = data.obs.iter().map(|o| o.j).fold(0.0, f64::max);
+            let o = &data.obs[first];
+            Err(DiagnoseError::NoOverlap(format!(
+                "the measurements do not overlap the propeller's operating range: at {k} of {n} points (J up to {jmax:.2}) \
+                 the model gives no thrust where the stand measured some (first: {}, {:.0} rpm, V = {:.2} m/s). \
+                 Wrong prop file, diameter or airspeed units?",
+                o.label,
+                o.rpm(),
+                o.v
+            )))
         }
+        Some(m) => Err(DiagnoseError::NoOverlap(m.message())),
     }
-    Ok(())
 }
 
 /// Where between a parameter's reference (its neutral value, or its start) and each bound the

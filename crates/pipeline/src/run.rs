@@ -228,7 +228,7 @@ pub fn run_case(
     if let Some((cspec, dspec)) = &plan.compare {
         let t = book.start(StageSpec::Compare(cspec.clone()));
         let c = stages::compare(&model, &cspec.measured).map_err(|e| stage_err("compare", e))?;
-        book.done(t, c.problems() == (0, 0), Finished::Compare(&c, &model));
+        book.done(t, c.clean(), Finished::Compare(&c, &model));
         compared = Some(c);
         let t = book.start(StageSpec::Diagnose(dspec.clone()));
         // The case's user effects (`[measured] user_effects`) are the diagnosis's alone.

@@ -563,6 +563,17 @@ pub struct Compared {
 }
 
 impl Compared {
+    /// Measurements that cannot be of this propeller (a warning, exit 1).
+    pub fn mismatch(&self) -> Option<propbet_compare::plausible::Mismatch> {
+        propbet_compare::plausible::of_points(&self.points)
+    }
+
+    /// Nothing to report: no faulty row, every station converged, measurements of this
+    /// propeller's size.
+    pub fn clean(&self) -> bool {
+        self.problems() == (0, 0) && self.mismatch().is_none()
+    }
+
     /// Rows dropped as faulty and stations that did not converge (all reported).
     pub fn problems(&self) -> (usize, usize) {
         (

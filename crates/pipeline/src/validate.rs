@@ -694,7 +694,7 @@ pub fn validate_prop(
             records,
             StageSpec::Compare(spec.clone()),
             || stages::compare(model, &spec.measured),
-            |c: &Compared| c.problems() == (0, 0),
+            |c: &Compared| c.clean(),
         )
     };
     // APC's own prediction of the prop, drawn beside propbet's in its comparison.

@@ -615,6 +615,11 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     let reference_json = reference
         .as_ref()
         .map(|r| serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}));
+    // Measurements of another propeller make every number below meaningless: said first.
+    let mismatch = propbet_compare::plausible::of_points(pts).map(|m| m.message());
+    if let Some(w) = &mismatch {
+        let _ = writeln!(h, "<p class=\"warn\"><strong>{}</strong></p>", esc(w));
+    }
     h.push_str(&crate::answer::headline_html(m, reference_json.as_ref(), pts));
     if m.outside_window > 0 {
         let _ = writeln!(
@@ -725,7 +730,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         pts.len() - m.unscored,
         air_line
     );
-    for w in &warnings {
+    for w in mismatch.iter().chain(&warnings) {
         let _ = writeln!(md, "> {w}\n");
     }
     let md_table = |md: &mut String, g: &MetricGroup| {
