@@ -399,7 +399,7 @@ fn bad_flags_and_missing_files() {
         (vec!["--atmosphere", "20,101325"], "temperature, pressure and humidity"),
         (vec!["--atmosphere", "20,1013,40"], "outside 10,000..200,000 Pa"),
         (vec!["--poles", "7"], "even number of poles"),
-        (vec!["--rho", "-1"], "plausible air density"),
+        (vec!["--rho", "-1"], "--rho -1: not a plausible value for air"),
         (
             vec!["--drag-factor=0"],
             "--drag-factor: must be a positive number, found 0",

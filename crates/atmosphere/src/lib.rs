@@ -56,13 +56,13 @@ impl AirState {
 
     /// A checked state.
     pub fn new(temperature: f64, pressure: f64, relative_humidity: f64) -> Result<Self, AirStateError> {
-        if !(150.0..=400.0).contains(&temperature) {
+        if !propbet_units::air::TEMPERATURE.contains(&temperature) {
             return Err(AirStateError::Temperature(temperature));
         }
-        if !(10_000.0..=200_000.0).contains(&pressure) {
+        if !propbet_units::air::PRESSURE.contains(&pressure) {
             return Err(AirStateError::Pressure(pressure));
         }
-        if !(0.0..=1.0).contains(&relative_humidity) {
+        if !propbet_units::air::HUMIDITY.contains(&relative_humidity) {
             return Err(AirStateError::Humidity(relative_humidity));
         }
         Ok(Self {

@@ -174,12 +174,53 @@ pub mod limits {
     /// Advance ratio.
     pub const ADVANCE_RATIO: f64 = 20.0;
 
+    /// Slowest rotation a measured point can have [rad/s] (1 rpm): below it the coefficients
+    /// divide by almost nothing (a row of 1e-300 rpm is a corrupt cell, not a test).
+    pub const OMEGA_MIN: f64 = propbet_units::rpm_to_omega(1.0);
+
     /// The first value of `checks` (name, value, limit) beyond its limit, as a drop's detail.
     pub fn beyond(checks: &[(&str, f64, f64)]) -> Option<String> {
         checks
             .iter()
             .find(|(_, v, lim)| v.abs() > *lim)
             .map(|(n, v, lim)| format!("{n} = {v:.4e} is beyond {lim:.0e}"))
+    }
+
+    /// A rotation [rad/s] that turns but slower than [`OMEGA_MIN`], as a drop's detail.
+    pub fn too_slow(omega: f64) -> Option<String> {
+        (omega > 0.0 && omega < OMEGA_MIN).then(|| {
+            format!(
+                "RPM = {} is below 1 rpm: no test point",
+                propbet_units::show(propbet_units::omega_to_rpm(omega))
+            )
+        })
+    }
+
+    /// Logged air outside what any test site has and the air formulas are meant for
+    /// ([`propbet_units::air`], the ranges `--atmosphere` is checked against), as a drop's
+    /// detail: temperature [K], pressure [Pa], relative humidity [0..1].
+    pub fn air(temperature: Option<f64>, pressure: Option<f64>, humidity: Option<f64>) -> Option<String> {
+        use propbet_units::{air, show};
+        if let Some(t) = temperature.filter(|t| !air::TEMPERATURE.contains(t)) {
+            return Some(format!(
+                "air temperature {} °C is outside {} to {} °C",
+                show(t - 273.15),
+                air::TEMPERATURE.start() - 273.15,
+                air::TEMPERATURE.end() - 273.15
+            ));
+        }
+        if let Some(p) = pressure.filter(|p| !air::PRESSURE.contains(p)) {
+            return Some(format!(
+                "air pressure {} Pa is outside {}-{} Pa (hPa or kPa logged as Pa?)",
+                show(p),
+                air::PRESSURE.start(),
+                air::PRESSURE.end()
+            ));
+        }
+        if let Some(h) = humidity.filter(|h| !air::HUMIDITY.contains(h)) {
+            return Some(format!("relative humidity {} % is outside 0-100 %", show(100.0 * h)));
+        }
+        None
     }
 }
 
@@ -318,8 +359,13 @@ pub enum ReadError {
 /// The error of a file that gave no point: what was dropped, and when nothing was, why the
 /// rows left made no point (the reduction's last note) or that there were none.
 pub fn no_points(dropped: &[Dropped], rows: usize, notes: &[String]) -> ReadError {
-    if !dropped.is_empty() {
-        return ReadError::NoUsableRows(summarise_dropped(dropped));
+    if let Some(first) = dropped.iter().min_by_key(|d| d.line) {
+        return ReadError::NoUsableRows(format!(
+            "{}; line {}: {}",
+            summarise_dropped(dropped),
+            first.line,
+            first.detail
+        ));
     }
     if rows == 0 {
         return ReadError::Empty("a header and no data rows".into());

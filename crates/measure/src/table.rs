@@ -314,7 +314,12 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
                 ("torque [N m]", torque.unwrap_or(0.0), limits::TORQUE),
                 ("airspeed [m/s]", airspeed, limits::AIRSPEED),
             ];
-            if let Some(detail) = limits::beyond(&checks) {
+            let air = limits::air(
+                optional(row, &cols.temperature),
+                optional(row, &cols.pressure),
+                optional(row, &cols.humidity),
+            );
+            if let Some(detail) = limits::beyond(&checks).or_else(|| limits::too_slow(omega)).or(air) {
                 return Err((DropReason::Implausible, detail));
             }
             Ok::<_, (DropReason, String)>((omega, thrust, torque, airspeed, time))

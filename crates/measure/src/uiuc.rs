@@ -68,7 +68,7 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
                 "a UIUC J sweep needs its RPM: in the file name (…_5018.txt) or a first line 'RPM average 5018'".into(),
             )
         })?;
-        if !(r > 0.0 && propbet_units::rpm_to_omega(r) <= limits::OMEGA) {
+        if !(propbet_units::rpm_to_omega(r) >= limits::OMEGA_MIN && propbet_units::rpm_to_omega(r) <= limits::OMEGA) {
             return Err(ReadError::Option(format!(
                 "the sweep's RPM {r:.4e} (from the {}) is not a small propeller's",
                 if rpm_line.is_some() {
@@ -128,7 +128,11 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
             None => ("RPM", propbet_units::rpm_to_omega(a), limits::OMEGA),
         };
         let checks = [first, ("CT", ct, limits::COEFFICIENT), ("CP", cp, limits::COEFFICIENT)];
-        if let Some(detail) = limits::beyond(&checks) {
+        let slow = match file_rpm {
+            Some(_) => None,
+            None => limits::too_slow(propbet_units::rpm_to_omega(a)),
+        };
+        if let Some(detail) = limits::beyond(&checks).or(slow) {
             dropped.push(Dropped {
                 line,
                 reason: DropReason::Implausible,

@@ -257,6 +257,16 @@ fn tabulate(rotor: &mut Rotor, blade: &propbet_polar::BladePolars, path: &Path) 
 impl AirSpec {
     /// The fluid, and a note of where it came from.
     pub fn fluid(&self) -> Result<(Fluid, String)> {
+        use propbet_units::air;
+        for (flag, x, range, unit) in [
+            ("--rho", self.rho, &air::DENSITY, "kg/m^3"),
+            ("--mu", self.mu, &air::VISCOSITY, "Pa s"),
+            ("--a", self.a, &air::SOUND_SPEED, "m/s"),
+        ] {
+            if let Some(x) = x {
+                air::check(flag, x, range, unit).map_err(Error::Invalid)?;
+            }
+        }
         if let Some(state) = &self.state {
             let mut f = state.fluid();
             if let Some(rho) = self.rho {

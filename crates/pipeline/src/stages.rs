@@ -431,7 +431,16 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
     if let Some(bad) = omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
         invalid!(
             "--rpm: {} is beyond any small propeller's speed (at most 500000)",
-            crate::values::rpm_text(*bad)
+            propbet_units::show(propbet_units::omega_to_rpm(*bad))
+        );
+    }
+    if let Some(bad) = omegas
+        .iter()
+        .find(|&&w| w > 0.0 && w < propbet_measure::limits::OMEGA_MIN)
+    {
+        invalid!(
+            "--rpm: {} is below 1 rpm, where the coefficients divide by almost nothing (0 is allowed: the propeller at rest)",
+            propbet_units::show(propbet_units::omega_to_rpm(*bad))
         );
     }
     let speeds = match axis {
@@ -504,9 +513,8 @@ pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>
         }
     }
     if let Some(r) = spec.rho {
-        if !(r.is_finite() && r > 0.0 && r < 20.0) {
-            invalid!("--rho {r}: not a plausible air density in kg/m^3");
-        }
+        let air = propbet_units::air::DENSITY;
+        propbet_units::air::check("--rho", r, &air, "kg/m^3").map_err(Error::Invalid)?;
     }
     let air = AirChoice {
         given: spec.atmosphere,

@@ -110,3 +110,76 @@ mod excerpt_tests {
         assert!(e.chars().count() < EXCERPT_CHARS + 20);
     }
 }
+
+/// A number as a message quotes it: as written when short (`0.1524`, `5000`), else with
+/// six significant digits and an exponent where large or small (`1e308`, not 309 digits;
+/// `1.23457e-300`). Never a value the reader cannot read in one glance.
+pub fn show(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 12 {
+        return plain;
+    }
+    let a = x.abs();
+    if a != 0.0 && !(1e-4..1e9).contains(&a) {
+        let e = format!("{x:.5e}");
+        // Trailing zeros of the mantissa say nothing: 1.00000e308 -> 1e308.
+        match e.split_once('e') {
+            Some((m, exp)) if m.contains('.') => {
+                format!("{}e{exp}", m.trim_end_matches('0').trim_end_matches('.'))
+            }
+            _ => e,
+        }
+    } else {
+        let s = format!("{x:.6}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+/// The air a measurement can have been taken in, and the range the air formulas are meant
+/// for: one definition for a given air state (`--atmosphere`) and a logged one.
+pub mod air {
+    /// Static temperature [K].
+    pub const TEMPERATURE: std::ops::RangeInclusive<f64> = 150.0..=400.0;
+    /// Static pressure [Pa].
+    pub const PRESSURE: std::ops::RangeInclusive<f64> = 10_000.0..=200_000.0;
+    /// Relative humidity [0..1].
+    pub const HUMIDITY: std::ops::RangeInclusive<f64> = 0.0..=1.0;
+    /// Density a given `--rho` may have [kg/m^3] (air at 10 kPa and 400 K is 0.087; 20 is
+    /// far above any air).
+    pub const DENSITY: std::ops::RangeInclusive<f64> = 0.01..=20.0;
+    /// Dynamic viscosity a given `--mu` may have [Pa s] (air: 1.5e-5 to 2.5e-5).
+    pub const VISCOSITY: std::ops::RangeInclusive<f64> = 1e-6..=1e-3;
+    /// Speed of sound a given `--a` may have [m/s] (air: 250 to 400).
+    pub const SOUND_SPEED: std::ops::RangeInclusive<f64> = 100.0..=2000.0;
+
+    /// `Err` with a message naming `flag` when `value` lies outside `range`.
+    pub fn check(flag: &str, value: f64, range: &std::ops::RangeInclusive<f64>, unit: &str) -> Result<(), String> {
+        if range.contains(&value) {
+            Ok(())
+        } else {
+            Err(format!(
+                "{flag} {}: not a plausible value for air ({}-{} {unit})",
+                crate::show(value),
+                crate::show(*range.start()),
+                crate::show(*range.end())
+            ))
+        }
+    }
+}
+
+#[cfg(test)]
+mod show_tests {
+    use super::*;
+
+    #[test]
+    fn numbers_in_messages_are_short() {
+        assert_eq!(show(0.1524), "0.1524");
+        assert_eq!(show(5000.0), "5000");
+        assert_eq!(show(1e308), "1e308");
+        assert_eq!(show(-1.2345678e-300), "-1.23457e-300");
+        assert_eq!(show(0.15239999999999998), "0.1524");
+        assert_eq!(show(f64::INFINITY), "inf");
+        assert!(show(f64::MAX).len() < 14, "{}", show(f64::MAX));
+    }
+}
