@@ -83,6 +83,15 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
         return;
     }
     let a = v.abs();
+    if !(1e-290..1e290).contains(&a) {
+        // Beyond the power table (and subnormal numbers, whose binary exponent is not their
+        // decimal one): the standard formatter, 7 significant digits.
+        let e = format!("{v:.6e}");
+        let (m, exp) = e.split_once('e').unwrap_or((&e, "0"));
+        let m = m.trim_end_matches('0').trim_end_matches('.');
+        buf.extend_from_slice(format!("{m}e{exp}").as_bytes());
+        return;
+    }
     // Decimal exponent from the binary one, then corrected against the table.
     let e2 = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
     let mut e10 = (e2 as f64 * std::f64::consts::LOG10_2).floor() as i32;
@@ -326,6 +335,10 @@ mod tests {
         check(0.00012345678901, "0.0001234568");
         check(1.5e22, "1.5e22");
         check(-0.5, "-0.5");
+        // Subnormal and extreme values keep their value (once printed as 0e-308).
+        check(1e-310, "1e-310");
+        check(-1.2345678e-305, "-1.234568e-305");
+        check(1e300, "1e300");
         let mut s = Vec::new();
         push_num(&mut s, None);
         assert!(s.is_empty());
