@@ -90,6 +90,7 @@ fn mapped(table: &CsvTable, map: &str) -> Result<Columns, ReadError> {
     let entries: BTreeMap<String, Entry> =
         toml::from_str(map).map_err(|e| ReadError::Map(e.to_string().trim().replace('\n', " ")))?;
     let mut cols = Columns::default();
+    let mut taken: BTreeMap<usize, Vec<String>> = BTreeMap::new();
     for (key, entry) in entries {
         let Some(&(_, q)) = KEYS.iter().find(|(k, _)| *k == key) else {
             let known: Vec<&str> = KEYS.iter().map(|k| k.0).collect();
@@ -111,6 +112,15 @@ fn mapped(table: &CsvTable, map: &str) -> Result<Columns, ReadError> {
         })?;
         let unit = unit.or_else(|| split_header(&name).1);
         *slot(&mut cols, q) = Some(Column::new(q, index, &name, unit.as_deref())?);
+        taken.entry(index).or_default().push(key);
+    }
+    // One column cannot hold two quantities: a copied line of the map, not a measurement.
+    if let Some((index, keys)) = taken.iter().find(|(_, k)| k.len() > 1) {
+        return Err(ReadError::Map(format!(
+            "{} all name column '{}': each quantity needs its own column",
+            keys.join(", "),
+            propbet_units::excerpt(&table.headers[*index])
+        )));
     }
     Ok(cols)
 }

@@ -81,6 +81,17 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     if cols.thrust.is_none() {
         return Err(missing("thrust"));
     }
+    // The app writes every load's unit in its header; a bare `Thrust` has lost it (a
+    // renamed column), and gf read as N is 100 times off.
+    for c in [&cols.thrust, &cols.torque].into_iter().flatten() {
+        if split_header(&c.header).1.is_none() {
+            return Err(ReadError::Option(format!(
+                "column '{}' has no unit: thrust-stand exports write it, as in 'Thrust (gf)', 'Thrust (N)' or \
+                 'Torque (N·m)'; put it back in the header, or name the columns and units with --columns map.toml",
+                propbet_units::excerpt(&c.header)
+            )));
+        }
+    }
     if cols.torque.is_none() {
         notes.push("no torque column: thrust-only comparison".into());
     }

@@ -296,7 +296,23 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
     let thr = cols.thrust.as_ref().expect("thrust column chosen");
     let optional = |row: &CsvRow, c: &Option<Column>| c.as_ref().and_then(|c| cell(row, c).ok());
     let mut out = Vec::with_capacity(table.rows.len());
+    // A row shorter than the header in a table whose rows are otherwise full lost a cell:
+    // every value after it would be read from its neighbour's column.
+    let width = table.headers.len();
+    let short = table.rows.iter().filter(|r| r.cells.len() < width).count();
+    let short_is_fault = short * 10 < table.rows.len();
     for row in &table.rows {
+        if short_is_fault && row.cells.len() < width {
+            dropped.push(Dropped {
+                line: row.line,
+                reason: DropReason::Missing,
+                detail: format!(
+                    "{} values where the header and the other rows have {width}: a cell is missing, the values after it would be read from the wrong columns",
+                    row.cells.len()
+                ),
+            });
+            continue;
+        }
         let other = optional(row, &cols.rotation_other);
         let needed = (|| {
             // An empty reading of one sensor is a dropout when the other reads.
