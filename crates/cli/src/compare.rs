@@ -360,7 +360,12 @@ pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Va
     for g in &m.headline {
         println!("{}:", g.name);
         for q in ["thrust", "torque"] {
-            if let Some(x) = g.metrics.get(q) {
+            if let Some(x) = g.metrics.get(q).filter(|x| x.mean_rel.is_nan()) {
+                println!(
+                    "{q:>7}: n {:>3}  no relative error: every measured value is below 5 % of the largest",
+                    x.n
+                );
+            } else if let Some(x) = g.metrics.get(q) {
                 println!(
                     "{q:>7}: n {:>3}  mean error {:+6.1} %  mean |error| {:5.1} %  worst {:+6.1} % ({})",
                     x.n,

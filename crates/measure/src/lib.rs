@@ -35,12 +35,24 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     if opts.column_map.is_some() {
         return generic::read(text, opts);
     }
-    if table::delimiter(first) == b',' && !first.contains(',') {
-        return uiuc::read(text, opts.name.as_deref());
-    }
-    if rcbenchmark::looks_like(first) {
-        rcbenchmark::read(text, opts)
+    let set = if table::delimiter(first) == b',' && !first.contains(',') {
+        uiuc::read(text, opts.name.as_deref())?
+    } else if rcbenchmark::looks_like(first) {
+        rcbenchmark::read(text, opts)?
     } else {
-        generic::read(text, opts)
+        generic::read(text, opts)?
+    };
+    // A file of zeros (a sweep of CT = CP = 0, a log whose load cells were unplugged) gives
+    // no relative error anywhere and nothing to fit.
+    let thrust = |p: &MeasuredPoint| match p.loads {
+        Loads::Forces { thrust, .. } => thrust.mean,
+        Loads::Coefficients { ct, .. } => ct,
+    };
+    if set.points.iter().all(|p| thrust(p) == 0.0) {
+        return Err(ReadError::NoUsableRows(format!(
+            "the thrust (or CT) of every one of its {} points is 0: a file of zeros, nothing to compare",
+            set.points.len()
+        )));
     }
+    Ok(set)
 }

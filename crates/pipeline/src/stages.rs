@@ -527,6 +527,21 @@ pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>
         column_map,
         ..Default::default()
     };
+    // One file given twice would count its points twice (and cost a diagnosis its time).
+    let mut seen: Vec<(PathBuf, &Path)> = Vec::new();
+    for p in &spec.files {
+        let real = std::fs::canonicalize(p).unwrap_or_else(|_| p.clone());
+        if let Some((_, first)) = seen.iter().find(|(r, _)| *r == real) {
+            return Err(Error::input(
+                p,
+                format!(
+                    "given twice among the measured files (also as {}): each file once",
+                    first.display()
+                ),
+            ));
+        }
+        seen.push((real, p));
+    }
     let sets = spec
         .files
         .iter()
