@@ -172,6 +172,7 @@ fn col(header: &[String], name: &str) -> usize {
 }
 
 mod bad_inputs;
+mod campaign;
 mod compare;
 mod diagnose;
 mod docs;

@@ -158,6 +158,7 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
 /// one of the command's `inputs` (files or directories): a later write could replace it.
 /// Nothing is inside a directory that does not exist yet.
 pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
+    refuse_links_inside(out)?;
     let Ok(o) = out.canonicalize() else { return Ok(()) };
     for input in inputs {
         if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {
@@ -169,6 +170,41 @@ pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// Refuses an output directory that holds a symbolic link (within three levels, the depth of
+/// propbet's own folders): a link `OUT/predict -> CASE` would send the outputs over the case's
+/// own files, and inputs read through it would be the outputs of the run.
+pub fn refuse_links_inside(out: &Path) -> Result<()> {
+    fn walk(dir: &Path, depth: usize, seen: &mut usize) -> Result<()> {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return Ok(());
+        };
+        for e in entries.flatten() {
+            *seen += 1;
+            if *seen > 20_000 {
+                return Ok(());
+            }
+            let Ok(meta) = std::fs::symlink_metadata(e.path()) else {
+                continue;
+            };
+            if meta.file_type().is_symlink() {
+                let to = std::fs::read_link(e.path())
+                    .map(|t| t.display().to_string())
+                    .unwrap_or_default();
+                bail!(
+                    "{}: a symbolic link (to {to}) inside the output directory: propbet writes only into real \
+                     folders there, so that no output lands on another file; remove the link or choose another output directory",
+                    e.path().display()
+                );
+            }
+            if meta.is_dir() && depth < 3 {
+                walk(&e.path(), depth + 1, seen)?;
+            }
+        }
+        Ok(())
+    }
+    walk(out, 1, &mut 0)
 }
 
 /// Refuses, before a command computes or writes anything, output files that are among its

@@ -1,0 +1,341 @@
+//! The second reliability campaign's defects (N1-N40 of `../shared/examples/bad_inputs`,
+//! reproducers copied to `tests/data/bad_inputs`): each runs with the command the shared
+//! README gives and gets what it says propbet must: a clear message naming the file, line or
+//! value and exit 2, or exit 1 with the row or point dropped and listed; never a panic, hang,
+//! abort, or inf / NaN in an output; nothing overwritten.
+
+use super::*;
+
+fn bad(name: &str) -> String {
+    repo().join("tests/data/bad_inputs").join(name).display().to_string()
+}
+
+fn path(rel: &str) -> String {
+    repo().join(rel).display().to_string()
+}
+
+/// Every number of every CSV and JSON file under `dir` is finite.
+fn outputs_finite(dir: &Path) {
+    if !dir.exists() {
+        return;
+    }
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            outputs_finite(&p);
+        } else if matches!(p.extension().and_then(|x| x.to_str()), Some("csv" | "json" | "md")) {
+            let text = std::fs::read_to_string(&p).unwrap();
+            for w in text.split(|c: char| !(c.is_alphanumeric() || ".-_".contains(c))) {
+                assert!(
+                    !matches!(w, "inf" | "-inf" | "NaN" | "nan" | "-nan"),
+                    "{}: holds {w}",
+                    p.display()
+                );
+            }
+        }
+    }
+}
+
+/// One row of the campaign's table: the item, the command (`OUT` is replaced by a fresh
+/// output folder), the exit code and what stderr must say.
+struct Case {
+    id: &'static str,
+    args: Vec<String>,
+    code: i32,
+    says: &'static str,
+}
+
+fn case(id: &'static str, args: &[&str], code: i32, says: &'static str) -> Case {
+    Case {
+        id,
+        args: args.iter().map(|s| s.to_string()).collect(),
+        code,
+        says,
+    }
+}
+
+#[test]
+fn each_item_gets_a_clear_message_and_its_exit_code() {
+    let h = |f: &str| path(&format!("tests/data/hidden_effects/torque_tare/{f}"));
+    let (hq, apc, cam) = (
+        h("cam6x3.qprop"),
+        path("props/apcsf_10x4.7/apcsf_10x4.7.qprop"),
+        path("props/cam6x3/cam6x3.qprop"),
+    );
+    let cases = vec![
+        // N1: a logged pressure of 1e200 is dropped with its value, no panic.
+        case(
+            "N1",
+            &[
+                "--threads",
+                "1",
+                "diagnose",
+                "--prop",
+                &hq,
+                "--measured",
+                &bad("diag_pressure_1e200.csv"),
+                "-o",
+                "OUT",
+            ],
+            1,
+            "1 beyond any small propeller's values (first at line 5)",
+        ),
+        // N5: a tiny positive RPM.
+        case(
+            "N5",
+            &["predict", "--prop", &cam, "--rpm", "1e-300", "--j", "0,0.3"],
+            2,
+            "--rpm: 1e-300 is below 1 rpm",
+        ),
+        case(
+            "N5 (run)",
+            &["run", &bad("case_sweep_tiny_rpm"), "-o", "OUT"],
+            2,
+            "4e-297 is below 1 rpm",
+        ),
+        case(
+            "N5 (UIUC)",
+            &[
+                "compare",
+                "--prop",
+                &apc,
+                "--measured",
+                &bad("uiuc_tiny_rpm_static_kt0000.txt"),
+                "-o",
+                "OUT",
+            ],
+            1,
+            "1 beyond any small propeller's values",
+        ),
+        // N6 and N30: densities no air has.
+        case(
+            "N6",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &h("cam6x3_steps.csv"),
+                "--rho",
+                "1e-310",
+                "-o",
+                "OUT",
+            ],
+            2,
+            "--rho 1e-310: not a plausible value for air (0.01-20 kg/m^3)",
+        ),
+        case(
+            "N30",
+            &["predict", "--prop", &cam, "--rpm", "4000", "--rho", "1e300"],
+            2,
+            "--rho 1e300: not a plausible",
+        ),
+        // N7: logged air state.
+        case(
+            "N7 (0 Pa)",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &bad("stand_pressure_zero.csv"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "line 2: air pressure 0 Pa is outside 10000-200000 Pa",
+        ),
+        case(
+            "N7 (hPa)",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &bad("stand_pressure_in_hpa.csv"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "air pressure 1013 Pa is outside 10000-200000 Pa (hPa or kPa logged as Pa?)",
+        ),
+        case(
+            "N7 (-300 C)",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &bad("stand_temp_minus300C.csv"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "air temperature -300 °C is outside",
+        ),
+        // N8: a sweep of zeros.
+        case(
+            "N8",
+            &[
+                "compare",
+                "--prop",
+                &apc,
+                "--measured",
+                &bad("uiuc_zero_ct_kt0000_4014.txt"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "every one of its 6 points is 0",
+        ),
+        // N2: one file given twice.
+        case(
+            "N2",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &h("cam6x3_steps.csv"),
+                &h("cam6x3_steps.csv"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "given twice among the measured files",
+        ),
+        // N15: a short row.
+        case(
+            "N15",
+            &[
+                "compare",
+                "--prop",
+                &hq,
+                "--measured",
+                &bad("stand_short_row.csv"),
+                "-o",
+                "OUT",
+            ],
+            1,
+            "1 empty cell (first at line 6)",
+        ),
+        // N16: one column for three quantities.
+        case(
+            "N16",
+            &[
+                "compare",
+                "--prop",
+                &cam,
+                "--measured",
+                &bad("colmap_gen.csv"),
+                "--columns",
+                &bad("colmap_same_column.toml"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "rpm, thrust, torque all name column 'Motor speed'",
+        ),
+        // N17: a load column without its unit.
+        case(
+            "N17",
+            &[
+                "compare",
+                "--prop",
+                &cam,
+                "--measured",
+                &bad("stand_thrust_no_unit.csv"),
+                "-o",
+                "OUT",
+            ],
+            2,
+            "column 'Thrust' has no unit",
+        ),
+    ];
+    let mut failures = Vec::new();
+    for c in &cases {
+        let dir = tempfile::tempdir().unwrap();
+        let out = dir.path().join("out");
+        let args: Vec<String> = c
+            .args
+            .iter()
+            .map(|a| {
+                if a == "OUT" {
+                    out.display().to_string()
+                } else {
+                    a.clone()
+                }
+            })
+            .collect();
+        let argv: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = run(&argv, dir.path());
+        let e = stderr(&o);
+        if o.status.code() != Some(c.code) || !e.contains(c.says) {
+            failures.push(format!(
+                "{}: exit {:?} (want {}), stderr: {e}",
+                c.id,
+                o.status.code(),
+                c.code
+            ));
+        }
+        assert!(!e.contains("panicked"), "{}: {e}", c.id);
+        outputs_finite(&out);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn n38_a_symlink_in_the_output_folder_is_refused_and_nothing_is_overwritten() {
+    let t = tempfile::tempdir().unwrap();
+    let (case_dir, out) = (t.path().join("case"), t.path().join("out"));
+    std::fs::create_dir_all(&case_dir).unwrap();
+    std::fs::create_dir_all(&out).unwrap();
+    let h = repo().join("tests/data/hidden_effects/torque_tare");
+    std::fs::copy(h.join("cam6x3.qprop"), case_dir.join("cam6x3.qprop")).unwrap();
+    std::fs::copy(h.join("cam6x3_steps.csv"), case_dir.join("sweep.csv")).unwrap();
+    std::fs::write(
+        case_dir.join("case.toml"),
+        "name = \"c\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"4000,8000\"\nj = \"0:0.6:0.1\"\n\
+         [measured]\nfiles = [\"sweep.csv\"]\n",
+    )
+    .unwrap();
+    std::os::unix::fs::symlink(&case_dir, out.join("predict")).unwrap();
+    let before = std::fs::read(case_dir.join("sweep.csv")).unwrap();
+    let o = run(
+        &[
+            "run",
+            case_dir.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--no-cache",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("a symbolic link (to"), "{}", stderr(&o));
+    assert_eq!(std::fs::read(case_dir.join("sweep.csv")).unwrap(), before);
+    // The same for compare's plots folder.
+    let (elsewhere, out2) = (t.path().join("elsewhere"), t.path().join("out2"));
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    std::fs::create_dir_all(&out2).unwrap();
+    std::fs::write(elsewhere.join("static.svg"), "precious").unwrap();
+    std::os::unix::fs::symlink(&elsewhere, out2.join("plots")).unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            h.join("cam6x3.qprop").to_str().unwrap(),
+            "--measured",
+            h.join("cam6x3_steps.csv").to_str().unwrap(),
+            "-o",
+            out2.to_str().unwrap(),
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(elsewhere.join("static.svg")).unwrap(),
+        "precious"
+    );
+}
