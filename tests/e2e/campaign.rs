@@ -251,6 +251,27 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             2,
             "column 'Thrust' has no unit",
         ),
+        // N12: two stations 0.001 in apart make the spline swing (chord 6 times the largest).
+        case(
+            "N12",
+            &[
+                "predict",
+                "--prop",
+                &bad("prop_close_stations.qprop"),
+                "--rpm",
+                "8000",
+                "--v",
+                "5",
+            ],
+            2,
+            "prop_close_stations.qprop: the spline through the stations swings to a chord [m] of",
+        ),
+        case(
+            "N12 (closer)",
+            &["prop", &bad("prop_closer_stations.qprop")],
+            2,
+            "remove one of them or space the stations out",
+        ),
     ];
     let mut failures = Vec::new();
     for c in &cases {

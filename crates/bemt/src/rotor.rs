@@ -79,6 +79,31 @@ pub enum RotorError {
         /// Its radius [m].
         r: f64,
     },
+    /// The spline through the given stations swings far outside their values (two stations
+    /// very close together make it oscillate): QPROP would solve that blade, not the file's.
+    #[error(
+        "the spline through the stations swings to a {what} of {value:.4} at r = {r:.5} m, while the rows give \
+         {lo:.4} to {hi:.4}: the stations at r = {close_a:.5} and {close_b:.5} m lie {gap:.3} % of the span apart and make \
+         it oscillate; remove one of them or space the stations out"
+    )]
+    Overshoot {
+        /// "chord [m]" or "twist [deg]".
+        what: &'static str,
+        /// The interpolated value.
+        value: f64,
+        /// At radius [m].
+        r: f64,
+        /// Smallest and largest given value.
+        lo: f64,
+        /// Largest given value.
+        hi: f64,
+        /// The closest pair of given radii [m].
+        close_a: f64,
+        /// Its second radius [m].
+        close_b: f64,
+        /// Their distance in per cent of the span.
+        gap: f64,
+    },
     /// A negative chord.
     #[error("chord must not be negative: station {index} (r = {r} m) has chord {chord} m")]
     NegativeChord {
@@ -303,9 +328,40 @@ impl QpropBlade {
         Ok(())
     }
 
+    /// Refuses an interpolated `value` (of `given`, shown times `show`) more than half the
+    /// given range beyond it: a spline that swings, not a blade.
+    fn overshoot(&self, what: &'static str, given: &[f64], value: f64, r: f64, show: f64) -> Result<(), RotorError> {
+        let lo = given.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = given.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let margin = 0.5 * (hi - lo).max(0.1 * hi.abs().max(lo.abs()));
+        if value >= lo - margin && value <= hi + margin {
+            return Ok(());
+        }
+        let (k, gap) = self
+            .r
+            .windows(2)
+            .enumerate()
+            .map(|(k, w)| (k, w[1] - w[0]))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .unwrap_or((0, 0.0));
+        let span = self.r[self.r.len() - 1] - self.r[0];
+        Err(RotorError::Overshoot {
+            what,
+            value: value * show,
+            r,
+            lo: lo * show,
+            hi: hi * show,
+            close_a: self.r[k],
+            close_b: self.r[(k + 1).min(self.r.len() - 1)],
+            gap: 100.0 * gap / span,
+        })
+    }
+
     /// QPROP's discretisation: `n` stations at the midpoints of `n` equal intervals between the
     /// first and last input radius, chord, angle and every coefficient interpolated with
     /// [`DrelaSpline`]; no hub model and no extension to the tip radius.
+    /// A spline that swings far outside the given chords or twists (stations very close
+    /// together) is refused ([`RotorError::Overshoot`]).
     pub fn to_rotor(&self, disc: Discretization) -> Result<Rotor, RotorError> {
         self.validate()?;
         let n = disc.stations.max(1);
@@ -336,6 +392,9 @@ impl QpropBlade {
                 k[8] = reref_first;
             }
             let c = chord.eval(r);
+            let b = beta.eval(r);
+            self.overshoot("chord [m]", &self.chord, c, r, 1.0)?;
+            self.overshoot("twist [deg]", &self.beta, b, r, 180.0 / std::f64::consts::PI)?;
             if c < 0.0 {
                 return Err(RotorError::NegativeChord { index: i, r, chord: c });
             }
@@ -351,7 +410,7 @@ impl QpropBlade {
                 r,
                 dr,
                 chord: c,
-                beta: beta.eval(r),
+                beta: b,
                 aero: Arc::new(QpropAirfoil::new(QpropCoefficients::from_array(k))),
             });
         }
