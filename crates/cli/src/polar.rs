@@ -217,6 +217,13 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
                 // An XFOIL that was killed (hung) or crashed leaves a polar with holes: said,
                 // and the exit code is 1.
                 ok &= p.faults.is_empty();
+                if p.points.is_empty() {
+                    eprintln!(
+                        "propbet: Re {:.0}: XFOIL converged at no angle: the polar is empty",
+                        job.re
+                    );
+                    ok = false;
+                }
                 polars.push(p);
             }
             Err(e) => {
@@ -235,7 +242,10 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
                 eprintln!("{}", fit_summary(p.re, &f));
                 fits.push(f);
             }
-            Err(e) => eprintln!("propbet: Re {:.0}: no QPROP fit: {e}", p.re),
+            Err(e) => {
+                eprintln!("propbet: Re {:.0}: no QPROP fit: {e}", p.re);
+                ok = false;
+            }
         }
     }
     let inputs = input_paths(&args.section);
@@ -412,7 +422,7 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     let p = stages::polars(&spec, &input, &engine, &|d, t| bar.tick(d, t))?;
     print_polars(&spec, &input, &p);
     write_polars(&spec, &p)?;
-    Ok(p.all_fitted())
+    Ok(p.clean())
 }
 
 /// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL made and

@@ -216,6 +216,18 @@ pub fn run(a: &RunArgs) -> Result<bool> {
         t_all.elapsed().as_secs_f64(),
         report_path.display()
     );
+    let problems: Vec<&str> = outcome
+        .stages
+        .iter()
+        .filter(|s| !s.clean)
+        .map(|s| s.spec.name())
+        .collect();
+    if !problems.is_empty() {
+        eprintln!(
+            "propbet: exit 1: done, with problems the report lists under 'Every note of the stages' (stages: {})",
+            problems.join(", ")
+        );
+    }
     Ok(outcome.clean())
 }
 

@@ -205,7 +205,7 @@ pub fn run_case(
             Ok((stages::polars(spec, &input, &engine, progress)?, input))
         };
         let (p, input) = run().map_err(|e| stage_err("polars", e))?;
-        book.done(t, p.all_fitted(), Finished::Polars(&p, &input));
+        book.done(t, p.clean(), Finished::Polars(&p, &input));
         polars = Some(p);
     }
 

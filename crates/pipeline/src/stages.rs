@@ -348,9 +348,13 @@ impl ExportCheck {
 }
 
 impl Polars {
-    /// Every station has a fit.
-    pub fn all_fitted(&self) -> bool {
-        self.blade.stations.iter().all(|s| s.fit.is_some())
+    /// Nothing to report (exit 0): every station has a fit that describes it where the blade
+    /// works, and XFOIL ran without a fault (a crash, a hang, unreadable output).
+    pub fn clean(&self) -> bool {
+        self.blade
+            .stations
+            .iter()
+            .all(|s| s.fit.as_ref().is_some_and(|f| f.unfit.is_empty()) && s.polars.iter().all(|p| p.faults.is_empty()))
     }
 }
 

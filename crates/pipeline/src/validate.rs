@@ -678,7 +678,7 @@ pub fn validate_prop(
         &mut records,
         StageSpec::Polars(polars_spec.clone()),
         || stages::polars(&polars_spec, &input, &engine, progress),
-        Polars::all_fitted,
+        Polars::clean,
     )?;
 
     let model_spec = ModelSpec {
