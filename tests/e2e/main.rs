@@ -461,7 +461,7 @@ fn bad_values_get_clear_errors_and_exit_2() {
         (vec!["--rpm", "0", "--j", "0.2"], "J = V/(nD) is undefined"),
         (
             vec!["--rpm", "5000", "--rho", "-1"],
-            "density must be a positive number",
+            "--rho -1: not a plausible value for air",
         ),
         (vec!["--rpm", "5000", "--j", "0.1", "--v", "3"], "cannot be used with"),
     ] {
