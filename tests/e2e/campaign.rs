@@ -360,3 +360,39 @@ fn n38_a_symlink_in_the_output_folder_is_refused_and_nothing_is_overwritten() {
         "precious"
     );
 }
+
+#[test]
+fn n39_n40_names_cannot_drive_the_terminal_or_become_html() {
+    let t = tempfile::tempdir().unwrap();
+    let o = run(&["prop", &bad("prop_title_ansi.qprop")], t.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("name: Cam ?]0;PWNED"));
+    let o = run(&["run", &bad("case_name_ansi"), "-o", "ansi", "--quiet"], t.path());
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    for (what, bytes) in [("stdout", &o.stdout), ("stderr", &o.stderr)] {
+        assert!(
+            !bytes.contains(&0x1b),
+            "{what} holds an escape: {}",
+            String::from_utf8_lossy(bytes)
+        );
+    }
+    // A measured file's name with a tag in it: the summary quotes it, as text.
+    let h = repo().join("tests/data/hidden_effects/torque_tare");
+    let log = t.path().join("<img src=x onerror=alert(1)>.csv");
+    std::fs::copy(h.join("cam6x3_steps.csv"), &log).unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            h.join("cam6x3.qprop").to_str().unwrap(),
+            "--measured",
+            log.to_str().unwrap(),
+            "-o",
+            "md",
+        ],
+        t.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let md = std::fs::read_to_string(t.path().join("md/summary.md")).unwrap();
+    assert!(md.contains("&lt;img src=x") && !md.contains("<img"), "{md}");
+}

@@ -176,7 +176,8 @@ pub struct AtmosphereSection {
 pub fn read_case(dir: &Path) -> Result<Case> {
     let path = dir.join("case.toml");
     let text = read_text(&path)?;
-    let case: Case = toml::from_str(&text).map_err(|e| Error::input(&path, e))?;
+    let mut case: Case = toml::from_str(&text).map_err(|e| Error::input(&path, e))?;
+    case.name = propbet_units::printable(&case.name);
     let g = &case.geometry;
     if g.scan.is_some() == g.prop.is_some() {
         return Err(Error::input(&path, "[geometry] needs exactly one of `scan` and `prop`"));

@@ -248,7 +248,7 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
         line: 1,
         expected: "name",
     })?;
-    let name = name.trim().to_string();
+    let name = propbet_units::printable(name);
 
     const L2: &str = "Nblades [R]";
     let (l, v) = lines.numbers(L2)?;

@@ -798,7 +798,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     Ok(Report {
         html: page(&format!("propbet: {}", input.prop), "", &h),
         body: h,
-        markdown: md,
+        markdown: crate::md_safe(&md),
         json,
         figures,
     })

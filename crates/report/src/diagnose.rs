@@ -670,7 +670,7 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
             &format!("{h}{}", measured_files_html(files)),
         ),
         body: h,
-        markdown: md,
+        markdown: crate::md_safe(&md),
         figures: vec![("ladder".into(), ladder), ("residuals".into(), residuals)],
     })
 }

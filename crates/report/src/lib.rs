@@ -13,3 +13,9 @@ pub mod polar;
 pub mod run;
 pub mod scan;
 pub mod validate;
+
+/// Markdown that holds no raw HTML: every `<` written as `&lt;` (Markdown renders it as `<`),
+/// so that a file name, a label or a tool's output quoted in a summary cannot become a tag.
+pub fn md_safe(md: &str) -> String {
+    md.replace('<', "&lt;")
+}

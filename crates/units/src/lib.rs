@@ -74,6 +74,16 @@ mod tests {
     }
 }
 
+/// A name from a user's file (a prop title, a case name) as propbet shows it: control
+/// characters (terminal escapes, bells, newlines) replaced by `?`, blanks trimmed. A file must
+/// not be able to drive the terminal or break a line of an output.
+pub fn printable(text: &str) -> String {
+    text.trim()
+        .chars()
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect()
+}
+
 /// Longest excerpt of a user's file that a message quotes [characters].
 pub const EXCERPT_CHARS: usize = 60;
 
