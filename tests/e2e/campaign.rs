@@ -396,3 +396,44 @@ fn n39_n40_names_cannot_drive_the_terminal_or_become_html() {
     let md = std::fs::read_to_string(t.path().join("md/summary.md")).unwrap();
     assert!(md.contains("&lt;img src=x") && !md.contains("<img"), "{md}");
 }
+
+#[test]
+fn n36_a_cache_that_cannot_store_a_polar_warns_and_the_polar_is_used() {
+    // The stand-in XFOIL (no fault) fills a cache; each entry then becomes a directory, so
+    // that the cache can neither read nor store it (as a read-only or full cache would fail).
+    let t = tempfile::tempdir().unwrap();
+    let xfoil = bad("fake_xfoil.sh");
+    let args = [
+        "polar",
+        "--airfoil",
+        "naca4412",
+        "--re",
+        "1e5",
+        "--alpha",
+        "-4:8:1",
+        "--xfoil",
+        &xfoil,
+        "--cache",
+        "C",
+    ];
+    let first = run(&args, t.path());
+    assert_eq!(first.status.code(), Some(0), "{}", stderr(&first));
+    let mut entries = 0;
+    for shard in std::fs::read_dir(t.path().join("C")).unwrap() {
+        for e in std::fs::read_dir(shard.unwrap().path()).unwrap() {
+            let p = e.unwrap().path();
+            std::fs::remove_file(&p).unwrap();
+            std::fs::create_dir(&p).unwrap();
+            entries += 1;
+        }
+    }
+    assert!(entries > 0);
+    let second = run(&args, t.path());
+    assert_eq!(second.status.code(), Some(0), "{}", stderr(&second));
+    assert!(
+        stderr(&second).contains("the cache could not store the polars XFOIL computed; they were used"),
+        "{}",
+        stderr(&second)
+    );
+    assert_eq!(second.stdout, first.stdout, "the same polar, computed again");
+}

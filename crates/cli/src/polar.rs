@@ -232,6 +232,11 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
             }
         }
     }
+    if let Some(e) = engine.cache_error() {
+        eprintln!(
+            "propbet: warning: {e}: the cache could not store the polars XFOIL computed; they were used, and the next run computes them again"
+        );
+    }
     if polars.is_empty() {
         bail!("no polar could be computed for {}", foil.name);
     }
@@ -501,6 +506,9 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
     }
     if let Some(e) = &p.export {
         eprintln!("{}", e.sentence());
+    }
+    if let Some(w) = &p.cache_warning {
+        eprintln!("propbet: warning: {w}");
     }
 }
 

@@ -275,6 +275,9 @@ pub struct Polars {
     /// How far the exported prop file (QPROP's law) predicts from the tables over the points
     /// the polars cover (None when no station has a polar).
     pub export: Option<ExportCheck>,
+    /// The cache could not store what XFOIL computed (read-only, full): the polars were
+    /// used, and the next run computes them again.
+    pub cache_warning: Option<String>,
 }
 
 /// The exported prop file against the tables it was fitted to: relative differences
@@ -405,7 +408,15 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
     );
     let prop = as_written(&file, &spec.out_prop)?;
     let export = ExportCheck::new(&prop.file, &b, &fluid, &points)?;
-    Ok(Polars { prop, blade: b, export })
+    let cache_warning = engine.cache_error().map(|e| {
+        format!("{e}: the cache could not store the polars XFOIL computed; they were used, and the next run computes them again")
+    });
+    Ok(Polars {
+        prop,
+        blade: b,
+        export,
+        cache_warning,
+    })
 }
 
 // ---------------------------------------------------------------------------------------

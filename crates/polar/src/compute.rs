@@ -200,6 +200,9 @@ pub struct PolarEngine {
     identity: OnceLock<String>,
     /// The command's budget: (deadline, its length [s]).
     deadline: Option<(std::time::Instant, f64)>,
+    /// The first polar the cache could not store (read-only, full): the polar is used all the
+    /// same, and the caller says so once.
+    cache_error: std::sync::Mutex<Option<String>>,
 }
 
 impl PolarEngine {
@@ -210,7 +213,14 @@ impl PolarEngine {
             cache,
             identity: OnceLock::new(),
             deadline: None,
+            cache_error: std::sync::Mutex::new(None),
         }
+    }
+
+    /// Why the cache could not store a polar XFOIL computed (the first such error), if it
+    /// could not: a warning for the caller; the polar itself was used.
+    pub fn cache_error(&self) -> Option<String> {
+        self.cache_error.lock().ok().and_then(|e| e.clone())
     }
 
     /// The engine with a total XFOIL time budget from now [s]: polars not started by then are
@@ -306,7 +316,13 @@ impl PolarEngine {
             )
         });
         if let (Some(c), false) = (&self.cache, transient) {
-            c.put(&key, &polar)?;
+            // A cache that cannot be written (read-only, full) costs the next run its time,
+            // not this run its polar.
+            if let Err(e) = c.put(&key, &polar) {
+                if let Ok(mut first) = self.cache_error.lock() {
+                    first.get_or_insert_with(|| e.to_string());
+                }
+            }
         }
         Ok((polar, source))
     }

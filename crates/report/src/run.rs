@@ -451,7 +451,8 @@ fn problems(run: &RunOutcome) -> Vec<(&'static str, usize, String)> {
         add("scan", v);
     }
     if let Some(p) = &run.polars {
-        let v = p.blade.stations.iter().flat_map(station_problem_list).collect();
+        let mut v: Vec<String> = p.blade.stations.iter().flat_map(station_problem_list).collect();
+        v.extend(p.cache_warning.clone());
         add("polars", v);
     }
     add("predict", run.model.loaded.warnings.clone());
