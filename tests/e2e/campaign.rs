@@ -437,3 +437,71 @@ fn n36_a_cache_that_cannot_store_a_polar_warns_and_the_polar_is_used() {
     );
     assert_eq!(second.stdout, first.stdout, "the same polar, computed again");
 }
+
+/// Processes whose command line holds `needle` (from /proc).
+fn processes_with(needle: &str) -> usize {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|e| std::fs::read(e.ok()?.path().join("cmdline")).ok())
+        .filter(|c| String::from_utf8_lossy(c).replace('\0', " ").contains(needle))
+        .count()
+}
+
+#[test]
+fn n33_n34_n35_xfoil_and_its_children_and_folders_go_with_propbet() {
+    let t = tempfile::tempdir().unwrap();
+    let tmp = t.path().join("tmp");
+    std::fs::create_dir(&tmp).unwrap();
+    let xfoil = bad("fake_xfoil.sh");
+    let polar = |mode: &str| {
+        let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_propbet"));
+        c.args([
+            "polar",
+            "--airfoil",
+            "naca4412",
+            "--re",
+            "1e5",
+            "--alpha",
+            "-4:8:1",
+            "--no-cache",
+        ])
+        .args(["--xfoil", &xfoil])
+        .env("FAKE_MODE", mode)
+        .env("TMPDIR", &tmp)
+        .current_dir(t.path())
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null());
+        c
+    };
+    // N35: an XFOIL that exits normally leaves a background child (`sleep 307`): it goes too.
+    let status = polar("x_bg_child").status().unwrap();
+    assert!(status.code().is_some());
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert_eq!(processes_with("sleep 307"), 0, "a child of XFOIL outlived it");
+    // N34: SIGTERM to propbet while XFOIL hangs (`sleep 100007` at its 4th angle).
+    let mut child = polar("x_hang_mid").spawn().unwrap();
+    let start = std::time::Instant::now();
+    while processes_with("sleep 100007") == 0 && start.elapsed().as_secs() < 20 {
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    assert!(processes_with("sleep 100007") > 0, "the hang did not start");
+    rustix::process::kill_process(
+        rustix::process::Pid::from_raw(child.id() as i32).unwrap(),
+        rustix::process::Signal::TERM,
+    )
+    .unwrap();
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(128 + 15));
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    assert_eq!(
+        processes_with("sleep 100007"),
+        0,
+        "XFOIL outlived an interrupted propbet"
+    );
+    // N33: nothing left in TMPDIR.
+    let left: Vec<_> = std::fs::read_dir(&tmp)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert!(left.is_empty(), "left in TMPDIR: {left:?}");
+}

@@ -13,6 +13,7 @@
 pub mod display;
 pub mod fake;
 mod find;
+pub mod interrupt;
 mod output;
 mod run;
 pub mod script;

@@ -661,6 +661,7 @@ impl Xfoil {
         let mut child = cmd
             .spawn()
             .map_err(|e| XfoilError::io(format!("cannot start XFOIL ({})", self.config.executable.display()), e))?;
+        let tracked = crate::interrupt::Tracked::new(child.id(), path);
         let text = script::sweep_script(settings, warm_up, steps);
         if let Some(mut stdin) = child.stdin.take() {
             // XFOIL may die before reading everything; the watchdog below reports that.
@@ -668,7 +669,12 @@ impl Xfoil {
         }
         let budget = (self.config.startup_timeout + self.config.point_timeout * (steps.len() as u32 + 1)).min(left);
         let ending = watch(&mut child, &log_path, self.config.stall_timeout, budget)?;
-        let output = std::fs::read(&log_path).unwrap_or_default();
+        // Whatever XFOIL (or a wrapper given as --xfoil) left running in its group goes too.
+        kill_group(&mut child);
+        drop(tracked);
+        // The log's head (where XFOIL says it accumulates the polar, or that the display
+        // refused it) and tail (where it stopped): never the whole of a babbling log.
+        let output = head_and_tail(&log_path);
         let output_tail = tail(&output);
         let display_refused = !matches!(ending, Ending::Finished) && contains(&output, DISPLAY_REFUSED);
         if display_refused {
@@ -721,7 +727,7 @@ fn watch(child: &mut std::process::Child, log: &Path, stall: Duration, budget: D
             last_len = len;
             last_change = now;
         }
-        if now - last_change > stall || now - start > budget {
+        if now - last_change > stall || now - start > budget || len > LOG_LIMIT {
             kill_group(child);
             let _ = child.wait();
             return Ok(Ending::Hung(now - start));
@@ -729,6 +735,32 @@ fn watch(child: &mut std::process::Child, log: &Path, stall: Duration, budget: D
         std::thread::sleep(nap);
         nap = (nap * 2).min(Duration::from_millis(10));
     }
+}
+
+/// Most bytes of XFOIL's log a run keeps (its head and its tail): a babbling executable
+/// costs its log's disk, not the memory of propbet.
+const LOG_KEPT: u64 = 1 << 20;
+
+/// A log larger than this ends the run as a hang: nothing useful is that long.
+const LOG_LIMIT: u64 = 256 << 20;
+
+/// The first and last [`LOG_KEPT`] / 2 bytes of the log (all of it when shorter).
+fn head_and_tail(log: &Path) -> Vec<u8> {
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(mut f) = File::open(log) else { return Vec::new() };
+    let len = f.metadata().map(|m| m.len()).unwrap_or(0);
+    let mut out = Vec::new();
+    if len <= LOG_KEPT {
+        let _ = f.read_to_end(&mut out);
+        return out;
+    }
+    let half = LOG_KEPT / 2;
+    let _ = (&mut f).take(half).read_to_end(&mut out);
+    out.push(b'\n');
+    if f.seek(SeekFrom::Start(len - half)).is_ok() {
+        let _ = f.take(half).read_to_end(&mut out);
+    }
+    out
 }
 
 /// Kills `child`'s process group (it leads its own: `process_group(0)` at spawn), then the child

@@ -182,6 +182,9 @@ fn main() -> ExitCode {
             return ExitCode::from(code);
         }
     };
+    // An interrupted propbet takes the XFOIL processes and temporary folders it started
+    // with it (without a handler the default action still ends propbet).
+    let _ = xfoil_runner::interrupt::install();
     match run(cli) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),
