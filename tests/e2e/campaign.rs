@@ -272,6 +272,25 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             2,
             "remove one of them or space the stations out",
         ),
+        // N9: a PER3 table with a CT of 1e308: those rows left out and said (exit 1: two
+        // stations of this prop file do not converge at some points).
+        case(
+            "N9",
+            &[
+                "compare",
+                "--prop",
+                &apc,
+                "--measured",
+                &path("props/apcsf_10x4.7/uiuc/apcsf_10x4.7_kt0836_4014.txt"),
+                &path("props/apcsf_10x4.7/uiuc/apcsf_10x4.7_static_kt0835.txt"),
+                "--per3",
+                &bad("per3_ct_1e308.dat"),
+                "-o",
+                "OUT",
+            ],
+            1,
+            "rows of its tables left out (not finite, or beyond any propeller's CT, CP or J), first line 24",
+        ),
     ];
     let mut failures = Vec::new();
     for c in &cases {

@@ -319,7 +319,17 @@ impl Reference {
         Ok(match (&spec.per3, &spec.qprop_output) {
             (Some(p), _) => Some(Reference {
                 name: format!("APC's prediction ({})", file_name(p)),
-                table: ReferenceTable::Apc(stages::read_per3(p)?),
+                table: ReferenceTable::Apc({
+                    let per3 = stages::read_per3(p)?;
+                    if let Some(first) = per3.skipped.first() {
+                        eprintln!(
+                            "propbet: warning: {}: {} rows of its tables left out (not finite, or beyond any propeller's CT, CP or J), first {first}",
+                            p.display(),
+                            per3.skipped.len()
+                        );
+                    }
+                    per3
+                }),
             }),
             (None, Some(p)) => Some(Reference {
                 name: format!("QPROP's prediction ({})", file_name(p)),

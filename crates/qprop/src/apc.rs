@@ -191,6 +191,8 @@ pub fn read_pe0(text: &str, name: &str) -> Result<Pe0, ReadPe0Error> {
 pub struct Per3 {
     /// (rpm, rows of (J, CT, CP)), ascending in rpm.
     pub blocks: Vec<(f64, Vec<[f64; 3]>)>,
+    /// Rows of a block left out, each as "line N: what" (a CT of 1e308, `******`, NaN).
+    pub skipped: Vec<String>,
 }
 
 /// A PER3 file that cannot be read.
@@ -224,6 +226,7 @@ pub fn per3_name(uiuc: &str) -> Option<String> {
 /// Ct, Cp, ...); rows with non-finite or negative J are skipped.
 pub fn read_per3(text: &str, name: &str) -> Result<Per3, ReadPer3Error> {
     let mut blocks: Vec<(f64, Vec<[f64; 3]>)> = Vec::new();
+    let mut skipped = Vec::new();
     for (i, line) in text.lines().enumerate() {
         let t = line.trim();
         if let Some(rest) = t.strip_prefix("PROP RPM =") {
@@ -236,10 +239,16 @@ pub fn read_per3(text: &str, name: &str) -> Result<Per3, ReadPer3Error> {
             continue;
         }
         let v: Vec<f64> = t.split_whitespace().map_while(|s| s.parse().ok()).collect();
-        if v.len() >= 5 && v[1].is_finite() && v[1] >= 0.0 && v[3].is_finite() && v[4].is_finite() {
+        // Beyond these no propeller's coefficients or advance ratio lie (the limits the
+        // measurement readers drop rows at).
+        let plausible = |v: &[f64]| v[1].abs() <= 20.0 && v[3].abs() <= 10.0 && v[4].abs() <= 10.0;
+        if v.len() >= 5 && v[1].is_finite() && v[1] >= 0.0 && v[3].is_finite() && v[4].is_finite() && plausible(&v) {
             if let Some((_, rows)) = blocks.last_mut() {
                 rows.push([v[1], v[3], v[4]]);
             }
+        } else if !blocks.is_empty() && t.split_whitespace().count() >= 5 && v.len() >= 2 {
+            // A row of the table (its first values are numbers) that cannot be used.
+            skipped.push(format!("line {}: {}", i + 1, propbet_bemt::units::excerpt(t)));
         }
     }
     blocks.retain(|(rpm, rows)| rpm.is_finite() && *rpm > 0.0 && rows.len() >= 2);
@@ -250,7 +259,7 @@ pub fn read_per3(text: &str, name: &str) -> Result<Per3, ReadPer3Error> {
     if blocks.is_empty() {
         return Err(ReadPer3Error::NotPer3 { name: name.to_string() });
     }
-    Ok(Per3 { blocks })
+    Ok(Per3 { blocks, skipped })
 }
 
 impl Per3 {
