@@ -291,6 +291,29 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             1,
             "rows of its tables left out (not finite, or beyond any propeller's CT, CP or J), first line 24",
         ),
+        // N3: thousands of threads.
+        case(
+            "N3",
+            &["--threads", "4000", "predict", "--prop", &cam, "--rpm", "4000"],
+            2,
+            "--threads 4000: from 1 to 256",
+        ),
+        // N11: a reference table whose chord is 0 at a measured station.
+        case(
+            "N11",
+            &[
+                "scan",
+                &path("props/apcsf_10x4.7/apcsf_10x4.7.stl"),
+                "--stations",
+                "0.3:0.9/5",
+                "--reference",
+                &bad("geom_zero_chord.txt"),
+                "-o",
+                "OUT",
+            ],
+            0,
+            "(the table's chord is 0 at r/R 0.75: no chord error there)",
+        ),
     ];
     let mut failures = Vec::new();
     for c in &cases {
@@ -310,7 +333,8 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
         let argv: Vec<&str> = args.iter().map(String::as_str).collect();
         let o = run(&argv, dir.path());
         let e = stderr(&o);
-        if o.status.code() != Some(c.code) || !e.contains(c.says) {
+        let said = format!("{e}{}", String::from_utf8_lossy(&o.stdout));
+        if o.status.code() != Some(c.code) || !said.contains(c.says) {
             failures.push(format!(
                 "{}: exit {:?} (want {}), stderr: {e}",
                 c.id,
@@ -523,4 +547,54 @@ fn n33_n34_n35_xfoil_and_its_children_and_folders_go_with_propbet() {
         .map(|e| e.unwrap().file_name())
         .collect();
     assert!(left.is_empty(), "left in TMPDIR: {left:?}");
+}
+
+#[test]
+fn n23_a_relative_xfoil_path_is_the_callers() {
+    let t = tempfile::tempdir().unwrap();
+    std::fs::copy(bad("fake_xfoil.sh"), t.path().join("fake.sh")).unwrap();
+    let o = run(
+        &[
+            "polar",
+            "--airfoil",
+            "naca4412",
+            "--re",
+            "1e5",
+            "--alpha",
+            "-4:8:1",
+            "--xfoil",
+            "./fake.sh",
+            "--no-cache",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).lines().count() > 5);
+}
+
+#[test]
+fn n19_a_first_row_out_of_time_order_is_described_without_nan() {
+    let t = tempfile::tempdir().unwrap();
+    let h = repo().join("tests/data/hidden_effects/torque_tare");
+    let text = std::fs::read_to_string(h.join("cam6x3_steps.csv")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let rest = lines[1].split_once(',').unwrap().1.to_string();
+    lines[1] = format!("77.12,{rest}");
+    std::fs::write(t.path().join("log.csv"), lines.join("\n") + "\n").unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            h.join("cam6x3.qprop").to_str().unwrap(),
+            "--measured",
+            "log.csv",
+            "-o",
+            "out",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let m = std::fs::read_to_string(t.path().join("out/metrics.json")).unwrap();
+    assert!(m.contains("t = 77.12 s, first row, before the next row's"), "{m}");
+    assert!(!m.contains("NaN"));
 }

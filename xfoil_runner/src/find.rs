@@ -22,7 +22,8 @@ pub enum FindXfoilError {
 pub fn find_xfoil(explicit: Option<&Path>, path_var: Option<&std::ffi::OsStr>) -> Result<PathBuf, FindXfoilError> {
     if let Some(p) = explicit {
         return if p.is_file() {
-            Ok(p.to_path_buf())
+            // Absolute: XFOIL runs in a temporary folder, where `./fake.sh` is not.
+            Ok(std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()))
         } else {
             Err(FindXfoilError::NotFound {
                 searched: p.display().to_string(),

@@ -136,8 +136,14 @@ pub(crate) enum Command {
 
 fn run(cli: Cli) -> anyhow::Result<bool> {
     if let Some(n) = cli.threads {
-        if n == 0 {
-            anyhow::bail!("--threads must be at least 1");
+        // More threads than a machine has cores gains nothing; thousands exhaust its
+        // processes (pid_max) and take minutes to start.
+        const MAX_THREADS: usize = 256;
+        if n == 0 || n > MAX_THREADS {
+            anyhow::bail!(
+                "--threads {n}: from 1 to {MAX_THREADS} (this machine has {} cores)",
+                std::thread::available_parallelism().map_or(1, |c| c.get())
+            );
         }
         rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?;
     }

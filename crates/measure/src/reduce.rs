@@ -97,7 +97,10 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
                         dropped,
                         s,
                         DropReason::TimeOutOfOrder,
-                        format!("t = {t} s between {} s and {next} s", prev.unwrap_or(f64::NAN)),
+                        match prev {
+                            Some(p) => format!("t = {t} s between {p} s and {next} s"),
+                            None => format!("t = {t} s, first row, before the next row's {next} s"),
+                        },
                     );
                     continue;
                 }

@@ -24,11 +24,16 @@ pub fn summary(g: &Geometry) -> String {
 pub fn reference_check(g: &Geometry, table: &[GeometryRow]) -> Option<String> {
     let mut parts = Vec::new();
     for (name, range) in [("r/R below 0.75", 0.0..0.75), ("r/R 0.75 and beyond", 0.75..1.01)] {
-        let (mut db, mut dc) = (Vec::new(), Vec::new());
+        let (mut db, mut dc, mut no_chord) = (Vec::new(), Vec::new(), Vec::new());
         for s in g.stations.iter().filter(|s| range.contains(&s.r_r)) {
             if let Some((c, b)) = propbet_measure::uiuc::geometry_at(table, s.r_r) {
                 db.push((s.r_r, (s.beta - b).to_degrees()));
-                dc.push((s.r_r, s.chord / g.tip_radius / c - 1.0));
+                // A relative chord error against a chord of 0 (or less) means nothing.
+                if c > 0.0 {
+                    dc.push((s.r_r, s.chord / g.tip_radius / c - 1.0));
+                } else {
+                    no_chord.push(format!("{:.2}", s.r_r));
+                }
             }
         }
         if db.is_empty() {
@@ -41,13 +46,28 @@ pub fn reference_check(g: &Geometry, table: &[GeometryRow]) -> Option<String> {
                 .fold((0.0f64, 0.0f64), |a, x| if x.1.abs() > a.1.abs() { x } else { a })
         };
         let (rb, wb) = worst(&db);
-        let (rc, wc) = worst(&dc);
+        let chord = if dc.is_empty() {
+            "no chord error".to_string()
+        } else {
+            let (rc, wc) = worst(&dc);
+            format!(
+                "chord RMSE {:.1} % (worst {:+.1} % at r/R {rc:.2})",
+                100.0 * rms(&dc),
+                100.0 * wc
+            )
+        };
+        let zero = if no_chord.is_empty() {
+            String::new()
+        } else {
+            format!(
+                " (the table's chord is 0 at r/R {}: no chord error there)",
+                no_chord.join(", ")
+            )
+        };
         parts.push(format!(
-            "{name} ({} stations): twist RMSE {:.2} deg (worst {wb:+.2} at r/R {rb:.2}), chord RMSE {:.1} % (worst {:+.1} % at r/R {rc:.2})",
+            "{name} ({} stations): twist RMSE {:.2} deg (worst {wb:+.2} at r/R {rb:.2}), {chord}{zero}",
             db.len(),
             rms(&db),
-            100.0 * rms(&dc),
-            100.0 * wc
         ));
     }
     (!parts.is_empty()).then(|| format!("against the reference table: {}", parts.join("; ")))
