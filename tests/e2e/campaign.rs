@@ -598,3 +598,31 @@ fn n19_a_first_row_out_of_time_order_is_described_without_nan() {
     assert!(m.contains("t = 77.12 s, first row, before the next row's"), "{m}");
     assert!(!m.contains("NaN"));
 }
+
+#[test]
+fn n18_validate_writes_no_nan_on_clean_inputs() {
+    // The stand-in XFOIL gives each section a flat polar: some columns have no value (no
+    // point in a J range, a prop of another maker with no held-out ladder); they are empty.
+    let t = tempfile::tempdir().unwrap();
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            &path("tests/data/validate/uiuc"),
+            "--pe0",
+            &path("tests/data/validate/pe0"),
+            "--airfoils",
+            &path("props/airfoils"),
+            "--out",
+            "v",
+            "--xfoil",
+            &bad("fake_xfoil.sh"),
+            "--no-cache",
+            "--quiet",
+        ],
+        t.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(t.path().join("v/validation.csv").exists());
+    outputs_finite(&t.path().join("v"));
+}

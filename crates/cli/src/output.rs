@@ -16,7 +16,7 @@ const POW10: [f64; 65] = [
 ];
 
 /// A number as propbet's tables print it: 7 significant digits ([`push_num`]), an empty cell
-/// for `None`. Table rows are structs of these, written by `csv` + serde ([`csv_rows`]), so a
+/// for `None` and for a value that is not finite. Table rows are structs of these, written by `csv` + serde ([`csv_rows`]), so a
 /// header cannot drift from its values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Num(pub Option<f64>);
@@ -79,7 +79,7 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
         return;
     }
     if !v.is_finite() {
-        buf.extend_from_slice(v.to_string().as_bytes());
+        // No value: an empty cell, never `NaN` or `inf` in a table a user reads on.
         return;
     }
     let a = v.abs();
