@@ -58,8 +58,13 @@ impl Stack {
             blades: rotor.blades,
             diameter,
         };
+        let mut moved = Vec::new();
         for a in self.with(Hook::Measurement) {
             a.effect.measurement(&a.values, &mut point);
+            moved.push(a.effect.id().to_string());
+        }
+        if !moved.is_empty() {
+            check_point(&moved, &point)?;
         }
         let geometry: Vec<&Active> = self.with(Hook::Geometry).collect();
         let section: Vec<Active> = self.with(Hook::Section).cloned().collect();
@@ -79,6 +84,17 @@ impl Stack {
                 };
                 for a in &geometry {
                     a.effect.geometry(&a.values, &point, &mut g);
+                }
+                if !(g.chord.is_finite() && g.beta.is_finite()) {
+                    let ids: Vec<&str> = geometry.iter().map(|a| a.effect.id()).collect();
+                    return Err(EffectError::Formula(format!(
+                        "the effects {} give the station at r = {:.4} m a chord of {} m and a twist of {} rad: \
+                         not a blade (a formula that is not defined there?)",
+                        ids.join(" + "),
+                        st.r,
+                        g.chord,
+                        g.beta
+                    )));
                 }
                 st.chord = g.chord.max(0.0);
                 st.beta = g.beta;
@@ -130,5 +146,33 @@ impl Stack {
         } else {
             self.active.iter().map(Active::describe).collect::<Vec<_>>().join(" + ")
         }
+    }
+}
+
+/// Refuses an operating point the measurement hooks of `ids` moved beyond any propeller test
+/// (the ranges the command line and the readers hold points to).
+fn check_point(ids: &[String], p: &PointState) -> Result<(), EffectError> {
+    use propbet_units::{air, operating, show};
+    let bad = if !(p.omega.is_finite() && (0.0..=operating::OMEGA_MAX).contains(&p.omega)) {
+        Some(format!("{} rpm", show(propbet_units::omega_to_rpm(p.omega))))
+    } else if !(p.v.is_finite() && p.v.abs() <= operating::AIRSPEED_MAX) {
+        Some(format!("an airspeed of {} m/s", show(p.v)))
+    } else if !air::DENSITY.contains(&p.fluid.rho) {
+        Some(format!("an air density of {} kg/m^3", show(p.fluid.rho)))
+    } else if !air::VISCOSITY.contains(&p.fluid.mu) || !air::SOUND_SPEED.contains(&p.fluid.a) {
+        Some(format!(
+            "air of viscosity {} Pa s and speed of sound {} m/s",
+            show(p.fluid.mu),
+            show(p.fluid.a)
+        ))
+    } else {
+        None
+    };
+    match bad {
+        None => Ok(()),
+        Some(what) => Err(EffectError::Formula(format!(
+            "the effects {} move the operating point to {what}: beyond any propeller test",
+            ids.join(" + ")
+        ))),
     }
 }

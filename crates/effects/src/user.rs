@@ -134,6 +134,8 @@ struct ParamDef {
 #[derive(Debug)]
 pub struct UserEffect {
     id: String,
+    /// The file that defines it (errors name it).
+    path: String,
     target: Target,
     formula: String,
     tree: Node<DefaultNumericTypes>,
@@ -229,6 +231,17 @@ impl UserEffect {
                     )));
                 }
             }
+            if let Some(sc) = p.scale {
+                // The fit's step: positive, and no larger than the span it steps in.
+                if !(sc.is_finite() && sc > 0.0 && sc <= p.upper - p.lower) {
+                    return Err(bad(format!(
+                        "parameter `{}`: scale {} must be positive and at most the width of the bounds ({})",
+                        p.name,
+                        propbet_units::show(sc),
+                        propbet_units::show(p.upper - p.lower)
+                    )));
+                }
+            }
             names.push(p.name.clone());
             params.push(Param {
                 name: p.name.clone(),
@@ -263,6 +276,7 @@ impl UserEffect {
                 def.explanation
             },
             id: def.id,
+            path: path.to_string(),
             target: def.hook,
             formula: def.formula,
             tree,
@@ -330,7 +344,8 @@ impl UserEffect {
         };
         let out = self.tree.eval_number_with_context(&vars).map_err(|e| {
             EffectError::Formula(format!(
-                "user effect `{}`: formula `{}` fails ({e}) at {}",
+                "{}: user effect `{}`: formula `{}` fails ({e}) at {}",
+                self.path,
                 self.id,
                 self.formula,
                 shown()
@@ -338,7 +353,8 @@ impl UserEffect {
         })?;
         if !out.is_finite() {
             return Err(EffectError::Formula(format!(
-                "user effect `{}`: formula `{}` gives {out} (a division by zero?) at {}",
+                "{}: user effect `{}`: formula `{}` gives {out} (a division by zero?) at {}",
+                self.path,
                 self.id,
                 self.formula,
                 shown()

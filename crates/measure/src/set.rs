@@ -162,13 +162,13 @@ pub enum DropReason {
 /// in the shared data are about 30,000 rpm, 60 N, 2 N m, CT 0.2, J 1.2).
 pub mod limits {
     /// Rotation rate [rad/s] (500,000 rpm).
-    pub const OMEGA: f64 = propbet_units::rpm_to_omega(500_000.0);
+    pub const OMEGA: f64 = propbet_units::operating::OMEGA_MAX;
     /// Thrust [N].
     pub const THRUST: f64 = 1.0e5;
     /// Torque [N m].
     pub const TORQUE: f64 = 1.0e4;
     /// Airspeed [m/s].
-    pub const AIRSPEED: f64 = 500.0;
+    pub const AIRSPEED: f64 = propbet_units::operating::AIRSPEED_MAX;
     /// |CT|, |CP|.
     pub const COEFFICIENT: f64 = 10.0;
     /// Advance ratio.

@@ -146,6 +146,16 @@ pub fn show(x: f64) -> String {
     }
 }
 
+/// The operating range of any small propeller test: a measured row beyond it is a corrupt
+/// file, a sweep beyond it a typing error, an effect that moves a point beyond it a broken
+/// formula.
+pub mod operating {
+    /// Fastest rotation [rad/s] (500,000 rpm).
+    pub const OMEGA_MAX: f64 = crate::rpm_to_omega(500_000.0);
+    /// Fastest airspeed [m/s].
+    pub const AIRSPEED_MAX: f64 = 500.0;
+}
+
 /// The air a measurement can have been taken in, and the range the air formulas are meant
 /// for: one definition for a given air state (`--atmosphere`) and a logged one.
 pub mod air {
