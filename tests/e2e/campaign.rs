@@ -718,3 +718,20 @@ fn n18_validate_writes_no_nan_on_clean_inputs() {
     assert!(t.path().join("v/validation.csv").exists());
     outputs_finite(&t.path().join("v"));
 }
+
+#[test]
+fn n31_toml_errors_name_their_place_without_echoing_the_line() {
+    let t = tempfile::tempdir().unwrap();
+    let case = t.path().join("deep");
+    std::fs::create_dir(&case).unwrap();
+    let deep = format!("name = \"x\"\nbad = {}1{}\n", "{a=".repeat(5000), "}".repeat(5000));
+    std::fs::write(case.join("case.toml"), deep).unwrap();
+    let o = run(&["run", "deep", "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains("case.toml: line 2, column") && e.len() < 300,
+        "{} bytes: {e}",
+        e.len()
+    );
+}

@@ -169,7 +169,12 @@ impl Context for Vars<'_> {
 
 /// Reads a user effects file (`path` only names it in messages).
 pub fn parse(text: &str, path: &str) -> Result<Vec<Arc<dyn Effect>>, EffectError> {
-    let file: FileDef = toml::from_str(text).map_err(|e| EffectError::UserFile(format!("{path}: {e}")))?;
+    let file: FileDef = toml::from_str(text).map_err(|e| {
+        let at = e
+            .span()
+            .map_or_else(String::new, |s| format!("{}: ", propbet_units::place(text, s.start)));
+        EffectError::UserFile(format!("{path}: {at}{}", propbet_units::excerpt(e.message())))
+    })?;
     let mut out: Vec<Arc<dyn Effect>> = Vec::new();
     for def in file.effect {
         let e = UserEffect::new(def, path)?;

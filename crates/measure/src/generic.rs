@@ -87,8 +87,12 @@ fn slot(cols: &mut Columns, q: Quantity) -> &mut Option<Column> {
 
 /// Columns from a TOML column map.
 fn mapped(table: &CsvTable, map: &str) -> Result<Columns, ReadError> {
-    let entries: BTreeMap<String, Entry> =
-        toml::from_str(map).map_err(|e| ReadError::Map(e.to_string().trim().replace('\n', " ")))?;
+    let entries: BTreeMap<String, Entry> = toml::from_str(map).map_err(|e| {
+        let at = e
+            .span()
+            .map_or_else(String::new, |s| format!("{}: ", propbet_units::place(map, s.start)));
+        ReadError::Map(format!("{at}{}", propbet_units::excerpt(e.message())))
+    })?;
     let mut cols = Columns::default();
     let mut taken: BTreeMap<usize, Vec<String>> = BTreeMap::new();
     for (key, entry) in entries {

@@ -176,7 +176,12 @@ pub struct AtmosphereSection {
 pub fn read_case(dir: &Path) -> Result<Case> {
     let path = dir.join("case.toml");
     let text = read_text(&path)?;
-    let mut case: Case = toml::from_str(&text).map_err(|e| Error::input(&path, e))?;
+    let mut case: Case = toml::from_str(&text).map_err(|e| {
+        let at = e
+            .span()
+            .map_or_else(String::new, |s| format!("{}: ", propbet_units::place(&text, s.start)));
+        Error::input(&path, format!("{at}{}", e.message()))
+    })?;
     case.name = propbet_units::printable(&case.name);
     let g = &case.geometry;
     if g.scan.is_some() == g.prop.is_some() {

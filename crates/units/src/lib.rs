@@ -84,6 +84,15 @@ pub fn printable(text: &str) -> String {
         .collect()
 }
 
+/// Where in `text` the byte `offset` lies, as "line L, column C" (1-based): how a parser's
+/// error names its place without echoing the line (a 10 KB line would be 10 KB of message).
+pub fn place(text: &str, offset: usize) -> String {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    format!("line {line}, column {column}")
+}
+
 /// Longest excerpt of a user's file that a message quotes [characters].
 pub const EXCERPT_CHARS: usize = 60;
 
