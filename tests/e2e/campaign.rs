@@ -314,79 +314,6 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             0,
             "(the table's chord is 0 at r/R 0.75: no chord error there)",
         ),
-        // N13: user-effect hooks that move the point beyond any test, or give a NaN chord.
-        case(
-            "N13 (V)",
-            &[
-                "predict",
-                "--prop",
-                &cam,
-                "--rpm",
-                "3000",
-                "--v",
-                "0,6",
-                "--user-effects",
-                &bad("fx_v_times_1e300.toml"),
-                "--effect",
-                "fx",
-            ],
-            2,
-            "the effects fx move the operating point to an airspeed of 6e300 m/s",
-        ),
-        case(
-            "N13 (rpm)",
-            &[
-                "predict",
-                "--prop",
-                &cam,
-                "--rpm",
-                "3000",
-                "--v",
-                "0,6",
-                "--user-effects",
-                &bad("fx_rpm_times_1e6.toml"),
-                "--effect",
-                "fx",
-            ],
-            2,
-            "to 3000000000 rpm",
-        ),
-        case(
-            "N13 (rho)",
-            &[
-                "predict",
-                "--prop",
-                &cam,
-                "--rpm",
-                "3000",
-                "--v",
-                "0,6",
-                "--user-effects",
-                &bad("fx_rho_negative.toml"),
-                "--effect",
-                "fx",
-            ],
-            2,
-            "an air density of -0.075 kg/m^3",
-        ),
-        case(
-            "N13 (chord)",
-            &[
-                "predict",
-                "--prop",
-                &cam,
-                "--rpm",
-                "3000",
-                "--v",
-                "0,6",
-                "--user-effects",
-                &bad("fx_chord_sqrt_inboard.toml"),
-                "--effect",
-                "fx",
-            ],
-            2,
-            "a chord of NaN m",
-        ),
         // N25: a parameter's scale of 0.
         case(
             "N25",
@@ -407,6 +334,34 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             "fx_param_scale_zero.toml: effect `fx`: parameter `c`: scale 0 must be positive",
         ),
     ];
+    // N13: user-effect hooks that move the point beyond any test, or give a NaN chord.
+    let mut cases = cases;
+    for (id, file, says) in [
+        (
+            "N13 (V)",
+            "fx_v_times_1e300.toml",
+            "the effects fx move the operating point to an airspeed of 6e300 m/s",
+        ),
+        ("N13 (rpm)", "fx_rpm_times_1e6.toml", "to 3000000000 rpm"),
+        ("N13 (rho)", "fx_rho_negative.toml", "an air density of -0.075 kg/m^3"),
+        ("N13 (chord)", "fx_chord_sqrt_inboard.toml", "a chord of NaN m"),
+    ] {
+        let fx = bad(file);
+        let args = [
+            "predict",
+            "--prop",
+            &cam,
+            "--rpm",
+            "3000",
+            "--v",
+            "0,6",
+            "--user-effects",
+            &fx,
+            "--effect",
+            "fx",
+        ];
+        cases.push(case(id, &args, 2, says));
+    }
     let mut failures = Vec::new();
     for c in &cases {
         let dir = tempfile::tempdir().unwrap();

@@ -163,7 +163,7 @@ pub enum EffectError {
         known: String,
     },
     /// A parameter outside its bounds.
-    #[error("{id}:{name} = {value} is outside its bounds [{lower}, {upper}]")]
+    #[error("{id}:{name} = {} is outside its bounds [{lower}, {upper}]", propbet_units::show(*.value))]
     OutOfBounds {
         /// Effect id.
         id: String,
