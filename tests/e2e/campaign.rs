@@ -130,6 +130,20 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             2,
             "--rho 1e300: not a plausible",
         ),
+        case(
+            "N30 (effect)",
+            &[
+                "predict",
+                "--prop",
+                &cam,
+                "--rpm",
+                "4000",
+                "--effect",
+                "pitch-offset:deg=1e308",
+            ],
+            2,
+            "pitch-offset:deg = 1e308 is outside its bounds [-3, 3]",
+        ),
         // N7: logged air state.
         case(
             "N7 (0 Pa)",
