@@ -704,3 +704,32 @@ fn n31_toml_errors_name_their_place_without_echoing_the_line() {
         e.len()
     );
 }
+
+#[test]
+fn n29_a_ply_without_z_or_with_x_twice_is_named() {
+    let t = tempfile::tempdir().unwrap();
+    for (props, says) in [
+        (
+            "property float x\nproperty float y\n",
+            "names its 'z' coordinate 0 times",
+        ),
+        (
+            "property float x\nproperty float x\nproperty float z\n",
+            "names its 'x' coordinate 2 times",
+        ),
+    ] {
+        let cols = props.lines().count();
+        let rows: String = (0..3)
+            .map(|k| format!("{}\n", vec![k.to_string(); cols].join(" ")))
+            .collect();
+        let ply = format!("ply\nformat ascii 1.0\nelement vertex 3\n{props}end_header\n{rows}");
+        std::fs::write(t.path().join("c.ply"), ply).unwrap();
+        let o = run(&["scan", "c.ply", "-o", "out"], t.path());
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("c.ply") && stderr(&o).contains(says),
+            "{}",
+            stderr(&o)
+        );
+    }
+}

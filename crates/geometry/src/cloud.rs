@@ -125,6 +125,30 @@ pub fn read_ply(bytes: &[u8], name: &str) -> Result<Cloud, CloudError> {
         name: name.to_string(),
         message: m,
     };
+    // The vertex element must name x, y and z once each: a missing one would read as 0 (a
+    // flat cloud, blamed on its symmetry later) and a doubled one would overwrite itself.
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(1 << 16)]);
+    let mut in_vertex = false;
+    let mut names: Vec<&str> = Vec::new();
+    for line in head.lines().take_while(|l| l.trim() != "end_header") {
+        let words: Vec<&str> = line.split_whitespace().collect();
+        match words.first() {
+            Some(&"element") => in_vertex = words.get(1) == Some(&"vertex"),
+            Some(&"property") if in_vertex => names.extend(words.last()),
+            _ => {}
+        }
+    }
+    if !names.is_empty() {
+        for axis in ["x", "y", "z"] {
+            let n = names.iter().filter(|&&p| p == axis).count();
+            if n != 1 {
+                return Err(err(format!(
+                    "the vertex element names its '{axis}' coordinate {n} times (properties: {}): each of x, y, z once",
+                    propbet_units::excerpt(&names.join(" "))
+                )));
+            }
+        }
+    }
     let parser = Parser::<PlyVertex>::new();
     let mut reader = ply_rs_bw::parser::Reader::new(std::io::BufReader::new(bytes));
     let header = parser
