@@ -16,8 +16,8 @@ const POW10: [f64; 65] = [
 ];
 
 /// A number as propbet's tables print it: 7 significant digits ([`push_num`]), an empty cell
-/// for `None` and for a value that is not finite. Table rows are structs of these, written by `csv` + serde ([`csv_rows`]), so a
-/// header cannot drift from its values.
+/// for `None` and for a value that is not finite. Table rows are structs of these, written by
+/// `csv` + serde ([`csv_rows`]), so a header cannot drift from its values.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Num(pub Option<f64>);
 
@@ -159,6 +159,12 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
 /// Nothing is inside a directory that does not exist yet.
 pub fn refuse_inputs_inside(out: &Path, inputs: &[&Path]) -> Result<()> {
     refuse_links_inside(out)?;
+    refuse_inputs_below(out, inputs)
+}
+
+/// The inputs half of [`refuse_inputs_inside`], for a caller that checks the links itself
+/// (and words the inputs' error its own way).
+pub fn refuse_inputs_below(out: &Path, inputs: &[&Path]) -> Result<()> {
     let Ok(o) = out.canonicalize() else { return Ok(()) };
     for input in inputs {
         if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {

@@ -122,7 +122,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // No input of the case may lie where the run writes (a stage would overwrite it).
     let inputs = plan.inputs();
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
-    crate::output::refuse_inputs_inside(&out, &inputs).with_context(|| {
+    // A link in the output folder is refused in its own words, not as an input of the case.
+    crate::output::refuse_links_inside(&out)?;
+    crate::output::refuse_inputs_below(&out, &inputs).with_context(|| {
         format!(
             "{}: the case reads a file in the output directory",
             dir.join("case.toml").display()

@@ -47,6 +47,13 @@ fn median(xs: &mut [f64]) -> f64 {
     }
 }
 
+/// The median absolute deviation of `xs` from `center`, scaled to a normal distribution's
+/// standard deviation (1.4826): a scatter that a few outliers do not move.
+fn sigma_mad(xs: impl Iterator<Item = f64>, center: f64) -> f64 {
+    let mut dev: Vec<f64> = xs.map(|x| (x - center).abs()).collect();
+    1.4826 * median(&mut dev)
+}
+
 /// Row checks that do not depend on the reduction: not spinning, negative RPM, duplicate and
 /// stray time stamps. Returns the rows kept.
 fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
@@ -220,8 +227,7 @@ fn steady_part(s: &[Sample], opts: &ReduceOptions) -> (Vec<Sample>, usize, usize
     let settled = &s[start..];
     let mut om: Vec<f64> = settled.iter().map(|x| x.omega).collect();
     let med = median(&mut om);
-    let mut dev: Vec<f64> = settled.iter().map(|x| (x.omega - med).abs()).collect();
-    let mad = 1.4826 * median(&mut dev);
+    let mad = sigma_mad(settled.iter().map(|x| x.omega), med);
     let limit = (5.0 * mad).max(0.05 * med);
     let steady: Vec<Sample> = settled
         .iter()
@@ -270,7 +276,7 @@ fn densest(readings: &[f64], width: f64) -> Option<(f64, usize)> {
             best = (i, j + 1);
         }
     }
-    (best.1 > best.0).then(|| (median(&mut x[best.0..best.1].to_vec()), best.1 - best.0))
+    (best.1 > best.0).then(|| (median(&mut x[best.0..best.1]), best.1 - best.0))
 }
 
 /// A reading this far (relative) below its step's steady RPM, while the thrust holds steady, is
@@ -326,8 +332,7 @@ fn fill_dropouts(
         let near = |w: f64| (w - steady).abs() <= opts.unsteady_rpm * steady;
         let mut thrusts: Vec<f64> = step.iter().filter(|s| near(s.omega)).map(|s| s.thrust).collect();
         let t = median(&mut thrusts);
-        let mut dev: Vec<f64> = step.iter().map(|s| (s.thrust - t).abs()).collect();
-        let band = (4.0 * 1.4826 * median(&mut dev)).max(DROPOUT * t.abs());
+        let band = (4.0 * sigma_mad(step.iter().map(|s| s.thrust), t)).max(DROPOUT * t.abs());
         // A dropout reads low (missed pulses) after the step has settled; a high reading or
         // one before the step first reaches its steady RPM is the motor getting there.
         let settled = step.iter().position(|s| near(s.omega)).unwrap_or(step.len());
