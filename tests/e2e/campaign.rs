@@ -347,6 +347,41 @@ fn each_item_gets_a_clear_message_and_its_exit_code() {
             2,
             "fx_param_scale_zero.toml: effect `fx`: parameter `c`: scale 0 must be positive",
         ),
+        // N30: huge numbers are written short.
+        case(
+            "N30 (re)",
+            &["polar", "--airfoil", "naca4412", "--re", "1e300", "--no-cache"],
+            2,
+            "NACA 4412 at Re 1e300: invalid XFOIL request: Reynolds number 1e300 must be in (0, 1e9)",
+        ),
+        case(
+            "N30 (thickness)",
+            &[
+                "polar",
+                "--airfoil",
+                "naca4412",
+                "--re",
+                "1e5",
+                "--thickness",
+                "1e308",
+                "--no-cache",
+            ],
+            2,
+            "--thickness 1e308: target thickness 1e308 must be in (0, 0.5)",
+        ),
+        // N4: a device or a directory is not read.
+        case(
+            "N4 (device)",
+            &["predict", "--prop", "/dev/zero", "--rpm", "4000"],
+            2,
+            "/dev/zero: is a pipe, socket or device, not a file propbet can read",
+        ),
+        case(
+            "N4 (directory)",
+            &["scan", "/tmp", "-o", "OUT"],
+            2,
+            "/tmp: is a directory, not a file propbet can read",
+        ),
     ];
     // N13: user-effect hooks that move the point beyond any test, or give a NaN chord.
     let mut cases = cases;
@@ -731,5 +766,132 @@ fn n29_a_ply_without_z_or_with_x_twice_is_named() {
             "{}",
             stderr(&o)
         );
+    }
+}
+
+#[test]
+fn n4_a_fifo_is_refused_without_blocking() {
+    let t = tempfile::tempdir().unwrap();
+    let fifo = t.path().join("log.csv");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let started = std::time::Instant::now();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            &path("props/cam6x3/cam6x3.qprop"),
+            "--measured",
+            &fifo.display().to_string(),
+            "-o",
+            "out",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("log.csv: is a pipe, socket or device"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(started.elapsed().as_secs() < 30);
+}
+
+#[test]
+fn n14_a_flattened_stl_is_refused() {
+    // The shipped binary STL with every z set to 0 (as make_flat_stl.py does).
+    let mut b = std::fs::read(repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl")).unwrap();
+    let n = u32::from_le_bytes(b[80..84].try_into().unwrap()) as usize;
+    for i in 0..n {
+        for k in 0..3 {
+            let o = 84 + 50 * i + 12 + 12 * k + 8;
+            b[o..o + 4].copy_from_slice(&0f32.to_le_bytes());
+        }
+    }
+    let t = tempfile::tempdir().unwrap();
+    std::fs::write(t.path().join("flat.stl"), b).unwrap();
+    let o = run(&["scan", "flat.stl", "--stations", "0.3:0.9/5", "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("flat.stl: not a propeller: the surface is flat"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!t.path().join("out/prop.qprop").exists());
+}
+
+#[test]
+fn n22_a_case_prop_file_with_polars_runs() {
+    let t = tempfile::tempdir().unwrap();
+    let o = run(
+        &[
+            "run",
+            &bad("case_prop_polars"),
+            "-o",
+            "out",
+            "--xfoil",
+            &bad("fake_xfoil.sh"),
+            "--no-cache",
+        ],
+        t.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(t.path().join("out/report.html").exists());
+    assert!(t.path().join("out/polars/prop.qprop").exists());
+}
+
+#[test]
+fn n24_a_half_written_polar_row_keeps_the_rows_before_it() {
+    let t = tempfile::tempdir().unwrap();
+    let o = bin()
+        .args([
+            "polar",
+            "--airfoil",
+            "naca4412",
+            "--re",
+            "1e5",
+            "--alpha",
+            "-4:8:1",
+            "--xfoil",
+            &bad("fake_xfoil.sh"),
+            "--no-cache",
+        ])
+        .env("FAKE_MODE", "x_half_polar")
+        .current_dir(t.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let rows = String::from_utf8_lossy(&o.stdout)
+        .lines()
+        .filter(|l| l.starts_with("100000,"))
+        .count();
+    // 13 angles asked; the fake crashes half-way through its 5th row and the restart goes on.
+    assert!(rows >= 8, "{rows} rows: {}", String::from_utf8_lossy(&o.stdout));
+    assert!(!stderr(&o).contains("unreadable"), "{}", stderr(&o));
+}
+
+#[test]
+fn n26_scan_args_that_the_case_sets_elsewhere_are_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let stl = path("props/apcsf_10x4.7/apcsf_10x4.7.stl");
+    for (args, says) in [
+        (
+            r#"["--reference", "/etc/passwd"]"#,
+            "--reference is set by `reference` in [geometry]",
+        ),
+        (r#"["--name", "x"]"#, "--name is set by the case's `name`"),
+    ] {
+        let case = t.path().join("case");
+        std::fs::create_dir_all(&case).unwrap();
+        std::fs::write(
+            case.join("case.toml"),
+            format!(
+                "name = \"c\"\n[geometry]\nscan = \"{stl}\"\nscan_args = {args}\n[sweep]\nrpm = \"4000\"\nj = \"0\"\n"
+            ),
+        )
+        .unwrap();
+        let o = run(&["run", "case", "-o", "out"], t.path());
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(says), "{}", stderr(&o));
+        assert!(!t.path().join("out").exists());
     }
 }

@@ -41,7 +41,8 @@ impl XfoilPoint {
 
 /// Parses the text of an XFOIL polar save file: header lines up to the dashed rule, then one
 /// row per point (`alpha CL CD CDp CM Top_Xtr Bot_Xtr [Top_Itr Bot_Itr]`). A file cut off after
-/// the header has no points; a row that is not seven numbers is an error naming the line.
+/// the header has no points; a last row cut off before its line end is left out (XFOIL was
+/// stopped writing it); any other row that is not seven numbers is an error naming the line.
 pub fn parse_polar_file(text: &str, output_tail: &str) -> Result<Vec<XfoilPoint>, XfoilError> {
     let garbage = |detail: String| XfoilError::Garbage {
         detail,
@@ -72,6 +73,9 @@ pub fn parse_polar_file(text: &str, output_tail: &str) -> Result<Vec<XfoilPoint>
                 xtr_top: v[5],
                 xtr_bottom: v[6],
             }),
+            // A last row without its line end was cut off as XFOIL was writing it (a crash,
+            // a kill at the timeout): the rows before it stand, the angle counts as missed.
+            _ if !text.ends_with('\n') && text.lines().count() == i + 1 => break,
             _ => {
                 return Err(garbage(format!(
                     "polar file line {}: {:?} is not seven numbers",
@@ -102,6 +106,16 @@ mod tests {
         assert_eq!(p[1].cl, 0.8880);
         assert_eq!(p[1].cd, 0.01965);
         assert_eq!(p[0].xtr_top, 0.8207);
+    }
+
+    #[test]
+    fn a_last_row_cut_off_is_left_out_and_a_bad_row_inside_is_an_error() {
+        let cut = format!("{SAMPLE}   5.000   0.88");
+        let p = parse_polar_file(&cut, "").unwrap();
+        assert_eq!(p.len(), 2);
+        let inside = format!("{SAMPLE}   5.000   0.88\n");
+        let e = parse_polar_file(&inside, "").unwrap_err().to_string();
+        assert!(e.contains("line 10") && e.contains("not seven numbers"), "{e}");
     }
 
     #[test]

@@ -104,18 +104,19 @@ impl SweepRequest {
     }
 
     fn validate(&self) -> Result<(), XfoilError> {
+        use propbet_units::show;
         let bad = |m: String| Err(XfoilError::BadRequest(m));
         if !(self.reynolds.is_finite() && self.reynolds > 0.0 && self.reynolds < 1e9) {
-            return bad(format!("Reynolds number {} must be in (0, 1e9)", self.reynolds));
+            return bad(format!("Reynolds number {} must be in (0, 1e9)", show(self.reynolds)));
         }
         if !(self.mach.is_finite() && (0.0..0.9).contains(&self.mach)) {
-            return bad(format!("Mach number {} must be in [0, 0.9)", self.mach));
+            return bad(format!("Mach number {} must be in [0, 0.9)", show(self.mach)));
         }
         if !(self.ncrit.is_finite() && self.ncrit > 0.0 && self.ncrit <= 20.0) {
-            return bad(format!("Ncrit {} must be in (0, 20]", self.ncrit));
+            return bad(format!("Ncrit {} must be in (0, 20]", show(self.ncrit)));
         }
         if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
-            return bad(format!("forced transition at x/c = {x} must be in (0, 1]"));
+            return bad(format!("forced transition at x/c = {} must be in (0, 1]", show(x)));
         }
         if !(1..=1000).contains(&self.max_iter) {
             return bad(format!("iteration limit {} must be in 1..=1000", self.max_iter));

@@ -16,6 +16,9 @@ pub enum AlignError {
     /// Not a propeller.
     #[error("no rotational symmetry: {0}")]
     NoSymmetry(String),
+    /// Every point in one plane.
+    #[error("not a propeller: {0}")]
+    Flat(String),
 }
 
 /// Where the propeller frame sits in the input coordinates:
@@ -231,6 +234,10 @@ fn radial_mismatch(samples: &[(Vector3<f64>, f64)], arcs: &[(f64, f64)], tip: f6
     worst
 }
 
+/// The least ratio of a surface's spread (rms) across its plane to its spread along it: the
+/// flattest propeller meshes have a few percent (blade thickness, twist, the hub).
+const FLAT: f64 = 0.005;
+
 /// Finds the propeller frame of a surface: axis and hub centre from its second moments.
 pub fn auto_align<S: Surface>(m: &S) -> Result<Frame, AlignError> {
     let samples = m.samples();
@@ -247,6 +254,15 @@ pub fn auto_align<S: Surface>(m: &S) -> Result<Frame, AlignError> {
         eig.eigenvalues[order[1]],
         eig.eigenvalues[order[2]],
     );
+    // A flattened mesh (every point in one plane: a projection, an export that dropped a
+    // coordinate) has no blade thickness or twist to measure.
+    if l0 < FLAT * FLAT * l2 {
+        return Err(AlignError::Flat(format!(
+            "the surface is flat: its spread across its plane is {:.2} % of its spread along it (a propeller's blades \
+             have thickness and twist; was a coordinate lost in the export?)",
+            100.0 * (l0.max(0.0) / l2).sqrt()
+        )));
+    }
     if l2 < 3.0 * l1 && l1 < 1.5 * l0 {
         return Err(AlignError::NoSymmetry(format!(
             "the shape is not flat like a propeller disc (second moments {:.3e}, {:.3e}, {:.3e}: no axis stands out)",

@@ -262,7 +262,12 @@ impl RunPlan {
                 v.push(s.input.clone());
                 v.extend(s.reference.clone());
             }
-            None => v.push(self.predict.model.prop.clone()),
+            // Without a scan, the case's own prop file is the polars stage's geometry, or the
+            // sweep's blade when there is no polars stage (whose fitted file is an output).
+            None => match &self.polars {
+                Some((p, _)) => v.push(p.geometry.clone()),
+                None => v.push(self.predict.model.prop.clone()),
+            },
         }
         if let Some((p, _)) = &self.polars {
             v.push(PathBuf::from(&p.airfoil));
@@ -334,6 +339,24 @@ impl Case {
                 }
                 if let Some(s) = &g.stations {
                     flags.extend(["--stations".to_string(), s.clone()]);
+                }
+                // The flags that name a file or the output have keys of their own in a case:
+                // refused here rather than read and ignored.
+                for (flag, key) in [
+                    ("--reference", "`reference` in [geometry]"),
+                    ("--name", "the case's `name`"),
+                    ("--out", "`propbet run -o`"),
+                    ("-o", "`propbet run -o`"),
+                ] {
+                    if g.scan_args
+                        .iter()
+                        .any(|a| a == flag || a.starts_with(&format!("{flag}=")))
+                    {
+                        return Err(at(
+                            "[geometry] scan_args",
+                            Error::Invalid(format!("{flag} is set by {key}")),
+                        ));
+                    }
                 }
                 flags.extend(g.scan_args.iter().cloned());
                 Some(ScanSpec {

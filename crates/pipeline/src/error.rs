@@ -59,12 +59,58 @@ macro_rules! invalid {
     ($($t:tt)*) => { return Err($crate::Error::Invalid(format!($($t)*))) };
 }
 
-/// Reads a file as text, naming it in the error.
-pub fn read_text(path: &std::path::Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
+/// The largest input file read [bytes]: a scan of tens of millions of triangles is well
+/// below; a device or a file that never ends is not read past it.
+pub const INPUT_LIMIT: u64 = 4 << 30;
+
+/// Reads an input file's bytes, naming it in the error. Only a regular file (or a link to
+/// one) is read: a FIFO would block for ever and a device like /dev/zero never ends; a file
+/// growing past [`INPUT_LIMIT`] as it is read is refused.
+pub fn read_bytes(path: &std::path::Path) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let read_error = |reason| Error::Read {
         path: path.to_path_buf(),
         reason,
-    })?;
+    };
+    let meta = std::fs::metadata(path).map_err(read_error)?;
+    if !meta.is_file() {
+        let what = if meta.is_dir() {
+            "a directory"
+        } else {
+            "a pipe, socket or device"
+        };
+        return Err(Error::input(path, format!("is {what}, not a file propbet can read")));
+    }
+    let too_big = || {
+        Error::input(
+            path,
+            format!("is larger than {} GiB, the most propbet reads", INPUT_LIMIT >> 30),
+        )
+    };
+    if meta.len() > INPUT_LIMIT {
+        return Err(too_big());
+    }
+    // Opened without blocking, then read to at most the limit: the file may have been
+    // replaced by a FIFO since the check, or grow while it is read.
+    let file = {
+        use std::os::unix::fs::OpenOptionsExt;
+        std::fs::OpenOptions::new()
+            .read(true)
+            .custom_flags(rustix::fs::OFlags::NONBLOCK.bits() as i32)
+            .open(path)
+            .map_err(read_error)?
+    };
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    file.take(INPUT_LIMIT + 1).read_to_end(&mut bytes).map_err(read_error)?;
+    if bytes.len() as u64 > INPUT_LIMIT {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
+/// Reads a file as text, naming it in the error.
+pub fn read_text(path: &std::path::Path) -> Result<String> {
+    let bytes = read_bytes(path)?;
     String::from_utf8(bytes)
         .map_err(|e| Error::input(path, format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to())))
 }
@@ -77,10 +123,7 @@ fn e_at(bytes: &[u8]) -> usize {
 /// A text file whose first line is a free-text title (prop files, airfoil coordinates): the
 /// title may be Latin-1 (older tools write it so) and is decoded as such; the rest must be UTF-8.
 pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
-        path: path.to_path_buf(),
-        reason,
-    })?;
+    let bytes = read_bytes(path)?;
     match String::from_utf8(bytes) {
         Ok(s) => Ok(s),
         Err(e) => {

@@ -21,4 +21,4 @@ pub mod stages;
 pub mod validate;
 pub mod values;
 
-pub use error::{read_text, Error, Result};
+pub use error::{read_bytes, read_text, Error, Result, INPUT_LIMIT};

@@ -46,9 +46,18 @@ pub fn read_geometry_table(path: &Path) -> Result<Vec<GeometryRow>> {
     propbet_measure::uiuc::read_geometry(&read_text(path)?).map_err(|e| Error::input(path, e))
 }
 
+/// The most stations a scan cuts.
+pub const MAX_STATIONS: usize = 200;
+
 /// Runs the scan stage.
 pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
     let o = &spec.options;
+    if o.stations.len() > MAX_STATIONS {
+        invalid!(
+            "--stations: {} stations; a blade is described by at most {MAX_STATIONS} (each one is a section fit and its polars)",
+            o.stations.len()
+        );
+    }
     if let Some(x) = o.stations.iter().find(|&&x| !(x > 0.0 && x <= 1.0)) {
         invalid!("--stations: r/R {x} is outside (0, 1]");
     }
@@ -56,10 +65,7 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
         invalid!("--slab {}: must be a positive thickness in mm", 1000.0 * o.slab);
     }
     let path = &spec.input;
-    let bytes = std::fs::read(path).map_err(|reason| Error::Read {
-        path: path.clone(),
-        reason,
-    })?;
+    let bytes = crate::read_bytes(path)?;
     let label = path.display().to_string();
     let is_stl = path
         .extension()
@@ -168,7 +174,7 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
     if let Some(t) = thickness {
         foil = foil
             .scale_thickness(t)
-            .map_err(|e| Error::Invalid(format!("--thickness {t}: {e}")))?;
+            .map_err(|e| Error::Invalid(format!("--thickness {}: {e}", propbet_units::show(t))))?;
     }
     Ok((foil, notes))
 }

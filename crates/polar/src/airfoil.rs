@@ -306,7 +306,8 @@ impl Airfoil {
     fn thickness_factor(&self, target: f64) -> Result<f64, AirfoilError> {
         if !(target.is_finite() && target > 0.0 && target < 0.5) {
             return Err(AirfoilError::BadArgument(format!(
-                "target thickness {target} must be in (0, 0.5)"
+                "target thickness {} must be in (0, 0.5)",
+                propbet_units::show(target)
             )));
         }
         let (t, _) = self.max_thickness();

@@ -83,7 +83,7 @@ pub enum PolarError {
     #[error(transparent)]
     Airfoil(#[from] AirfoilError),
     /// XFOIL failed (with its output).
-    #[error("{airfoil} at Re {re:.0}: {source}")]
+    #[error("{airfoil} at Re {}: {source}", propbet_units::show(re.round()))]
     Xfoil {
         /// Airfoil name.
         airfoil: String,
@@ -93,7 +93,7 @@ pub enum PolarError {
         source: XfoilError,
     },
     /// The command's XFOIL time budget ran out before this polar was started.
-    #[error("{airfoil} at Re {re:.0}: not computed, the XFOIL time budget ({seconds:.0} s) ran out")]
+    #[error("{airfoil} at Re {}: not computed, the XFOIL time budget ({seconds:.0} s) ran out", propbet_units::show(re.round()))]
     Budget {
         /// Airfoil name.
         airfoil: String,
