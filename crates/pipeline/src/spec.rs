@@ -55,7 +55,7 @@ pub struct XfoilProcessSpec {
     pub no_cache: bool,
     /// No progress bar.
     pub quiet: bool,
-    /// Total XFOIL time of the command [s] (None: no limit beyond each polar's).
+    /// Total XFOIL time of the command [s] (None: [`DEFAULT_XFOIL_BUDGET`]).
     pub budget: Option<f64>,
 }
 
@@ -78,6 +78,11 @@ impl XfoilProcessSpec {
         }
     }
 }
+
+/// The XFOIL time of one command (of one prop in `validate`) when `--xfoil-budget` is not
+/// given [s]: a prop's polars take a few minutes; an XFOIL that never finishes a polar (each
+/// stops at 120 s) cannot hold a command for longer than this.
+pub const DEFAULT_XFOIL_BUDGET: f64 = 3600.0;
 
 /// Default Ncrit of a propeller's blade polars (`propbet polars`, cases, validate): 5. Chosen
 /// on the six shared UIUC props (docs/studies/ncrit-tables.md: validate for Ncrit 1-9): the

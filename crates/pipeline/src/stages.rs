@@ -192,10 +192,9 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
         }
     };
     let engine = PolarEngine::new(xfoil, cache);
-    Ok(match p.budget {
-        None => engine,
-        Some(b) if b.is_finite() && b > 0.0 => engine.with_budget(b),
-        Some(b) => invalid!("--xfoil-budget {b}: a positive number of seconds"),
+    Ok(match p.budget.unwrap_or(crate::spec::DEFAULT_XFOIL_BUDGET) {
+        b if b.is_finite() && b > 0.0 => engine.with_budget(b),
+        b => invalid!("--xfoil-budget {}: a positive number of seconds", propbet_units::show(b)),
     })
 }
 
@@ -758,4 +757,27 @@ pub fn read_qprop_output(path: &Path) -> Result<propbet_qprop::output::QpropOutp
 pub fn read_per3(path: &Path) -> Result<propbet_qprop::apc::Per3> {
     let text = read_text(path)?;
     propbet_qprop::apc::read_per3(&text, &path.display().to_string()).map_err(|e| Error::input(path, e))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn xfoil_has_a_total_budget_unless_one_is_given() {
+        let dir = tempfile::tempdir().unwrap();
+        let exe = xfoil_runner::fake::write_fake_xfoil(dir.path(), "").unwrap();
+        let spec = |budget| XfoilProcessSpec {
+            xfoil: Some(exe.clone()),
+            cache: None,
+            no_cache: true,
+            quiet: true,
+            budget,
+        };
+        let engine = polar_engine(&spec(None)).unwrap();
+        assert_eq!(engine.budget(), Some(crate::spec::DEFAULT_XFOIL_BUDGET));
+        assert_eq!(polar_engine(&spec(Some(20.0))).unwrap().budget(), Some(20.0));
+        let e = polar_engine(&spec(Some(-1.0))).err().unwrap().to_string();
+        assert!(e.contains("--xfoil-budget -1: a positive number"), "{e}");
+    }
 }

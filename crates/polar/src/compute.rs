@@ -231,6 +231,11 @@ impl PolarEngine {
         self
     }
 
+    /// The total XFOIL time budget [s], None without one.
+    pub fn budget(&self) -> Option<f64> {
+        self.deadline.map(|d| d.1)
+    }
+
     /// SHA-256 of the XFOIL executable and the script version.
     fn identity(&self) -> &str {
         self.identity.get_or_init(|| {
