@@ -895,3 +895,41 @@ fn n26_scan_args_that_the_case_sets_elsewhere_are_refused() {
         assert!(!t.path().join("out").exists());
     }
 }
+
+#[test]
+fn n37_a_folder_another_propbet_writes_is_refused() {
+    let t = tempfile::tempdir().unwrap();
+    let out = t.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+    // The lock a running propbet holds on its output folder.
+    let held = std::fs::File::open(&out).unwrap();
+    held.try_lock().unwrap();
+    let h = |f: &str| path(&format!("tests/data/hidden_effects/torque_tare/{f}"));
+    let compare = [
+        "compare",
+        "--prop",
+        &h("cam6x3.qprop"),
+        "--measured",
+        &h("cam6x3_steps.csv"),
+        "-o",
+        "out",
+    ];
+    let o = run(&compare, t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("out: another propbet is writing this folder"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_dir(&out).unwrap().count(), 0, "nothing written");
+    let case = path("props/cam6x3");
+    let o = run(&["run", &case, "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(!out.join(INCOMPLETE_TXT).exists());
+    drop(held);
+    let o = run(&compare, t.path());
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(out.join("report.html").exists());
+}
+
+const INCOMPLETE_TXT: &str = "INCOMPLETE.txt";

@@ -267,6 +267,7 @@ pub fn write(
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
+    let _lock = crate::output::claim_folder(out)?;
     let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {

@@ -90,6 +90,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let rep = report::build(&d.data, dg, &prop, &files, &command)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
+    let _lock = crate::output::claim_folder(&spec.out)?;
     let plots = spec.out.join("plots");
     std::fs::create_dir_all(&plots)
         .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", plots.display()))?;

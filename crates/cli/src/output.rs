@@ -6,6 +6,28 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 
+/// An output folder this process writes: locked (flock(2) on the folder itself) until the
+/// guard drops, so a second propbet writing the same folder stops at once instead of mixing
+/// its files with the first's.
+#[must_use = "the folder is locked only while the guard lives"]
+pub struct FolderLock(#[allow(dead_code)] Option<std::fs::File>);
+
+/// Creates `dir` if needed and locks it for this process; an error when another propbet
+/// holds it. A file system without locks (some network mounts) is written unlocked.
+pub fn claim_folder(dir: &Path) -> Result<FolderLock> {
+    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
+    let f = std::fs::File::open(dir).map_err(|e| anyhow::anyhow!("{}: cannot open: {e}", dir.display()))?;
+    match f.try_lock() {
+        Ok(()) => Ok(FolderLock(Some(f))),
+        Err(std::fs::TryLockError::WouldBlock) => bail!(
+            "{}: another propbet is writing this folder; wait for it to finish or give another output folder",
+            dir.display()
+        ),
+        Err(std::fs::TryLockError::Error(e)) if e.kind() == std::io::ErrorKind::Unsupported => Ok(FolderLock(None)),
+        Err(std::fs::TryLockError::Error(e)) => bail!("{}: cannot lock: {e}", dir.display()),
+    }
+}
+
 /// Powers of ten 1e-32 ..= 1e32 (each literal is the correctly rounded double).
 #[rustfmt::skip]
 const POW10: [f64; 65] = [

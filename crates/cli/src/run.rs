@@ -130,7 +130,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             dir.join("case.toml").display()
         )
     })?;
-    std::fs::create_dir_all(&out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", out.display()))?;
+    let _lock = crate::output::claim_folder(&out)?;
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves this file, naming the case; a finished run removes it.
     let marker = out.join(INCOMPLETE);

@@ -293,6 +293,7 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
 /// plots/, blades/, scan.json.
 pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let g = &sc.geometry;
+    let _lock = crate::output::claim_folder(&a.out)?;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     let inputs: Vec<&Path> = std::iter::once(a.input.as_path())

@@ -141,7 +141,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .chain(a.user_effects.as_deref())
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
-    std::fs::create_dir_all(&a.out).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", a.out.display()))?;
+    let _lock = crate::output::claim_folder(&a.out)?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
     let mut all_clean = true;

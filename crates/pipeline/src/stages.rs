@@ -194,7 +194,10 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
     let engine = PolarEngine::new(xfoil, cache);
     Ok(match p.budget.unwrap_or(crate::spec::DEFAULT_XFOIL_BUDGET) {
         b if b.is_finite() && b > 0.0 => engine.with_budget(b),
-        b => invalid!("--xfoil-budget {}: a positive number of seconds", propbet_units::show(b)),
+        b => invalid!(
+            "--xfoil-budget {}: a positive number of seconds",
+            propbet_units::show(b)
+        ),
     })
 }
 
