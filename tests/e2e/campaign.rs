@@ -933,3 +933,29 @@ fn n37_a_folder_another_propbet_writes_is_refused() {
 }
 
 const INCOMPLETE_TXT: &str = "INCOMPLETE.txt";
+
+#[test]
+fn a_scan_that_fails_half_way_leaves_its_folder_marked_incomplete() {
+    // A write that fails after the first outputs (a directory where scan.json goes) stands in
+    // for a disk that fills up: the folder keeps INCOMPLETE.txt naming the command.
+    let t = tempfile::tempdir().unwrap();
+    let out = t.path().join("out");
+    std::fs::create_dir_all(out.join("scan.json")).unwrap();
+    let stl = path("props/apcsf_10x4.7/apcsf_10x4.7.stl");
+    let o = run(&["scan", &stl, "--stations", "0.3:0.9/4", "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        out.join("prop.qprop").exists(),
+        "the outputs before the failure are written"
+    );
+    let marker = std::fs::read_to_string(out.join(INCOMPLETE_TXT)).unwrap();
+    assert!(
+        marker.contains("`propbet scan ") && marker.contains("has not finished"),
+        "{marker}"
+    );
+    // Done again into a clean folder: no marker.
+    std::fs::remove_dir_all(&out).unwrap();
+    let o = run(&["scan", &stl, "--stations", "0.3:0.9/4", "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!out.join(INCOMPLETE_TXT).exists());
+}

@@ -267,7 +267,8 @@ pub fn write(
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
-    let _lock = crate::output::claim_folder(out)?;
+    let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
+    let lock = crate::output::claim_folder(out, &command)?;
     let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for (name, fig) in &rep.figures {
@@ -278,7 +279,6 @@ pub fn write(
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
-    let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
     let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems());
     if let (Some(r), serde_json::Value::Object(o)) = (rep.json.get("reference"), &mut summary) {
         o.insert("reference".into(), r.clone());
@@ -293,6 +293,7 @@ pub fn write(
         &inputs,
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    lock.finish()?;
     let reference = rep.json.get("reference").cloned();
     Ok((rep.body, reference))
 }

@@ -90,7 +90,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let rep = report::build(&d.data, dg, &prop, &files, &command)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
-    let _lock = crate::output::claim_folder(&spec.out)?;
+    let lock = crate::output::claim_folder(&spec.out, &command)?;
     let plots = spec.out.join("plots");
     std::fs::create_dir_all(&plots)
         .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", plots.display()))?;
@@ -120,6 +120,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     write_atomic(&spec.out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
+    lock.finish()?;
     Ok(rep.body)
 }
 

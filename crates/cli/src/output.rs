@@ -6,26 +6,51 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 
+/// The file that marks an output folder as incomplete while a command writes it.
+pub const INCOMPLETE: &str = "INCOMPLETE.txt";
+
 /// An output folder this process writes: locked (flock(2) on the folder itself) until the
 /// guard drops, so a second propbet writing the same folder stops at once instead of mixing
-/// its files with the first's.
+/// its files with the first's; and marked by [`INCOMPLETE`] until [`FolderLock::finish`], so a
+/// command that fails half-way (a full disk, a signal) leaves a folder that says so.
 #[must_use = "the folder is locked only while the guard lives"]
-pub struct FolderLock(#[allow(dead_code)] Option<std::fs::File>);
+pub struct FolderLock {
+    _file: Option<std::fs::File>,
+    marker: std::path::PathBuf,
+}
 
-/// Creates `dir` if needed and locks it for this process; an error when another propbet
-/// holds it. A file system without locks (some network mounts) is written unlocked.
-pub fn claim_folder(dir: &Path) -> Result<FolderLock> {
+impl FolderLock {
+    /// Every output is written: the marker goes (the lock goes with the guard).
+    pub fn finish(self) -> Result<()> {
+        std::fs::remove_file(&self.marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", self.marker.display()))
+    }
+}
+
+/// Creates `dir` if needed, locks it for this process (an error when another propbet holds
+/// it; a file system without locks, some network mounts, is written unlocked) and marks it
+/// incomplete, naming `command`.
+pub fn claim_folder(dir: &Path, command: &str) -> Result<FolderLock> {
     std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
     let f = std::fs::File::open(dir).map_err(|e| anyhow::anyhow!("{}: cannot open: {e}", dir.display()))?;
-    match f.try_lock() {
-        Ok(()) => Ok(FolderLock(Some(f))),
+    let file = match f.try_lock() {
+        Ok(()) => Some(f),
         Err(std::fs::TryLockError::WouldBlock) => bail!(
             "{}: another propbet is writing this folder; wait for it to finish or give another output folder",
             dir.display()
         ),
-        Err(std::fs::TryLockError::Error(e)) if e.kind() == std::io::ErrorKind::Unsupported => Ok(FolderLock(None)),
+        Err(std::fs::TryLockError::Error(e)) if e.kind() == std::io::ErrorKind::Unsupported => None,
         Err(std::fs::TryLockError::Error(e)) => bail!("{}: cannot lock: {e}", dir.display()),
-    }
+    };
+    let marker = dir.join(INCOMPLETE);
+    write_atomic(
+        &marker,
+        &[format!(
+            "This folder is incomplete: `{command}` started writing it and has not finished (it failed, was \
+             interrupted, or is still running). Its files may be from different runs.\n"
+        )],
+        &[],
+    )?;
+    Ok(FolderLock { _file: file, marker })
 }
 
 /// Powers of ten 1e-32 ..= 1e32 (each literal is the correctly rounded double).

@@ -130,19 +130,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             dir.join("case.toml").display()
         )
     })?;
-    let _lock = crate::output::claim_folder(&out)?;
     // Until the report is written the folder says it is incomplete: a run that fails or is
-    // interrupted leaves this file, naming the case; a finished run removes it.
-    let marker = out.join(INCOMPLETE);
-    write_atomic(
-        &marker,
-        &[format!(
-            "This folder is incomplete: `propbet run {}` started writing it and has not finished (it failed, was \
-             interrupted, or is still running). Its files may be from different runs.\n",
-            dir.display()
-        )],
-        &[],
-    )?;
+    // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
+    let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
     let bar = Bar::new(a.xfoil.quiet);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<serde_json::Value> = None;
@@ -210,7 +200,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     if a.verbose {
         eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
     }
-    std::fs::remove_file(&marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", marker.display()))?;
+    lock.finish()?;
     println!(
         "{}: {} stages in {:.1} s; report: {}",
         plan.name,
@@ -232,9 +222,6 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     }
     Ok(outcome.clean())
 }
-
-/// The file that marks a run's output folder as incomplete.
-pub const INCOMPLETE: &str = "INCOMPLETE.txt";
 
 fn create_parent(path: &Path) -> Result<()> {
     if let Some(d) = path.parent() {

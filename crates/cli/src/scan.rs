@@ -293,7 +293,8 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
 /// plots/, blades/, scan.json.
 pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let g = &sc.geometry;
-    let _lock = crate::output::claim_folder(&a.out)?;
+    let command = propbet_pipeline::spec::StageSpec::Scan(a.clone()).command();
+    let lock = crate::output::claim_folder(&a.out, &command)?;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     let inputs: Vec<&Path> = std::iter::once(a.input.as_path())
@@ -414,7 +415,7 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
         &[serde_json::to_string_pretty(&summary)?],
         &inputs,
     )?;
-    Ok(())
+    lock.finish()
 }
 
 /// The scan on the terminal.

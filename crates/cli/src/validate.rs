@@ -141,7 +141,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .chain(a.user_effects.as_deref())
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
-    let _lock = crate::output::claim_folder(&a.out)?;
+    let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
     let mut all_clean = true;
@@ -221,6 +221,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
     let html = propbet_report::validate::html(&rows, &skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
+    lock.finish()?;
     println!("{md}");
     Ok(all_clean)
 }
