@@ -959,3 +959,40 @@ fn a_scan_that_fails_half_way_leaves_its_folder_marked_incomplete() {
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(!out.join(INCOMPLETE_TXT).exists());
 }
+
+#[test]
+fn airfoil_is_required_with_sections_airfoil_only() {
+    let t = tempfile::tempdir().unwrap();
+    let case = t.path().join("case");
+    std::fs::create_dir_all(&case).unwrap();
+    std::fs::write(
+        case.join("case.toml"),
+        format!(
+            "name = \"c\"\n[geometry]\nprop = \"{}\"\n[polars]\nsections = \"airfoil\"\n[sweep]\nrpm = \"4000\"\nj = \"0\"\n",
+            path("props/cam6x3/cam6x3.qprop")
+        ),
+    )
+    .unwrap();
+    let o = run(&["run", "case", "-o", "out"], t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("[polars] sections = \"airfoil\" needs `airfoil`"),
+        "{}",
+        stderr(&o)
+    );
+    // `polars` without --airfoil needs the scanned sections.
+    let o = run(
+        &[
+            "polars",
+            "--geometry",
+            &path("props/cam6x3/cam6x3.qprop"),
+            "--rpm",
+            "4000",
+            "--out-prop",
+            "p.qprop",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--airfoil"), "{}", stderr(&o));
+}

@@ -316,3 +316,130 @@ fn the_reference_check_covers_the_outboard_blade() {
         .expect(line);
     assert!(worst < -5.0, "the outboard chord shortfall is named: {line}");
 }
+
+/// An APCE 10x5-like blade (UIUC's chord and twist, NACA sections 10 % to 7 % thick) with
+/// `blades` blades, as crates/geometry/tests/synthetic_scans.rs makes it.
+fn apce_like(blades: usize) -> propbet_geometry::synth::BladeDef {
+    use propbet_geometry::synth::{BladeDef, StationDef};
+    let rows = [
+        (0.15, 0.138, 37.9),
+        (0.25, 0.167, 36.0),
+        (0.35, 0.185, 30.6),
+        (0.45, 0.190, 26.2),
+        (0.55, 0.184, 22.6),
+        (0.65, 0.168, 19.8),
+        (0.75, 0.144, 17.6),
+        (0.85, 0.112, 15.8),
+        (0.95, 0.075, 14.3),
+        (1.00, 0.050, 13.6),
+    ];
+    BladeDef {
+        blades,
+        pitch_axis: 0.3,
+        hub: Some((7.0, 16.0)),
+        stations: rows
+            .iter()
+            .map(|&(x, c, b)| StationDef {
+                r: x * 127.0,
+                chord: c * 127.0,
+                beta: b,
+                t_c: 0.10 - 0.03 * (x - 0.15) / 0.85,
+                camber: 0.05 - 0.01 * (x - 0.15) / 0.85,
+                camber_pos: 0.45,
+            })
+            .collect(),
+    }
+}
+
+/// A case that scans `cloud` (a coloured PLY with the reference box of the shared synthetic
+/// scan) and runs XFOIL on each station's own scanned section, no airfoil given.
+fn scanned_sections_case(dir: &Path, cloud: &Path, blades: usize) {
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::write(
+        dir.join("case.toml"),
+        format!(
+            r#"name = "synthetic {blades}-blade cloud"
+blades = {blades}
+[geometry]
+scan = "{}"
+stations = "0.3:0.9/5"
+scan_args = ["--blade-colour", "orange,black", "--box", "50.8x48.26x50.8", "--box-offset=0,0,-40", "--box-colour", "grey,blue"]
+[polars]
+sections = "scan"
+rpm = "5000"
+j = "0,0.4"
+[sweep]
+rpm = "5000"
+j = "0,0.2,0.4"
+"#,
+            cloud.display()
+        ),
+    )
+    .unwrap();
+}
+
+/// Issue 38: noisy clouds of two to four blades (noise, background halo and a table plane like
+/// the shared cloud's, each a different pose and scale) and the shared synthetic cloud run with
+/// `sections = "scan"` to a report with the real XFOIL: every written section is one XFOIL
+/// takes (a trailing edge the fit made cross itself is repaired and said), exit 0 or 1.
+#[test]
+#[ignore = "slow: real XFOIL on the scanned sections of four clouds (run by scripts/test.sh)"]
+fn scanned_sections_of_noisy_clouds_run_end_to_end() {
+    use nalgebra::{Rotation3, Unit, Vector3};
+    use propbet_geometry::synth::CloudSpec;
+    let t = tempfile::tempdir().unwrap();
+    let mut clouds = vec![(2, scans().join("synthetic_apce10x5/apce10x5_synthetic.ply"))];
+    for (blades, seed) in [(2usize, 21u64), (3, 22), (4, 23)] {
+        let axis = Unit::new_normalize(Vector3::new(0.3 * seed as f64 - 6.0, -1.0, 0.7));
+        let spec = CloudSpec {
+            blade_points: 60_000 * blades,
+            noise: 0.05,
+            background: 0.2,
+            reference_box: Some(([50.8, 48.26, 50.8], [0.0, 0.0, -40.0], 15_000 * blades)),
+            rotation: *Rotation3::from_axis_angle(&axis, 0.4 * seed as f64).matrix(),
+            translation: Vector3::new(-160.0, 190.0, 105.0),
+            scale: 0.5 + 0.02 * seed as f64,
+            seed,
+        };
+        let cloud = apce_like(blades).to_cloud(&spec);
+        let path = t.path().join(format!("cloud_{blades}_{seed}.ply"));
+        std::fs::write(&path, propbet_geometry::cloud::to_ply(&cloud, None)).unwrap();
+        clouds.push((blades, path));
+    }
+    let mut repaired = 0;
+    for (k, (blades, cloud)) in clouds.iter().enumerate() {
+        let case = t.path().join(format!("case{k}"));
+        scanned_sections_case(&case, cloud, *blades);
+        let out = t.path().join(format!("out{k}"));
+        let o = run(
+            &[
+                "run",
+                case.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--cache",
+                t.path().join("cache").to_str().unwrap(),
+                "--quiet",
+            ],
+            t.path(),
+        );
+        let e = stderr(&o);
+        assert!(matches!(o.status.code(), Some(0 | 1)), "{}: {e}", cloud.display());
+        assert!(out.join("report.html").is_file(), "{e}");
+        assert!(!e.contains("crosses itself"), "{e}");
+        let scan: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("scan/scan.json")).unwrap()).unwrap();
+        assert_eq!(scan["blades"].as_u64(), Some(*blades as u64));
+        let notes = scan["notes"].to_string();
+        repaired += notes.matches("crossed itself").count() + notes.matches("crossed or nearly touched").count();
+        // Every station has its own section, and each is one the polars stage read.
+        let files = std::fs::read_dir(out.join("scan/airfoils")).unwrap().count();
+        assert_eq!(files, 5, "{notes}");
+        eprintln!(
+            "{}: {blades} blades, exit {:?}; notes {notes}",
+            cloud.display(),
+            o.status.code()
+        );
+    }
+    eprintln!("{repaired} sections repaired");
+}

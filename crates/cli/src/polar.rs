@@ -280,8 +280,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
 /// sections' directory.
 fn polars_inputs(spec: &PolarsSpec) -> Vec<&Path> {
     let mut inputs: Vec<&Path> = vec![spec.geometry.as_path()];
-    let foil = Path::new(&spec.airfoil);
-    if foil.exists() {
+    if let Some(foil) = spec.airfoil.as_deref().map(Path::new).filter(|f| f.exists()) {
         inputs.push(foil);
     }
     inputs.extend(spec.station_airfoils.as_deref());
@@ -352,12 +351,17 @@ pub struct PolarsArgs {
     /// Length unit of the geometry's radii and chords (overrides its Rfac/Cfac): m, cm, mm, in.
     #[arg(long)]
     pub units: Option<String>,
-    /// The section used at every station.
-    #[command(flatten)]
-    pub section: AirfoilArgs,
+    /// The section used at every station (with --station-airfoils, at the stations without
+    /// their own): a coordinate file (Selig or Lednicer) or a NACA 4-digit name.
+    #[arg(long, required_unless_present = "station_airfoils")]
+    pub airfoil: Option<String>,
+    /// Scale the --airfoil section to this thickness ratio t/c (0.06 or 6%), keeping its
+    /// camber line.
+    #[arg(long, requires = "airfoil")]
+    pub thickness: Option<String>,
     /// Per-station sections: a directory of `station_NN.dat` (NN = 00, 01, ... in the
     /// geometry's station order, as `propbet scan` writes them); a station without its file
-    /// uses `--airfoil`.
+    /// uses `--airfoil`, or without it the nearest station's section.
     #[arg(long)]
     pub station_airfoils: Option<PathBuf>,
     /// The operating points whose Reynolds numbers the polars cover (give the sweep's, or the
@@ -394,8 +398,8 @@ impl PolarsArgs {
                 .as_deref()
                 .map(propbet_pipeline::values::parse_length_unit)
                 .transpose()?,
-            airfoil: self.section.airfoil.clone(),
-            thickness: self.section.thickness.as_deref().map(parse_fraction).transpose()?,
+            airfoil: self.airfoil.clone(),
+            thickness: self.thickness.as_deref().map(parse_fraction).transpose()?,
             station_airfoils: self.station_airfoils.clone(),
             omegas,
             axis,

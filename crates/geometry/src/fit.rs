@@ -291,6 +291,20 @@ pub struct Cst {
     pub points: (usize, usize),
 }
 
+/// A range of chord fractions (from, to).
+pub type ChordRange = (f64, f64);
+
+/// The least thickness a written section keeps, per chord at the leading edge, falling
+/// linearly to 0 at the trailing edge (a 1.1 deg wedge; real sections are several times
+/// thicker everywhere but in the last percent of chord).
+pub const TE_WEDGE: f64 = 0.02;
+
+/// The least thickness of a written section at x/c: the [`TE_WEDGE`] wedge, faded out over
+/// the first 30 % of chord where every section's thickness rises from 0 at the nose.
+fn least_thickness(x: f64) -> f64 {
+    TE_WEDGE * (1.0 - x) * (x / 0.3).min(1.0)
+}
+
 fn binom(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
@@ -323,19 +337,42 @@ impl Cst {
         )
     }
 
-    /// Normalised coordinates in Selig order, `n` points per surface (cosine spacing).
+    /// Normalised coordinates in Selig order, `n` points per surface (cosine spacing), as
+    /// [`Cst::selig_repaired`] gives them.
     pub fn selig(&self, n: usize) -> Vec<(f64, f64)> {
+        self.selig_repaired(n).0
+    }
+
+    /// Normalised coordinates in Selig order, `n` points per surface (cosine spacing), and the
+    /// chord range (x/c) where the fitted surfaces were moved apart. A noisy scan's fit can
+    /// bring the lower surface above the upper near the trailing edge (the contour crosses
+    /// itself, and XFOIL cannot panel it): wherever the thickness is below a wedge of
+    /// [`TE_WEDGE`] chord falling to 0 at the trailing edge (faded out towards the nose), both
+    /// surfaces are set that wedge apart about their middle; a negative trailing-edge gap
+    /// closes. Both
+    /// surfaces share their x, so a contour with the upper at or above the lower at every x
+    /// cannot cross itself.
+    pub fn selig_repaired(&self, n: usize) -> (Vec<(f64, f64)>, Option<ChordRange>) {
         let n = n.max(4);
+        let mut repaired: Option<(f64, f64)> = None;
+        let surfaces: Vec<(f64, f64, f64)> = (0..=n)
+            .map(|k| {
+                let x = cosine(k, n);
+                let (u, l) = self.at(x);
+                let least = least_thickness(x);
+                if k > 0 && u - l < least {
+                    repaired = Some(repaired.map_or((x, x), |r| (r.0.min(x), r.1.max(x))));
+                    let m = 0.5 * (u + l);
+                    (x, m + 0.5 * least, m - 0.5 * least)
+                } else {
+                    (x, u, l)
+                }
+            })
+            .collect();
         let mut out = Vec::with_capacity(2 * n + 1);
-        for k in (0..=n).rev() {
-            let x = cosine(k, n);
-            out.push((x, self.at(x).0));
-        }
-        for k in 1..=n {
-            let x = cosine(k, n);
-            out.push((x, self.at(x).1));
-        }
-        out
+        out.extend(surfaces.iter().rev().map(|&(x, u, _)| (x, u)));
+        out.extend(surfaces.iter().skip(1).map(|&(x, _, l)| (x, l)));
+        (out, repaired)
     }
 
     /// Maximum thickness / chord and its position; maximum camber / chord and its position.
@@ -480,6 +517,40 @@ mod tests {
         let sel = cst.selig(80);
         assert_eq!(sel.len(), 161);
         assert!((sel[0].0 - 1.0).abs() < 1e-12 && sel[80].0.abs() < 1e-12 && (sel[160].0 - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_fit_whose_surfaces_cross_at_the_trailing_edge_is_written_apart() {
+        // Upper and lower surfaces of a thin section, with the trailing-edge ordinates of a
+        // noisy fit: the lower ends 0.4 % chord above the upper.
+        let cst = Cst {
+            upper: vec![0.12; CST_ORDER + 1],
+            lower: vec![-0.02; CST_ORDER + 1],
+            te: (-0.004, 0.000),
+            rms: 0.0,
+            points: (100, 100),
+        };
+        let (u, l) = cst.at(1.0);
+        assert!(u < l);
+        let (pts, repaired) = cst.selig_repaired(80);
+        let (from, to) = repaired.unwrap();
+        assert!(from > 0.8 && to == 1.0, "{from} {to}");
+        // Every upper point at or above the lower point at the same x; closed at x = 1.
+        for k in 0..=80 {
+            let (xu, yu) = pts[80 - k];
+            let (xl, yl) = pts[80 + k];
+            assert_eq!(xu, xl);
+            assert!(yu - yl >= least_thickness(xu) - 1e-12, "x {xu}: {yu} < {yl}");
+        }
+        assert_eq!(pts[0], pts[160]);
+        // A section whose surfaces stay apart is not touched.
+        let sound = Cst {
+            te: (0.001, -0.001),
+            ..cst
+        };
+        let (p2, r2) = sound.selig_repaired(80);
+        assert!(r2.is_none());
+        assert_eq!(p2[0].1, sound.at(1.0).0);
     }
 
     #[test]

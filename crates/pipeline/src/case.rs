@@ -67,8 +67,10 @@ pub struct PolarSection {
     /// none); `airfoil`: the airfoil at every station.
     #[serde(default = "default_sections")]
     pub sections: String,
-    /// Coordinate file (relative to the case) or a NACA 4-digit name: the airfoil hint.
-    pub airfoil: String,
+    /// Coordinate file (relative to the case) or a NACA 4-digit name: the section at every
+    /// station (`sections = "airfoil"`, where it is required) or where the scan gave none
+    /// (`sections = "scan"`; without it such a station takes the nearest station's section).
+    pub airfoil: Option<String>,
     /// Scale the airfoil to this thickness ratio.
     pub thickness: Option<String>,
     /// Rotation speeds whose Reynolds numbers the polars cover [rpm]: a number or a list as
@@ -194,6 +196,12 @@ pub fn read_case(dir: &Path) -> Result<Case> {
                 format!("[polars] sections = {:?}: `scan` or `airfoil`", p.sections),
             ));
         }
+        if p.sections == "airfoil" && p.airfoil.is_none() {
+            return Err(Error::input(
+                &path,
+                "[polars] sections = \"airfoil\" needs `airfoil`, the section of every station",
+            ));
+        }
         if p.sections == "scan" && g.scan.is_none() {
             return Err(Error::input(
                 &path,
@@ -269,8 +277,8 @@ impl RunPlan {
                 None => v.push(self.predict.model.prop.clone()),
             },
         }
-        if let Some((p, _)) = &self.polars {
-            v.push(PathBuf::from(&p.airfoil));
+        if let Some(a) = self.polars.as_ref().and_then(|(p, _)| p.airfoil.as_ref()) {
+            v.push(PathBuf::from(a));
         }
         if let Some((c, _)) = &self.compare {
             v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
@@ -286,8 +294,9 @@ impl RunPlan {
         let naca = self
             .polars
             .as_ref()
-            .filter(|(p, _)| propbet_polar::naca4_from_name(&p.airfoil).is_some())
-            .map(|(p, _)| PathBuf::from(&p.airfoil));
+            .and_then(|(p, _)| p.airfoil.as_ref())
+            .filter(|a| propbet_polar::naca4_from_name(a).is_some())
+            .map(PathBuf::from);
         self.inputs()
             .into_iter()
             .filter(|f| Some(f) != naca.as_ref() && !f.exists())
@@ -376,11 +385,13 @@ impl Case {
         let polars = match &self.polars {
             None => None,
             Some(p) => {
-                let airfoil = if propbet_polar::naca4_from_name(&p.airfoil).is_some() {
-                    p.airfoil.clone()
-                } else {
-                    f(&p.airfoil).display().to_string()
-                };
+                let airfoil = p.airfoil.as_ref().map(|a| {
+                    if propbet_polar::naca4_from_name(a).is_some() {
+                        a.clone()
+                    } else {
+                        f(a).display().to_string()
+                    }
+                });
                 let alpha = p.alpha.as_deref().unwrap_or(crate::spec::DEFAULT_ALPHA);
                 let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
                 alphas.sort_by(f64::total_cmp);

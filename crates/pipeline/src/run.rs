@@ -178,7 +178,7 @@ pub fn run_case(
     if let Some((spec, scanned_sections)) = &plan.polars {
         let t = book.start(StageSpec::Polars(spec.clone()));
         let run = || -> Result<(Polars, PolarsInput)> {
-            let (foil, mut notes) = stages::load_airfoil(&spec.airfoil, spec.thickness)?;
+            let (foil, mut notes) = stages::spec_airfoil(spec)?;
             let geometry = match &geometry {
                 Some(g) => g.clone(),
                 None => crate::model::load_prop(&spec.geometry, spec.units)?,
@@ -191,14 +191,16 @@ pub fn run_case(
                             texts[*i] = Some((dir.join(format!("station_{i:02}.dat")), t.clone()));
                         }
                     }
-                    stages::station_foils(dir, texts, &foil, &mut notes)?
+                    stages::station_foils(dir, texts, foil.as_ref(), &mut notes)?
                 }
-                _ => vec![foil.clone()],
+                _ => vec![foil
+                    .clone()
+                    .ok_or_else(|| crate::Error::Invalid("[polars] airfoil: the section of every station".into()))?],
             };
             let input = PolarsInput {
                 geometry,
                 foils,
-                foil_name: foil.name.clone(),
+                foil_name: stages::foil_name(foil.as_ref()),
                 notes,
             };
             let engine = stages::polar_engine(&spec.xfoil.process)?;

@@ -502,8 +502,10 @@ pub struct PolarsSpec {
     pub geometry: PathBuf,
     /// Its length unit [m per unit].
     pub units: Option<f64>,
-    /// The section at every station: a coordinate file or a NACA 4-digit name.
-    pub airfoil: String,
+    /// The section at every station (at the stations without their own with
+    /// `station_airfoils`): a coordinate file or a NACA 4-digit name. None only with
+    /// `station_airfoils`: a station without its own section takes the nearest station's.
+    pub airfoil: Option<String>,
     /// Thickness ratio the section is scaled to [-].
     pub thickness: Option<f64>,
     /// Per-station sections (`station_NN.dat`).
@@ -669,7 +671,9 @@ impl StageSpec {
                 if let Some(u) = s.units {
                     push(&mut v, "--units", length_unit_name(u).unwrap_or("m"));
                 }
-                push(&mut v, "--airfoil", s.airfoil.clone());
+                if let Some(a) = &s.airfoil {
+                    push(&mut v, "--airfoil", a.clone());
+                }
                 if let Some(t) = s.thickness {
                     push(&mut v, "--thickness", format!("{t}"));
                 }

@@ -85,7 +85,9 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
             .map_or("scan".into(), |s| s.to_string_lossy().into_owned())
     });
     let prop = as_written(&scan_prop_file(&name, &geometry), &spec.out.join("prop.qprop"))?;
-    let airfoils = station_airfoils(&name, &geometry);
+    let (airfoils, notes) = station_airfoils(&name, &geometry);
+    let mut geometry = geometry;
+    geometry.notes.extend(notes);
     Ok(Scanned {
         geometry,
         reference,
@@ -121,20 +123,40 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
     PropFile::metric(name.to_string(), g.blades as f64, g.tip_radius, rows)
 }
 
-/// Each station's CST section as a Selig file (`airfoils/station_NN.dat`).
-pub fn station_airfoils(name: &str, g: &Geometry) -> Vec<(usize, String)> {
-    g.stations
-        .iter()
-        .enumerate()
-        .filter_map(|(i, s)| {
-            let c = s.cst.as_ref()?;
-            let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, 1000.0 * c.rms);
-            for (x, y) in c.selig(80) {
-                t.push_str(&format!("{x:.6} {y:.6}\n"));
-            }
-            Some((i, t))
-        })
-        .collect()
+/// Each station's CST section as a Selig file (`airfoils/station_NN.dat`), with notes: where
+/// the fit's surfaces were moved apart (a trailing edge that crossed itself, closed), and a
+/// section that is still no airfoil XFOIL can take (checked as `polars` reads it: the station
+/// gets no file and takes the airfoil or its neighbour's section).
+pub fn station_airfoils(name: &str, g: &Geometry) -> (Vec<(usize, String)>, Vec<String>) {
+    let mut notes = Vec::new();
+    let mut files = Vec::new();
+    for (i, s) in g.stations.iter().enumerate() {
+        let Some(c) = s.cst.as_ref() else { continue };
+        let (points, repaired) = c.selig_repaired(80);
+        let mut t = format!("{name} r/R={:.4} (CST fit, rms {:.4} mm)\n", s.r_r, 1000.0 * c.rms);
+        for (x, y) in points {
+            t.push_str(&format!("{x:.6} {y:.6}\n"));
+        }
+        let file = format!("station_{i:02}.dat");
+        match repaired {
+            Some((from, _)) if from > 0.995 => notes.push(format!(
+                "{file} (r/R {:.3}): the fitted trailing edge crossed itself (lower surface above the upper); closed",
+                s.r_r
+            )),
+            Some((from, to)) => notes.push(format!(
+                "{file} (r/R {:.3}): the fitted surfaces crossed or nearly touched at x/c {from:.2}-{to:.2}; set a \
+                 wedge of {} % of chord apart there, the trailing edge closed",
+                s.r_r,
+                100.0 * propbet_geometry::fit::TE_WEDGE
+            )),
+            None => {}
+        }
+        match parse_airfoil(&t, Path::new(&file)) {
+            Ok(_) => files.push((i, t)),
+            Err(e) => notes.push(format!("{file} not written (r/R {:.3}): {e}", s.r_r)),
+        }
+    }
+    (files, notes)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -216,9 +238,9 @@ pub struct PolarsInput {
 /// Reads the polars stage's inputs from the files its spec names.
 pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
     let geometry = load_prop(&spec.geometry, spec.units)?;
-    let (foil, mut notes) = load_airfoil(&spec.airfoil, spec.thickness)?;
+    let (foil, mut notes) = spec_airfoil(spec)?;
     let foils = match &spec.station_airfoils {
-        None => vec![foil.clone()],
+        None => vec![foil.clone().expect("spec_airfoil: an airfoil without station sections")],
         Some(dir) => {
             if !dir.is_dir() {
                 invalid!("--station-airfoils {}: not a directory", dir.display());
@@ -230,47 +252,98 @@ pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
                     path.exists().then(|| read_text(&path).map(|t| (path, t))).transpose()
                 })
                 .collect::<Result<Vec<_>>>()?;
-            station_foils(dir, texts, &foil, &mut notes)?
+            station_foils(dir, texts, foil.as_ref(), &mut notes)?
         }
     };
     Ok(PolarsInput {
         geometry,
         foils,
-        foil_name: foil.name.clone(),
+        foil_name: foil_name(foil.as_ref()),
         notes,
     })
 }
 
-/// One section per station from the texts of `station_NN.dat` files (None: `fallback`).
+/// The spec's airfoil, loaded (and scaled) with its repair notes: None only when the stations
+/// have their own sections; an error when neither is given.
+pub fn spec_airfoil(spec: &PolarsSpec) -> Result<(Option<Airfoil>, Vec<String>)> {
+    match (&spec.airfoil, &spec.station_airfoils) {
+        (Some(a), _) => load_airfoil(a, spec.thickness).map(|(f, n)| (Some(f), n)),
+        (None, None) => {
+            invalid!("--airfoil: the section of every station (or --station-airfoils, the scanned sections)")
+        }
+        (None, Some(_)) if spec.thickness.is_some() => {
+            invalid!(
+                "--thickness scales the --airfoil section; without --airfoil each station keeps its scanned thickness"
+            )
+        }
+        (None, Some(_)) => Ok((None, Vec::new())),
+    }
+}
+
+/// What the polars' `airfoil` says: the airfoil's name, or that the scan gave every section.
+pub fn foil_name(foil: Option<&Airfoil>) -> String {
+    foil.map_or_else(|| "the scanned sections".to_string(), |f| f.name.clone())
+}
+
+/// One section per station from the texts of `station_NN.dat` files; a station without its
+/// file takes `fallback`, or without one the nearest station's section (the outboard one of
+/// two as near). An error when no station has a section and there is no fallback.
 pub fn station_foils(
     dir: &Path,
     texts: Vec<Option<(PathBuf, String)>>,
-    fallback: &Airfoil,
+    fallback: Option<&Airfoil>,
     notes: &mut Vec<String>,
 ) -> Result<Vec<Airfoil>> {
-    let mut missing = Vec::new();
-    let mut foils = Vec::new();
-    for (i, t) in texts.into_iter().enumerate() {
-        match t {
-            None => {
-                missing.push(i);
-                foils.push(fallback.clone());
-            }
+    let mut own: Vec<Option<Airfoil>> = Vec::new();
+    for t in texts {
+        own.push(match t {
+            None => None,
             Some((path, text)) => {
                 let (f, repairs) = parse_airfoil(&text, &path)?;
                 notes.extend(repairs);
-                foils.push(f);
+                Some(f)
             }
-        }
+        });
     }
-    if !missing.is_empty() {
+    let missing: Vec<usize> = (0..own.len()).filter(|&i| own[i].is_none()).collect();
+    if missing.is_empty() {
+        return Ok(own.into_iter().flatten().collect());
+    }
+    if let Some(f) = fallback {
         notes.push(format!(
             "{}: no section file for station(s) {missing:?}: {} used there",
             dir.display(),
-            fallback.name
+            f.name
         ));
+        return Ok(own.into_iter().map(|o| o.unwrap_or_else(|| f.clone())).collect());
     }
-    Ok(foils)
+    let have: Vec<usize> = (0..own.len()).filter(|&i| own[i].is_some()).collect();
+    if have.is_empty() {
+        invalid!(
+            "{}: no station has a section file and no airfoil was given for them (`airfoil` in [polars], --airfoil)",
+            dir.display()
+        );
+    }
+    let nearest = |i: usize| {
+        *have
+            .iter()
+            .rev()
+            .min_by_key(|&&k| k.abs_diff(i))
+            .expect("have is not empty")
+    };
+    let taken: Vec<String> = missing.iter().map(|&i| format!("{i} from {}", nearest(i))).collect();
+    notes.push(format!(
+        "{}: no section file for station(s) {missing:?}: the nearest station's section used there (station {})",
+        dir.display(),
+        taken.join(", ")
+    ));
+    Ok((0..own.len())
+        .map(|i| {
+            own[i]
+                .clone()
+                .unwrap_or_else(|| own[nearest(i)].clone().expect("nearest has a section"))
+        })
+        .collect())
 }
 
 /// What the polars stage makes.
@@ -765,6 +838,35 @@ pub fn read_per3(path: &Path) -> Result<propbet_qprop::apc::Per3> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_station_without_its_section_takes_the_nearest_one() {
+        let naca = |d: &str| {
+            let f = propbet_polar::naca4_from_name(d).unwrap().unwrap();
+            let mut t = format!("{d}\n");
+            for p in &f.points {
+                t.push_str(&format!("{} {}\n", p[0], p[1]));
+            }
+            t
+        };
+        let dir = Path::new("airfoils");
+        let text = |i: usize, d: &str| Some((dir.join(format!("station_{i:02}.dat")), naca(d)));
+        let texts = vec![None, text(1, "naca2412"), None, None, text(4, "naca4409"), None];
+        let mut notes = Vec::new();
+        let foils = station_foils(dir, texts.clone(), None, &mut notes).unwrap();
+        let t_c: Vec<f64> = foils.iter().map(|f| (100.0 * f.max_thickness().0).round()).collect();
+        // 0 from 1; 2 from 1; 3 from 4; 5 from 4.
+        assert_eq!(t_c, [12.0, 12.0, 12.0, 9.0, 9.0, 9.0], "{notes:?}");
+        assert!(
+            notes
+                .iter()
+                .any(|n| n.contains("[0, 2, 3, 5]") && n.contains("0 from 1, 2 from 1, 3 from 4, 5 from 4")),
+            "{notes:?}"
+        );
+        let none = vec![None, None];
+        let e = station_foils(dir, none, None, &mut notes).err().unwrap().to_string();
+        assert!(e.contains("no station has a section file"), "{e}");
+    }
 
     #[test]
     fn xfoil_has_a_total_budget_unless_one_is_given() {

@@ -600,7 +600,7 @@ pub fn validate_prop(
         .collect();
     let mut notes = Vec::new();
     let first = stages::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
-    let foils = stages::station_foils(&foil_dir, texts, &first, &mut notes)?;
+    let foils = stages::station_foils(&foil_dir, texts, Some(&first), &mut notes)?;
     let mut records = Vec::new();
 
     // The measurements: every file of this prop but the geometry.
@@ -649,7 +649,7 @@ pub fn validate_prop(
     let polars_spec = PolarsSpec {
         geometry: geometry_path,
         units: None,
-        airfoil: foil_dir.join("station_00.dat").display().to_string(),
+        airfoil: Some(foil_dir.join("station_00.dat").display().to_string()),
         thickness: None,
         station_airfoils: Some(foil_dir),
         omegas,

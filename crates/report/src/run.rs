@@ -381,16 +381,11 @@ pub fn what_it_does(plan: &RunPlan) -> String {
             let (lo, hi) = rpm
                 .iter()
                 .fold((f64::INFINITY, 0.0f64), |a, &r| (a.0.min(r), a.1.max(r)));
-            let sections = if *scan_sections {
-                format!(
-                    "each station's scanned section (the {} where a fit failed)",
-                    name(std::path::Path::new(&p.airfoil))
-                )
-            } else {
-                format!(
-                    "the {} section at every station",
-                    name(std::path::Path::new(&p.airfoil))
-                )
+            let airfoil = p.airfoil.as_deref().map(|a| name(std::path::Path::new(a)));
+            let sections = match (*scan_sections, airfoil) {
+                (true, Some(a)) => format!("each station's scanned section (the {a} where a fit failed)"),
+                (true, None) => "each station's scanned section (the nearest station's where a fit failed)".to_string(),
+                (false, a) => format!("the {} section at every station", a.unwrap_or_default()),
             };
             parts.push(format!(
                 "XFOIL polars (Ncrit {}, {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
