@@ -176,6 +176,7 @@ mod campaign;
 mod compare;
 mod diagnose;
 mod docs;
+mod exit_codes;
 mod polars;
 mod run;
 mod scan;

@@ -63,7 +63,7 @@ pub(crate) enum Command {
     /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
     #[command(after_help = concat!(
         "Example:\n  propbet scan props/apcsf_10x4.7/apcsf_10x4.7.stl --units mm -o scan_apc\n\n",
-        "Exit status: 0 done; 1 done, with problems it reports; 2 error."
+        "Exit status: 0 done; 1 done, with stations it could not measure or fit, which it reports; 2 error."
     ))]
     Scan(Box<scan::ScanArgs>),
     /// Polars of every station of a blade at its operating Re and Mach, reduced to a QPROP file.
@@ -98,7 +98,7 @@ pub(crate) enum Command {
     #[command(after_help = concat!(
         "Example:\n  propbet diagnose --prop tests/data/hidden_effects/torque_tare/cam6x3.qprop \\\n",
         "    --measured tests/data/hidden_effects/torque_tare/cam6x3_steps.csv --out dg\n\n",
-        "Exit status: 0 done; 2 error."
+        "Exit status: 0 done; 1 done, with dropped rows it reports; 2 error."
     ))]
     Diagnose(Box<diagnose::DiagnoseArgs>),
     /// List the effects (built-in and user-defined) with their parameters and physics.

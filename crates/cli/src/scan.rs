@@ -286,7 +286,7 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
     write(&spec, &s)?;
     print_summary(&s);
     println!("wrote {}", spec.out.display());
-    Ok(true)
+    Ok(s.clean())
 }
 
 /// Writes the scan stage's outputs: geometry.csv, geom.txt, prop.qprop, airfoils/,

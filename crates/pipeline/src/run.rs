@@ -168,7 +168,7 @@ pub fn run_case(
                 ));
             }
         }
-        book.done(t, true, Finished::Scan(&r));
+        book.done(t, r.clean(), Finished::Scan(&r));
         geometry = Some(r.prop.clone());
         scanned = Some(r);
     }

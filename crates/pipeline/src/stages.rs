@@ -41,6 +41,13 @@ pub struct Scanned {
     pub airfoils: Vec<(usize, String)>,
 }
 
+impl Scanned {
+    /// Every station asked for was measured, and has its section file.
+    pub fn clean(&self) -> bool {
+        self.geometry.failed.is_empty() && self.airfoils.len() == self.geometry.stations.len()
+    }
+}
+
 /// Reads a UIUC-style geometry table (r/R c/R β).
 pub fn read_geometry_table(path: &Path) -> Result<Vec<GeometryRow>> {
     propbet_measure::uiuc::read_geometry(&read_text(path)?).map_err(|e| Error::input(path, e))
