@@ -178,6 +178,7 @@ mod diagnose;
 mod docs;
 mod exit_codes;
 mod polars;
+mod qprop_real;
 mod run;
 mod scan;
 mod validate;

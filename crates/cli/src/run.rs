@@ -265,7 +265,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             crate::polar::write_polars(spec, p)?;
             w.brief = crate::polar::polars_brief(p);
         }
-        (StageSpec::Predict(spec), Finished::Predict(points, model)) => {
+        (StageSpec::Predict(spec), Finished::Predict(points, model, export)) => {
             if verbose {
                 for warning in &model.loaded.warnings {
                     eprintln!("propbet: warning: {warning}");
@@ -275,6 +275,13 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                 create_parent(o)?;
             }
             crate::predict::write_sweep(spec, model, points)?;
+            if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
+                write_atomic(
+                    &dir.join(propbet_pipeline::export::FILE_NAME),
+                    &[propbet_qprop::write_prop(&x.file)],
+                    &spec.model.inputs(),
+                )?;
+            }
             let unconverged = points.iter().filter(|p| p.not_converged > 0).count();
             w.brief.push(format!(
                 "{} operating points at {} speeds{}{}",
@@ -289,6 +296,10 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                     .as_ref()
                     .map_or(String::new(), |o| format!(" -> {}", o.display()))
             ));
+            w.brief.push(match export {
+                Ok(x) => format!("{}: {}", propbet_pipeline::export::FILE_NAME, x.fidelity.sentence()),
+                Err(e) => format!("no QPROP export: {e}"),
+            });
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::Reference::load(spec, model.diameter)?;

@@ -14,6 +14,7 @@
 
 pub mod case;
 mod error;
+pub mod export;
 pub mod model;
 pub mod run;
 pub mod spec;

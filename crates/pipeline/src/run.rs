@@ -28,8 +28,12 @@ pub enum Finished<'a> {
     Scan(&'a Scanned),
     /// The polars, with their inputs.
     Polars(&'a Polars, &'a PolarsInput),
-    /// The sweeps.
-    Predict(&'a [PointResult], &'a Model),
+    /// The sweeps, and the QPROP file that carries them (or why there is none).
+    Predict(
+        &'a [PointResult],
+        &'a Model,
+        &'a std::result::Result<crate::export::QpropExport, String>,
+    ),
     /// The comparison, with the model it was made with.
     Compare(&'a Compared, &'a Model),
     /// The diagnosis.
@@ -72,6 +76,8 @@ pub struct RunOutcome {
     pub fluid: (Fluid, String),
     /// The sweeps.
     pub sweep: Vec<PointResult>,
+    /// The QPROP file fitted to carry the sweeps' prediction (or why there is none).
+    pub qprop_export: std::result::Result<crate::export::QpropExport, String>,
     /// The comparison (cases with measurements).
     pub compared: Option<Compared>,
     /// The diagnosis (cases with measurements).
@@ -223,7 +229,8 @@ pub fn run_case(
     let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
     let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
     let clean = sweep.iter().all(|p| p.not_converged == 0);
-    book.done(t, clean, Finished::Predict(&sweep, &model));
+    let qprop_export = crate::export::qprop_export(&model, &fluid.0, &points, &plan.name).map_err(|e| e.to_string());
+    book.done(t, clean, Finished::Predict(&sweep, &model, &qprop_export));
 
     // 4-5. Comparison and diagnosis.
     let (mut compared, mut diagnosed) = (None, None);
@@ -248,6 +255,7 @@ pub fn run_case(
         model,
         fluid,
         sweep,
+        qprop_export,
         compared,
         diagnosed,
         stages: book.records,

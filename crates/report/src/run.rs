@@ -211,6 +211,20 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep</li>",
             link(out, o)
         );
+        match (&run.qprop_export, o.parent()) {
+            (Ok(x), Some(dir)) => {
+                let _ = write!(
+                    h,
+                    "<li>{}: the QPROP 1.22 prop file that carries this prediction (QPROP's law fitted at each of its stations to what the model's sections do there). {}.</li>",
+                    link(out, &dir.join(propbet_pipeline::export::FILE_NAME)),
+                    esc(&x.fidelity.sentence())
+                );
+            }
+            (Err(e), _) => {
+                let _ = write!(h, "<li>No QPROP export: {}</li>", esc(e));
+            }
+            _ => {}
+        }
     }
     if let (Some((spec, _)), Some(p)) = (&plan.polars, &run.polars) {
         let notes: Vec<String> = p
@@ -358,6 +372,13 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "problems": problems,
         "headline": headline,
         "diagnosis": diagnosis,
+        "qprop_export": match &run.qprop_export {
+            Ok(x) => json!({
+                "file": plan.predict.out.as_ref().and_then(|o| o.parent()).map(|d| d.join(propbet_pipeline::export::FILE_NAME).display().to_string()),
+                "fidelity": x.fidelity,
+            }),
+            Err(e) => json!({"error": e}),
+        },
     })
 }
 
