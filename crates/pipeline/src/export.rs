@@ -1,19 +1,21 @@
 //! A QPROP file that carries the prediction: QPROP 1.22 run on it gives what propbet's model
-//! (tables, rotational augmentation, drag factor) predicts over the operating points it was
-//! fitted on.
+//! (tables, rotational augmentation, drag factor) predicts over the operating points it was fitted
+//! on.
 //!
 //! The file's rows are the first and last radius of the blade and, between them, the 25
-//! computational stations QPROP itself places (midpoints of 25 equal intervals): QPROP's
-//! spline then returns each row's values at its own stations, so every station gets the
-//! coefficients fitted to it. A station whose section is QPROP's law already (a prop file
-//! without tables, no rotational augmentation or drag factor) keeps its coefficients, its drag
-//! moved to the common REref exactly. At each other station QPROP's law is fitted by least squares to the
-//! angle of attack, Reynolds and Mach number, lift and drag the model's own solution has there at
-//! every operating point: the lift line through the lifts it works at (Prandtl-Glauert removed,
-//! as QPROP applies it), limits beyond them, and the drag law `[CD0 + CD2 (cl - CLCD0)^2]
-//! (Re/REref)^REexp` for the best REexp and CLCD0 on a grid, with one REref for every row (QPROP
-//! 1.22 uses the first station's everywhere). The fidelity is measured, not assumed: the file is
-//! read back as QPROP reads it and solved at the same points.
+//! computational stations QPROP itself places (midpoints of 25 equal intervals): QPROP's spline
+//! then returns each row's values at its own stations, so every station gets the coefficients
+//! fitted to it. A station whose section is QPROP's law already (a prop file without tables, no
+//! rotational augmentation or drag factor) keeps its coefficients, its drag moved to the common
+//! REref exactly. At each other station QPROP's law is fitted by least squares to the angle of
+//! attack, Reynolds and Mach number, lift and drag the model's own solution has there at every
+//! operating point that counts (thrust at least a quarter of the largest), weighted so that an
+//! error in cl or cd counts as the relative error in thrust or torque it makes: the lift line
+//! through the lifts it works at (Prandtl-Glauert removed, as QPROP applies it), limits beyond
+//! them, and the drag law `[CD0 + CD2 (cl - CLCD0)^2] (Re/REref)^REexp` for the best REexp and
+//! CLCD0 on a grid, with one REref for every row (QPROP 1.22 uses the first station's everywhere).
+//! The fidelity is measured, not assumed: the file is read back as QPROP reads it and solved at the
+//! same points.
 
 use propbet_bemt::{OperatingPoint, PointResult};
 use propbet_qprop::{PropFile, PropRow};
@@ -59,9 +61,9 @@ pub struct QpropExport {
 }
 
 /// The seen state of one station at one point: (alpha [rad], Re, Mach, cl, cd, lift weight,
-/// drag weight). A weight is the station's share of the point's thrust (lift) or torque (drag)
-/// per unit coefficient, over that load: an error in cl or cd weighs as much as the relative
-/// error in thrust or torque it makes.
+/// drag weight). A weight is the square of the station's share of the point's thrust (lift) or
+/// torque (drag) per unit coefficient over that load: a squared error in cl or cd weighs as much
+/// as the squared relative error in thrust or torque it makes.
 type Seen = (f64, f64, f64, f64, f64, f64, f64);
 
 /// QPROP's lift at `alpha` [rad] and Mach `m` for a line (cl0, cl_a) and limits: the line,
@@ -220,8 +222,11 @@ pub fn qprop_export(
     let re_ref = (solved.iter().map(|p| p.stations[0].re.max(1.0).ln()).sum::<f64>() / solved.len() as f64)
         .exp()
         .round();
+    // The points that count, for the fit as for the check: thrust at least a quarter of the
+    // largest (near zero thrust a relative error means nothing, and the windmilling side of a
+    // sweep would pull the lift line away from where the blade works).
     let thrust_max = solved.iter().map(|p| p.thrust).fold(0.0, f64::max);
-    let torque_max = solved.iter().map(|p| p.torque.abs()).fold(0.0, f64::max);
+    let counted = |p: &PointResult| thrust_max > 0.0 && p.thrust >= 0.25 * thrust_max;
     let fits: Vec<[f64; 10]> = (0..n)
         .map(|k| {
             // A station that is QPROP's law already keeps it, its drag moved to the common
@@ -244,12 +249,19 @@ pub fn qprop_export(
             }
             let seen: Vec<Seen> = solved
                 .iter()
+                .filter(|p| counted(p))
                 .map(|p| {
                     let s = &p.stations[k];
                     let q = s.w * s.w * s.chord;
-                    let t = p.thrust.max(0.25 * thrust_max).max(1e-12);
-                    let torque = p.torque.abs().max(0.25 * torque_max).max(1e-12);
-                    (s.alpha, s.re, s.mach, s.cl, s.cd, q / t, q * s.r / torque)
+                    (
+                        s.alpha,
+                        s.re,
+                        s.mach,
+                        s.cl,
+                        s.cd,
+                        (q / p.thrust).powi(2),
+                        (q * s.r / p.torque.abs().max(1e-12)).powi(2),
+                    )
                 })
                 .filter(|s| s.0.is_finite() && s.3.is_finite() && s.4.is_finite() && s.1 > 0.0)
                 .collect();
@@ -291,7 +303,7 @@ pub fn qprop_export(
     plain.keep_stations = false;
     let (mut dt, mut dq) = (Vec::new(), Vec::new());
     for (p, &op) in solved.iter().zip(points) {
-        if !(p.thrust >= 0.25 * thrust_max && thrust_max > 0.0) {
+        if !counted(p) {
             continue;
         }
         let q = propbet_bemt::solve_point(&back, fluid, op, &plain);
@@ -331,7 +343,10 @@ mod tests {
         // cl = 0.4 + 5.5 alpha, cd = [0.012 + 0.03 (cl - 0.5)^2] (Re/60000)^-0.5, M 0.1.
         let law = |alpha: f64, re: f64| {
             let cl = (0.4 + 5.5 * alpha) / (1.0f64 - 0.01).sqrt();
-            (cl, (0.012 + 0.03 * (cl - 0.5f64).powi(2)) * (re / 60_000.0f64).powf(-0.5))
+            (
+                cl,
+                (0.012 + 0.03 * (cl - 0.5f64).powi(2)) * (re / 60_000.0f64).powf(-0.5),
+            )
         };
         let seen: Vec<Seen> = (0..12)
             .map(|k| {
