@@ -324,40 +324,6 @@ fn the_reference_check_covers_the_outboard_blade() {
     assert!(worst < -5.0, "the outboard chord shortfall is named: {line}");
 }
 
-/// An APCE 10x5-like blade (UIUC's chord and twist, NACA sections 10 % to 7 % thick) with
-/// `blades` blades, as crates/geometry/tests/synthetic_scans.rs makes it.
-fn apce_like(blades: usize) -> propbet_geometry::synth::BladeDef {
-    use propbet_geometry::synth::{BladeDef, StationDef};
-    let rows = [
-        (0.15, 0.138, 37.9),
-        (0.25, 0.167, 36.0),
-        (0.35, 0.185, 30.6),
-        (0.45, 0.190, 26.2),
-        (0.55, 0.184, 22.6),
-        (0.65, 0.168, 19.8),
-        (0.75, 0.144, 17.6),
-        (0.85, 0.112, 15.8),
-        (0.95, 0.075, 14.3),
-        (1.00, 0.050, 13.6),
-    ];
-    BladeDef {
-        blades,
-        pitch_axis: 0.3,
-        hub: Some((7.0, 16.0)),
-        stations: rows
-            .iter()
-            .map(|&(x, c, b)| StationDef {
-                r: x * 127.0,
-                chord: c * 127.0,
-                beta: b,
-                t_c: 0.10 - 0.03 * (x - 0.15) / 0.85,
-                camber: 0.05 - 0.01 * (x - 0.15) / 0.85,
-                camber_pos: 0.45,
-            })
-            .collect(),
-    }
-}
-
 /// A case that scans `cloud` (a coloured PLY with the reference box of the shared synthetic
 /// scan) and runs XFOIL on each station's own scanned section, no airfoil given.
 fn scanned_sections_case(dir: &Path, cloud: &Path, blades: usize) {
@@ -408,7 +374,7 @@ fn scanned_sections_of_noisy_clouds_run_end_to_end() {
             scale: 0.5 + 0.02 * seed as f64,
             seed,
         };
-        let cloud = apce_like(blades).to_cloud(&spec);
+        let cloud = propbet_geometry::synth::apce_like(blades).to_cloud(&spec);
         let path = t.path().join(format!("cloud_{blades}_{seed}.ply"));
         std::fs::write(&path, propbet_geometry::cloud::to_ply(&cloud, None)).unwrap();
         clouds.push((blades, path));

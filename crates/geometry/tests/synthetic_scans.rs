@@ -7,41 +7,7 @@ use propbet_geometry::cloud::read_cloud;
 use propbet_geometry::cloud::to_ply;
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{scan_cloud, scan_mesh, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
-use propbet_geometry::synth::{BladeDef, CloudSpec, StationDef, SYNTH_COLOURS};
-
-/// An APC-E-10x5-like blade (R = 127 mm): chord and angle of the UIUC style table, NACA
-/// sections 10 % -> 7 % thick, 5 % -> 4 % camber at 45 %.
-pub fn apce_like(blades: usize) -> BladeDef {
-    let rows = [
-        (0.15, 0.138, 37.9),
-        (0.25, 0.167, 36.0),
-        (0.35, 0.185, 30.6),
-        (0.45, 0.190, 26.2),
-        (0.55, 0.184, 22.6),
-        (0.65, 0.168, 19.8),
-        (0.75, 0.144, 17.6),
-        (0.85, 0.112, 15.8),
-        (0.95, 0.075, 14.3),
-        (1.00, 0.050, 13.6),
-    ];
-    let big_r = 127.0;
-    BladeDef {
-        blades,
-        pitch_axis: 0.3,
-        hub: Some((7.0, 16.0)),
-        stations: rows
-            .iter()
-            .map(|&(x, c, b)| StationDef {
-                r: x * big_r,
-                chord: c * big_r,
-                beta: b,
-                t_c: 0.10 - 0.03 * (x - 0.15) / 0.85,
-                camber: 0.05 - 0.01 * (x - 0.15) / 0.85,
-                camber_pos: 0.45,
-            })
-            .collect(),
-    }
-}
+use propbet_geometry::synth::{apce_like, BladeDef, CloudSpec, SYNTH_COLOURS};
 
 fn rms(v: &[f64]) -> f64 {
     (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
