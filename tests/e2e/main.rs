@@ -495,3 +495,65 @@ fn never_overwrites_an_input() {
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read(&prop).unwrap(), before);
 }
+
+#[test]
+fn prop_write_gives_a_file_qprop_reads_as_propbet_does() {
+    // Files QPROP 1.22 reads differently (REref varying along the blade, R on line 2 in inches
+    // with Rfac): written back, QPROP's reading (--qprop-compat) is propbet's reading of the
+    // original, but for the spline of CD0 (REref/REref_i)^REexp_i between rows (within 0.5 % of
+    // the sweep's largest thrust and torque on the APC file, whose REref and REexp change along
+    // the blade).
+    let dir = tempfile::tempdir().unwrap();
+    for (k, prop) in [
+        repo().join("props/apcsf_10x4.7/apcsf_10x4.7.qprop"),
+        repo().join("props/photofoil_8x4.5/QProp_8x4_5.txt"),
+        cam6x3(),
+    ]
+    .iter()
+    .enumerate()
+    {
+        let out = format!("w{k}.qprop");
+        let o = run(&["prop", prop.to_str().unwrap(), "--write", &out], dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let o = run(&["prop", &out], dir.path());
+        assert!(!stderr(&o).contains("QPROP 1.22"), "{}", stderr(&o));
+        let thrust = |p: &str, extra: &[&str]| -> Vec<(f64, f64)> {
+            let csv = dir.path().join(format!("{k}_{}.csv", extra.len()));
+            let mut args = vec![
+                "predict",
+                "--prop",
+                p,
+                "--rpm",
+                "5000,8000",
+                "--j",
+                "0:0.5:0.1",
+                "--out",
+                csv.to_str().unwrap(),
+            ];
+            args.extend(extra);
+            let o = run(&args, dir.path());
+            assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+            let (h, rows) = read_csv(&csv);
+            rows.iter()
+                .map(|r| {
+                    (
+                        r[col(&h, "thrust_n")].parse().unwrap(),
+                        r[col(&h, "torque_nm")].parse().unwrap(),
+                    )
+                })
+                .collect()
+        };
+        let a = thrust(prop.to_str().unwrap(), &[]);
+        let b = thrust(&out, &["--qprop-compat"]);
+        // Against the sweep's largest thrust and torque: near zero thrust a relative error means nothing.
+        let t_max = a.iter().map(|x| x.0.abs()).fold(0.0, f64::max);
+        let q_max = a.iter().map(|x| x.1.abs()).fold(0.0, f64::max);
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x.0 - y.0).abs() <= 5e-3 * t_max && (x.1 - y.1).abs() <= 5e-3 * q_max,
+                "{}: {x:?} vs {y:?}",
+                prop.display()
+            );
+        }
+    }
+}

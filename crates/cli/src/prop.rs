@@ -22,7 +22,8 @@ pub struct PropArgs {
     /// Read as QPROP 1.22 does (R on line 2 unscaled, REref of the first station).
     #[arg(long)]
     pub qprop_compat: bool,
-    /// Write the prop file back (normalised, QPROP-readable) to this path.
+    /// Write the prop file back to this path as QPROP 1.22 reads what propbet reads: metres and
+    /// degrees, R on line 2, every row's drag law on one REref.
     #[arg(long)]
     pub write: Option<PathBuf>,
 }
@@ -50,7 +51,11 @@ pub fn run(args: &PropArgs) -> Result<bool> {
         println!("{:.6},{:.6},{:.6},{:.4}", s.r, s.dr, s.chord, s.beta.to_degrees());
     }
     if let Some(out) = &args.write {
-        emit(Some(out), &[write_prop(&loaded.file)], &[args.file.as_path()])?;
+        emit(
+            Some(out),
+            &[write_prop(&loaded.file.as_qprop_reads())],
+            &[args.file.as_path()],
+        )?;
     }
     Ok(true)
 }

@@ -480,6 +480,47 @@ impl PropFile {
         w
     }
 
+    /// The same blade written so that QPROP 1.22 reads what propbet reads: radii, chords and
+    /// angles in metres and degrees with no scaling (QPROP takes R on line 2 unscaled), R the
+    /// documented tip radius, and every row with all ten coefficients on the first row's REref
+    /// (QPROP 1.22 uses the first station's everywhere): CD0, CD2u and CD2l times
+    /// (REref / REref_i)^REexp_i, which leaves each row's drag law unchanged.
+    pub fn as_qprop_reads(&self) -> PropFile {
+        // A whole number, so that every row writes it alike however its line is shortened.
+        let re_ref = self.coeffs_at(0).re_ref.round().max(1.0);
+        let rows = (0..self.rows.len())
+            .map(|i| {
+                let row = &self.rows[i];
+                let mut c = self.coeffs_at(i);
+                let f = (re_ref / c.re_ref).powf(c.re_exp);
+                c.cd0 *= f;
+                c.cd2u *= f;
+                c.cd2l *= f;
+                c.re_ref = re_ref;
+                PropRow {
+                    r: row.r * self.scale[0] + self.offset[0],
+                    chord: row.chord * self.scale[1] + self.offset[1],
+                    beta: row.beta * self.scale[2] + self.offset[2],
+                    coeffs: c.to_array().to_vec(),
+                }
+            })
+            .collect();
+        let mut global = self.coeffs_at(0).to_array();
+        global[8] = re_ref;
+        PropFile {
+            name: self.name.clone(),
+            blades: self.blades,
+            radius: Some(self.tip_radius(RadiusReading::Documented)),
+            radius_in_metres: false,
+            radius_line: 0,
+            global,
+            scale: [1.0, 1.0, 1.0],
+            offset: [0.0, 0.0, 0.0],
+            rows,
+            row_lines: Vec::new(),
+        }
+    }
+
     /// The ten coefficients of row `i`: the row's own, filled from the left, the rest global.
     pub fn coeffs_at(&self, i: usize) -> QpropCoefficients {
         let mut k = self.global;
