@@ -297,7 +297,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                     .map_or(String::new(), |o| format!(" -> {}", o.display()))
             ));
             w.brief.push(match export {
-                Ok(x) => format!("{}: {}", propbet_pipeline::export::FILE_NAME, x.fidelity.sentence()),
+                Ok(x) => format!("{}: {}", propbet_pipeline::export::FILE_NAME, x.fidelity.brief()),
                 Err(e) => format!("no QPROP export: {e}"),
             });
         }

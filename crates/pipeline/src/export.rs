@@ -38,7 +38,18 @@ pub struct Fidelity {
 }
 
 impl Fidelity {
-    /// One sentence for the terminal and the report.
+    /// A short line for the terminal.
+    pub fn brief(&self) -> String {
+        format!(
+            "QPROP 1.22 on it: thrust within {:.1} % (median), {:.1} % (worst) of the prediction, torque {:.1} %, {:.1} %",
+            100.0 * self.thrust[0],
+            100.0 * self.thrust[1],
+            100.0 * self.torque[0],
+            100.0 * self.torque[1]
+        )
+    }
+
+    /// One sentence for the report.
     pub fn sentence(&self) -> String {
         format!(
             "QPROP 1.22 on this file: thrust within {:.1} % (median), {:.1} % at most, torque within {:.1} %, {:.1} % at most of propbet's prediction, over {} operating points (read and solved as QPROP does)",
