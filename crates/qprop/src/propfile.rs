@@ -508,16 +508,13 @@ impl PropFile {
         let mut global = self.coeffs_at(0).to_array();
         global[8] = re_ref;
         PropFile {
-            name: self.name.clone(),
-            blades: self.blades,
-            radius: Some(self.tip_radius(RadiusReading::Documented)),
-            radius_in_metres: false,
-            radius_line: 0,
             global,
-            scale: [1.0, 1.0, 1.0],
-            offset: [0.0, 0.0, 0.0],
-            rows,
-            row_lines: Vec::new(),
+            ..PropFile::metric(
+                self.name.clone(),
+                self.blades,
+                self.tip_radius(RadiusReading::Documented),
+                rows,
+            )
         }
     }
 
