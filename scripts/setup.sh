@@ -45,6 +45,16 @@ if ! command -v mdbook >/dev/null 2>&1; then
   cargo install mdbook --version 0.5.4 --locked
 fi
 
+# Python packages of the tests (scripts/python-requirements.txt, pinned, from the Python
+# registry) in a virtual environment, .venv, made again when the list changes.
+if [ ! -x .venv/bin/python ] || ! cmp -s scripts/python-requirements.txt .venv/requirements.txt; then
+  echo "setup: installing Python packages into .venv: $(grep -v '^#' scripts/python-requirements.txt | xargs)"
+  rm -rf .venv
+  python3 -m venv .venv
+  .venv/bin/pip install --quiet --disable-pip-version-check -r scripts/python-requirements.txt
+  cp scripts/python-requirements.txt .venv/requirements.txt
+fi
+
 if [ "${1:-}" != "--no-build" ]; then
   cargo build --release --locked -p propbet-cli
   echo "setup: built target/release/propbet"

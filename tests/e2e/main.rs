@@ -181,6 +181,7 @@ mod polars;
 mod qprop_real;
 mod run;
 mod scan;
+mod sim_export;
 mod validate;
 
 #[test]

@@ -26,6 +26,16 @@ pub enum RpmSourceArg {
     Electrical,
 }
 
+impl RpmSourceArg {
+    /// The reader's choice.
+    pub fn source(self) -> RpmSource {
+        match self {
+            RpmSourceArg::Optical => RpmSource::Optical,
+            RpmSourceArg::Electrical => RpmSource::Electrical,
+        }
+    }
+}
+
 /// Arguments of `propbet compare`.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
@@ -80,10 +90,7 @@ impl MeasuredArgs {
         Ok(MeasuredSpec {
             files: self.measured.clone(),
             poles: self.poles,
-            rpm_source: self.rpm_source.map(|s| match s {
-                RpmSourceArg::Optical => RpmSource::Optical,
-                RpmSourceArg::Electrical => RpmSource::Electrical,
-            }),
+            rpm_source: self.rpm_source.map(RpmSourceArg::source),
             atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
             rho: self.rho,
             columns: self.columns.clone(),

@@ -26,6 +26,7 @@ macro_rules! println {
 
 mod compare;
 mod diagnose;
+mod export;
 mod output;
 mod polar;
 mod predict;
@@ -118,6 +119,14 @@ pub(crate) enum Command {
         "Exit status: 0 done; 1 done, with problems it reports; 2 error."
     ))]
     Validate(Box<validate::ValidateArgs>),
+    /// Flight-simulator files from a prediction or from measurements: Gazebo's motor model,
+    /// PX4 SIH's thruster parameters, a JSBSim propeller, a CT/CP map (CSV, JSON).
+    #[command(after_help = concat!(
+        "Examples:\n  propbet export --to all --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05 -o sim\n",
+        "  propbet export --to gazebo --measured log.csv --diameter 5in -o sim\n\n",
+        "Exit status: 0 done; 2 error (an export the data cannot support: what is missing, nothing written)."
+    ))]
+    Export(Box<export::ExportArgs>),
     /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
     #[command(after_help = concat!("Example:\n  propbet prop props/cam6x3/cam6x3.qprop\n\n", "Exit status: 0 done; 2 error."))]
     Prop(prop::PropArgs),
@@ -157,6 +166,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Validate(a) => validate::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
+        Command::Export(a) => export::run(&a),
         Command::Polar(a) => polar::run_polar(&a),
         Command::Polars(a) => polar::run_polars(&a),
         Command::Compare(a) => compare::run(&a),

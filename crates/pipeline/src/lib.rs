@@ -17,6 +17,7 @@ mod error;
 pub mod export;
 pub mod model;
 pub mod run;
+pub mod simexport;
 pub mod spec;
 pub mod stages;
 pub mod validate;

@@ -1,0 +1,875 @@
+//! Exports for flight simulators, and a plain map for everything else: Gazebo's multicopter
+//! motor model, PX4's SIH forward thruster, JSBSim's `<propeller>`, and CT, CP and efficiency
+//! over (J, RPM) as CSV and JSON.
+//!
+//! Each is a simplified form of a set of operating points, a prediction's or a measurement's,
+//! and says in a header comment what it came from and how well its simplified form reproduces
+//! those points: thrust and torque, median and largest relative difference, over the points
+//! carrying at least a quarter of the largest thrust coefficient (near zero thrust a relative
+//! difference means nothing). Every file is computed before any is written: an export the data
+//! cannot support is refused with what is missing.
+//!
+//! The formats, as their programs read them:
+//! - Gazebo (`gz-sim-multicopter-motor-model-system`, and classic's `gazebo_motor_model`):
+//!   thrust = `motorConstant` omega^2, drag torque = `momentConstant` thrust.
+//! - PX4 SIH (`simulator_sih/aero.hpp`, `Thruster`): CT(J) = SIH_F_CT0 + SIH_F_CT1 J +
+//!   SIH_F_CT2 J^2 and the same for CP, each clamped at 0; SIH_F_CT2 and SIH_F_CP2 at most 0,
+//!   SIH_F_CT0 and SIH_F_CP0 above 0 (or SIH falls back to its constant-thrust model).
+//! - JSBSim (`FGPropeller`): CT = C_THRUST(J) CT_MACH(M), CP = C_POWER(J) CP_MACH(M), M the
+//!   helical tip Mach number; tables interpolated linearly and held at their ends.
+
+use std::fmt::Write as _;
+
+use propbet_units::rpm_to_rev_per_s;
+
+use crate::{invalid, Result};
+
+/// One operating point in coefficients.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Point {
+    /// Rotation speed [rpm].
+    pub rpm: f64,
+    /// Advance ratio J = V/(nD).
+    pub j: f64,
+    /// CT = T/(rho n^2 D^4).
+    pub ct: f64,
+    /// CP = P/(rho n^3 D^5) (torque follows as CP/(2 pi) rho n^2 D^5).
+    pub cp: f64,
+}
+
+/// What an export is made from.
+#[derive(Debug, Clone)]
+pub struct Source {
+    /// The operating points.
+    pub points: Vec<Point>,
+    /// Propeller diameter [m].
+    pub diameter: f64,
+    /// Number of blades.
+    pub blades: f64,
+    /// Moment of inertia about the shaft [kg m^2] and how it was found, when known.
+    pub ixx: Option<(f64, String)>,
+    /// What the points are, in a sentence ("propbet's prediction of ...").
+    pub origin: String,
+    /// A short name for the files (the propeller's).
+    pub name: String,
+    /// True for measurements: curves are smoothed before a table is made of them.
+    pub measured: bool,
+}
+
+/// The exports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Target {
+    /// Gazebo's motor model: motorConstant and momentConstant, with the SDF plugin element.
+    Gazebo,
+    /// PX4 SIH's forward thruster: SIH_F_* parameters.
+    Px4Sih,
+    /// JSBSim's `<propeller>` file.
+    Jsbsim,
+    /// CT, CP and efficiency over (J, RPM), CSV and JSON.
+    Map,
+}
+
+impl Target {
+    /// Every target, in the order they are written.
+    pub const ALL: [Target; 4] = [Target::Gazebo, Target::Px4Sih, Target::Jsbsim, Target::Map];
+
+    /// The name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Gazebo => "gazebo",
+            Target::Px4Sih => "px4-sih",
+            Target::Jsbsim => "jsbsim",
+            Target::Map => "map",
+        }
+    }
+}
+
+/// How well an export reproduces the points it was made from.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Fit {
+    /// Points compared.
+    pub points: usize,
+    /// Thrust: median and largest relative difference [-].
+    pub thrust: [f64; 2],
+    /// Torque: median and largest relative difference [-].
+    pub torque: [f64; 2],
+}
+
+impl Fit {
+    fn of(pairs: &[(f64, f64, f64, f64)]) -> Fit {
+        let stat = |mut v: Vec<f64>| -> [f64; 2] {
+            if v.is_empty() {
+                return [0.0, 0.0];
+            }
+            v.sort_by(f64::total_cmp);
+            let n = v.len();
+            let med = if n % 2 == 1 {
+                v[n / 2]
+            } else {
+                0.5 * (v[n / 2 - 1] + v[n / 2])
+            };
+            [med, v[n - 1]]
+        };
+        Fit {
+            points: pairs.len(),
+            thrust: stat(pairs.iter().map(|p| ((p.0 - p.1) / p.1).abs()).collect()),
+            torque: stat(pairs.iter().map(|p| ((p.2 - p.3) / p.3).abs()).collect()),
+        }
+    }
+
+    /// "thrust within 0.8 % (median), 2.1 % at most; torque ..., over N points".
+    pub fn sentence(&self) -> String {
+        format!(
+            "thrust within {:.1} % (median), {:.1} % at most; torque within {:.1} %, {:.1} % at most; over {} points",
+            100.0 * self.thrust[0],
+            100.0 * self.thrust[1],
+            100.0 * self.torque[0],
+            100.0 * self.torque[1],
+            self.points
+        )
+    }
+}
+
+/// One export, ready to write.
+#[derive(Debug, Clone)]
+pub struct Exported {
+    /// Which.
+    pub target: Target,
+    /// (file name, contents).
+    pub files: Vec<(String, String)>,
+    /// How well it reproduces the points.
+    pub fit: Fit,
+    /// Its values in one line, for the terminal.
+    pub values: String,
+}
+
+/// The fraction of the largest thrust coefficient below which a point is not scored.
+const COUNTED: f64 = 0.25;
+/// Points at most this J are static.
+const STATIC_J: f64 = 1e-3;
+/// The speed of sound JSBSim's Mach tables are placed with (ISA sea level) [m/s].
+const SOUND: f64 = 340.294;
+
+/// Makes one export.
+pub fn export(target: Target, src: &Source) -> Result<Exported> {
+    check(src)?;
+    match target {
+        Target::Gazebo => gazebo(src, None),
+        Target::Px4Sih => px4_sih(src),
+        Target::Jsbsim => jsbsim(src),
+        Target::Map => map(src),
+    }
+}
+
+fn check(src: &Source) -> Result<()> {
+    if !(src.diameter.is_finite() && src.diameter > 0.0) {
+        invalid!("the propeller's diameter {} m is not a length", src.diameter);
+    }
+    if src.points.is_empty() {
+        invalid!("no operating points to export");
+    }
+    if let Some(p) = src
+        .points
+        .iter()
+        .find(|p| !(p.rpm > 0.0 && p.j.is_finite() && p.ct.is_finite() && p.cp.is_finite()))
+    {
+        invalid!(
+            "an operating point without finite values (rpm {}, J {}, CT {}, CP {})",
+            p.rpm,
+            p.j,
+            p.ct,
+            p.cp
+        );
+    }
+    Ok(())
+}
+
+/// The points that count in a fit error: CT at least a quarter of the largest.
+fn counted(points: &[Point]) -> Vec<Point> {
+    let ct_max = points.iter().map(|p| p.ct).fold(0.0, f64::max);
+    points
+        .iter()
+        .copied()
+        .filter(|p| ct_max > 0.0 && p.ct >= COUNTED * ct_max && p.cp > 0.0)
+        .collect()
+}
+
+fn header(src: &Source, what: &str, fit: &Fit, prefix: &str) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{prefix}{what}, written by propbet {}.", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(s, "{prefix}From: {}", src.origin);
+    let _ = writeln!(
+        s,
+        "{prefix}Diameter {:.4} m, {} blades. This file against those points: {}.",
+        src.diameter,
+        src.blades,
+        fit.sentence()
+    );
+    s
+}
+
+/// Gazebo's motor model at the static points (all, or those in an RPM range).
+pub fn gazebo(src: &Source, rpm_range: Option<(f64, f64)>) -> Result<Exported> {
+    check(src)?;
+    let statics: Vec<Point> = src
+        .points
+        .iter()
+        .copied()
+        .filter(|p| p.j.abs() <= STATIC_J && p.ct > 0.0 && p.cp > 0.0)
+        .filter(|p| rpm_range.is_none_or(|(lo, hi)| p.rpm >= lo && p.rpm <= hi))
+        .collect();
+    if statics.is_empty() {
+        let lowest = src.points.iter().map(|p| p.j).fold(f64::INFINITY, f64::min);
+        let range = rpm_range.map_or(String::new(), |(lo, hi)| format!(" between {lo} and {hi} rpm"));
+        invalid!(
+            "Gazebo's motor model is a static (hover) model: it needs points at zero airspeed{range}, \
+             and these data have none with positive thrust (lowest J {lowest:.3}); give static points \
+             (`--v 0` or `--j 0` in the sweep, or a static thrust-stand log)"
+        );
+    }
+    let d = src.diameter;
+    // thrust = kf omega^2 with kf = CT rho D^4 / (2 pi)^2; torque = km thrust with
+    // km = CQ D / CT = CP D / (2 pi CT). Least squares in relative terms, at the density of
+    // standard air, which the motor model assumes throughout.
+    let rho = 1.225;
+    let tau = std::f64::consts::TAU;
+    let kf_of = |p: &Point| p.ct * rho * d.powi(4) / (tau * tau);
+    let km_of = |p: &Point| p.cp * d / (tau * p.ct);
+    // Minimising sum ((k - k_i)/k_i)^2 gives k = sum(1/k_i) / sum(1/k_i^2).
+    let rel_lsq = |ks: &[f64]| ks.iter().map(|k| 1.0 / k).sum::<f64>() / ks.iter().map(|k| 1.0 / (k * k)).sum::<f64>();
+    let kfs: Vec<f64> = statics.iter().map(kf_of).collect();
+    let kf = rel_lsq(&kfs);
+    // Torque is km kf omega^2 in the plugin: km fitted to the torque with that kf.
+    let kms: Vec<f64> = statics.iter().map(|p| km_of(p) * kf_of(p) / kf).collect();
+    let km = rel_lsq(&kms);
+    let pairs: Vec<(f64, f64, f64, f64)> = statics
+        .iter()
+        .map(|p| {
+            let w2 = (tau * rpm_to_rev_per_s(p.rpm)).powi(2);
+            let (t, q) = (kf_of(p) * w2, km_of(p) * kf_of(p) * w2);
+            (kf * w2, t, km * kf * w2, q)
+        })
+        .collect();
+    let fit = Fit::of(&pairs);
+    let rpm_lo = statics.iter().map(|p| p.rpm).fold(f64::INFINITY, f64::min);
+    let rpm_hi = statics.iter().map(|p| p.rpm).fold(0.0, f64::max);
+    let omega_max = tau * rpm_to_rev_per_s(rpm_hi);
+    let mut c = header(src, "Gazebo multicopter motor model for this propeller", &fit, "  ");
+    let _ = writeln!(
+        c,
+        "  Fitted at {} static points, {:.0} to {:.0} rpm, standard air (1.225 kg/m^3):\n  \
+         thrust = motorConstant omega^2 [N], drag torque = momentConstant thrust [N m].\n  \
+         maxRotVelocity is the largest RPM of the data, not the motor's limit: set the motor's.\n  \
+         jointName, linkName, turningDirection and motorNumber are your model's: edit them.\n  \
+         For Gazebo classic the same elements go in a gazebo_motor_model plugin (libgazebo_motor_model.so).",
+        statics.len(),
+        rpm_lo,
+        rpm_hi
+    );
+    let mut s = format!("<?xml version=\"1.0\"?>\n<!--\n{}-->\n", xml_comment(&c));
+    let _ = writeln!(
+        s,
+        "<plugin filename=\"gz-sim-multicopter-motor-model-system\" name=\"gz::sim::systems::MulticopterMotorModel\">\n  \
+         <jointName>rotor_0_joint</jointName>\n  <linkName>rotor_0</linkName>\n  \
+         <turningDirection>ccw</turningDirection>\n  <timeConstantUp>0.0125</timeConstantUp>\n  \
+         <timeConstantDown>0.025</timeConstantDown>\n  <maxRotVelocity>{omega_max:.1}</maxRotVelocity>\n  \
+         <motorConstant>{kf:.6e}</motorConstant>\n  <momentConstant>{km:.6e}</momentConstant>\n  \
+         <commandSubTopic>command/motor_speed</commandSubTopic>\n  <motorNumber>0</motorNumber>\n  \
+         <rotorDragCoefficient>0</rotorDragCoefficient>\n  <rollingMomentCoefficient>0</rollingMomentCoefficient>\n  \
+         <rotorVelocitySlowdownSim>10</rotorVelocitySlowdownSim>\n  <motorType>velocity</motorType>\n</plugin>"
+    );
+    Ok(Exported {
+        target: Target::Gazebo,
+        files: vec![("gazebo_motor_model.sdf".into(), s)],
+        fit,
+        values: format!("motorConstant {kf:.4e} N s^2, momentConstant {km:.4e} m, maxRotVelocity {omega_max:.0} rad/s"),
+    })
+}
+
+/// Least squares a + b x + c x^2 through (x, y) with weights w, c held at most 0 (PX4's
+/// parameter bound): the quadratic when its c is not positive, else the line.
+fn quadratic_le0(xs: &[f64], ys: &[f64], ws: &[f64]) -> Option<[f64; 3]> {
+    let solve = |cols: usize| -> Option<Vec<f64>> {
+        let a = nalgebra::DMatrix::from_fn(xs.len(), cols, |i, k| ws[i] * xs[i].powi(k as i32));
+        let b = nalgebra::DVector::from_iterator(ys.len(), ys.iter().zip(ws).map(|(y, w)| y * w));
+        let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
+        Some(x.iter().copied().collect())
+    };
+    let q = solve(3)?;
+    if q[2] <= 0.0 {
+        return Some([q[0], q[1], q[2]]);
+    }
+    let l = solve(2)?;
+    Some([l[0], l[1], 0.0])
+}
+
+fn distinct_j(points: &[Point]) -> usize {
+    let mut js: Vec<f64> = points.iter().map(|p| (p.j * 1e3).round()).collect();
+    js.sort_by(f64::total_cmp);
+    js.dedup();
+    js.len()
+}
+
+/// PX4 SIH's forward thruster: CT(J) and CP(J) quadratics over every RPM.
+pub fn px4_sih(src: &Source) -> Result<Exported> {
+    check(src)?;
+    let pts = counted(&src.points);
+    if distinct_j(&pts) < 3 {
+        invalid!(
+            "PX4 SIH's CT(J) and CP(J) need points at 3 or more advance ratios with thrust; {}: \
+             give a J sweep (`--j 0:0.6:0.05`, or wind-tunnel files)",
+            if distinct_j(&src.points) <= 1 {
+                "these data have only static points (J = 0)".to_string()
+            } else {
+                format!("these data have {} with thrust", distinct_j(&pts))
+            }
+        );
+    }
+    let xs: Vec<f64> = pts.iter().map(|p| p.j).collect();
+    let ct: Vec<f64> = pts.iter().map(|p| p.ct).collect();
+    let cp: Vec<f64> = pts.iter().map(|p| p.cp).collect();
+    // Relative least squares: each point weighs 1/value.
+    let w_ct: Vec<f64> = ct.iter().map(|v| 1.0 / v).collect();
+    let w_cp: Vec<f64> = cp.iter().map(|v| 1.0 / v).collect();
+    let (Some(a), Some(b)) = (quadratic_le0(&xs, &ct, &w_ct), quadratic_le0(&xs, &cp, &w_cp)) else {
+        invalid!("the CT(J) and CP(J) least squares have no solution for these points");
+    };
+    if a[0] <= 0.0 || b[0] <= 0.0 {
+        invalid!(
+            "the fitted static coefficients are not positive (SIH_F_CT0 {:.4}, SIH_F_CP0 {:.4}): SIH would fall back \
+             to its constant-thrust model",
+            a[0],
+            b[0]
+        );
+    }
+    let poly = |c: &[f64; 3], j: f64| (c[0] + c[1] * j + c[2] * j * j).max(0.0);
+    let pairs: Vec<(f64, f64, f64, f64)> = pts.iter().map(|p| (poly(&a, p.j), p.ct, poly(&b, p.j), p.cp)).collect();
+    let fit = Fit::of(&pairs);
+    let rpm_max = src.points.iter().map(|p| p.rpm).fold(0.0, f64::max);
+    let dia_inch = src.diameter / 0.0254;
+    let mut s = header(
+        src,
+        "PX4 SIH forward-thruster parameters for this propeller",
+        &fit,
+        "# ",
+    );
+    let _ = writeln!(
+        s,
+        "# CT(J) = SIH_F_CT0 + SIH_F_CT1 J + SIH_F_CT2 J^2, CP(J) likewise (PX4's simulator_sih), least squares\n\
+         # in relative terms over J {:.3} to {:.3} at every RPM of the data (SIH has no RPM dependence).\n\
+         # SIH_F_RPM_MAX is the largest RPM of the data, not the motor's limit: set the motor's.\n\
+         # Lines for an airframe file (or `param set` in the PX4 shell).",
+        xs.iter().copied().fold(f64::INFINITY, f64::min),
+        xs.iter().copied().fold(0.0, f64::max)
+    );
+    let params = [
+        ("SIH_F_DIA_INCH", dia_inch),
+        ("SIH_F_RPM_MAX", rpm_max.round()),
+        ("SIH_F_CT0", a[0]),
+        ("SIH_F_CT1", a[1]),
+        ("SIH_F_CT2", a[2]),
+        ("SIH_F_CP0", b[0]),
+        ("SIH_F_CP1", b[1]),
+        ("SIH_F_CP2", b[2]),
+    ];
+    for (k, v) in params {
+        let _ = writeln!(s, "param set-default {k} {}", short(v));
+    }
+    Ok(Exported {
+        target: Target::Px4Sih,
+        files: vec![("px4_sih.params".into(), s)],
+        fit,
+        values: format!(
+            "CT(J) = {} {:+.5} J {:+.5} J^2, CP(J) = {} {:+.5} J {:+.5} J^2",
+            short(a[0]),
+            a[1],
+            a[2],
+            short(b[0]),
+            b[1],
+            b[2]
+        ),
+    })
+}
+
+/// Six significant digits, no exponent for the sizes these files hold.
+fn short(v: f64) -> String {
+    let s = format!("{v:.6}");
+    if v != 0.0 && v.abs() < 1e-3 {
+        format!("{v:.6e}")
+    } else {
+        s
+    }
+}
+
+/// One RPM's curve: (J, CT, CP) sorted by J.
+#[derive(Debug, Clone)]
+struct Curve {
+    rpm: f64,
+    rows: Vec<[f64; 3]>,
+}
+
+/// Polynomial least squares of degree `deg` evaluated at `at`.
+fn smooth(xs: &[f64], ys: &[f64], deg: usize, at: &[f64]) -> Option<Vec<f64>> {
+    let a = nalgebra::DMatrix::from_fn(xs.len(), deg + 1, |i, k| xs[i].powi(k as i32));
+    let b = nalgebra::DVector::from_column_slice(ys);
+    let c = a.svd(true, true).solve(&b, 1e-14).ok()?;
+    Some(
+        at.iter()
+            .map(|x| (0..=deg).map(|k| c[k] * x.powi(k as i32)).sum())
+            .collect(),
+    )
+}
+
+/// The smoothing applied to measured curves, as the files state it.
+pub const SMOOTHING: &str = "each RPM's measured CT(J) and CP(J) smoothed by a least-squares polynomial of degree 3 \
+(fewer with fewer than 5 advance ratios), evaluated every 0.025 in J over the measured range";
+
+/// The data as curves of constant RPM (within 3 %) with 3 or more advance ratios; measured
+/// curves smoothed ([`SMOOTHING`]).
+fn curves(src: &Source) -> Vec<Curve> {
+    let mut pts = src.points.clone();
+    pts.sort_by(|a, b| a.rpm.total_cmp(&b.rpm));
+    let mut groups: Vec<Vec<Point>> = Vec::new();
+    for p in pts {
+        match groups.last_mut() {
+            Some(g) if p.rpm <= g[0].rpm * 1.03 => g.push(p),
+            _ => groups.push(vec![p]),
+        }
+    }
+    groups
+        .into_iter()
+        .filter(|g| distinct_j(g) >= 3)
+        .filter_map(|mut g| {
+            g.sort_by(|a, b| a.j.total_cmp(&b.j));
+            let mut rpms: Vec<f64> = g.iter().map(|p| p.rpm).collect();
+            rpms.sort_by(f64::total_cmp);
+            let rpm = rpms[rpms.len() / 2];
+            let rows: Vec<[f64; 3]> = if src.measured {
+                let xs: Vec<f64> = g.iter().map(|p| p.j).collect();
+                let deg = (distinct_j(&g) - 2).min(3);
+                let (lo, hi) = (xs[0], xs[xs.len() - 1]);
+                let steps = ((hi - lo) / 0.025).floor() as usize;
+                let mut at: Vec<f64> = (0..=steps).map(|k| lo + 0.025 * k as f64).collect();
+                if hi - at[at.len() - 1] > 1e-6 {
+                    at.push(hi);
+                }
+                let ct = smooth(&xs, &g.iter().map(|p| p.ct).collect::<Vec<_>>(), deg, &at)?;
+                let cp = smooth(&xs, &g.iter().map(|p| p.cp).collect::<Vec<_>>(), deg, &at)?;
+                at.iter()
+                    .zip(ct.iter().zip(&cp))
+                    .map(|(j, (t, p))| [*j, *t, *p])
+                    .collect()
+            } else {
+                let mut rows: Vec<[f64; 3]> = g.iter().map(|p| [p.j, p.ct, p.cp]).collect();
+                rows.dedup_by(|a, b| (a[0] - b[0]).abs() < 1e-9);
+                rows
+            };
+            Some(Curve { rpm, rows })
+        })
+        .collect()
+}
+
+/// Linear interpolation in a table sorted by x, held at its ends (JSBSim's FGTable).
+fn lookup(table: &[(f64, f64)], x: f64) -> f64 {
+    let n = table.len();
+    if x <= table[0].0 {
+        return table[0].1;
+    }
+    if x >= table[n - 1].0 {
+        return table[n - 1].1;
+    }
+    let k = table.partition_point(|r| r.0 <= x).max(1);
+    let (a, b) = (table[k - 1], table[k]);
+    a.1 + (b.1 - a.1) * (x - a.0) / (b.0 - a.0)
+}
+
+fn curve_at(c: &Curve, j: f64, col: usize) -> f64 {
+    let t: Vec<(f64, f64)> = c.rows.iter().map(|r| (r[0], r[col])).collect();
+    lookup(&t, j)
+}
+
+fn too_few_curves(src: &Source, what: &str) -> crate::Error {
+    let js = distinct_j(&src.points);
+    let why = if js <= 1 {
+        "these data have only static points (J = 0)".to_string()
+    } else {
+        "no RPM of these data has 3 or more advance ratios".to_string()
+    };
+    crate::Error::Invalid(format!(
+        "{what} needs curves over J (3 or more advance ratios at one RPM); {why}: give a J sweep \
+         (`--j 0:0.6:0.05`) or wind-tunnel files"
+    ))
+}
+
+/// JSBSim's `<propeller>`: C_THRUST and C_POWER against J at a reference RPM, and the other
+/// RPMs as CT_MACH and CP_MACH factors on the helical tip Mach number.
+pub fn jsbsim(src: &Source) -> Result<Exported> {
+    check(src)?;
+    let Some((ixx, ixx_how)) = src.ixx.clone() else {
+        invalid!(
+            "JSBSim's propeller needs its moment of inertia: give --prop (estimated from the blade's chords) \
+             or --ixx (kg m^2)"
+        );
+    };
+    let cs = curves(src);
+    if cs.is_empty() {
+        return Err(too_few_curves(src, "JSBSim's C_THRUST(J) and C_POWER(J)"));
+    }
+    // The reference: the curve reaching the largest J (ties: the middle RPM).
+    let span = |c: &Curve| c.rows[c.rows.len() - 1][0] - c.rows[0][0];
+    let best = cs.iter().map(span).fold(0.0, f64::max);
+    let candidates: Vec<&Curve> = cs.iter().filter(|c| span(c) >= best - 1e-9).collect();
+    let reference = candidates[candidates.len() / 2].clone();
+    let d = src.diameter;
+    let tip_mach = |rpm: f64, j: f64| {
+        std::f64::consts::PI * rpm_to_rev_per_s(rpm) * d * (1.0 + (j / std::f64::consts::PI).powi(2)).sqrt() / SOUND
+    };
+    // Each curve's factor on the reference: relative least squares over the shared J range.
+    let factor = |c: &Curve, col: usize| -> f64 {
+        let ref_max = reference.rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+        let (mut num, mut den) = (0.0, 0.0);
+        for r in &c.rows {
+            let j = r[0];
+            if j < reference.rows[0][0] || j > reference.rows[reference.rows.len() - 1][0] {
+                continue;
+            }
+            if curve_at(&reference, j, 1) < COUNTED * ref_max {
+                continue;
+            }
+            let f = r[col] / curve_at(&reference, j, col);
+            if f.is_finite() && f > 0.0 {
+                num += 1.0 / f;
+                den += 1.0 / (f * f);
+            }
+        }
+        if den > 0.0 {
+            num / den
+        } else {
+            1.0
+        }
+    };
+    let mut mach: Vec<(f64, f64, f64)> = cs
+        .iter()
+        .map(|c| (tip_mach(c.rpm, 0.0), factor(c, 1), factor(c, 2)))
+        .collect();
+    mach.sort_by(|a, b| a.0.total_cmp(&b.0));
+    mach.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-6);
+    let ct_table: Vec<(f64, f64)> = reference.rows.iter().map(|r| (r[0], r[1])).collect();
+    let cp_table: Vec<(f64, f64)> = reference.rows.iter().map(|r| (r[0], r[2])).collect();
+    let ctm: Vec<(f64, f64)> = mach.iter().map(|m| (m.0, m.1)).collect();
+    let cpm: Vec<(f64, f64)> = mach.iter().map(|m| (m.0, m.2)).collect();
+    let with_mach = mach.len() > 1;
+    let model = |p: &Point| {
+        let m = tip_mach(p.rpm, p.j);
+        let (ft, fp) = if with_mach {
+            (lookup(&ctm, m), lookup(&cpm, m))
+        } else {
+            (1.0, 1.0)
+        };
+        (lookup(&ct_table, p.j) * ft, lookup(&cp_table, p.j) * fp)
+    };
+    let pts = counted(&src.points);
+    let pairs: Vec<(f64, f64, f64, f64)> = pts
+        .iter()
+        .map(|p| {
+            let (ct, cp) = model(p);
+            (ct, p.ct, cp, p.cp)
+        })
+        .collect();
+    let fit = Fit::of(&pairs);
+    let mut c = header(src, "JSBSim propeller", &fit, "  ");
+    let _ = writeln!(
+        c,
+        "  C_THRUST and C_POWER: the {:.0} rpm curve{}.\n  {}\n  ixx: {}.",
+        reference.rpm,
+        if src.measured {
+            format!(" ({SMOOTHING})")
+        } else {
+            String::new()
+        },
+        if with_mach {
+            format!(
+                "CT_MACH and CP_MACH: the other RPMs ({}) as factors on those tables, placed at each RPM's \
+                 static tip Mach number (speed of sound {SOUND} m/s); between RPMs JSBSim interpolates, beyond \
+                 them it holds the end factor. The RPM dependence is mostly a Reynolds-number effect, carried \
+                 here by the only RPM-dependent tables JSBSim's format has.",
+                cs.iter()
+                    .map(|c| format!("{:.0}", c.rpm))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        } else {
+            "One RPM only: no CT_MACH or CP_MACH table; JSBSim uses these coefficients at every RPM.".into()
+        },
+        ixx_how
+    );
+    let mut s = format!("<?xml version=\"1.0\"?>\n<!--\n{}-->\n", xml_comment(&c));
+    let _ = writeln!(s, "<propeller name=\"{}\">", xml_text(&src.name));
+    let _ = writeln!(s, "  <ixx unit=\"KG*M2\"> {ixx:.6e} </ixx>");
+    let _ = writeln!(s, "  <diameter unit=\"M\"> {:.5} </diameter>", src.diameter);
+    let _ = writeln!(s, "  <numblades> {} </numblades>", src.blades.round().max(1.0));
+    let _ = writeln!(s, "  <gearratio> 1 </gearratio>");
+    let table = |s: &mut String, name: &str, rows: &[(f64, f64)]| {
+        let _ = writeln!(s, "  <table name=\"{name}\" type=\"internal\">\n    <tableData>");
+        for (x, y) in rows {
+            let _ = writeln!(s, "      {x:8.4} {y:10.6}");
+        }
+        let _ = writeln!(s, "    </tableData>\n  </table>");
+    };
+    table(&mut s, "C_THRUST", &ct_table);
+    table(&mut s, "C_POWER", &cp_table);
+    if with_mach {
+        table(&mut s, "CT_MACH", &ctm);
+        table(&mut s, "CP_MACH", &cpm);
+    }
+    s.push_str("</propeller>\n");
+    let file = format!("{}.xml", file_stem(&src.name));
+    Ok(Exported {
+        target: Target::Jsbsim,
+        files: vec![(file, s)],
+        fit,
+        values: format!(
+            "C_THRUST/C_POWER at {:.0} rpm, {} rows; {} RPMs in CT_MACH/CP_MACH; ixx {ixx:.3e} kg m^2",
+            reference.rpm,
+            ct_table.len(),
+            if with_mach { mach.len() } else { 0 }
+        ),
+    })
+}
+
+/// A name fit for a file: letters, digits, '-', '_' and '.' kept, the rest '_'.
+pub fn file_stem(name: &str) -> String {
+    let s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    let s = s.trim_matches(|c| c == '_' || c == '.').to_string();
+    if s.is_empty() {
+        "propeller".into()
+    } else {
+        s
+    }
+}
+
+/// Text safe inside an XML comment, which may not hold "--".
+fn xml_comment(s: &str) -> String {
+    let mut s = s.to_string();
+    while s.contains("--") {
+        s = s.replace("--", "- -");
+    }
+    s
+}
+
+fn xml_text(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// CT, CP and efficiency over (J, RPM): the prediction's points as they are, or the
+/// measurements smoothed.
+pub fn map(src: &Source) -> Result<Exported> {
+    check(src)?;
+    let cs = curves(src);
+    if cs.is_empty() {
+        return Err(too_few_curves(src, "A map over (J, RPM)"));
+    }
+    if cs.len() < 2 {
+        invalid!(
+            "a map over (J, RPM) needs curves at 2 or more RPMs; these data have one ({:.0} rpm): \
+             give more RPMs (`--rpm 4000,6000`) or more files, or export jsbsim or px4-sih for one RPM",
+            cs[0].rpm
+        );
+    }
+    // Its fit: the measured points against the smoothed curves (a prediction's are its own).
+    let pts = counted(&src.points);
+    let pairs: Vec<(f64, f64, f64, f64)> = pts
+        .iter()
+        .filter_map(|p| {
+            let c = cs.iter().find(|c| (p.rpm - c.rpm).abs() <= 0.03 * c.rpm)?;
+            let (lo, hi) = (c.rows[0][0], c.rows[c.rows.len() - 1][0]);
+            (p.j >= lo - 1e-9 && p.j <= hi + 1e-9).then(|| (curve_at(c, p.j, 1), p.ct, curve_at(c, p.j, 2), p.cp))
+        })
+        .collect();
+    let fit = Fit::of(&pairs);
+    let note = if src.measured {
+        format!("Smoothing: {SMOOTHING}.")
+    } else {
+        "The prediction's own points, no fit.".to_string()
+    };
+    let mut csv = header(src, "CT, CP and efficiency over (J, RPM)", &fit, "# ");
+    let _ = writeln!(
+        csv,
+        "# {note}\n# CT = T/(rho n^2 D^4), CP = P/(rho n^3 D^5), eta = J CT/CP; v at this diameter."
+    );
+    csv.push_str("rpm,j,v_m_s,ct,cp,eta\n");
+    let mut json_curves = Vec::new();
+    for c in &cs {
+        let mut rows = Vec::new();
+        for r in &c.rows {
+            let eta = if r[0] > 0.0 && r[1] > 0.0 && r[2] > 0.0 {
+                r[0] * r[1] / r[2]
+            } else {
+                0.0
+            };
+            let v = r[0] * rpm_to_rev_per_s(c.rpm) * src.diameter;
+            let _ = writeln!(
+                csv,
+                "{:.0},{:.4},{:.4},{:.6},{:.6},{:.4}",
+                c.rpm, r[0], v, r[1], r[2], eta
+            );
+            rows.push(serde_json::json!({"j": r[0], "v_m_s": v, "ct": r[1], "cp": r[2], "eta": eta}));
+        }
+        json_curves.push(serde_json::json!({"rpm": c.rpm, "points": rows}));
+    }
+    let doc = serde_json::json!({
+        "propeller": src.name,
+        "from": src.origin,
+        "note": note,
+        "diameter_m": src.diameter,
+        "blades": src.blades,
+        "fit": fit,
+        "curves": json_curves,
+    });
+    let mut json = serde_json::to_string_pretty(&doc).map_err(|e| crate::Error::Invalid(e.to_string()))?;
+    json.push('\n');
+    Ok(Exported {
+        target: Target::Map,
+        files: vec![("map.csv".into(), csv), ("map.json".into(), json)],
+        fit,
+        values: format!(
+            "{} RPMs ({}), {} points",
+            cs.len(),
+            cs.iter()
+                .map(|c| format!("{:.0}", c.rpm))
+                .collect::<Vec<_>>()
+                .join(", "),
+            cs.iter().map(|c| c.rows.len()).sum::<usize>()
+        ),
+    })
+}
+
+/// The blade's moment of inertia about the shaft, estimated from its chords: B times the
+/// integral of (material density x section area x r^2), the section area 0.685 t c (a NACA
+/// 4-digit section's) at a thickness `t_c` of the chord. Radii and chords in metres.
+pub fn blade_ixx(blades: f64, r: &[f64], chord: &[f64], t_c: f64, density: f64) -> f64 {
+    let f = |k: usize| density * 0.685 * t_c * chord[k] * chord[k] * r[k] * r[k];
+    let mut sum = 0.0;
+    for k in 1..r.len().min(chord.len()) {
+        sum += 0.5 * (f(k - 1) + f(k)) * (r[k] - r[k - 1]);
+    }
+    blades * sum
+}
+
+/// What [`blade_ixx`] assumes, for the files.
+pub const IXX_ASSUMED: (f64, f64) = (0.10, 1200.0);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn synthetic(measured: bool) -> Source {
+        // CT = 0.11 - 0.05 J - 0.1 J^2, CP = 0.045 - 0.02 J - 0.03 J^2, times (rpm/5000)^0.1.
+        let mut points = Vec::new();
+        for rpm in [4000.0, 5000.0, 6000.0] {
+            for k in 0..=24 {
+                let j = 0.025 * k as f64;
+                let f: f64 = (rpm / 5000.0f64).powf(0.1);
+                points.push(Point {
+                    rpm,
+                    j,
+                    ct: (0.11 - 0.05 * j - 0.1 * j * j) * f,
+                    cp: (0.045 - 0.02 * j - 0.03 * j * j) * f,
+                });
+            }
+        }
+        Source {
+            points,
+            diameter: 0.254,
+            blades: 2.0,
+            ixx: Some((2e-5, "given".into())),
+            origin: "a test".into(),
+            name: "test prop".into(),
+            measured,
+        }
+    }
+
+    #[test]
+    fn sih_gets_a_quadratic_back_to_within_the_rpm_spread() {
+        let e = px4_sih(&synthetic(false)).unwrap();
+        let text = &e.files[0].1;
+        assert!(text.contains("param set-default SIH_F_CT0 0.1"), "{text}");
+        // The RPM factor (0.98 to 1.02) is all SIH cannot carry.
+        assert!(e.fit.thrust[1] < 0.025 && e.fit.thrust[1] > 0.005, "{:?}", e.fit);
+    }
+
+    #[test]
+    fn jsbsim_reproduces_rpm_dependence_through_the_mach_tables() {
+        let e = jsbsim(&synthetic(false)).unwrap();
+        // Exact at J = 0; beyond, JSBSim reads the factor at the helical tip Mach number,
+        // a little above the static one the factor was placed at.
+        assert!(e.fit.thrust[0] < 1e-3 && e.fit.thrust[1] < 3e-3, "{:?}", e.fit);
+        assert!(e.fit.torque[1] < 3e-3, "{:?}", e.fit);
+        assert!(e.files[0].1.contains("CT_MACH"));
+        assert_eq!(e.files[0].0, "test_prop.xml");
+    }
+
+    #[test]
+    fn gazebo_constants_are_those_of_the_static_coefficients() {
+        let src = synthetic(false);
+        let e = gazebo(&src, Some((5000.0, 5000.0))).unwrap();
+        // At 5000 rpm, CT 0.11: kf = CT rho D^4/(2 pi)^2.
+        let kf = 0.11 * 1.225 * 0.254f64.powi(4) / std::f64::consts::TAU.powi(2);
+        assert!(e.values.contains(&format!("motorConstant {kf:.4e}")), "{}", e.values);
+        assert!(e.fit.thrust[1] < 1e-12);
+    }
+
+    #[test]
+    fn static_only_data_are_refused_for_curves_and_one_rpm_for_a_map() {
+        let mut src = synthetic(true);
+        src.points.retain(|p| p.j == 0.0);
+        for t in [Target::Px4Sih, Target::Jsbsim, Target::Map] {
+            let e = export(t, &src).unwrap_err().to_string();
+            assert!(e.contains("static points (J = 0)"), "{t:?}: {e}");
+        }
+        assert!(export(Target::Gazebo, &src).is_ok());
+        let mut one = synthetic(true);
+        one.points.retain(|p| p.rpm == 5000.0);
+        let e = export(Target::Map, &one).unwrap_err().to_string();
+        assert!(e.contains("2 or more RPMs") && e.contains("5000 rpm"), "{e}");
+        let mut moving = synthetic(false);
+        moving.points.retain(|p| p.j > 0.1);
+        assert!(export(Target::Gazebo, &moving)
+            .unwrap_err()
+            .to_string()
+            .contains("zero airspeed"));
+    }
+
+    #[test]
+    fn measured_curves_are_smoothed_and_their_residual_reported() {
+        let mut src = synthetic(true);
+        for (k, p) in src.points.iter_mut().enumerate() {
+            p.ct *= 1.0 + 0.01 * if k % 2 == 0 { 1.0 } else { -1.0 };
+        }
+        let e = map(&src).unwrap();
+        assert!(e.fit.thrust[0] > 0.005 && e.fit.thrust[1] < 0.03, "{:?}", e.fit);
+        assert!(e.files[0].1.contains("Smoothing: each RPM"));
+    }
+
+    #[test]
+    fn a_rectangular_blade_has_the_textbook_inertia() {
+        // B rho 0.685 t c^2 R^3 / 3 for a constant chord from 0 to R.
+        let r: Vec<f64> = (0..=100).map(|k| 0.1 * k as f64 / 100.0).collect();
+        let c = vec![0.02; r.len()];
+        let i = blade_ixx(2.0, &r, &c, 0.1, 1200.0);
+        let exact = 2.0 * 1200.0 * 0.685 * 0.1 * 0.02f64.powi(2) * 0.1f64.powi(3) / 3.0;
+        assert!((i / exact - 1.0).abs() < 1e-3, "{i} {exact}");
+    }
+}
