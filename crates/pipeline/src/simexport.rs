@@ -639,8 +639,11 @@ pub fn jsbsim(src: &Source) -> Result<Exported> {
 
 /// A name fit for a file: letters, digits, '-', '_' and '.' kept, the rest '_'.
 pub fn file_stem(name: &str) -> String {
-    let s: String = name
+    // The name before any parenthesis or comma, at most 40 characters, one '_' between words.
+    let head = name.split(['(', ',', ';']).next().unwrap_or("");
+    let s: String = head
         .chars()
+        .take(40)
         .map(|c| {
             if c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.') {
                 c
@@ -649,7 +652,10 @@ pub fn file_stem(name: &str) -> String {
             }
         })
         .collect();
-    let s = s.trim_matches(|c| c == '_' || c == '.').to_string();
+    let mut s = s.trim_matches(|c| c == '_' || c == '.').to_string();
+    while s.contains("__") {
+        s = s.replace("__", "_");
+    }
     if s.is_empty() {
         "propeller".into()
     } else {
@@ -819,6 +825,11 @@ mod tests {
         assert!(e.fit.torque[1] < 3e-3, "{:?}", e.fit);
         assert!(e.files[0].1.contains("CT_MACH"));
         assert_eq!(e.files[0].0, "test_prop.xml");
+        assert_eq!(
+            file_stem("APC 10x4.7 Slow Flyer (E63, 4.25\")"),
+            "APC_10x4.7_Slow_Flyer"
+        );
+        assert_eq!(file_stem("//"), "propeller");
     }
 
     #[test]
