@@ -122,8 +122,7 @@ fn propbet_reads_and_solves_drelas_example_props_as_qprop_does() {
 }
 
 /// Runs a shipped case and checks its exported QPROP file with the real program at every point
-/// of the sweep where the run's own fidelity check looks (thrust at least a quarter of the
-/// largest): real QPROP agrees with propbet's QPROP-exact reading of the file (so the report's
+/// of the sweep where the run's own fidelity check looks (the scored window): real QPROP agrees with propbet's QPROP-exact reading of the file (so the report's
 /// fidelity numbers are QPROP's), and with the prediction within `within` (median, worst).
 fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(f64, f64)>) {
     let t = tempfile::tempdir().unwrap();
@@ -146,10 +145,27 @@ fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(
     let reported = |k: &str, i: usize| fid[k][i].as_f64().unwrap();
     let (h, rows) = read_csv(&out.join("predict/sweep.csv"));
     let get = |r: &Vec<String>, c: &str| -> f64 { r[col(&h, c)].parse().unwrap() };
-    let t_max = rows.iter().map(|r| get(r, "thrust_n")).fold(0.0, f64::max);
     let rho = get(&rows[0], "rho_kg_m3");
+    // The scored window, as compare draws it: below 85 % of each RPM's zero-thrust J (the
+    // prediction's, linear between the last positive and first non-positive CT).
+    let j0 = |rpm: f64| -> f64 {
+        let mut c: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| get(r, "rpm") == rpm)
+            .map(|r| (get(r, "j"), get(r, "ct")))
+            .collect();
+        c.sort_by(|a, b| a.0.total_cmp(&b.0));
+        c.windows(2)
+            .find(|w| w[0].1 > 0.0 && w[1].1 <= 0.0)
+            .map_or(f64::INFINITY, |w| {
+                w[0].0 + w[0].1 / (w[0].1 - w[1].1) * (w[1].0 - w[0].0)
+            })
+    };
     let (mut dt, mut dq) = (Vec::new(), Vec::new());
-    for r in rows.iter().filter(|r| get(r, "thrust_n") >= 0.25 * t_max) {
+    for r in rows
+        .iter()
+        .filter(|r| get(r, "thrust_n") > 0.0 && get(r, "torque_nm") > 0.0 && get(r, "j") < 0.85 * j0(get(r, "rpm")))
+    {
         let (tq, qq) = qprop_point(&file, get(r, "v_m_s"), get(r, "rpm"), (rho, 1.78e-5, 340.0));
         dt.push((tq / get(r, "thrust_n") - 1.0).abs());
         dq.push((qq / get(r, "torque_nm") - 1.0).abs());
