@@ -70,6 +70,33 @@ fn qprop_point(prop: &Path, v: f64, rpm: f64, air: (f64, f64, f64)) -> (f64, f64
 /// QPROP prints 4 significant digits: a relative difference below this is agreement.
 const PRINTED: f64 = 1.5e-3;
 
+/// propbet's thrust and torque for `prop` read as QPROP 1.22 reads it, at one (V, rpm) in
+/// standard air (QPROP's defaults), `dir` the working folder.
+fn propbet_qprop_compat_point(prop: &str, v: f64, rpm: f64, dir: &Path) -> (f64, f64) {
+    let out = dir.join(format!("p_{v}_{rpm}.csv"));
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            prop,
+            "--qprop-compat",
+            "--rpm",
+            &format!("{rpm}"),
+            "--v",
+            &format!("{v}"),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        dir,
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let (h, rows) = read_csv(&out);
+    (
+        rows[0][col(&h, "thrust_n")].parse().unwrap(),
+        rows[0][col(&h, "torque_nm")].parse().unwrap(),
+    )
+}
+
 #[test]
 fn propbet_reads_and_solves_drelas_example_props_as_qprop_does() {
     let runs = qprop_source().join("runs");
@@ -83,27 +110,8 @@ fn propbet_reads_and_solves_drelas_example_props_as_qprop_does() {
     ] {
         for (v, rpm) in points {
             let (tq, qq) = qprop_point(&runs.join(prop), v, rpm, (1.225, 1.78e-5, 340.0));
-            let out = t.path().join(format!("{prop}_{v}_{rpm}.csv"));
             let p = runs.join(prop).display().to_string();
-            let o = run(
-                &[
-                    "predict",
-                    "--prop",
-                    &p,
-                    "--qprop-compat",
-                    "--rpm",
-                    &format!("{rpm}"),
-                    "--v",
-                    &format!("{v}"),
-                    "--out",
-                    out.to_str().unwrap(),
-                ],
-                t.path(),
-            );
-            assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
-            let (h, rows) = read_csv(&out);
-            let tp: f64 = rows[0][col(&h, "thrust_n")].parse().unwrap();
-            let qp: f64 = rows[0][col(&h, "torque_nm")].parse().unwrap();
+            let (tp, qp) = propbet_qprop_compat_point(&p, v, rpm, t.path());
             let (dt, dq) = (
                 (tp - tq).abs() / tq.abs().max(1e-3),
                 (qp - qq).abs() / qq.abs().max(1e-5),
@@ -172,7 +180,13 @@ fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(
     }
     let stat = |v: &mut Vec<f64>| {
         v.sort_by(f64::total_cmp);
-        [v[v.len() / 2], v[v.len() - 1]]
+        let n = v.len();
+        let median = if n % 2 == 1 {
+            v[n / 2]
+        } else {
+            0.5 * (v[n / 2 - 1] + v[n / 2])
+        };
+        [median, v[n - 1]]
     };
     let (st, sq) = (stat(&mut dt), stat(&mut dq));
     eprintln!(
@@ -245,26 +259,7 @@ fn a_volts_run_with_drelas_motor_is_propbets_propeller_at_qprops_rpm() {
     let prop = runs.join("cam6x3").display().to_string();
     for r in &rows {
         let (v, rpm, t, q, volts, amps) = (r[0], r[1], r[3], r[4], r[6], r[7]);
-        let out = work.path().join("p.csv");
-        let o = run(
-            &[
-                "predict",
-                "--prop",
-                &prop,
-                "--qprop-compat",
-                "--rpm",
-                &format!("{rpm}"),
-                "--v",
-                &format!("{v}"),
-                "--out",
-                out.to_str().unwrap(),
-            ],
-            work.path(),
-        );
-        assert!(o.status.success(), "{}", stderr(&o));
-        let (h, p) = read_csv(&out);
-        let tp: f64 = p[0][col(&h, "thrust_n")].parse().unwrap();
-        let qp: f64 = p[0][col(&h, "torque_nm")].parse().unwrap();
+        let (tp, qp) = propbet_qprop_compat_point(&prop, v, rpm, work.path());
         // QPROP prints the RPM to 4 digits: thrust and torque go as its square.
         let tol = 2.0 * PRINTED;
         assert!(

@@ -307,36 +307,16 @@ fn exports_the_data_cannot_support_are_refused_with_what_is_missing() {
     // A static thrust-stand log: Gazebo's constants, no CT(J).
     let log = repo().join("tests/data/thrust_stand/series1585_newton_steps.csv");
     let l = log.to_str().unwrap();
-    let o = run(
-        &[
-            "export",
-            "--to",
-            "px4-sih",
-            "--measured",
-            l,
-            "--diameter",
-            "10in",
-            "-o",
-            "out",
-        ],
-        dir.path(),
-    );
+    let from_log = |to: &str| {
+        run(
+            &["export", "--to", to, "--measured", l, "--diameter", "10in", "-o", "out"],
+            dir.path(),
+        )
+    };
+    let o = from_log("px4-sih");
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("only static points (J = 0)"), "{}", stderr(&o));
-    let o = run(
-        &[
-            "export",
-            "--to",
-            "gazebo",
-            "--measured",
-            l,
-            "--diameter",
-            "10in",
-            "-o",
-            "out",
-        ],
-        dir.path(),
-    );
+    let o = from_log("gazebo");
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(dir.path().join("out/gazebo_motor_model.sdf").exists());
     // Measurements without a diameter, JSBSim without an inertia.

@@ -399,7 +399,7 @@ pub fn run(args: &ExportArgs) -> Result<bool> {
             e.files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
             e.values
         );
-        println!("         against the points it came from: {}", e.fit.sentence());
+        println!("         against the points it came from: {}", e.fit.against());
     }
     Ok(true)
 }

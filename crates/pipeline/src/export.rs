@@ -42,18 +42,40 @@ pub struct Fidelity {
 }
 
 impl Fidelity {
-    /// Median and largest of relative thrust and torque differences.
-    fn of(dt: &[f64], dq: &[f64]) -> Fidelity {
+    /// Median and largest of relative thrust and torque differences (zeros when there are none).
+    pub(crate) fn of(dt: &[f64], dq: &[f64]) -> Fidelity {
         let stat = |v: &[f64]| {
+            if v.is_empty() {
+                return [0.0, 0.0];
+            }
             let mut v = v.to_vec();
             v.sort_by(f64::total_cmp);
-            [v[v.len() / 2], v[v.len() - 1]]
+            let n = v.len();
+            let med = if n % 2 == 1 {
+                v[n / 2]
+            } else {
+                0.5 * (v[n / 2 - 1] + v[n / 2])
+            };
+            [med, v[n - 1]]
         };
         Fidelity {
             points: dt.len(),
             thrust: stat(dt),
             torque: stat(dq),
         }
+    }
+
+    /// "thrust within 0.8 % (median), 2.1 % at most; torque ..., over N points" (the exports'
+    /// headers and lines).
+    pub fn against(&self) -> String {
+        format!(
+            "thrust within {:.1} % (median), {:.1} % at most; torque within {:.1} %, {:.1} % at most; over {} points",
+            100.0 * self.thrust[0],
+            100.0 * self.thrust[1],
+            100.0 * self.torque[0],
+            100.0 * self.torque[1],
+            self.points
+        )
     }
 
     /// A short line for the terminal.

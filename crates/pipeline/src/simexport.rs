@@ -84,50 +84,15 @@ impl Target {
     }
 }
 
-/// How well an export reproduces the points it was made from.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct Fit {
-    /// Points compared.
-    pub points: usize,
-    /// Thrust: median and largest relative difference [-].
-    pub thrust: [f64; 2],
-    /// Torque: median and largest relative difference [-].
-    pub torque: [f64; 2],
-}
+/// How well an export reproduces the points it was made from: the QPROP export's measure
+/// (thrust and torque, median and largest relative difference).
+pub use crate::export::Fidelity as Fit;
 
-impl Fit {
-    fn of(pairs: &[(f64, f64, f64, f64)]) -> Fit {
-        let stat = |mut v: Vec<f64>| -> [f64; 2] {
-            if v.is_empty() {
-                return [0.0, 0.0];
-            }
-            v.sort_by(f64::total_cmp);
-            let n = v.len();
-            let med = if n % 2 == 1 {
-                v[n / 2]
-            } else {
-                0.5 * (v[n / 2 - 1] + v[n / 2])
-            };
-            [med, v[n - 1]]
-        };
-        Fit {
-            points: pairs.len(),
-            thrust: stat(pairs.iter().map(|p| ((p.0 - p.1) / p.1).abs()).collect()),
-            torque: stat(pairs.iter().map(|p| ((p.2 - p.3) / p.3).abs()).collect()),
-        }
-    }
-
-    /// "thrust within 0.8 % (median), 2.1 % at most; torque ..., over N points".
-    pub fn sentence(&self) -> String {
-        format!(
-            "thrust within {:.1} % (median), {:.1} % at most; torque within {:.1} %, {:.1} % at most; over {} points",
-            100.0 * self.thrust[0],
-            100.0 * self.thrust[1],
-            100.0 * self.torque[0],
-            100.0 * self.torque[1],
-            self.points
-        )
-    }
+/// The fit of (model thrust-like, reference, model torque-like, reference) pairs.
+fn fit_of(pairs: &[(f64, f64, f64, f64)]) -> Fit {
+    let dt: Vec<f64> = pairs.iter().map(|p| ((p.0 - p.1) / p.1).abs()).collect();
+    let dq: Vec<f64> = pairs.iter().map(|p| ((p.2 - p.3) / p.3).abs()).collect();
+    Fit::of(&dt, &dq)
 }
 
 /// One export, ready to write.
@@ -203,7 +168,7 @@ fn header(src: &Source, what: &str, fit: &Fit, prefix: &str) -> String {
         "{prefix}Diameter {:.4} m, {} blades. This file against those points: {}.",
         src.diameter,
         src.blades,
-        fit.sentence()
+        fit.against()
     );
     s
 }
@@ -250,7 +215,7 @@ pub fn gazebo(src: &Source, rpm_range: Option<(f64, f64)>) -> Result<Exported> {
             (kf * w2, t, km * kf * w2, q)
         })
         .collect();
-    let fit = Fit::of(&pairs);
+    let fit = fit_of(&pairs);
     let rpm_lo = statics.iter().map(|p| p.rpm).fold(f64::INFINITY, f64::min);
     let rpm_hi = statics.iter().map(|p| p.rpm).fold(0.0, f64::max);
     let omega_max = tau * rpm_to_rev_per_s(rpm_hi);
@@ -344,7 +309,7 @@ pub fn px4_sih(src: &Source) -> Result<Exported> {
     }
     let poly = |c: &[f64; 3], j: f64| (c[0] + c[1] * j + c[2] * j * j).max(0.0);
     let pairs: Vec<(f64, f64, f64, f64)> = pts.iter().map(|p| (poly(&a, p.j), p.ct, poly(&b, p.j), p.cp)).collect();
-    let fit = Fit::of(&pairs);
+    let fit = fit_of(&pairs);
     let rpm_max = src.points.iter().map(|p| p.rpm).fold(0.0, f64::max);
     let dia_inch = src.diameter / 0.0254;
     let mut s = header(
@@ -576,7 +541,7 @@ pub fn jsbsim(src: &Source) -> Result<Exported> {
             (ct, p.ct, cp, p.cp)
         })
         .collect();
-    let fit = Fit::of(&pairs);
+    let fit = fit_of(&pairs);
     let mut c = header(src, "JSBSim propeller", &fit, "  ");
     let _ = writeln!(
         c,
@@ -704,7 +669,7 @@ pub fn map(src: &Source) -> Result<Exported> {
             (p.j >= lo - 1e-9 && p.j <= hi + 1e-9).then(|| (curve_at(c, p.j, 1), p.ct, curve_at(c, p.j, 2), p.cp))
         })
         .collect();
-    let fit = Fit::of(&pairs);
+    let fit = fit_of(&pairs);
     let note = if src.measured {
         format!("Smoothing: {SMOOTHING}.")
     } else {
