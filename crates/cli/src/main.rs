@@ -122,8 +122,8 @@ pub(crate) enum Command {
     /// Flight-simulator files from a prediction or from measurements: Gazebo's motor model,
     /// PX4 SIH's thruster parameters, a JSBSim propeller, a CT/CP map (CSV, JSON).
     #[command(after_help = concat!(
-        "Examples:\n  propbet export --to all --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05 -o sim\n",
-        "  propbet export --to gazebo --measured log.csv --diameter 5in -o sim\n\n",
+        "Example:\n  propbet export --to all --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05 -o sim\n\n",
+        "From a static thrust-stand log:\n  propbet export --to gazebo --measured log.csv --diameter 5in -o sim\n\n",
         "Exit status: 0 done; 2 error (an export the data cannot support: what is missing, nothing written)."
     ))]
     Export(Box<export::ExportArgs>),
