@@ -49,6 +49,23 @@ fn default_case_from_scan_to_report() {
         assert!(at(s) < at("id=\"geometry\""), "{s} after the geometry");
     }
     diagnosis_agrees(&dir.path().join("out/diagnose"), &html);
+    // The report's command for the flight simulators runs and writes them.
+    let a = at("<code>propbet export ") + "<code>propbet ".len();
+    let cmd = html[a..a + html[a..].find("</code>").unwrap()]
+        .replace("&quot;", "\"")
+        .replace("&#39;", "'")
+        .replace("&lt;", "<")
+        .replace("&gt;", ">")
+        .replace("&amp;", "&");
+    let o = Command::new("bash")
+        .args(["-c", &format!("'{}' {cmd}", env!("CARGO_BIN_EXE_propbet"))])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{cmd}: {}", stderr(&o));
+    for f in ["gazebo_motor_model.sdf", "px4_sih.params", "map.csv", "map.json"] {
+        assert!(out.join("export").join(f).is_file(), "{f} missing after {cmd}");
+    }
     // Every stage's outputs.
     for f in [
         "scan/geometry.csv",

@@ -40,6 +40,21 @@ pub struct ExportArgs {
     /// Length unit of the prop file's radii and chords: m, cm, mm, in.
     #[arg(long, requires = "prop")]
     pub units: Option<String>,
+    /// Collective blade-angle change of the prediction [deg].
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, requires = "prop")]
+    pub dbeta: f64,
+    /// Read the prop file as QPROP 1.22 does (as `predict --qprop-compat`).
+    #[arg(long, requires = "prop")]
+    pub qprop_compat: bool,
+    /// Switch the tip-loss factor off.
+    #[arg(long, requires = "prop")]
+    pub no_tip_loss: bool,
+    /// An effect added to the prediction (as `predict --effect`; repeatable).
+    #[arg(long = "effect", value_name = "SPEC", requires = "prop")]
+    pub effect: Vec<String>,
+    /// TOML file of user-defined effects, usable by --effect.
+    #[arg(long, requires = "prop")]
+    pub user_effects: Option<PathBuf>,
     /// Rotation speeds of the prediction [rpm]: a list, `start:stop:step` or `start:stop/N`.
     #[arg(
         long,
@@ -146,6 +161,11 @@ impl ExportArgs {
     fn model_spec(&self, prop: &Path) -> Result<ModelSpec> {
         let mut spec = ModelSpec::prop(prop.to_path_buf());
         spec.units = self.units.as_deref().map(parse_length_unit).transpose()?;
+        spec.dbeta = self.dbeta.to_radians();
+        spec.qprop_compat = self.qprop_compat;
+        spec.no_tip_loss = self.no_tip_loss;
+        spec.effects = self.effect.clone();
+        spec.user_effects = self.user_effects.clone();
         spec.polars = self.polars.clone();
         spec.rotation = Rotation::or_default(
             self.rotation.as_deref().map(Rotation::parse).transpose()?,
@@ -160,6 +180,7 @@ impl ExportArgs {
         v.extend(self.prop.as_deref());
         v.extend(self.polars.as_deref());
         v.extend(self.columns.as_deref());
+        v.extend(self.user_effects.as_deref());
         v
     }
 }

@@ -265,6 +265,33 @@ mod tests {
         assert!(String::from_utf8(man).unwrap().contains(".TH propbet"));
     }
 
+    /// The export command a report prints for a prediction parses as `propbet export`.
+    #[test]
+    fn a_predictions_export_command_parses() {
+        let mut spec = propbet_pipeline::spec::PredictSpec {
+            model: propbet_pipeline::spec::ModelSpec::prop("r/polars/prop.qprop".into()),
+            omegas: vec![400.0, 600.0],
+            axis: propbet_pipeline::spec::SweepAxis::J(vec![0.0, 0.3]),
+            air: Default::default(),
+            format: propbet_pipeline::spec::TableFormat::Json,
+            out: Some("r/predict/sweep.csv".into()),
+            stations: None,
+        };
+        spec.model.polars = Some("r/polars/polars.json".into());
+        spec.model.effects = vec!["pitch-offset:deg=1.2".into()];
+        spec.model.dbeta = 0.01;
+        let cmd = spec.export_command(std::path::Path::new("r/export"));
+        let argv: Vec<&str> = cmd.split_whitespace().collect();
+        let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{cmd}: {e}"));
+        let Command::Export(a) = cli.command else {
+            panic!("{cmd}")
+        };
+        assert_eq!(a.to, ["all"]);
+        assert_eq!(a.out, std::path::PathBuf::from("r/export"));
+        assert_eq!(a.effect, ["pitch-offset:deg=1.2"]);
+        assert!(a.polars.is_some() && a.j.is_some());
+    }
+
     /// A spec's printed command line parses back to the same spec.
     fn check(spec: &StageSpec) {
         let argv = spec.argv();

@@ -4,7 +4,7 @@
 //! the CLI holds this), so every stage of `propbet run` and `propbet validate` is a command a
 //! user can re-run by hand.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use propbet_atmosphere::AirState;
 use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
@@ -750,6 +750,27 @@ impl StageSpec {
     pub fn command(&self) -> String {
         std::iter::once("propbet".to_string())
             .chain(self.argv().iter().map(|a| shell_word(a)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+impl PredictSpec {
+    /// The `propbet export` command that writes this prediction for every flight simulator
+    /// into `out`: the same model, sweep and air.
+    pub fn export_command(&self, out: &Path) -> String {
+        let plain = PredictSpec {
+            format: TableFormat::Csv,
+            out: None,
+            stations: None,
+            ..self.clone()
+        };
+        let mut argv = StageSpec::Predict(plain).argv();
+        argv[0] = "export".into();
+        argv.splice(1..1, ["--to".to_string(), "all".to_string()]);
+        argv.extend(["-o".to_string(), path(out)]);
+        std::iter::once("propbet".to_string())
+            .chain(argv.iter().map(|a| shell_word(a)))
             .collect::<Vec<_>>()
             .join(" ")
     }

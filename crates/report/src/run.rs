@@ -283,6 +283,11 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             );
         }
     }
+    let _ = write!(
+        h,
+        "<li>for flight simulators (Gazebo's motor model, PX4 SIH's thruster, a JSBSim propeller) and a CT/CP map, each saying how well it reproduces this prediction: <code>{}</code></li>",
+        esc(&plan.predict.export_command(&out.join("export")))
+    );
     if let Some((cspec, dspec)) = &plan.compare {
         let _ = write!(
             h,
