@@ -301,3 +301,33 @@ fn the_readme_is_short() {
         );
     }
 }
+
+/// Every shipped polars file reads with its prop file (a format change leaves none behind):
+/// `props/*/NAME.polars.json` beside `NAME.qprop`.
+#[test]
+fn the_shipped_polars_files_read() {
+    let mut n = 0;
+    for case in std::fs::read_dir(repo().join("props")).unwrap() {
+        for f in std::fs::read_dir(case.unwrap().path()).unwrap() {
+            let p = f.unwrap().path();
+            let Some(name) = p.file_name().and_then(|s| s.to_str()) else {
+                continue;
+            };
+            let Some(stem) = name.strip_suffix(".polars.json") else {
+                continue;
+            };
+            let prop = p.with_file_name(format!("{stem}.qprop"));
+            let o = bin()
+                .args(["predict", "--prop"])
+                .arg(&prop)
+                .arg("--polars")
+                .arg(&p)
+                .args(["--rpm", "5000", "--j", "0,0.3"])
+                .output()
+                .unwrap();
+            assert!(o.status.success(), "{}: {}", p.display(), stderr(&o));
+            n += 1;
+        }
+    }
+    assert!(n >= 1, "no shipped polars file found");
+}

@@ -232,14 +232,29 @@ fn jsbsim_flies(model: &[String], rpms: &str, d: f64, targets: [(f64, f64); 3]) 
 
 #[test]
 fn jsbsim_flies_the_exported_propeller_as_propbet_predicts_it() {
-    // The prop file's QPROP law: its drag's Reynolds exponent makes CP change with RPM, which
-    // the export carries in CP_MACH.
+    // A prop file's QPROP law: its drag's Reynolds exponent makes CP change with RPM, which the
+    // export carries in CP_MACH.
     let cam = vec!["--prop".to_string(), cam6x3().display().to_string()];
     jsbsim_flies(
         &cam,
         "4000,5000,6000",
         0.1524,
         [(4500.0, 0.0), (5000.0, 0.2), (5800.0, 0.35)],
+    );
+    // The APC 10x4.7 with its shipped XFOIL tables (the default model: tables, Snel's
+    // rotational augmentation, drag factor 1.25).
+    let apc = repo().join("props/apcsf_10x4.7");
+    let apc = vec![
+        "--prop".to_string(),
+        apc.join("apcsf_10x4.7.qprop").display().to_string(),
+        "--polars".to_string(),
+        apc.join("apcsf_10x4.7.polars.json").display().to_string(),
+    ];
+    jsbsim_flies(
+        &apc,
+        "4000,5000,6000",
+        0.254,
+        [(4300.0, 0.0), (5000.0, 0.25), (5700.0, 0.4)],
     );
 }
 
