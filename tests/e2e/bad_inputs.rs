@@ -320,7 +320,7 @@ fn a_closed_standard_error_or_output_is_not_a_panic() {
 
 #[test]
 fn a_file_that_is_not_an_input_is_quoted_in_a_short_clean_excerpt() {
-    // Issue 19 item 6: a case (or a flag) may name any file; its errors quote at most a short
+    // A case (or a flag) may name any file; its errors quote at most a short
     // excerpt, with no control characters, never the whole line or file.
     let dir = tempfile::tempdir().unwrap();
     let line = format!("\x1b[2J\x07SECRET-{}\n", "x".repeat(400));
@@ -354,7 +354,7 @@ fn a_file_that_is_not_an_input_is_quoted_in_a_short_clean_excerpt() {
 
 #[test]
 fn commands_refuse_an_output_over_an_input_before_they_write_anything() {
-    // Issue 19 item 5: the refusal comes first; the output directory stays as it was.
+    // The refusal comes first; the output directory stays as it was.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
     std::fs::create_dir_all(&out).unwrap();
@@ -442,7 +442,7 @@ fn walk(d: &Path) -> Vec<(PathBuf, u64)> {
 
 #[test]
 fn a_copied_case_whose_paths_do_not_resolve_fails_before_anything_runs() {
-    // Issue 18: the shipped cases share ../airfoils; a copy elsewhere must fail at once, naming
+    // The shipped cases share ../airfoils; a copy elsewhere must fail at once, naming
     // the file, and leave no output folder.
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("copy");

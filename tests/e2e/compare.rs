@@ -423,7 +423,7 @@ fn bad_flags_and_missing_files() {
 }
 
 /// APC's own prediction (`--per3`) is drawn beside propbet's and scored on the same points, the
-/// same window and the same measure (issue 18); a file that is not a PER3 file stops the
+/// same window and the same measure; a file that is not a PER3 file stops the
 /// command before anything is written.
 #[test]
 fn apc_prediction_is_drawn_and_scored_beside_propbets() {
@@ -502,7 +502,7 @@ fn apc_prediction_is_drawn_and_scored_beside_propbets() {
 /// A QPROP output (`--qprop-output`) is drawn and scored beside propbet's prediction: QPROP's
 /// own 8000 rpm sweep of the CAM 6x3 (tests/reference/qprop) against data made by propbet's
 /// QPROP-compatible model scores as propbet does, to QPROP's printed digits and the
-/// interpolation between its 1 m/s rows (issue 18).
+/// interpolation between its 1 m/s rows.
 #[test]
 fn a_qprop_output_is_drawn_and_scored_beside_propbets() {
     let dir = tempfile::tempdir().unwrap();

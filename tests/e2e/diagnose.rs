@@ -694,7 +694,7 @@ fn a_fit_on_a_physical_bound_is_never_the_answer() {
     assert!(out.contains("hit its bound"), "{out}");
 }
 
-/// Issue 17's weak stall delay: 1.4 % of error against 0.5 % noise (Snel's a = 0.6 on the CAM
+/// A weak stall delay: 1.4 % of error against 0.5 % noise (Snel's a = 0.6 on the CAM
 /// 6x3 re-pitched by 10 deg, two seeds) had given a confident three-effect answer (hub-loss,
 /// density, tip-loss). It is "nothing significant", naming stall-delay as the best candidate;
 /// at a = 1 (2 % of error) stall-delay alone is the answer, near its value.
@@ -845,7 +845,7 @@ fn a_model_beyond_every_bound_is_told_so() {
 
 /// A parameter the data cannot determine is said so, not given an interval thousands of times
 /// its physical range: on the PhotoFoil step test (static, 11 steps) a hub loss changes
-/// nothing (it said "strength = 0 ± 1.030e5" until 2026-11-25).
+/// nothing (it once said "strength = 0 ± 1.030e5").
 #[test]
 fn undetermined_parameters_are_said_so() {
     let dir = tempfile::tempdir().unwrap();

@@ -1,7 +1,6 @@
 //! Every command of the user's guide (`docs/guide/*.md`) and of `docs/effects.md` runs as
 //! written: each `sh` block's `propbet` commands, in order, from a directory that sees the
-//! repository's `props/`, `docs/` and `tests/` (issue 7: "every command in it is run by a
-//! test").
+//! repository's `props/`, `docs/` and `tests/`.
 
 use super::*;
 

@@ -215,7 +215,7 @@ fn predict_matches_qprop_static_point() {
     let ct: f64 = rows[0][col(&h, "ct")].parse().unwrap();
     let ctq: f64 = rows[0][col(&h, "ct_qprop")].parse().unwrap();
     assert!((ct - ctq * std::f64::consts::PI.powi(3) / 8.0).abs() < 1e-6 * ct);
-    // The CSV says which air it used, and that it was assumed (issue 18).
+    // The CSV says which air it used, and that it was assumed.
     assert_eq!(rows[0][col(&h, "rho_kg_m3")], "1.225");
     assert!(rows[0][col(&h, "air")].contains("not measured"), "{:?}", rows[0]);
 }

@@ -33,7 +33,7 @@ fn polar_of_naca4412_csv_fit_and_plot() {
     let (a, cl, cd) = (col(&h, "alpha_deg"), col(&h, "cl"), col(&h, "cd"));
     let r4 = rows.iter().find(|r| r[a] == "4").expect("a point at 4 deg");
     let (cl4, cd4): (f64, f64) = (r4[cl].parse().unwrap(), r4[cd].parse().unwrap());
-    // Acceptance values of issue 3 (Debian's XFOIL 6.99).
+    // Acceptance values (Debian's XFOIL 6.99).
     assert!(
         (cl4 - 0.888).abs() <= 0.01 && (cd4 - 0.0197).abs() <= 0.001,
         "cl {cl4} cd {cd4}"

@@ -1,4 +1,4 @@
-//! `propbet run`: the main job on the shipped cases (issue 7), from scan to report, and bad
+//! `propbet run`: the main job on the shipped cases, from scan to report, and bad
 //! case files.
 
 use super::*;
@@ -131,8 +131,8 @@ fn default_case_from_scan_to_report() {
     // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number).
     // Measured +22.7 % from 2377 to 6528 rpm; predicted +9.4 % with the default transition
     // (Ncrit 5, forced by mid-chord), +14.4 % with free transition, +1 % when the polars were
-    // taken at one RPM. Issue 16's target, within a third of the measured rise (+15.1 % or
-    // more), is not reached. This prop's rise is the largest of the six shared props (the 9x4.7
+    // taken at one RPM. Following the measured rise within a third (+15.1 % or more) is not
+    // reached. This prop's rise is the largest of the six shared props (the 9x4.7
     // SF of the same family: +5.5 %); on the other five the default follows the static rise
     // within 2.3 points, where free transition overshoots it on all five
     // (docs/studies/transition-trip.md). Asserted: the rise is there, at least 0.3 of it.
@@ -159,9 +159,9 @@ fn default_case_from_scan_to_report() {
         .map(|r| r["kfold_rms"].as_f64().unwrap())
         .collect();
     eprintln!("default case, ladder held-out RMS: {ladder:.4?}");
-    // Issue 17: the report names the static test's RPM trend at fixed J with its size (the
-    // measured static CT grows faster with RPM than the model's: -12.5 % from 2377 to 6528 rpm
-    // on 2026-11-25), beside the J sweeps' own.
+    // The report names the static test's RPM trend at fixed J with its size (the measured
+    // static CT grows faster with RPM than the model's: -12.5 % from 2377 to 6528 rpm), beside
+    // the J sweeps' own.
     let thrust = d["diagnosis"]["before"][0]["text"].as_str().unwrap();
     let at = thrust.find("(statically by -").expect(thrust);
     let size: f64 = thrust[at + 16..].split(' ').next().unwrap().parse().unwrap();
@@ -187,7 +187,7 @@ fn default_case_from_scan_to_report() {
         "{ladder:?}"
     );
     // Which step takes which trend (the ladder's columns): pitch-offset, first, the J trend
-    // (−27.4 → −5.1 % on 2026-11-25); re-lift, where it is added, the RPM trend at fixed J
+    // (−27.4 → −5.1 %); re-lift, where it is added, the RPM trend at fixed J
     // (−6.2 → −1.0 %).
     let rungs = d["diagnosis"]["ladder"].as_array().unwrap();
     let t = |i: usize, k: &str| rungs[i][k].as_f64().unwrap();
@@ -218,7 +218,7 @@ fn default_case_from_scan_to_report() {
     ] {
         assert!(html.contains(part), "report lacks {part}");
     }
-    // The stages' problems are summarised once at the top (issue 18): the polars stage's
+    // The stages' problems are summarised once at the top: the polars stage's
     // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
     assert!(html.contains(
         "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, transition by x/c 0.5) of the e63.dat section"
@@ -240,7 +240,7 @@ fn default_case_from_scan_to_report() {
     );
     let err = stderr(&o);
     assert!(err.lines().count() < 60, "the terminal repeats itself: {err}");
-    // The page fits a 1300-px window: wide tables scroll inside it (issue 18).
+    // The page fits a 1300-px window: wide tables scroll inside it.
     let over = overflow_px(&out.join("report.html"));
     assert!(over <= 0, "the report runs {over} px wider than the window");
     // A finished run's folder is not marked incomplete.
@@ -401,7 +401,7 @@ fn verbose_prints_each_stage_in_full() {
         verdict.contains("drag-scale") && verdict.contains("calibration factor") && !verdict.starts_with("Missing: "),
         "{j}"
     );
-    // The report says what the run did, from its plan (issue 18: not the case's own words).
+    // The report says what the run did, from its plan (not the case's own words).
     let html = std::fs::read_to_string(dir.path().join("a/report.html")).unwrap();
     assert!(
         html.contains("What this run did: geometry from the prop file QProp_8x4_5.txt; the prop file"),

@@ -1,4 +1,4 @@
-//! `propbet scan` on the shipped scans (issue 4's acceptance on real and reference data) and
+//! `propbet scan` on the shipped scans (the acceptance numbers on real and reference data) and
 //! on bad input.
 
 use std::path::Path;
@@ -82,7 +82,7 @@ fn apc_10x4_7_stl_against_the_uiuc_table() {
     let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
     eprintln!("APC 10x4.7: twist errors {db:.2?} deg, chord errors {dc:.3?}");
     assert_eq!(rows.len(), 9);
-    // Issue 4: within 0.5 deg and 3 % at r/R 0.3-0.7 (the mesh itself differs from the table by
+    // Within 0.5 deg and 3 % at r/R 0.3-0.7 (the mesh itself differs from the table by
     // about that much, shared data README): met as RMS; the largest single differences are
     // reported in the closing note.
     assert!(rms(&db) <= 0.5, "twist RMSE {}", rms(&db));
@@ -297,7 +297,7 @@ fn a_coloured_cloud_without_its_blade_colours_is_told_the_option() {
 }
 
 /// The check against the reference table covers the outboard stations too, where the STL's
-/// chord is short of UIUC's (issue 18: the check stopped at r/R 0.7).
+/// chord is short of UIUC's (the check once stopped at r/R 0.7).
 #[test]
 fn the_reference_check_covers_the_outboard_blade() {
     let dir = tempfile::tempdir().unwrap();
@@ -347,7 +347,7 @@ j = "0,0.2,0.4"
     .unwrap();
 }
 
-/// Issue 38: noisy clouds of two to four blades (noise, background halo and a table plane like
+/// Noisy clouds of two to four blades (noise, background halo and a table plane like
 /// the shared cloud's, each a different pose and scale) and the shared synthetic cloud run with
 /// `sections = "scan"` to a report with the real XFOIL: every written section is one XFOIL
 /// takes (a trailing edge the fit made cross itself is repaired and said), exit 0 or 1.

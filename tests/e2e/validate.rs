@@ -85,7 +85,7 @@ fn validation_table_on_the_shipped_subset() {
         "{md}"
     );
     // Its static CT rise from 2763 to 6768 rpm, measured +5.5 %, predicted +8.1 % on the
-    // shared set (2026-11-25): both grow, and the Markdown says over which RPM.
+    // shared set: both grow, and the Markdown says over which RPM.
     assert!(
         v("static_ct_rise_measured") > 0.02 && v("static_ct_rise_measured") < 0.1,
         "{r:?}"

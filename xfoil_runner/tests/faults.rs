@@ -188,7 +188,7 @@ fn crashing_before_the_first_angle_is_a_startup_error() {
 }
 
 /// What Debian's XFOIL prints when its X display refuses the connection (seen at random
-/// rungs of validate runs, 2026-11-25), then exits 1.
+/// rungs of validate runs), then exits 1.
 const REFUSE: &str = r#"echo " XFOIL   c>   Cannot open display...aborting"; exit 1"#;
 
 #[test]

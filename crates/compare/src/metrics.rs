@@ -410,8 +410,8 @@ pub fn regime_errors(points: &[ComparedPoint], window: f64) -> [RegimeError; 3] 
 }
 
 /// How much a prop's static CT grows from its lowest to its highest static RPM, measured and
-/// predicted: the Reynolds-number signature a static test holds (issue 16 asks the default case
-/// to follow its measured rise within a third).
+/// predicted: the Reynolds-number signature a static test holds (a model should follow the
+/// measured rise within a third).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct StaticRise {
     /// The lowest static RPM.

@@ -1,5 +1,5 @@
 //! `transition`: the sections' Ncrit (XFOIL's e^N transition criterion) as a fittable
-//! parameter, from polar tables computed at several Ncrit values (issue 17, item 5).
+//! parameter, from polar tables computed at several Ncrit values.
 //!
 //! The model's sections are the tables at one Ncrit (the default 5). With tables of the same
 //! stations and Reynolds-number rungs at other Ncrit values (`propbet polars --ncrit-effect`),

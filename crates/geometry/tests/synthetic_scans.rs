@@ -1,5 +1,5 @@
 //! Generated propellers (meshes and noisy coloured clouds with a reference box, random pose
-//! and scale): the pipeline recovers the geometry they were made with (issue 4's acceptance).
+//! and scale): the pipeline recovers the geometry they were made with (the acceptance numbers of scanning).
 
 use nalgebra::{Rotation3, Vector3};
 use propbet_geometry::align::auto_align;
@@ -55,7 +55,7 @@ fn posed_meshes_give_the_geometry_they_were_made_with() {
             geo.hub_radius,
             geo.tip_radius
         );
-        // Issue 4's acceptance numbers.
+        // The acceptance numbers.
         assert!(rms(&e_beta) <= 0.1, "twist RMSE {} deg: {e_beta:?}", rms(&e_beta));
         assert!(rms(&e_chord) <= 0.005, "chord RMSE {}: {e_chord:?}", rms(&e_chord));
         assert!(e_tc.iter().all(|x| x.abs() <= 0.002), "t/c errors {e_tc:?}");
@@ -302,7 +302,7 @@ fn a_cloud_without_a_scale_says_the_millimetres_are_assumed() {
     );
 }
 
-/// Issue 19: on a sparse cloud the hub radius came out as 1.31 mm for a 6 mm hub. The hub's end
+/// On a sparse cloud the hub radius came out as 1.31 mm for a 6 mm hub. The hub's end
 /// caps put few points in a thin cylinder cut at small radii, so a ring near the axis can look
 /// closed and the next one open; the hub is the outermost closed ring, where its wall is.
 #[test]

@@ -211,8 +211,8 @@ impl AirSpec {
     }
 }
 
-/// Rotational augmentation of the section lift (issue 16, item 5;
-/// `docs/studies/rotational-augmentation.md` has the shared data with each).
+/// Rotational augmentation of the section lift (`docs/studies/rotational-augmentation.md` has
+/// the shared data with each).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Rotation {
     /// The 2-D sections as they are.

@@ -747,9 +747,9 @@ pub struct Diagnosed {
 /// pole-count ratios of an electrical reading, 12/14 and 14/12). An optical tachometer times
 /// pulses against a quartz clock: a handheld one is specified to ±0.02 % of the reading ± 1
 /// count (Ono Sokki HT-5500's data sheet), so ±1 % is fifty times that and still not a
-/// miscount, which would be a factor of 2 (two reflections a turn). Until 2026-11-23 the
-/// bounds were ±3 % with no source; validate's held-out columns with each are in `README.md`
-/// (Validation on real propellers).
+/// miscount, which would be a factor of 2 (two reflections a turn). The bounds were once ±3 %
+/// with no source; validate's held-out columns with each are in `README.md` (Validation on
+/// real propellers).
 pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
 
 /// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab

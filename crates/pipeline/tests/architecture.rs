@@ -281,3 +281,89 @@ fn the_invariants_grep_can_see_hold() {
     }
     assert!(broken.is_empty(), "{broken:#?}");
 }
+
+/// Every Rust file of the repository (sources and tests) opens with a `//!` line, and no comment
+/// holds a date or an issue number: history is the CHANGELOG's and the commits'.
+#[test]
+fn every_file_says_what_it_is_and_no_comment_holds_history() {
+    // What the check sees, and what it lets pass.
+    assert_eq!(history("// bounds until 2026-11-23 were"), Some("a date"));
+    assert_eq!(history("/// (Issue 17, item 5)"), Some("an issue number"));
+    assert_eq!(history("// issues #4"), Some("an issue number"));
+    assert_eq!(history("// a file named StepsTest_2022-01-18_1538.csv"), None);
+    assert_eq!(history("// J sweeps at 2000-6000 rpm; the issue is drag"), None);
+    let mut broken = Vec::new();
+    let mut stack = vec![
+        workspace().join("crates"),
+        workspace().join("xfoil_runner"),
+        workspace().join("tests"),
+    ];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                if p.file_name().is_some_and(|n| n != "target") {
+                    stack.push(p);
+                }
+                continue;
+            }
+            if p.extension().is_none_or(|x| x != "rs") {
+                continue;
+            }
+            let text = std::fs::read_to_string(&p).unwrap();
+            let rel = p.strip_prefix(workspace()).unwrap().display().to_string();
+            if !text.starts_with("//!") {
+                broken.push(format!("{rel}: no //! line first"));
+            }
+            for (k, line) in text.lines().enumerate() {
+                let Some(at) = line.find("//") else { continue };
+                let comment = &line[at..];
+                if line[..at].trim().is_empty()
+                    || line[..at].trim_end().ends_with(';')
+                    || line[..at].trim_end().ends_with('{')
+                {
+                    if let Some(why) = history(comment) {
+                        broken.push(format!("{rel}:{}: {why}: {}", k + 1, line.trim()));
+                    }
+                }
+            }
+        }
+    }
+    assert!(broken.is_empty(), "{}", broken.join("\n"));
+}
+
+/// A date (YYYY-MM-DD, not inside a name) or an issue number in a comment.
+fn history(comment: &str) -> Option<&'static str> {
+    let b = comment.as_bytes();
+    for i in 0..b.len().saturating_sub(9) {
+        let digits = |r: std::ops::Range<usize>| r.clone().all(|k| b[k].is_ascii_digit());
+        if b[i] == b'2'
+            && b[i + 1] == b'0'
+            && digits(i..i + 4)
+            && b[i + 4] == b'-'
+            && digits(i + 5..i + 7)
+            && b[i + 7] == b'-'
+            && digits(i + 8..i + 10)
+        {
+            let month = (b[i + 5] - b'0') * 10 + (b[i + 6] - b'0');
+            let before = if i > 0 { b[i - 1] } else { b' ' };
+            if (1..=12).contains(&month) && !before.is_ascii_alphanumeric() && before != b'_' {
+                return Some("a date");
+            }
+        }
+    }
+    let lower = comment.to_lowercase();
+    let mut rest = lower.as_str();
+    while let Some(at) = rest.find("issue") {
+        let after = rest[at + 5..]
+            .trim_start_matches('s')
+            .trim_start_matches(' ')
+            .trim_start_matches('#');
+        if after.starts_with(|c: char| c.is_ascii_digit()) {
+            return Some("an issue number");
+        }
+        rest = &rest[at + 5..];
+    }
+    None
+}

@@ -5,7 +5,7 @@
 //! fails the test and leaves the input in the system's temporary directory.
 //!
 //! Short run (CI, part of the test suite): `PROPBET_FUZZ_CASES` mutations per parser (default 200).
-//! Long run, 10 minutes per parser (issue 19), one parser after the other:
+//! Long run, 10 minutes per parser, one parser after the other:
 //!
 //! ```sh
 //! PROPBET_FUZZ_SECONDS=600 PROPBET_FUZZ_CASES=100000000 \

@@ -44,7 +44,7 @@ fn naca4412_at_re_1e5_matches_debian_xfoil() {
     let (p, src) = e.compute(&job).unwrap();
     assert_eq!(src, Source::Xfoil);
     let p4 = p.at_alpha(4.0).unwrap();
-    // Acceptance values (issue 3), from Debian's XFOIL 6.99 on its own `NACA 4412`.
+    // Acceptance values, from Debian's XFOIL 6.99 on its own `NACA 4412`.
     assert!((p4.cl - 0.888).abs() <= 0.01, "cl(4) = {}", p4.cl);
     assert!((p4.cd - 0.0197).abs() <= 0.001, "cd(4) = {}", p4.cd);
     assert!(
