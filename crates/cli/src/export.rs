@@ -241,15 +241,16 @@ fn predicted(args: &ExportArgs, prop: &Path) -> Result<Source> {
             })
         })
         .collect();
-    let section = match &args.polars {
-        Some(p) => format!(
-            "XFOIL polars {} as tables, drag factor {}, rotation {}",
-            p.display(),
-            drag_factor_or_default(args.drag_factor, true),
-            model_spec_rotation(args)
+    let m = &spec.model;
+    let section = format!(
+        "{}, drag factor {}, rotation {}",
+        m.polars.as_ref().map_or_else(
+            || "the prop file's QPROP coefficients".to_string(),
+            |p| format!("XFOIL polars {} as tables", p.display())
         ),
-        None => "the prop file's QPROP coefficients".to_string(),
-    };
+        m.drag_factor,
+        m.rotation.name()
+    );
     let ixx = inertia(args, Some(&model));
     Ok(Source {
         points,
@@ -270,12 +271,6 @@ fn predicted(args: &ExportArgs, prop: &Path) -> Result<Source> {
         name: args.name.clone().unwrap_or_else(|| model.loaded.file.name.clone()),
         measured: false,
     })
-}
-
-fn model_spec_rotation(args: &ExportArgs) -> String {
-    args.rotation
-        .clone()
-        .unwrap_or_else(|| Rotation::or_default(None, args.polars.is_some()).name().to_string())
 }
 
 fn measured(args: &ExportArgs) -> Result<Source> {

@@ -117,7 +117,6 @@ const SOUND: f64 = 340.294;
 
 /// Makes one export.
 pub fn export(target: Target, src: &Source) -> Result<Exported> {
-    check(src)?;
     match target {
         Target::Gazebo => gazebo(src, None),
         Target::Px4Sih => px4_sih(src),
@@ -196,7 +195,7 @@ pub fn gazebo(src: &Source, rpm_range: Option<(f64, f64)>) -> Result<Exported> {
     // thrust = kf omega^2 with kf = CT rho D^4 / (2 pi)^2; torque = km thrust with
     // km = CQ D / CT = CP D / (2 pi CT). Least squares in relative terms, at the density of
     // standard air, which the motor model assumes throughout.
-    let rho = 1.225;
+    let rho = propbet_bemt::Fluid::QPROP_DEFAULT.rho;
     let tau = std::f64::consts::TAU;
     let kf_of = |p: &Point| p.ct * rho * d.powi(4) / (tau * tau);
     let km_of = |p: &Point| p.cp * d / (tau * p.ct);
@@ -254,18 +253,21 @@ pub fn gazebo(src: &Source, rpm_range: Option<(f64, f64)>) -> Result<Exported> {
 /// Least squares a + b x + c x^2 through (x, y) with weights w, c held at most 0 (PX4's
 /// parameter bound): the quadratic when its c is not positive, else the line.
 fn quadratic_le0(xs: &[f64], ys: &[f64], ws: &[f64]) -> Option<[f64; 3]> {
-    let solve = |cols: usize| -> Option<Vec<f64>> {
-        let a = nalgebra::DMatrix::from_fn(xs.len(), cols, |i, k| ws[i] * xs[i].powi(k as i32));
-        let b = nalgebra::DVector::from_iterator(ys.len(), ys.iter().zip(ws).map(|(y, w)| y * w));
-        let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
-        Some(x.iter().copied().collect())
-    };
-    let q = solve(3)?;
+    let q = poly_lsq(xs, ys, ws, 2)?;
     if q[2] <= 0.0 {
         return Some([q[0], q[1], q[2]]);
     }
-    let l = solve(2)?;
+    let l = poly_lsq(xs, ys, ws, 1)?;
     Some([l[0], l[1], 0.0])
+}
+
+/// Weighted least squares of a polynomial of degree `deg` through (x, y): its coefficients,
+/// constant first.
+fn poly_lsq(xs: &[f64], ys: &[f64], ws: &[f64], deg: usize) -> Option<Vec<f64>> {
+    let a = nalgebra::DMatrix::from_fn(xs.len(), deg + 1, |i, k| ws[i] * xs[i].powi(k as i32));
+    let b = nalgebra::DVector::from_iterator(ys.len(), ys.iter().zip(ws).map(|(y, w)| y * w));
+    let x = a.svd(true, true).solve(&b, 1e-14).ok()?;
+    Some(x.iter().copied().collect())
 }
 
 fn distinct_j(points: &[Point]) -> usize {
@@ -375,12 +377,10 @@ struct Curve {
 
 /// Polynomial least squares of degree `deg` evaluated at `at`.
 fn smooth(xs: &[f64], ys: &[f64], deg: usize, at: &[f64]) -> Option<Vec<f64>> {
-    let a = nalgebra::DMatrix::from_fn(xs.len(), deg + 1, |i, k| xs[i].powi(k as i32));
-    let b = nalgebra::DVector::from_column_slice(ys);
-    let c = a.svd(true, true).solve(&b, 1e-14).ok()?;
+    let c = poly_lsq(xs, ys, &vec![1.0; xs.len()], deg)?;
     Some(
         at.iter()
-            .map(|x| (0..=deg).map(|k| c[k] * x.powi(k as i32)).sum())
+            .map(|x| c.iter().rev().fold(0.0, |acc, ck| acc * x + ck))
             .collect(),
     )
 }
