@@ -620,7 +620,7 @@ fn n33_n34_n35_xfoil_and_its_children_and_folders_go_with_propbet() {
     // N34: SIGTERM to propbet while XFOIL hangs (`sleep 100007` at its 4th angle).
     let mut child = polar("x_hang_mid").spawn().unwrap();
     let start = std::time::Instant::now();
-    while processes_with("sleep 100007") == 0 && start.elapsed().as_secs() < 20 {
+    while processes_with("sleep 100007") == 0 && start.elapsed().as_secs() < 120 {
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
     assert!(processes_with("sleep 100007") > 0, "the hang did not start");
@@ -774,8 +774,7 @@ fn n4_a_fifo_is_refused_without_blocking() {
     let t = tempfile::tempdir().unwrap();
     let fifo = t.path().join("log.csv");
     assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
-    let started = std::time::Instant::now();
-    let o = run(
+    let o = run_or_hang(
         &[
             "compare",
             "--prop",
@@ -793,7 +792,6 @@ fn n4_a_fifo_is_refused_without_blocking() {
         "{}",
         stderr(&o)
     );
-    assert!(started.elapsed().as_secs() < 30);
 }
 
 #[test]

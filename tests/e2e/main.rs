@@ -20,6 +20,45 @@ fn run(args: &[&str], dir: &Path) -> Output {
     bin().args(args).current_dir(dir).output().expect("propbet runs")
 }
 
+/// `run` for a test whose failure would be a hang: a watchdog kills propbet after five minutes
+/// and fails the test saying so (a bound on a hang, not a speed requirement).
+fn run_or_hang(args: &[&str], dir: &Path) -> Output {
+    use std::process::Stdio;
+    let mut child = bin()
+        .args(args)
+        .current_dir(dir)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("propbet runs");
+    let (stdout, stderr) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
+    let drain = |mut r: Box<dyn std::io::Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            r.read_to_end(&mut v).ok();
+            v
+        })
+    };
+    let (out, err) = (drain(Box::new(stdout)), drain(Box::new(stderr)));
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(300);
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if std::time::Instant::now() > deadline {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("propbet {args:?} hung (killed after five minutes)");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    };
+    Output {
+        status,
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
+    }
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }

@@ -2,7 +2,7 @@
 
 use std::os::unix::fs::PermissionsExt;
 
-use super::{cam6x3, col, read_csv, repo, run, stderr};
+use super::{cam6x3, col, read_csv, repo, run, run_or_hang, stderr};
 
 #[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
@@ -120,8 +120,7 @@ fn crashing_xfoil(dir: &std::path::Path) -> std::path::PathBuf {
 fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
     let dir = tempfile::tempdir().unwrap();
     let fake = crashing_xfoil(dir.path());
-    let t = std::time::Instant::now();
-    let o = run(
+    let o = run_or_hang(
         &[
             "polar",
             "--airfoil",
@@ -137,7 +136,6 @@ fn an_xfoil_that_always_crashes_is_an_error_not_a_hang() {
         ],
         dir.path(),
     );
-    assert!(t.elapsed().as_secs() < 60);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("SIGFPE"), "{}", stderr(&o));
 }
@@ -357,7 +355,10 @@ fn killing_propbet_stops_its_private_x_server() {
         if !w.is_empty() {
             break w;
         }
-        assert!(start.elapsed().as_secs() < 20, "no private Xvfb appeared");
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "no private Xvfb appeared in two minutes"
+        );
         std::thread::sleep(std::time::Duration::from_millis(20));
     };
     child.kill().unwrap();
@@ -367,7 +368,10 @@ fn killing_propbet_stops_its_private_x_server() {
         .iter()
         .any(|p| std::path::Path::new(&format!("/proc/{p}")).exists())
     {
-        assert!(start.elapsed().as_secs() < 5, "the Xvfb watcher outlived propbet");
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "the Xvfb watcher outlived propbet by two minutes"
+        );
         std::thread::sleep(std::time::Duration::from_millis(50));
     }
 }
