@@ -1,0 +1,155 @@
+//! One row of the validation table: the errors before and after calibration, APC's own
+//! prediction scored on the same points, and the signatures of the data.
+
+use propbet_compare::metrics::{
+    in_window, quantile, window_errors, RegimeError, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW,
+};
+use propbet_compare::ComparedPoint;
+use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
+use propbet_qprop::apc::Pe0;
+
+/// One row of the validation table: |pred/meas − 1| of CT and CP below 85 % of each sweep's
+/// zero-thrust J, before and after calibration.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Row {
+    /// The UIUC name.
+    pub prop: String,
+    /// Points scored.
+    pub points: usize,
+    /// Points (of all compared) where the prediction is physically implausible (scored, and
+    /// named in the prop's points.csv).
+    pub implausible: usize,
+    /// CT (median, p90) before and after.
+    pub ct: [(f64, f64); 2],
+    /// CP (median, p90) before and after.
+    pub cp: [(f64, f64); 2],
+    /// APC's own prediction (PER3) on the same points: CT and CP (median, p90), and the points
+    /// it covers; None without `--per3` or its file.
+    pub per3: Option<Per3Score>,
+    /// The ladder's effects (fitted to all the prop's files: the calibration in `calibrated/`).
+    pub ladder: String,
+    /// The ladders fitted to each half of the files, whose predictions of the other half are
+    /// the "after" columns.
+    pub held_out_ladders: [String; 2],
+    /// APC's design twist minus UIUC's measured β [deg], the mean over UIUC's stations at
+    /// r/R 0.6-0.9 (where most of the thrust is made): what a `pitch-offset` fitted on UIUC's
+    /// geometry is to be compared with (docs/studies/geometry-source.md).
+    pub twist_gap: f64,
+    /// UIUC has a geometry file of the prop; without one the blade is APC's design (PE0) at
+    /// UIUC's stations, whatever `--geometry` asks.
+    pub uiuc_geometry: bool,
+    /// The section assumed for a prop without APC's sections, and why ("sd7037 t/c 0.092 (UIUC
+    /// family gwsdd: not an APC propeller)"); None for APC's (PE0).
+    pub assumed_section: Option<String>,
+    /// The prop's files that did not read (file name, why): left out of every stage.
+    pub left_out: Vec<(String, String)>,
+    /// The static points' predicted figure of merit over the measured, minus 1 (median;
+    /// [`static_figure_of_merit_error`]): the hover efficiency's error, whatever its split
+    /// between thrust and power (docs/studies/section-scaling.md: +11 to +19 % on every shared
+    /// prop). NaN without static points.
+    pub static_fm: f64,
+    /// Before calibration, the median signed errors by regime (static, forward flight below and
+    /// above half the zero-thrust J: [`propbet_compare::metrics::REGIMES`]): which way and where.
+    pub regimes: [RegimeError; 3],
+    /// The static CT's rise from the lowest to the highest static RPM, measured and predicted
+    /// ([`static_rise`]); None without a static test spanning 1.3x.
+    pub static_rise: Option<StaticRise>,
+    /// Before calibration, the CT error's change with RPM at fixed J over the J sweeps' points
+    /// in the window ([`forward_rpm_trend`]): the sections' Reynolds-number dependence in
+    /// forward flight, where the static rise shows it statically; None where no J bin's RPMs
+    /// span 1.3x.
+    pub forward_rpm_trend: Option<RpmTrend>,
+    /// How the J sweeps' zero-thrust J moves with RPM, measured and predicted
+    /// ([`zero_thrust_shift`]): a blade that twists nose-down as it speeds up moves the
+    /// measured one down where the sections' Reynolds numbers move the model's up; None with
+    /// fewer than two sweeps reaching zero thrust.
+    pub zero_thrust_shift: Option<ZeroThrustShift>,
+}
+
+/// The CT error's (predicted / measured − 1) change with RPM at fixed J over the J sweeps'
+/// points inside the validation window ([`propbet_diagnose::signature::rpm_trend_at_fixed_j`]:
+/// the median over J bins of the slope against ln RPM, over the range the bins typically span).
+pub fn forward_rpm_trend(points: &[ComparedPoint], window: f64) -> Option<RpmTrend> {
+    let ok = |x: Option<f64>| x.filter(|v| v.is_finite() && *v > 0.0);
+    let pts: Vec<(f64, f64, i64, f64)> = points
+        .iter()
+        .zip(in_window(points, window))
+        .filter(|(p, inside)| *inside && !p.is_static() && p.rpm.is_finite() && p.rpm > 0.0)
+        .filter_map(|(p, _)| {
+            Some((
+                p.j,
+                p.rpm,
+                0,
+                p.predicted.ct.filter(|c| c.is_finite())? / ok(p.measured.ct)? - 1.0,
+            ))
+        })
+        .collect();
+    rpm_trend_at_fixed_j(&pts)
+}
+
+/// Mean of APC's design twist minus the measured β [deg] over the stations of `table` within
+/// [`propbet_compare::metrics::TWIST_GAP_SPAN`] (NaN if none is).
+pub fn twist_gap(table: &[propbet_measure::uiuc::GeometryRow], pe0: &Pe0, big_r: f64) -> f64 {
+    let stations: Vec<(f64, f64)> = table.iter().map(|row| (row.r_r, row.beta.to_degrees())).collect();
+    propbet_compare::metrics::twist_gap(&stations, |r_r| pe0.twist_at(r_r * big_r))
+}
+
+/// The ladder of one fold as the command line gives it ("none" without an effect).
+pub(super) fn ladder_text(effects: &[String]) -> String {
+    if effects.is_empty() {
+        "none".into()
+    } else {
+        effects.join(" + ")
+    }
+}
+
+/// The median and 90th percentile of errors: the table's two numbers per quantity.
+pub(super) fn median_p90(v: &[f64]) -> (f64, f64) {
+    (quantile(v.to_vec(), 0.5), quantile(v.to_vec(), 0.9))
+}
+
+/// APC's PER3 prediction scored as propbet's is.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Per3Score {
+    /// Points scored (those inside the PER3 file's RPM and J range).
+    pub points: usize,
+    /// CT (median, p90).
+    pub ct: (f64, f64),
+    /// CP (median, p90).
+    pub cp: (f64, f64),
+}
+
+/// The UIUC family of a prop name, as APC names the line: `apce_10x5` → `E`, `apcsf` → `SF`,
+/// `apcsp` → `SP`, `apcff` → `FF`; other makers: their prefix.
+pub fn family(prop: &str) -> String {
+    let prefix = prop.split('_').next().unwrap_or(prop);
+    match prefix {
+        "apce" => "E".into(),
+        "apcsf" => "SF".into(),
+        "apcsp" => "SP".into(),
+        "apcff" => "FF".into(),
+        other => other.to_string(),
+    }
+}
+
+/// Scores APC's PER3 prediction on the compared points: each point's predicted CT and CP
+/// replaced by PER3's at its RPM and J (points outside PER3's range left out), then the same
+/// window and errors as propbet's.
+pub fn per3_score(per3: &propbet_qprop::apc::Per3, points: &[propbet_compare::ComparedPoint]) -> Per3Score {
+    let replaced: Vec<propbet_compare::ComparedPoint> = points
+        .iter()
+        .map(|p| {
+            let mut q = p.clone();
+            let at = per3.at(p.rpm, p.j);
+            q.predicted.ct = at.map(|x| x.0);
+            q.predicted.cp = at.map(|x| x.1);
+            q
+        })
+        .collect();
+    let (ct, cp) = window_errors(&replaced, VALIDATION_J_WINDOW);
+    Per3Score {
+        points: ct.len(),
+        ct: median_p90(&ct),
+        cp: median_p90(&cp),
+    }
+}
