@@ -1,0 +1,155 @@
+//! Each stage's spec as the `propbet` command line that does the same ([`StageSpec::argv`]),
+//! and the `propbet export` command for a prediction.
+
+use super::*;
+
+/// One stage of the data flow.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StageSpec {
+    /// Geometry from a scan.
+    Scan(ScanSpec),
+    /// XFOIL polars of every station.
+    Polars(PolarsSpec),
+    /// Sweeps.
+    Predict(PredictSpec),
+    /// Measured against predicted.
+    Compare(CompareSpec),
+    /// What is missing.
+    Diagnose(DiagnoseSpec),
+}
+
+impl StageSpec {
+    /// The stage's name (the subcommand).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StageSpec::Scan(_) => "scan",
+            StageSpec::Polars(_) => "polars",
+            StageSpec::Predict(_) => "predict",
+            StageSpec::Compare(_) => "compare",
+            StageSpec::Diagnose(_) => "diagnose",
+        }
+    }
+
+    /// The equivalent `propbet` command line (without the program name).
+    pub fn argv(&self) -> Argv {
+        let mut v = vec![self.name().to_string()];
+        match self {
+            StageSpec::Scan(s) => s.push_argv(&mut v),
+            StageSpec::Polars(s) => {
+                push(&mut v, "--geometry", path(&s.geometry));
+                if let Some(u) = s.units {
+                    push(&mut v, "--units", length_unit_name(u).unwrap_or("m"));
+                }
+                if let Some(a) = &s.airfoil {
+                    push(&mut v, "--airfoil", a.clone());
+                }
+                if let Some(t) = s.thickness {
+                    push(&mut v, "--thickness", format!("{t}"));
+                }
+                if let Some(d) = &s.station_airfoils {
+                    push(&mut v, "--station-airfoils", path(d));
+                }
+                push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
+                match &s.axis {
+                    SweepAxis::V(x) if x == &[0.0] => {}
+                    SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
+                    SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
+                }
+                s.air.push_argv(&mut v);
+                s.xfoil.push_argv(&mut v);
+                if !s.ncrit_effect.is_empty() {
+                    push_eq(&mut v, "--ncrit-effect", ncrit_effect_text(&s.ncrit_effect));
+                }
+                push(&mut v, "--out-prop", path(&s.out_prop));
+                if let Some(p) = &s.out_polars {
+                    push(&mut v, "--out-polars", path(p));
+                }
+            }
+            StageSpec::Predict(s) => {
+                s.model.push_argv(&mut v);
+                push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
+                match &s.axis {
+                    SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
+                    SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
+                }
+                s.air.push_argv(&mut v);
+                if s.format == TableFormat::Json {
+                    push(&mut v, "--format", "json");
+                }
+                if let Some(o) = &s.out {
+                    push(&mut v, "--out", path(o));
+                }
+                if let Some(o) = &s.stations {
+                    push(&mut v, "--stations", path(o));
+                }
+            }
+            StageSpec::Compare(s) => {
+                s.model.push_argv(&mut v);
+                s.measured.push_argv(&mut v);
+                if let Some(p) = &s.per3 {
+                    push(&mut v, "--per3", path(p));
+                }
+                if let Some(p) = &s.qprop_output {
+                    push(&mut v, "--qprop-output", path(p));
+                }
+                push(&mut v, "--out", path(&s.out));
+            }
+            StageSpec::Diagnose(s) => {
+                s.model.push_argv(&mut v);
+                s.measured.push_argv(&mut v);
+                if s.effects != ["all"] {
+                    push(&mut v, "--effects", s.effects.join(","));
+                }
+                if s.folds != DEFAULT_FOLDS {
+                    push(&mut v, "--folds", s.folds.to_string());
+                }
+                if s.max_steps != DEFAULT_MAX_STEPS {
+                    push(&mut v, "--max-steps", s.max_steps.to_string());
+                }
+                if s.window != propbet_compare::metrics::VALIDATION_J_WINDOW {
+                    push(&mut v, "--window", s.window.to_string());
+                }
+                push(&mut v, "--out", path(&s.out));
+            }
+        }
+        v
+    }
+
+    /// The command line as a shell would take it.
+    pub fn command(&self) -> String {
+        std::iter::once("propbet".to_string())
+            .chain(self.argv().iter().map(|a| shell_word(a)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+impl PredictSpec {
+    /// The `propbet export` command that writes this prediction for every flight simulator
+    /// into `out`: the same model, sweep and air.
+    pub fn export_command(&self, out: &Path) -> String {
+        let plain = PredictSpec {
+            format: TableFormat::Csv,
+            out: None,
+            stations: None,
+            ..self.clone()
+        };
+        let mut argv = StageSpec::Predict(plain).argv();
+        argv[0] = "export".into();
+        argv.splice(1..1, ["--to".to_string(), "all".to_string()]);
+        argv.extend(["-o".to_string(), path(out)]);
+        std::iter::once("propbet".to_string())
+            .chain(argv.iter().map(|a| shell_word(a)))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+/// One argument quoted for a POSIX shell where it needs it.
+pub fn shell_word(a: &str) -> String {
+    if a.is_empty() || a.contains(|c: char| c.is_whitespace() || "'\"$`\\*?;&|<>()#".contains(c)) {
+        format!("'{}'", a.replace('\'', "'\\''"))
+    } else {
+        a.to_string()
+    }
+}

@@ -1,0 +1,241 @@
+//! The stages after the prediction: measurements read (every reader, the air they were
+//! taken in), the comparison point by point, and the diagnosis.
+
+use super::*;
+
+// ---------------------------------------------------------------------------------------
+// measurements, compare, diagnose
+
+/// Reads the measured files of a spec: the air choice and the measured sets.
+pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
+    if let Some(p) = spec.poles {
+        if p < 2 || p % 2 != 0 {
+            invalid!("--poles {p}: a motor has an even number of poles, at least 2");
+        }
+    }
+    if let Some(r) = spec.rho {
+        let air = propbet_units::air::DENSITY;
+        propbet_units::air::check("--rho", r, &air, "kg/m^3").map_err(Error::Invalid)?;
+    }
+    let air = AirChoice {
+        given: spec.atmosphere,
+        rho: spec.rho,
+    };
+    let column_map = spec.columns.as_deref().map(read_text).transpose()?;
+    let opts = ReadOptions {
+        poles: spec.poles,
+        rpm_source: spec.rpm_source,
+        column_map,
+        ..Default::default()
+    };
+    // One file given twice would count its points twice (and cost a diagnosis its time).
+    let mut seen: Vec<(PathBuf, &Path)> = Vec::new();
+    for p in &spec.files {
+        let real = std::fs::canonicalize(p).unwrap_or_else(|_| p.clone());
+        if let Some((_, first)) = seen.iter().find(|(r, _)| *r == real) {
+            return Err(Error::input(
+                p,
+                format!(
+                    "given twice among the measured files (also as {}): each file once",
+                    first.display()
+                ),
+            ));
+        }
+        seen.push((real, p));
+    }
+    let sets = spec
+        .files
+        .iter()
+        .map(|p| read_measured(p, &opts))
+        .collect::<Result<_>>()?;
+    Ok((air, sets))
+}
+
+fn read_measured(path: &Path, opts: &ReadOptions) -> Result<MeasuredSet> {
+    let text = read_text(path).map_err(|e| match e {
+        Error::Input { path, message } => Error::input(path, format!("{message}; export the log as CSV")),
+        e => e,
+    })?;
+    let opts = ReadOptions {
+        name: path.file_name().map(|n| n.to_string_lossy().into_owned()),
+        ..opts.clone()
+    };
+    propbet_measure::read(&text, &opts).map_err(|e| Error::input(path, e))
+}
+
+impl MeasuredSpec {
+    /// The files read (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        self.files
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(self.columns.as_deref())
+            .collect()
+    }
+}
+
+/// What the compare stage makes.
+pub struct Compared {
+    /// The measured sets as read.
+    pub sets: Vec<MeasuredSet>,
+    /// The air choice.
+    pub air: AirChoice,
+    /// Every point, measured and predicted.
+    pub points: Vec<ComparedPoint>,
+    /// Metrics by group.
+    pub metrics: Metrics,
+}
+
+impl Compared {
+    /// Measurements that cannot be of this propeller (a warning, exit 1).
+    pub fn mismatch(&self) -> Option<propbet_compare::plausible::Mismatch> {
+        propbet_compare::plausible::of_points(&self.points)
+    }
+
+    /// Nothing to report: no faulty row, every station converged, measurements of this
+    /// propeller's size.
+    pub fn clean(&self) -> bool {
+        self.problems() == (0, 0) && self.mismatch().is_none()
+    }
+
+    /// Rows dropped as faulty and stations that did not converge (all reported).
+    pub fn problems(&self) -> (usize, usize) {
+        (
+            self.sets.iter().map(MeasuredSet::faults).sum(),
+            self.points.iter().map(|p| p.not_converged).sum(),
+        )
+    }
+}
+
+/// The solver setup of a model for the comparison (with the model's effects or without).
+pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> {
+    Setup {
+        rotor: &model.rotor,
+        diameter: model.diameter,
+        opts: model.opts,
+        air,
+        effects,
+    }
+}
+
+/// Runs the compare stage.
+pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
+    let (air, sets) = load_measured(measured)?;
+    let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
+    let metrics = metrics(&points);
+    Ok(Compared {
+        sets,
+        air,
+        points,
+        metrics,
+    })
+}
+
+/// What the diagnose stage makes.
+pub struct Diagnosed {
+    /// The measured sets as read.
+    pub sets: Vec<MeasuredSet>,
+    /// The residual rows.
+    pub data: Data,
+    /// The diagnosis.
+    pub diagnosis: Diagnosis,
+}
+
+/// Bounds of the RPM scale when every file's RPM is optical (the wide bounds hold the
+/// pole-count ratios of an electrical reading, 12/14 and 14/12). An optical tachometer times
+/// pulses against a quartz clock: a handheld one is specified to ±0.02 % of the reading ± 1
+/// count (Ono Sokki HT-5500's data sheet), so ±1 % is fifty times that and still not a
+/// miscount, which would be a factor of 2 (two reflections a turn). The bounds were once ±3 %
+/// with no source; validate's held-out columns with each are in `README.md` (Validation on
+/// real propellers).
+pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
+
+/// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab
+/// reduced its loads with the density it measured, so the ratio is only that measurement's
+/// error. Density from a barometer and a thermometer (ideal gas) is good to a few tenths of a
+/// percent (1 hPa is 0.1 %, 1 K 0.35 %); humidity left out makes dry-air density up to about
+/// 1 % high at 30 C and 60 % RH (moist air's gas constant): ±2 % holds both with room. The
+/// wide bounds (0.75-1.2) are those of a stand log whose air nobody wrote down.
+pub const LAB_DENSITY_RATIO: (f64, f64) = (0.98, 1.02);
+
+/// Runs the diagnose stage.
+pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
+    if spec.folds < 2 {
+        invalid!("--folds {}: at least 2", spec.folds);
+    }
+    let list: Vec<String> = spec
+        .effects
+        .iter()
+        .map(|s| s.trim().to_string())
+        .filter(|s| !s.is_empty())
+        .collect();
+    let mut candidates = model
+        .registry
+        .select(&list)
+        .map_err(|e| Error::Invalid(e.to_string()))?;
+    // Effects already in the baseline are not candidates.
+    candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
+    let (air, sets) = load_measured(&spec.measured)?;
+    // An optical RPM sensor (a wind tunnel's, a thrust stand's optical probe) has no pole count
+    // to get wrong: an RPM scale is then only its calibration.
+    let uiuc = |s: &MeasuredSet| {
+        matches!(
+            s.format,
+            propbet_measure::Format::UiucStatic | propbet_measure::Format::UiucSweep
+        )
+    };
+    let optical = sets
+        .iter()
+        .all(|s| uiuc(s) || s.rpm_source == Some(propbet_measure::RpmSource::Optical));
+    // Coefficients reduced with the lab's measured air: a density ratio is only its error.
+    let lab_air = sets.iter().all(uiuc);
+    for c in &mut candidates {
+        let narrowed = match c.id() {
+            "rpm-scale" if optical => Some((
+                "factor",
+                OPTICAL_RPM_SCALE,
+                "an optical RPM sensor: no pole count to get wrong",
+            )),
+            "density" if lab_air => Some((
+                "ratio",
+                LAB_DENSITY_RATIO,
+                "coefficients the lab reduced with the density it measured",
+            )),
+            _ => None,
+        };
+        if let Some((param, (lo, hi), why)) = narrowed {
+            *c = std::sync::Arc::new(propbet_effects::Narrowed::new(c.clone(), &[(param, lo, hi, why)]));
+        }
+    }
+    let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
+    if !(spec.window.is_finite() && spec.window > 0.0 && spec.window <= 2.0) {
+        invalid!("--window {}: a fraction of the zero-thrust J in (0, 2]", spec.window);
+    }
+    let data = Data::from_points(&points, spec.window).map_err(|e| Error::Invalid(e.to_string()))?;
+    // The model's own effects stay in the model, under the candidates.
+    let dmodel = propbet_diagnose::Model {
+        rotor: &model.rotor,
+        opts: model.opts,
+        diameter: model.diameter,
+        fixed: model.effects.clone(),
+    };
+    let opts = Options {
+        folds: spec.folds,
+        max_steps: spec.max_steps,
+        ..Options::default()
+    };
+    let diagnosis = discover(&dmodel, &data, &candidates, &opts).map_err(|e| Error::Invalid(e.to_string()))?;
+    Ok(Diagnosed { sets, data, diagnosis })
+}
+
+/// Reads a QPROP output file (its printed sweep), naming the file in every error.
+pub fn read_qprop_output(path: &Path) -> Result<propbet_qprop::output::QpropOutput> {
+    let text = read_text(path)?;
+    propbet_qprop::output::parse_output(&text).map_err(|e| Error::input(path, e))
+}
+
+/// Reads APC's predictions (a PER3 file), naming the file in every error.
+pub fn read_per3(path: &Path) -> Result<propbet_qprop::apc::Per3> {
+    let text = read_text(path)?;
+    propbet_qprop::apc::read_per3(&text, &path.display().to_string()).map_err(|e| Error::input(path, e))
+}
