@@ -486,7 +486,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "reproduces_every_rpm_driven_qprop_run",
         "to split",
     ),
-    ("crates/report/src/compare.rs", "build", "to split"),
     ("crates/report/src/diagnose.rs", "verdict", "to split"),
     ("crates/report/src/diagnose.rs", "build", "to split"),
     ("crates/report/src/run.rs", "page", "to split"),

@@ -360,12 +360,10 @@ pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
     out
 }
 
-/// Builds the report.
-pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
+/// The other prediction, scored on the same points, window and measure as propbet's.
+fn scored_reference<'b>(input: &'b ReportInput) -> Option<Scored<'b>> {
     let pts = input.points;
-    let m = input.metrics;
-    // The other prediction, scored on the same points, window and measure as propbet's.
-    let reference = input.reference.as_ref().map(|r| {
+    input.reference.as_ref().map(|r| {
         let stat: Vec<f64> = pts.iter().filter(|p| p.is_static()).map(|p| p.air.fluid.rho).collect();
         let rho = if stat.is_empty() {
             pts.iter().map(|p| p.air.fluid.rho).sum::<f64>() / pts.len().max(1) as f64
@@ -381,30 +379,27 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
                 input.diameter,
             )),
         }
-    });
-    let mut figures = Vec::new();
-    if let Some(f) = coefficient_figure(input.curves, pts, reference.as_ref()) {
-        figures.push(("coefficients".to_string(), f));
-    }
-    if let Some(f) = static_figure(input.curves, pts, reference.as_ref()) {
-        figures.push(("static".to_string(), f));
-    }
-    if let Some(f) = crate::answer::hover_figure(input.curves, pts) {
-        figures.push(("hover".to_string(), f));
-    }
-    figures.push(("residuals".to_string(), residual_figure(pts)));
+    })
+}
 
-    let standard = pts.iter().filter(|p| p.air.standard).count();
-    let air_sources: std::collections::BTreeSet<&str> = pts.iter().map(|p| p.air.source.as_str()).collect();
+/// The air of the points in one line: the density, or its range.
+fn air_line(pts: &[ComparedPoint]) -> String {
     let rho: Vec<f64> = pts.iter().map(|p| p.air.fluid.rho).collect();
     let (rho_lo, rho_hi) = rho
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), r| (a.min(*r), b.max(*r)));
-    let air_line = if (rho_hi - rho_lo) < 1e-9 {
+    if (rho_hi - rho_lo) < 1e-9 {
         format!("ρ = {:.4} kg/m³", rho_lo)
     } else {
         format!("ρ = {:.4}–{:.4} kg/m³", rho_lo, rho_hi)
-    };
+    }
+}
+
+/// What the reader is warned of: standard air assumed, points not scored, rows dropped, the
+/// prop file's notes.
+fn warnings(input: &ReportInput) -> Vec<String> {
+    let (pts, m) = (input.points, input.metrics);
+    let standard = pts.iter().filter(|p| p.air.standard).count();
     let mut warnings: Vec<String> = Vec::new();
     if standard > 0 {
         warnings.push(format!(
@@ -425,6 +420,196 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         ));
     }
     warnings.extend(input.prop_notes.iter().cloned());
+
+    warnings
+}
+
+/// The points' table rows, one per point: measured with its spread, predicted, errors, flags.
+fn points_table_html(h: &mut String, pts: &[ComparedPoint]) {
+    h.push_str("<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
+    for p in pts {
+        let pm = |q: &str| {
+            let v = p.measured.get(q).map_or("–".into(), sig);
+            match p.measured_sd.get(q) {
+                Some(s) if s > 0.0 => format!("{v} ± {}", sig(s)),
+                _ => v,
+            }
+        };
+        let _ = writeln!(
+            h,
+            "<tr{}><td>{}</td><td>{}</td><td>{}–{}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.3}</td><td>{}</td></tr>",
+            if p.scored() { "" } else { " class=\"flagged\"" },
+            p.file + 1,
+            esc(&p.label),
+            p.lines.0,
+            p.lines.1,
+            p.rpm,
+            sig(p.v),
+            sig(p.j),
+            p.air.fluid.rho,
+            pm("thrust"),
+            p.predicted.thrust.map_or("–".into(), sig),
+            p.relative_error("thrust").map_or("–".into(), pct),
+            pm("torque"),
+            p.predicted.torque.map_or("–".into(), sig),
+            p.relative_error("torque").map_or("–".into(), pct),
+            pm("ct"),
+            pm("cp"),
+            pm("eta"),
+            p.predicted.eta.map_or("–".into(), sig),
+            p.re75,
+            p.mach_tip,
+            esc(&p.flags.iter().chain(&p.model_flags).cloned().collect::<Vec<_>>().join("; "))
+        );
+    }
+}
+
+/// The Markdown summary: the headline (and the other code's), the trends, the metrics, the
+/// measured files.
+fn markdown(
+    input: &ReportInput,
+    air_line: &str,
+    mismatch: Option<&String>,
+    warnings: &[String],
+    reference: Option<&Scored>,
+    trends: &[String],
+    top: &[&MetricGroup],
+) -> String {
+    let (pts, m) = (input.points, input.metrics);
+    let mut md = String::new();
+    let _ = writeln!(md, "# Prediction vs measurement\n");
+    let _ = writeln!(
+        md,
+        "prop `{}` (D = {} m); {} file(s); {} points, {} scored; air: {}.\n",
+        input.prop,
+        sig(input.diameter),
+        input.files.len(),
+        pts.len(),
+        pts.len() - m.unscored,
+        air_line
+    );
+    for w in mismatch.into_iter().chain(warnings) {
+        let _ = writeln!(md, "> {w}\n");
+    }
+    let md_table = |md: &mut String, g: &MetricGroup| {
+        let _ = writeln!(md, "### {} ({} points)\n", g.name, g.points);
+        let _ = writeln!(md, "| {} |", METRIC_HEAD.join(" | "));
+        let _ = writeln!(md, "|{}", "---|".repeat(METRIC_HEAD.len()));
+        metric_rows(md, g, false);
+        md.push('\n');
+    };
+    md.push_str("## Headline (the scored window)\n\n");
+    for g in &m.headline {
+        md_table(&mut md, g);
+    }
+    if let Some(r) = reference {
+        let _ = writeln!(md, "## {}, on the same points\n", r.name);
+        for g in &r.metrics.headline {
+            md_table(&mut md, g);
+        }
+    }
+    if !trends.is_empty() {
+        md.push_str("## With speed\n\n");
+        for t in trends {
+            let _ = writeln!(md, "- {t}");
+        }
+        md.push('\n');
+    }
+    md.push_str("## Metrics\n\n");
+    for g in top {
+        md_table(&mut md, g);
+    }
+    md.push_str("## By RPM\n\n");
+    for g in &m.per_rpm {
+        md_table(&mut md, g);
+    }
+    md.push_str(&measured_files_md(&input.files));
+
+    md
+}
+
+/// The report's figures, by name: the coefficients, the static sweep, the hover figure of merit
+/// (where there are static points) and the residuals.
+fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figure)> {
+    let pts = input.points;
+    let mut figures = Vec::new();
+    if let Some(f) = coefficient_figure(input.curves, pts, reference) {
+        figures.push(("coefficients".to_string(), f));
+    }
+    if let Some(f) = static_figure(input.curves, pts, reference) {
+        figures.push(("static".to_string(), f));
+    }
+    if let Some(f) = crate::answer::hover_figure(input.curves, pts) {
+        figures.push(("hover".to_string(), f));
+    }
+    figures.push(("residuals".to_string(), residual_figure(pts)));
+    figures
+}
+
+/// The figures as inline SVG, each with its caption.
+fn figures_html(h: &mut String, figures: &[(String, Figure)], reference: Option<&Scored>) -> Result<(), PlotError> {
+    h.push_str("<h2>Figures</h2>\n");
+    for (name, f) in figures {
+        let caption = match name.as_str() {
+            "coefficients" => format!(
+                "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}.</figcaption>",
+                reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
+            ),
+            _ => String::new(),
+        };
+        let _ = writeln!(
+            h,
+            "<figure id=\"fig-{name}\">{}{caption}</figure>",
+            propbet_plot::svg_inline(f)?
+        );
+    }
+    Ok(())
+}
+
+/// The report as JSON: the prop, its files, the metrics (and the other code's headline), the
+/// trends, every point.
+fn json(input: &ReportInput, reference: Option<&Scored>, trends: &[String]) -> Result<serde_json::Value, PlotError> {
+    let (pts, m) = (input.points, input.metrics);
+    let json = serde_json::to_value(Json {
+        prop: &input.prop,
+        prop_notes: &input.prop_notes,
+        diameter_m: input.diameter,
+        command: &input.command,
+        files: input
+            .files
+            .iter()
+            .map(|f| FileJson {
+                path: &f.path,
+                set: f.set,
+            })
+            .collect(),
+        metrics: m,
+        speed_trends: trends,
+        points: pts,
+    })
+    .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
+    Ok(match (reference, json) {
+        (Some(r), serde_json::Value::Object(mut o)) => {
+            o.insert(
+                "reference".into(),
+                serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}),
+            );
+            serde_json::Value::Object(o)
+        }
+        (_, j) => j,
+    })
+}
+
+/// Builds the report.
+pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
+    let pts = input.points;
+    let m = input.metrics;
+    let reference = scored_reference(input);
+    let figures = figures(input, reference.as_ref());
+
+    let air_sources: std::collections::BTreeSet<&str> = pts.iter().map(|p| p.air.source.as_str()).collect();
+    let air_line = air_line(pts);
+    let warnings = warnings(input);
 
     // ---------- HTML ----------
     let mut h = String::with_capacity(2_000_000);
@@ -469,21 +654,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         }
         h.push_str("</ul>\n");
     }
-    h.push_str("<h2>Figures</h2>\n");
-    for (name, f) in &figures {
-        let caption = match name.as_str() {
-            "coefficients" => format!(
-                "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}.</figcaption>",
-                reference.as_ref().map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
-            ),
-            _ => String::new(),
-        };
-        let _ = writeln!(
-            h,
-            "<figure id=\"fig-{name}\">{}{caption}</figure>",
-            propbet_plot::svg_inline(f)?
-        );
-    }
+    figures_html(&mut h, &figures, reference.as_ref())?;
     let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * propbet_compare::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
     top.extend(m.static_points.iter());
@@ -502,42 +673,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         "<h2>Points</h2>\n<details><summary>{} points, {flagged} flagged (the reader's flags and the prediction's, such as thrust beyond momentum theory): open the table</summary>\n",
         pts.len()
     );
-    h.push_str("<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
-    for p in pts {
-        let pm = |q: &str| {
-            let v = p.measured.get(q).map_or("–".into(), sig);
-            match p.measured_sd.get(q) {
-                Some(s) if s > 0.0 => format!("{v} ± {}", sig(s)),
-                _ => v,
-            }
-        };
-        let _ = writeln!(
-            h,
-            "<tr{}><td>{}</td><td>{}</td><td>{}–{}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.3}</td><td>{}</td></tr>",
-            if p.scored() { "" } else { " class=\"flagged\"" },
-            p.file + 1,
-            esc(&p.label),
-            p.lines.0,
-            p.lines.1,
-            p.rpm,
-            sig(p.v),
-            sig(p.j),
-            p.air.fluid.rho,
-            pm("thrust"),
-            p.predicted.thrust.map_or("–".into(), sig),
-            p.relative_error("thrust").map_or("–".into(), pct),
-            pm("torque"),
-            p.predicted.torque.map_or("–".into(), sig),
-            p.relative_error("torque").map_or("–".into(), pct),
-            pm("ct"),
-            pm("cp"),
-            pm("eta"),
-            p.predicted.eta.map_or("–".into(), sig),
-            p.re75,
-            p.mach_tip,
-            esc(&p.flags.iter().chain(&p.model_flags).cloned().collect::<Vec<_>>().join("; "))
-        );
-    }
+    points_table_html(&mut h, pts);
     h.push_str("</table></details>\n");
     h.push_str(&measured_files_html(&input.files));
     h.push_str("<h2>Air</h2>\n<ul>");
@@ -546,84 +682,17 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     }
     h.push_str("</ul>\n<p class=\"note\">Density of moist air from T, p, RH (ideal-gas mixture, Buck saturation pressure); viscosity by Sutherland's law; speed of sound of dry air.</p>\n");
 
-    // ---------- Markdown ----------
-    let mut md = String::new();
-    let _ = writeln!(md, "# Prediction vs measurement\n");
-    let _ = writeln!(
-        md,
-        "prop `{}` (D = {} m); {} file(s); {} points, {} scored; air: {}.\n",
-        input.prop,
-        sig(input.diameter),
-        input.files.len(),
-        pts.len(),
-        pts.len() - m.unscored,
-        air_line
+    let md = markdown(
+        input,
+        &air_line,
+        mismatch.as_ref(),
+        &warnings,
+        reference.as_ref(),
+        &trends,
+        &top,
     );
-    for w in mismatch.iter().chain(&warnings) {
-        let _ = writeln!(md, "> {w}\n");
-    }
-    let md_table = |md: &mut String, g: &MetricGroup| {
-        let _ = writeln!(md, "### {} ({} points)\n", g.name, g.points);
-        let _ = writeln!(md, "| {} |", METRIC_HEAD.join(" | "));
-        let _ = writeln!(md, "|{}", "---|".repeat(METRIC_HEAD.len()));
-        metric_rows(md, g, false);
-        md.push('\n');
-    };
-    md.push_str("## Headline (the scored window)\n\n");
-    for g in &m.headline {
-        md_table(&mut md, g);
-    }
-    if let Some(r) = &reference {
-        let _ = writeln!(md, "## {}, on the same points\n", r.name);
-        for g in &r.metrics.headline {
-            md_table(&mut md, g);
-        }
-    }
-    if !trends.is_empty() {
-        md.push_str("## With speed\n\n");
-        for t in &trends {
-            let _ = writeln!(md, "- {t}");
-        }
-        md.push('\n');
-    }
-    md.push_str("## Metrics\n\n");
-    for g in &top {
-        md_table(&mut md, g);
-    }
-    md.push_str("## By RPM\n\n");
-    for g in &m.per_rpm {
-        md_table(&mut md, g);
-    }
-    md.push_str(&measured_files_md(&input.files));
 
-    let json = serde_json::to_value(Json {
-        prop: &input.prop,
-        prop_notes: &input.prop_notes,
-        diameter_m: input.diameter,
-        command: &input.command,
-        files: input
-            .files
-            .iter()
-            .map(|f| FileJson {
-                path: &f.path,
-                set: f.set,
-            })
-            .collect(),
-        metrics: m,
-        speed_trends: &trends,
-        points: pts,
-    })
-    .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
-    let json = match (&reference, json) {
-        (Some(r), serde_json::Value::Object(mut o)) => {
-            o.insert(
-                "reference".into(),
-                serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}),
-            );
-            serde_json::Value::Object(o)
-        }
-        (_, j) => j,
-    };
+    let json = json(input, reference.as_ref(), &trends)?;
     Ok(Report {
         html: page(&format!("propbet: {}", input.prop), "", &h),
         body: h,
