@@ -488,7 +488,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ),
     ("crates/report/src/diagnose.rs", "verdict", "to split"),
     ("crates/report/src/diagnose.rs", "build", "to split"),
-    ("crates/report/src/run.rs", "page", "to split"),
     (
         "tests/e2e/polars.rs",
         "polars_of_a_blade_make_a_prop_file_and_a_tabulated_model",

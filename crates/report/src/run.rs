@@ -23,7 +23,43 @@ pub fn page(
     if !plan.description.is_empty() {
         let _ = writeln!(h, "<p>{}</p>", esc(&plan.description));
     }
-    // The answer first: how close the prediction is, what is missing, and the outputs.
+    answer_html(&mut h, run, reference);
+    h.push_str(&outputs_html(plan, run));
+    let _ = writeln!(
+        h,
+        "<p class=\"note\">What this run did: {}.</p>",
+        esc(&what_it_does(plan))
+    );
+    let _ = writeln!(
+        h,
+        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}<a href=\"#problems\">every stage note</a></nav>",
+        if pages.is_empty() {
+            String::new()
+        } else {
+            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing, in detail</a>".into()
+        }
+    );
+    let problems = problems(run);
+    stages_html(&mut h, plan, run, &problems);
+
+    geometry_html(&mut h, plan, run)?;
+
+    polars_html(&mut h, run);
+
+    // Prediction.
+    h.push_str("<section id=\"prediction\"><h2>Prediction</h2>\n");
+    h.push_str(&propbet_plot::svg_inline(&sweep_figure(&run.sweep))?);
+    h.push_str("</section>\n");
+
+    for (id, body) in pages {
+        let _ = writeln!(h, "<section id=\"{id}\">\n{}\n</section>", nest(body));
+    }
+    notes_html(&mut h, &problems);
+    Ok(crate::page::page(&format!("propbet run: {}", plan.name), "", &h))
+}
+
+/// The answer first: how close the prediction is and what is missing.
+fn answer_html(h: &mut String, run: &RunOutcome, reference: Option<&serde_json::Value>) {
     if let Some(c) = &run.compared {
         h.push_str("<section id=\"answer\"><h2>How close the prediction is</h2>\n");
         h.push_str(&crate::answer::headline_html(&c.metrics, reference, &c.points));
@@ -41,23 +77,10 @@ pub fn page(
         }
         h.push_str("</section>\n");
     }
-    h.push_str(&outputs_html(plan, run));
-    let _ = writeln!(
-        h,
-        "<p class=\"note\">What this run did: {}.</p>",
-        esc(&what_it_does(plan))
-    );
-    let _ = writeln!(
-        h,
-        "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}<a href=\"#problems\">every stage note</a></nav>",
-        if pages.is_empty() {
-            String::new()
-        } else {
-            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing, in detail</a>".into()
-        }
-    );
-    let problems = problems(run);
-    // Stages.
+}
+
+/// How the report was made: each stage, its time, status and equivalent command.
+fn stages_html(h: &mut String, plan: &RunPlan, run: &RunOutcome, problems: &[(&'static str, usize, String)]) {
     h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
     for s in &run.stages {
         let _ = writeln!(
@@ -78,8 +101,10 @@ pub fn page(
         "</table>\n<p class=\"note\">case directory <code>{}</code>; outputs of each stage beside this report.</p>",
         esc(&plan.dir.display().to_string())
     );
+}
 
-    // Geometry.
+/// The geometry: the scan's summary, notes and figures, or the prop file it came from.
+fn geometry_html(h: &mut String, plan: &RunPlan, run: &RunOutcome) -> Result<(), PlotError> {
     h.push_str("<section id=\"geometry\"><h2>Geometry</h2>\n");
     match &run.scanned {
         Some(sc) => {
@@ -114,7 +139,11 @@ pub fn page(
     }
     h.push_str("</section>\n");
 
-    // Polars.
+    Ok(())
+}
+
+/// The section polars: what they cover and each station's QPROP fit.
+fn polars_html(h: &mut String, run: &RunOutcome) {
     h.push_str("<section id=\"polars\"><h2>Section polars</h2>\n");
     match &run.polars {
         Some(p) => {
@@ -158,17 +187,11 @@ pub fn page(
         None => h.push_str("<p>The prop file's own QPROP coefficients (no XFOIL stage in this case).</p>\n"),
     }
     h.push_str("</section>\n");
+}
 
-    // Prediction.
-    h.push_str("<section id=\"prediction\"><h2>Prediction</h2>\n");
-    h.push_str(&propbet_plot::svg_inline(&sweep_figure(&run.sweep))?);
-    h.push_str("</section>\n");
-
-    for (id, body) in pages {
-        let _ = writeln!(h, "<section id=\"{id}\">\n{}\n</section>", nest(body));
-    }
-    // Every stage's notes, grouped alike, collapsed at the end: each is also said beside the
-    // result it affects (the QPROP fit's beside the exported file, XFOIL's in the polars table).
+/// Every stage's notes, grouped alike, collapsed at the end: each is also said beside the
+/// result it affects (the QPROP fit's beside the exported file, XFOIL's in the polars table).
+fn notes_html(h: &mut String, problems: &[(&'static str, usize, String)]) {
     h.push_str("<section id=\"problems\"><h2>Every note of the stages</h2>\n");
     if problems.is_empty() {
         h.push_str("<p class=\"note\">No stage reported a problem.</p>\n");
@@ -178,7 +201,7 @@ pub fn page(
             "<details><summary>{} notes (grouped alike): open the list</summary>\n<ul class=\"problems\">",
             problems.len()
         );
-        for (stage, n, text) in &problems {
+        for (stage, n, text) in problems {
             let count = if *n > 1 {
                 format!("{n}×, for example: ")
             } else {
@@ -189,7 +212,6 @@ pub fn page(
         h.push_str("</ul></details>\n");
     }
     h.push_str("</section>\n");
-    Ok(crate::page::page(&format!("propbet run: {}", plan.name), "", &h))
 }
 
 /// A path under the run's output folder as a link relative to its report.
