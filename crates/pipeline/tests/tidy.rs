@@ -486,8 +486,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "reproduces_every_rpm_driven_qprop_run",
         "to split",
     ),
-    ("crates/report/src/diagnose.rs", "verdict", "to split"),
-    ("crates/report/src/diagnose.rs", "build", "to split"),
     (
         "tests/e2e/polars.rs",
         "polars_of_a_blade_make_a_prop_file_and_a_tabulated_model",

@@ -82,49 +82,56 @@ pub fn diagnosis_json(d: &Diagnosis) -> serde_json::Value {
     })
 }
 
+/// The verdict where nothing passes the tests: the candidates that hit a physical bound (how far
+/// the first would go there), then the best within its bounds.
+fn nothing_found(d: &Diagnosis) -> String {
+    let base = &d.ladder[0];
+    // Candidates whose fits ended on a physical bound are not answers: said first, with
+    // how far the first of them would go at its bound; then the best within its bounds.
+    let helpful = d.bounded_helpful();
+    let bounded: Vec<&str> = helpful.iter().map(|s| s.id.as_str()).collect();
+    let mut text = format!("Nothing significant: no effect passes the tests ({}).", d.unexplained());
+    if let Some(first) = helpful.first() {
+        text.push_str(&format!(
+            " {} hit {} physical bound{} ({}): the data want more than {} can give (at its bound {} takes \
+             the held-out error from {} to {}). The model is further from these measurements than a missing \
+             effect explains: check the geometry, the sections and the units.",
+            if bounded.len() == 1 {
+                "One candidate".to_string()
+            } else {
+                format!("{} candidates", bounded.len())
+            },
+            if bounded.len() == 1 { "its" } else { "their" },
+            if bounded.len() == 1 { "" } else { "s" },
+            bounded.join(", "),
+            if bounded.len() == 1 { "it" } else { "they" },
+            first.id,
+            pct(base.kfold_rms),
+            pct(first.kfold_rms),
+        ));
+    }
+    let inside = d
+        .ranking
+        .iter()
+        .find(|s| s.fit.is_some() && !s.hit_bound() && s.kfold_rms.is_finite());
+    if let Some(s) = inside {
+        text.push_str(&format!(
+            " The best candidate{}, {}, lowers the held-out error only from {} to {} (p = {}).",
+            if bounded.is_empty() { "" } else { " within its bounds" },
+            s.id,
+            pct(base.kfold_rms),
+            pct(s.kfold_rms),
+            sig(s.p_value)
+        ));
+    }
+    text
+}
+
 /// The one-paragraph verdict.
 pub fn verdict(d: &Diagnosis) -> String {
     let base = &d.ladder[0];
     if !d.found {
-        // Candidates whose fits ended on a physical bound are not answers: said first, with
-        // how far the first of them would go at its bound; then the best within its bounds.
-        let helpful = d.bounded_helpful();
-        let bounded: Vec<&str> = helpful.iter().map(|s| s.id.as_str()).collect();
-        let mut text = format!("Nothing significant: no effect passes the tests ({}).", d.unexplained());
-        if let Some(first) = helpful.first() {
-            text.push_str(&format!(
-                " {} hit {} physical bound{} ({}): the data want more than {} can give (at its bound {} takes \
-                 the held-out error from {} to {}). The model is further from these measurements than a missing \
-                 effect explains: check the geometry, the sections and the units.",
-                if bounded.len() == 1 {
-                    "One candidate".to_string()
-                } else {
-                    format!("{} candidates", bounded.len())
-                },
-                if bounded.len() == 1 { "its" } else { "their" },
-                if bounded.len() == 1 { "" } else { "s" },
-                bounded.join(", "),
-                if bounded.len() == 1 { "it" } else { "they" },
-                first.id,
-                pct(base.kfold_rms),
-                pct(first.kfold_rms),
-            ));
-        }
-        let inside = d
-            .ranking
-            .iter()
-            .find(|s| s.fit.is_some() && !s.hit_bound() && s.kfold_rms.is_finite());
-        if let Some(s) = inside {
-            text.push_str(&format!(
-                " The best candidate{}, {}, lowers the held-out error only from {} to {} (p = {}).",
-                if bounded.is_empty() { "" } else { " within its bounds" },
-                s.id,
-                pct(base.kfold_rms),
-                pct(s.kfold_rms),
-                sig(s.p_value)
-            ));
-        }
-        return text;
+        return nothing_found(d);
     }
     // The ladder's final answer, with its values: what the user should add. Effects whose
     // fitted value lies outside their physically expected range are calibration factors: they
@@ -395,6 +402,59 @@ fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
     }
 }
 
+/// The diagnosis in Markdown: the verdict, where the model fails, the ranking, the ladder, what
+/// is left, the measured files.
+fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry]) -> String {
+    let mut md = format!("# Diagnosis\n\n{verdict}\n\n## Where the model fails\n\n");
+    for s in &d.before {
+        let _ = writeln!(md, "- {}", s.text);
+    }
+    md.push_str("\n## Ranking\n\n| # | effect | fitted | RMS | held-out | leave-RPM-out | p | significant |\n|---|---|---|---|---|---|---|---|\n");
+    for (i, s) in d.ranking.iter().enumerate() {
+        match &s.note {
+            Some(n) => {
+                let remark = ladder_remark(d, s).map_or(String::new(), |r| format!(" {r}"));
+                let _ = writeln!(md, "| {} | {} | {n}{remark} | | | | | |", i + 1, s.id);
+            }
+            None => {
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                    i + 1,
+                    s.id,
+                    params_text(&s.params, Some(&s.id)),
+                    pct(s.rms),
+                    pct(s.kfold_rms),
+                    s.loro_rms.map_or("–".into(), pct),
+                    sig(s.p_value),
+                    if s.significant { "yes" } else { "no" }
+                );
+            }
+        }
+    }
+    md.push_str(
+        "\n## Ladder\n\n| step | model | RMS | held-out | thrust: J trend | thrust: RPM trend at fixed J |\n|---|---|---|---|---|---|\n",
+    );
+    for (i, r) in d.ladder.iter().enumerate() {
+        let _ = writeln!(
+            md,
+            "| {i} | {} | {} | {} | {} | {} |",
+            r.stack,
+            pct(r.rms),
+            pct(r.kfold_rms),
+            trend(r.thrust_j_trend),
+            trend(r.thrust_rpm_trend)
+        );
+    }
+    md.push_str("\n## What is left\n\n");
+    for s in &d.after {
+        let _ = writeln!(md, "- {}", s.text);
+    }
+    md.push('\n');
+    md.push_str(&measured_files_md(files));
+    md
+}
+
 /// Builds the report. The measured files (with their dropped rows) are listed on the page and
 /// in the Markdown, not in the body that the run's page nests (its compare section lists them).
 pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], command: &str) -> Result<Report, PlotError> {
@@ -462,61 +522,13 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
     for s in &d.after {
         h.push_str(&signature_html(s));
     }
-    let last = d.ladder.last().map(|r| r.stack.clone()).unwrap_or_default();
     let _ = write!(
         h,
         "</ul>\n<h2>Use it</h2>\n<p>Add the effects to any prediction or comparison: <code>{}</code></p>\n",
         esc(&effect_args(d).join(" "))
     );
-    let _ = last;
 
-    let mut md = format!("# Diagnosis\n\n{verdict}\n\n## Where the model fails\n\n");
-    for s in &d.before {
-        let _ = writeln!(md, "- {}", s.text);
-    }
-    md.push_str("\n## Ranking\n\n| # | effect | fitted | RMS | held-out | leave-RPM-out | p | significant |\n|---|---|---|---|---|---|---|---|\n");
-    for (i, s) in d.ranking.iter().enumerate() {
-        match &s.note {
-            Some(n) => {
-                let remark = ladder_remark(d, s).map_or(String::new(), |r| format!(" {r}"));
-                let _ = writeln!(md, "| {} | {} | {n}{remark} | | | | | |", i + 1, s.id);
-            }
-            None => {
-                let _ = writeln!(
-                    md,
-                    "| {} | {} | {} | {} | {} | {} | {} | {} |",
-                    i + 1,
-                    s.id,
-                    params_text(&s.params, Some(&s.id)),
-                    pct(s.rms),
-                    pct(s.kfold_rms),
-                    s.loro_rms.map_or("–".into(), pct),
-                    sig(s.p_value),
-                    if s.significant { "yes" } else { "no" }
-                );
-            }
-        }
-    }
-    md.push_str(
-        "\n## Ladder\n\n| step | model | RMS | held-out | thrust: J trend | thrust: RPM trend at fixed J |\n|---|---|---|---|---|---|\n",
-    );
-    for (i, r) in d.ladder.iter().enumerate() {
-        let _ = writeln!(
-            md,
-            "| {i} | {} | {} | {} | {} | {} |",
-            r.stack,
-            pct(r.rms),
-            pct(r.kfold_rms),
-            trend(r.thrust_j_trend),
-            trend(r.thrust_rpm_trend)
-        );
-    }
-    md.push_str("\n## What is left\n\n");
-    for s in &d.after {
-        let _ = writeln!(md, "- {}", s.text);
-    }
-    md.push('\n');
-    md.push_str(&measured_files_md(files));
+    let md = markdown(d, &verdict, files);
     Ok(Report {
         html: page(
             &format!("propbet diagnosis: {prop}"),
