@@ -8,14 +8,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{Rotation, StageSpec};
-use propbet_pipeline::validate::{
-    find_apc_file, uiuc_props, validate_prop, GeometrySource, Row, Sections, ValidateSpec, Validated,
-};
-use propbet_qprop::apc::pe0_name;
+use propbet_pipeline::validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
 use crate::output::{write_atomic, Num};
 use crate::polar::{Bar, XfoilProcess};
@@ -90,20 +87,7 @@ pub struct ValidateArgs {
 
 /// Runs `propbet validate`.
 pub fn run(a: &ValidateArgs) -> Result<bool> {
-    let mut geoms = uiuc_props(&a.uiuc)?;
-    if geoms.is_empty() {
-        bail!(
-            "{}: no UIUC propeller files in it (<family>_<D>x<P>_geom.txt, _static_*.txt or _<run>_<rpm>.txt)",
-            a.uiuc.display()
-        );
-    }
-    if let Some(only) = &a.only {
-        let keys: Vec<&str> = only.split(',').map(str::trim).collect();
-        geoms.retain(|g| keys.iter().any(|k| g.contains(k)));
-        if geoms.is_empty() {
-            bail!("{}: no UIUC propeller matches --only {only}", a.uiuc.display());
-        }
-    }
+    let props = select_props(&a.uiuc, a.only.as_deref())?;
     let spec = ValidateSpec {
         uiuc: a.uiuc.clone(),
         pe0: a.pe0.clone(),
@@ -127,14 +111,8 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         user_effects: a.user_effects.clone(),
     };
     let generic = Sections::parse_generic(&a.generic_section)?;
-    // A user-effects file that does not read stops here, before any prop, naming the file.
-    propbet_pipeline::model::effect_registry(a.user_effects.as_deref())?;
-    if !(a.ncrit.is_finite() && a.ncrit > 0.0 && a.ncrit <= 20.0) {
-        bail!(
-            "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
-            a.ncrit
-        );
-    }
+    // A setting or user-effects file that does not do stops here, before any prop.
+    spec.check()?;
     let inputs: Vec<&Path> = [a.uiuc.as_path(), a.pe0.as_path(), a.airfoils.as_path()]
         .into_iter()
         .chain(a.per3.as_deref())
@@ -142,88 +120,33 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
-    let mut rows = Vec::new();
-    let mut skipped = Vec::new();
-    let mut all_clean = true;
-    let total = geoms.len();
-    for (k, prop) in geoms.iter().enumerate() {
-        // APC's sections from its PE0 file; without one, the generic section (or the reason).
-        let apc: std::result::Result<Sections, String> = match pe0_name(prop) {
-            Some(n) => find_apc_file(&a.pe0, &n)
-                .map(Sections::Apc)
-                .ok_or_else(|| format!("no PE0 file {n} in {}", a.pe0.display())),
-            None => Err(propbet_qprop::apc::pe0_unknown(prop)),
-        };
-        let sections = match (apc, &generic) {
-            (Ok(apc), _) => apc,
-            (Err(why), Some(Sections::Assumed { airfoil, thickness, .. })) => Sections::Assumed {
-                airfoil: airfoil.clone(),
-                thickness: *thickness,
-                why,
-            },
-            (Err(why), _) => {
-                skipped.push((prop.clone(), why));
-                continue;
+    let quiet = a.xfoil.quiet;
+    let validation = validate_all(
+        &spec,
+        &props,
+        generic.as_ref(),
+        &mut |k, total, prop| {
+            eprintln!("propbet validate [{}/{total}] {prop}", k + 1);
+            let bar = Bar::new(quiet);
+            Box::new(move |d, t| bar.tick(d, t))
+        },
+        &mut |prop, v| {
+            write_prop_outputs(&spec, prop, v).map_err(|e| format!("{e:#}"))?;
+            for (f, why) in &v.row.left_out {
+                eprintln!("propbet: warning: {prop}: {f} left out: {why}");
             }
-        };
-        eprintln!("propbet validate [{}/{total}] {prop}", k + 1);
-        let bar = Bar::new(a.xfoil.quiet);
-        let result = validate_prop(&spec, prop, &sections, &|d, t| bar.tick(d, t))
-            .map_err(anyhow::Error::from)
-            .and_then(|v| write_prop_outputs(&spec, prop, &v).map(|()| v));
-        match result {
-            Ok(v) => {
-                for (f, why) in &v.row.left_out {
-                    eprintln!("propbet: warning: {prop}: {f} left out: {why}");
-                }
-                all_clean &= v.clean();
-                rows.push(v.row);
-            }
-            Err(e) => {
-                all_clean = false;
-                skipped.push((prop.clone(), format!("{e:#}")));
-            }
-        }
-    }
-    if rows.is_empty() {
-        bail!(
-            "{}: no propeller could be validated: {}",
-            a.uiuc.display(),
-            skipped
-                .iter()
-                .map(|(p, why)| format!("{p}: {why}"))
-                .collect::<Vec<_>>()
-                .join("; ")
-        );
-    }
-    let model = format!(
-        "{}, section model {}, Ncrit {}{}, rotational augmentation {}, drag factor {}",
-        spec.geometry.description(),
-        a.section_model,
-        a.ncrit,
-        spec.trip.map_or(", free transition".to_string(), |x| format!(
-            ", transition forced at x/c {x} at the latest"
-        )),
-        spec.rotation.name(),
-        spec.drag_factor
-    ) + &spec.user_effects.as_ref().map_or(String::new(), |p| {
-        format!(", user effects of {} among the candidates", p.display())
-    }) + &if spec.ncrit_effect.is_empty() {
-        String::new()
-    } else {
-        format!(
-            ", transition effect from tables at Ncrit {}",
-            propbet_pipeline::spec::ncrit_effect_text(&spec.ncrit_effect)
-        )
-    };
-    let (md, csv) = table(&rows, &skipped, &model);
+            Ok(())
+        },
+    )?;
+    let model = spec.model_text();
+    let (md, csv) = table(&validation.rows, &validation.skipped, &model)?;
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
-    let html = propbet_report::validate::html(&rows, &skipped, &model);
+    let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     lock.finish()?;
     println!("{md}");
-    Ok(all_clean)
+    Ok(validation.clean)
 }
 
 /// One prop's outputs: its geometry and sections, polars, and each stage's directory.
@@ -304,12 +227,12 @@ struct CsvRow<'a> {
     held_out_ladders: String,
 }
 
-fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> (String, Vec<u8>) {
+fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> Result<(String, Vec<u8>)> {
     let md = propbet_report::validate::markdown(rows, skipped, model);
     let mut csv = csv::Writer::from_writer(Vec::new());
     for r in rows {
         // Rows are structs: the header comes from the same fields as the values.
-        let _ = csv.serialize(CsvRow {
+        csv.serialize(CsvRow {
             prop: &r.prop,
             points: r.points,
             ct_median: Num::from(Some(r.ct[0].0)),
@@ -344,7 +267,10 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             zero_thrust_j_change_predicted: Num::from(r.zero_thrust_shift.and_then(|z| z.predicted_change())),
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
-        });
+        })?;
     }
-    (md, csv.into_inner().unwrap_or_default())
+    Ok((
+        md,
+        csv.into_inner().map_err(|e| anyhow::anyhow!("validation.csv: {e}"))?,
+    ))
 }

@@ -20,10 +20,12 @@ use crate::spec::{
 use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
 use crate::{Error, Result};
 
+mod all;
 mod blade;
 mod files;
 mod row;
 
+pub use all::{sections_for, select_props, validate_all, PropSections, Validation};
 pub use blade::pe0_table;
 use blade::{blade, Blade};
 use files::{cover, measured_files};
