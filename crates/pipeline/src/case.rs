@@ -322,25 +322,18 @@ impl RunPlan {
 }
 
 impl Case {
-    /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
-    /// `scan_options` turns the scan's flags (`--units`, `--stations` and the case's
-    /// `scan_args`) into the geometry pipeline's options: flags are the CLI's to read.
-    pub fn plan(
+    /// The scan stage's spec, where the case has a scan: its options from `[geometry]`.
+    fn scan_spec(
         &self,
         dir: &Path,
         out: &Path,
-        xfoil: &XfoilProcessSpec,
         scan_options: &dyn Fn(&[String]) -> Result<ScanOptions>,
-    ) -> Result<RunPlan> {
+    ) -> Result<Option<ScanSpec>> {
         let g = &self.geometry;
         let f = |rel: &str| dir.join(rel);
         let case_file = dir.join("case.toml");
         let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
-        let units = match (&g.prop, &g.units) {
-            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
-            _ => None,
-        };
-        let scan = match &g.scan {
+        Ok(match &g.scan {
             Some(file) => {
                 let mut flags = Vec::new();
                 if let Some(u) = &g.units {
@@ -377,12 +370,23 @@ impl Case {
                 })
             }
             None => None,
-        };
-        let geometry = match &g.scan {
-            Some(_) => out.join("scan/prop.qprop"),
-            None => f(g.prop.as_deref().unwrap_or_default()),
-        };
-        let polars = match &self.polars {
+        })
+    }
+
+    /// The polars stage's spec, where the case has `[polars]`, and whether its sections are the
+    /// scan's.
+    fn polars_spec(
+        &self,
+        dir: &Path,
+        out: &Path,
+        geometry: &Path,
+        units: Option<f64>,
+        xfoil: &XfoilProcessSpec,
+    ) -> Result<Option<(PolarsSpec, bool)>> {
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        Ok(match &self.polars {
             None => None,
             Some(p) => {
                 let airfoil = p.airfoil.as_ref().map(|a| {
@@ -415,7 +419,7 @@ impl Case {
                 let scanned = p.sections == "scan";
                 Some((
                     PolarsSpec {
-                        geometry: geometry.clone(),
+                        geometry: geometry.to_path_buf(),
                         units,
                         airfoil,
                         thickness,
@@ -454,51 +458,22 @@ impl Case {
                     scanned,
                 ))
             }
-        };
-        // The fitted prop file is in metres; a case's own prop file keeps its units. With
-        // tables, the polars are the section model (the prop file gives the blade).
-        let (prop, model_units) = match &polars {
-            Some(_) => (out.join("polars/prop.qprop"), None),
-            None => (geometry, units),
-        };
-        let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
-        let rotation = self
-            .polars
-            .as_ref()
-            .and_then(|p| p.rotation.as_deref())
-            .map(crate::spec::Rotation::parse)
-            .transpose()
-            .map_err(|e| at("[polars] rotation", e))?;
-        let model = ModelSpec {
-            units: model_units,
-            polars: tables.then(|| out.join("polars/polars.json")),
-            rotation: crate::spec::Rotation::or_default(rotation, tables),
-            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
-            ..ModelSpec::prop(prop)
-        };
+        })
+    }
+
+    /// The compare and diagnose stages' specs, where the case has `[measured]`.
+    fn compare_specs(
+        &self,
+        dir: &Path,
+        out: &Path,
+        model: ModelSpec,
+        state: Option<propbet_atmosphere::AirState>,
+    ) -> Result<Option<(CompareSpec, DiagnoseSpec)>> {
         let a = &self.atmosphere;
-        let state = a
-            .air
-            .as_deref()
-            .map(parse_atmosphere)
-            .transpose()
-            .map_err(|e| at("[atmosphere] air", e))?;
-        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
-        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
-        let predict = PredictSpec {
-            model: model.clone(),
-            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
-            axis: SweepAxis::J(js),
-            air: AirSpec {
-                rho: a.rho,
-                state,
-                ..AirSpec::default()
-            },
-            format: TableFormat::Csv,
-            out: Some(out.join("predict/sweep.csv")),
-            stations: None,
-        };
-        let compare = match &self.measured {
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        Ok(match &self.measured {
             None => None,
             Some(m) => {
                 let rpm_source = match m.rpm_source.as_deref() {
@@ -542,7 +517,77 @@ impl Case {
                     },
                 ))
             }
+        })
+    }
+
+    /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
+    /// `scan_options` turns the scan's flags (`--units`, `--stations` and the case's
+    /// `scan_args`) into the geometry pipeline's options: flags are the CLI's to read.
+    pub fn plan(
+        &self,
+        dir: &Path,
+        out: &Path,
+        xfoil: &XfoilProcessSpec,
+        scan_options: &dyn Fn(&[String]) -> Result<ScanOptions>,
+    ) -> Result<RunPlan> {
+        let g = &self.geometry;
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let units = match (&g.prop, &g.units) {
+            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
+            _ => None,
         };
+        let scan = self.scan_spec(dir, out, scan_options)?;
+        let geometry = match &g.scan {
+            Some(_) => out.join("scan/prop.qprop"),
+            None => f(g.prop.as_deref().unwrap_or_default()),
+        };
+        let polars = self.polars_spec(dir, out, &geometry, units, xfoil)?;
+        // The fitted prop file is in metres; a case's own prop file keeps its units. With
+        // tables, the polars are the section model (the prop file gives the blade).
+        let (prop, model_units) = match &polars {
+            Some(_) => (out.join("polars/prop.qprop"), None),
+            None => (geometry, units),
+        };
+        let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
+        let rotation = self
+            .polars
+            .as_ref()
+            .and_then(|p| p.rotation.as_deref())
+            .map(crate::spec::Rotation::parse)
+            .transpose()
+            .map_err(|e| at("[polars] rotation", e))?;
+        let model = ModelSpec {
+            units: model_units,
+            polars: tables.then(|| out.join("polars/polars.json")),
+            rotation: crate::spec::Rotation::or_default(rotation, tables),
+            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
+            ..ModelSpec::prop(prop)
+        };
+        let a = &self.atmosphere;
+        let state = a
+            .air
+            .as_deref()
+            .map(parse_atmosphere)
+            .transpose()
+            .map_err(|e| at("[atmosphere] air", e))?;
+        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
+        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
+        let predict = PredictSpec {
+            model: model.clone(),
+            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+            axis: SweepAxis::J(js),
+            air: AirSpec {
+                rho: a.rho,
+                state,
+                ..AirSpec::default()
+            },
+            format: TableFormat::Csv,
+            out: Some(out.join("predict/sweep.csv")),
+            stations: None,
+        };
+        let compare = self.compare_specs(dir, out, model, state)?;
         Ok(RunPlan {
             name: self.name.clone(),
             description: self.description.clone(),

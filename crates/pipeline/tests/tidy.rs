@@ -473,7 +473,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ("crates/measure/src/rcbenchmark.rs", "read", "to split"),
     ("crates/measure/src/reduce.rs", "reduce_log", "to split"),
     ("crates/measure/src/uiuc.rs", "read", "to split"),
-    ("crates/pipeline/src/case.rs", "plan", "to split"),
     ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
     ("crates/pipeline/src/validate.rs", "validate_prop", "to split"),
     ("crates/plot/src/lib.rs", "render", "to split"),
