@@ -10,7 +10,7 @@ use propbet_compare::metrics::{
     halves, regime_errors, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift,
     VALIDATION_J_WINDOW,
 };
-use propbet_qprop::PropFile;
+use propbet_qprop::{PropFile, PropRow};
 
 use crate::model::{as_written, LoadedProp, Model};
 use crate::run::{timed, StageRecord};
@@ -219,31 +219,22 @@ fn held_out(
     Ok((ct1, cp1, held_out_ladders))
 }
 
-/// Validates one prop with its `sections`.
-pub fn validate_prop(
-    spec: &ValidateSpec,
+/// The blade written as validate predicts it: its prop file (UIUC's stations, generic
+/// coefficients) and each station's section, as the polars stage takes them.
+fn geometry_and_sections(
     prop: &str,
-    sections: &Sections,
-    progress: &propbet_polar::Progress<'_>,
-) -> Result<Validated> {
-    let dir = spec.out.join(prop);
-    let Blade {
-        big_r,
-        table,
-        pe0,
-        assumed,
-        uiuc_geometry,
-        geometry_used,
-        rows,
-        airfoils,
-    } = blade(spec, prop, sections)?;
+    dir: &Path,
+    geometry_used: GeometrySource,
+    assumed: Option<&str>,
+    big_r: f64,
+    rows: Vec<PropRow>,
+    airfoils: &[(usize, String)],
+) -> Result<(LoadedProp, PolarsInput)> {
     let file = PropFile::metric(
         format!(
             "{prop} ({}, {})",
             geometry_used.description(),
-            assumed
-                .as_deref()
-                .map_or("APC PE0 sections".to_string(), |a| format!("sections assumed: {a}"))
+            assumed.map_or("APC PE0 sections".to_string(), |a| format!("sections assumed: {a}"))
         ),
         2.0,
         big_r,
@@ -259,18 +250,21 @@ pub fn validate_prop(
     let mut notes = Vec::new();
     let first = stages::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
     let foils = stages::station_foils(&foil_dir, texts, Some(&first), &mut notes)?;
-    let mut records = Vec::new();
+    let input = PolarsInput {
+        geometry: geometry.clone(),
+        foils,
+        foil_name: first.name.clone(),
+        notes,
+    };
+    Ok((geometry, input))
+}
 
-    let files::MeasuredFiles {
-        files: measured,
-        left_out,
-    } = measured_files(spec, prop)?;
-    let measured = MeasuredSpec::files(measured);
-    let (omegas, js) = cover(&measured)?;
-
-    // Polars.
-    let polars_spec = PolarsSpec {
-        geometry: geometry_path,
+/// The polars stage of one prop: the blade's stations and sections as written, over the
+/// operating points its measurements cover (`omegas`, `js`), with the spec's XFOIL settings.
+fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) -> Result<PolarsSpec> {
+    let foil_dir = dir.join("airfoils");
+    Ok(PolarsSpec {
+        geometry: dir.join("geometry.qprop"),
         units: None,
         airfoil: Some(foil_dir.join("station_00.dat").display().to_string()),
         thickness: None,
@@ -289,13 +283,111 @@ pub fn validate_prop(
         ncrit_effect: spec.ncrit_effect.clone(),
         out_prop: dir.join("prop.qprop"),
         out_polars: Some(dir.join("polars.json")),
+    })
+}
+
+/// A comparison stage, timed and recorded.
+fn compare_stage(spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>) -> Result<Compared> {
+    timed(
+        records,
+        StageSpec::Compare(spec.clone()),
+        || stages::compare(model, &spec.measured),
+        |c: &Compared| c.clean(),
+    )
+}
+
+/// What the calibration made: the diagnosis (and its spec), the ladder's effects, and the
+/// comparison with them and its model.
+struct Calibration {
+    dspec: DiagnoseSpec,
+    diagnosed: Diagnosed,
+    effects: Vec<String>,
+    compared: Compared,
+    model: Model,
+}
+
+/// The diagnosis of the prop's measurements with `model`, and the comparison with its
+/// ladder's effects (as the command line gives them).
+fn calibrate(
+    model_spec: ModelSpec,
+    model: &Model,
+    polars: &Polars,
+    measured: &MeasuredSpec,
+    dir: &Path,
+    records: &mut Vec<StageRecord>,
+) -> Result<Calibration> {
+    let dspec = DiagnoseSpec {
+        model: model_spec.clone(),
+        measured: measured.clone(),
+        effects: vec!["all".into()],
+        folds: crate::spec::DEFAULT_FOLDS,
+        max_steps: crate::spec::DEFAULT_MAX_STEPS,
+        window: VALIDATION_J_WINDOW,
+        out: dir.join("diagnose"),
     };
-    let input = PolarsInput {
-        geometry: geometry.clone(),
-        foils,
-        foil_name: first.name.clone(),
-        notes,
+    let diagnosed = timed(
+        records,
+        StageSpec::Diagnose(dspec.clone()),
+        || stages::diagnose(model, &dspec),
+        |_| true,
+    )?;
+    // Calibrated: the ladder's effects as the command line gives them.
+    let effects = diagnosed.diagnosis.final_effects();
+    let cal_spec = ModelSpec {
+        effects: effects.clone(),
+        ..model_spec
     };
+    let cal_model = Model::from_parts(&cal_spec, polars.prop.clone(), Some(&polars.blade), false)?;
+    let calibrated = compare_stage(
+        CompareSpec {
+            per3: None,
+            qprop_output: None,
+            model: cal_spec,
+            measured: measured.clone(),
+            out: dir.join("calibrated"),
+        },
+        &cal_model,
+        records,
+    )?;
+    Ok(Calibration {
+        dspec,
+        diagnosed,
+        effects,
+        compared: calibrated,
+        model: cal_model,
+    })
+}
+
+/// Validates one prop with its `sections`.
+pub fn validate_prop(
+    spec: &ValidateSpec,
+    prop: &str,
+    sections: &Sections,
+    progress: &propbet_polar::Progress<'_>,
+) -> Result<Validated> {
+    let dir = spec.out.join(prop);
+    let Blade {
+        big_r,
+        table,
+        pe0,
+        assumed,
+        uiuc_geometry,
+        geometry_used,
+        rows,
+        airfoils,
+    } = blade(spec, prop, sections)?;
+    let (geometry, input) =
+        geometry_and_sections(prop, &dir, geometry_used, assumed.as_deref(), big_r, rows, &airfoils)?;
+    let mut records = Vec::new();
+
+    let files::MeasuredFiles {
+        files: measured,
+        left_out,
+    } = measured_files(spec, prop)?;
+    let measured = MeasuredSpec::files(measured);
+    let (omegas, js) = cover(&measured)?;
+
+    let polars_spec = polars_spec(spec, &dir, omegas, js)?;
     let engine = stages::polar_engine(&spec.xfoil)?;
     let polars = timed(
         &mut records,
@@ -312,14 +404,6 @@ pub fn validate_prop(
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
-    let compare_stage = |spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord>| {
-        timed(
-            records,
-            StageSpec::Compare(spec.clone()),
-            || stages::compare(model, &spec.measured),
-            |c: &Compared| c.clean(),
-        )
-    };
     // APC's own prediction of the prop, drawn beside propbet's in its comparison.
     let per3_file = spec
         .per3
@@ -336,40 +420,14 @@ pub fn validate_prop(
         &model,
         &mut records,
     )?;
-    let dspec = DiagnoseSpec {
-        model: model_spec.clone(),
-        measured: measured.clone(),
-        effects: vec!["all".into()],
-        folds: crate::spec::DEFAULT_FOLDS,
-        max_steps: crate::spec::DEFAULT_MAX_STEPS,
-        window: VALIDATION_J_WINDOW,
-        out: dir.join("diagnose"),
-    };
-    let diagnosed = timed(
-        &mut records,
-        StageSpec::Diagnose(dspec.clone()),
-        || stages::diagnose(&model, &dspec),
-        |_| true,
-    )?;
-    // Calibrated: the ladder's effects as the command line gives them.
-    let effects = diagnosed.diagnosis.final_effects();
     let model_spec_all = model_spec.clone();
-    let cal_spec = ModelSpec {
-        effects: effects.clone(),
-        ..model_spec
-    };
-    let cal_model = Model::from_parts(&cal_spec, polars.prop.clone(), Some(&polars.blade), false)?;
-    let calibrated = compare_stage(
-        CompareSpec {
-            per3: None,
-            qprop_output: None,
-            model: cal_spec,
-            measured: measured.clone(),
-            out: dir.join("calibrated"),
-        },
-        &cal_model,
-        &mut records,
-    )?;
+    let Calibration {
+        dspec,
+        diagnosed,
+        effects,
+        compared: calibrated,
+        model: cal_model,
+    } = calibrate(model_spec, &model, &polars, &measured, &dir, &mut records)?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
     let (ct1, cp1, held_out_ladders) = held_out(&model, &dspec, &model_spec_all, &polars, &measured, &dir)?;
     let per3 = match &per3_file {

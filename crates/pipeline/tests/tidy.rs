@@ -474,7 +474,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ("crates/measure/src/reduce.rs", "reduce_log", "to split"),
     ("crates/measure/src/uiuc.rs", "read", "to split"),
     ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
-    ("crates/pipeline/src/validate.rs", "validate_prop", "to split"),
     ("crates/plot/src/lib.rs", "render", "to split"),
     ("crates/polar/src/blade.rs", "compute_blade", "to split"),
     ("crates/polar/src/reduce.rs", "fit_qprop", "to split"),
