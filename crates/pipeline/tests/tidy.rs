@@ -476,7 +476,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
     ("crates/plot/src/lib.rs", "render", "to split"),
     ("crates/polar/src/blade.rs", "compute_blade", "to split"),
-    ("crates/polar/src/reduce.rs", "fit_qprop", "to split"),
     ("crates/qprop/src/propfile.rs", "parse_prop", "to split"),
     (
         "crates/qprop/tests/qprop_reference.rs",

@@ -188,32 +188,10 @@ pub enum FitError {
     },
 }
 
-/// Fits QPROP's coefficients to `polars` (any order; the one nearest `re_ref` in ln Re gives
-/// lift and drag, the others REexp). `default_re_exp` is kept when there is a single polar.
-pub fn fit_qprop(
-    polars: &[Polar],
-    re_ref: f64,
-    weights: &AlphaWeights,
-    default_re_exp: f64,
-) -> Result<QpropFit, FitError> {
-    let centre = polars
-        .iter()
-        .min_by(|a, b| {
-            (a.re.ln() - re_ref.ln())
-                .abs()
-                .total_cmp(&(b.re.ln() - re_ref.ln()).abs())
-        })
-        .ok_or(FitError::NoPolar)?;
-    let too_few = |found| FitError::TooFewPoints { re: centre.re, found };
-    let (lo, hi) = centre.attached_range().ok_or(too_few(centre.points.len()))?;
-    let pts = &centre.points[lo..=hi];
-    if pts.len() < 3 {
-        return Err(too_few(pts.len()));
-    }
-    let mut notes = Vec::new();
-    let mut unfit = Vec::new();
-
-    // 1. Linear range, grown from the working angle.
+/// The linear range of the attached points `pts`, grown from the working angle (the weights'
+/// centre), the tolerance widened where XFOIL's curve is too wavy for five points on a line
+/// (very low Re).
+fn linear_range(pts: &[crate::table::PolarPoint], weights: &AlphaWeights) -> Grown {
     let seed_alpha = weights
         .centre()
         .unwrap_or(0.5 * (pts[0].alpha_deg + pts[pts.len() - 1].alpha_deg));
@@ -225,8 +203,6 @@ pub fn fit_qprop(
         })
         .unwrap_or(0)
         .clamp(1, pts.len() - 2);
-    // Widen the tolerance when XFOIL's curve is too wavy for even five points on a line
-    // (very low Re); the verdict then says so.
     let mut grown = grow_linear(pts, seed, LINEAR_RANGE_CL_TOL);
     for tol in [2.0 * LINEAR_RANGE_CL_TOL, 4.0 * LINEAR_RANGE_CL_TOL] {
         if grown.members.len() >= 5 {
@@ -237,28 +213,12 @@ pub fn fit_qprop(
             grown = wider;
         }
     }
-    let members = grown.members.clone();
-    let lin: Vec<crate::table::PolarPoint> = members.iter().map(|&k| pts[k]).collect();
-    let lin = &lin[..];
-    let range = [lin[0].alpha_deg, lin[lin.len() - 1].alpha_deg];
+    grown
+}
 
-    // 2. Lift line, weighted.
-    let xs: Vec<(f64, f64, f64)> = lin
-        .iter()
-        .map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg)))
-        .collect();
-    let (mut cl0_m, mut slope_deg) = line_fit(&xs);
-    if slope_deg <= 0.0 {
-        // No rising line anywhere: take the secant across the attached range.
-        let (a, b) = (pts[0], pts[pts.len() - 1]);
-        slope_deg = (b.cl - a.cl) / (b.alpha_deg - a.alpha_deg);
-        cl0_m = a.cl - slope_deg * a.alpha_deg;
-        unfit.push("XFOIL's lift does not rise with alpha near the working angle; CL_a is the secant across the attached range".into());
-    }
-    let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
-    let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
-
-    // 3. Drag polar: best CLCD0 on a grid over the linear range's cl.
+/// The two-parabola drag law of the linear range: the CLCD0 of least weighted error on a grid
+/// over its cl, and CD0, CD2u, CD2l there.
+fn drag_polar(lin: &[crate::table::PolarPoint], weights: &AlphaWeights) -> (f64, [f64; 3]) {
     let cl_lo = lin.iter().map(|p| p.cl).fold(f64::INFINITY, f64::min);
     let cl_hi = lin.iter().map(|p| p.cl).fold(f64::NEG_INFINITY, f64::max);
     let rows: Vec<(f64, f64, f64)> = lin.iter().map(|p| (p.cl, p.cd, weights.weight(p.alpha_deg))).collect();
@@ -274,21 +234,36 @@ pub fn fit_qprop(
             }
         }
     }
-    let (clcd0, [cd0, cd2u, cd2l]) = best.unwrap_or_else(|| {
+    best.unwrap_or_else(|| {
         let cd_min = rows.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
         (cl_lo, [cd_min, 0.0, 0.0])
-    });
-    // The law as the solver evaluates it (its Reynolds factor is 1 at the centre polar).
-    let law = QpropCoefficients {
-        cd0,
-        cd2u,
-        cd2l,
-        clcd0,
-        ..drag_only()
-    };
-    let cd_fit = |cl: f64| law.cd_profile(cl);
+    })
+}
 
-    // 4. Reynolds-number exponent from the other polars, at equal cl.
+/// The Reynolds-number exponent at equal cl and whether it was fitted: `default_re_exp`, noted,
+/// where no other polar overlaps the centre's cl.
+fn re_exponent(
+    polars: &[Polar],
+    centre: &Polar,
+    lin: &[crate::table::PolarPoint],
+    weights: &AlphaWeights,
+    default_re_exp: f64,
+    notes: &mut Vec<String>,
+) -> (f64, bool) {
+    let (sxy, sxx) = re_sums(polars, centre, lin, weights);
+    let re_exp_fitted = sxx > 0.0;
+    let re_exp = if re_exp_fitted { sxy / sxx } else { default_re_exp };
+    if !re_exp_fitted {
+        notes.push(format!(
+            "REexp = {default_re_exp} kept: no polar at another Re overlaps this one's cl"
+        ));
+    }
+    (re_exp, re_exp_fitted)
+}
+
+/// The weighted sums of the Reynolds-number exponent's least squares: ln(cd ratio) against
+/// ln(Re ratio) of the other polars at the linear range's cl.
+fn re_sums(polars: &[Polar], centre: &Polar, lin: &[crate::table::PolarPoint], weights: &AlphaWeights) -> (f64, f64) {
     let (mut sxy, mut sxx) = (0.0, 0.0);
     for other in polars.iter().filter(|p| (p.re / centre.re - 1.0).abs() > 1e-6) {
         let x = (other.re / centre.re).ln();
@@ -300,44 +275,12 @@ pub fn fit_qprop(
             }
         }
     }
-    let re_exp_fitted = sxx > 0.0;
-    let re_exp = if re_exp_fitted { sxy / sxx } else { default_re_exp };
-    if !re_exp_fitted {
-        notes.push(format!(
-            "REexp = {default_re_exp} kept: no polar at another Re overlaps this one's cl"
-        ));
-    }
+    (sxy, sxx)
+}
 
-    // Limits: XFOIL's extreme converged cl.
-    let cl_max = pts.iter().map(|p| p.cl).fold(f64::NEG_INFINITY, f64::max);
-    let cl_min = pts.iter().map(|p| p.cl).fold(f64::INFINITY, f64::min);
-    let all = &centre.points;
-    if hi == all.len() - 1 {
-        notes.push(format!(
-            "CLmax = {cl_max:.3} is the last converged point (alpha {} deg), not a stall XFOIL resolved",
-            all[hi].alpha_deg
-        ));
-    }
-    if lo == 0 {
-        notes.push(format!(
-            "CLmin = {cl_min:.3} is the first converged point (alpha {} deg), not a stall XFOIL resolved",
-            all[0].alpha_deg
-        ));
-    }
-
-    // 5. Residuals and verdict.
-    let residuals: Vec<FitResidual> = pts
-        .iter()
-        .enumerate()
-        .map(|(i, p)| FitResidual {
-            alpha_deg: p.alpha_deg,
-            cl_xfoil: p.cl,
-            cl_fit: cl_fit(p.alpha_deg),
-            cd_xfoil: p.cd,
-            cd_fit: cd_fit(p.cl),
-            linear: members.contains(&i),
-        })
-        .collect();
+/// The fit's errors over the linear range: cl's largest and weighted RMS, cd's relative largest
+/// and weighted RMS.
+fn fit_errors(residuals: &[FitResidual], weights: &AlphaWeights) -> [f64; 4] {
     let in_lin: Vec<&FitResidual> = residuals.iter().filter(|r| r.linear).collect();
     let wsum: f64 = in_lin.iter().map(|r| weights.weight(r.alpha_deg)).sum();
     let cl_max_error = in_lin.iter().map(|r| (r.cl_fit - r.cl_xfoil).abs()).fold(0.0, f64::max);
@@ -357,6 +300,47 @@ pub fn fit_qprop(
         .sum::<f64>()
         / wsum)
         .sqrt();
+    [cl_max_error, cl_rms_error, cd_max_rel_error, cd_rms_rel_error]
+}
+
+/// CLmin and CLmax: XFOIL's extreme converged cl over the attached points `pts` (`lo..=hi` of
+/// the centre polar's), noted where one is the polar's first or last point, not a stall.
+fn cl_limits(
+    pts: &[crate::table::PolarPoint],
+    centre: &Polar,
+    lo: usize,
+    hi: usize,
+    notes: &mut Vec<String>,
+) -> (f64, f64) {
+    let cl_max = pts.iter().map(|p| p.cl).fold(f64::NEG_INFINITY, f64::max);
+    let cl_min = pts.iter().map(|p| p.cl).fold(f64::INFINITY, f64::min);
+    let all = &centre.points;
+    if hi == all.len() - 1 {
+        notes.push(format!(
+            "CLmax = {cl_max:.3} is the last converged point (alpha {} deg), not a stall XFOIL resolved",
+            all[hi].alpha_deg
+        ));
+    }
+    if lo == 0 {
+        notes.push(format!(
+            "CLmin = {cl_min:.3} is the first converged point (alpha {} deg), not a stall XFOIL resolved",
+            all[0].alpha_deg
+        ));
+    }
+    (cl_min, cl_max)
+}
+
+/// What the linear range and the fit's errors say: into `unfit` (the law does not follow
+/// XFOIL) and `notes` (points left out).
+fn fit_verdict(
+    grown: &Grown,
+    pts: &[crate::table::PolarPoint],
+    range: [f64; 2],
+    linear_points: usize,
+    [cl_max_error, cd_max_rel_error]: [f64; 2],
+    unfit: &mut Vec<String>,
+    notes: &mut Vec<String>,
+) {
     if grown.tol > LINEAR_RANGE_CL_TOL {
         unfit.push(format!(
             "XFOIL's lift curve is straight only within {:.2} in cl near the working angle",
@@ -374,12 +358,10 @@ pub fn fit_qprop(
                 .join(", ")
         ));
     }
-    if range[1] - range[0] < 4.0 || lin.len() < 4 {
+    if range[1] - range[0] < 4.0 || linear_points < 4 {
         unfit.push(format!(
             "the lift curve is straight only over alpha {:.1}..{:.1} deg ({} points)",
-            range[0],
-            range[1],
-            lin.len()
+            range[0], range[1], linear_points
         ));
     }
     if cl_max_error > FIT_CL_TOL {
@@ -393,6 +375,12 @@ pub fn fit_qprop(
             cd_max_rel_error * 100.0
         ));
     }
+}
+
+/// Where the blade works outside the linear range, or where XFOIL did not converge near the
+/// angles it works at.
+fn working_angle_notes(weights: &AlphaWeights, range: [f64; 2], centre: &Polar) -> Vec<String> {
+    let mut unfit = Vec::new();
     if let AlphaWeights::Around { alphas_deg, .. } = weights {
         let outside: Vec<f64> = alphas_deg
             .iter()
@@ -422,6 +410,99 @@ pub fn fit_qprop(
             ));
         }
     }
+    unfit
+}
+
+/// Fits QPROP's coefficients to `polars` (any order; the one nearest `re_ref` in ln Re gives
+/// lift and drag, the others REexp). `default_re_exp` is kept when there is a single polar.
+pub fn fit_qprop(
+    polars: &[Polar],
+    re_ref: f64,
+    weights: &AlphaWeights,
+    default_re_exp: f64,
+) -> Result<QpropFit, FitError> {
+    let centre = polars
+        .iter()
+        .min_by(|a, b| {
+            (a.re.ln() - re_ref.ln())
+                .abs()
+                .total_cmp(&(b.re.ln() - re_ref.ln()).abs())
+        })
+        .ok_or(FitError::NoPolar)?;
+    let too_few = |found| FitError::TooFewPoints { re: centre.re, found };
+    let (lo, hi) = centre.attached_range().ok_or(too_few(centre.points.len()))?;
+    let pts = &centre.points[lo..=hi];
+    if pts.len() < 3 {
+        return Err(too_few(pts.len()));
+    }
+    let mut notes = Vec::new();
+    let mut unfit = Vec::new();
+
+    // 1. Linear range, grown from the working angle.
+    let grown = linear_range(pts, weights);
+    let members = grown.members.clone();
+    let lin: Vec<crate::table::PolarPoint> = members.iter().map(|&k| pts[k]).collect();
+    let lin = &lin[..];
+    let range = [lin[0].alpha_deg, lin[lin.len() - 1].alpha_deg];
+
+    // 2. Lift line, weighted.
+    let xs: Vec<(f64, f64, f64)> = lin
+        .iter()
+        .map(|p| (p.alpha_deg, p.cl, weights.weight(p.alpha_deg)))
+        .collect();
+    let (mut cl0_m, mut slope_deg) = line_fit(&xs);
+    if slope_deg <= 0.0 {
+        // No rising line anywhere: take the secant across the attached range.
+        let (a, b) = (pts[0], pts[pts.len() - 1]);
+        slope_deg = (b.cl - a.cl) / (b.alpha_deg - a.alpha_deg);
+        cl0_m = a.cl - slope_deg * a.alpha_deg;
+        unfit.push("XFOIL's lift does not rise with alpha near the working angle; CL_a is the secant across the attached range".into());
+    }
+    let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
+    let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
+
+    // 3. Drag polar: best CLCD0 on a grid over the linear range's cl.
+    let (clcd0, [cd0, cd2u, cd2l]) = drag_polar(lin, weights);
+    // The law as the solver evaluates it (its Reynolds factor is 1 at the centre polar).
+    let law = QpropCoefficients {
+        cd0,
+        cd2u,
+        cd2l,
+        clcd0,
+        ..drag_only()
+    };
+    let cd_fit = |cl: f64| law.cd_profile(cl);
+
+    // 4. Reynolds-number exponent from the other polars, at equal cl.
+    let (re_exp, re_exp_fitted) = re_exponent(polars, centre, lin, weights, default_re_exp, &mut notes);
+
+    // Limits: XFOIL's extreme converged cl.
+    let (cl_min, cl_max) = cl_limits(pts, centre, lo, hi, &mut notes);
+
+    // 5. Residuals and verdict.
+    let residuals: Vec<FitResidual> = pts
+        .iter()
+        .enumerate()
+        .map(|(i, p)| FitResidual {
+            alpha_deg: p.alpha_deg,
+            cl_xfoil: p.cl,
+            cl_fit: cl_fit(p.alpha_deg),
+            cd_xfoil: p.cd,
+            cd_fit: cd_fit(p.cl),
+            linear: members.contains(&i),
+        })
+        .collect();
+    let [cl_max_error, cl_rms_error, cd_max_rel_error, cd_rms_rel_error] = fit_errors(&residuals, weights);
+    fit_verdict(
+        &grown,
+        pts,
+        range,
+        lin.len(),
+        [cl_max_error, cd_max_rel_error],
+        &mut unfit,
+        &mut notes,
+    );
+    unfit.extend(working_angle_notes(weights, range, centre));
     let mut coeffs = QpropCoefficients {
         cl0: cl0_m * beta,
         cl_a: slope_deg.to_degrees() * beta,
