@@ -530,48 +530,8 @@ pub fn diagnose(
         fit: base_fit,
     };
     let mut ladder = vec![baseline.rung(data, None)];
-    let mut ranking = Vec::new();
-    let mut remaining: Vec<Arc<dyn Effect>> = candidates.to_vec();
-    let mut current = baseline.clone();
-    let mut last_p = None;
     let mut dropped: Vec<(String, String)> = Vec::new();
-    // Forward: add the best significant candidate while there is one.
-    for step in 0..opts.max_steps {
-        if remaining.is_empty() {
-            break;
-        }
-        let ranked = rank(
-            model,
-            data,
-            &current,
-            &remaining,
-            &f,
-            opts.alpha,
-            repeatability.as_ref(),
-        )?;
-        let pick = ranked.iter().find(|s| s.significant).cloned();
-        if step == 0 {
-            ranking = ranked;
-        }
-        let Some(Scored {
-            id,
-            fit: Some(fit),
-            kfold_rms,
-            loro_rms,
-            p_value,
-            ..
-        }) = pick
-        else {
-            break;
-        };
-        remaining.retain(|e| e.id() != id);
-        last_p = Some(p_value);
-        current = Evaluated {
-            fit,
-            kfold: kfold_rms,
-            loro: loro_rms,
-        };
-    }
+    let (ranking, mut current, last_p) = forward(model, data, candidates, &baseline, &f, opts, repeatability.as_ref())?;
     match current.fit.stack.active.len() {
         0 => {}
         1 => ladder.push(current.rung(data, last_p)),
@@ -581,46 +541,19 @@ pub fn diagnose(
             // its bounds (a rung is an answer too: an effect on its bound is none, and the set's
             // others can free it at a later rung); only where every one would end on a bound,
             // the best of them.
-            let refined = refine(model, data, current, candidates, &f, opts.alpha)?;
-            let refined = best_pair(model, data, refined, &ranking, candidates, &f)?;
-            let mut set = refined.effects();
-            let mut cur = baseline;
-            while !set.is_empty() {
-                let mut tried: Vec<Evaluated> = Vec::with_capacity(set.len());
-                for e in &set {
-                    let mut effects = cur.effects();
-                    effects.push(e.clone());
-                    let warm = if set.len() == 1 {
-                        &refined.fit.stack
-                    } else {
-                        &cur.fit.stack
-                    };
-                    tried.push(evaluate(model, data, effects, warm, &f)?);
-                }
-                let mut refusals: Vec<Option<String>> = tried
-                    .iter()
-                    .map(|ev| refusal(&cur.fit, &ev.fit, repeatability.as_ref()))
-                    .collect();
-                let options: Vec<(f64, bool)> = tried
-                    .iter()
-                    .zip(&refusals)
-                    .map(|(ev, why)| (ev.score(), why.is_none()))
-                    .collect();
-                let Some(i) = rung_choice(&options) else {
-                    break;
-                };
-                let ev = tried.swap_remove(i);
-                let gone = set.remove(i);
-                if let Some(why) = refusals.swap_remove(i) {
-                    // No effect of the set can be a rung here: the ladder stops, and says why.
-                    dropped.push((gone.id().to_string(), why));
-                    break;
-                }
-                let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
-                ladder.push(ev.rung(data, Some(p)));
-                cur = ev;
-            }
-            current = cur;
+            current = rebuild_ladder(
+                model,
+                data,
+                current,
+                candidates,
+                baseline,
+                &ranking,
+                &f,
+                opts,
+                repeatability.as_ref(),
+                &mut ladder,
+                &mut dropped,
+            )?;
         }
     }
     // Alike candidates are looked for where the answer is one effect: a ladder of several is
@@ -659,8 +592,10 @@ pub fn diagnose(
 }
 
 mod candidate;
+mod steps;
 
 use candidate::*;
+use steps::{forward, rebuild_ladder};
 
 #[cfg(test)]
 mod tests;
