@@ -169,6 +169,71 @@ fn seeded_planes(pts: &[Vector3<f64>], seeds: &[Vector3<f64>], tol: f64, reach: 
     Ok(out)
 }
 
+/// The box fitted in one orientation: the plane groups' directions onto the axes `perm` with
+/// the signs `signs` (bit g for group g), None where the rotation does not exist, the normals do
+/// not line up or the opposite faces' scales disagree.
+fn orientation(
+    pts: &[Vector3<f64>],
+    planes: &[Plane],
+    groups: &[Vec<usize>],
+    dims: [f64; 3],
+    perm: [usize; 3],
+    signs: u32,
+) -> Option<BoxFit> {
+    let sg = |g: usize| if signs >> g & 1 == 1 { -1.0 } else { 1.0 };
+    // Kabsch: R n_g ≈ sg e_perm(g).
+    let mut h = Matrix3::zeros();
+    for (g, grp) in groups.iter().enumerate() {
+        let mut e = Vector3::zeros();
+        e[perm[g]] = sg(g);
+        h += e * planes[grp[0]].n.transpose();
+    }
+    let svd = h.svd(true, true);
+    let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
+        return None;
+    };
+    let rot = u * vt;
+    if rot.determinant() < 0.0 {
+        return None;
+    }
+    let ok = groups.iter().enumerate().all(|(g, grp)| {
+        let mut e = Vector3::zeros();
+        e[perm[g]] = sg(g);
+        (rot * planes[grp[0]].n - e).norm() < 0.3
+    });
+    if !ok {
+        return None;
+    }
+    // Face of each plane: (axis, sign).
+    let faces: Vec<(usize, f64)> = planes
+        .iter()
+        .map(|p| {
+            let v = rot * p.n;
+            let a = v.iamax();
+            (a, v[a].signum())
+        })
+        .collect();
+    // Scale from the opposite pairs.
+    let scales: Vec<f64> = groups
+        .iter()
+        .filter(|g| g.len() == 2)
+        .map(|g| dims[faces[g[0]].0] / (planes[g[0]].d + planes[g[1]].d))
+        .collect();
+    let s0 = scales.iter().sum::<f64>() / scales.len() as f64;
+    let spread = scales.iter().map(|s| (s / s0 - 1.0).abs()).fold(0.0, f64::max);
+    if spread > 0.03 {
+        return None;
+    }
+    let mut t = Vector3::zeros();
+    let mut cnt = Vector3::<f64>::zeros();
+    for (p, &(a, sgn)) in planes.iter().zip(&faces) {
+        t[a] += sgn * (0.5 * dims[a] - s0 * p.d);
+        cnt[a] += 1.0;
+    }
+    let t = t.component_div(&cnt);
+    Some(refine(pts, planes, &faces, dims, rot, s0, t))
+}
+
 /// Registers box points to a box of `dims` [mm]. `hub_hint`: the centre of the propeller's
 /// points in cloud coordinates and the box centre's position in the propeller frame [mm]; the
 /// mapping that puts the propeller nearest the hub is kept.
@@ -250,59 +315,7 @@ pub fn register_box(
     let mut cands = Vec::new();
     for perm in perms {
         for signs in 0..8u32 {
-            let sg = |g: usize| if signs >> g & 1 == 1 { -1.0 } else { 1.0 };
-            // Kabsch: R n_g ≈ sg e_perm(g).
-            let mut h = Matrix3::zeros();
-            for (g, grp) in groups.iter().enumerate() {
-                let mut e = Vector3::zeros();
-                e[perm[g]] = sg(g);
-                h += e * planes[grp[0]].n.transpose();
-            }
-            let svd = h.svd(true, true);
-            let (Some(u), Some(vt)) = (svd.u, svd.v_t) else {
-                continue;
-            };
-            let rot = u * vt;
-            if rot.determinant() < 0.0 {
-                continue;
-            }
-            let ok = groups.iter().enumerate().all(|(g, grp)| {
-                let mut e = Vector3::zeros();
-                e[perm[g]] = sg(g);
-                (rot * planes[grp[0]].n - e).norm() < 0.3
-            });
-            if !ok {
-                continue;
-            }
-            // Face of each plane: (axis, sign).
-            let faces: Vec<(usize, f64)> = planes
-                .iter()
-                .map(|p| {
-                    let v = rot * p.n;
-                    let a = v.iamax();
-                    (a, v[a].signum())
-                })
-                .collect();
-            // Scale from the opposite pairs.
-            let scales: Vec<f64> = groups
-                .iter()
-                .filter(|g| g.len() == 2)
-                .map(|g| dims[faces[g[0]].0] / (planes[g[0]].d + planes[g[1]].d))
-                .collect();
-            let s0 = scales.iter().sum::<f64>() / scales.len() as f64;
-            let spread = scales.iter().map(|s| (s / s0 - 1.0).abs()).fold(0.0, f64::max);
-            if spread > 0.03 {
-                continue;
-            }
-            let mut t = Vector3::zeros();
-            let mut cnt = Vector3::<f64>::zeros();
-            for (p, &(a, sgn)) in planes.iter().zip(&faces) {
-                t[a] += sgn * (0.5 * dims[a] - s0 * p.d);
-                cnt[a] += 1.0;
-            }
-            let t = t.component_div(&cnt);
-            let fit = refine(pts, &planes, &faces, dims, rot, s0, t);
-            cands.push(fit);
+            cands.extend(orientation(pts, &planes, &groups, dims, perm, signs));
         }
     }
     if cands.is_empty() {

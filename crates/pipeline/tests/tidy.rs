@@ -466,7 +466,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ),
     ("crates/cli/src/run.rs", "run", "to split"),
     ("crates/cli/src/scan.rs", "write", "to split"),
-    ("crates/geometry/src/boxfit.rs", "register_box", "to split"),
     ("crates/geometry/src/scan.rs", "scan_cloud_mm", "to split"),
     ("crates/geometry/src/scan/sections.rs", "finish", "to split"),
     ("crates/measure/src/rcbenchmark.rs", "read", "to split"),
