@@ -131,66 +131,18 @@ pub(super) fn finish<S: Surface + Sync + ScanSurface>(
     let blades = frame.blades;
     let hub = hub_radius(local, 0.5 * tip, 0.25);
     // Root: the first radius beyond the hub where blade 0 has a section.
-    let mut root = hub.unwrap_or(0.0);
-    {
-        let step = 0.25f64.max(tip / 4000.0);
-        let mut r = root + step;
-        while r < tip {
-            if split_blades(&local.cylinder_cut(r), blades)[0].len() >= 8 {
-                root = r;
-                break;
-            }
-            r += step;
-        }
-    }
+    let root = root_radius(local, hub, tip, blades);
     // First pass: each station cut, measured and fitted from its own measure.
     let cuts: Vec<Result<Cut, Failed>> = opts
         .stations
         .par_iter()
-        .map(|&x| {
-            let r = x * tip;
-            let fail = |reason: String| Failed { r_r: x, reason };
-            if r <= root {
-                return Err(fail(format!("r = {r:.2} mm is inside the hub / root (blades begin at {root:.2} mm)")));
-            }
-            let secs = section_at(local, r, opts.kind, blades);
-            let pts = &secs[0];
-            if pts.len() < MIN_SECTION_POINTS {
-                return Err(fail(format!(
-                    "only {} points in the section at r = {r:.2} mm (at least {MIN_SECTION_POINTS} needed): the scan is too sparse here",
-                    pts.len()
-                )));
-            }
-            let shape = measure(pts, r).ok_or_else(|| fail("the section could not be measured".into()))?;
-            let uw: Vec<(f64, f64)> = pts.iter().map(|&(t, z)| (r * t, z)).collect();
-            let naca = fit_naca(&uw, &shape).ok_or_else(|| fail("the NACA fit failed".into()))?;
-            Ok(Cut { x, r, secs, shape, uw, naca })
-        })
+        .map(|&x| cut_station(local, x, tip, root, opts, blades))
         .collect();
     // Second pass: the NACA fit started again from each neighbour's shape where it differs
     // by more than 1 % t/c, 0.5 % camber or 0.1 camber position (closer starts end at the
     // station's own fit: tried on the APC, BladeX and Aerostar meshes);
     // it replaces the station's own fit when its objective is lower by more than RESEED_GAIN.
-    let reseeded: Vec<Option<NacaFit>> = (0..cuts.len())
-        .into_par_iter()
-        .map(|i| {
-            let c = cuts[i].as_ref().ok()?;
-            let own = c.naca.shape();
-            let starts: Vec<[f64; 3]> = [i.checked_sub(1), Some(i + 1)]
-                .into_iter()
-                .flatten()
-                .filter_map(|j| cuts.get(j)?.as_ref().ok())
-                .map(|n| n.naca.shape())
-                .filter(|s| {
-                    (s[0] - own[0]).abs() > 0.01 || (s[1] - own[1]).abs() > 0.005 || (s[2] - own[2]).abs() > 0.1
-                })
-                .collect();
-            if starts.is_empty() {
-                return None;
-            }
-            fit_naca_from(&c.uw, &c.shape, &starts).filter(|f| f.cost < c.naca.cost * (1.0 - RESEED_GAIN))
-        })
-        .collect();
+    let reseeded: Vec<Option<NacaFit>> = (0..cuts.len()).into_par_iter().map(|i| reseed(&cuts, i)).collect();
     let improved = reseeded.iter().filter(|f| f.is_some()).count();
     if improved > 0 {
         notes.push(format!(
@@ -200,41 +152,7 @@ pub(super) fn finish<S: Surface + Sync + ScanSurface>(
     let results: Vec<Result<ScanStation, Failed>> = cuts
         .into_par_iter()
         .zip(reseeded)
-        .map(|(cut, better)| {
-            let Cut {
-                x, r, secs, uw, naca, ..
-            } = cut?;
-            let naca = better.unwrap_or(naca);
-            let cst = fit_cst(&uw, &naca);
-            let ((t_c, t_pos), (camber, camber_pos)) = match &cst {
-                Some(c) => c.thickness_camber(),
-                None => ((naca.t_c, 0.3), (naca.camber, naca.camber_pos)),
-            };
-            let spread = {
-                let b: Vec<f64> = secs.iter().filter_map(|p| measure(p, r)).map(|s| s.beta).collect();
-                b.iter().copied().fold(f64::NEG_INFINITY, f64::max) - b.iter().copied().fold(f64::INFINITY, f64::min)
-            };
-            let (sb, cb) = naca.beta.sin_cos();
-            let mid = (naca.le.0 - 0.5 * naca.chord * cb, naca.le.1 - 0.5 * naca.chord * sb);
-            Ok(ScanStation {
-                r_r: x,
-                r: r / MM,
-                chord: naca.chord / MM,
-                beta: naca.beta,
-                t_c,
-                t_pos,
-                camber,
-                camber_pos,
-                le_offset: naca.le.0 / MM,
-                skew: mid.0 / r,
-                rake: mid.1 / MM,
-                naca: naca.scaled(1.0 / MM),
-                cst: cst.map(|c| c.scaled(1.0 / MM)),
-                points: secs[0].len(),
-                blade_spread: spread,
-                uw: uw.iter().map(|&(u, w)| (u / MM, w / MM)).collect(),
-            })
-        })
+        .map(|(cut, better)| station(cut?, better))
         .collect();
     let (mut stations, mut failed) = (Vec::new(), Vec::new());
     for r in results {
@@ -274,6 +192,114 @@ pub(super) fn finish<S: Surface + Sync + ScanSurface>(
             surface: local.aligned(),
             blade: blade_labels(local, blades, root, tip),
         },
+    })
+}
+
+/// The root: the first radius beyond the hub where blade 0 has a section.
+fn root_radius<S: Surface + ScanSurface>(local: &S, hub: Option<f64>, tip: f64, blades: usize) -> f64 {
+    let mut root = hub.unwrap_or(0.0);
+    let step = 0.25f64.max(tip / 4000.0);
+    let mut r = root + step;
+    while r < tip {
+        if split_blades(&local.cylinder_cut(r), blades)[0].len() >= 8 {
+            root = r;
+            break;
+        }
+        r += step;
+    }
+    root
+}
+
+/// One station cut, measured and fitted from its own measure (the first pass).
+fn cut_station<S: Surface + ScanSurface>(
+    local: &S,
+    x: f64,
+    tip: f64,
+    root: f64,
+    opts: &MmOptions,
+    blades: usize,
+) -> Result<Cut, Failed> {
+    let r = x * tip;
+    let fail = |reason: String| Failed { r_r: x, reason };
+    if r <= root {
+        return Err(fail(format!(
+            "r = {r:.2} mm is inside the hub / root (blades begin at {root:.2} mm)"
+        )));
+    }
+    let secs = section_at(local, r, opts.kind, blades);
+    let pts = &secs[0];
+    if pts.len() < MIN_SECTION_POINTS {
+        return Err(fail(format!(
+            "only {} points in the section at r = {r:.2} mm (at least {MIN_SECTION_POINTS} needed): the scan is too sparse here",
+            pts.len()
+        )));
+    }
+    let shape = measure(pts, r).ok_or_else(|| fail("the section could not be measured".into()))?;
+    let uw: Vec<(f64, f64)> = pts.iter().map(|&(t, z)| (r * t, z)).collect();
+    let naca = fit_naca(&uw, &shape).ok_or_else(|| fail("the NACA fit failed".into()))?;
+    Ok(Cut {
+        x,
+        r,
+        secs,
+        shape,
+        uw,
+        naca,
+    })
+}
+
+/// Station `i`'s NACA fit started again from its neighbours' shapes (the second pass), where
+/// one differs and the fit is better by more than [`RESEED_GAIN`].
+fn reseed(cuts: &[Result<Cut, Failed>], i: usize) -> Option<NacaFit> {
+    let c = cuts[i].as_ref().ok()?;
+    let own = c.naca.shape();
+    let starts: Vec<[f64; 3]> = [i.checked_sub(1), Some(i + 1)]
+        .into_iter()
+        .flatten()
+        .filter_map(|j| cuts.get(j)?.as_ref().ok())
+        .map(|n| n.naca.shape())
+        .filter(|s| (s[0] - own[0]).abs() > 0.01 || (s[1] - own[1]).abs() > 0.005 || (s[2] - own[2]).abs() > 0.1)
+        .collect();
+    if starts.is_empty() {
+        return None;
+    }
+    fit_naca_from(&c.uw, &c.shape, &starts).filter(|f| f.cost < c.naca.cost * (1.0 - RESEED_GAIN))
+}
+
+/// A station from its cut and, where the second pass found one, its better NACA fit: the CST
+/// fit, thickness and camber, and the section's place on the blade in SI.
+fn station(cut: Cut, better: Option<NacaFit>) -> Result<ScanStation, Failed> {
+    let Cut {
+        x, r, secs, uw, naca, ..
+    } = cut;
+    let naca = better.unwrap_or(naca);
+    let cst = fit_cst(&uw, &naca);
+    let ((t_c, t_pos), (camber, camber_pos)) = match &cst {
+        Some(c) => c.thickness_camber(),
+        None => ((naca.t_c, 0.3), (naca.camber, naca.camber_pos)),
+    };
+    let spread = {
+        let b: Vec<f64> = secs.iter().filter_map(|p| measure(p, r)).map(|s| s.beta).collect();
+        b.iter().copied().fold(f64::NEG_INFINITY, f64::max) - b.iter().copied().fold(f64::INFINITY, f64::min)
+    };
+    let (sb, cb) = naca.beta.sin_cos();
+    let mid = (naca.le.0 - 0.5 * naca.chord * cb, naca.le.1 - 0.5 * naca.chord * sb);
+    Ok(ScanStation {
+        r_r: x,
+        r: r / MM,
+        chord: naca.chord / MM,
+        beta: naca.beta,
+        t_c,
+        t_pos,
+        camber,
+        camber_pos,
+        le_offset: naca.le.0 / MM,
+        skew: mid.0 / r,
+        rake: mid.1 / MM,
+        naca: naca.scaled(1.0 / MM),
+        cst: cst.map(|c| c.scaled(1.0 / MM)),
+        points: secs[0].len(),
+        blade_spread: spread,
+        uw: uw.iter().map(|&(u, w)| (u / MM, w / MM)).collect(),
     })
 }
 
