@@ -26,6 +26,80 @@ fn last_number(line: &str) -> Option<f64> {
         .next_back()
 }
 
+/// One data row (file line `line`): a measured point, or why it is dropped. `file_rpm` is the
+/// sweep's RPM (None: a static test, whose rows give it).
+fn row(line: usize, l: &str, cols: &[String], file_rpm: Option<f64>) -> Result<MeasuredPoint, Dropped> {
+    let cells: Vec<&str> = l.split_whitespace().collect();
+    let vals: Vec<Option<f64>> = cells
+        .iter()
+        .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
+        .collect();
+    if vals.len() < 3 {
+        return Err(Dropped {
+            line,
+            reason: DropReason::Missing,
+            detail: format!("{} values, 3 needed", vals.len()),
+        });
+    }
+    if let Some(k) = vals[..3].iter().position(Option::is_none) {
+        return Err(Dropped {
+            line,
+            reason: DropReason::NotANumber,
+            detail: format!(
+                "{} = '{}'",
+                propbet_units::excerpt(&cols[k]),
+                propbet_units::excerpt(cells[k])
+            ),
+        });
+    }
+    let (a, ct, cp) = (vals[0].unwrap_or(0.0), vals[1].unwrap_or(0.0), vals[2].unwrap_or(0.0));
+    let first = match file_rpm {
+        Some(_) => ("J", a, limits::ADVANCE_RATIO),
+        None => ("RPM", propbet_units::rpm_to_omega(a), limits::OMEGA),
+    };
+    let checks = [first, ("CT", ct, limits::COEFFICIENT), ("CP", cp, limits::COEFFICIENT)];
+    let slow = match file_rpm {
+        Some(_) => None,
+        None => limits::too_slow(propbet_units::rpm_to_omega(a)),
+    };
+    if let Some(detail) = limits::beyond(&checks).or(slow) {
+        return Err(Dropped {
+            line,
+            reason: DropReason::Implausible,
+            detail,
+        });
+    }
+    let (rpm, speed) = match file_rpm {
+        Some(r) => (r, Speed::AdvanceRatio(a)),
+        None => (a, Speed::Airspeed(Value::single(0.0))),
+    };
+    if rpm <= 0.0 {
+        return Err(Dropped {
+            line,
+            reason: if rpm == 0.0 {
+                DropReason::NotSpinning
+            } else {
+                DropReason::NegativeRpm
+            },
+            detail: format!("RPM = {rpm}"),
+        });
+    }
+    Ok(MeasuredPoint {
+        label: match file_rpm {
+            Some(_) => format!("J = {a}"),
+            None => format!("{rpm} rpm"),
+        },
+        lines: (line, line),
+        omega: Value::single(propbet_units::rpm_to_omega(rpm)),
+        speed,
+        loads: Loads::Coefficients { ct, cp },
+        air: LoggedAir::default(),
+        transient: 0,
+        nominal_omega: file_rpm.map(propbet_units::rpm_to_omega),
+        flags: Vec::new(),
+    })
+}
+
 /// Reads a UIUC file; `name` is the file name (for the sweep RPM).
 pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
     let mut lines = text.lines().enumerate().filter(|(_, l)| !l.trim().is_empty());
@@ -96,80 +170,10 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
     let mut rows = 0;
     for (i, l) in lines {
         rows += 1;
-        let line = i + 1;
-        let cells: Vec<&str> = l.split_whitespace().collect();
-        let vals: Vec<Option<f64>> = cells
-            .iter()
-            .map(|c| c.parse::<f64>().ok().filter(|v| v.is_finite()))
-            .collect();
-        if vals.len() < 3 {
-            dropped.push(Dropped {
-                line,
-                reason: DropReason::Missing,
-                detail: format!("{} values, 3 needed", vals.len()),
-            });
-            continue;
+        match row(i + 1, l, &cols, file_rpm) {
+            Ok(p) => points.push(p),
+            Err(d) => dropped.push(d),
         }
-        if let Some(k) = vals[..3].iter().position(Option::is_none) {
-            dropped.push(Dropped {
-                line,
-                reason: DropReason::NotANumber,
-                detail: format!(
-                    "{} = '{}'",
-                    propbet_units::excerpt(&cols[k]),
-                    propbet_units::excerpt(cells[k])
-                ),
-            });
-            continue;
-        }
-        let (a, ct, cp) = (vals[0].unwrap_or(0.0), vals[1].unwrap_or(0.0), vals[2].unwrap_or(0.0));
-        let first = match file_rpm {
-            Some(_) => ("J", a, limits::ADVANCE_RATIO),
-            None => ("RPM", propbet_units::rpm_to_omega(a), limits::OMEGA),
-        };
-        let checks = [first, ("CT", ct, limits::COEFFICIENT), ("CP", cp, limits::COEFFICIENT)];
-        let slow = match file_rpm {
-            Some(_) => None,
-            None => limits::too_slow(propbet_units::rpm_to_omega(a)),
-        };
-        if let Some(detail) = limits::beyond(&checks).or(slow) {
-            dropped.push(Dropped {
-                line,
-                reason: DropReason::Implausible,
-                detail,
-            });
-            continue;
-        }
-        let (rpm, speed) = match file_rpm {
-            Some(r) => (r, Speed::AdvanceRatio(a)),
-            None => (a, Speed::Airspeed(Value::single(0.0))),
-        };
-        if rpm <= 0.0 {
-            dropped.push(Dropped {
-                line,
-                reason: if rpm == 0.0 {
-                    DropReason::NotSpinning
-                } else {
-                    DropReason::NegativeRpm
-                },
-                detail: format!("RPM = {rpm}"),
-            });
-            continue;
-        }
-        points.push(MeasuredPoint {
-            label: match file_rpm {
-                Some(_) => format!("J = {a}"),
-                None => format!("{rpm} rpm"),
-            },
-            lines: (line, line),
-            omega: Value::single(propbet_units::rpm_to_omega(rpm)),
-            speed,
-            loads: Loads::Coefficients { ct, cp },
-            air: LoggedAir::default(),
-            transient: 0,
-            nominal_omega: file_rpm.map(propbet_units::rpm_to_omega),
-            flags: Vec::new(),
-        });
     }
     if points.is_empty() {
         return Err(crate::set::no_points(&dropped, rows, &[]));
