@@ -49,6 +49,73 @@ fn readings(table: &CsvTable, c: &Column) -> usize {
         .count()
 }
 
+/// The RPM column (optical or electrical, as asked or as logged; scaled by the pole count) and
+/// the other one, with what was chosen in `notes`.
+fn rotation(
+    table: &CsvTable,
+    opts: &ReadOptions,
+    notes: &mut Vec<String>,
+) -> Result<(RpmSource, Column, Option<Column>), ReadError> {
+    let electrical = column(table, Quantity::Rotation, |n| n.contains("electrical speed"))?;
+    let optical = column(table, Quantity::Rotation, |n| n.contains("optical speed"))?;
+    let (source, mut rot) = match (opts.rpm_source, optical.clone(), electrical.clone()) {
+        (Some(RpmSource::Optical), Some(o), _) => (RpmSource::Optical, o),
+        (Some(RpmSource::Optical), None, _) => {
+            return Err(ReadError::Option(
+                "--rpm-source optical: the log has no 'Motor Optical Speed' column".into(),
+            ))
+        }
+        (Some(RpmSource::Electrical), _, Some(e)) => (RpmSource::Electrical, e),
+        (Some(RpmSource::Electrical), _, None) => {
+            return Err(ReadError::Option(
+                "--rpm-source electrical: the log has no 'Motor Electrical Speed' column".into(),
+            ))
+        }
+        (None, Some(o), Some(e)) => {
+            if readings(table, &o) * 2 >= readings(table, &e) && readings(table, &o) > 0 {
+                (RpmSource::Optical, o)
+            } else {
+                notes.push("the optical RPM column reads zero: RPM from the electrical speed".into());
+                (RpmSource::Electrical, e)
+            }
+        }
+        (None, Some(o), None) => (RpmSource::Optical, o),
+        (None, None, Some(e)) => (RpmSource::Electrical, e),
+        (None, None, None) => {
+            return Err(ReadError::MissingColumn {
+                what: "RPM (Motor Optical Speed or Motor Electrical Speed)",
+                columns: table.header_list(),
+            })
+        }
+    };
+    if readings(table, &rot) == 0 {
+        return Err(ReadError::NoUsableRows(format!(
+            "'{}' is zero in every row",
+            rot.header
+        )));
+    }
+    match (source, opts.poles) {
+        (RpmSource::Electrical, Some(p)) => {
+            rot.conv.scale *= 2.0 / p as f64;
+            notes.push(format!(
+                "RPM from '{}' multiplied by 2/{p} ({p} motor poles)",
+                rot.header
+            ));
+        }
+        (RpmSource::Electrical, None) => notes.push(format!(
+            "RPM from '{}' as logged (the app divides by the pole pairs entered in it; give the pole count if it was left at 2)",
+            rot.header
+        )),
+        (RpmSource::Optical, Some(_)) => notes.push("pole count ignored: RPM from the optical sensor".into()),
+        (RpmSource::Optical, None) => notes.push(format!("RPM from the optical sensor ('{}')", rot.header)),
+    }
+    let other = match source {
+        RpmSource::Optical => electrical,
+        RpmSource::Electrical => optical,
+    };
+    Ok((source, rot, other))
+}
+
 /// Reads an export and reduces it to points.
 pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let table = read_csv(text)?;
@@ -103,58 +170,8 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
             ));
         }
     }
-    let electrical = column(&table, Quantity::Rotation, |n| n.contains("electrical speed"))?;
-    let optical = column(&table, Quantity::Rotation, |n| n.contains("optical speed"))?;
-    let (source, mut rot) = match (opts.rpm_source, optical.clone(), electrical.clone()) {
-        (Some(RpmSource::Optical), Some(o), _) => (RpmSource::Optical, o),
-        (Some(RpmSource::Optical), None, _) => {
-            return Err(ReadError::Option(
-                "--rpm-source optical: the log has no 'Motor Optical Speed' column".into(),
-            ))
-        }
-        (Some(RpmSource::Electrical), _, Some(e)) => (RpmSource::Electrical, e),
-        (Some(RpmSource::Electrical), _, None) => {
-            return Err(ReadError::Option(
-                "--rpm-source electrical: the log has no 'Motor Electrical Speed' column".into(),
-            ))
-        }
-        (None, Some(o), Some(e)) => {
-            if readings(&table, &o) * 2 >= readings(&table, &e) && readings(&table, &o) > 0 {
-                (RpmSource::Optical, o)
-            } else {
-                notes.push("the optical RPM column reads zero: RPM from the electrical speed".into());
-                (RpmSource::Electrical, e)
-            }
-        }
-        (None, Some(o), None) => (RpmSource::Optical, o),
-        (None, None, Some(e)) => (RpmSource::Electrical, e),
-        (None, None, None) => return Err(missing("RPM (Motor Optical Speed or Motor Electrical Speed)")),
-    };
-    if readings(&table, &rot) == 0 {
-        return Err(ReadError::NoUsableRows(format!(
-            "'{}' is zero in every row",
-            rot.header
-        )));
-    }
-    match (source, opts.poles) {
-        (RpmSource::Electrical, Some(p)) => {
-            rot.conv.scale *= 2.0 / p as f64;
-            notes.push(format!(
-                "RPM from '{}' multiplied by 2/{p} ({p} motor poles)",
-                rot.header
-            ));
-        }
-        (RpmSource::Electrical, None) => notes.push(format!(
-            "RPM from '{}' as logged (the app divides by the pole pairs entered in it; give the pole count if it was left at 2)",
-            rot.header
-        )),
-        (RpmSource::Optical, Some(_)) => notes.push("pole count ignored: RPM from the optical sensor".into()),
-        (RpmSource::Optical, None) => notes.push(format!("RPM from the optical sensor ('{}')", rot.header)),
-    }
-    cols.rotation_other = match source {
-        RpmSource::Optical => electrical,
-        RpmSource::Electrical => optical,
-    };
+    let (source, rot, other) = rotation(&table, opts, &mut notes)?;
+    cols.rotation_other = other;
     cols.rotation = Some(rot);
     let mut dropped = Vec::new();
     let s = samples(&table, &cols, &mut dropped);
