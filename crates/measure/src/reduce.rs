@@ -436,47 +436,63 @@ pub fn reduce_log(
     let holds = groups.iter().filter(|g| g.len() >= opts.min_step_samples);
     let in_steps: usize = holds.clone().map(|g| g.len()).sum();
     if holds.count() >= 3 && in_steps as f64 >= 0.3 * n as f64 {
-        let mut pts = Vec::new();
-        let (mut transient, mut between, mut outliers, mut short) = (0, 0, 0, 0);
-        for g in &groups {
-            if g.len() < opts.min_step_samples {
-                between += g.len();
-                continue;
-            }
-            let (steady, t, o) = steady_part(g, opts);
-            transient += t;
-            outliers += o;
-            if steady.len() < 3 {
-                short += 1;
-                continue;
-            }
-            let mut escs: Vec<f64> = g.iter().filter_map(|x| x.esc).collect();
-            let esc = median(&mut escs);
-            let mut p = point(
-                format!("ESC {} µs", (esc * 10.0).round() / 10.0),
-                &steady,
-                t,
-                opts,
-                false,
-            );
-            // A few readings far from the step's median are left out (the count is in the
-            // notes); a step of which a fifth is left out is not trusted.
-            if o * 4 > steady.len() {
-                p.flags.push(format!(
-                    "{o} samples with RPM far from the step's median left out: more than a fifth of the step"
-                ));
-            }
-            pts.push(p);
-        }
-        notes.push(format!(
-            "{} ESC steps detected; {transient} transient samples dropped at step starts, {outliers} RPM outliers left out, \
-             {between} samples between steps (ESC ramping) not used{}",
-            pts.len(),
-            if short > 0 { format!(", {short} steps too short to average") } else { String::new() }
-        ));
-        return (Reduction::Steps, pts);
+        return (Reduction::Steps, steps(&groups, opts, notes));
     }
     // Ramp: bin by RPM and airspeed.
+    match ramp(&samples, opts, notes) {
+        Some(pts) => (Reduction::Ramp, pts),
+        None => (Reduction::Rows, rows(&samples)),
+    }
+}
+
+/// One point per ESC step held long enough: its steady part averaged (transients dropped, RPM
+/// outliers left out), with what was not used in `notes`.
+fn steps(groups: &[&[Sample]], opts: &ReduceOptions, notes: &mut Vec<String>) -> Vec<MeasuredPoint> {
+    let mut pts = Vec::new();
+    let (mut transient, mut between, mut outliers, mut short) = (0, 0, 0, 0);
+    for g in groups {
+        if g.len() < opts.min_step_samples {
+            between += g.len();
+            continue;
+        }
+        let (steady, t, o) = steady_part(g, opts);
+        transient += t;
+        outliers += o;
+        if steady.len() < 3 {
+            short += 1;
+            continue;
+        }
+        let mut escs: Vec<f64> = g.iter().filter_map(|x| x.esc).collect();
+        let esc = median(&mut escs);
+        let mut p = point(
+            format!("ESC {} µs", (esc * 10.0).round() / 10.0),
+            &steady,
+            t,
+            opts,
+            false,
+        );
+        // A few readings far from the step's median are left out (the count is in the
+        // notes); a step of which a fifth is left out is not trusted.
+        if o * 4 > steady.len() {
+            p.flags.push(format!(
+                "{o} samples with RPM far from the step's median left out: more than a fifth of the step"
+            ));
+        }
+        pts.push(p);
+    }
+    notes.push(format!(
+        "{} ESC steps detected; {transient} transient samples dropped at step starts, {outliers} RPM outliers left out, \
+         {between} samples between steps (ESC ramping) not used{}",
+        pts.len(),
+        if short > 0 { format!(", {short} steps too short to average") } else { String::new() }
+    ));
+    pts
+}
+
+/// A ramp or closed-loop run: the samples binned by RPM and airspeed, one point per bin of at
+/// least three; None where most rows would be alone in their bins (rows of distinct points).
+fn ramp(samples: &[Sample], opts: &ReduceOptions, notes: &mut Vec<String>) -> Option<Vec<MeasuredPoint>> {
+    let n = samples.len();
     let mut om: Vec<f64> = samples.iter().map(|s| s.omega).collect();
     om.sort_by(f64::total_cmp);
     let span = om[(n * 95) / 100] - om[n / 20];
@@ -488,7 +504,7 @@ pub fn reduce_log(
     let vmax = samples.iter().map(|s| s.airspeed).fold(0.0, f64::max);
     let vwidth = 0.5;
     let mut bins: BTreeMap<(i64, i64), Vec<Sample>> = BTreeMap::new();
-    for s in &samples {
+    for s in samples {
         let key = ((s.omega / width).round() as i64, (s.airspeed / vwidth).round() as i64);
         bins.entry(key).or_default().push(*s);
     }
@@ -514,7 +530,7 @@ pub fn reduce_log(
              their {:.0} rpm bins: each row is used as a point",
             propbet_units::omega_to_rpm(width)
         ));
-        return (Reduction::Rows, rows(&samples));
+        return None;
     }
     notes.push(format!(
         "ESC changes continuously: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
@@ -522,7 +538,7 @@ pub fn reduce_log(
         if vmax > vwidth { ", and 0.5 m/s airspeed bins" } else { "" },
         pts.len()
     ));
-    (Reduction::Ramp, pts)
+    Some(pts)
 }
 
 /// 1, 2, 2.5 or 5 times a power of ten, not below `x`.

@@ -467,7 +467,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     ("crates/cli/src/run.rs", "run", "to split"),
     ("crates/cli/src/scan.rs", "write", "to split"),
     ("crates/geometry/src/scan.rs", "scan_cloud_mm", "to split"),
-    ("crates/measure/src/reduce.rs", "reduce_log", "to split"),
     ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
     ("crates/plot/src/lib.rs", "render", "to split"),
     ("crates/polar/src/blade.rs", "compute_blade", "to split"),
