@@ -255,6 +255,149 @@ pub fn re_rungs(lo: f64, hi: f64) -> Vec<f64> {
     ks.into_iter().map(|k| 10f64.powf(k as f64 / RE_PER_DECADE)).collect()
 }
 
+/// The smallest and largest of `v`.
+fn span(v: &[f64]) -> [f64; 2] {
+    [
+        v.iter().copied().fold(f64::INFINITY, f64::min),
+        v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    ]
+}
+
+/// What a station's polars are planned from: its radius, chord, the Reynolds numbers and Mach
+/// number it sees over the operating points, the angles it works at, and its jobs.
+struct Planned {
+    r: f64,
+    chord: f64,
+    re: f64,
+    re_range: [f64; 2],
+    mach: f64,
+    alphas: Vec<f64>,
+    jobs: std::ops::Range<usize>,
+}
+
+/// The polar jobs of every station (the Reynolds ladder at the default Ncrit, then each other
+/// Ncrit's), from the stations' flow at each operating point (`solved`).
+fn plan(job: &BladeJob, solved: &[Vec<propbet_bemt::StationResult>]) -> (Vec<crate::PolarJob>, Vec<Planned>) {
+    use propbet_bemt::StationResult;
+    let blade = job.blade;
+    let fluid = job.fluid;
+    let at = |st: &[StationResult], r: f64, f: &dyn Fn(&StationResult) -> f64| -> f64 {
+        let i = st.partition_point(|s| s.r <= r).clamp(1, st.len() - 1);
+        let (a, b) = (&st[i - 1], &st[i]);
+        let t = ((r - a.r) / (b.r - a.r)).clamp(-0.5, 1.5);
+        f(a) + t * (f(b) - f(a))
+    };
+    let mut jobs = Vec::new();
+    let mut stations = Vec::new();
+    for (i, &r) in blade.r.iter().enumerate() {
+        let chord = blade.chord[i];
+        let ws: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.w)).collect();
+        let mut alphas: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.alpha).to_degrees()).collect();
+        alphas.sort_by(f64::total_cmp);
+        let per_re = fluid.mu / (fluid.rho * chord);
+        let re_range = span(&ws).map(|w| w / per_re);
+        let re = (re_range[0] * re_range[1]).sqrt();
+        let mach_at = |re: f64| (re * per_re / fluid.a).min(0.85);
+        let first = jobs.len();
+        if re > 0.0 && chord > 0.0 && re.is_finite() {
+            let foil = &job.foils[i.min(job.foils.len() - 1)];
+            let rungs = re_rungs(re_range[0], re_range[1]);
+            // The default Ncrit's rungs first (they make the fit), then each other Ncrit's.
+            for &ncrit in std::iter::once(&job.settings.ncrit).chain(&job.settings.ncrit_effect) {
+                for &rung in &rungs {
+                    jobs.push(crate::PolarJob {
+                        trip: job.settings.trip,
+                        panels: job.settings.panels,
+                        max_iter: job.settings.max_iter,
+                        ..crate::PolarJob::new(
+                            foil.clone(),
+                            rung,
+                            mach_at(rung),
+                            ncrit,
+                            job.settings.alphas_deg.clone(),
+                        )
+                    });
+                }
+            }
+        }
+        stations.push(Planned {
+            r,
+            chord,
+            re,
+            re_range,
+            mach: mach_at(re),
+            alphas,
+            jobs: first..jobs.len(),
+        });
+    }
+    (jobs, stations)
+}
+
+/// One station's polars from the engine's `results` (taken), its QPROP fit at its working
+/// angles, and what went wrong.
+fn station_polars(
+    job: &BladeJob,
+    planned: Planned,
+    jobs: &[crate::PolarJob],
+    results: &mut [Option<Result<Polar, String>>],
+) -> StationPolars {
+    let Planned {
+        r,
+        chord,
+        re,
+        re_range,
+        mach,
+        alphas,
+        jobs: range_k,
+    } = planned;
+    let mut polars = Vec::new();
+    let mut other_ncrit = Vec::new();
+    let mut problems = Vec::new();
+    for k in range_k {
+        match results[k].take() {
+            Some(Ok(p)) if jobs[k].ncrit == job.settings.ncrit => polars.push(p),
+            Some(Ok(p)) => other_ncrit.push(p),
+            Some(Err(e)) if jobs[k].ncrit == job.settings.ncrit => problems.push(e),
+            Some(Err(e)) => problems.push(format!("at Ncrit {} (transition effect): {e}", jobs[k].ncrit)),
+            None => {}
+        }
+    }
+    let alpha_deg = alphas[alphas.len() / 2];
+    let alpha_range_deg = [alphas[0], alphas[alphas.len() - 1]];
+    let weights = crate::AlphaWeights::Around {
+        alphas_deg: alphas,
+        sigma_deg: 3.0,
+    };
+    let fit = if polars.is_empty() {
+        problems.push(format!(
+            "no polar at r = {r:.4} m (Re {:.0}-{:.0})",
+            re_range[0], re_range[1]
+        ));
+        None
+    } else {
+        match crate::fit_qprop(&polars, re, &weights, -0.5) {
+            Ok(f) => Some(f),
+            Err(e) => {
+                problems.push(e.to_string());
+                None
+            }
+        }
+    };
+    StationPolars {
+        r,
+        chord,
+        re,
+        re_range,
+        mach,
+        alpha_deg,
+        alpha_range_deg,
+        polars,
+        other_ncrit,
+        fit,
+        problem: (!problems.is_empty()).then(|| problems.join("; ")),
+    }
+}
+
 /// Polars of every input station on the rungs of the Re ladder covering what it sees over the
 /// operating points, each fitted to QPROP's coefficients over the angles of attack the station
 /// works at. A station whose polars or fit failed keeps `fit: None` and says why in `problem`;
@@ -283,107 +426,16 @@ pub fn compute_blade(
     };
     let solver = Solver::new(&rotor, &fluid, &opts);
     let solved: Vec<Vec<StationResult>> = job.points.iter().map(|&op| solver.solve(op).stations).collect();
-    let at = |st: &[StationResult], r: f64, f: &dyn Fn(&StationResult) -> f64| -> f64 {
-        let i = st.partition_point(|s| s.r <= r).clamp(1, st.len() - 1);
-        let (a, b) = (&st[i - 1], &st[i]);
-        let t = ((r - a.r) / (b.r - a.r)).clamp(-0.5, 1.5);
-        f(a) + t * (f(b) - f(a))
-    };
-    let range = |v: &[f64]| {
-        [
-            v.iter().copied().fold(f64::INFINITY, f64::min),
-            v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        ]
-    };
-    let mut jobs = Vec::new();
-    let mut stations = Vec::new();
-    for (i, &r) in blade.r.iter().enumerate() {
-        let chord = blade.chord[i];
-        let ws: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.w)).collect();
-        let mut alphas: Vec<f64> = solved.iter().map(|st| at(st, r, &|s| s.alpha).to_degrees()).collect();
-        alphas.sort_by(f64::total_cmp);
-        let per_re = fluid.mu / (fluid.rho * chord);
-        let re_range = range(&ws).map(|w| w / per_re);
-        let re = (re_range[0] * re_range[1]).sqrt();
-        let mach_at = |re: f64| (re * per_re / fluid.a).min(0.85);
-        let first = jobs.len();
-        if re > 0.0 && chord > 0.0 && re.is_finite() {
-            let foil = &job.foils[i.min(job.foils.len() - 1)];
-            let rungs = re_rungs(re_range[0], re_range[1]);
-            // The default Ncrit's rungs first (they make the fit), then each other Ncrit's.
-            for &ncrit in std::iter::once(&job.settings.ncrit).chain(&job.settings.ncrit_effect) {
-                for &rung in &rungs {
-                    jobs.push(crate::PolarJob {
-                        trip: job.settings.trip,
-                        panels: job.settings.panels,
-                        max_iter: job.settings.max_iter,
-                        ..crate::PolarJob::new(
-                            foil.clone(),
-                            rung,
-                            mach_at(rung),
-                            ncrit,
-                            job.settings.alphas_deg.clone(),
-                        )
-                    });
-                }
-            }
-        }
-        stations.push((r, chord, re, re_range, mach_at(re), alphas, first..jobs.len()));
-    }
+    let (jobs, stations) = plan(job, &solved);
     let mut results: Vec<Option<Result<Polar, String>>> = engine
         .compute_all(&jobs, progress)
         .into_iter()
         .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))
         .collect();
-    let mut out = Vec::new();
-    for (r, chord, re, re_range, mach, alphas, range_k) in stations {
-        let mut polars = Vec::new();
-        let mut other_ncrit = Vec::new();
-        let mut problems = Vec::new();
-        for k in range_k {
-            match results[k].take() {
-                Some(Ok(p)) if jobs[k].ncrit == job.settings.ncrit => polars.push(p),
-                Some(Ok(p)) => other_ncrit.push(p),
-                Some(Err(e)) if jobs[k].ncrit == job.settings.ncrit => problems.push(e),
-                Some(Err(e)) => problems.push(format!("at Ncrit {} (transition effect): {e}", jobs[k].ncrit)),
-                None => {}
-            }
-        }
-        let alpha_deg = alphas[alphas.len() / 2];
-        let alpha_range_deg = [alphas[0], alphas[alphas.len() - 1]];
-        let weights = crate::AlphaWeights::Around {
-            alphas_deg: alphas,
-            sigma_deg: 3.0,
-        };
-        let fit = if polars.is_empty() {
-            problems.push(format!(
-                "no polar at r = {r:.4} m (Re {:.0}-{:.0})",
-                re_range[0], re_range[1]
-            ));
-            None
-        } else {
-            match crate::fit_qprop(&polars, re, &weights, -0.5) {
-                Ok(f) => Some(f),
-                Err(e) => {
-                    problems.push(e.to_string());
-                    None
-                }
-            }
-        };
-        out.push(StationPolars {
-            r,
-            chord,
-            re,
-            re_range,
-            mach,
-            alpha_deg,
-            alpha_range_deg,
-            polars,
-            other_ncrit,
-            fit,
-            problem: (!problems.is_empty()).then(|| problems.join("; ")),
-        });
-    }
+    let out: Vec<StationPolars> = stations
+        .into_iter()
+        .map(|st| station_polars(job, st, &jobs, &mut results))
+        .collect();
     let names: Vec<&str> = job.foils.iter().map(|f| f.name.as_str()).collect();
     let rpms: Vec<f64> = job
         .points
@@ -399,8 +451,8 @@ pub fn compute_blade(
         } else {
             format!("{} sections, {} ... {}", names.len(), names[0], names[names.len() - 1])
         },
-        rpm: range(&rpms),
-        v: range(&vs),
+        rpm: span(&rpms),
+        v: span(&vs),
         air: [fluid.rho, fluid.mu, fluid.a],
         stations: out,
     })
