@@ -78,9 +78,9 @@ pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcess) -> Result<RunPlan> {
     Ok(case.plan(dir, out, &xfoil.spec(), &scan_options)?)
 }
 
-/// Runs `propbet run`.
-pub fn run(a: &RunArgs) -> Result<bool> {
-    let t_all = Instant::now();
+/// The case directory (the default case without one) and the output directory (`run_<case>`
+/// without `-o`).
+fn case_and_out(a: &RunArgs) -> Result<(PathBuf, PathBuf)> {
     let dir = match &a.case {
         Some(d) => d.clone(),
         None => default_case()?,
@@ -99,7 +99,11 @@ pub fn run(a: &RunArgs) -> Result<bool> {
             PathBuf::from(format!("run_{name}"))
         }
     };
-    let plan = plan(&dir, &out, &a.xfoil)?;
+    Ok((dir, out))
+}
+
+/// The case's files exist and none lies where the run writes; the output is not the case.
+fn check_paths(plan: &RunPlan, dir: &Path, out: &Path) -> Result<()> {
     if let (Ok(o), Ok(d)) = (out.canonicalize(), dir.canonicalize()) {
         if o == d || d.starts_with(&o) {
             bail!(
@@ -123,13 +127,44 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let inputs = plan.inputs();
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     // A link in the output folder is refused in its own words, not as an input of the case.
-    crate::output::refuse_links_inside(&out)?;
-    crate::output::refuse_inputs_below(&out, &inputs).with_context(|| {
+    crate::output::refuse_links_inside(out)?;
+    crate::output::refuse_inputs_below(out, &inputs).with_context(|| {
         format!(
             "{}: the case reads a file in the output directory",
             dir.join("case.toml").display()
         )
     })?;
+    Ok(())
+}
+
+/// A finished stage on the terminal: its time (`--verbose`), or its short status lines.
+fn print_done(n: usize, total: usize, record: &StageRecord, lines: &[String], verbose: bool) {
+    if verbose {
+        eprintln!(
+            "propbet [{n}/{total}] {}: {:.1} s{}",
+            record.spec.name(),
+            record.seconds,
+            if record.clean { "" } else { " (with reported problems)" }
+        );
+    } else {
+        let (first, rest) = lines.split_first().map_or(("", &[][..]), |(f, r)| (f.as_str(), r));
+        eprintln!(
+            "propbet [{n}/{total}] {}: {first} ({:.1} s)",
+            record.spec.name(),
+            record.seconds
+        );
+        for l in rest {
+            eprintln!("  {l}");
+        }
+    }
+}
+
+/// Runs `propbet run`.
+pub fn run(a: &RunArgs) -> Result<bool> {
+    let t_all = Instant::now();
+    let (dir, out) = case_and_out(a)?;
+    let plan = plan(&dir, &out, &a.xfoil)?;
+    check_paths(&plan, &dir, &out)?;
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
@@ -160,24 +195,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
                     Err(e) => write_err = Some(e),
                 }
             }
-            if verbose {
-                eprintln!(
-                    "propbet [{n}/{total}] {}: {:.1} s{}",
-                    record.spec.name(),
-                    record.seconds,
-                    if record.clean { "" } else { " (with reported problems)" }
-                );
-            } else {
-                let (first, rest) = lines.split_first().map_or(("", &[][..]), |(f, r)| (f.as_str(), r));
-                eprintln!(
-                    "propbet [{n}/{total}] {}: {first} ({:.1} s)",
-                    record.spec.name(),
-                    record.seconds
-                );
-                for l in rest {
-                    eprintln!("  {l}");
-                }
-            }
+            print_done(n, total, record, &lines, verbose);
         }
     })?;
     if let Some(e) = write_err {

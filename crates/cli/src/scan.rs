@@ -9,7 +9,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use nalgebra::Vector3;
 use propbet_geometry::cloud::{parse_colour, to_ply};
-use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Manual, ScanOptions, SectionKind};
+use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
 use propbet_measure::uiuc::{geometry_at, GeometryRow};
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
@@ -289,20 +289,9 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
     Ok(s.clean())
 }
 
-/// Writes the scan stage's outputs: geometry.csv, geom.txt, prop.qprop, airfoils/,
-/// plots/, blades/, scan.json.
-pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
-    let g = &sc.geometry;
-    let command = propbet_pipeline::spec::StageSpec::Scan(a.clone()).command();
-    let lock = crate::output::claim_folder(&a.out, &command)?;
-    std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
-    std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
-    let inputs: Vec<&Path> = std::iter::once(a.input.as_path())
-        .chain(a.reference.as_deref())
-        .collect();
-    let reference = sc.reference.as_deref();
+/// geometry.csv: one row per station, with the reference table's c/R and beta where given.
+fn geometry_csv(g: &Geometry, reference: Option<&[GeometryRow]>) -> Result<Vec<u8>> {
     let big_r = g.tip_radius;
-    // Geometry CSV.
     let rows = g.stations.iter().map(|s| {
         let reference = |k| reference.and_then(|t| interp(t, s.r_r, k));
         GeometryCsvRow {
@@ -330,7 +319,47 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
             ref_beta_deg: reference(2).into(),
         }
     });
-    write_atomic(&a.out.join("geometry.csv"), &[csv_rows(rows, true)?], &inputs)?;
+    csv_rows(rows, true)
+}
+
+/// The cleaned surface in the propeller frame, by blade: one STL per blade and the hub's, or
+/// the labelled cloud.
+fn write_blades(out: &Path, g: &Geometry, inputs: &[&Path]) -> Result<()> {
+    std::fs::create_dir_all(out.join("blades")).with_context(|| format!("{}: cannot create", out.display()))?;
+    let lab = &g.labelled;
+    match &lab.surface {
+        Aligned::Mesh(m) => {
+            for k in 0..g.blades {
+                let part = m.subset(|i| lab.blade[i] == Some(k as u8));
+                write_atomic(&out.join(format!("blades/blade_{k}.stl")), &[part.to_stl()], inputs)?;
+            }
+            let hub = m.subset(|i| lab.blade[i].is_none());
+            if !hub.triangles.is_empty() {
+                write_atomic(&out.join("blades/hub.stl"), &[hub.to_stl()], inputs)?;
+            }
+        }
+        Aligned::Cloud(c) => {
+            write_atomic(&out.join("blades/labelled.ply"), &[to_ply(c, Some(&lab.blade))], inputs)?;
+        }
+    }
+    Ok(())
+}
+
+/// Writes the scan stage's outputs: geometry.csv, geom.txt, prop.qprop, airfoils/,
+/// plots/, blades/, scan.json.
+pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
+    let g = &sc.geometry;
+    let command = propbet_pipeline::spec::StageSpec::Scan(a.clone()).command();
+    let lock = crate::output::claim_folder(&a.out, &command)?;
+    std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    let inputs: Vec<&Path> = std::iter::once(a.input.as_path())
+        .chain(a.reference.as_deref())
+        .collect();
+    let reference = sc.reference.as_deref();
+    let big_r = g.tip_radius;
+    // Geometry CSV.
+    write_atomic(&a.out.join("geometry.csv"), &[geometry_csv(g, reference)?], &inputs)?;
     // UIUC-style table.
     let mut geom = String::from("r/R    c/R     beta\n");
     for s in &g.stations {
@@ -367,28 +396,8 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
         let fig = propbet_report::scan::colour_figure(c);
         write_figure(&a.out.join("plots/colour_histogram.svg"), &fig, &inputs)?;
     }
-    // The cleaned surface in the propeller frame, by blade.
-    std::fs::create_dir_all(a.out.join("blades")).with_context(|| format!("{}: cannot create", a.out.display()))?;
+    write_blades(&a.out, g, &inputs)?;
     let lab = &g.labelled;
-    match &lab.surface {
-        Aligned::Mesh(m) => {
-            for k in 0..g.blades {
-                let part = m.subset(|i| lab.blade[i] == Some(k as u8));
-                write_atomic(&a.out.join(format!("blades/blade_{k}.stl")), &[part.to_stl()], &inputs)?;
-            }
-            let hub = m.subset(|i| lab.blade[i].is_none());
-            if !hub.triangles.is_empty() {
-                write_atomic(&a.out.join("blades/hub.stl"), &[hub.to_stl()], &inputs)?;
-            }
-        }
-        Aligned::Cloud(c) => {
-            write_atomic(
-                &a.out.join("blades/labelled.ply"),
-                &[to_ply(c, Some(&lab.blade))],
-                &inputs,
-            )?;
-        }
-    }
     let (per_blade, hub_elements) = lab.counts(g.blades);
     // Summary.
     let summary = json!({

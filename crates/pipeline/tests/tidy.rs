@@ -464,8 +464,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "specs_with_every_flag_parse_back",
         "data table",
     ),
-    ("crates/cli/src/run.rs", "run", "to split"),
-    ("crates/cli/src/scan.rs", "write", "to split"),
     ("crates/geometry/src/scan.rs", "scan_cloud_mm", "to split"),
     ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
     ("crates/plot/src/lib.rs", "render", "to split"),
