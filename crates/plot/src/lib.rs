@@ -9,6 +9,9 @@
 use std::sync::Once;
 
 use base64::Engine;
+use plotters::chart::ChartContext;
+use plotters::coord::cartesian::Cartesian2d;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::{register_font, FontStyle};
 use thiserror::Error;
@@ -270,6 +273,81 @@ fn legend_corner(panel: &Panel, (x0, x1, y0, y1): (f64, f64, f64, f64)) -> Serie
         .map_or(SeriesLabelPosition::UpperRight, |c| c.0)
 }
 
+/// One series of a panel: its line, dashes or dots with error bars, its legend entry, and its
+/// points beyond the clipped y axis `(y0, y1)` as triangles on the edge. Whether it has a
+/// legend entry.
+fn draw_series<'a, DB: DrawingBackend + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    s: &Series,
+    i: usize,
+    (y0, y1): (f64, f64),
+) -> Result<bool, PlotError> {
+    let err = |e: DrawingAreaErrorKind<DB::ErrorType>| PlotError(format!("{e:?}"));
+    let c = colour(s.colour.unwrap_or(i));
+    let data: Vec<(usize, (f64, f64))> = s
+        .points
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, p)| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    // Points beyond a clipped axis go on its edge (marked below).
+    let clip = |p: (f64, f64)| (p.0, p.1.clamp(y0, y1));
+    let outside: Vec<(f64, f64)> = data.iter().map(|d| d.1).filter(|p| p.1 < y0 || p.1 > y1).collect();
+    let xy = data.iter().map(|d| clip(d.1));
+    let drawn = match s.mark {
+        Mark::Line => chart.draw_series(LineSeries::new(xy, c.stroke_width(2))).map_err(err)?,
+        Mark::Dashed => chart
+            .draw_series(DashedLineSeries::new(xy, 6, 4, c.stroke_width(2)))
+            .map_err(err)?,
+        Mark::Dots => {
+            let bars: Vec<(f64, f64, f64)> = data
+                .iter()
+                .filter_map(|(k, p)| {
+                    s.y_err
+                        .get(*k)
+                        .filter(|e| e.is_finite() && **e > 0.0)
+                        .map(|e| (p.0, p.1, *e))
+                })
+                .collect();
+            chart
+                .draw_series(
+                    bars.into_iter()
+                        .map(|(x, y, e)| ErrorBar::new_vertical(x, y - e, y, y + e, c.stroke_width(1), 6)),
+                )
+                .map_err(err)?;
+            let inside: Vec<(f64, f64)> = xy.filter(|p| p.1 > y0 && p.1 < y1).collect();
+            chart
+                .draw_series(inside.into_iter().map(|p| Circle::new(p, 3, c.filled())))
+                .map_err(err)?
+        }
+    };
+    let named = !s.name.is_empty();
+    if named {
+        let dots = s.mark == Mark::Dots;
+        drawn
+            .label(s.name.clone())
+            .legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
+                if dots {
+                    Circle::new((x + 8, y), 3, c.filled()).into_dyn()
+                } else {
+                    PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)).into_dyn()
+                }
+            });
+    }
+    // Off-scale points: a triangle on the edge, pointing the way they went.
+    chart
+        .draw_series(outside.iter().map(|&(x, y)| {
+            let (edge, dy) = if y > y1 { (y1, -1) } else { (y0, 1) };
+            let tip = (0, 0);
+            let base = (-5, 8 * dy);
+            let base2 = (5, 8 * dy);
+            EmptyElement::at((x, edge)) + Polygon::new(vec![tip, base, base2], c.stroke_width(1))
+        }))
+        .map_err(err)?;
+    Ok(named)
+}
+
 fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fig: &Figure) -> Result<(), PlotError> {
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| PlotError(format!("{e:?}"));
     root.fill(&WHITE).map_err(err)?;
@@ -331,69 +409,7 @@ fn render<DB: DrawingBackend>(root: &DrawingArea<DB, plotters::coord::Shift>, fi
         }
         let mut legend = false;
         for (i, s) in panel.series.iter().enumerate() {
-            let c = colour(s.colour.unwrap_or(i));
-            let data: Vec<(usize, (f64, f64))> = s
-                .points
-                .iter()
-                .copied()
-                .enumerate()
-                .filter(|(_, p)| p.0.is_finite() && p.1.is_finite())
-                .collect();
-            // Points beyond a clipped axis go on its edge (marked below).
-            let clip = |p: (f64, f64)| (p.0, p.1.clamp(y0, y1));
-            let outside: Vec<(f64, f64)> = data.iter().map(|d| d.1).filter(|p| p.1 < y0 || p.1 > y1).collect();
-            let xy = data.iter().map(|d| clip(d.1));
-            let drawn = match s.mark {
-                Mark::Line => chart.draw_series(LineSeries::new(xy, c.stroke_width(2))).map_err(err)?,
-                Mark::Dashed => chart
-                    .draw_series(DashedLineSeries::new(xy, 6, 4, c.stroke_width(2)))
-                    .map_err(err)?,
-                Mark::Dots => {
-                    let bars: Vec<(f64, f64, f64)> = data
-                        .iter()
-                        .filter_map(|(k, p)| {
-                            s.y_err
-                                .get(*k)
-                                .filter(|e| e.is_finite() && **e > 0.0)
-                                .map(|e| (p.0, p.1, *e))
-                        })
-                        .collect();
-                    chart
-                        .draw_series(
-                            bars.into_iter()
-                                .map(|(x, y, e)| ErrorBar::new_vertical(x, y - e, y, y + e, c.stroke_width(1), 6)),
-                        )
-                        .map_err(err)?;
-                    let inside: Vec<(f64, f64)> = xy.filter(|p| p.1 > y0 && p.1 < y1).collect();
-                    chart
-                        .draw_series(inside.into_iter().map(|p| Circle::new(p, 3, c.filled())))
-                        .map_err(err)?
-                }
-            };
-
-            if !s.name.is_empty() {
-                legend = true;
-                let dots = s.mark == Mark::Dots;
-                drawn
-                    .label(s.name.clone())
-                    .legend(move |(x, y)| -> DynElement<'static, DB, (i32, i32)> {
-                        if dots {
-                            Circle::new((x + 8, y), 3, c.filled()).into_dyn()
-                        } else {
-                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2)).into_dyn()
-                        }
-                    });
-            }
-            // Off-scale points: a triangle on the edge, pointing the way they went.
-            chart
-                .draw_series(outside.iter().map(|&(x, y)| {
-                    let (edge, dy) = if y > y1 { (y1, -1) } else { (y0, 1) };
-                    let tip = (0, 0);
-                    let base = (-5, 8 * dy);
-                    let base2 = (5, 8 * dy);
-                    EmptyElement::at((x, edge)) + Polygon::new(vec![tip, base, base2], c.stroke_width(1))
-                }))
-                .map_err(err)?;
+            legend |= draw_series(&mut chart, s, i, (y0, y1))?;
         }
         if legend {
             chart
