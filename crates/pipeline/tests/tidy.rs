@@ -465,7 +465,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "data table",
     ),
     ("crates/geometry/src/scan.rs", "scan_cloud_mm", "to split"),
-    ("crates/pipeline/src/simexport/jsbsim.rs", "jsbsim", "to split"),
     ("crates/qprop/src/propfile.rs", "parse_prop", "to split"),
     (
         "crates/qprop/tests/qprop_reference.rs",

@@ -6,6 +6,64 @@ use std::fmt::Write as _;
 
 use super::*;
 
+/// A curve's factor on the reference curve in column `col` (1: CT, 2: CP): the relative least
+/// squares over their shared J range, at the reference's counted points.
+fn factor(reference: &Curve, c: &Curve, col: usize) -> f64 {
+    let ref_max = reference.rows.iter().map(|r| r[1]).fold(0.0, f64::max);
+    let (mut num, mut den) = (0.0, 0.0);
+    for r in &c.rows {
+        let j = r[0];
+        if j < reference.rows[0][0] || j > reference.rows[reference.rows.len() - 1][0] {
+            continue;
+        }
+        if curve_at(reference, j, 1) < COUNTED * ref_max {
+            continue;
+        }
+        let f = r[col] / curve_at(reference, j, col);
+        if f.is_finite() && f > 0.0 {
+            num += 1.0 / f;
+            den += 1.0 / (f * f);
+        }
+    }
+    if den > 0.0 {
+        num / den
+    } else {
+        1.0
+    }
+}
+
+/// The `<propeller>` element with its header comment `c`: the tables C_THRUST and C_POWER, and
+/// CT_MACH and CP_MACH where there are several RPMs.
+fn propeller_xml(
+    src: &Source,
+    ixx: f64,
+    c: &str,
+    [ct_table, cp_table]: [&[(f64, f64)]; 2],
+    mach: Option<[&[(f64, f64)]; 2]>,
+) -> String {
+    let mut s = format!("<?xml version=\"1.0\"?>\n<!--\n{}-->\n", xml_comment(c));
+    let _ = writeln!(s, "<propeller name=\"{}\">", xml_text(&src.name));
+    let _ = writeln!(s, "  <ixx unit=\"KG*M2\"> {ixx:.6e} </ixx>");
+    let _ = writeln!(s, "  <diameter unit=\"M\"> {:.5} </diameter>", src.diameter);
+    let _ = writeln!(s, "  <numblades> {} </numblades>", src.blades.round().max(1.0));
+    let _ = writeln!(s, "  <gearratio> 1 </gearratio>");
+    let table = |s: &mut String, name: &str, rows: &[(f64, f64)]| {
+        let _ = writeln!(s, "  <table name=\"{name}\" type=\"internal\">\n    <tableData>");
+        for (x, y) in rows {
+            let _ = writeln!(s, "      {x:8.4} {y:10.6}");
+        }
+        let _ = writeln!(s, "    </tableData>\n  </table>");
+    };
+    table(&mut s, "C_THRUST", ct_table);
+    table(&mut s, "C_POWER", cp_table);
+    if let Some([ctm, cpm]) = mach {
+        table(&mut s, "CT_MACH", ctm);
+        table(&mut s, "CP_MACH", cpm);
+    }
+    s.push_str("</propeller>\n");
+    s
+}
+
 /// JSBSim's `<propeller>`: C_THRUST and C_POWER against J at a reference RPM, and the other
 /// RPMs as CT_MACH and CP_MACH factors on the helical tip Mach number.
 pub fn jsbsim(src: &Source) -> Result<Exported> {
@@ -29,33 +87,9 @@ pub fn jsbsim(src: &Source) -> Result<Exported> {
     let tip_mach = |rpm: f64, j: f64| {
         std::f64::consts::PI * rpm_to_rev_per_s(rpm) * d * (1.0 + (j / std::f64::consts::PI).powi(2)).sqrt() / SOUND
     };
-    // Each curve's factor on the reference: relative least squares over the shared J range.
-    let factor = |c: &Curve, col: usize| -> f64 {
-        let ref_max = reference.rows.iter().map(|r| r[1]).fold(0.0, f64::max);
-        let (mut num, mut den) = (0.0, 0.0);
-        for r in &c.rows {
-            let j = r[0];
-            if j < reference.rows[0][0] || j > reference.rows[reference.rows.len() - 1][0] {
-                continue;
-            }
-            if curve_at(&reference, j, 1) < COUNTED * ref_max {
-                continue;
-            }
-            let f = r[col] / curve_at(&reference, j, col);
-            if f.is_finite() && f > 0.0 {
-                num += 1.0 / f;
-                den += 1.0 / (f * f);
-            }
-        }
-        if den > 0.0 {
-            num / den
-        } else {
-            1.0
-        }
-    };
     let mut mach: Vec<(f64, f64, f64)> = cs
         .iter()
-        .map(|c| (tip_mach(c.rpm, 0.0), factor(c, 1), factor(c, 2)))
+        .map(|c| (tip_mach(c.rpm, 0.0), factor(&reference, c, 1), factor(&reference, c, 2)))
         .collect();
     mach.sort_by(|a, b| a.0.total_cmp(&b.0));
     mach.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-6);
@@ -108,26 +142,7 @@ pub fn jsbsim(src: &Source) -> Result<Exported> {
         },
         ixx_how
     );
-    let mut s = format!("<?xml version=\"1.0\"?>\n<!--\n{}-->\n", xml_comment(&c));
-    let _ = writeln!(s, "<propeller name=\"{}\">", xml_text(&src.name));
-    let _ = writeln!(s, "  <ixx unit=\"KG*M2\"> {ixx:.6e} </ixx>");
-    let _ = writeln!(s, "  <diameter unit=\"M\"> {:.5} </diameter>", src.diameter);
-    let _ = writeln!(s, "  <numblades> {} </numblades>", src.blades.round().max(1.0));
-    let _ = writeln!(s, "  <gearratio> 1 </gearratio>");
-    let table = |s: &mut String, name: &str, rows: &[(f64, f64)]| {
-        let _ = writeln!(s, "  <table name=\"{name}\" type=\"internal\">\n    <tableData>");
-        for (x, y) in rows {
-            let _ = writeln!(s, "      {x:8.4} {y:10.6}");
-        }
-        let _ = writeln!(s, "    </tableData>\n  </table>");
-    };
-    table(&mut s, "C_THRUST", &ct_table);
-    table(&mut s, "C_POWER", &cp_table);
-    if with_mach {
-        table(&mut s, "CT_MACH", &ctm);
-        table(&mut s, "CP_MACH", &cpm);
-    }
-    s.push_str("</propeller>\n");
+    let s = propeller_xml(src, ixx, &c, [&ct_table, &cp_table], with_mach.then_some([&ctm, &cpm]));
     let file = format!("{}.xml", file_stem(&src.name));
     Ok(Exported {
         target: Target::Jsbsim,
