@@ -482,16 +482,16 @@ pub fn scan_cloud(cloud: &Cloud, opts: &ScanOptions) -> Result<Geometry, ScanErr
     })
 }
 
-fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions, scale_given: bool) -> Result<Geometry, ScanError> {
-    let mut notes = Vec::new();
-    if !scale_given && opts.reference_box.is_none() {
-        notes.push(
-            "SCALE ASSUMED: 1 file unit = 1 mm (no --units, --known-length or --box given). A point \
-             cloud from photogrammetry has no scale of its own: every length below is only right if \
-             the cloud is in millimetres"
-                .to_string(),
-        );
-    }
+/// A cloud filtered: the blade's points, the colour filter's report, the reference box's points.
+struct Filtered {
+    blade: Cloud,
+    colour: Option<ColourReport>,
+    box_pts: Vec<Vector3<f64>>,
+}
+
+/// The cloud's points that are blade (its colours, the crop, without outliers), with the colour
+/// filter's report, and the reference box's points (its colours).
+fn filtered(cloud: &Cloud, opts: &MmOptions, notes: &mut Vec<String>) -> Result<Filtered, ScanError> {
     let total = cloud.points.len();
     let mut blade = cloud.clone();
     let mut colour = None;
@@ -558,6 +558,20 @@ fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions, scale_given: bool) -> Result<G
             blade.points.len()
         )));
     }
+    Ok(Filtered { blade, colour, box_pts })
+}
+
+fn scan_cloud_mm(cloud: &Cloud, opts: &MmOptions, scale_given: bool) -> Result<Geometry, ScanError> {
+    let mut notes = Vec::new();
+    if !scale_given && opts.reference_box.is_none() {
+        notes.push(
+            "SCALE ASSUMED: 1 file unit = 1 mm (no --units, --known-length or --box given). A point \
+             cloud from photogrammetry has no scale of its own: every length below is only right if \
+             the cloud is in millimetres"
+                .to_string(),
+        );
+    }
+    let Filtered { blade, colour, box_pts } = filtered(cloud, opts, &mut notes)?;
     let pts = Points {
         points: blade.points.clone(),
         slab: opts.slab / opts.units,

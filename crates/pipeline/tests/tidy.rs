@@ -464,7 +464,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "specs_with_every_flag_parse_back",
         "data table",
     ),
-    ("crates/geometry/src/scan.rs", "scan_cloud_mm", "to split"),
     ("crates/qprop/src/propfile.rs", "parse_prop", "to split"),
     (
         "crates/qprop/tests/qprop_reference.rs",
