@@ -464,7 +464,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "specs_with_every_flag_parse_back",
         "data table",
     ),
-    ("crates/qprop/src/propfile.rs", "parse_prop", "to split"),
     (
         "crates/qprop/tests/qprop_reference.rs",
         "reproduces_every_rpm_driven_qprop_run",

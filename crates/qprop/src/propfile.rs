@@ -237,6 +237,47 @@ fn need(line: usize, v: &[f64], n: usize, expected: &'static str) -> Result<(), 
     Ok(())
 }
 
+/// The radial rows after line 8 (at least two; more than QPROP takes is a warning), with their
+/// line numbers.
+fn radial_rows(lines: &mut Lines) -> Result<(Vec<PropRow>, Vec<usize>), ParsePropError> {
+    const ROW: &str = "r chord beta [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]";
+    let mut rows = Vec::new();
+    let mut row_lines = Vec::new();
+    while let Some((l, text)) = lines.next_data() {
+        let v = parse_numbers(l, text, ROW)?;
+        need(l, &v, 3, ROW)?;
+        if v.len() > 13 {
+            lines.warnings.push(Warning {
+                line: l,
+                message: format!("{} numbers on a radial row; only the first 13 are used", v.len()),
+            });
+        }
+        rows.push(PropRow {
+            r: v[0],
+            chord: v[1],
+            beta: v[2],
+            coeffs: v[3..v.len().min(13)].to_vec(),
+        });
+        row_lines.push(l);
+    }
+    if rows.len() < 2 {
+        return Err(ParsePropError::Invalid {
+            line: lines.last,
+            message: format!("a prop file needs at least two radial rows, found {}", rows.len()),
+        });
+    }
+    if rows.len() > QPROP_MAX_ROWS {
+        lines.warnings.push(Warning {
+            line: 0,
+            message: format!(
+                "{} radial rows; QPROP 1.22 accepts at most {QPROP_MAX_ROWS}",
+                rows.len()
+            ),
+        });
+    }
+    Ok((rows, row_lines))
+}
+
 /// Parses a prop file. Returns the file and the warnings a user should see.
 pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError> {
     let mut lines = Lines {
@@ -296,41 +337,7 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
         dst.copy_from_slice(&v[..3]);
     }
 
-    const ROW: &str = "r chord beta [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]";
-    let mut rows = Vec::new();
-    let mut row_lines = Vec::new();
-    while let Some((l, text)) = lines.next_data() {
-        let v = parse_numbers(l, text, ROW)?;
-        need(l, &v, 3, ROW)?;
-        if v.len() > 13 {
-            lines.warnings.push(Warning {
-                line: l,
-                message: format!("{} numbers on a radial row; only the first 13 are used", v.len()),
-            });
-        }
-        rows.push(PropRow {
-            r: v[0],
-            chord: v[1],
-            beta: v[2],
-            coeffs: v[3..v.len().min(13)].to_vec(),
-        });
-        row_lines.push(l);
-    }
-    if rows.len() < 2 {
-        return Err(ParsePropError::Invalid {
-            line: lines.last,
-            message: format!("a prop file needs at least two radial rows, found {}", rows.len()),
-        });
-    }
-    if rows.len() > QPROP_MAX_ROWS {
-        lines.warnings.push(Warning {
-            line: 0,
-            message: format!(
-                "{} radial rows; QPROP 1.22 accepts at most {QPROP_MAX_ROWS}",
-                rows.len()
-            ),
-        });
-    }
+    let (rows, row_lines) = radial_rows(&mut lines)?;
     let mut file = PropFile {
         name,
         blades,
@@ -609,22 +616,6 @@ impl PropFile {
     }
 }
 
-/// Shortest text that reads back as exactly `v` (Rust's shortest round-trip form, in plain or
-/// exponent notation, whichever is shorter; Fortran list-directed input reads both).
-fn num(v: f64) -> String {
-    let plain = format!("{v}");
-    let exp = format!("{v:e}");
-    if exp.len() < plain.len() {
-        exp
-    } else {
-        plain
-    }
-}
-
-fn join(vals: &[f64]) -> String {
-    vals.iter().map(|&v| num(v)).collect::<Vec<_>>().join(" ")
-}
-
 /// Writes a prop file that QPROP 1.22 reads as `file` means it: every number in its shortest
 /// exact form, a blank before every `!`, and no line longer than QPROP's 128-character buffer
 /// (a row that would be longer is written with the most significant digits, 9 down to 4, that
@@ -636,63 +627,9 @@ fn within_rounding(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 
-/// Note that QPROP 1.22 reads R on line 2 unscaled; with Rfac != 1 the file means R in r units.
-pub fn write_prop(file: &PropFile) -> String {
-    let mut out = String::new();
-    // One line: a newline or other control character in a name would break the file.
-    let name: String = file
-        .name
-        .replace('!', "|")
-        .chars()
-        .map(|c| if c.is_control() { ' ' } else { c })
-        .collect();
-    let name = if name.trim().is_empty() {
-        "propeller".to_string()
-    } else {
-        name
-    };
-    // QPROP reads 128 characters of the line: a longer name is cut, with "..." where it was.
-    let mut name = name.trim().to_string();
-    if name.len() > QPROP_LINE_MAX - 1 {
-        let mut end = QPROP_LINE_MAX - 4;
-        while !name.is_char_boundary(end) {
-            end -= 1;
-        }
-        name.truncate(end);
-        name.push_str("...");
-    }
-    // A leading blank keeps a name starting with # from being read as a comment.
-    out.push_str(&format!(" {name}\n\n"));
-    let mut l2 = vec![file.blades];
-    l2.extend(file.radius);
-    out.push_str(&format!(" {}   ! Nblades [R]\n\n", join(&l2)));
-    let g = &file.global;
-    out.push_str(&format!(" {}   ! CL0 CL_a\n", join(&g[0..2])));
-    out.push_str(&format!(" {}   ! CLmin CLmax\n\n", join(&g[2..4])));
-    out.push_str(&format!(" {}   ! CD0 CD2u CD2l CLCD0\n", join(&g[4..8])));
-    out.push_str(&format!(" {}   ! REref REexp\n\n", join(&g[8..10])));
-    out.push_str(&format!(" {}   ! Rfac Cfac Bfac\n", join(&file.scale)));
-    out.push_str(&format!(" {}   ! Radd Cadd Badd\n\n", join(&file.offset)));
-    out.push_str("#  r  chord  beta  [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]\n");
-    for row in &file.rows {
-        let mut vals = vec![row.r, row.chord, row.beta];
-        vals.extend(&row.coeffs);
-        let mut line = format!(" {}", join(&vals));
-        for digits in (4..=9).rev() {
-            if line.len() <= QPROP_LINE_MAX - 2 {
-                break;
-            }
-            let rounded: Vec<f64> = vals
-                .iter()
-                .map(|v| format!("{v:.*e}", digits - 1).parse().unwrap_or(*v))
-                .collect();
-            line = format!(" {}", join(&rounded));
-        }
-        out.push_str(&line);
-        out.push('\n');
-    }
-    out
-}
+mod write;
+
+pub use write::write_prop;
 
 #[cfg(test)]
 mod tests;
