@@ -1,5 +1,6 @@
 //! Unit tests of `propfile.rs`.
 
+use super::write::join;
 use super::*;
 use proptest::prelude::*;
 

@@ -14,7 +14,7 @@ fn num(v: f64) -> String {
     }
 }
 
-fn join(vals: &[f64]) -> String {
+pub(super) fn join(vals: &[f64]) -> String {
     vals.iter().map(|&v| num(v)).collect::<Vec<_>>().join(" ")
 }
 
