@@ -3,14 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::case::parse_fraction;
 use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
-use propbet_pipeline::stages::{self, Polars, PolarsInput};
+use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
 use propbet_pipeline::values::parse_list;
 use propbet_plot::Figure;
-use propbet_polar::{fit_qprop, Airfoil, AlphaWeights, Polar, PolarJob, QpropFit};
+use propbet_polar::{Airfoil, Polar, QpropFit};
 use propbet_qprop::write_prop;
 
 use crate::output::emit;
@@ -189,91 +189,55 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         .collect();
     crate::output::refuse_outputs_over_inputs(&outputs, &input_paths(&args.section))?;
     let foil = args.section.load()?;
-    let res = parse_list("--re", &args.re)?;
-    if let Some(bad) = res.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
-        bail!("--re: Reynolds number must be positive, found {bad}");
-    }
-    if !(args.mach.is_finite() && (0.0..0.9).contains(&args.mach)) {
-        bail!("--mach: {} must be in [0, 0.9)", args.mach);
-    }
-    let xs = args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT, None)?;
-    let alphas = xs.alphas_deg.clone();
-    let engine = stages::polar_engine(&xs.process)?;
-    let bar = Bar::new(xs.process.quiet);
-    let jobs: Vec<PolarJob> = res
-        .iter()
-        .map(|&re| PolarJob {
-            trip: xs.trip,
-            panels: args.xfoil.panels.unwrap_or(xfoil_runner::DEFAULT_PANELS),
-            max_iter: args.xfoil.iter,
-            ..PolarJob::new(foil.clone(), re, args.mach, xs.ncrit, alphas.clone())
-        })
-        .collect();
-    let mut ok = true;
-    let mut polars: Vec<Polar> = Vec::new();
-    for (job, r) in jobs.iter().zip(engine.compute_all(&jobs, &|d, t| bar.tick(d, t))) {
+    let spec = SectionSpec {
+        res: parse_list("--re", &args.re)?,
+        mach: args.mach,
+        xfoil: args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT, None)?,
+    };
+    let bar = Bar::new(spec.xfoil.process.quiet);
+    let section = stages::section(&spec, &foil, &|d, t| bar.tick(d, t))?;
+    for (re, r) in &section.runs {
         match r {
-            Ok((p, _)) => {
-                report_failures(&format!("Re {:.0}", job.re), &p);
+            Ok(p) => {
+                report_failures(&format!("Re {re:.0}"), p);
                 // An XFOIL that was killed (hung) or crashed leaves a polar with holes: said,
                 // and the exit code is 1.
-                ok &= p.faults.is_empty();
                 if p.points.is_empty() {
-                    eprintln!(
-                        "propbet: Re {:.0}: XFOIL converged at no angle: the polar is empty",
-                        job.re
-                    );
-                    ok = false;
+                    eprintln!("propbet: Re {re:.0}: XFOIL converged at no angle: the polar is empty");
                 }
-                polars.push(p);
             }
-            Err(e) => {
-                eprintln!("propbet: error: {e}");
-                ok = false;
-            }
+            Err(e) => eprintln!("propbet: error: {e}"),
         }
     }
-    if let Some(e) = engine.cache_error() {
+    if let Some(e) = &section.cache_error {
         eprintln!(
             "propbet: warning: {e}: the cache could not store the polars XFOIL computed; they were used, and the next run computes them again"
         );
     }
-    if polars.is_empty() {
-        bail!("no polar could be computed for {}", foil.name);
-    }
-    let mut fits = Vec::new();
-    for p in &polars {
-        match fit_qprop(&polars, p.re, &AlphaWeights::Uniform, -0.5) {
-            Ok(f) => {
-                eprintln!("{}", fit_summary(p.re, &f));
-                fits.push(f);
-            }
-            Err(e) => {
-                eprintln!("propbet: Re {:.0}: no QPROP fit: {e}", p.re);
-                ok = false;
-            }
+    section.check()?;
+    for (re, f) in &section.fits {
+        match f {
+            Ok(f) => eprintln!("{}", fit_summary(*re, f)),
+            Err(e) => eprintln!("propbet: Re {re:.0}: no QPROP fit: {e}"),
         }
     }
     let inputs = input_paths(&args.section);
-    let mut csv = format!("{}\n", propbet_polar::table::CSV_HEADER);
-    for p in &polars {
-        csv.push_str(&p.csv_rows());
-    }
-    emit(args.out.as_deref(), &[csv.as_bytes()], &inputs)?;
+    emit(args.out.as_deref(), &[section.csv().as_bytes()], &inputs)?;
+    let fits = section.fitted();
     if let Some(path) = &args.fit_out {
         let json = serde_json::to_vec_pretty(&fits)?;
         crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     if let Some(path) = &args.plot {
         let fig = Figure {
-            panels: propbet_report::polar::panels(&foil.name, &polars, &fits),
+            panels: propbet_report::polar::panels(&foil.name, &section.polars(), &fits),
             columns: 2,
             width: 1400,
             height: 560,
         };
         crate::output::write_figure(path, &fig, &inputs)?;
     }
-    Ok(ok)
+    Ok(section.clean())
 }
 
 /// The files `polars` reads: the geometry, the airfoil file (not a NACA name) and the scanned

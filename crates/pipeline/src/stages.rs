@@ -266,9 +266,11 @@ pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<
 
 mod measured;
 mod polar;
+mod section;
 
 pub use measured::*;
 pub use polar::*;
+pub use section::{section, SectionPolars, SectionSpec};
 
 #[cfg(test)]
 mod tests;

@@ -375,7 +375,7 @@ fn station_polars(
         ));
         None
     } else {
-        match crate::fit_qprop(&polars, re, &weights, -0.5) {
+        match crate::fit_qprop(&polars, re, &weights, crate::DEFAULT_RE_EXP) {
             Ok(f) => Some(f),
             Err(e) => {
                 problems.push(e.to_string());

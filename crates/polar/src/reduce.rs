@@ -413,6 +413,10 @@ fn working_angle_notes(weights: &AlphaWeights, range: [f64; 2], centre: &Polar) 
     unfit
 }
 
+/// The Reynolds-number exponent of the drag where a single polar cannot give one: -0.5, a
+/// laminar boundary layer's skin friction (Blasius, cf ~ Re^-0.5).
+pub const DEFAULT_RE_EXP: f64 = -0.5;
+
 /// Fits QPROP's coefficients to `polars` (any order; the one nearest `re_ref` in ln Re gives
 /// lift and drag, the others REexp). `default_re_exp` is kept when there is a single polar.
 pub fn fit_qprop(
