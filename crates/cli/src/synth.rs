@@ -3,13 +3,9 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_atmosphere::AirState;
-use propbet_diagnose::synth::{self, Plan};
-use propbet_diagnose::Model;
-use propbet_effects::Stack;
-use serde_json::json;
+use propbet_pipeline::stages::{self, SynthSpec};
 
 use crate::output::write_atomic;
 use propbet_pipeline::values::parse_list;
@@ -54,19 +50,6 @@ pub struct SynthArgs {
     pub out: PathBuf,
 }
 
-fn parse_noise(s: &str) -> Result<f64> {
-    let t = s.trim();
-    let v = match t.strip_suffix('%') {
-        Some(p) => p.trim().parse::<f64>().map(|x| x / 100.0),
-        None => t.parse::<f64>(),
-    }
-    .map_err(|_| anyhow::anyhow!("--noise '{s}': not a number (write 1% or 0.01)"))?;
-    if !(0.0..0.5).contains(&v) {
-        bail!("--noise '{s}': must be between 0 and 50 %");
-    }
-    Ok(v)
-}
-
 /// Runs `propbet synth`.
 pub fn run(args: &SynthArgs) -> Result<bool> {
     let mspec = args.model.spec()?;
@@ -78,97 +61,47 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
         _ => crate::output::refuse_outputs_over_inputs(&[&args.out, &answer_path], &mspec.inputs())?,
     }
     let m = load_model(&mspec, false)?;
-    let noise = parse_noise(&args.noise)?;
-    let state = AirState::ISA;
-    let fluid = state.fluid();
-    // The model without the hidden effects decides the default plan.
-    let base = Model {
-        rotor: &m.rotor,
-        opts: m.opts,
-        diameter: m.diameter,
-        fixed: Stack::baseline(),
-    };
-    let rpms = match &args.rpm {
-        Some(r) => parse_list("--rpm", r)?,
-        None => synth::default_rpms(m.diameter),
-    };
-    if let Some(bad) = rpms.iter().find(|&&r| r.is_nan() || r <= 0.0) {
-        bail!("--rpm: rotation speeds must be positive, found {bad}");
-    }
-    let js = match (&args.j, args.format) {
-        (Some(j), _) => parse_list("--j", j)?,
-        (None, SynthFormat::Rcbenchmark) => vec![0.0],
-        (None, _) => synth::default_js(&base, &fluid, rpms[rpms.len() / 2]),
-    };
-    if let Some(bad) = js.iter().find(|&&j| j < 0.0) {
-        bail!("--j: advance ratios must not be negative, found {bad}");
-    }
-    let plan = Plan {
-        rpms,
-        js,
-        noise,
+    let spec = SynthSpec {
+        noise: stages::parse_noise(&args.noise)?,
+        format: match args.format {
+            SynthFormat::Generic => stages::SynthFormat::Generic,
+            SynthFormat::Uiuc => stages::SynthFormat::Uiuc,
+            SynthFormat::Rcbenchmark => stages::SynthFormat::Rcbenchmark,
+        },
+        rpms: args.rpm.as_deref().map(|r| parse_list("--rpm", r)).transpose()?,
+        js: args.j.as_deref().map(|j| parse_list("--j", j)).transpose()?,
         seed: args.seed,
-        fluid,
-        logged: (state.temperature - 273.15, state.pressure),
+        prop: args.model.prop.display().to_string(),
+        stem: args
+            .model
+            .prop
+            .file_stem()
+            .map_or("synth".into(), |s| s.to_string_lossy().replace('_', "-")),
     };
-    let points = synth::generate(&base, &m.effects, &plan)?;
+    let made = stages::synth(&spec, &m)?;
     let inputs = mspec.inputs();
-    let mut key = serde_json::Map::new();
-    for a in &m.effects.active {
-        let params: serde_json::Map<String, serde_json::Value> = a
-            .effect
-            .params()
-            .iter()
-            .zip(&a.values)
-            .map(|(p, v)| (p.name.clone(), json!(v)))
-            .collect();
-        key.insert(a.effect.id().to_string(), serde_json::Value::Object(params));
-    }
-    if key.is_empty() {
-        key.insert("none".into(), json!({}));
-    }
-    let answer = json!({
-        "prop": args.model.prop.display().to_string(),
-        "effects": key,
-        "noise": noise,
-        "format": format!("{:?}", args.format).to_lowercase(),
-        "rho_true": fluid.rho,
-        "seed": args.seed,
-        "made_by": "propbet synth",
-    });
-    let mut answer_bytes = serde_json::to_vec_pretty(&answer)?;
+    let mut answer_bytes = serde_json::to_vec_pretty(&made.answer)?;
     answer_bytes.push(b'\n');
-    match args.format {
-        SynthFormat::Generic | SynthFormat::Rcbenchmark => {
-            let text = if args.format == SynthFormat::Generic {
-                synth::write_generic(&points, &plan)
-            } else {
-                synth::write_rcbenchmark(&points, &plan)
-            };
+    if args.format == SynthFormat::Uiuc {
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", args.out.display()))?;
+        for (name, text) in &made.files {
+            write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
+        }
+        write_atomic(&args.out.join("answer.json"), &[&answer_bytes], &inputs)?;
+    } else {
+        for (_, text) in &made.files {
             write_atomic(&args.out, &[text.as_bytes()], &inputs)?;
-            write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
         }
-        SynthFormat::Uiuc => {
-            std::fs::create_dir_all(&args.out)
-                .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", args.out.display()))?;
-            let stem = args
-                .model
-                .prop
-                .file_stem()
-                .map_or("synth".into(), |s| s.to_string_lossy().replace('_', "-"));
-            for (name, text) in synth::write_uiuc(&points, &plan, m.diameter, &stem) {
-                write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
-            }
-            write_atomic(&args.out.join("answer.json"), &[&answer_bytes], &inputs)?;
-        }
+        write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
     }
     eprintln!(
         "propbet: {} points ({} RPMs x {} J) with {} and {:.2} % noise -> {}",
-        points.len(),
-        plan.rpms.len(),
-        plan.js.len(),
-        m.effects.describe(),
-        100.0 * noise,
+        made.points,
+        made.plan.rpms.len(),
+        made.plan.js.len(),
+        made.effects,
+        100.0 * spec.noise,
         args.out.display()
     );
     Ok(true)

@@ -267,10 +267,12 @@ pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<
 mod measured;
 mod polar;
 mod section;
+mod synth;
 
 pub use measured::*;
 pub use polar::*;
 pub use section::{section, SectionPolars, SectionSpec};
+pub use synth::{parse_noise, synth, AnswerKey, SynthFormat, SynthSpec, Synthesized};
 
 #[cfg(test)]
 mod tests;
