@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use propbet_compare::ComparedPoint;
-use propbet_measure::{MeasuredSet, RpmSource};
+use propbet_pipeline::compare::ComparedPoint;
+use propbet_pipeline::measure::{MeasuredSet, RpmSource};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared};
@@ -106,7 +106,7 @@ pub fn print_measured(spec: &MeasuredSpec, sets: &[MeasuredSet]) {
             p.display(),
             s.rows,
             s.points.len(),
-            propbet_measure::summarise_dropped(&s.dropped)
+            propbet_pipeline::measure::summarise_dropped(&s.dropped)
         );
     }
 }
@@ -234,7 +234,7 @@ pub fn write(
     other: Option<&Reference>,
 ) -> Result<(String, Option<serde_json::Value>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
-    let curves = propbet_compare::curves::curves(&setup, &c.points)?;
+    let curves = propbet_pipeline::compare::curves::curves(&setup, &c.points)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(
@@ -313,8 +313,8 @@ pub struct Reference {
 }
 
 enum ReferenceTable {
-    Apc(propbet_qprop::apc::Per3),
-    Qprop(propbet_compare::curves::PerformanceTable),
+    Apc(propbet_pipeline::qprop::apc::Per3),
+    Qprop(propbet_pipeline::compare::curves::PerformanceTable),
 }
 
 impl Reference {
@@ -360,12 +360,15 @@ impl Reference {
 /// A QPROP output's summary rows as (rpm, J, CT, CP) in propbet's coefficients: from its
 /// printed thrust and torque, the output's density and the model's diameter `d` (so that the
 /// radius QPROP's own coefficients use does not matter).
-fn qprop_table(out: &propbet_qprop::output::QpropOutput, d: f64) -> propbet_compare::curves::PerformanceTable {
-    propbet_compare::curves::PerformanceTable::new(out.summary.iter().map(|r| {
+fn qprop_table(
+    out: &propbet_pipeline::qprop::output::QpropOutput,
+    d: f64,
+) -> propbet_pipeline::compare::curves::PerformanceTable {
+    propbet_pipeline::compare::curves::PerformanceTable::new(out.summary.iter().map(|r| {
         let (v, rpm, thrust, torque) = (r[0].value, r[1].value, r[3].value, r[4].value);
-        let omega = propbet_bemt::units::rpm_to_omega(rpm);
-        let n = propbet_bemt::units::rpm_to_rev_per_s(rpm);
-        let q = propbet_compare::Quantities::from_forces(thrust, Some(torque), omega, v, out.rho, d);
+        let omega = propbet_pipeline::units::rpm_to_omega(rpm);
+        let n = propbet_pipeline::units::rpm_to_rev_per_s(rpm);
+        let q = propbet_pipeline::compare::Quantities::from_forces(thrust, Some(torque), omega, v, out.rho, d);
         [rpm, v / (n * d), q.ct.unwrap_or(f64::NAN), q.cp.unwrap_or(f64::NAN)]
     }))
 }

@@ -35,7 +35,7 @@ pub struct DiagnoseArgs {
     /// Scored window: only points below this fraction of their file's measured zero-thrust J
     /// are fitted and scored (near zero thrust a relative error says nothing); the same window
     /// as `validate` and the report's headline.
-    #[arg(long, default_value_t = propbet_compare::metrics::VALIDATION_J_WINDOW)]
+    #[arg(long, default_value_t = propbet_pipeline::compare::metrics::VALIDATION_J_WINDOW)]
     pub window: f64,
     /// Output directory (created if missing).
     #[arg(long, short)]
@@ -132,7 +132,7 @@ pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
 }
 
 /// The diagnosis on the terminal: verdict, where the baseline fails, ranking, ladder.
-pub fn print_result(d: &propbet_diagnose::discover::Diagnosis) {
+pub fn print_result(d: &propbet_pipeline::diagnose::Diagnosis) {
     println!("{}", report::verdict(d));
     println!("where the baseline fails:");
     for s in &d.before {
@@ -186,17 +186,19 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
         let hooks: Vec<String> = e.hooks().iter().map(|h| format!("{h:?}").to_lowercase()).collect();
         let _ = writeln!(out, "{} ({})", e.id(), hooks.join(", "));
         for p in e.params() {
-            let neutral = p.neutral.map_or("none".to_string(), propbet_effects::fmt_value);
+            let neutral = p
+                .neutral
+                .map_or("none".to_string(), propbet_pipeline::effects::fmt_value);
             let (lo, hi) = p.expected_range();
             let _ = writeln!(
                 out,
                 "    {} [{}]  neutral {neutral}, bounds [{}, {}], physically expected [{}, {}]: {}",
                 p.name,
                 p.unit,
-                propbet_effects::fmt_value(p.lower),
-                propbet_effects::fmt_value(p.upper),
-                propbet_effects::fmt_value(lo),
-                propbet_effects::fmt_value(hi),
+                propbet_pipeline::effects::fmt_value(p.lower),
+                propbet_pipeline::effects::fmt_value(p.upper),
+                propbet_pipeline::effects::fmt_value(lo),
+                propbet_pipeline::effects::fmt_value(hi),
                 p.doc
             );
         }

@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_measure::{Loads, Speed};
+use propbet_pipeline::measure::{Loads, Speed};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::simexport::{self, Point, Source, Target};
 use propbet_pipeline::spec::{drag_factor_or_default, ModelSpec, PredictSpec, Rotation, TableFormat};
@@ -191,7 +191,10 @@ fn inertia(args: &ExportArgs, model: Option<&Model>) -> Option<(f64, String)> {
         return Some((i, "given (--ixx)".into()));
     }
     let m = model?;
-    let blade = m.loaded.file.to_blade(propbet_qprop::RadiusReading::Documented);
+    let blade = m
+        .loaded
+        .file
+        .to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
     let (t_c, density) = simexport::IXX_ASSUMED;
     let i = simexport::blade_ixx(blade.blades, &blade.r, &blade.chord, t_c, density);
     Some((
@@ -312,9 +315,9 @@ fn measured(args: &ExportArgs) -> Result<Source> {
                 flagged += 1;
                 continue;
             }
-            let rho = propbet_compare::point_air(p, &air).fluid.rho;
+            let rho = propbet_pipeline::compare::point_air(p, &air).fluid.rho;
             let omega = p.omega.mean;
-            let n = propbet_units::omega_to_rev_per_s(omega);
+            let n = propbet_pipeline::units::omega_to_rev_per_s(omega);
             let j = match p.speed {
                 Speed::Airspeed(v) => v.mean / (n * diameter),
                 Speed::AdvanceRatio(j) => j,
@@ -322,7 +325,7 @@ fn measured(args: &ExportArgs) -> Result<Source> {
             let (ct, cp) = match p.loads {
                 Loads::Coefficients { ct, cp } => (ct, cp),
                 Loads::Forces { thrust, torque } => {
-                    let q = propbet_compare::Quantities::from_forces(
+                    let q = propbet_pipeline::compare::Quantities::from_forces(
                         thrust.mean,
                         torque.map(|q| q.mean),
                         omega,

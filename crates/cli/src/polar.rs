@@ -6,12 +6,12 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::case::parse_fraction;
+use propbet_pipeline::polar::{Airfoil, Polar, QpropFit};
+use propbet_pipeline::qprop::write_prop;
 use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
 use propbet_pipeline::values::parse_list;
 use propbet_plot::Figure;
-use propbet_polar::{Airfoil, Polar, QpropFit};
-use propbet_qprop::write_prop;
 
 use crate::output::emit;
 use crate::predict::FluidArgs;
@@ -104,7 +104,7 @@ pub struct XfoilArgs {
     #[arg(long)]
     pub panels: Option<u32>,
     /// XFOIL's viscous iteration limit per angle.
-    #[arg(long, default_value_t = xfoil_runner::DEFAULT_MAX_ITER)]
+    #[arg(long, default_value_t = propbet_pipeline::xfoil::DEFAULT_MAX_ITER)]
     pub iter: u32,
 }
 

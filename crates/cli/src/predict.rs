@@ -4,11 +4,11 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_atmosphere::AirState;
-use propbet_bemt::units::rpm_to_omega;
-use propbet_bemt::{Fluid, PointResult};
+use propbet_pipeline::atmosphere::AirState;
+use propbet_pipeline::bemt::{Fluid, PointResult};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, Rotation, SweepAxis, TableFormat};
+use propbet_pipeline::units::rpm_to_omega;
 use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 use serde::Serialize;
 
@@ -338,7 +338,7 @@ struct SweepRow {
     cl_avg: Num,
     cd_avg: Num,
     not_converged: usize,
-    /// What is physically implausible at the point ([`propbet_bemt::check::implausible`]).
+    /// What is physically implausible at the point ([`propbet_pipeline::bemt::check::implausible`]).
     flags: String,
     /// Air density used [kg/m^3].
     rho_kg_m3: Num,
@@ -366,7 +366,7 @@ fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_
             cl_avg: p.cl_avg.into(),
             cd_avg: p.cd_avg.into(),
             not_converged: p.not_converged,
-            flags: propbet_bemt::check::implausible(p, rho, tip_radius).join("; "),
+            flags: propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
             rho_kg_m3: rho.into(),
             // No comma in the cell: the table stays splittable on commas.
             air: air.replace(',', ";"),
@@ -423,12 +423,12 @@ fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
             dq_dr_n: st.dq_dr.into(),
             stalled: st.stalled,
             convergence: match st.convergence {
-                propbet_bemt::Convergence::Newton { .. } => "newton",
-                propbet_bemt::Convergence::Bracketed { .. } => "bracketed",
-                propbet_bemt::Convergence::NotConverged => "not_converged",
-                propbet_bemt::Convergence::NoFlow => "no_flow",
-                propbet_bemt::Convergence::NoRotation => "no_rotation",
-                propbet_bemt::Convergence::ZeroChord => "zero_chord",
+                propbet_pipeline::bemt::Convergence::Newton { .. } => "newton",
+                propbet_pipeline::bemt::Convergence::Bracketed { .. } => "bracketed",
+                propbet_pipeline::bemt::Convergence::NotConverged => "not_converged",
+                propbet_pipeline::bemt::Convergence::NoFlow => "no_flow",
+                propbet_pipeline::bemt::Convergence::NoRotation => "no_rotation",
+                propbet_pipeline::bemt::Convergence::ZeroChord => "zero_chord",
             },
         })
     });

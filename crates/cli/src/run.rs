@@ -62,7 +62,7 @@ fn default_case() -> Result<PathBuf> {
 
 /// The scan flags of a case (`--units`, `--stations`, its `scan_args`) as the geometry
 /// pipeline's options, read as `propbet scan` reads them.
-fn scan_options(flags: &[String]) -> propbet_pipeline::Result<propbet_geometry::scan::ScanOptions> {
+fn scan_options(flags: &[String]) -> propbet_pipeline::Result<propbet_pipeline::geometry::scan::ScanOptions> {
     let argv = ["scan", "scan.stl", "-o", "out"]
         .into_iter()
         .map(String::from)
@@ -296,7 +296,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
                 write_atomic(
                     &dir.join(propbet_pipeline::export::FILE_NAME),
-                    &[propbet_qprop::write_prop(&x.file)],
+                    &[propbet_pipeline::qprop::write_prop(&x.file)],
                     &spec.model.inputs(),
                 )?;
             }

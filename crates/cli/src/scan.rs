@@ -7,14 +7,16 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use nalgebra::Vector3;
-use propbet_geometry::cloud::{parse_colour, to_ply};
-use propbet_geometry::scan::{default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind};
-use propbet_measure::uiuc::{geometry_at, GeometryRow};
+use propbet_pipeline::geometry::cloud::{parse_colour, to_ply};
+use propbet_pipeline::geometry::scan::{
+    default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
+};
+use propbet_pipeline::geometry::Vector3;
+use propbet_pipeline::measure::uiuc::{geometry_at, GeometryRow};
+use propbet_pipeline::qprop::write_prop;
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
 use propbet_pipeline::values::{parse_length_unit, parse_list};
-use propbet_qprop::write_prop;
 use serde_json::json;
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};

@@ -158,7 +158,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
     }
     write_atomic(
         &dir.join("geometry.qprop"),
-        &[propbet_qprop::write_prop(&v.geometry.file)],
+        &[propbet_pipeline::qprop::write_prop(&v.geometry.file)],
         &[],
     )?;
     // The two comparisons, in the order of their stages.

@@ -9,9 +9,12 @@
 //! * [`model`]: a prop file turned into the model a stage solves; the air.
 //! * [`values`]: lists, ranges and quantities with units as users write them.
 //!
+//! * [`artifacts`]: the types of the crates below that the stages hand out, for the binary.
+//!
 //! Inputs are read here; outputs are written by the caller. Progress goes through callbacks.
 #![deny(missing_docs)]
 
+pub mod artifacts;
 pub mod case;
 mod error;
 pub mod export;
@@ -23,4 +26,5 @@ pub mod stages;
 pub mod validate;
 pub mod values;
 
+pub use artifacts::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, polar, qprop, units, xfoil};
 pub use error::{read_bytes, read_text, Error, Result, INPUT_LIMIT};

@@ -236,6 +236,18 @@ fn no_crate_depends_on_one_above_it_in_the_data_flow() {
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
 
+/// One door per stage: the binary reaches the crates below through the pipeline (which
+/// re-exports the types its stages hand out), and the report and figures directly.
+#[test]
+fn the_binary_depends_on_the_pipeline_the_report_and_the_figures_only() {
+    let (_, deps) = manifest(&workspace().join("crates/cli"));
+    let ours: Vec<&String> = deps
+        .iter()
+        .filter(|d| RANKS.iter().any(|r| r.0 == d.as_str()) || d.as_str() == "nalgebra")
+        .collect();
+    assert_eq!(ours, ["propbet-pipeline", "propbet-plot", "propbet-report"]);
+}
+
 /// Errors are typed in every library crate (`thiserror`); `anyhow` is the binary's alone.
 #[test]
 fn anyhow_only_in_the_binary() {

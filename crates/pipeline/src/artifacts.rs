@@ -1,0 +1,59 @@
+//! The types and file formats of the crates below that the stages hand out or take, as the
+//! binary reaches them: through the pipeline, one door. Each module names the crate it comes
+//! from and holds only what the binary uses.
+
+/// The solver's results ([`propbet_bemt`]).
+pub mod bemt {
+    pub use propbet_bemt::{check, Convergence, Fluid, PointResult};
+}
+
+/// QPROP's files ([`propbet_qprop`]): the prop file writer, QPROP's output, APC's files.
+pub mod qprop {
+    pub use propbet_qprop::{apc, output, write_prop, RadiusReading};
+}
+
+/// The air ([`propbet_atmosphere`]).
+pub mod atmosphere {
+    pub use propbet_atmosphere::AirState;
+}
+
+/// Sections and their polars ([`propbet_polar`]).
+pub mod polar {
+    pub use propbet_polar::{Airfoil, Polar, QpropFit};
+}
+
+/// XFOIL's runner ([`xfoil_runner`]): its limits, and the signal handler that stops every XFOIL.
+pub mod xfoil {
+    pub use xfoil_runner::{interrupt, DEFAULT_MAX_ITER};
+}
+
+/// Measured data ([`propbet_measure`]).
+pub mod measure {
+    pub use propbet_measure::{summarise_dropped, uiuc, Loads, MeasuredSet, RpmSource, Speed};
+}
+
+/// The comparison ([`propbet_compare`]).
+pub mod compare {
+    pub use propbet_compare::{curves, metrics, point_air, ComparedPoint, Quantities};
+}
+
+/// Effects ([`propbet_effects`]).
+pub mod effects {
+    pub use propbet_effects::fmt_value;
+}
+
+/// The diagnosis ([`propbet_diagnose`]).
+pub mod diagnose {
+    pub use propbet_diagnose::discover::Diagnosis;
+}
+
+/// Scans ([`propbet_geometry`]) and the vectors their options are given in.
+pub mod geometry {
+    pub use nalgebra::Vector3;
+    pub use propbet_geometry::{cloud, scan};
+}
+
+/// Unit conversions ([`propbet_units`]).
+pub mod units {
+    pub use propbet_units::{omega_to_rev_per_s, rpm_to_omega, rpm_to_rev_per_s};
+}
