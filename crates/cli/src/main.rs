@@ -212,6 +212,8 @@ fn main() -> ExitCode {
 }
 
 #[cfg(test)]
+mod case_keys;
+#[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
 
@@ -293,7 +295,7 @@ mod tests {
     }
 
     /// A spec's printed command line parses back to the same spec.
-    fn check(spec: &StageSpec) {
+    pub(crate) fn check(spec: &StageSpec) {
         let argv = spec.argv();
         let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
             .unwrap_or_else(|e| panic!("{}: {e}", spec.command()));
@@ -301,7 +303,7 @@ mod tests {
         assert_eq!(&back, spec, "{}", spec.command());
     }
 
-    fn repo() -> PathBuf {
+    pub(crate) fn repo() -> PathBuf {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
     }
 

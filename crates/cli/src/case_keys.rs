@@ -1,0 +1,293 @@
+//! Every key a case file takes gives the spec its command-line flag gives: a case with the key
+//! set plans stages whose command lines carry the flag and parse back to the same specs; a key
+//! without a flag says why. The list is checked against the case file's sections, so a key
+//! added without its flag (or a flag that drops it) fails here.
+
+use std::path::Path;
+
+use crate::tests::{check, repo};
+
+/// (section, key, the line that sets it, the stage that takes it, what its command line then
+/// carries). An empty stage: a key with no flag, and why.
+const KEYS: &[(&str, &str, &str, &str, &str)] = &[
+    (
+        "",
+        "name",
+        "name = \"K\"",
+        "",
+        "the report's title, not a stage's input",
+    ),
+    (
+        "",
+        "description",
+        "description = \"D\"",
+        "",
+        "the report's text, not a stage's input",
+    ),
+    (
+        "",
+        "blades",
+        "blades = 2",
+        "",
+        "the run page's blade count, checked against the scan's",
+    ),
+    (
+        "geometry",
+        "scan",
+        "scan = \"{case}/../apcsf_10x4.7/apcsf_10x4.7.stl\"",
+        "scan",
+        "apcsf_10x4.7.stl",
+    ),
+    (
+        "geometry",
+        "prop",
+        "",
+        "",
+        "without a scan: the prop file the polars and the model read (cam6x3 cases)",
+    ),
+    ("geometry", "units", "units = \"mm\"", "scan", "--units mm"),
+    ("geometry", "stations", "stations = \"0.3:0.9/7\"", "scan", "--stations"),
+    (
+        "geometry",
+        "reference",
+        "reference = \"{case}/apcsf_10x4.7_geom.txt\"",
+        "scan",
+        "--reference",
+    ),
+    (
+        "geometry",
+        "scan_args",
+        "scan_args = [\"--outliers\", \"8,3\"]",
+        "scan",
+        "--outliers",
+    ),
+    (
+        "polars",
+        "sections",
+        "sections = \"scan\"",
+        "polars",
+        "--station-airfoils",
+    ),
+    (
+        "polars",
+        "airfoil",
+        "airfoil = \"naca4412\"",
+        "polars",
+        "--airfoil naca4412",
+    ),
+    ("polars", "thickness", "thickness = \"0.1\"", "polars", "--thickness"),
+    ("polars", "rpm", "rpm = \"3000,5000\"", "polars", "--rpm=3000,5000"),
+    ("polars", "j", "j = \"0:0.5:0.1\"", "polars", "--j"),
+    ("polars", "v", "v = \"0:10:5\"", "polars", "--v"),
+    ("polars", "ncrit", "ncrit = 7", "polars", "--ncrit 7"),
+    (
+        "polars",
+        "ncrit_effect",
+        "ncrit_effect = \"3,9\"",
+        "polars",
+        "--ncrit-effect",
+    ),
+    ("polars", "trip", "trip = \"free\"", "polars", "--trip free"),
+    ("polars", "alpha", "alpha = \"-4:12:1\"", "polars", "--alpha"),
+    ("polars", "model", "model = \"qprop\"", "predict", "--prop"),
+    ("polars", "rotation", "rotation = \"off\"", "predict", "--rotation off"),
+    (
+        "polars",
+        "drag_factor",
+        "drag_factor = 1.1",
+        "predict",
+        "--drag-factor=1.1",
+    ),
+    ("sweep", "rpm", "rpm = \"4500\"", "predict", "--rpm=4500"),
+    ("sweep", "j", "j = \"0:0.5:0.25\"", "predict", "--j"),
+    (
+        "measured",
+        "files",
+        "files = [\"{case}/uiuc/apcsf_10x4.7_kt0836_4014.txt\"]",
+        "compare",
+        "kt0836",
+    ),
+    ("measured", "poles", "poles = 14", "compare", "--poles 14"),
+    (
+        "measured",
+        "rpm_source",
+        "rpm_source = \"electrical\"",
+        "compare",
+        "--rpm-source electrical",
+    ),
+    (
+        "measured",
+        "columns",
+        "columns = \"{repo}/tests/data/bad_inputs/colmap_same_column.toml\"",
+        "compare",
+        "--columns",
+    ),
+    ("measured", "folds", "folds = 3", "diagnose", "--folds 3"),
+    ("measured", "max_steps", "max_steps = 2", "diagnose", "--max-steps 2"),
+    (
+        "measured",
+        "per3",
+        "per3 = \"{case}/PER3_10x47SF.dat\"",
+        "compare",
+        "--per3",
+    ),
+    (
+        "measured",
+        "user_effects",
+        "user_effects = \"{repo}/docs/studies/re-zero-lift.toml\"",
+        "diagnose",
+        "--user-effects",
+    ),
+    (
+        "atmosphere",
+        "air",
+        "air = \"20C,1000hPa,50%\"",
+        "predict",
+        "--temp=293.15K --pressure 100000 --humidity 50",
+    ),
+    ("atmosphere", "rho", "rho = 1.2", "predict", "--rho=1.2"),
+];
+
+/// The case every key is set in: the default case's scan, polars, sweep and measurements.
+fn base(repo: &Path) -> String {
+    let case = repo.join("props/apcsf_10x4.7").display().to_string();
+    format!(
+        "name = \"settings\"\n\n[geometry]\nscan = \"{case}/apcsf_10x4.7.stl\"\n#geometry\n\n[polars]\nsections = \"airfoil\"\nairfoil = \"{case}/../airfoils/e63.dat\"\n#polars\n\n[sweep]\nrpm = \"4000,5000\"\nj = \"0:0.6:0.1\"\n#sweep\n\n[measured]\nfiles = [\"{case}/uiuc/apcsf_10x4.7_static_kt0835.txt\"]\n#measured\n\n[atmosphere]\n#atmosphere\n"
+    )
+}
+
+/// The base case with `line` in `section` (replacing the base's own line for the key).
+fn with(base: &str, section: &str, key: &str, line: &str) -> String {
+    let mut out: Vec<String> = Vec::new();
+    let mut current = "";
+    for l in base.lines() {
+        if let Some(s) = l.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
+            current = match s {
+                "geometry" => "geometry",
+                "polars" => "polars",
+                "sweep" => "sweep",
+                "measured" => "measured",
+                _ => "atmosphere",
+            };
+        }
+        let same_key = l.split('=').next().is_some_and(|k| k.trim() == key);
+        if same_key && (current == section || (section.is_empty() && !l.starts_with('#') && out.len() < 2)) {
+            continue;
+        }
+        if l == format!("#{section}") {
+            out.push(line.to_string());
+        } else {
+            out.push(l.to_string());
+        }
+    }
+    if section.is_empty() {
+        out.insert(0, line.to_string());
+    }
+    out.join("\n") + "\n"
+}
+
+/// The keys of each section of `case.rs`'s structs, as (section, key).
+fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
+    let text = std::fs::read_to_string(repo.join("crates/pipeline/src/case.rs")).unwrap();
+    let sections = [
+        ("Case", ""),
+        ("GeometrySection", "geometry"),
+        ("PolarSection", "polars"),
+        ("SweepSection", "sweep"),
+        ("MeasuredSection", "measured"),
+        ("AtmosphereSection", "atmosphere"),
+    ];
+    let mut out = Vec::new();
+    for (name, section) in sections {
+        let start = text.find(&format!("pub struct {name} {{")).unwrap();
+        let body = &text[start..start + text[start..].find("\n}").unwrap()];
+        for l in body.lines().skip(1) {
+            let Some(rest) = l.trim().strip_prefix("pub ") else {
+                continue;
+            };
+            let key = rest.split(':').next().unwrap().to_string();
+            // The sections themselves are not keys.
+            if !["geometry", "polars", "sweep", "measured", "atmosphere"].contains(&key.as_str()) || !section.is_empty()
+            {
+                out.push((section.to_string(), key));
+            }
+        }
+    }
+    out
+}
+
+/// Every key of the case file's sections is in [`KEYS`], with its flag or why it has none.
+#[test]
+fn every_case_key_is_listed_with_its_flag() {
+    let listed: Vec<(String, String)> = KEYS.iter().map(|k| (k.0.to_string(), k.1.to_string())).collect();
+    let mut missing = Vec::new();
+    for k in case_file_keys(&repo()) {
+        if !listed.contains(&k) {
+            missing.push(format!("[{}] {}", k.0, k.1));
+        }
+    }
+    assert!(missing.is_empty(), "case keys without their flag in KEYS: {missing:?}");
+}
+
+/// Each key set in a case changes the stage that takes it (nothing a user writes is dropped),
+/// that stage's command line carries the key's flag, and every stage's command line parses back
+/// to the same spec.
+#[test]
+fn each_case_key_and_its_flag_give_the_same_spec() {
+    let repo = repo();
+    let case = repo.join("props/apcsf_10x4.7").display().to_string();
+    let base = base(&repo);
+    let xfoil = crate::polar::XfoilProcess {
+        xfoil: None,
+        cache: None,
+        no_cache: false,
+        quiet: true,
+        xfoil_budget: None,
+    };
+    let plan_of = |text: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("case.toml"), text).unwrap();
+        crate::run::plan(dir.path(), Path::new("out"), &xfoil)
+    };
+    let base_stages = plan_of(&base).unwrap().stages();
+    let mut failures = Vec::new();
+    for &(section, key, line, stage, carries) in KEYS {
+        if stage.is_empty() {
+            assert!(!carries.is_empty(), "{key}: say why it has no flag");
+            continue;
+        }
+        let line = line
+            .replace("{case}", &case)
+            .replace("{repo}", &repo.display().to_string());
+        let text = with(&base, section, key, &line);
+        let plan = match plan_of(&text) {
+            Ok(p) => p,
+            Err(e) => {
+                failures.push(format!("[{section}] {key}: the case does not plan: {e:#}\n{text}"));
+                continue;
+            }
+        };
+        let stages = plan.stages();
+        let Some(spec) = stages.iter().find(|s| s.name() == stage) else {
+            failures.push(format!("[{section}] {key}: no {stage} stage"));
+            continue;
+        };
+        let command = spec.command();
+        if !command.contains(carries) {
+            failures.push(format!(
+                "[{section}] {key}: the {stage} command does not carry `{carries}`: {command}"
+            ));
+        }
+        // Nothing written is dropped: the key changes the stage it belongs to.
+        if base_stages.iter().any(|b| b == spec) {
+            failures.push(format!(
+                "[{section}] {key}: the {stage} stage is the base case's: the key was dropped"
+            ));
+        }
+        // The flag gives back the same spec.
+        for s in &stages {
+            check(s);
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
