@@ -49,7 +49,16 @@ fn default_case_from_scan_to_report() {
         assert!(at(s) < at("id=\"geometry\""), "{s} after the geometry");
     }
     diagnosis_agrees(&dir.path().join("out/diagnose"), &html);
-    // The report's command for the flight simulators runs and writes them.
+    export_command_runs(&html, dir.path(), &out);
+    outputs_geometry_and_polars(&out);
+    prediction_against_the_measurements(&out);
+    diagnosis_of_the_default_case(&out);
+    report_has_every_part(&out, &o);
+}
+
+/// The report's command for the flight simulators runs and writes them.
+fn export_command_runs(html: &str, dir: &Path, out: &Path) {
+    let at = |s: &str| html.find(s).unwrap_or_else(|| panic!("{s} missing"));
     let a = at("<code>propbet export ") + "<code>propbet ".len();
     let cmd = html[a..a + html[a..].find("</code>").unwrap()]
         .replace("&quot;", "\"")
@@ -59,14 +68,17 @@ fn default_case_from_scan_to_report() {
         .replace("&amp;", "&");
     let o = Command::new("bash")
         .args(["-c", &format!("'{}' {cmd}", env!("CARGO_BIN_EXE_propbet"))])
-        .current_dir(dir.path())
+        .current_dir(dir)
         .output()
         .unwrap();
     assert!(o.status.success(), "{cmd}: {}", stderr(&o));
     for f in ["gazebo_motor_model.sdf", "px4_sih.params", "map.csv", "map.json"] {
         assert!(out.join("export").join(f).is_file(), "{f} missing after {cmd}");
     }
-    // Every stage's outputs.
+}
+
+/// Every stage's outputs; the geometry against UIUC's table; a fit at nearly every station.
+fn outputs_geometry_and_polars(out: &Path) {
     for f in [
         "scan/geometry.csv",
         "scan/plots/sections.svg",
@@ -93,6 +105,10 @@ fn default_case_from_scan_to_report() {
     let st = pol["stations"].as_array().unwrap();
     let fitted = st.iter().filter(|s| !s["fit"].is_null()).count();
     assert!(fitted >= 18, "{fitted} of {} stations fitted", st.len());
+}
+
+/// The comparison's trends with speed, and the prediction against UIUC's static test.
+fn prediction_against_the_measurements(out: &Path) {
     // "With speed": the measured static rise and zero-thrust J (the data's, fixed), beside the
     // model's; the model's zero-thrust J lower at every speed (its pitch, the diagnosis's first
     // step), not falling with RPM.
@@ -149,6 +165,11 @@ fn default_case_from_scan_to_report() {
         rise_p > 0.3 * rise_m && rise_p < 1.5 * rise_m,
         "rise {rise_p} vs measured {rise_m}"
     );
+}
+
+/// The diagnosis: the ladder's held-out error falls, the signatures name their candidates, each
+/// step takes its trend.
+fn diagnosis_of_the_default_case(out: &Path) {
     // The diagnosis: the ladder's held-out error falls.
     let d: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("diagnose/diagnosis.json")).unwrap()).unwrap();
@@ -204,6 +225,11 @@ fn default_case_from_scan_to_report() {
         t(k, "thrust_rpm_trend").abs() < 0.5 * t(k - 1, "thrust_rpm_trend").abs(),
         "{rungs:?}"
     );
+}
+
+/// One report with every part, the notes where they belong, a page that fits its window, and
+/// the case directory untouched.
+fn report_has_every_part(out: &Path, o: &Output) {
     // One report with every part.
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     for part in [
@@ -238,7 +264,7 @@ fn default_case_from_scan_to_report() {
         end.contains("<details>") && end.contains("<b>polars</b>: ") && end.contains("standard air assumed"),
         "{end}"
     );
-    let err = stderr(&o);
+    let err = stderr(o);
     assert!(err.lines().count() < 60, "the terminal repeats itself: {err}");
     // The page fits a 1300-px window: wide tables scroll inside it.
     let over = overflow_px(&out.join("report.html"));

@@ -491,7 +491,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "ncrit_tables_make_a_transition_effect_that_diagnose_finds",
         "to split",
     ),
-    ("tests/e2e/run.rs", "default_case_from_scan_to_report", "to split"),
     (
         "tests/e2e/validate.rs",
         "validation_table_on_the_shipped_subset",
