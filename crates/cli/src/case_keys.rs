@@ -2,6 +2,7 @@
 //! set plans stages whose command lines carry the flag and parse back to the same specs; a key
 //! without a flag says why. The list is checked against the case file's sections, so a key
 //! added without its flag (or a flag that drops it) fails here.
+#![cfg(test)]
 
 use std::path::Path;
 
