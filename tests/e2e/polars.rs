@@ -1,6 +1,7 @@
 //! `propbet polar` and `propbet polars` with the real XFOIL (and fake ones for faults).
 
 use std::os::unix::fs::PermissionsExt;
+use std::path::Path;
 
 use super::{cam6x3, col, read_csv, repo, run, run_or_hang, stderr};
 
@@ -214,7 +215,18 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
     };
     // What the run said (a rung without a polar is reported there, with XFOIL's reason).
     let said = polars(&["--out-prop", "fit.qprop", "--out-polars", "fit.json"]);
-    let text = std::fs::read_to_string(dir.path().join("fit.qprop")).unwrap();
+    let text = prop_file_and_polars_on_the_ladder(dir.path(), &said);
+    section_models_predict(dir.path());
+    // The second run comes from the cache, byte for byte (its time is measured in
+    // benchsuite/polars_blade.sh, not here).
+    polars(&["--out-prop", "fit2.qprop"]);
+    assert_eq!(std::fs::read(dir.path().join("fit2.qprop")).unwrap(), text.as_bytes());
+}
+
+/// `polars`' prop file (every row its ten coefficients, QPROP's line length) and its polars
+/// file (each station's polars on the Reynolds ladder, covering the Re it sees); the prop file.
+fn prop_file_and_polars_on_the_ladder(dir: &Path, said: &str) -> String {
+    let text = std::fs::read_to_string(dir.join("fit.qprop")).unwrap();
     // Every row carries its own ten coefficients and fits QPROP's 128-character line.
     let rows: Vec<&str> = text
         .lines()
@@ -227,7 +239,7 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
     assert!(text.lines().all(|l| l.len() <= 126));
     // Each station's polars cover the Re it sees from 6000 to 10000 rpm, on the ladder.
     let json: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("fit.json")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("fit.json")).unwrap()).unwrap();
     assert_eq!(json["rpm"], serde_json::json!([6000.0, 10000.0]));
     for st in json["stations"].as_array().unwrap() {
         let range: Vec<f64> = st["re_range"]
@@ -251,7 +263,12 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
             "{res:?} vs {range:?}"
         );
     }
-    // Both section models predict; the tabulated one close to the fitted one at the design point.
+    text
+}
+
+/// Both section models predict from `polars`' outputs; the tabulated one close to the fitted one
+/// at the design point; rotational augmentation as asked, and refused when unknown.
+fn section_models_predict(dir: &Path) {
     let thrust = |extra: &[&str]| -> f64 {
         let mut args = vec![
             "predict",
@@ -265,9 +282,9 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
             "p.csv",
         ];
         args.extend_from_slice(extra);
-        let o = run(&args, dir.path());
+        let o = run(&args, dir);
         assert!(o.status.success(), "{}", stderr(&o));
-        let (h, r) = read_csv(&dir.path().join("p.csv"));
+        let (h, r) = read_csv(&dir.join("p.csv"));
         r[0][col(&h, "thrust_n")].parse().unwrap()
     };
     let fitted = thrust(&[]);
@@ -294,7 +311,7 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
             "--rotation",
             "du-selig",
         ],
-        dir.path(),
+        dir,
     );
     assert_eq!(o.status.code(), Some(2));
     assert!(
@@ -302,10 +319,63 @@ fn polars_of_a_blade_make_a_prop_file_and_a_tabulated_model() {
         "{}",
         stderr(&o)
     );
-    // The second run comes from the cache, byte for byte (its time is measured in
-    // benchsuite/polars_blade.sh, not here).
-    polars(&["--out-prop", "fit2.qprop"]);
-    assert_eq!(std::fs::read(dir.path().join("fit2.qprop")).unwrap(), text.as_bytes());
+}
+
+/// Hidden in synthetic data (1 % noise) at Ncrit 8 with the tables of `fit.json`, the
+/// transition effect is found first, with its value.
+fn transition_hidden_at_ncrit_8_is_found(dir: &Path) {
+    let o = run(
+        &[
+            "synth",
+            "--prop",
+            "fit.qprop",
+            "--polars",
+            "fit.json",
+            "--effect",
+            "transition:ncrit=8",
+            "--rpm",
+            "4000:10000/4",
+            "--j",
+            "0:0.4/9",
+            "--noise",
+            "1%",
+            "--seed",
+            "5",
+            "--out",
+            "hidden.csv",
+        ],
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run(
+        &[
+            "diagnose",
+            "--prop",
+            "fit.qprop",
+            "--polars",
+            "fit.json",
+            "--measured",
+            "hidden.csv",
+            "--max-steps",
+            "1",
+            "--out",
+            "d",
+        ],
+        dir,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let d: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("d/diagnosis.json")).unwrap()).unwrap();
+    let ranking = &d["diagnosis"]["ranking"];
+    assert_eq!(ranking[0]["id"], "transition", "{ranking}");
+    let ncrit = d["final_params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["effect"] == "transition")
+        .and_then(|p| p["value"].as_f64())
+        .unwrap_or_else(|| panic!("{}", d["final_params"]));
+    assert!((ncrit - 8.0).abs() < 0.7, "fitted Ncrit {ncrit}");
 }
 
 /// Processes whose command line contains all of `words`.
@@ -524,59 +594,7 @@ fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
             );
         }
     }
-    // Hidden in synthetic data (1 % noise) at Ncrit 8, found first, with its value.
-    let o = run(
-        &[
-            "synth",
-            "--prop",
-            "fit.qprop",
-            "--polars",
-            "fit.json",
-            "--effect",
-            "transition:ncrit=8",
-            "--rpm",
-            "4000:10000/4",
-            "--j",
-            "0:0.4/9",
-            "--noise",
-            "1%",
-            "--seed",
-            "5",
-            "--out",
-            "hidden.csv",
-        ],
-        dir.path(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let o = run(
-        &[
-            "diagnose",
-            "--prop",
-            "fit.qprop",
-            "--polars",
-            "fit.json",
-            "--measured",
-            "hidden.csv",
-            "--max-steps",
-            "1",
-            "--out",
-            "d",
-        ],
-        dir.path(),
-    );
-    assert!(o.status.success(), "{}", stderr(&o));
-    let d: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.path().join("d/diagnosis.json")).unwrap()).unwrap();
-    let ranking = &d["diagnosis"]["ranking"];
-    assert_eq!(ranking[0]["id"], "transition", "{ranking}");
-    let ncrit = d["final_params"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["effect"] == "transition")
-        .and_then(|p| p["value"].as_f64())
-        .unwrap_or_else(|| panic!("{}", d["final_params"]));
-    assert!((ncrit - 8.0).abs() < 0.7, "fitted Ncrit {ncrit}");
+    transition_hidden_at_ncrit_8_is_found(dir.path());
     // Beyond the computed tables: refused, naming the bounds; without them: not an effect.
     let predict = |extra: &[&str]| {
         let mut args = vec!["predict", "--prop", "fit.qprop", "--rpm", "6000", "--v", "0"];

@@ -455,8 +455,7 @@ const MAX_FILE_LINES: usize = 700;
 const MAX_FN_LINES: usize = 120;
 
 /// Functions allowed over [`MAX_FN_LINES`]: data tables (a list of cases, each a few lines,
-/// read one at a time), and functions not yet split (this list only shrinks: a function that
-/// comes under the limit must leave it, and no other may join it).
+/// read one at a time). A function that comes under the limit must leave the list.
 const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
     (
         "tests/e2e/campaign.rs",
@@ -478,26 +477,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "crates/cli/src/main.rs",
         "specs_with_every_flag_parse_back",
         "data table",
-    ),
-    (
-        "crates/qprop/tests/qprop_reference.rs",
-        "reproduces_every_rpm_driven_qprop_run",
-        "to split",
-    ),
-    (
-        "tests/e2e/polars.rs",
-        "polars_of_a_blade_make_a_prop_file_and_a_tabulated_model",
-        "to split",
-    ),
-    (
-        "tests/e2e/polars.rs",
-        "ncrit_tables_make_a_transition_effect_that_diagnose_finds",
-        "to split",
-    ),
-    (
-        "tests/e2e/validate.rs",
-        "validation_table_on_the_shipped_subset",
-        "to split",
     ),
 ];
 

@@ -4,8 +4,8 @@
 
 use std::path::PathBuf;
 
-use propbet_bemt::{solve_point, solve_points, Discretization, Fluid, OperatingPoint, SolverOptions};
-use propbet_qprop::output::{RADIAL_COLUMNS, SUMMARY_COLUMNS};
+use propbet_bemt::{solve_point, solve_points, Discretization, Fluid, OperatingPoint, PointResult, SolverOptions};
+use propbet_qprop::output::{QpropOutput, RADIAL_COLUMNS, SUMMARY_COLUMNS};
 use propbet_qprop::{parse_output, parse_prop, qprop_sequence, Printed, RadiusReading};
 
 fn reference_dir() -> PathBuf {
@@ -53,6 +53,42 @@ impl Mismatches {
                 .push(format!("{what}: QPROP printed {} , propbet {ours:.6e}", printed.value));
         }
     }
+}
+
+/// A single point's stations against QPROP's radial table; the numbers compared.
+fn check_stations(out_file: &str, out: &QpropOutput, p: &PointResult, v: f64, bad: &mut Mismatches) -> usize {
+    let mut compared = 0;
+    assert_eq!(out.radial.len(), p.stations.len(), "{out_file}");
+    for (i, (s, printed)) in p.stations.iter().zip(&out.radial).enumerate() {
+        let (effi, effp) = if s.wa != 0.0 && s.wt != 0.0 {
+            (
+                (v / (p.omega * s.r) * (s.wt / s.wa)).clamp(-99.0, 99.0),
+                ((s.cl - s.cd * s.wa / s.wt) / (s.cl + s.cd * s.wt / s.wa)).clamp(-99.0, 99.0),
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        let ours: [f64; 12] = [
+            s.r,
+            s.chord,
+            s.beta * 180.0 / propbet_bemt::solve::QPROP_PI,
+            s.cl,
+            s.cd,
+            (s.re + 0.5).floor(),
+            s.mach,
+            effi,
+            effp,
+            s.wa,
+            s.vt.atan2(s.wa).to_degrees(),
+            s.lambda_w,
+        ];
+        for k in 0..12 {
+            let what = format!("{out_file} station {} {}", i + 1, RADIAL_COLUMNS[k]);
+            bad.check(&what, printed[k], ours[k]);
+            compared += 1;
+        }
+    }
+    compared
 }
 
 #[test]
@@ -135,36 +171,7 @@ fn reproduces_every_rpm_driven_qprop_run() {
                     }
                     assert_eq!(p.not_converged, 0, "{out_file} V={v} rpm={rpm}");
                     if single {
-                        assert_eq!(out.radial.len(), p.stations.len(), "{out_file}");
-                        for (i, (s, printed)) in p.stations.iter().zip(&out.radial).enumerate() {
-                            let (effi, effp) = if s.wa != 0.0 && s.wt != 0.0 {
-                                (
-                                    (v / (p.omega * s.r) * (s.wt / s.wa)).clamp(-99.0, 99.0),
-                                    ((s.cl - s.cd * s.wa / s.wt) / (s.cl + s.cd * s.wt / s.wa)).clamp(-99.0, 99.0),
-                                )
-                            } else {
-                                (0.0, 0.0)
-                            };
-                            let ours: [f64; 12] = [
-                                s.r,
-                                s.chord,
-                                s.beta * 180.0 / propbet_bemt::solve::QPROP_PI,
-                                s.cl,
-                                s.cd,
-                                (s.re + 0.5).floor(),
-                                s.mach,
-                                effi,
-                                effp,
-                                s.wa,
-                                s.vt.atan2(s.wa).to_degrees(),
-                                s.lambda_w,
-                            ];
-                            for k in 0..12 {
-                                let what = format!("{out_file} station {} {}", i + 1, RADIAL_COLUMNS[k]);
-                                bad.check(&what, printed[k], ours[k]);
-                                compared += 1;
-                            }
-                        }
+                        compared += check_stations(out_file, &out, &p, v, &mut bad);
                     }
                 }
             }
