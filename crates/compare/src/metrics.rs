@@ -366,6 +366,34 @@ pub struct RegimeError {
     pub cp: f64,
 }
 
+/// The signed errors of the three regimes of [`REGIMES`], by name.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Regimes {
+    /// Static points.
+    pub static_points: RegimeError,
+    /// Forward flight below half the zero-thrust J.
+    pub low_j: RegimeError,
+    /// Forward flight from half the zero-thrust J to the window's end.
+    pub high_j: RegimeError,
+}
+
+impl Regimes {
+    /// The regimes of `points` ([`regime_errors`]).
+    pub fn of(points: &[ComparedPoint], window: f64) -> Self {
+        let [static_points, low_j, high_j] = regime_errors(points, window);
+        Regimes {
+            static_points,
+            low_j,
+            high_j,
+        }
+    }
+
+    /// The three in [`REGIMES`]' order.
+    pub fn all(&self) -> [&RegimeError; 3] {
+        [&self.static_points, &self.low_j, &self.high_j]
+    }
+}
+
 /// The regimes of [`regime_errors`], in order (J0: the prop's zero-thrust J).
 pub const REGIMES: [&str; 3] = ["static", "forward, J < J0/2", "forward, J0/2 to 0.85 J0"];
 

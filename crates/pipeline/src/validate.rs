@@ -7,8 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use propbet_compare::metrics::{
-    halves, regime_errors, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift,
-    VALIDATION_J_WINDOW,
+    halves, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift, Regimes, VALIDATION_J_WINDOW,
 };
 use propbet_qprop::{PropFile, PropRow};
 
@@ -30,7 +29,7 @@ pub use blade::pe0_table;
 use blade::{blade, Blade};
 use files::{cover, measured_files};
 pub use files::{find_apc_file, uiuc_name, uiuc_props};
-pub use row::{family, forward_rpm_trend, per3_score, twist_gap, Per3Score, Row};
+pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 use row::{ladder_text, median_p90};
 
 /// Where validate reads and what it asks.
@@ -438,8 +437,14 @@ pub fn validate_prop(
         prop: prop.to_string(),
         points: ct0.len(),
         implausible: compared.points.iter().filter(|p| !p.model_flags.is_empty()).count(),
-        ct: [median_p90(&ct0), median_p90(&ct1)],
-        cp: [median_p90(&cp0), median_p90(&cp1)],
+        ct: BeforeAfter {
+            before: median_p90(&ct0),
+            after: median_p90(&ct1),
+        },
+        cp: BeforeAfter {
+            before: median_p90(&cp0),
+            after: median_p90(&cp1),
+        },
         per3,
         ladder: ladder_text(&effects),
         held_out_ladders,
@@ -452,7 +457,7 @@ pub fn validate_prop(
         assumed_section: assumed,
         left_out,
         static_fm: static_figure_of_merit_error(&compared.points),
-        regimes: regime_errors(&compared.points, VALIDATION_J_WINDOW),
+        regimes: Regimes::of(&compared.points, VALIDATION_J_WINDOW),
         static_rise: static_rise(&compared.points),
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
         zero_thrust_shift: zero_thrust_shift(&compared.points),

@@ -41,17 +41,18 @@ fn head(apc: bool) -> Vec<&'static str> {
 
 /// The numeric columns of a row, in table order (NaN where missing).
 fn numbers(r: &Row, apc: bool) -> Vec<f64> {
-    let mut v = vec![r.ct[0].0, r.ct[0].1, r.cp[0].0, r.cp[0].1];
+    let (ct, cp) = (r.ct, r.cp);
+    let mut v = vec![ct.before.median, ct.before.p90, cp.before.median, cp.before.p90];
     if apc {
         let p = r.per3.as_ref();
         v.extend([
-            p.map_or(f64::NAN, |p| p.ct.0),
-            p.map_or(f64::NAN, |p| p.ct.1),
-            p.map_or(f64::NAN, |p| p.cp.0),
-            p.map_or(f64::NAN, |p| p.cp.1),
+            p.map_or(f64::NAN, |p| p.ct.median),
+            p.map_or(f64::NAN, |p| p.ct.p90),
+            p.map_or(f64::NAN, |p| p.cp.median),
+            p.map_or(f64::NAN, |p| p.cp.p90),
         ]);
     }
-    v.extend([r.ct[1].0, r.ct[1].1, r.cp[1].0, r.cp[1].1]);
+    v.extend([ct.after.median, ct.after.p90, cp.after.median, cp.after.p90]);
     v
 }
 
@@ -156,7 +157,7 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
         .iter()
         .map(|r| {
             let mut v = vec![r.prop.clone()];
-            v.extend(r.regimes.iter().map(|g| {
+            v.extend(r.regimes.all().iter().map(|g| {
                 if g.points == 0 {
                     "–".into()
                 } else {
@@ -368,21 +369,33 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use propbet_compare::metrics::{RegimeError, StaticRise, ZeroThrustShift};
+    use propbet_compare::metrics::{RegimeError, Regimes, StaticRise, ZeroThrustShift};
     use propbet_diagnose::signature::RpmTrend;
-    use propbet_pipeline::validate::Per3Score;
+    use propbet_pipeline::validate::{BeforeAfter, Per3Score, Spread};
 
     fn row(p: &str, x: f64, apc: bool) -> Row {
         Row {
             prop: p.into(),
             points: 10,
             implausible: 0,
-            ct: [(x, 2.0 * x), (x / 2.0, x)],
-            cp: [(x, x), (x, x)],
+            ct: BeforeAfter {
+                before: Spread {
+                    median: x,
+                    p90: 2.0 * x,
+                },
+                after: Spread {
+                    median: x / 2.0,
+                    p90: x,
+                },
+            },
+            cp: BeforeAfter {
+                before: Spread { median: x, p90: x },
+                after: Spread { median: x, p90: x },
+            },
             per3: apc.then_some(Per3Score {
                 points: 9,
-                ct: (0.08, 0.2),
-                cp: (0.06, 0.1),
+                ct: Spread { median: 0.08, p90: 0.2 },
+                cp: Spread { median: 0.06, p90: 0.1 },
             }),
             ladder: "none".into(),
             held_out_ladders: ["none".into(), "none".into()],
@@ -391,23 +404,23 @@ mod tests {
             assumed_section: None,
             left_out: Vec::new(),
             static_fm: 0.131,
-            regimes: [
-                RegimeError {
+            regimes: Regimes {
+                static_points: RegimeError {
                     points: 4,
                     ct: 0.076,
                     cp: -0.03,
                 },
-                RegimeError {
+                low_j: RegimeError {
                     points: 0,
                     ct: f64::NAN,
                     cp: f64::NAN,
                 },
-                RegimeError {
+                high_j: RegimeError {
                     points: 6,
                     ct: -x,
                     cp: 0.0,
                 },
-            ],
+            },
             static_rise: (x > 0.15).then_some(StaticRise {
                 rpm_lo: 2377.0,
                 rpm_hi: 6528.0,

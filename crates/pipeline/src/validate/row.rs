@@ -2,7 +2,7 @@
 //! prediction scored on the same points, and the signatures of the data.
 
 use propbet_compare::metrics::{
-    in_window, quantile, window_errors, RegimeError, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW,
+    in_window, quantile, window_errors, Regimes, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW,
 };
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
@@ -19,10 +19,10 @@ pub struct Row {
     /// Points (of all compared) where the prediction is physically implausible (scored, and
     /// named in the prop's points.csv).
     pub implausible: usize,
-    /// CT (median, p90) before and after.
-    pub ct: [(f64, f64); 2],
-    /// CP (median, p90) before and after.
-    pub cp: [(f64, f64); 2],
+    /// CT's errors before and after calibration.
+    pub ct: BeforeAfter,
+    /// CP's errors before and after calibration.
+    pub cp: BeforeAfter,
     /// APC's own prediction (PER3) on the same points: CT and CP (median, p90), and the points
     /// it covers; None without `--per3` or its file.
     pub per3: Option<Per3Score>,
@@ -50,7 +50,7 @@ pub struct Row {
     pub static_fm: f64,
     /// Before calibration, the median signed errors by regime (static, forward flight below and
     /// above half the zero-thrust J: [`propbet_compare::metrics::REGIMES`]): which way and where.
-    pub regimes: [RegimeError; 3],
+    pub regimes: Regimes,
     /// The static CT's rise from the lowest to the highest static RPM, measured and predicted
     /// ([`static_rise`]); None without a static test spanning 1.3x.
     pub static_rise: Option<StaticRise>,
@@ -104,8 +104,29 @@ pub(super) fn ladder_text(effects: &[String]) -> String {
 }
 
 /// The median and 90th percentile of errors: the table's two numbers per quantity.
-pub(super) fn median_p90(v: &[f64]) -> (f64, f64) {
-    (quantile(v.to_vec(), 0.5), quantile(v.to_vec(), 0.9))
+pub(super) fn median_p90(v: &[f64]) -> Spread {
+    Spread {
+        median: quantile(v.to_vec(), 0.5),
+        p90: quantile(v.to_vec(), 0.9),
+    }
+}
+
+/// How large a set of errors is: their median and 90th percentile (|pred/meas - 1|).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Spread {
+    /// The median.
+    pub median: f64,
+    /// The 90th percentile.
+    pub p90: f64,
+}
+
+/// A quantity's errors before calibration and after it (the held-out predictions).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct BeforeAfter {
+    /// Before.
+    pub before: Spread,
+    /// After.
+    pub after: Spread,
 }
 
 /// APC's PER3 prediction scored as propbet's is.
@@ -113,10 +134,10 @@ pub(super) fn median_p90(v: &[f64]) -> (f64, f64) {
 pub struct Per3Score {
     /// Points scored (those inside the PER3 file's RPM and J range).
     pub points: usize,
-    /// CT (median, p90).
-    pub ct: (f64, f64),
-    /// CP (median, p90).
-    pub cp: (f64, f64),
+    /// CT's errors.
+    pub ct: Spread,
+    /// CP's errors.
+    pub cp: Spread,
 }
 
 /// The UIUC family of a prop name, as APC names the line: `apce_10x5` → `E`, `apcsf` → `SF`,
