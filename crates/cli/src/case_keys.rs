@@ -159,27 +159,18 @@ fn base(repo: &Path) -> String {
 
 /// The base case with `line` in `section` (replacing the base's own line for the key).
 fn with(base: &str, section: &str, key: &str, line: &str) -> String {
-    let mut out: Vec<String> = Vec::new();
-    let mut current = "";
+    let mut out = Vec::new();
+    // The section a line is in: "" before the first header, the top level.
+    let mut current = String::new();
     for l in base.lines() {
         if let Some(s) = l.strip_prefix('[').and_then(|s| s.strip_suffix(']')) {
-            current = match s {
-                "geometry" => "geometry",
-                "polars" => "polars",
-                "sweep" => "sweep",
-                "measured" => "measured",
-                _ => "atmosphere",
-            };
+            current = s.to_string();
         }
-        let same_key = l.split('=').next().is_some_and(|k| k.trim() == key);
-        if same_key && (current == section || (section.is_empty() && !l.starts_with('#') && out.len() < 2)) {
+        let sets_key = l.split('=').next().is_some_and(|k| k.trim() == key);
+        if sets_key && current == section {
             continue;
         }
-        if l == format!("#{section}") {
-            out.push(line.to_string());
-        } else {
-            out.push(l.to_string());
-        }
+        out.push(if l == format!("#{section}") { line } else { l }.to_string());
     }
     if section.is_empty() {
         out.insert(0, line.to_string());
