@@ -13,6 +13,7 @@
 
 pub mod discover;
 pub mod fit;
+pub mod provenance;
 
 pub mod signature;
 pub mod synth;

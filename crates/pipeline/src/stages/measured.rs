@@ -1,6 +1,8 @@
 //! The stages after the prediction: measurements read (every reader, the air they were
 //! taken in), the comparison point by point, and the diagnosis.
 
+use propbet_diagnose::provenance::Provenance;
+
 use super::*;
 
 // ---------------------------------------------------------------------------------------
@@ -141,23 +143,6 @@ pub struct Diagnosed {
     pub diagnosis: Diagnosis,
 }
 
-/// Bounds of the RPM scale when every file's RPM is optical (the wide bounds hold the
-/// pole-count ratios of an electrical reading, 12/14 and 14/12). An optical tachometer times
-/// pulses against a quartz clock: a handheld one is specified to ±0.02 % of the reading ± 1
-/// count (Ono Sokki HT-5500's data sheet), so ±1 % is fifty times that and still not a
-/// miscount, which would be a factor of 2 (two reflections a turn). The bounds were once ±3 %
-/// with no source; validate's held-out columns with each are in `README.md` (Validation on
-/// real propellers).
-pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
-
-/// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab
-/// reduced its loads with the density it measured, so the ratio is only that measurement's
-/// error. Density from a barometer and a thermometer (ideal gas) is good to a few tenths of a
-/// percent (1 hPa is 0.1 %, 1 K 0.35 %); humidity left out makes dry-air density up to about
-/// 1 % high at 30 C and 60 % RH (moist air's gas constant): ±2 % holds both with room. The
-/// wide bounds (0.75-1.2) are those of a stand log whose air nobody wrote down.
-pub const LAB_DENSITY_RATIO: (f64, f64) = (0.98, 1.02);
-
 /// Runs the diagnose stage.
 pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     if spec.folds < 2 {
@@ -176,37 +161,8 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     // Effects already in the baseline are not candidates.
     candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
     let (air, sets) = load_measured(&spec.measured)?;
-    // An optical RPM sensor (a wind tunnel's, a thrust stand's optical probe) has no pole count
-    // to get wrong: an RPM scale is then only its calibration.
-    let uiuc = |s: &MeasuredSet| {
-        matches!(
-            s.format,
-            propbet_measure::Format::UiucStatic | propbet_measure::Format::UiucSweep
-        )
-    };
-    let optical = sets
-        .iter()
-        .all(|s| uiuc(s) || s.rpm_source == Some(propbet_measure::RpmSource::Optical));
-    // Coefficients reduced with the lab's measured air: a density ratio is only its error.
-    let lab_air = sets.iter().all(uiuc);
-    for c in &mut candidates {
-        let narrowed = match c.id() {
-            "rpm-scale" if optical => Some((
-                "factor",
-                OPTICAL_RPM_SCALE,
-                "an optical RPM sensor: no pole count to get wrong",
-            )),
-            "density" if lab_air => Some((
-                "ratio",
-                LAB_DENSITY_RATIO,
-                "coefficients the lab reduced with the density it measured",
-            )),
-            _ => None,
-        };
-        if let Some((param, (lo, hi), why)) = narrowed {
-            *c = std::sync::Arc::new(propbet_effects::Narrowed::new(c.clone(), &[(param, lo, hi, why)]));
-        }
-    }
+    // The files' provenance bounds some candidates (an optical RPM, a lab's own air).
+    Provenance::of(&sets).narrow(&mut candidates);
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
     if !(spec.window.is_finite() && spec.window > 0.0 && spec.window <= 2.0) {
         invalid!("--window {}: a fraction of the zero-thrust J in (0, 2]", spec.window);
