@@ -82,18 +82,19 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
     let inputs = mspec.inputs();
     let mut answer_bytes = serde_json::to_vec_pretty(&made.answer)?;
     answer_bytes.push(b'\n');
-    if args.format == SynthFormat::Uiuc {
-        std::fs::create_dir_all(&args.out)
-            .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", args.out.display()))?;
-        for (name, text) in &made.files {
-            write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
+    match &made.files {
+        stages::SynthFiles::Named(files) => {
+            std::fs::create_dir_all(&args.out)
+                .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", args.out.display()))?;
+            for (name, text) in files {
+                write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
+            }
+            write_atomic(&args.out.join("answer.json"), &[&answer_bytes], &inputs)?;
         }
-        write_atomic(&args.out.join("answer.json"), &[&answer_bytes], &inputs)?;
-    } else {
-        for (_, text) in &made.files {
+        stages::SynthFiles::One(text) => {
             write_atomic(&args.out, &[text.as_bytes()], &inputs)?;
+            write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
         }
-        write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
     }
     eprintln!(
         "propbet: {} points ({} RPMs x {} J) with {} and {:.2} % noise -> {}",

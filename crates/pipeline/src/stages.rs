@@ -272,7 +272,7 @@ mod synth;
 pub use measured::*;
 pub use polar::*;
 pub use section::{section, SectionPolars, SectionSpec};
-pub use synth::{parse_noise, synth, AnswerKey, SynthFormat, SynthSpec, Synthesized};
+pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};
 
 #[cfg(test)]
 mod tests;

@@ -87,12 +87,21 @@ pub struct AnswerKey {
     pub seed: u64,
 }
 
-/// Synthetic measurements: the files (name, text; a single file of the generic and RCbenchmark
-/// formats has an empty name), the answer key, and the plan they were made on.
+/// The text of synthetic measurements: one file (generic, RCbenchmark) or one per RPM, named
+/// (UIUC).
+#[derive(Debug)]
+pub enum SynthFiles {
+    /// The one file's text.
+    One(String),
+    /// (file name, text) of each.
+    Named(Vec<(String, String)>),
+}
+
+/// Synthetic measurements: the files, the answer key, and the plan they were made on.
 #[derive(Debug)]
 pub struct Synthesized {
-    /// (file name, text).
-    pub files: Vec<(String, String)>,
+    /// The files' text.
+    pub files: SynthFiles,
     /// What is hidden in them.
     pub answer: AnswerKey,
     /// The operating points' plan.
@@ -153,9 +162,9 @@ pub fn synth(spec: &SynthSpec, m: &Model) -> Result<Synthesized> {
         effects.insert("none".into(), BTreeMap::new());
     }
     let files = match spec.format {
-        SynthFormat::Generic => vec![(String::new(), synth::write_generic(&points, &plan))],
-        SynthFormat::Rcbenchmark => vec![(String::new(), synth::write_rcbenchmark(&points, &plan))],
-        SynthFormat::Uiuc => synth::write_uiuc(&points, &plan, m.diameter, &spec.stem),
+        SynthFormat::Generic => SynthFiles::One(synth::write_generic(&points, &plan)),
+        SynthFormat::Rcbenchmark => SynthFiles::One(synth::write_rcbenchmark(&points, &plan)),
+        SynthFormat::Uiuc => SynthFiles::Named(synth::write_uiuc(&points, &plan, m.diameter, &spec.stem)),
     };
     Ok(Synthesized {
         files,
