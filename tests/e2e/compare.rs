@@ -402,11 +402,11 @@ fn bad_flags_and_missing_files() {
         (vec!["--rho", "-1"], "--rho -1: not a plausible value for air"),
         (
             vec!["--drag-factor=0"],
-            "--drag-factor: must be a positive number, found 0",
+            "--drag-factor 0: the sections' drag multiplier, a positive number",
         ),
         (
             vec!["--drag-factor", "inf"],
-            "--drag-factor: must be a positive number, found inf",
+            "--drag-factor inf: the sections' drag multiplier, a positive number",
         ),
         (
             vec!["--rpm-source", "optical"],

@@ -275,7 +275,7 @@ fn predict_sweeps_j_and_writes_json_and_stations() {
             "json",
             "--out",
             "r.json",
-            "--stations",
+            "--out-stations",
             "st.csv",
         ],
         dir.path(),

@@ -315,7 +315,7 @@ fn section_models_predict(dir: &Path) {
     );
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("rotational augmentation `du-selig`: expected off or snel"),
+        stderr(&o).contains("--rotation `du-selig`: expected off or snel"),
         "{}",
         stderr(&o)
     );
@@ -527,7 +527,7 @@ fn a_trip_forces_transition_and_keeps_the_lift_at_small_angles() {
     );
     assert_eq!(o.status.code(), Some(2));
     assert!(
-        stderr(&o).contains("--trip '1.5': `free`, or the chord fraction"),
+        stderr(&o).contains("--trip 1.5: `free`, or the chord fraction"),
         "{}",
         stderr(&o)
     );

@@ -350,7 +350,7 @@ fn bad_cases_get_clear_errors() {
         ),
         (
             format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nmodel = \"magic\"\n"),
-            "`tables` or `qprop`",
+            "[polars] model = `magic`: expected tables or qprop",
         ),
         (
             format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nncrit_effect = 5\n"),

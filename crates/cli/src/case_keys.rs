@@ -10,7 +10,7 @@ use crate::tests::{check, repo};
 
 /// (section, key, the line that sets it, the stage that takes it, what its command line then
 /// carries). An empty stage: a key with no flag, and why.
-const KEYS: &[(&str, &str, &str, &str, &str)] = &[
+pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
     (
         "",
         "name",

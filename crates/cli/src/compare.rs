@@ -68,8 +68,7 @@ pub struct MeasuredArgs {
     /// Motor poles: electrical RPM readings are multiplied by 2/N.
     #[arg(long)]
     pub poles: Option<u32>,
-    /// RPM column of thrust-stand logs (default: optical when it reads, else electrical).
-    #[arg(long, value_enum)]
+    #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum)]
     pub rpm_source: Option<RpmSourceArg>,
     /// Air state T,P,RH overriding what the files log: temperature (°C unless suffixed K or F),
     /// pressure (Pa unless suffixed hPa, mbar, kPa, inHg, psi), relative humidity (%). Example:

@@ -26,16 +26,11 @@ pub struct DiagnoseArgs {
     /// Candidate effects: `all` (default) or a comma-separated list of ids (user effects too).
     #[arg(long, default_value = "all")]
     pub effects: String,
-    /// Folds of the k-fold cross-validation.
-    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_FOLDS)]
+    #[arg(long = propbet_pipeline::settings::FOLDS.flag, help = propbet_pipeline::settings::FOLDS.help, default_value_t = propbet_pipeline::settings::FOLDS.default)]
     pub folds: usize,
-    /// Most effects the ladder adds.
-    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_MAX_STEPS)]
+    #[arg(long = propbet_pipeline::settings::MAX_STEPS.flag, help = propbet_pipeline::settings::MAX_STEPS.help, default_value_t = propbet_pipeline::settings::MAX_STEPS.default)]
     pub max_steps: usize,
-    /// Scored window: only points below this fraction of their file's measured zero-thrust J
-    /// are fitted and scored (near zero thrust a relative error says nothing); the same window
-    /// as `validate` and the report's headline.
-    #[arg(long, default_value_t = propbet_pipeline::compare::metrics::VALIDATION_J_WINDOW)]
+    #[arg(long = propbet_pipeline::settings::WINDOW.flag, help = propbet_pipeline::settings::WINDOW.help, default_value_t = propbet_pipeline::settings::WINDOW.default)]
     pub window: f64,
     /// Output directory (created if missing).
     #[arg(long, short)]

@@ -31,14 +31,11 @@ pub struct ExportArgs {
     /// Tabulated polars for the prediction (`propbet polars --out-polars`), as `predict --polars`.
     #[arg(long, requires = "prop")]
     pub polars: Option<PathBuf>,
-    /// Rotational augmentation for the prediction: off or snel (default as `predict`).
-    #[arg(long, value_name = "off|snel", requires = "prop")]
+    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
     pub rotation: Option<String>,
-    /// Drag factor for the prediction (default as `predict`).
-    #[arg(long, value_name = "K", requires = "prop")]
+    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
     pub drag_factor: Option<f64>,
-    /// Length unit of the prop file's radii and chords: m, cm, mm, in.
-    #[arg(long, requires = "prop")]
+    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help, requires = "prop")]
     pub units: Option<String>,
     /// Collective blade-angle change of the prediction [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, requires = "prop")]
@@ -78,8 +75,7 @@ pub struct ExportArgs {
     /// Motor poles of the thrust-stand logs (electrical RPM times 2/N).
     #[arg(long, requires = "measured")]
     pub poles: Option<u32>,
-    /// RPM column of thrust-stand logs.
-    #[arg(long, value_enum, requires = "measured")]
+    #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum, requires = "measured")]
     pub rpm_source: Option<RpmSourceArg>,
     /// Air state T,P,RH of the measurements, overriding what the files log (as `compare`).
     #[arg(long, requires = "measured")]

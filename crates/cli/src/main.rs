@@ -213,6 +213,7 @@ fn main() -> ExitCode {
 
 #[cfg(test)]
 mod case_keys;
+mod settings_flags;
 #[cfg(test)]
 mod tests {
     use std::path::{Path, PathBuf};
@@ -357,7 +358,7 @@ mod tests {
                 "pitch-offset:deg=1.2",
                 "--format",
                 "json",
-                "--stations",
+                "--out-stations",
                 "s.csv",
             ][..],
             &[

@@ -88,17 +88,11 @@ pub struct XfoilArgs {
     /// Executable, cache, progress.
     #[command(flatten)]
     pub process: XfoilProcess,
-    /// Transition amplification ratio Ncrit (default: 9 for `polar`, XFOIL's average wind
-    /// tunnel; 5 for a propeller's blades in `polars`: docs/studies/ncrit-tables.md).
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::NCRIT.flag, help = propbet_pipeline::settings::NCRIT.help)]
     pub ncrit: Option<f64>,
-    /// Force transition at this chord fraction on both surfaces, at the latest (XFOIL's XTR),
-    /// or `free` (by Ncrit alone). Default: 0.5 for a propeller's blades in `polars`, free for
-    /// `polar` (docs/studies/transition-trip.md).
-    #[arg(long, value_name = "X/C|free")]
+    #[arg(long = propbet_pipeline::settings::TRIP.flag, help = propbet_pipeline::settings::TRIP.help, value_name = "X/C|free")]
     pub trip: Option<String>,
-    /// Angles of attack [deg]: `start:stop:step`, `start:stop/N` or a list.
-    #[arg(long, default_value = "-8:16:1", allow_hyphen_values = true)]
+    #[arg(long = propbet_pipeline::settings::ALPHA.flag, help = propbet_pipeline::settings::ALPHA.help, default_value = propbet_pipeline::settings::ALPHA.default, allow_hyphen_values = true)]
     pub alpha: String,
     /// XFOIL panel nodes (default: XFOIL's 160 for `polar`, 120 for `polars`).
     #[arg(long)]
@@ -192,7 +186,9 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let spec = SectionSpec {
         res: parse_list("--re", &args.re)?,
         mach: args.mach,
-        xfoil: args.xfoil.spec(propbet_pipeline::spec::AIRFOIL_NCRIT, None)?,
+        xfoil: args
+            .xfoil
+            .spec(propbet_pipeline::settings::AIRFOIL_NCRIT.default, None)?,
     };
     let bar = Bar::new(spec.xfoil.process.quiet);
     let section = stages::section(&spec, &foil, &|d, t| bar.tick(d, t))?;
@@ -312,8 +308,7 @@ pub struct PolarsArgs {
     /// coefficients only for the first estimate of each station's inflow).
     #[arg(long)]
     pub geometry: PathBuf,
-    /// Length unit of the geometry's radii and chords (overrides its Rfac/Cfac): m, cm, mm, in.
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
     /// The section used at every station (with --station-airfoils, at the stations without
     /// their own): a coordinate file (Selig or Lednicer) or a NACA 4-digit name.
@@ -338,10 +333,7 @@ pub struct PolarsArgs {
     /// XFOIL settings.
     #[command(flatten)]
     pub xfoil: XfoilArgs,
-    /// Also compute every polar at these Ncrit values (comma-separated, e.g. `3,9`), for the
-    /// `transition` effect: `diagnose` then fits Ncrit between the lowest and highest, `predict
-    /// --effect transition:ncrit=N` applies it. Each value costs as much XFOIL time again.
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long = propbet_pipeline::settings::NCRIT_EFFECT.flag, help = propbet_pipeline::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
     /// QPROP prop file with the fitted per-station coefficients.
     #[arg(long)]
@@ -369,8 +361,8 @@ impl PolarsArgs {
             axis,
             air: self.air.spec()?,
             xfoil: self.xfoil.spec(
-                propbet_pipeline::spec::DEFAULT_NCRIT,
-                propbet_pipeline::spec::DEFAULT_TRIP,
+                propbet_pipeline::settings::NCRIT.default,
+                Some(propbet_pipeline::settings::TRIP.default),
             )?,
             ncrit_effect: self.ncrit_effect.clone(),
             out_prop: self.out_prop.clone(),

@@ -42,8 +42,9 @@ pub struct PredictArgs {
     #[arg(long, short)]
     pub out: Option<PathBuf>,
     /// Also write the per-station table (CSV) to this file; with --format json the stations
-    /// are included in the JSON as well.
-    #[arg(long)]
+    /// are included in the JSON as well. (`--stations` is a scan's stations as r/R; this flag
+    /// was once called that and still answers to it.)
+    #[arg(long = "out-stations", alias = "stations", value_name = "FILE")]
     pub stations: Option<PathBuf>,
 }
 
@@ -56,8 +57,7 @@ pub struct ModelArgs {
     /// Collective blade-angle change [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub dbeta: f64,
-    /// Length unit of the prop file's radii and chords (overrides its Rfac and Cfac): m, cm, mm, in.
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
     /// Reproduce QPROP 1.22 exactly: R on line 2 unscaled, REref of the first station everywhere.
     #[arg(long)]
@@ -69,14 +69,9 @@ pub struct ModelArgs {
     /// section model, instead of the prop file's QPROP coefficients.
     #[arg(long)]
     pub polars: Option<PathBuf>,
-    /// Rotational augmentation of the section lift: `off` or `snel` (Snel's 3 (c/r)^2 of the
-    /// lift lost below the attached-flow line). Default: the tabulated model's default with
-    /// --polars, off with the prop file's QPROP law.
-    #[arg(long, value_name = "off|snel")]
+    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
-    /// Every section's drag times this. Default: the tabulated model's (1.25,
-    /// docs/studies/drag-factor.md) with --polars, 1 with the prop file's QPROP law.
-    #[arg(long, value_name = "K")]
+    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
     /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see

@@ -16,8 +16,7 @@ use crate::predict::load_model;
 pub struct PropArgs {
     /// QPROP prop file.
     pub file: PathBuf,
-    /// Length unit of radii and chords (overrides Rfac and Cfac): m, cm, mm, in.
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
     /// Read as QPROP 1.22 does (R on line 2 unscaled, REref of the first station).
     #[arg(long)]

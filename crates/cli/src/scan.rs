@@ -27,12 +27,9 @@ pub struct ScanArgs {
     /// The scan: .stl (ASCII or binary), .ply (ASCII or binary, colours), COLMAP
     /// points3D.txt, or .xyz / .txt (XYZ or XYZRGB rows).
     pub input: PathBuf,
-    /// Length unit of the file: mm, cm, m, in (default: mm, assumed; a point cloud then says so
-    /// in every output: give the unit, --known-length or --box).
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
-    /// Stations as r/R: a list, start:stop:step or start:stop/N (default 0.15:0.97/25).
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::STATIONS.flag, help = propbet_pipeline::settings::STATIONS.help)]
     pub stations: Option<String>,
     /// Planar sections (the plane x = r across the blade) instead of cylindrical (r = const).
     #[arg(long)]

@@ -40,33 +40,26 @@ pub struct ValidateArgs {
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stages).
     #[command(flatten)]
     pub xfoil: XfoilProcess,
-    /// Section model: `tables` (XFOIL's polars interpolated in alpha and Re) or `qprop`
-    /// (QPROP's law fitted to them, as the exported prop file holds it).
-    #[arg(long, value_parser = ["tables", "qprop"], default_value = "tables")]
+    #[arg(
+        long = propbet_pipeline::settings::SECTION_MODEL.flag,
+        help = propbet_pipeline::settings::SECTION_MODEL.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::SECTION_MODEL.names().iter().copied()),
+        default_value = propbet_pipeline::settings::SECTION_MODEL.default,
+    )]
     pub section_model: String,
     /// APC's PER3 directory (`PER3_<D><P><type>.dat`): APC's own predictions scored on the same
     /// points beside propbet's.
     #[arg(long)]
     pub per3: Option<PathBuf>,
-    /// Transition amplification ratio Ncrit of the polars.
-    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_NCRIT)]
+    #[arg(long = propbet_pipeline::settings::NCRIT.flag, help = propbet_pipeline::settings::NCRIT.help, default_value_t = propbet_pipeline::settings::NCRIT.default)]
     pub ncrit: f64,
-    /// Also compute every polar at these Ncrit values (comma-separated, e.g. `3,9`): the
-    /// `transition` effect (Ncrit fitted between them) is then a candidate of every ladder.
-    /// Each value costs as much XFOIL time again.
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long = propbet_pipeline::settings::NCRIT_EFFECT.flag, help = propbet_pipeline::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
-    /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
-    /// model's default; off with `--section-model qprop`).
-    #[arg(long, value_name = "off|snel")]
+    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
-    /// Every section's drag times this (default: the tabulated model's, 1.25,
-    /// docs/studies/drag-factor.md; 1 with `--section-model qprop`).
-    #[arg(long, value_name = "K")]
+    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
-    /// Force transition at this chord fraction on both surfaces of every polar, or `free` (by
-    /// Ncrit alone). Default: 0.5 (docs/studies/transition-trip.md).
-    #[arg(long, value_name = "X/C|free")]
+    #[arg(long = propbet_pipeline::settings::TRIP.flag, help = propbet_pipeline::settings::TRIP.help, value_name = "X/C|free")]
     pub trip: Option<String>,
     /// Where each station's chord and twist come from: `uiuc` (UIUC's measured geometry file) or
     /// `pe0` (APC's design chord and twist, at UIUC's stations).
@@ -103,7 +96,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         ),
         drag_factor: propbet_pipeline::spec::drag_factor_or_default(a.drag_factor, a.section_model == "tables"),
         trip: match &a.trip {
-            None => propbet_pipeline::spec::DEFAULT_TRIP,
+            None => Some(propbet_pipeline::settings::TRIP.default),
             Some(t) => propbet_pipeline::values::parse_trip(t)?,
         },
         per3: a.per3.clone(),

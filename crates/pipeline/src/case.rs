@@ -87,7 +87,7 @@ pub struct PolarSection {
     /// or a list, `"3,9"`); each doubles the XFOIL time.
     pub ncrit_effect: Option<NumberOrList>,
     /// Forced transition x/c on both surfaces, or `"free"` (default:
-    /// [`crate::spec::DEFAULT_TRIP`]).
+    /// [`crate::settings::TRIP`]).
     pub trip: Option<NumberOrList>,
     /// Angles of attack (`propbet polars --alpha`).
     pub alpha: Option<String>,
@@ -100,7 +100,7 @@ pub struct PolarSection {
     /// model's default; off with `model = "qprop"`).
     pub rotation: Option<String>,
     /// Every section's drag times this (default: the tabulated model's default,
-    /// `propbet_pipeline::spec::DEFAULT_DRAG_FACTOR`; 1 with `model = "qprop"`).
+    /// [`crate::settings::DRAG_FACTOR`]; 1 with `model = "qprop"`).
     pub drag_factor: Option<f64>,
 }
 
@@ -208,11 +208,18 @@ pub fn read_case(dir: &Path) -> Result<Case> {
                 "[polars] sections = \"scan\" needs a [geometry] scan",
             ));
         }
-        if p.model != "tables" && p.model != "qprop" {
-            return Err(Error::input(
-                &path,
-                format!("[polars] model = {:?}: `tables` or `qprop`", p.model),
-            ));
+        crate::settings::SECTION_MODEL
+            .choose(&p.model)
+            .map_err(|e| at_key(&path, "[polars] model", e))?;
+        if let Some(x) = p.ncrit {
+            crate::settings::NCRIT
+                .check(x)
+                .map_err(|e| at_key(&path, "[polars] ncrit", e))?;
+        }
+        if let Some(x) = p.drag_factor {
+            crate::settings::DRAG_FACTOR
+                .check(x)
+                .map_err(|e| at_key(&path, "[polars] drag_factor", e))?;
         }
         if p.j.is_some() && p.v.is_some() {
             return Err(Error::input(&path, "[polars] takes `j` or `v`, not both"));
@@ -332,7 +339,7 @@ impl Case {
         let g = &self.geometry;
         let f = |rel: &str| dir.join(rel);
         let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
         Ok(match &g.scan {
             Some(file) => {
                 let mut flags = Vec::new();
@@ -385,7 +392,7 @@ impl Case {
     ) -> Result<Option<(PolarsSpec, bool)>> {
         let f = |rel: &str| dir.join(rel);
         let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
         Ok(match &self.polars {
             None => None,
             Some(p) => {
@@ -396,7 +403,7 @@ impl Case {
                         f(a).display().to_string()
                     }
                 });
-                let alpha = p.alpha.as_deref().unwrap_or(crate::spec::DEFAULT_ALPHA);
+                let alpha = p.alpha.as_deref().unwrap_or(crate::settings::ALPHA.default);
                 let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
                 alphas.sort_by(f64::total_cmp);
                 alphas.dedup();
@@ -429,9 +436,9 @@ impl Case {
                         air: AirSpec::default(),
                         xfoil: XfoilSpec {
                             process: xfoil.clone(),
-                            ncrit: p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT),
+                            ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
                             trip: match &p.trip {
-                                None => crate::spec::DEFAULT_TRIP,
+                                None => Some(crate::settings::TRIP.default),
                                 Some(NumberOrList::Number(x)) => {
                                     crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
                                 }
@@ -448,7 +455,10 @@ impl Case {
                             Some(n) => n
                                 .values("--ncrit-effect")
                                 .and_then(|v| {
-                                    crate::spec::check_ncrit_effect(&v, p.ncrit.unwrap_or(crate::spec::DEFAULT_NCRIT))
+                                    crate::spec::check_ncrit_effect(
+                                        &v,
+                                        p.ncrit.unwrap_or(crate::settings::NCRIT.default),
+                                    )
                                 })
                                 .map_err(|e| at("[polars] ncrit_effect", e))?,
                         },
@@ -472,20 +482,19 @@ impl Case {
         let a = &self.atmosphere;
         let f = |rel: &str| dir.join(rel);
         let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
         Ok(match &self.measured {
             None => None,
             Some(m) => {
                 let rpm_source = match m.rpm_source.as_deref() {
                     None => None,
-                    Some("optical") => Some(RpmSource::Optical),
-                    Some("electrical") => Some(RpmSource::Electrical),
-                    Some(x) => {
-                        return Err(Error::input(
-                            &case_file,
-                            format!("[measured] rpm_source = {x:?}: `optical` or `electrical`"),
-                        ))
-                    }
+                    Some(x) => match crate::settings::RPM_SOURCE
+                        .choose(x)
+                        .map_err(|e| at("[measured] rpm_source", e.into()))?
+                    {
+                        "optical" => Some(RpmSource::Optical),
+                        _ => Some(RpmSource::Electrical),
+                    },
                 };
                 // A user-effects file that does not read stops the run before its first stage.
                 let user_effects = m.user_effects.as_deref().map(f);
@@ -510,8 +519,10 @@ impl Case {
                         model: ModelSpec { user_effects, ..model },
                         measured,
                         effects: vec!["all".into()],
-                        folds: m.folds.unwrap_or(crate::spec::DEFAULT_FOLDS),
-                        max_steps: m.max_steps.unwrap_or(crate::spec::DEFAULT_MAX_STEPS),
+                        folds: crate::settings::FOLDS
+                            .check(m.folds.unwrap_or(crate::settings::FOLDS.default))
+                            .map_err(|e| at("[measured] folds", e.into()))?,
+                        max_steps: m.max_steps.unwrap_or(crate::settings::MAX_STEPS.default),
                         window: propbet_compare::metrics::VALIDATION_J_WINDOW,
                         out: out.join("diagnose"),
                     },
@@ -533,7 +544,7 @@ impl Case {
         let g = &self.geometry;
         let f = |rel: &str| dir.join(rel);
         let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| Error::input(&case_file, format!("{key}: {e}"));
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
         let units = match (&g.prop, &g.units) {
             (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
             _ => None,
@@ -557,7 +568,7 @@ impl Case {
             .and_then(|p| p.rotation.as_deref())
             .map(crate::spec::Rotation::parse)
             .transpose()
-            .map_err(|e| at("[polars] rotation", e))?;
+            .map_err(|e| at("[polars] rotation", e.into()))?;
         let model = ModelSpec {
             units: model_units,
             polars: tables.then(|| out.join("polars/polars.json")),
@@ -599,6 +610,15 @@ impl Case {
             predict,
             compare,
         })
+    }
+}
+
+/// An error of a case key, naming the case file and the key; a declared setting's wrong value
+/// as the key writes it (`[polars] ncrit = 25: ...`).
+fn at_key(case_file: &Path, key: &str, e: impl Into<Error>) -> Error {
+    match e.into() {
+        Error::Setting(b) => Error::input(case_file, format!("{key} = {}: {}", b.value, b.meaning)),
+        e => Error::input(case_file, format!("{key}: {e}")),
     }
 }
 

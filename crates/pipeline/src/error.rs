@@ -26,6 +26,9 @@ pub enum Error {
     /// A setting is wrong (the flag or key it came from is named in the text).
     #[error("{0}")]
     Invalid(String),
+    /// A declared setting's value is outside what it allows ([`crate::settings`]).
+    #[error(transparent)]
+    Setting(#[from] crate::settings::BadSetting),
     /// An effect failed while predicting.
     #[error(transparent)]
     Effect(#[from] propbet_effects::EffectError),

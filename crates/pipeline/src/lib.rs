@@ -7,6 +7,8 @@
 //! * [`run`]: a case's plan run in memory ([`run::run_case`]).
 //! * [`validate`]: one UIUC propeller predicted and scored ([`validate::validate_prop`]).
 //! * [`model`]: a prop file turned into the model a stage solves; the air.
+//! * [`settings`]: every setting a user gives, declared once (flag, case key, default, range,
+//!   help).
 //! * [`values`]: lists, ranges and quantities with units as users write them.
 //!
 //! * [`artifacts`]: the types of the crates below that the stages hand out, for the binary.
@@ -20,6 +22,7 @@ mod error;
 pub mod export;
 pub mod model;
 pub mod run;
+pub mod settings;
 pub mod simexport;
 pub mod spec;
 pub mod stages;

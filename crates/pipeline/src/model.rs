@@ -138,9 +138,7 @@ impl Model {
             tabulate(&mut rotor, blade, path)?;
             transition = transition_effect(blade, path)?;
         }
-        if !(spec.drag_factor.is_finite() && spec.drag_factor > 0.0) {
-            invalid!("--drag-factor: must be a positive number, found {}", spec.drag_factor);
-        }
+        crate::settings::DRAG_FACTOR.check(spec.drag_factor)?;
         let rotor = rotor
             .with_rotational_augmentation(spec.rotation.coefficient())
             .with_drag_factor(spec.drag_factor);

@@ -10,6 +10,7 @@ use propbet_atmosphere::AirState;
 use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_measure::RpmSource;
 
+pub use crate::settings::Rotation;
 use crate::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
 
 /// The `propbet` command line of one stage (without the program name).
@@ -84,23 +85,6 @@ impl XfoilProcessSpec {
 /// stops at 120 s) cannot hold a command for longer than this.
 pub const DEFAULT_XFOIL_BUDGET: f64 = 3600.0;
 
-/// Default Ncrit of a propeller's blade polars (`propbet polars`, cases, validate): 5. Chosen
-/// on the six shared UIUC props (docs/studies/ncrit-tables.md: validate for Ncrit 1-9): the
-/// median errors fall from 30 % (CT) at XFOIL's wind-tunnel 9 to 16 % at 5 and change little
-/// below (14-17 %), while static CT's measured rise with RPM (Reynolds number) is followed less
-/// and less below 5; published BEMT work on small propellers finds 5-7 best.
-pub const DEFAULT_NCRIT: f64 = 5.0;
-
-/// Default forced transition of a blade's polars: at mid-chord at the latest, both surfaces
-/// (free transition ahead of it still happens); `propbet polar` (one airfoil) keeps XFOIL's free
-/// transition. The shared props with each setting and the reasoning:
-/// `docs/studies/transition-trip.md`.
-pub const DEFAULT_TRIP: Option<f64> = Some(0.5);
-
-/// Default Ncrit of a single airfoil's polars (`propbet polar`): XFOIL's 9, an average wind
-/// tunnel.
-pub const AIRFOIL_NCRIT: f64 = 9.0;
-
 /// `3,9`: the values of `--ncrit-effect` as the command line takes them.
 pub fn ncrit_effect_text(v: &[f64]) -> String {
     v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")
@@ -110,8 +94,12 @@ pub fn ncrit_effect_text(v: &[f64]) -> String {
 /// none equal to `ncrit`; returns them ascending.
 pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>> {
     let mut v = values.to_vec();
-    if let Some(bad) = v.iter().find(|x| !(x.is_finite() && **x > 0.0 && **x <= 20.0)) {
-        crate::invalid!("--ncrit-effect {bad}: XFOIL's transition amplification ratio, between 0 and 20");
+    let each = crate::settings::Setting {
+        flag: crate::settings::NCRIT_EFFECT.flag,
+        ..crate::settings::NCRIT
+    };
+    for x in &v {
+        each.check(*x)?;
     }
     if v.contains(&ncrit) {
         crate::invalid!("--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to");
@@ -120,9 +108,6 @@ pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>>
     v.dedup();
     Ok(v)
 }
-
-/// Default angles of attack of the polar commands [deg].
-pub const DEFAULT_ALPHA: &str = "-8:16:1";
 
 /// How XFOIL is asked: transition, angles, panels, iterations, and the process.
 #[derive(Debug, Clone, PartialEq)]
@@ -145,14 +130,9 @@ pub struct XfoilSpec {
 impl XfoilSpec {
     /// The angles are ones XFOIL can be asked for.
     pub fn check(&self) -> crate::Result<()> {
-        if !(self.ncrit.is_finite() && self.ncrit > 0.0 && self.ncrit <= 20.0) {
-            crate::invalid!(
-                "--ncrit {}: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
-                self.ncrit
-            );
-        }
-        if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
-            crate::invalid!("--trip '{x}': `free`, or the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)");
+        crate::settings::NCRIT.check(self.ncrit)?;
+        if let Some(x) = self.trip {
+            crate::settings::TRIP.check(x)?;
         }
         if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
             crate::invalid!("--alpha: {bad} deg is outside -90..90");
@@ -162,13 +142,13 @@ impl XfoilSpec {
 
     fn push_argv(&self, v: &mut Argv) {
         self.process.push_argv(v);
-        if self.ncrit != DEFAULT_NCRIT {
+        if self.ncrit != crate::settings::NCRIT.default {
             push(v, "--ncrit", format!("{}", self.ncrit));
         }
-        if self.trip != DEFAULT_TRIP {
+        if self.trip != Some(crate::settings::TRIP.default) {
             push(v, "--trip", crate::values::trip_text(self.trip));
         }
-        let default = crate::values::parse_list("", DEFAULT_ALPHA).unwrap_or_default();
+        let default = crate::values::parse_list("", crate::settings::ALPHA.default).unwrap_or_default();
         if self.alphas_deg != default {
             push_eq(v, "--alpha", list_text(&self.alphas_deg));
         }
@@ -211,70 +191,15 @@ impl AirSpec {
     }
 }
 
-/// Rotational augmentation of the section lift (`docs/studies/rotational-augmentation.md` has
-/// the shared data with each).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Rotation {
-    /// The 2-D sections as they are.
-    Off,
-    /// Snel, Houwink & Bosschers (1994): `cl + 3 (c/r)^2 (cl_attached - cl)` where a section
-    /// lifts less than its attached-flow line (`propbet_bemt::aero::augment_lift`).
-    Snel,
-}
-
-/// The rotational augmentation of the tabulated section model (the default model) when none
-/// is asked for; QPROP's law is always as QPROP has it (off), unless asked.
-pub const DEFAULT_ROTATION: Rotation = Rotation::Snel;
-
-impl Rotation {
-    /// The setting a model gets: `asked`, else [`DEFAULT_ROTATION`] with tabulated polars and
-    /// off with QPROP's law.
-    pub fn or_default(asked: Option<Rotation>, tables: bool) -> Rotation {
-        asked.unwrap_or(if tables { DEFAULT_ROTATION } else { Rotation::Off })
-    }
-
-    /// Every setting, as the command line names it.
-    pub const ALL: [Rotation; 2] = [Rotation::Off, Rotation::Snel];
-
-    /// The name the command line and a case use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Rotation::Off => "off",
-            Rotation::Snel => "snel",
-        }
-    }
-
-    /// The setting a name gives.
-    pub fn parse(name: &str) -> crate::Result<Rotation> {
-        Rotation::ALL.into_iter().find(|r| r.name() == name).ok_or_else(|| {
-            crate::Error::Invalid(format!(
-                "rotational augmentation `{}`: expected off or snel",
-                propbet_bemt::units::excerpt(name)
-            ))
-        })
-    }
-
-    /// Snel's coefficient `a` (0: off).
-    pub fn coefficient(self) -> f64 {
-        match self {
-            Rotation::Off => 0.0,
-            Rotation::Snel => propbet_bemt::aero::SNEL_A,
-        }
-    }
-}
-
-/// The drag multiplier of the tabulated section model (the default model) when none is asked
-/// for: XFOIL's 2-D polar of the smooth nominal section, times this. The shared props' static
-/// figure of merit, the one error all six share, comes out 11-19 % high with 1 (too little
-/// power for the thrust); 1.25 halves that on every prop and takes the median CP error from
-/// 10.0 % to 7.6 % (`docs/studies/drag-factor.md`, with 1, 1.1, 1.25, 1.35 and 1.5).
-/// QPROP's law is always as QPROP has it (1), unless asked.
-pub const DEFAULT_DRAG_FACTOR: f64 = 1.25;
-
-/// The drag factor a model gets: `asked`, else [`DEFAULT_DRAG_FACTOR`] with tabulated polars
+/// The drag factor a model gets: `asked`, else [`crate::settings::DRAG_FACTOR`]'s default
+/// with tabulated polars
 /// and 1 with QPROP's law.
 pub fn drag_factor_or_default(asked: Option<f64>, tables: bool) -> f64 {
-    asked.unwrap_or(if tables { DEFAULT_DRAG_FACTOR } else { 1.0 })
+    asked.unwrap_or(if tables {
+        crate::settings::DRAG_FACTOR.default
+    } else {
+        1.0
+    })
 }
 
 /// The propeller model: a prop file, how to read it, and what to change in it.
@@ -469,11 +394,6 @@ pub struct CompareSpec {
     /// Output directory.
     pub out: PathBuf,
 }
-
-/// Default folds of the diagnosis' cross-validation.
-pub const DEFAULT_FOLDS: usize = 5;
-/// Default most effects of the diagnosis' ladder.
-pub const DEFAULT_MAX_STEPS: usize = 3;
 
 /// `propbet diagnose`.
 #[derive(Debug, Clone, PartialEq)]

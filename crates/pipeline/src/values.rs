@@ -137,13 +137,14 @@ pub fn parse_trip(text: &str) -> Result<Option<f64>> {
     if t == "free" {
         return Ok(None);
     }
+    let trip = crate::settings::TRIP;
     match t.parse::<f64>() {
-        Ok(x) if x.is_finite() && x > 0.0 && x < 1.0 => Ok(Some(x)),
-        Ok(1.0) => Ok(None),
-        _ => invalid!(
-            "--trip '{}': `free`, or the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)",
-            propbet_bemt::units::excerpt(t)
-        ),
+        // At the trailing edge: no forcing, free transition.
+        Ok(x) if trip.check(x).is_ok() => Ok(Some(x).filter(|x| *x < 1.0)),
+        // The value as written (`nan`, not Rust's `NaN`).
+        _ => Err(trip
+            .bad(propbet_bemt::units::excerpt(t), trip.allowed_meaning().to_string())
+            .into()),
     }
 }
 

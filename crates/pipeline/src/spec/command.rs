@@ -80,7 +80,7 @@ impl StageSpec {
                     push(&mut v, "--out", path(o));
                 }
                 if let Some(o) = &s.stations {
-                    push(&mut v, "--stations", path(o));
+                    push(&mut v, "--out-stations", path(o));
                 }
             }
             StageSpec::Compare(s) => {
@@ -100,10 +100,10 @@ impl StageSpec {
                 if s.effects != ["all"] {
                     push(&mut v, "--effects", s.effects.join(","));
                 }
-                if s.folds != DEFAULT_FOLDS {
+                if s.folds != crate::settings::FOLDS.default {
                     push(&mut v, "--folds", s.folds.to_string());
                 }
-                if s.max_steps != DEFAULT_MAX_STEPS {
+                if s.max_steps != crate::settings::MAX_STEPS.default {
                     push(&mut v, "--max-steps", s.max_steps.to_string());
                 }
                 if s.window != propbet_compare::metrics::VALIDATION_J_WINDOW {

@@ -145,9 +145,7 @@ pub struct Diagnosed {
 
 /// Runs the diagnose stage.
 pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
-    if spec.folds < 2 {
-        invalid!("--folds {}: at least 2", spec.folds);
-    }
+    crate::settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
         .iter()
@@ -164,9 +162,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     // The files' provenance bounds some candidates (an optical RPM, a lab's own air).
     Provenance::of(&sets).narrow(&mut candidates);
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
-    if !(spec.window.is_finite() && spec.window > 0.0 && spec.window <= 2.0) {
-        invalid!("--window {}: a fraction of the zero-thrust J in (0, 2]", spec.window);
-    }
+    crate::settings::WINDOW.check(spec.window)?;
     let data = Data::from_points(&points, spec.window).map_err(|e| Error::Invalid(e.to_string()))?;
     // The model's own effects stay in the model, under the candidates.
     let dmodel = propbet_diagnose::Model {

@@ -1,0 +1,87 @@
+//! Every flag of every command that a declared setting names (`propbet_pipeline::settings`)
+//! takes its help, default and names from the declaration; every declared setting is some
+//! command's flag; every declared case key is a key of the case file whose line carries that
+//! flag ([`crate::case_keys`]).
+#![cfg(test)]
+
+use clap::CommandFactory;
+use propbet_pipeline::settings::{self, About};
+
+/// Every argument of every command and subcommand, with the command's path.
+fn arguments(cmd: &clap::Command, path: &str, out: &mut Vec<(String, clap::Arg)>) {
+    for a in cmd.get_arguments() {
+        out.push((path.to_string(), a.clone()));
+    }
+    for sub in cmd.get_subcommands() {
+        arguments(sub, &format!("{path} {}", sub.get_name()), out);
+    }
+}
+
+fn declared(flag: &str) -> Option<About> {
+    settings::all().into_iter().find(|s| s.flag == flag)
+}
+
+#[test]
+fn every_flag_of_a_declared_setting_is_the_declaration() {
+    let mut args = Vec::new();
+    arguments(&crate::Cli::command(), "propbet", &mut args);
+    let mut wrong = Vec::new();
+    for (cmd, a) in &args {
+        let Some(flag) = a.get_long() else { continue };
+        let Some(s) = declared(flag) else { continue };
+        let help = a.get_help().map(|h| h.to_string()).unwrap_or_default();
+        if help != s.help {
+            wrong.push(format!("{cmd} --{flag}: help {help:?}, declared {:?}", s.help));
+        }
+        let defaults: Vec<String> = a
+            .get_default_values()
+            .iter()
+            .map(|d| d.to_string_lossy().into_owned())
+            .collect();
+        if !defaults.is_empty() && defaults != [s.default.clone()] {
+            wrong.push(format!(
+                "{cmd} --{flag}: default {defaults:?}, declared {:?}",
+                s.default
+            ));
+        }
+        let names: Vec<String> = a
+            .get_possible_values()
+            .iter()
+            .map(|p| p.get_name().to_string())
+            .collect();
+        if !names.is_empty() && names != s.names {
+            wrong.push(format!("{cmd} --{flag}: values {names:?}, declared {:?}", s.names));
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "flags that differ from their declaration:\n{}",
+        wrong.join("\n")
+    );
+    for s in settings::all() {
+        assert!(
+            args.iter().any(|(_, a)| a.get_long() == Some(s.flag)),
+            "--{} is declared but no command takes it",
+            s.flag
+        );
+    }
+}
+
+#[test]
+fn every_declared_case_key_is_a_case_key_that_carries_its_flag() {
+    for s in settings::all().into_iter().filter(|s| !s.key.is_empty()) {
+        let (section, key) = s.key.trim_start_matches('[').split_once("] ").unwrap();
+        let listed = crate::case_keys::KEYS
+            .iter()
+            .find(|k| k.0 == section && k.1 == key)
+            .unwrap_or_else(|| panic!("{} is declared but is not a case key", s.key));
+        // The key's stage line names the flag (a model key shows as the flag it changes).
+        assert!(
+            listed.4.contains(&format!("--{}", s.flag)) || s.flag == "section-model",
+            "{}: the case key's command line carries {:?}, not --{}",
+            s.key,
+            listed.4,
+            s.flag
+        );
+    }
+}
