@@ -332,7 +332,10 @@ blades = {blades}
 [geometry]
 scan = "{}"
 stations = "0.3:0.9/5"
-scan_args = ["--blade-colour", "orange,black", "--box", "50.8x48.26x50.8", "--box-offset=0,0,-40", "--box-colour", "grey,blue"]
+blade_colour = "orange,black"
+box = "50.8x48.26x50.8"
+box_offset = "0,0,-40"
+box_colour = "grey,blue"
 [polars]
 sections = "scan"
 rpm = "5000"

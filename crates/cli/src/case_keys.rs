@@ -62,6 +62,100 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "scan",
         "--outliers",
     ),
+    ("geometry", "planar", "planar = true", "scan", "--planar"),
+    ("geometry", "slab", "slab = 0.5", "scan", "--slab 0.5"),
+    (
+        "geometry",
+        "slab_points",
+        "slab_points = 100",
+        "scan",
+        "--slab-points 100",
+    ),
+    (
+        "geometry",
+        "blade_colour",
+        "blade_colour = \"orange\"",
+        "scan",
+        "--blade-colour '#e6640a'",
+    ),
+    (
+        "geometry",
+        "colour_threshold",
+        "colour_threshold = 40",
+        "scan",
+        "--colour-threshold 40",
+    ),
+    (
+        "geometry",
+        "box",
+        "box = \"50.8x48.26x50.8\"",
+        "scan",
+        "--box 50.8x48.26x50.8",
+    ),
+    (
+        "geometry",
+        "box_offset",
+        "box = \"50x50x50\"\nbox_offset = \"0,0,-30\"",
+        "scan",
+        "--box-offset=0,0,-30",
+    ),
+    (
+        "geometry",
+        "box_colour",
+        "box = \"50x50x50\"\nbox_colour = \"grey\"",
+        "scan",
+        "--box-colour '#c8c8c8'",
+    ),
+    (
+        "geometry",
+        "box_seeds",
+        "box = \"50x50x50\"\nbox_seeds = \"1,2,3;4,5,6\"",
+        "scan",
+        "--box-seeds=1,2,3;4,5,6",
+    ),
+    (
+        "geometry",
+        "crop",
+        "crop = \"-80,-200,-200,200,200,200\"",
+        "scan",
+        "--crop=-80,-200,-200,200,200,200",
+    ),
+    ("geometry", "outliers", "outliers = \"off\"", "scan", "--outliers off"),
+    (
+        "geometry",
+        "root_point",
+        "root_point = \"0,10,0\"\ntip_point = \"0,120,0\"",
+        "scan",
+        "--root-point=0,10,0 --tip-point=0,120,0",
+    ),
+    (
+        "geometry",
+        "tip_point",
+        "root_point = \"0,10,0\"\ntip_point = \"0,127,0\"",
+        "scan",
+        "--tip-point=0,127,0",
+    ),
+    (
+        "geometry",
+        "origin",
+        "root_point = \"0,10,0\"\ntip_point = \"0,120,0\"\norigin = \"0,0,1\"",
+        "scan",
+        "--origin=0,0,1",
+    ),
+    (
+        "geometry",
+        "rotate",
+        "root_point = \"0,10,0\"\ntip_point = \"0,120,0\"\nrotate = \"0,0,5\"",
+        "scan",
+        "--rotate=0,0,5",
+    ),
+    (
+        "geometry",
+        "known_length",
+        "known_length = \"0,0,0,0,10,0,20\"",
+        "scan",
+        "--known-length=0,0,0,1,0,0,2",
+    ),
     (
         "polars",
         "sections",
@@ -178,29 +272,43 @@ fn with(base: &str, section: &str, key: &str, line: &str) -> String {
     out.join("\n") + "\n"
 }
 
-/// The keys of each section of `case.rs`'s structs, as (section, key).
+/// The keys of each section of `case.rs`'s structs (and of the scan's settings, which are
+/// `[geometry]` keys), as (section, key): each `pub` field, renamed where serde renames it.
 fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
-    let text = std::fs::read_to_string(repo.join("crates/pipeline/src/case.rs")).unwrap();
+    let case = std::fs::read_to_string(repo.join("crates/pipeline/src/case.rs")).unwrap();
+    let scan = std::fs::read_to_string(repo.join("crates/pipeline/src/spec/scan.rs")).unwrap();
     let sections = [
-        ("Case", ""),
-        ("GeometrySection", "geometry"),
-        ("PolarSection", "polars"),
-        ("SweepSection", "sweep"),
-        ("MeasuredSection", "measured"),
-        ("AtmosphereSection", "atmosphere"),
+        (&case, "Case", ""),
+        (&case, "GeometrySection", "geometry"),
+        (&scan, "ScanSettings", "geometry"),
+        (&case, "PolarSection", "polars"),
+        (&case, "SweepSection", "sweep"),
+        (&case, "MeasuredSection", "measured"),
+        (&case, "AtmosphereSection", "atmosphere"),
     ];
+    // Fields that are not keys: the sections themselves at the top level, and [geometry]'s
+    // `settings` (whose keys are listed from their own struct).
+    let sections_names = ["geometry", "polars", "sweep", "measured", "atmosphere"];
     let mut out = Vec::new();
-    for (name, section) in sections {
+    for (text, name, section) in sections {
         let start = text.find(&format!("pub struct {name} {{")).unwrap();
         let body = &text[start..start + text[start..].find("\n}").unwrap()];
+        let mut rename = None;
         for l in body.lines().skip(1) {
+            if let Some(r) = l.trim().strip_prefix("#[serde(rename = \"") {
+                rename = r.split('"').next().map(str::to_string);
+            }
             let Some(rest) = l.trim().strip_prefix("pub ") else {
                 continue;
             };
-            let key = rest.split(':').next().unwrap().to_string();
-            // The sections themselves are not keys.
-            if !["geometry", "polars", "sweep", "measured", "atmosphere"].contains(&key.as_str()) || !section.is_empty()
-            {
+            let field = rest.split(':').next().unwrap().to_string();
+            let key = rename.take().unwrap_or(field);
+            let is_key = if section.is_empty() {
+                !sections_names.contains(&key.as_str())
+            } else {
+                key != "settings"
+            };
+            if is_key {
                 out.push((section.to_string(), key));
             }
         }

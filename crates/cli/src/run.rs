@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
-use clap::{Args, Parser};
+use clap::Args;
 use propbet_pipeline::case::{read_case, RunPlan};
 use propbet_pipeline::run::{run_case, Event, Finished, StageRecord};
 use propbet_pipeline::spec::StageSpec;
@@ -60,22 +60,10 @@ fn default_case() -> Result<PathBuf> {
     )
 }
 
-/// The scan flags of a case (`--units`, `--stations`, its `scan_args`) as the geometry
-/// pipeline's options, read as `propbet scan` reads them.
-fn scan_options(flags: &[String]) -> propbet_pipeline::Result<propbet_pipeline::geometry::scan::ScanOptions> {
-    let argv = ["scan", "scan.stl", "-o", "out"]
-        .into_iter()
-        .map(String::from)
-        .chain(flags.iter().cloned());
-    let cmd = crate::scan::ScanCommand::try_parse_from(argv)
-        .map_err(|e| propbet_pipeline::Error::Invalid(format!("scan_args: {e}")))?;
-    crate::scan::options(&cmd.args).map_err(|e| propbet_pipeline::Error::Invalid(format!("{e:#}")))
-}
-
 /// The plan of a case directory, writing under `out`.
 pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcess) -> Result<RunPlan> {
     let case = read_case(dir)?;
-    Ok(case.plan(dir, out, &xfoil.spec(), &scan_options)?)
+    Ok(case.plan(dir, out, &xfoil.spec())?)
 }
 
 /// The case directory (the default case without one) and the output directory (`run_<case>`
@@ -117,9 +105,13 @@ fn check_paths(plan: &RunPlan, dir: &Path, out: &Path) -> Result<()> {
     if !missing.is_empty() {
         let list: Vec<String> = missing.iter().map(|f| f.display().to_string()).collect();
         bail!(
-            "{}: names {} that do not exist: {} (relative paths are taken from the case directory); nothing was run",
+            "{}: names {} not exist: {} (relative paths are taken from the case directory); nothing was run",
             dir.join("case.toml").display(),
-            if list.len() == 1 { "a file" } else { "files" },
+            if list.len() == 1 {
+                "a file that does"
+            } else {
+                "files that do"
+            },
             list.join(", ")
         );
     }
@@ -165,6 +157,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let (dir, out) = case_and_out(a)?;
     let plan = plan(&dir, &out, &a.xfoil)?;
     check_paths(&plan, &dir, &out)?;
+    for w in &plan.warnings {
+        eprintln!("propbet: warning: {w}");
+    }
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;

@@ -5,18 +5,14 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use anyhow::{Context, Result};
 use clap::Args;
-use propbet_pipeline::geometry::cloud::{parse_colour, to_ply};
-use propbet_pipeline::geometry::scan::{
-    default_stations, Aligned, BoxSpec, Geometry, Manual, ScanOptions, SectionKind,
-};
-use propbet_pipeline::geometry::Vector3;
+use propbet_pipeline::geometry::cloud::to_ply;
+use propbet_pipeline::geometry::scan::{Aligned, Geometry};
 use propbet_pipeline::measure::uiuc::{geometry_at, GeometryRow};
 use propbet_pipeline::qprop::write_prop;
-use propbet_pipeline::spec::ScanSpec;
+use propbet_pipeline::spec::{ScanSettings, ScanSpec};
 use propbet_pipeline::stages::{self, Scanned};
-use propbet_pipeline::values::{parse_length_unit, parse_list};
 use serde_json::json;
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};
@@ -35,11 +31,11 @@ pub struct ScanArgs {
     #[arg(long)]
     pub planar: bool,
     /// Slab thickness of a cloud's sections [mm].
-    #[arg(long, default_value_t = 0.25)]
+    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_SLAB_MM)]
     pub slab: f64,
     /// Widen a sparse cloud's slab (up to 4 times) until a section holds this many points per
     /// blade (0: keep the slab as given).
-    #[arg(long, default_value_t = 400)]
+    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_SLAB_POINTS)]
     pub slab_points: usize,
     /// Blade colours to keep (clouds): names (orange, black, ...), #rrggbb or r/g/b, comma-separated.
     #[arg(long)]
@@ -51,10 +47,10 @@ pub struct ScanArgs {
     #[arg(long = "box")]
     pub box_dims: Option<String>,
     /// The box centre in the propeller frame [mm]: x,y,z (the box is fixed to the hub).
-    #[arg(long, default_value = "0,0,-40", allow_hyphen_values = true)]
+    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_BOX_OFFSET, allow_hyphen_values = true)]
     pub box_offset: String,
     /// Colours of the box faces.
-    #[arg(long, default_value = "grey,blue")]
+    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_BOX_COLOUR)]
     pub box_colour: String,
     /// One point on each visible box face (file units), `x,y,z;x,y,z;...`, instead of finding
     /// the faces automatically.
@@ -64,7 +60,7 @@ pub struct ScanArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub crop: Option<String>,
     /// Statistical outlier removal for clouds: neighbours,sigmas, or `off`.
-    #[arg(long, default_value = "8,2.5")]
+    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_OUTLIERS)]
     pub outliers: String,
     /// Manual alignment: a point at the root of blade 0 (file units) x,y,z.
     #[arg(long, allow_hyphen_values = true, requires = "tip_point")]
@@ -77,7 +73,7 @@ pub struct ScanArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub origin: Option<String>,
     /// Manual alignment: rotations about the frame's x, y, z [deg].
-    #[arg(long, allow_hyphen_values = true, default_value = "0,0,0")]
+    #[arg(long, allow_hyphen_values = true, default_value = propbet_pipeline::spec::DEFAULT_ROTATE)]
     pub rotate: String,
     /// Manual scale from a known length: `x1,y1,z1,x2,y2,z2,L` (two points in file units and
     /// their true distance in mm).
@@ -94,149 +90,41 @@ pub struct ScanArgs {
     pub out: PathBuf,
 }
 
-fn numbers(flag: &str, text: &str, n: usize) -> Result<Vec<f64>> {
-    let v: Vec<f64> = text
-        .split(',')
-        .map(|s| {
-            s.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .with_context(|| format!("{flag} '{text}': '{}' is not a number", s.trim()))
-        })
-        .collect::<Result<_>>()?;
-    if v.len() != n {
-        bail!("{flag} '{text}': expected {n} numbers, found {}", v.len());
-    }
-    Ok(v)
-}
-
-fn vec3(flag: &str, text: &str) -> Result<Vector3<f64>> {
-    let v = numbers(flag, text, 3)?;
-    Ok(Vector3::new(v[0], v[1], v[2]))
-}
-
-fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
-    text.split(',')
-        .map(|s| parse_colour(s).map_err(|e| anyhow::anyhow!("{flag}: {e}")))
-        .collect()
-}
-
-/// `propbet scan`'s flags on their own (a case's scan flags are read with them).
-#[derive(Debug, clap::Parser)]
-#[command(name = "scan")]
-pub struct ScanCommand {
-    /// The flags.
-    #[command(flatten)]
-    pub args: ScanArgs,
-}
-
 impl ScanArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<ScanSpec> {
         Ok(ScanSpec {
             input: self.input.clone(),
-            options: options(self)?,
+            options: self.settings().options()?,
             reference: self.reference.clone(),
             name: self.name.clone(),
             out: self.out.clone(),
         })
     }
-}
 
-/// Builds the pipeline's options from the flags.
-pub fn options(a: &ScanArgs) -> Result<ScanOptions> {
-    // Metres per file unit.
-    let units = parse_length_unit(a.units.as_deref().unwrap_or("mm"))?;
-    let stations = match &a.stations {
-        Some(s) => parse_list("--stations", s)?,
-        None => default_stations(),
-    };
-    // The stations and the slab are checked by the scan stage (propbet_pipeline::stages::scan).
-    let reference_box = match &a.box_dims {
-        None => None,
-        Some(d) => {
-            let v: Vec<f64> = d
-                .split(['x', 'X', ','])
-                .map(|s| s.trim().parse::<f64>().ok().filter(|x| *x > 0.0))
-                .collect::<Option<_>>()
-                .with_context(|| format!("--box '{d}': expected three positive lengths, e.g. 50.8x48.26x50.8"))?;
-            if v.len() != 3 {
-                bail!("--box '{d}': expected three lengths, e.g. 50.8x48.26x50.8");
-            }
-            let o = vec3("--box-offset", &a.box_offset)?;
-            Some(BoxSpec {
-                dims: [v[0] / 1000.0, v[1] / 1000.0, v[2] / 1000.0],
-                offset: [o.x / 1000.0, o.y / 1000.0, o.z / 1000.0],
-                colours: colours("--box-colour", &a.box_colour)?,
-                seeds: match &a.box_seeds {
-                    None => Vec::new(),
-                    Some(t) => t.split(';').map(|p| vec3("--box-seeds", p)).collect::<Result<_>>()?,
-                },
-            })
+    /// The scan's settings, as a case's `[geometry]` keys give them too.
+    pub fn settings(&self) -> ScanSettings {
+        ScanSettings {
+            units: self.units.clone(),
+            stations: self.stations.clone(),
+            planar: self.planar,
+            slab: Some(self.slab),
+            slab_points: Some(self.slab_points),
+            blade_colour: self.blade_colour.clone(),
+            colour_threshold: self.colour_threshold,
+            box_dims: self.box_dims.clone(),
+            box_offset: Some(self.box_offset.clone()),
+            box_colour: Some(self.box_colour.clone()),
+            box_seeds: self.box_seeds.clone(),
+            crop: self.crop.clone(),
+            outliers: Some(self.outliers.clone()),
+            root_point: self.root_point.clone(),
+            tip_point: self.tip_point.clone(),
+            origin: self.origin.clone(),
+            rotate: Some(self.rotate.clone()),
+            known_length: self.known_length.clone(),
         }
-    };
-    let crop = match &a.crop {
-        None => None,
-        Some(c) => {
-            let v = numbers("--crop", c, 6)?;
-            Some((Vector3::new(v[0], v[1], v[2]), Vector3::new(v[3], v[4], v[5])))
-        }
-    };
-    let outliers = if a.outliers == "off" {
-        None
-    } else {
-        let v = numbers("--outliers", &a.outliers, 2)?;
-        if v[0] < 1.0 || v[1] <= 0.0 {
-            bail!("--outliers '{}': neighbours >= 1 and sigmas > 0, or 'off'", a.outliers);
-        }
-        Some((v[0] as usize, v[1]))
-    };
-    let mut scale = units;
-    if let Some(k) = &a.known_length {
-        let v = numbers("--known-length", k, 7)?;
-        let d = (Vector3::new(v[0], v[1], v[2]) - Vector3::new(v[3], v[4], v[5])).norm();
-        if d <= 0.0 || v[6] <= 0.0 {
-            bail!("--known-length '{k}': two distinct points and a positive length are needed");
-        }
-        scale = v[6] / d / 1000.0;
     }
-    let manual = match (&a.root_point, &a.tip_point) {
-        (Some(r), Some(t)) => {
-            let rot = vec3("--rotate", &a.rotate)?;
-            Some(Manual {
-                root: vec3("--root-point", r)?,
-                tip: vec3("--tip-point", t)?,
-                origin: a.origin.as_deref().map(|o| vec3("--origin", o)).transpose()?,
-                rotate: [rot.x.to_radians(), rot.y.to_radians(), rot.z.to_radians()],
-                scale,
-            })
-        }
-        _ => None,
-    };
-    Ok(ScanOptions {
-        scale,
-        scale_given: a.units.is_some() || a.known_length.is_some(),
-        stations,
-        kind: if a.planar {
-            SectionKind::Planar
-        } else {
-            SectionKind::Cylindrical
-        },
-        slab: a.slab / 1000.0,
-        slab_points: a.slab_points,
-        blade_colours: a
-            .blade_colour
-            .as_deref()
-            .map(|c| colours("--blade-colour", c))
-            .transpose()?
-            .unwrap_or_default(),
-        colour_threshold: a.colour_threshold,
-        reference_box,
-        crop,
-        outliers,
-        manual,
-    })
 }
 
 /// A row of geometry.csv (the reference table's columns empty without one).

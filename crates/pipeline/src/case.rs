@@ -5,15 +5,8 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use propbet_bemt::units::rpm_to_omega;
-use propbet_geometry::scan::ScanOptions;
-use propbet_measure::RpmSource;
-
-use crate::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PredictSpec, ScanSpec, StageSpec,
-    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
-};
-use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
+use crate::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PredictSpec, ScanSettings, ScanSpec, StageSpec};
+use crate::values::parse_list;
 use crate::{read_text, Error, Result};
 
 /// `case.toml`.
@@ -40,23 +33,70 @@ pub struct Case {
     pub atmosphere: AtmosphereSection,
 }
 
-/// `[geometry]`: a scan or a prop file.
+/// `[geometry]`: a scan or a prop file, and the scan's settings.
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "toml::Table")]
 pub struct GeometrySection {
     /// A scan (STL, PLY, points3D.txt, XYZ) for `propbet scan`.
     pub scan: Option<String>,
     /// Or a QPROP prop file.
     pub prop: Option<String>,
-    /// Length unit of the scan or prop file.
-    pub units: Option<String>,
-    /// Stations as r/R (`propbet scan --stations`).
-    pub stations: Option<String>,
     /// A UIUC-style table (r/R c/R beta) to set the scan against.
     pub reference: Option<String>,
-    /// Further `propbet scan` flags, for example `["--crop=-80,-200,-200,200,200,200"]`.
+    /// Deprecated: `propbet scan` flags as a list, for example
+    /// `["--crop=-80,-200,-200,200,200,200"]`; read, with a warning naming the keys to write
+    /// instead (`crop = "-80,-200,-200,200,200,200"`).
     #[serde(default)]
     pub scan_args: Vec<String>,
+    /// The scan's settings, each a key named as its `propbet scan` flag (`units` and
+    /// `stations`, `crop`, `outliers`, `box`, ...; `units` is a prop file's unit too). Any
+    /// other key is refused.
+    pub settings: ScanSettings,
+}
+
+impl TryFrom<toml::Table> for GeometrySection {
+    type Error = String;
+
+    /// The section's own keys, then the rest as the scan's settings (an unknown key is
+    /// refused there, with the keys it takes).
+    fn try_from(mut t: toml::Table) -> std::result::Result<Self, String> {
+        fn text(t: &mut toml::Table, key: &str) -> std::result::Result<Option<String>, String> {
+            match t.remove(key) {
+                None => Ok(None),
+                Some(toml::Value::String(s)) => Ok(Some(s)),
+                Some(v) => Err(format!("[geometry] {key}: expected a string, found {}", v.type_str())),
+            }
+        }
+        let scan = text(&mut t, "scan")?;
+        let prop = text(&mut t, "prop")?;
+        let reference = text(&mut t, "reference")?;
+        let scan_args = match t.remove("scan_args") {
+            None => Vec::new(),
+            Some(v) => v
+                .try_into()
+                .map_err(|e: toml::de::Error| format!("[geometry] scan_args: {}", e.message()))?,
+        };
+        let settings = toml::Value::Table(t.clone()).try_into().map_err(|e: toml::de::Error| {
+            // The key whose value is refused (serde names an unknown one, not a wrong one).
+            let wrong = t.iter().find(|(k, v)| {
+                let one = toml::Table::from_iter([((*k).clone(), (*v).clone())]);
+                toml::Value::Table(one).try_into::<ScanSettings>().is_err()
+            });
+            match wrong {
+                Some((k, _)) if !e.message().starts_with("unknown field") => {
+                    format!("[geometry] {k}: {}", e.message())
+                }
+                _ => format!("[geometry]: {} (or `scan`, `prop`, `reference`)", e.message()),
+            }
+        })?;
+        Ok(GeometrySection {
+            scan,
+            prop,
+            reference,
+            scan_args,
+            settings,
+        })
+    }
 }
 
 /// `[polars]`.
@@ -266,6 +306,9 @@ pub struct RunPlan {
     pub predict: PredictSpec,
     /// Comparison and diagnosis.
     pub compare: Option<(CompareSpec, DiagnoseSpec)>,
+    /// What the case file says that still works but should be written otherwise (printed
+    /// before the run).
+    pub warnings: Vec<String>,
 }
 
 impl RunPlan {
@@ -328,291 +371,6 @@ impl RunPlan {
     }
 }
 
-impl Case {
-    /// The scan stage's spec, where the case has a scan: its options from `[geometry]`.
-    fn scan_spec(
-        &self,
-        dir: &Path,
-        out: &Path,
-        scan_options: &dyn Fn(&[String]) -> Result<ScanOptions>,
-    ) -> Result<Option<ScanSpec>> {
-        let g = &self.geometry;
-        let f = |rel: &str| dir.join(rel);
-        let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| at_key(&case_file, key, e);
-        Ok(match &g.scan {
-            Some(file) => {
-                let mut flags = Vec::new();
-                if let Some(u) = &g.units {
-                    flags.extend(["--units".to_string(), u.clone()]);
-                }
-                if let Some(s) = &g.stations {
-                    flags.extend(["--stations".to_string(), s.clone()]);
-                }
-                // The flags that name a file or the output have keys of their own in a case:
-                // refused here rather than read and ignored.
-                for (flag, key) in [
-                    ("--reference", "`reference` in [geometry]"),
-                    ("--name", "the case's `name`"),
-                    ("--out", "`propbet run -o`"),
-                    ("-o", "`propbet run -o`"),
-                ] {
-                    if g.scan_args
-                        .iter()
-                        .any(|a| a == flag || a.starts_with(&format!("{flag}=")))
-                    {
-                        return Err(at(
-                            "[geometry] scan_args",
-                            Error::Invalid(format!("{flag} is set by {key}")),
-                        ));
-                    }
-                }
-                flags.extend(g.scan_args.iter().cloned());
-                Some(ScanSpec {
-                    input: f(file),
-                    options: scan_options(&flags).map_err(|e| at("[geometry]", e))?,
-                    reference: g.reference.as_deref().map(f),
-                    name: Some(self.name.clone()),
-                    out: out.join("scan"),
-                })
-            }
-            None => None,
-        })
-    }
-
-    /// The polars stage's spec, where the case has `[polars]`, and whether its sections are the
-    /// scan's.
-    fn polars_spec(
-        &self,
-        dir: &Path,
-        out: &Path,
-        geometry: &Path,
-        units: Option<f64>,
-        xfoil: &XfoilProcessSpec,
-    ) -> Result<Option<(PolarsSpec, bool)>> {
-        let f = |rel: &str| dir.join(rel);
-        let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| at_key(&case_file, key, e);
-        Ok(match &self.polars {
-            None => None,
-            Some(p) => {
-                let airfoil = p.airfoil.as_ref().map(|a| {
-                    if propbet_polar::naca4_from_name(a).is_some() {
-                        a.clone()
-                    } else {
-                        f(a).display().to_string()
-                    }
-                });
-                let alpha = p.alpha.as_deref().unwrap_or(crate::settings::ALPHA.default);
-                let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
-                alphas.sort_by(f64::total_cmp);
-                alphas.dedup();
-                // The operating points the polars cover: the sweep's, unless the case says.
-                let rpms = match &p.rpm {
-                    Some(r) => r.values("--rpm").map_err(|e| at("[polars] rpm", e))?,
-                    None => parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?,
-                };
-                let axis = match (&p.j, &p.v) {
-                    (_, Some(v)) => SweepAxis::V(v.values("--v").map_err(|e| at("[polars] v", e))?),
-                    (Some(j), None) => SweepAxis::J(parse_list("--j", j).map_err(|e| at("[polars] j", e))?),
-                    (None, None) => SweepAxis::J(parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?),
-                };
-                let thickness = p
-                    .thickness
-                    .as_deref()
-                    .map(parse_fraction)
-                    .transpose()
-                    .map_err(|e| at("[polars] thickness", e))?;
-                let scanned = p.sections == "scan";
-                Some((
-                    PolarsSpec {
-                        geometry: geometry.to_path_buf(),
-                        units,
-                        airfoil,
-                        thickness,
-                        station_airfoils: scanned.then(|| out.join("scan/airfoils")),
-                        omegas: rpms.into_iter().map(rpm_to_omega).collect(),
-                        axis,
-                        air: AirSpec::default(),
-                        xfoil: XfoilSpec {
-                            process: xfoil.clone(),
-                            ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
-                            trip: match &p.trip {
-                                None => Some(crate::settings::TRIP.default),
-                                Some(NumberOrList::Number(x)) => {
-                                    crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
-                                }
-                                Some(NumberOrList::List(t)) => {
-                                    crate::values::parse_trip(t).map_err(|e| at("[polars] trip", e))?
-                                }
-                            },
-                            alphas_deg: alphas,
-                            panels: None,
-                            iter: xfoil_runner::DEFAULT_MAX_ITER,
-                        },
-                        ncrit_effect: match &p.ncrit_effect {
-                            None => Vec::new(),
-                            Some(n) => n
-                                .values("--ncrit-effect")
-                                .and_then(|v| {
-                                    crate::spec::check_ncrit_effect(
-                                        &v,
-                                        p.ncrit.unwrap_or(crate::settings::NCRIT.default),
-                                    )
-                                })
-                                .map_err(|e| at("[polars] ncrit_effect", e))?,
-                        },
-                        out_prop: out.join("polars/prop.qprop"),
-                        out_polars: Some(out.join("polars/polars.json")),
-                    },
-                    scanned,
-                ))
-            }
-        })
-    }
-
-    /// The compare and diagnose stages' specs, where the case has `[measured]`.
-    fn compare_specs(
-        &self,
-        dir: &Path,
-        out: &Path,
-        model: ModelSpec,
-        state: Option<propbet_atmosphere::AirState>,
-    ) -> Result<Option<(CompareSpec, DiagnoseSpec)>> {
-        let a = &self.atmosphere;
-        let f = |rel: &str| dir.join(rel);
-        let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| at_key(&case_file, key, e);
-        Ok(match &self.measured {
-            None => None,
-            Some(m) => {
-                let rpm_source = match m.rpm_source.as_deref() {
-                    None => None,
-                    Some(x) => match crate::settings::RPM_SOURCE
-                        .choose(x)
-                        .map_err(|e| at("[measured] rpm_source", e.into()))?
-                    {
-                        "optical" => Some(RpmSource::Optical),
-                        _ => Some(RpmSource::Electrical),
-                    },
-                };
-                // A user-effects file that does not read stops the run before its first stage.
-                let user_effects = m.user_effects.as_deref().map(f);
-                crate::model::effect_registry(user_effects.as_deref()).map_err(|e| at("[measured] user_effects", e))?;
-                let measured = MeasuredSpec {
-                    files: m.files.iter().map(|x| f(x)).collect(),
-                    poles: m.poles,
-                    rpm_source,
-                    atmosphere: state,
-                    rho: a.rho,
-                    columns: m.columns.as_deref().map(f),
-                };
-                Some((
-                    CompareSpec {
-                        model: model.clone(),
-                        measured: measured.clone(),
-                        per3: m.per3.as_deref().map(f),
-                        qprop_output: None,
-                        out: out.join("compare"),
-                    },
-                    DiagnoseSpec {
-                        model: ModelSpec { user_effects, ..model },
-                        measured,
-                        effects: vec!["all".into()],
-                        folds: crate::settings::FOLDS
-                            .check(m.folds.unwrap_or(crate::settings::FOLDS.default))
-                            .map_err(|e| at("[measured] folds", e.into()))?,
-                        max_steps: m.max_steps.unwrap_or(crate::settings::MAX_STEPS.default),
-                        window: propbet_compare::metrics::VALIDATION_J_WINDOW,
-                        out: out.join("diagnose"),
-                    },
-                ))
-            }
-        })
-    }
-
-    /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
-    /// `scan_options` turns the scan's flags (`--units`, `--stations` and the case's
-    /// `scan_args`) into the geometry pipeline's options: flags are the CLI's to read.
-    pub fn plan(
-        &self,
-        dir: &Path,
-        out: &Path,
-        xfoil: &XfoilProcessSpec,
-        scan_options: &dyn Fn(&[String]) -> Result<ScanOptions>,
-    ) -> Result<RunPlan> {
-        let g = &self.geometry;
-        let f = |rel: &str| dir.join(rel);
-        let case_file = dir.join("case.toml");
-        let at = |key: &str, e: Error| at_key(&case_file, key, e);
-        let units = match (&g.prop, &g.units) {
-            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
-            _ => None,
-        };
-        let scan = self.scan_spec(dir, out, scan_options)?;
-        let geometry = match &g.scan {
-            Some(_) => out.join("scan/prop.qprop"),
-            None => f(g.prop.as_deref().unwrap_or_default()),
-        };
-        let polars = self.polars_spec(dir, out, &geometry, units, xfoil)?;
-        // The fitted prop file is in metres; a case's own prop file keeps its units. With
-        // tables, the polars are the section model (the prop file gives the blade).
-        let (prop, model_units) = match &polars {
-            Some(_) => (out.join("polars/prop.qprop"), None),
-            None => (geometry, units),
-        };
-        let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
-        let rotation = self
-            .polars
-            .as_ref()
-            .and_then(|p| p.rotation.as_deref())
-            .map(crate::spec::Rotation::parse)
-            .transpose()
-            .map_err(|e| at("[polars] rotation", e.into()))?;
-        let model = ModelSpec {
-            units: model_units,
-            polars: tables.then(|| out.join("polars/polars.json")),
-            rotation: crate::spec::Rotation::or_default(rotation, tables),
-            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
-            ..ModelSpec::prop(prop)
-        };
-        let a = &self.atmosphere;
-        let state = a
-            .air
-            .as_deref()
-            .map(parse_atmosphere)
-            .transpose()
-            .map_err(|e| at("[atmosphere] air", e))?;
-        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
-        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
-        let predict = PredictSpec {
-            model: model.clone(),
-            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
-            axis: SweepAxis::J(js),
-            air: AirSpec {
-                rho: a.rho,
-                state,
-                ..AirSpec::default()
-            },
-            format: TableFormat::Csv,
-            out: Some(out.join("predict/sweep.csv")),
-            stations: None,
-        };
-        let compare = self.compare_specs(dir, out, model, state)?;
-        Ok(RunPlan {
-            name: self.name.clone(),
-            description: self.description.clone(),
-            dir: dir.to_path_buf(),
-            out: out.to_path_buf(),
-            blades: self.blades,
-            scan,
-            polars,
-            predict,
-            compare,
-        })
-    }
-}
-
 /// An error of a case key, naming the case file and the key; a declared setting's wrong value
 /// as the key writes it (`[polars] ncrit = 25: ...`).
 fn at_key(case_file: &Path, key: &str, e: impl Into<Error>) -> Error {
@@ -636,62 +394,7 @@ pub fn parse_fraction(text: &str) -> Result<f64> {
     Ok(v * scale)
 }
 
+mod plan;
+
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn plan(polars: &str) -> RunPlan {
-        let text = format!(
-            "name = \"x\"\n[geometry]\nscan = \"x.stl\"\n[sweep]\nrpm = \"4000,6000\"\nj = \"0:0.5:0.1\"\n\
-             [polars]\nairfoil = \"naca4412\"\nrpm = 5000\n{polars}\n[measured]\nfiles = [\"m.txt\"]\n"
-        );
-        let case: Case = toml::from_str(&text).unwrap();
-        case.plan(
-            Path::new("case"),
-            Path::new("out"),
-            &XfoilProcessSpec::default(),
-            &|_| Ok(ScanOptions::default()),
-        )
-        .unwrap()
-    }
-
-    #[test]
-    fn the_section_model_decides_what_the_stages_solve_with() {
-        let q = plan("model = \"qprop\"");
-        assert_eq!(q.predict.model.polars, None, "QPROP's law when asked");
-        let t = plan("");
-        let polars = Some(Path::new("out").join("polars/polars.json"));
-        assert_eq!(t.predict.model.polars, polars);
-        let (c, d) = t.compare.unwrap();
-        assert_eq!(
-            (c.model.polars.clone(), d.model.polars.clone()),
-            (polars.clone(), polars)
-        );
-        // Every stage is its own command: the tables appear as --polars in the commands.
-        assert!(StageSpec::Compare(c)
-            .command()
-            .contains("--polars out/polars/polars.json"));
-    }
-
-    #[test]
-    fn the_polars_cover_the_sweep_unless_the_case_says() {
-        let sweep = plan("");
-        let (p, _) = sweep.polars.unwrap();
-        assert_eq!(p.omegas, vec![rpm_to_omega(5000.0)], "rpm = 5000 as given");
-        assert_eq!(p.axis, sweep.predict.axis, "the sweep's J");
-        let text = "name = \"x\"\n[geometry]\nscan = \"x.stl\"\n[sweep]\nrpm = \"4000,6000\"\nj = \"0:0.5:0.1\"\n\
-             [polars]\nairfoil = \"naca4412\"\nv = \"0,5\"\n";
-        let case: Case = toml::from_str(text).unwrap();
-        let plan = case
-            .plan(
-                Path::new("case"),
-                Path::new("out"),
-                &XfoilProcessSpec::default(),
-                &|_| Ok(ScanOptions::default()),
-            )
-            .unwrap();
-        let (p, _) = plan.polars.unwrap();
-        assert_eq!(p.omegas, vec![rpm_to_omega(4000.0), rpm_to_omega(6000.0)]);
-        assert_eq!(p.axis, SweepAxis::V(vec![0.0, 5.0]));
-    }
-}
+mod tests;

@@ -555,8 +555,13 @@ impl ScanSpec {
 }
 
 mod command;
+mod scan;
 
 pub use command::StageSpec;
+pub use scan::{
+    ScanSettings, DEFAULT_BOX_COLOUR, DEFAULT_BOX_OFFSET, DEFAULT_OUTLIERS, DEFAULT_ROTATE, DEFAULT_SLAB_MM,
+    DEFAULT_SLAB_POINTS,
+};
 
 #[cfg(test)]
 mod tests;

@@ -394,7 +394,6 @@ fn case_files() {
                 Path::new("case"),
                 Path::new("out"),
                 &propbet_pipeline::spec::XfoilProcessSpec::default(),
-                &|_| Ok(propbet_geometry::scan::ScanOptions::default()),
             );
         }
         true

@@ -1,0 +1,301 @@
+//! A case's plan: each stage's spec from the case file's sections.
+
+use std::path::Path;
+
+use propbet_bemt::units::rpm_to_omega;
+use propbet_measure::RpmSource;
+
+use super::{at_key, parse_fraction, Case, NumberOrList, RunPlan};
+use crate::spec::{
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PredictSpec, ScanSettings, ScanSpec,
+    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
+};
+use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
+use crate::{Error, Result};
+
+impl Case {
+    /// The scan stage's spec, where the case has a scan: its settings from `[geometry]`'s
+    /// keys (and its deprecated `scan_args`, with a warning in `warnings`).
+    fn scan_spec(&self, dir: &Path, out: &Path, warnings: &mut Vec<String>) -> Result<Option<ScanSpec>> {
+        let g = &self.geometry;
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
+        // The flags that name a file or the output have keys of their own in a case:
+        // refused here rather than read and ignored.
+        for (flag, key) in [
+            ("--reference", "`reference` in [geometry]"),
+            ("--name", "the case's `name`"),
+            ("--out", "`propbet run -o`"),
+            ("-o", "`propbet run -o`"),
+        ] {
+            if g.scan_args
+                .iter()
+                .any(|a| a == flag || a.starts_with(&format!("{flag}=")))
+            {
+                return Err(at(
+                    "[geometry] scan_args",
+                    Error::Invalid(format!("{flag} is set by {key}")),
+                ));
+            }
+        }
+        let from_args = ScanSettings::from_flags(&g.scan_args).map_err(|e| at("[geometry]", e))?;
+        if !g.scan_args.is_empty() {
+            warnings.push(format!(
+                "{}: [geometry] scan_args is deprecated; write its settings as keys of [geometry]: {}",
+                case_file.display(),
+                from_args.as_keys()
+            ));
+        }
+        let settings = from_args.over(g.settings.clone());
+        let Some(file) = &g.scan else {
+            // A prop file takes a unit; a scan's other settings would be read and ignored.
+            let scan_only = ScanSettings {
+                units: None,
+                ..settings
+            };
+            if scan_only != ScanSettings::default() {
+                return Err(at(
+                    "[geometry]",
+                    Error::Invalid(format!(
+                        "{} set a scan's settings, and the case has no scan (`prop` is used as it is)",
+                        scan_only.as_keys()
+                    )),
+                ));
+            }
+            return Ok(None);
+        };
+        Ok(Some(ScanSpec {
+            input: dir.join(file),
+            options: settings.options().map_err(|e| at("[geometry]", e))?,
+            reference: g.reference.as_deref().map(|r| dir.join(r)),
+            name: Some(self.name.clone()),
+            out: out.join("scan"),
+        }))
+    }
+
+    /// The polars stage's spec, where the case has `[polars]`, and whether its sections are the
+    /// scan's.
+    fn polars_spec(
+        &self,
+        dir: &Path,
+        out: &Path,
+        geometry: &Path,
+        units: Option<f64>,
+        xfoil: &XfoilProcessSpec,
+    ) -> Result<Option<(PolarsSpec, bool)>> {
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
+        Ok(match &self.polars {
+            None => None,
+            Some(p) => {
+                let airfoil = p.airfoil.as_ref().map(|a| {
+                    if propbet_polar::naca4_from_name(a).is_some() {
+                        a.clone()
+                    } else {
+                        f(a).display().to_string()
+                    }
+                });
+                let alpha = p.alpha.as_deref().unwrap_or(crate::settings::ALPHA.default);
+                let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
+                alphas.sort_by(f64::total_cmp);
+                alphas.dedup();
+                // The operating points the polars cover: the sweep's, unless the case says.
+                let rpms = match &p.rpm {
+                    Some(r) => r.values("--rpm").map_err(|e| at("[polars] rpm", e))?,
+                    None => parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?,
+                };
+                let axis = match (&p.j, &p.v) {
+                    (_, Some(v)) => SweepAxis::V(v.values("--v").map_err(|e| at("[polars] v", e))?),
+                    (Some(j), None) => SweepAxis::J(parse_list("--j", j).map_err(|e| at("[polars] j", e))?),
+                    (None, None) => SweepAxis::J(parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?),
+                };
+                let thickness = p
+                    .thickness
+                    .as_deref()
+                    .map(parse_fraction)
+                    .transpose()
+                    .map_err(|e| at("[polars] thickness", e))?;
+                let scanned = p.sections == "scan";
+                Some((
+                    PolarsSpec {
+                        geometry: geometry.to_path_buf(),
+                        units,
+                        airfoil,
+                        thickness,
+                        station_airfoils: scanned.then(|| out.join("scan/airfoils")),
+                        omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+                        axis,
+                        air: AirSpec::default(),
+                        xfoil: XfoilSpec {
+                            process: xfoil.clone(),
+                            ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
+                            trip: match &p.trip {
+                                None => Some(crate::settings::TRIP.default),
+                                Some(NumberOrList::Number(x)) => {
+                                    crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
+                                }
+                                Some(NumberOrList::List(t)) => {
+                                    crate::values::parse_trip(t).map_err(|e| at("[polars] trip", e))?
+                                }
+                            },
+                            alphas_deg: alphas,
+                            panels: None,
+                            iter: xfoil_runner::DEFAULT_MAX_ITER,
+                        },
+                        ncrit_effect: match &p.ncrit_effect {
+                            None => Vec::new(),
+                            Some(n) => n
+                                .values("--ncrit-effect")
+                                .and_then(|v| {
+                                    crate::spec::check_ncrit_effect(
+                                        &v,
+                                        p.ncrit.unwrap_or(crate::settings::NCRIT.default),
+                                    )
+                                })
+                                .map_err(|e| at("[polars] ncrit_effect", e))?,
+                        },
+                        out_prop: out.join("polars/prop.qprop"),
+                        out_polars: Some(out.join("polars/polars.json")),
+                    },
+                    scanned,
+                ))
+            }
+        })
+    }
+
+    /// The compare and diagnose stages' specs, where the case has `[measured]`.
+    fn compare_specs(
+        &self,
+        dir: &Path,
+        out: &Path,
+        model: ModelSpec,
+        state: Option<propbet_atmosphere::AirState>,
+    ) -> Result<Option<(CompareSpec, DiagnoseSpec)>> {
+        let a = &self.atmosphere;
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
+        Ok(match &self.measured {
+            None => None,
+            Some(m) => {
+                let rpm_source = match m.rpm_source.as_deref() {
+                    None => None,
+                    Some(x) => match crate::settings::RPM_SOURCE
+                        .choose(x)
+                        .map_err(|e| at("[measured] rpm_source", e.into()))?
+                    {
+                        "optical" => Some(RpmSource::Optical),
+                        _ => Some(RpmSource::Electrical),
+                    },
+                };
+                // A user-effects file that does not read stops the run before its first stage.
+                let user_effects = m.user_effects.as_deref().map(f);
+                crate::model::effect_registry(user_effects.as_deref()).map_err(|e| at("[measured] user_effects", e))?;
+                let measured = MeasuredSpec {
+                    files: m.files.iter().map(|x| f(x)).collect(),
+                    poles: m.poles,
+                    rpm_source,
+                    atmosphere: state,
+                    rho: a.rho,
+                    columns: m.columns.as_deref().map(f),
+                };
+                Some((
+                    CompareSpec {
+                        model: model.clone(),
+                        measured: measured.clone(),
+                        per3: m.per3.as_deref().map(f),
+                        qprop_output: None,
+                        out: out.join("compare"),
+                    },
+                    DiagnoseSpec {
+                        model: ModelSpec { user_effects, ..model },
+                        measured,
+                        effects: vec!["all".into()],
+                        folds: crate::settings::FOLDS
+                            .check(m.folds.unwrap_or(crate::settings::FOLDS.default))
+                            .map_err(|e| at("[measured] folds", e.into()))?,
+                        max_steps: m.max_steps.unwrap_or(crate::settings::MAX_STEPS.default),
+                        window: propbet_compare::metrics::VALIDATION_J_WINDOW,
+                        out: out.join("diagnose"),
+                    },
+                ))
+            }
+        })
+    }
+
+    /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
+    pub fn plan(&self, dir: &Path, out: &Path, xfoil: &XfoilProcessSpec) -> Result<RunPlan> {
+        let g = &self.geometry;
+        let f = |rel: &str| dir.join(rel);
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
+        let units = match (&g.prop, &g.settings.units) {
+            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
+            _ => None,
+        };
+        let mut warnings = Vec::new();
+        let scan = self.scan_spec(dir, out, &mut warnings)?;
+        let geometry = match &g.scan {
+            Some(_) => out.join("scan/prop.qprop"),
+            None => f(g.prop.as_deref().unwrap_or_default()),
+        };
+        let polars = self.polars_spec(dir, out, &geometry, units, xfoil)?;
+        // The fitted prop file is in metres; a case's own prop file keeps its units. With
+        // tables, the polars are the section model (the prop file gives the blade).
+        let (prop, model_units) = match &polars {
+            Some(_) => (out.join("polars/prop.qprop"), None),
+            None => (geometry, units),
+        };
+        let tables = self.polars.as_ref().is_some_and(|p| p.model == "tables");
+        let rotation = self
+            .polars
+            .as_ref()
+            .and_then(|p| p.rotation.as_deref())
+            .map(crate::spec::Rotation::parse)
+            .transpose()
+            .map_err(|e| at("[polars] rotation", e.into()))?;
+        let model = ModelSpec {
+            units: model_units,
+            polars: tables.then(|| out.join("polars/polars.json")),
+            rotation: crate::spec::Rotation::or_default(rotation, tables),
+            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
+            ..ModelSpec::prop(prop)
+        };
+        let a = &self.atmosphere;
+        let state = a
+            .air
+            .as_deref()
+            .map(parse_atmosphere)
+            .transpose()
+            .map_err(|e| at("[atmosphere] air", e))?;
+        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
+        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
+        let predict = PredictSpec {
+            model: model.clone(),
+            omegas: rpms.into_iter().map(rpm_to_omega).collect(),
+            axis: SweepAxis::J(js),
+            air: AirSpec {
+                rho: a.rho,
+                state,
+                ..AirSpec::default()
+            },
+            format: TableFormat::Csv,
+            out: Some(out.join("predict/sweep.csv")),
+            stations: None,
+        };
+        let compare = self.compare_specs(dir, out, model, state)?;
+        Ok(RunPlan {
+            name: self.name.clone(),
+            description: self.description.clone(),
+            dir: dir.to_path_buf(),
+            out: out.to_path_buf(),
+            blades: self.blades,
+            scan,
+            polars,
+            predict,
+            compare,
+            warnings,
+        })
+    }
+}
