@@ -150,7 +150,7 @@ fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let fid = &summary["qprop_export"]["fidelity"];
-    let reported = |k: &str, i: usize| fid[k][i].as_f64().unwrap();
+    let reported = |k: &str, i: usize| fid[k][["median", "largest"][i]].as_f64().unwrap();
     let (h, rows) = read_csv(&out.join("predict/sweep.csv"));
     let get = |r: &Vec<String>, c: &str| -> f64 { r[col(&h, c)].parse().unwrap() };
     let rho = get(&rows[0], "rho_kg_m3");

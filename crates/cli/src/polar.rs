@@ -423,8 +423,8 @@ pub fn polars_brief(p: &Polars) -> Vec<String> {
     if let Some(e) = &p.export {
         out.push(format!(
             "the exported QPROP file's law differs from these tables by {:.1} % in CT, {:.1} % in CP (median)",
-            100.0 * e.ct[0],
-            100.0 * e.cp[0]
+            100.0 * e.ct.median,
+            100.0 * e.cp.median
         ));
     }
     out

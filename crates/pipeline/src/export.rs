@@ -30,38 +30,56 @@ use crate::{invalid, Result};
 /// The exported file's name, beside the run's sweep.
 pub const FILE_NAME: &str = "qprop_export.qprop";
 
+/// Relative differences between two predictions over a set of points: their median and the
+/// largest.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct Differences {
+    /// The median [-].
+    pub median: f64,
+    /// The largest [-].
+    pub largest: f64,
+}
+
+impl Differences {
+    /// The median (the mean of the middle two of an even count) and the largest of `v`
+    /// (zeros when it is empty).
+    pub fn of(v: &[f64]) -> Differences {
+        if v.is_empty() {
+            return Differences::default();
+        }
+        let mut v = v.to_vec();
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        let median = if n % 2 == 1 {
+            v[n / 2]
+        } else {
+            0.5 * (v[n / 2 - 1] + v[n / 2])
+        };
+        Differences {
+            median,
+            largest: v[n - 1],
+        }
+    }
+}
+
 /// How well QPROP's reading of the exported file reproduces the prediction.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Fidelity {
     /// Operating points compared (the scored window: below 85 % of each RPM's zero-thrust J).
     pub points: usize,
-    /// Thrust: median and largest relative difference [-].
-    pub thrust: [f64; 2],
-    /// Torque: median and largest relative difference [-].
-    pub torque: [f64; 2],
+    /// Thrust's relative differences.
+    pub thrust: Differences,
+    /// Torque's relative differences.
+    pub torque: Differences,
 }
 
 impl Fidelity {
-    /// Median and largest of relative thrust and torque differences (zeros when there are none).
+    /// The relative thrust and torque differences `dt` and `dq`, summed up.
     pub(crate) fn of(dt: &[f64], dq: &[f64]) -> Fidelity {
-        let stat = |v: &[f64]| {
-            if v.is_empty() {
-                return [0.0, 0.0];
-            }
-            let mut v = v.to_vec();
-            v.sort_by(f64::total_cmp);
-            let n = v.len();
-            let med = if n % 2 == 1 {
-                v[n / 2]
-            } else {
-                0.5 * (v[n / 2 - 1] + v[n / 2])
-            };
-            [med, v[n - 1]]
-        };
         Fidelity {
             points: dt.len(),
-            thrust: stat(dt),
-            torque: stat(dq),
+            thrust: Differences::of(dt),
+            torque: Differences::of(dq),
         }
     }
 
@@ -70,10 +88,10 @@ impl Fidelity {
     pub fn against(&self) -> String {
         format!(
             "thrust within {:.1} % (median), {:.1} % at most; torque within {:.1} %, {:.1} % at most; over {} points",
-            100.0 * self.thrust[0],
-            100.0 * self.thrust[1],
-            100.0 * self.torque[0],
-            100.0 * self.torque[1],
+            100.0 * self.thrust.median,
+            100.0 * self.thrust.largest,
+            100.0 * self.torque.median,
+            100.0 * self.torque.largest,
             self.points
         )
     }
@@ -82,10 +100,10 @@ impl Fidelity {
     pub fn brief(&self) -> String {
         format!(
             "QPROP 1.22 on it: thrust within {:.1} % (median), {:.1} % (worst) of the prediction, torque {:.1} %, {:.1} %",
-            100.0 * self.thrust[0],
-            100.0 * self.thrust[1],
-            100.0 * self.torque[0],
-            100.0 * self.torque[1]
+            100.0 * self.thrust.median,
+            100.0 * self.thrust.largest,
+            100.0 * self.torque.median,
+            100.0 * self.torque.largest
         )
     }
 
@@ -93,10 +111,10 @@ impl Fidelity {
     pub fn sentence(&self) -> String {
         format!(
             "QPROP 1.22 on this file: thrust within {:.1} % (median), {:.1} % at most, torque within {:.1} %, {:.1} % at most of propbet's prediction, over the {} operating points of the scored window (read and solved as QPROP does)",
-            100.0 * self.thrust[0],
-            100.0 * self.thrust[1],
-            100.0 * self.torque[0],
-            100.0 * self.torque[1],
+            100.0 * self.thrust.median,
+            100.0 * self.thrust.largest,
+            100.0 * self.torque.median,
+            100.0 * self.torque.largest,
             self.points
         )
     }
@@ -287,7 +305,7 @@ pub fn qprop_export(
         let file = fit_file(model, &solved, &counted, &weight, re_ref, name);
         let (dt, dq) = differences(model, &file, fluid, points, &solved, &counted)?;
         let fidelity = Fidelity::of(&dt, &dq);
-        let worst = fidelity.thrust[1].max(fidelity.torque[1]);
+        let worst = fidelity.thrust.largest.max(fidelity.torque.largest);
         if best.as_ref().is_none_or(|b| worst < b.0) {
             best = Some((worst, file, fidelity));
         }

@@ -262,10 +262,10 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             link(out, &spec.out_prop),
             p.export.as_ref().map_or(String::new(), |e| format!(
                 "; it differs from the tables this report's prediction uses by {:.1} % in CT and {:.1} % in CP (median; {:.1} % and {:.1} % at most)",
-                100.0 * e.ct[0],
-                100.0 * e.cp[0],
-                100.0 * e.ct[1],
-                100.0 * e.cp[1]
+                100.0 * e.ct.median,
+                100.0 * e.cp.median,
+                100.0 * e.ct.largest,
+                100.0 * e.cp.largest
             ))
         );
         let grouped = crate::page::group_alike(notes);

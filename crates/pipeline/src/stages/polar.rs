@@ -3,6 +3,7 @@
 //! to them, and the check that an exported QPROP file keeps the model's prediction.
 
 use super::*;
+use crate::export::Differences;
 
 // ---------------------------------------------------------------------------------------
 // polars
@@ -214,10 +215,10 @@ pub struct Polars {
 pub struct ExportCheck {
     /// Points compared.
     pub points: usize,
-    /// CT: median and largest relative difference [-].
-    pub ct: [f64; 2],
-    /// CP: median and largest relative difference [-].
-    pub cp: [f64; 2],
+    /// CT's relative differences.
+    pub ct: Differences,
+    /// CP's relative differences.
+    pub cp: Differences,
 }
 
 impl ExportCheck {
@@ -226,10 +227,10 @@ impl ExportCheck {
         format!(
             "The exported prop file (QPROP's law, for QPROP and other tools) against the tables over the {} operating points the polars cover (thrust at least a quarter of the largest): CT differs by {:.1} % (median), {:.1} % at most; CP by {:.1} %, {:.1} % at most.",
             self.points,
-            100.0 * self.ct[0],
-            100.0 * self.ct[1],
-            100.0 * self.cp[0],
-            100.0 * self.cp[1]
+            100.0 * self.ct.median,
+            100.0 * self.ct.largest,
+            100.0 * self.cp.median,
+            100.0 * self.cp.largest
         )
     }
 
@@ -262,16 +263,10 @@ impl ExportCheck {
                 }
             }
         }
-        let stats = |v: &[f64]| {
-            [
-                propbet_compare::metrics::quantile(v.to_vec(), 0.5),
-                v.iter().copied().fold(0.0, f64::max),
-            ]
-        };
         Ok(Some(ExportCheck {
             points: ct.len(),
-            ct: stats(&ct),
-            cp: stats(&cp),
+            ct: Differences::of(&ct),
+            cp: Differences::of(&cp),
         }))
     }
 }
