@@ -1,29 +1,13 @@
 //! Where the measurements came from, as far as it bounds a candidate effect: an optical RPM
 //! sensor has no pole count to get wrong, and coefficients a lab reduced with the air it
-//! measured leave a density ratio only that measurement's error. The diagnosis's candidates are
-//! narrowed to these bounds before they are fitted.
+//! measured leave a density ratio only that measurement's error. Each effect declares the
+//! bounds such evidence sets on its parameters ([`propbet_effects::Param::known`]); the
+//! diagnosis's candidates are narrowed to them before they are fitted.
 
 use std::sync::Arc;
 
-use propbet_effects::{Effect, Narrowed};
+use propbet_effects::{Effect, Evidence, Narrowed};
 use propbet_measure::{Format, MeasuredSet, RpmSource};
-
-/// Bounds of the RPM scale when every file's RPM is optical (the wide bounds hold the
-/// pole-count ratios of an electrical reading, 12/14 and 14/12). An optical tachometer times
-/// pulses against a quartz clock: a handheld one is specified to ±0.02 % of the reading ± 1
-/// count (Ono Sokki HT-5500's data sheet), so ±1 % is fifty times that and still not a
-/// miscount, which would be a factor of 2 (two reflections a turn). The bounds were once ±3 %
-/// with no source; validate's held-out columns with each are in `README.md` (Validation on
-/// real propellers).
-pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
-
-/// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab
-/// reduced its loads with the density it measured, so the ratio is only that measurement's
-/// error. Density from a barometer and a thermometer (ideal gas) is good to a few tenths of a
-/// percent (1 hPa is 0.1 %, 1 K 0.35 %); humidity left out makes dry-air density up to about
-/// 1 % high at 30 C and 60 % RH (moist air's gas constant): ±2 % holds both with room. The
-/// wide bounds (0.75-1.2) are those of a stand log whose air nobody wrote down.
-pub const LAB_DENSITY_RATIO: (f64, f64) = (0.98, 1.02);
 
 /// What the measured files say about their own errors.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,30 +28,85 @@ impl Provenance {
         }
     }
 
-    /// The bounds this provenance sets on a candidate: (parameter, bounds, why); None where it
-    /// sets none.
-    pub fn bounds(&self, effect: &dyn Effect) -> Option<(&'static str, (f64, f64), &'static str)> {
-        match effect.id() {
-            "rpm-scale" if self.optical_rpm => Some((
-                "factor",
-                OPTICAL_RPM_SCALE,
-                "an optical RPM sensor: no pole count to get wrong",
-            )),
-            "density" if self.lab_air => Some((
-                "ratio",
-                LAB_DENSITY_RATIO,
-                "coefficients the lab reduced with the density it measured",
-            )),
-            _ => None,
+    /// Whether the files show `e`.
+    pub fn shows(&self, e: Evidence) -> bool {
+        match e {
+            Evidence::OpticalRpm => self.optical_rpm,
+            Evidence::LabAir => self.lab_air,
         }
+    }
+
+    /// The bounds this provenance sets on a candidate's parameters, as each parameter declares
+    /// them: (parameter, lower, upper, why).
+    pub fn bounds<'a>(&self, effect: &'a dyn Effect) -> Vec<(&'a str, f64, f64, &'static str)> {
+        effect
+            .params()
+            .iter()
+            .filter_map(|p| {
+                let k = p.known.filter(|k| self.shows(k.given))?;
+                Some((p.name.as_str(), k.bounds.0, k.bounds.1, k.why))
+            })
+            .collect()
     }
 
     /// `candidates` with the bounds this provenance sets.
     pub fn narrow(&self, candidates: &mut [Arc<dyn Effect>]) {
         for c in candidates {
-            if let Some((param, (lo, hi), why)) = self.bounds(c.as_ref()) {
-                *c = Arc::new(Narrowed::new(c.clone(), &[(param, lo, hi, why)]));
+            let bounds = self.bounds(c.as_ref());
+            if !bounds.is_empty() {
+                let narrowed = Narrowed::new(c.clone(), &bounds);
+                *c = Arc::new(narrowed);
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use propbet_effects::builtin;
+
+    fn bounds_of(p: Provenance, id: &str) -> Vec<(String, f64, f64)> {
+        let mut c = vec![builtin::get(id).unwrap()];
+        p.narrow(&mut c);
+        c[0].params()
+            .iter()
+            .map(|q| (q.name.clone(), q.lower, q.upper))
+            .collect()
+    }
+
+    #[test]
+    fn each_effect_is_narrowed_by_the_evidence_it_declares_and_no_other() {
+        let none = Provenance {
+            optical_rpm: false,
+            lab_air: false,
+        };
+        let optical = Provenance {
+            optical_rpm: true,
+            lab_air: false,
+        };
+        let lab = Provenance {
+            optical_rpm: true,
+            lab_air: true,
+        };
+        assert_eq!(bounds_of(none, "rpm-scale"), [("factor".into(), 0.85, 1.2)]);
+        assert_eq!(bounds_of(optical, "rpm-scale"), [("factor".into(), 0.99, 1.01)]);
+        assert_eq!(bounds_of(optical, "density"), [("ratio".into(), 0.75, 1.2)]);
+        assert_eq!(bounds_of(lab, "density"), [("ratio".into(), 0.98, 1.02)]);
+        let pitch = bounds_of(lab, "pitch-offset");
+        let plain: Vec<_> = builtin::get("pitch-offset")
+            .unwrap()
+            .params()
+            .iter()
+            .map(|q| (q.name.clone(), q.lower, q.upper))
+            .collect();
+        assert_eq!(pitch, plain, "an effect that declares no evidence keeps its bounds");
+        // Only the declaring effects are narrowed by any evidence.
+        let declaring: Vec<&str> = builtin::all()
+            .iter()
+            .filter(|e| e.params().iter().any(|p| p.known.is_some()))
+            .map(|e| e.id())
+            .collect();
+        assert_eq!(declaring, ["density", "rpm-scale"]);
     }
 }

@@ -24,7 +24,7 @@ use std::sync::{Arc, OnceLock};
 use propbet_bemt::aero::{attached_lift, augment_lift, snel_fraction};
 use propbet_bemt::{DragInput, LiftEval, PointResult, QpropAirfoil, Rotor, SectionAero, SolverOptions};
 
-use crate::{Effect, EffectError, Hook, Loads, Param, PointState, SectionCtx, StationGeom};
+use crate::{Effect, EffectError, Evidence, Hook, Loads, Param, PointState, SectionCtx, StationGeom};
 
 /// Reference RPM of `elastic-twist`'s parameter.
 pub const ELASTIC_REF_RPM: f64 = 10_000.0;
@@ -51,6 +51,23 @@ enum Kind {
     ThrustTare,
     TorqueTare,
 }
+
+/// Bounds of the RPM scale when every file's RPM is optical (the wide bounds hold the
+/// pole-count ratios of an electrical reading, 12/14 and 14/12). An optical tachometer times
+/// pulses against a quartz clock: a handheld one is specified to ±0.02 % of the reading ± 1
+/// count (Ono Sokki HT-5500's data sheet), so ±1 % is fifty times that and still not a
+/// miscount, which would be a factor of 2 (two reflections a turn). The bounds were once ±3 %
+/// with no source; validate's held-out columns with each are in `README.md` (Validation on
+/// real propellers).
+pub const OPTICAL_RPM_SCALE: (f64, f64) = (0.99, 1.01);
+
+/// Bounds of the density ratio when every file gives coefficients (UIUC's CT and CP): the lab
+/// reduced its loads with the density it measured, so the ratio is only that measurement's
+/// error. Density from a barometer and a thermometer (ideal gas) is good to a few tenths of a
+/// percent (1 hPa is 0.1 %, 1 K 0.35 %); humidity left out makes dry-air density up to about
+/// 1 % high at 30 C and 60 % RH (moist air's gas constant): ±2 % holds both with room. The
+/// wide bounds (0.75-1.2) are those of a stand log whose air nobody wrote down.
+pub const LAB_DENSITY_RATIO: (f64, f64) = (0.98, 1.02);
 
 /// A built-in effect.
 #[derive(Debug)]
@@ -254,7 +271,13 @@ fn make(kind: Kind) -> Builtin {
                 (0.75, 1.2),
                 0.02,
                 "true density / assumed density (physical bounds: 0.75-1.2, 2,500 m at 40 C to sea level at -30 C against ISA)",
-            ).expecting(0.9, 1.1)],
+            )
+            .expecting(0.9, 1.1)
+            .known(
+                Evidence::LabAir,
+                LAB_DENSITY_RATIO,
+                "coefficients the lab reduced with the density it measured",
+            )],
             &[Measurement],
             "The air was not what the model assumed (temperature, altitude, humidity): thrust and \
              torque scale together at every point. Where the files log temperature, pressure and \
@@ -270,6 +293,11 @@ fn make(kind: Kind) -> Builtin {
                 (0.85, 1.2),
                 0.02,
                 "true RPM / logged RPM (a wrong pole count: poles used / true poles; physical bounds 0.85-1.2 hold 12/14 and 14/12)",
+            )
+            .known(
+                Evidence::OpticalRpm,
+                OPTICAL_RPM_SCALE,
+                "an optical RPM sensor: no pole count to get wrong",
             )],
             &[Measurement],
             "The RPM sensor is off by a constant factor: an electrical-RPM reading divided by the wrong \

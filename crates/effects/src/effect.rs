@@ -45,6 +45,30 @@ pub struct Param {
     /// may reach): a fitted value outside it makes the effect a calibration factor, one that
     /// imitates something the model misses, not found physics. None: the bounds are it.
     pub expected: Option<(f64, f64)>,
+    /// Narrower bounds that hold when the measurements' provenance shows something (an optical
+    /// RPM sensor: no pole count to get wrong); the diagnosis narrows the candidate to them.
+    #[serde(skip)]
+    pub known: Option<Known>,
+}
+
+/// What the measured files' provenance can show about them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Evidence {
+    /// Every file's RPM is optical (a wind tunnel's, a thrust stand's optical probe).
+    OpticalRpm,
+    /// Every file gives coefficients a lab reduced with the air it measured (UIUC's).
+    LabAir,
+}
+
+/// A parameter's bounds when some evidence holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Known {
+    /// The evidence.
+    pub given: Evidence,
+    /// The bounds it sets.
+    pub bounds: (f64, f64),
+    /// Why, in words (appended to the parameter's description when narrowed).
+    pub why: &'static str,
 }
 
 impl Param {
@@ -60,6 +84,15 @@ impl Param {
             scale,
             doc: doc.to_string(),
             expected: None,
+            known: None,
+        }
+    }
+
+    /// The same parameter with the bounds `given` sets.
+    pub fn known(self, given: Evidence, bounds: (f64, f64), why: &'static str) -> Self {
+        Self {
+            known: Some(Known { given, bounds, why }),
+            ..self
         }
     }
 

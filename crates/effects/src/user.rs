@@ -258,6 +258,7 @@ impl UserEffect {
                 scale: p.scale.unwrap_or(0.1 * (p.upper - p.lower)),
                 doc: p.doc.clone(),
                 expected: p.expected.map(|[a, b]| (a, b)),
+                known: None,
             });
         }
         for id in tree.iter_read_variable_identifiers() {

@@ -258,11 +258,11 @@ fn effects_weaker_than_the_measured_repeatability_are_not_found() {
 }
 
 /// An optical RPM (a UIUC wind-tunnel file) has no pole count to get wrong: the RPM scale is
-/// bounded by the sensor's calibration (`diagnose::provenance::OPTICAL_RPM_SCALE`), so an 8 % RPM error hidden
+/// bounded by the sensor's calibration (`effects::builtin::OPTICAL_RPM_SCALE`), so an 8 % RPM error hidden
 /// in wind-tunnel files is reported as beyond what the effect can physically give there, while
 /// the same data from an electrical reading (generic CSV, RPM source unknown) name it. Likewise
 /// a 10 % density error: UIUC's coefficients were reduced with the lab's measured density
-/// (`diagnose::provenance::LAB_DENSITY_RATIO`, ±2 %), a stand log's air may be anything a day and a place give.
+/// (`effects::builtin::LAB_DENSITY_RATIO`, ±2 %), a stand log's air may be anything a day and a place give.
 #[test]
 fn an_optical_rpm_is_not_scaled_like_an_electrical_one() {
     hidden_in_a_tunnel_not_on_a_stand(
