@@ -131,7 +131,7 @@ pub fn print_result(d: &propbet_pipeline::diagnose::Diagnosis) {
     println!("{}", report::verdict(d));
     println!("where the baseline fails:");
     for s in &d.before {
-        println!("  {}", s.text);
+        println!("  {}", report::signature_text(s));
     }
     println!("ranking (held-out RMS, p, significant):");
     for (i, s) in d.ranking.iter().enumerate() {

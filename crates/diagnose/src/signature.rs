@@ -1,9 +1,9 @@
-//! Where the model fails, in words: bias, dependence on advance ratio and on RPM at fixed J (the
-//! J sweeps' and the static test's apart where they differ), thrust against torque, per
-//! quantity ("thrust over-predicted by 12 % on average, largest at J > 0.5 (+18 %) ...";
-//! "torque under-predicted ..., largest at low RPM; thrust unaffected"). Each part names the
-//! candidate effects that can make it and those that cannot, from the model's own response to
-//! each ([`Response`], probed within its bounds by `discover`), not from a list.
+//! Where the model fails, as findings: bias, dependence on advance ratio and on RPM at fixed J
+//! (the J sweeps' and the static test's apart where they differ), thrust against torque, per
+//! quantity; the report words them ("thrust over-predicted by 12 % on average, largest at
+//! J > 0.5 (+18 %) ..."). Each part names the candidate effects that can make it and those that
+//! cannot, from the model's own response to each ([`Response`], probed within its bounds by
+//! `discover`), not from a list.
 
 use std::collections::BTreeMap;
 
@@ -14,7 +14,8 @@ use crate::Data;
 /// Errors below this RMS are called "within" it.
 pub const QUIET: f64 = 0.02;
 
-/// One quantity's residual pattern.
+/// One quantity's residual pattern, as numbers and findings (the report words them:
+/// `propbet_report::diagnose::signature_text`).
 #[derive(Debug, Clone, Serialize)]
 pub struct Signature {
     /// "thrust" or "torque".
@@ -23,57 +24,151 @@ pub struct Signature {
     pub mean: f64,
     /// RMS relative error.
     pub rms: f64,
-    /// The pattern in words: its parts' sentences, each followed by its effects'.
-    pub text: String,
-    /// The same, part by part (the bias first), for a page to lay out.
+    /// The parts of the pattern, the bias first.
     pub parts: Vec<Part>,
 }
 
-/// One part of a pattern: what it says, and the candidates it names where they were matched.
+/// One part of a pattern: what the points show, the candidates that can make it where they
+/// were matched, and (on the last part) the other quantity left unaffected.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Part {
-    /// The sentence, without its full stop.
-    pub text: String,
+    /// What the points show.
+    pub shows: Shows,
     /// The candidates that can make it.
     pub effects: Option<EffectList>,
+    /// Where only this quantity is off: the other unaffected, and what moves this one alone.
+    pub unaffected: Option<Unaffected>,
 }
 
-/// The candidates a part names, from their responses: "{lead}{can, ...}{rest}", as in
-/// "Effects that can make it (...): a, b; not c".
+/// What a part of a pattern shows.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shows {
+    /// The error's RMS is below [`QUIET`].
+    Quiet,
+    /// The mean error (the signature's mean and RMS).
+    Bias,
+    /// The error changes with J at fixed RPM: the two halves split at the median J.
+    AgainstJ {
+        /// The median J.
+        median_j: f64,
+        /// The larger error is above the median J.
+        above: bool,
+        /// The mean error on the larger side.
+        there: f64,
+        /// The mean error on the other.
+        elsewhere: f64,
+        /// The cause is said (not where torque alone is off).
+        cause: bool,
+    },
+    /// The error changes with RPM at fixed J.
+    WithRpm {
+        /// Every point is static (a stand's step test).
+        all_static: bool,
+        /// The trend at fixed J.
+        trend: RpmTrend,
+        /// The static test's own trend, where there are J sweeps beside it.
+        statically: Option<RpmTrend>,
+        /// The measured quantity grows faster with RPM than the model's.
+        faster: bool,
+        /// Where it shows.
+        regime: Regime,
+        /// The cause is said (not where torque alone is off).
+        cause: bool,
+    },
+    /// The first RPM group's error against the last's.
+    RpmGroups {
+        /// The error grows with RPM (else it is largest at low RPM).
+        growing: bool,
+        /// The first group's mean RPM, error and J.
+        low: GroupMean,
+        /// The last group's.
+        high: GroupMean,
+        /// Their mean J differ: RPM and J are not told apart.
+        confounded: bool,
+        /// The error's power of RPM, where it is at least 0.7 in size and not confounded.
+        power: Option<f64>,
+    },
+    /// Thrust against torque where both are off.
+    ThrustTorque {
+        /// How their mean errors relate.
+        relation: Relation,
+        /// Thrust's mean error.
+        thrust: f64,
+        /// Torque's mean error.
+        torque: f64,
+    },
+}
+
+/// An RPM group's means.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct GroupMean {
+    /// Mean RPM.
+    pub rpm: f64,
+    /// Mean error.
+    pub error: f64,
+    /// Mean J.
+    pub j: f64,
+}
+
+/// Where an RPM trend shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Regime {
+    /// In the J sweeps and statically alike (or only one of them measured).
+    Both,
+    /// In forward flight, not statically.
+    ForwardOnly,
+    /// Statically, not in forward flight.
+    StaticOnly,
+}
+
+/// How thrust's and torque's mean errors relate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Relation {
+    /// Opposite signs.
+    Opposite,
+    /// The same way, torque more than twice as much.
+    TorqueMore,
+    /// The same way, thrust more than twice as much.
+    ThrustMore,
+    /// The same way by similar amounts.
+    Similar,
+}
+
+/// The candidates a part names, from their responses.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EffectList {
-    /// The words before the effects that can make it (all of the sentence where none can).
-    pub lead: String,
+    /// What they make: "it" (the part), or "both" (thrust and torque).
+    pub object: String,
     /// The effects that can make it, best first.
     pub can: Vec<String>,
-    /// The words after them ("; not c, d").
-    pub rest: String,
+    /// Those that cannot.
+    pub cannot: Vec<String>,
+    /// The same list as thrust's (torque's part refers to it).
+    pub as_for_thrust: bool,
 }
 
-impl EffectList {
-    /// The list as a sentence.
-    pub fn sentence(&self) -> String {
-        format!("{}{}{}", self.lead, self.can.join(", "), self.rest)
-    }
+/// The other quantity unaffected.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Unaffected {
+    /// The quantity within [`QUIET`].
+    pub kept: String,
+    /// The one that is off.
+    pub moved: String,
+    /// The candidates that move it alone (None: no candidates were probed).
+    pub alone: Option<Vec<String>>,
 }
 
 impl Part {
-    fn new(text: String, effects: Option<EffectList>) -> Self {
-        Self { text, effects }
+    fn new(shows: Shows, effects: Option<EffectList>) -> Self {
+        Self {
+            shows,
+            effects,
+            unaffected: None,
+        }
     }
-}
-
-/// The words of `parts`: each part's sentence, then its effects', joined by full stops.
-fn render(parts: &[Part]) -> String {
-    parts
-        .iter()
-        .flat_map(|p| std::iter::once(p.text.clone()).chain(p.effects.as_ref().map(EffectList::sentence)))
-        .collect::<Vec<String>>()
-        .join(". ")
-}
-
-fn pct(x: f64) -> String {
-    format!("{:+.1} %", 100.0 * x)
 }
 
 fn mean(v: &[f64]) -> f64 {
@@ -154,8 +249,7 @@ fn parts_of(pts: &[(f64, f64, i64, f64)], jm: f64) -> Parts {
 }
 
 /// Which candidates can make a pattern: each response's best probe against the observed parts
-/// `seen` (the parts of `of` that are there), as "Effects that can make {object} (...): a, b;
-/// not c". None without responses (nothing to match).
+/// `seen` (the parts of `of` that are there). None without responses (nothing to match).
 fn effect_list<P>(
     seen: &[f64],
     of: impl Fn(&P) -> Vec<f64>,
@@ -183,35 +277,13 @@ fn effect_list<P>(
         }
     }
     can.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let can: Vec<String> = can.into_iter().map(|c| c.1.to_string()).collect();
-    Some(if can.is_empty() {
-        EffectList {
-            lead: format!(
-                "No candidate effect can make {object} within its bounds (from the model's response to each)"
-            ),
-            can,
-            rest: String::new(),
-        }
-    } else {
-        EffectList {
-            lead: format!("Effects that can make {object} (from the model's response to each, within its bounds): "),
-            rest: if cannot.is_empty() {
-                String::new()
-            } else {
-                format!("; not {}", cannot.join(", "))
-            },
-            can,
-        }
+    Some(EffectList {
+        object: object.to_string(),
+        can: can.into_iter().map(|c| c.1.to_string()).collect(),
+        cannot: cannot.into_iter().map(str::to_string).collect(),
+        as_for_thrust: false,
     })
 }
-
-/// The RPM trend's qualifier where the J sweeps show it and the static test does not.
-const FORWARD_ONLY: &str = " in forward flight, not statically";
-/// ... and the other way round.
-const STATIC_ONLY: &str = " statically, not in forward flight";
-
-/// What the torque's pattern says in place of an effect list the thrust's already gave.
-const SAME_EFFECTS: &str = "The effects named for thrust can make it";
 
 /// Width of the J bins within which RPM trends are measured (static points are one bin).
 const J_BIN: f64 = 0.05;
@@ -337,12 +409,6 @@ pub fn thrust_trends(data: &Data, residuals: &[f64]) -> (Option<f64>, Option<f64
     )
 }
 
-/// `s` with its first letter a capital.
-fn capitalised(s: &str) -> String {
-    let mut c = s.chars();
-    c.next().map_or(String::new(), |f| f.to_uppercase().chain(c).collect())
-}
-
 /// The residual patterns of the residual rows `residuals` of `data` (in [`Data::rows`] order:
 /// relative errors with the floors), with the candidates that can make each part of them
 /// (from their `responses`; none named without).
@@ -360,14 +426,6 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
     if out.len() == 2 {
         thrust_and_torque(&mut out, &rows, residuals, responses);
     }
-    // The parts' sentences capitalised after the first (which starts with the quantity's
-    // name), and the words.
-    for sig in &mut out {
-        for p in sig.parts.iter_mut().skip(1) {
-            p.text = capitalised(&p.text);
-        }
-        sig.text = render(&sig.parts);
-    }
     out
 }
 
@@ -375,9 +433,8 @@ pub fn signatures(data: &Data, residuals: &[f64], responses: &[Response]) -> Vec
 fn refer(list: EffectList, torque: bool, named: &mut Vec<EffectList>) -> EffectList {
     if torque && named.contains(&list) && !list.can.is_empty() {
         EffectList {
-            lead: SAME_EFFECTS.to_string(),
-            can: Vec::new(),
-            rest: String::new(),
+            as_for_thrust: true,
+            ..list
         }
     } else {
         if !torque {
@@ -411,26 +468,10 @@ fn quantity_signature(
             quantity: name.into(),
             mean: m,
             rms: r,
-            text: String::new(),
-            parts: vec![Part::new(
-                format!(
-                    "{name} within {:.0} % everywhere (RMS {:.1} %)",
-                    100.0 * QUIET,
-                    100.0 * r
-                ),
-                None,
-            )],
+            parts: vec![Part::new(Shows::Quiet, None)],
         });
     }
-    let word = if m > 0.0 { "over-predicted" } else { "under-predicted" };
-    let mut parts = vec![Part::new(
-        format!(
-            "{name} {word} by {:.1} % on average (RMS {:.1} %)",
-            100.0 * m.abs(),
-            100.0 * r
-        ),
-        None,
-    )];
+    let mut parts = vec![Part::new(Shows::Bias, None)];
     let threshold = QUIET.max(0.3 * r);
     // Torque off with thrust right: only what moves torque alone can make its patterns (said
     // once below), not the angles, air or RPM the general lists name.
@@ -467,7 +508,7 @@ fn quantity_signature(
     }
     let bins = rpm_slopes(&pts);
     let trend = fixed_j_trend(&bins);
-    if let Some(part) = rpm_trend_part(&pts, &bins, trend, &seen, name, torque, torque_alone, &resp, named) {
+    if let Some(part) = rpm_trend_part(&pts, &bins, trend, &seen, torque, torque_alone, &resp, named) {
         parts.push(part);
     }
     if let Some(part) = rpm_group_part(&pts, threshold, trend.is_some()) {
@@ -477,7 +518,6 @@ fn quantity_signature(
         quantity: name.into(),
         mean: m,
         rms: r,
-        text: String::new(),
         parts,
     })
 }

@@ -36,12 +36,29 @@ pub struct JsonOut<'a> {
     pub measured: &'a [String],
     /// The command.
     pub command: &'a str,
-    /// The diagnosis.
+    /// The diagnosis, each residual pattern with its words (`text`).
+    #[serde(serialize_with = "worded")]
     pub diagnosis: &'a Diagnosis,
     /// The final model's parameters.
     pub final_params: Vec<FittedParam>,
     /// The final model as `--effect` arguments.
     pub final_effects: Vec<String>,
+}
+
+/// The diagnosis as JSON, each residual pattern (`before`, `after`) with its words beside its
+/// findings.
+fn worded<S: serde::Serializer>(d: &&Diagnosis, ser: S) -> Result<S::Ok, S::Error> {
+    let mut v = serde_json::to_value(d).map_err(serde::ser::Error::custom)?;
+    for (key, sigs) in [("before", &d.before), ("after", &d.after)] {
+        if let Some(list) = v.get_mut(key).and_then(serde_json::Value::as_array_mut) {
+            for (j, s) in list.iter_mut().zip(sigs) {
+                if let Some(o) = j.as_object_mut() {
+                    o.insert("text".into(), signature_text(s).into());
+                }
+            }
+        }
+    }
+    v.serialize(ser)
 }
 
 fn pct(x: f64) -> String {
@@ -407,7 +424,7 @@ fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
 fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry]) -> String {
     let mut md = format!("# Diagnosis\n\n{verdict}\n\n## Where the model fails\n\n");
     for s in &d.before {
-        let _ = writeln!(md, "- {}", s.text);
+        let _ = writeln!(md, "- {}", signature_text(s));
     }
     md.push_str("\n## Ranking\n\n| # | effect | fitted | RMS | held-out | leave-RPM-out | p | significant |\n|---|---|---|---|---|---|---|---|\n");
     for (i, s) in d.ranking.iter().enumerate() {
@@ -448,7 +465,7 @@ fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry]) -> String {
     }
     md.push_str("\n## What is left\n\n");
     for s in &d.after {
-        let _ = writeln!(md, "- {}", s.text);
+        let _ = writeln!(md, "- {}", signature_text(s));
     }
     md.push('\n');
     md.push_str(&measured_files_md(files));
@@ -612,8 +629,10 @@ pub fn meaning(d: &Diagnosis) -> String {
 }
 
 mod parts;
+mod words;
 
 use parts::{ladder_figure, residual_panels, signature_html, trend};
+pub use words::{part_words, signature_text, EffectWords};
 
 #[cfg(test)]
 mod tests;

@@ -1,5 +1,5 @@
-//! The parts of a pattern in words: the error against J, with RPM at fixed J, from the first
-//! RPM group to the last, and thrust against torque.
+//! The parts of a pattern: the error against J, with RPM at fixed J, from the first RPM group
+//! to the last, and thrust against torque.
 
 use super::*;
 
@@ -16,19 +16,19 @@ pub(super) fn j_part(
     if let Some((ml, mh)) = j_halves(pts, jm) {
         let dj = mh - ml;
         if dj.abs() > threshold {
-            let (side, a, b) = if mh.abs() > ml.abs() {
-                (format!("J > {jm:.2}"), mh, ml)
-            } else {
-                (format!("J <= {jm:.2}"), ml, mh)
+            let above = mh.abs() > ml.abs();
+            let (there, elsewhere) = if above { (mh, ml) } else { (ml, mh) };
+            let effects = (!torque_alone)
+                .then(|| effect_list(&[dj], |p| vec![p.dj.unwrap_or(0.0)], resp, "it").map(|l| refer(l, torque, named)))
+                .flatten();
+            let shows = Shows::AgainstJ {
+                median_j: jm,
+                above,
+                there,
+                elsewhere,
+                cause: !torque_alone,
             };
-            let mut s = format!("largest at {side} ({} there, {} elsewhere)", pct(a), pct(b));
-            let mut effects = None;
-            if !torque_alone {
-                s.push_str(": an error that changes with J at fixed RPM comes from the angles or the inflow");
-                effects =
-                    effect_list(&[dj], |p| vec![p.dj.unwrap_or(0.0)], resp, "it").map(|l| refer(l, torque, named));
-            }
-            return Some(Part::new(s, effects));
+            return Some(Part::new(shows, effects));
         }
     }
     None
@@ -41,13 +41,13 @@ pub(super) fn rpm_trend_part(
     bins: &BTreeMap<i64, (f64, f64, f64)>,
     trend: Option<RpmTrend>,
     seen: &Parts,
-    name: &str,
     torque: bool,
     torque_alone: bool,
     resp: &[(String, Vec<Parts>)],
     named: &mut Vec<EffectList>,
 ) -> Option<Part> {
-    if let Some(RpmTrend { change, lo: rl, hi: rh }) = trend {
+    if let Some(t_fixed) = trend {
+        let change = t_fixed.change;
         // Its own threshold: a trend with RPM is the signature of missing physics even
         // under a larger error of another kind.
         let stat = static_trend(bins);
@@ -55,9 +55,9 @@ pub(super) fn rpm_trend_part(
             // The J sweeps and the static test disagreeing (opposite signs, or one a third
             // of the other): the larger says the direction, and where it is.
             // (The static test's sign where it alone makes the trend worth saying.)
-            let (mut sign, mut only) = match stat {
-                Some(t) if change.abs() <= 0.5 * QUIET => (t.change, ""),
-                _ => (change, ""),
+            let (mut sign, mut regime) = match stat {
+                Some(t) if change.abs() <= 0.5 * QUIET => (t.change, Regime::Both),
+                _ => (change, Regime::Both),
             };
             // (Compared per unit ln RPM, the ranges differing; said where the larger changes
             // the error by more than QUIET over its own range.)
@@ -65,43 +65,20 @@ pub(super) fn rpm_trend_part(
                 let big = f.abs().max(s.abs());
                 let (dominant, its_change) = if f.abs() > s.abs() { (f, change) } else { (s, t.change) };
                 if its_change.abs() > QUIET && (f * s < 0.0 || f.abs().min(s.abs()) < big / 3.0) {
-                    (sign, only) = (dominant, if f.abs() > s.abs() { FORWARD_ONLY } else { STATIC_ONLY });
+                    (sign, regime) = (
+                        dominant,
+                        if f.abs() > s.abs() {
+                            Regime::ForwardOnly
+                        } else {
+                            Regime::StaticOnly
+                        },
+                    );
                 }
             }
-            let faster = if sign < 0.0 { "faster" } else { "slower" };
             // A static test alone (a stand's step test) has one J: said as such.
             let all_static = pts.iter().all(|p| p.0 < 0.01);
-            let mut head = format!(
-                "{} the error changes by {} from {rl:.0} to {rh:.0} rpm",
-                if all_static { "statically" } else { "at fixed J" },
-                pct(change)
-            );
-            if let Some(t) = stat {
-                head.push_str(&format!(
-                    " (statically by {} from {:.0} to {:.0} rpm)",
-                    pct(t.change),
-                    t.lo,
-                    t.hi
-                ));
-            }
-            head.push_str(&format!(
-                ": the measured {name} grows {faster} with RPM than the model's{only}"
-            ));
             let mut effects = None;
             if !torque_alone {
-                head.push_str(match only {
-                    "" => " (a Reynolds-number effect on the sections; Mach at high tip speeds)",
-                    FORWARD_ONLY => {
-                        " (what moves with Reynolds number at the small angles of forward flight and not near \
-                         stall: the sections' zero-lift angle, a laminar bubble's camber; or an airspeed off by a \
-                         constant, J off by dv/(nD), nothing statically; propbet's docs/studies/re-zero-lift.toml \
-                         and airspeed-offset.toml are user effects to test each)"
-                    }
-                    _ => {
-                        " (what moves with Reynolds number near stall, where the static blade works, and not at \
-                         the small angles of forward flight: the sections' maximum lift and stall)"
-                    }
-                });
                 let seen_rpm: Vec<f64> = [seen.forward, seen.stat].into_iter().flatten().collect();
                 let of = |p: &Parts| -> Vec<f64> {
                     [(seen.forward, p.forward), (seen.stat, p.stat)]
@@ -112,7 +89,15 @@ pub(super) fn rpm_trend_part(
                 };
                 effects = effect_list(&seen_rpm, of, resp, "it").map(|l| refer(l, torque, named));
             }
-            return Some(Part::new(head, effects));
+            let shows = Shows::WithRpm {
+                all_static,
+                trend: t_fixed,
+                statically: stat,
+                faster: sign < 0.0,
+                regime,
+                cause: !torque_alone,
+            };
+            return Some(Part::new(shows, effects));
         }
     }
     None
@@ -139,29 +124,25 @@ pub(super) fn rpm_group_part(pts: &[(f64, f64, i64, f64)], threshold: f64, trend
         if let (Some((rl, el, jl)), Some((rh, eh, jh))) = (first, last) {
             let confounded = (jh - jl).abs() > J_BIN;
             if (eh - el).abs() > threshold && rh > rl && !(confounded && trend) {
-                let growing = eh.abs() > el.abs();
-                let mut s = format!(
-                    "{} ({} at {rl:.0} rpm, {} at {rh:.0} rpm",
-                    if growing {
-                        "growing with RPM"
-                    } else {
-                        "largest at low RPM"
+                let power = (!confounded && el * eh > 0.0)
+                    .then(|| (eh / el).ln() / (rh / rl).ln())
+                    .filter(|n| n.abs() >= 0.7);
+                let shows = Shows::RpmGroups {
+                    growing: eh.abs() > el.abs(),
+                    low: GroupMean {
+                        rpm: rl,
+                        error: el,
+                        j: jl,
                     },
-                    pct(el),
-                    pct(eh)
-                );
-                if confounded {
-                    s.push_str(&format!(
-                        "; at mean J {jl:.2} and {jh:.2}: RPM and J are not told apart"
-                    ));
-                } else if el * eh > 0.0 {
-                    let n = (eh / el).ln() / (rh / rl).ln();
-                    if n.abs() >= 0.7 {
-                        s.push_str(&format!(", about RPM^{n:.0}"));
-                    }
-                }
-                s.push(')');
-                return Some(Part::new(s, None));
+                    high: GroupMean {
+                        rpm: rh,
+                        error: eh,
+                        j: jh,
+                    },
+                    confounded,
+                    power,
+                };
+                return Some(Part::new(shows, None));
             }
         }
     }
@@ -185,16 +166,14 @@ pub(super) fn thrust_and_torque(out: &mut [Signature], rows: &[crate::Row], resi
         // that can make the pair (probes that do not make the error larger overall).
         let (t, q) = (rows_of(false), rows_of(true));
         let (mt, mq) = (out[0].mean, out[1].mean);
-        let physics = if mt * mq < 0.0 {
-            "in opposite directions: the sections' drag (more drag, less thrust and more torque) or a load \
-             on the balance, not an angle, the inflow, the air or the RPM, which move both the same way"
+        let relation = if mt * mq < 0.0 {
+            Relation::Opposite
         } else if mq.abs() > 2.0 * mt.abs() {
-            "the same way, torque more than twice as much: the sections' drag more than their lift"
+            Relation::TorqueMore
         } else if mt.abs() > 2.0 * mq.abs() {
-            "the same way, thrust more than twice as much: the thrust a power makes (the inflow, the tip \
-             loss) or a load on the balance more than the sections' drag"
+            Relation::ThrustMore
         } else {
-            "the same way by similar amounts: what changes the angles, the inflow, the air or the RPM moves both"
+            Relation::Similar
         };
         let both: Vec<usize> = (0..rows.len()).collect();
         let before = rms_at(&both, None);
@@ -214,11 +193,11 @@ pub(super) fn thrust_and_torque(out: &mut [Signature], rows: &[crate::Row], resi
             })
             .collect();
         out[1].parts.push(Part::new(
-            format!(
-                "Thrust and torque are off {physics} ({} and {} on average)",
-                pct(mt),
-                pct(mq)
-            ),
+            Shows::ThrustTorque {
+                relation,
+                thrust: mt,
+                torque: mq,
+            },
             effect_list(&[mt, mq], |p: &[f64; 2]| p.to_vec(), &levels, "both"),
         ));
     }
@@ -240,26 +219,13 @@ pub(super) fn thrust_and_torque(out: &mut [Signature], rows: &[crate::Row], resi
         } else {
             ("thrust", "torque")
         };
-        let which = if responses.is_empty() {
-            String::new()
-        } else if alone.is_empty() {
-            " (no candidate does, in the model within its bounds)".to_string()
-        } else {
-            format!(
-                " ({} can, from the model's response to each within its bounds)",
-                alone.join(", ")
-            )
-        };
-        let unaffected = format!(
-            "; {kept} unaffected: what moves {moved} alone{which}, not what changes the angles, the air or \
-             the RPM, which move both"
-        );
-        // After the last words of the pattern: its last part's effects where it names some.
+        // After the last words of the pattern.
         if let Some(last) = out[usize::from(off_torque)].parts.last_mut() {
-            match &mut last.effects {
-                Some(e) => e.rest.push_str(&unaffected),
-                None => last.text.push_str(&unaffected),
-            }
+            last.unaffected = Some(Unaffected {
+                kept: kept.into(),
+                moved: moved.into(),
+                alone: (!responses.is_empty()).then(|| alone.iter().map(|s| s.to_string()).collect()),
+            });
         }
     }
 }

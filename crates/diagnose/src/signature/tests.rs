@@ -3,6 +3,27 @@
 use super::*;
 use crate::Observation;
 
+/// The findings of a signature, by kind.
+fn shows(s: &Signature) -> Vec<&Shows> {
+    s.parts.iter().map(|p| &p.shows).collect()
+}
+
+fn groups_confounded(s: &Signature) -> Option<(bool, Option<f64>)> {
+    s.parts.iter().find_map(|p| match p.shows {
+        Shows::RpmGroups { confounded, power, .. } => Some((confounded, power)),
+        _ => None,
+    })
+}
+
+fn rpm_trend(s: &Signature) -> Option<(f64, Regime, bool)> {
+    s.parts.iter().find_map(|p| match p.shows {
+        Shows::WithRpm {
+            trend, regime, faster, ..
+        } => Some((trend.change, regime, faster)),
+        _ => None,
+    })
+}
+
 /// Thrust-only data: (rpm group's RPM, J) per point.
 fn data(points: &[(f64, f64)]) -> Data {
     let obs = points
@@ -39,29 +60,27 @@ fn rpm_groups_at_other_j_are_not_called_an_rpm_trend() {
         .chain((0..6).map(|k| (6000.0, 0.42 + 0.05 * k as f64)))
         .collect();
     let e: Vec<f64> = pts.iter().map(|p| -p.1).collect();
-    let text = &signatures(&data(&pts), &e, &[])[0].text;
-    assert!(text.contains("RPM and J are not told apart"), "{text}");
-    assert!(!text.contains("about RPM^"), "{text}");
+    let s = &signatures(&data(&pts), &e, &[])[0];
+    assert_eq!(groups_confounded(s), Some((true, None)), "{s:?}");
     // Both speeds at the same J: the trend at fixed J says it, once.
     let pts: Vec<(f64, f64)> = [3000.0, 6000.0]
         .into_iter()
         .flat_map(|r| (0..6).map(move |k| (r, 0.05 * k as f64)))
         .collect();
     let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0)).collect();
-    let text = &signatures(&data(&pts), &e, &[])[0].text;
-    assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
-    assert!(!text.contains("not told apart"), "{text}");
+    let s = &signatures(&data(&pts), &e, &[])[0];
+    let (change, _, _) = rpm_trend(s).unwrap();
+    assert!((change + 0.2).abs() < 5e-4, "{s:?}");
+    assert_ne!(groups_confounded(s).map(|g| g.0), Some(true), "{s:?}");
     // The high-J sweep reaching further at 6000 rpm, the error growing with J: the trend at
     // fixed J is measured on the J both speeds share, the groups are not compared.
     let mut pts = pts;
     pts.extend((1..5).map(|k| (6000.0, 0.25 + 0.1 * k as f64)));
     let e: Vec<f64> = pts.iter().map(|p| -0.2 * (p.0 / 3000.0 - 1.0) - p.1).collect();
-    let text = &signatures(&data(&pts), &e, &[])[0].text;
-    assert!(text.contains("At fixed J the error changes by -20.0 %"), "{text}");
-    assert!(
-        !text.contains("growing with RPM") && !text.contains("not told apart"),
-        "{text}"
-    );
+    let s = &signatures(&data(&pts), &e, &[])[0];
+    let (change, _, _) = rpm_trend(s).unwrap();
+    assert!((change + 0.2).abs() < 5e-4, "{s:?}");
+    assert_eq!(groups_confounded(s), None, "the groups are not compared: {s:?}");
 }
 
 #[test]
@@ -100,21 +119,37 @@ fn the_rpm_trend_is_measured_at_fixed_j() {
     );
     let obs: Vec<(f64, f64)> = mixed.iter().map(|p| (p.1, p.0)).collect();
     let e: Vec<f64> = mixed.iter().map(|p| p.3).collect();
-    let text = &signatures(&data(&obs), &e, &[])[0].text;
-    assert!(
-        text.contains(
-            "At fixed J the error changes by -4.1 % from 4000 to 6000 rpm (statically by +0.0 % from 2000 to 6000 rpm)"
-        ),
-        "{text}"
-    );
+    let sig = &signatures(&data(&obs), &e, &[])[0];
+    let found = sig.parts.iter().find_map(|p| match &p.shows {
+        Shows::WithRpm {
+            all_static,
+            trend,
+            statically,
+            ..
+        } => Some((*all_static, *trend, *statically)),
+        _ => None,
+    });
+    let (all_static, trend, statically) = found.unwrap();
+    assert!(!all_static && (trend.change + 0.041).abs() < 5e-4, "{sig:?}");
+    let st = statically.unwrap();
+    assert!(st.change.abs() < 1e-9 && st.lo.round() == 2000.0, "{st:?}");
     // A static test alone: its trend is said as static.
     let stat_only: Vec<(f64, f64)> = (0..5).map(|k| (2000.0 + 1000.0 * k as f64, 0.0)).collect();
     let e: Vec<f64> = stat_only.iter().map(|p| -0.1 * (p.0 / 2000.0).ln()).collect();
-    let text = &signatures(&data(&stat_only), &e, &[])[0].text;
+    let sig = &signatures(&data(&stat_only), &e, &[])[0];
     assert!(
-        text.contains("Statically the error changes by -11.0 % from 2000 to 6000 rpm"),
-        "{text}"
+        sig.parts.iter().any(|p| matches!(
+            p.shows,
+            Shows::WithRpm {
+                all_static: true,
+                statically: None,
+                ..
+            }
+        )),
+        "{sig:?}"
     );
+    let (change, _, _) = rpm_trend(sig).unwrap();
+    assert!((change + 0.110).abs() < 5e-4, "{sig:?}");
     // No static test: no static trend.
     let forward: Vec<_> = pts.iter().filter(|p| p.0 > 0.0).copied().collect();
     assert!(rpm_trend_at_fixed_j(&forward).is_some() && static_rpm_trend(&forward).is_none());
@@ -176,25 +211,22 @@ fn the_effects_that_can_make_a_trend_come_from_their_responses() {
             probes: probe(&|_, _| 0.0),
         },
     ];
-    let text = &signatures(&data(&pts), &e, &responses)[0].text;
-    assert!(
-        text.contains("the measured thrust grows faster with RPM than the model's in forward flight, not statically"),
-        "{text}"
-    );
-    assert!(
-        text.contains(
-            "Effects that can make it (from the model's response to each, within its bounds): forward; \
-                 not everywhere, swamping, nothing"
-        ),
-        "{text}"
-    );
-    // Without responses no list; with only those that cannot, that is said.
-    assert!(!signatures(&data(&pts), &e, &[])[0].text.contains("can make it"));
-    let text = &signatures(&data(&pts), &e, &responses[1..])[0].text;
-    assert!(
-        text.contains("No candidate effect can make it within its bounds"),
-        "{text}"
-    );
+    let s = &signatures(&data(&pts), &e, &responses)[0];
+    let (_, regime, faster) = rpm_trend(s).unwrap();
+    assert_eq!((regime, faster), (Regime::ForwardOnly, true), "{s:?}");
+    let trend_effects = |s: &Signature| {
+        s.parts
+            .iter()
+            .find(|p| matches!(p.shows, Shows::WithRpm { .. }))
+            .and_then(|p| p.effects.clone())
+    };
+    let l = trend_effects(s).unwrap();
+    assert_eq!(l.can, ["forward"]);
+    assert_eq!(l.cannot, ["everywhere", "swamping", "nothing"]);
+    // Without responses no list; with only those that cannot, none can.
+    assert_eq!(trend_effects(&signatures(&data(&pts), &e, &[])[0]), None);
+    let l = trend_effects(&signatures(&data(&pts), &e, &responses[1..])[0]).unwrap();
+    assert!(l.can.is_empty(), "{l:?}");
 }
 
 #[test]
@@ -220,25 +252,36 @@ fn thrust_against_torque_names_what_can_make_both() {
         },
     ];
     let s = signatures(&d, &e, &responses);
+    let pair = s[1].parts.last().unwrap();
     assert!(
-        s[1].text.contains("Thrust and torque are off in opposite directions"),
-        "{}",
-        s[1].text
-    );
-    assert!(
-        s[1].text.contains(
-            "Effects that can make both (from the model's response to each, within its bounds): drag; not angle"
+        matches!(
+            pair.shows,
+            Shows::ThrustTorque {
+                relation: Relation::Opposite,
+                ..
+            }
         ),
-        "{}",
-        s[1].text
+        "{pair:?}"
+    );
+    let l = pair.effects.clone().unwrap();
+    assert_eq!(
+        (l.object.as_str(), l.can, l.cannot),
+        ("both", vec!["drag".to_string()], vec!["angle".to_string()])
     );
     // Both high by similar amounts: the angles, the air, the RPM.
     let e: Vec<f64> = (0..8).map(|k| if k % 2 == 0 { 0.1 } else { 0.12 }).collect();
     let s = signatures(&d, &e, &[]);
+    let pair = s[1].parts.last().unwrap();
     assert!(
-        s[1].text.contains("off the same way by similar amounts"),
-        "{}",
-        s[1].text
+        matches!(
+            pair.shows,
+            Shows::ThrustTorque {
+                relation: Relation::Similar,
+                ..
+            }
+        ),
+        "{:?}",
+        shows(&s[1])
     );
-    assert!(!s[1].text.contains("can make both"), "{}", s[1].text);
+    assert_eq!(pair.effects, None, "no candidates, no list");
 }

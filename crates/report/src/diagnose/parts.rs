@@ -58,38 +58,38 @@ pub(super) fn residual_panels(data: &Data, d: &Diagnosis) -> Vec<Panel> {
 /// the RPM trend, thrust against torque) as a list under it, each with the effects it names on
 /// a line of its own, the ones that can make it in bold.
 pub(super) fn signature_html(s: &Signature) -> String {
-    let part = |p: &Part| -> String {
-        let mut h = esc(&p.text);
+    let part = |i: usize, p: &Part| -> String {
+        let (text, _) = words::part_words(s, i, p);
+        let mut h = esc(&text);
         if let Some(e) = &p.effects {
-            let can = if e.can.is_empty() {
+            let w = words::EffectWords::of(e);
+            let can = if w.can.is_empty() {
                 String::new()
             } else {
-                format!("<b>{}</b>", esc(&e.can.join(", ")))
+                format!("<b>{}</b>", esc(&w.can.join(", ")))
             };
             // The effects that cannot make it go on a line of their own, in small print: the
             // sentence names what can.
-            let (rest, cannot) = match e.rest.strip_prefix("; not ") {
-                Some(r) => match r.split_once("; ") {
-                    Some((list, more)) => (format!("; {more}"), list.to_string()),
-                    None => (String::new(), r.to_string()),
-                },
-                None => (e.rest.clone(), String::new()),
-            };
-            let _ = write!(h, ".<br>{}{can}{}", esc(&e.lead), esc(&rest));
-            if !cannot.is_empty() {
-                let _ = write!(h, "<br><span class=\"note\">Cannot: {}</span>", esc(&cannot));
+            let tail = p.unaffected.as_ref().map(words::unaffected_words).unwrap_or_default();
+            let _ = write!(h, ".<br>{}{can}{}", esc(&w.lead), esc(&tail));
+            if !w.cannot.is_empty() {
+                let _ = write!(
+                    h,
+                    "<br><span class=\"note\">Cannot: {}</span>",
+                    esc(&w.cannot.join(", "))
+                );
             }
         }
         h
     };
     let Some((first, rest)) = s.parts.split_first() else {
-        return format!("<li>{}</li>\n", esc(&s.text));
+        return format!("<li>{}</li>\n", esc(&words::signature_text(s)));
     };
-    let mut h = format!("<li>{}", part(first));
+    let mut h = format!("<li>{}", part(0, first));
     if !rest.is_empty() {
         h.push_str("<ul>");
-        for p in rest {
-            let _ = write!(h, "<li>{}</li>", part(p));
+        for (i, p) in rest.iter().enumerate() {
+            let _ = write!(h, "<li>{}</li>", part(i + 1, p));
         }
         h.push_str("</ul>");
     }
