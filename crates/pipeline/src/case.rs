@@ -374,13 +374,19 @@ impl RunPlan {
 /// An error of a case key, naming the case file and the key; a declared setting's wrong value
 /// as the key writes it (`[polars] ncrit = 25: ...`).
 fn at_key(case_file: &Path, key: &str, e: impl Into<Error>) -> Error {
+    // A key of its own (`[polars] ncrit`, not the section `[geometry]`): its value as the key
+    // writes it.
+    let one_key = key.contains("] ");
     match e.into() {
-        Error::Setting(b) => Error::input(case_file, format!("{key} = {}: {}", b.value, b.meaning)),
+        Error::Setting(b) if one_key => Error::input(case_file, format!("{key} = {}: {}", b.value, b.meaning)),
+        Error::Value { text, problem, .. } if one_key => {
+            Error::input(case_file, format!("{key} = '{text}': {problem}"))
+        }
         e => Error::input(case_file, format!("{key}: {e}")),
     }
 }
 
-/// A fraction written as `0.06` or `6%`.
+/// A thickness ratio written as `0.06` or `6%`.
 pub fn parse_fraction(text: &str) -> Result<f64> {
     let t = text.trim();
     let (num, scale) = match t.strip_suffix('%') {
@@ -390,7 +396,7 @@ pub fn parse_fraction(text: &str) -> Result<f64> {
     let v: f64 = num
         .trim()
         .parse()
-        .map_err(|_| Error::Invalid(format!("{t:?} is not a number")))?;
+        .map_err(|_| Error::value("--thickness", t, "not a number (a fraction as 0.06 or 6%)"))?;
     Ok(v * scale)
 }
 

@@ -23,12 +23,59 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
-    /// A setting is wrong (the flag or key it came from is named in the text).
-    #[error("{0}")]
-    Invalid(String),
+    /// A value as written does not read (a list, a unit, a quantity, a colour, a path where a
+    /// folder is wanted): `FLAG 'TEXT': PROBLEM`.
+    #[error("{flag} '{text}': {problem}")]
+    Value {
+        /// The flag or key.
+        flag: String,
+        /// The value as given.
+        text: String,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// A declared setting's value is outside what it allows ([`crate::settings`]).
     #[error(transparent)]
     Setting(#[from] crate::settings::BadSetting),
+    /// A number outside what its flag allows (the flag named in the text).
+    #[error("{0}")]
+    Range(String),
+    /// Settings that cannot go together, or a setting missing that another needs.
+    #[error("{0}")]
+    Conflict(String),
+    /// Nothing to work on: no operating point, no measured point, no polar, no propeller.
+    #[error("{0}")]
+    Nothing(String),
+    /// The points cannot make what a target asks for (a hover model without static points,
+    /// curves over J without advance ratios).
+    #[error("{0}")]
+    Unsuited(String),
+    /// An error of something named: a flag's value, a stage of a run, an exported file.
+    #[error("{what}: {cause}")]
+    About {
+        /// What it concerns (`--airfoil e63x`, `polars stage`).
+        what: String,
+        /// The error (in the message, not a `source`: the chain would print it twice).
+        cause: Box<Error>,
+    },
+    /// A mesh does not read.
+    #[error(transparent)]
+    Mesh(#[from] propbet_geometry::MeshError),
+    /// A point cloud does not read.
+    #[error(transparent)]
+    Cloud(#[from] propbet_geometry::cloud::CloudError),
+    /// Airfoil coordinates do not make an airfoil.
+    #[error(transparent)]
+    Airfoil(#[from] propbet_polar::AirfoilError),
+    /// A rotor cannot be made of a blade.
+    #[error(transparent)]
+    Rotor(#[from] propbet_bemt::RotorError),
+    /// An APC PE0 file does not read.
+    #[error(transparent)]
+    Pe0(#[from] propbet_qprop::apc::ReadPe0Error),
+    /// The diagnosis cannot run on these data.
+    #[error(transparent)]
+    Diagnose(#[from] propbet_diagnose::DiagnoseError),
     /// An effect failed while predicting.
     #[error(transparent)]
     Effect(#[from] propbet_effects::EffectError),
@@ -44,6 +91,23 @@ pub enum Error {
 }
 
 impl Error {
+    /// A value that does not read: `FLAG 'TEXT': PROBLEM`.
+    pub fn value(flag: &str, text: &str, problem: impl std::fmt::Display) -> Self {
+        Error::Value {
+            flag: flag.to_string(),
+            text: text.to_string(),
+            problem: problem.to_string(),
+        }
+    }
+
+    /// `cause`, about `what`.
+    pub fn about(what: impl std::fmt::Display, cause: impl Into<Error>) -> Self {
+        Error::About {
+            what: what.to_string(),
+            cause: Box::new(cause.into()),
+        }
+    }
+
     /// A file's content error.
     pub fn input(path: impl Into<PathBuf>, message: impl std::fmt::Display) -> Self {
         Error::Input {
@@ -56,10 +120,28 @@ impl Error {
 /// The pipeline's result.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
 
-/// `Err(Error::Invalid(format!(...)))`.
+/// `Err(Error::Range(format!(...)))`: a number outside what its flag allows.
 #[macro_export]
-macro_rules! invalid {
-    ($($t:tt)*) => { return Err($crate::Error::Invalid(format!($($t)*))) };
+macro_rules! out_of_range {
+    ($($t:tt)*) => { return Err($crate::Error::Range(format!($($t)*))) };
+}
+
+/// `Err(Error::Conflict(format!(...)))`: settings that cannot go together.
+#[macro_export]
+macro_rules! conflict {
+    ($($t:tt)*) => { return Err($crate::Error::Conflict(format!($($t)*))) };
+}
+
+/// `Err(Error::Nothing(format!(...)))`: nothing to work on.
+#[macro_export]
+macro_rules! nothing {
+    ($($t:tt)*) => { return Err($crate::Error::Nothing(format!($($t)*))) };
+}
+
+/// `Err(Error::Unsuited(format!(...)))`: points that cannot make what a target asks for.
+#[macro_export]
+macro_rules! unsuited {
+    ($($t:tt)*) => { return Err($crate::Error::Unsuited(format!($($t)*))) };
 }
 
 /// The largest input file read [bytes]: a scan of tens of millions of triangles is well
@@ -149,6 +231,21 @@ pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn each_kind_of_mistake_has_its_variant_and_names_what_it_concerns() {
+        let e = crate::values::parse_list("--rpm", "1,,2").unwrap_err();
+        assert!(matches!(e, Error::Value { .. }), "{e:?}");
+        assert_eq!(e.to_string(), "--rpm '1,,2': empty item");
+        assert!(matches!(crate::values::parse_length_unit("furlong"), Err(Error::Value { .. })));
+        let e = crate::spec::check_ncrit_effect(&[25.0], 5.0).unwrap_err();
+        assert!(matches!(e, Error::Setting(_)), "{e:?}");
+        assert!(e.to_string().starts_with("--ncrit-effect 25: "), "{e}");
+        assert!(matches!(crate::spec::check_ncrit_effect(&[5.0], 5.0), Err(Error::Conflict(_))));
+        let e = Error::about("polars stage", Error::Nothing("no polar".into()));
+        assert_eq!(e.to_string(), "polars stage: no polar");
+        assert!(std::error::Error::source(&e).is_none(), "the cause is in the message, not the chain");
+    }
 
     #[test]
     fn a_latin1_title_is_read_the_rest_must_be_utf8() {

@@ -25,7 +25,7 @@ use propbet_bemt::{OperatingPoint, PointResult};
 use propbet_qprop::{PropFile, PropRow};
 
 use crate::model::Model;
-use crate::{invalid, Result};
+use crate::{unsuited, Result};
 
 /// The exported file's name, beside the run's sweep.
 pub const FILE_NAME: &str = "qprop_export.qprop";
@@ -285,7 +285,7 @@ pub fn qprop_export(
         .collect();
     let n = rotor.stations.len();
     if solved.is_empty() || n < 2 || solved.iter().any(|p| p.stations.len() != n) {
-        invalid!("the QPROP export needs operating points the model solves at every station");
+        unsuited!("the QPROP export needs operating points the model solves at every station");
     }
     // One REref for every row: the geometric mean of the first station's Re.
     let re_ref = (solved.iter().map(|p| p.stations[0].re.max(1.0).ln()).sum::<f64>() / solved.len() as f64)
@@ -295,7 +295,7 @@ pub fn qprop_export(
     // (below 85 % of each RPM's zero-thrust J, here the prediction's own), with thrust.
     let counted = scored_window(&solved);
     if !counted.iter().any(|&c| c) {
-        invalid!("the QPROP export needs an operating point with thrust");
+        unsuited!("the QPROP export needs an operating point with thrust");
     }
     // The fit, then refits that weigh each point by how far the last file left it (towards the
     // smallest largest difference); the file with the smallest largest difference is kept.
@@ -449,7 +449,7 @@ fn differences(
             stations: 25,
             qprop_reref_quirk: true,
         })
-        .map_err(|e| crate::Error::Invalid(format!("the exported QPROP file: {e}")))?;
+        .map_err(|e| crate::Error::about("the exported QPROP file", e))?;
     let mut plain = model.opts;
     plain.keep_stations = false;
     let (mut dt, mut dq) = (Vec::new(), Vec::new());

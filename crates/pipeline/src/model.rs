@@ -10,7 +10,7 @@ use propbet_effects::{parse_spec, Stack};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 
 use crate::spec::{AirSpec, ModelSpec};
-use crate::{invalid, read_text, Error, Result};
+use crate::{out_of_range, read_text, Error, Result};
 
 /// A prop file read and checked, with its warnings (each naming the file).
 #[derive(Debug, Clone)]
@@ -143,7 +143,7 @@ impl Model {
             .with_rotational_augmentation(spec.rotation.coefficient())
             .with_drag_factor(spec.drag_factor);
         if !spec.dbeta.is_finite() {
-            invalid!("--dbeta: not a finite number");
+            out_of_range!("--dbeta: not a finite number");
         }
         let opts = SolverOptions {
             tip_loss: !spec.no_tip_loss,
@@ -159,7 +159,7 @@ impl Model {
             .iter()
             .map(|s| registry.resolve(&parse_spec(s)?))
             .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| Error::Invalid(format!("--effect: {e}")))?;
+            .map_err(|e| Error::about("--effect", e))?;
         Ok(Model {
             loaded,
             rotor,
@@ -178,8 +178,7 @@ pub fn effect_registry(user_effects: Option<&Path>) -> Result<Registry> {
         return Ok(Registry::default());
     };
     let text = read_text(path)?;
-    let user =
-        propbet_effects::user::parse(&text, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    let user = propbet_effects::user::parse(&text, &path.display().to_string())?;
     Registry::with_user(user).map_err(|e| Error::input(path, e.to_string()))
 }
 
@@ -262,7 +261,7 @@ impl AirSpec {
             ("--a", self.a, &air::SOUND_SPEED, "m/s"),
         ] {
             if let Some(x) = x {
-                air::check(flag, x, range, unit).map_err(Error::Invalid)?;
+                air::check(flag, x, range, unit).map_err(Error::Range)?;
             }
         }
         if let Some(state) = &self.state {
@@ -292,7 +291,7 @@ impl AirSpec {
             mu: self.mu.unwrap_or(d.mu),
             a: self.a.unwrap_or(d.a),
         };
-        f.validate().map_err(|e| Error::Invalid(format!("air: {e}")))?;
+        f.validate().map_err(|e| Error::Range(format!("air: {e}")))?;
         let source = if self.rho.is_none() && self.mu.is_none() && self.a.is_none() {
             "QPROP defaults (standard air, not measured)".to_string()
         } else {

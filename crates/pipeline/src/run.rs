@@ -158,7 +158,7 @@ pub fn run_case(
         records: Vec::new(),
         total: plan.stages().len() + 1,
     };
-    let stage_err = |name: &str, e: Error| Error::Invalid(format!("{name} stage: {e}"));
+    let stage_err = |name: &str, e: Error| Error::about(format!("{name} stage"), e);
 
     // 1. Geometry.
     let mut scanned = None;
@@ -201,7 +201,7 @@ pub fn run_case(
                 }
                 _ => vec![foil
                     .clone()
-                    .ok_or_else(|| crate::Error::Invalid("[polars] airfoil: the section of every station".into()))?],
+                    .ok_or_else(|| crate::Error::Conflict("[polars] airfoil: the section of every station".into()))?],
             };
             let input = PolarsInput {
                 geometry,

@@ -22,7 +22,7 @@ use std::fmt::Write as _;
 
 use propbet_units::rpm_to_rev_per_s;
 
-use crate::{invalid, Result};
+use crate::{nothing, out_of_range, unsuited, Result};
 
 /// One operating point in coefficients.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -127,17 +127,17 @@ pub fn export(target: Target, src: &Source) -> Result<Exported> {
 
 fn check(src: &Source) -> Result<()> {
     if !(src.diameter.is_finite() && src.diameter > 0.0) {
-        invalid!("the propeller's diameter {} m is not a length", src.diameter);
+        out_of_range!("the propeller's diameter {} m is not a length", src.diameter);
     }
     if src.points.is_empty() {
-        invalid!("no operating points to export");
+        nothing!("no operating points to export");
     }
     if let Some(p) = src
         .points
         .iter()
         .find(|p| !(p.rpm > 0.0 && p.j.is_finite() && p.ct.is_finite() && p.cp.is_finite()))
     {
-        invalid!(
+        out_of_range!(
             "an operating point without finite values (rpm {}, J {}, CT {}, CP {})",
             p.rpm,
             p.j,
@@ -185,7 +185,7 @@ pub fn gazebo(src: &Source, rpm_range: Option<(f64, f64)>) -> Result<Exported> {
     if statics.is_empty() {
         let lowest = src.points.iter().map(|p| p.j).fold(f64::INFINITY, f64::min);
         let range = rpm_range.map_or(String::new(), |(lo, hi)| format!(" between {lo} and {hi} rpm"));
-        invalid!(
+        unsuited!(
             "Gazebo's motor model is a static (hover) model: it needs points at zero airspeed{range}, \
              and these data have none with positive thrust (lowest J {lowest:.3}); give static points \
              (`--v 0` or `--j 0` in the sweep, or a static thrust-stand log)"
@@ -282,7 +282,7 @@ pub fn px4_sih(src: &Source) -> Result<Exported> {
     check(src)?;
     let pts = counted(&src.points);
     if distinct_j(&pts) < 3 {
-        invalid!(
+        unsuited!(
             "PX4 SIH's CT(J) and CP(J) need points at 3 or more advance ratios with thrust; {}: \
              give a J sweep (`--j 0:0.6:0.05`, or wind-tunnel files)",
             if distinct_j(&src.points) <= 1 {
@@ -299,10 +299,10 @@ pub fn px4_sih(src: &Source) -> Result<Exported> {
     let w_ct: Vec<f64> = ct.iter().map(|v| 1.0 / v).collect();
     let w_cp: Vec<f64> = cp.iter().map(|v| 1.0 / v).collect();
     let (Some(a), Some(b)) = (quadratic_le0(&xs, &ct, &w_ct), quadratic_le0(&xs, &cp, &w_cp)) else {
-        invalid!("the CT(J) and CP(J) least squares have no solution for these points");
+        unsuited!("the CT(J) and CP(J) least squares have no solution for these points");
     };
     if a[0] <= 0.0 || b[0] <= 0.0 {
-        invalid!(
+        unsuited!(
             "the fitted static coefficients are not positive (SIH_F_CT0 {:.4}, SIH_F_CP0 {:.4}): SIH would fall back \
              to its constant-thrust model",
             a[0],
@@ -460,7 +460,7 @@ fn too_few_curves(src: &Source, what: &str) -> crate::Error {
     } else {
         "no RPM of these data has 3 or more advance ratios".to_string()
     };
-    crate::Error::Invalid(format!(
+    crate::Error::Unsuited(format!(
         "{what} needs curves over J (3 or more advance ratios at one RPM); {why}: give a J sweep \
          (`--j 0:0.6:0.05`) or wind-tunnel files"
     ))
@@ -517,7 +517,7 @@ pub fn map(src: &Source) -> Result<Exported> {
         return Err(too_few_curves(src, "A map over (J, RPM)"));
     }
     if cs.len() < 2 {
-        invalid!(
+        unsuited!(
             "a map over (J, RPM) needs curves at 2 or more RPMs; these data have one ({:.0} rpm): \
              give more RPMs (`--rpm 4000,6000`) or more files, or export jsbsim or px4-sih for one RPM",
             cs[0].rpm
@@ -573,7 +573,7 @@ pub fn map(src: &Source) -> Result<Exported> {
         "fit": fit,
         "curves": json_curves,
     });
-    let mut json = serde_json::to_string_pretty(&doc).map_err(|e| crate::Error::Invalid(e.to_string()))?;
+    let mut json = serde_json::to_string_pretty(&doc).map_err(|e| crate::Error::Unsuited(e.to_string()))?;
     json.push('\n');
     Ok(Exported {
         target: Target::Map,

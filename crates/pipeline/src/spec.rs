@@ -102,7 +102,7 @@ pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>>
         each.check(*x)?;
     }
     if v.contains(&ncrit) {
-        crate::invalid!("--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to");
+        crate::conflict!("--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to");
     }
     v.sort_by(f64::total_cmp);
     v.dedup();
@@ -135,7 +135,7 @@ impl XfoilSpec {
             crate::settings::TRIP.check(x)?;
         }
         if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
-            crate::invalid!("--alpha: {bad} deg is outside -90..90");
+            crate::out_of_range!("--alpha: {bad} deg is outside -90..90");
         }
         Ok(())
     }

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 
 use crate::model::{as_written, load_prop, LoadedProp, Model};
 use crate::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec};
-use crate::{invalid, read_text, Error, Result};
+use crate::{conflict, nothing, out_of_range, read_text, Error, Result};
 
 // ---------------------------------------------------------------------------------------
 // scan
@@ -60,16 +60,16 @@ pub const MAX_STATIONS: usize = 200;
 pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
     let o = &spec.options;
     if o.stations.len() > MAX_STATIONS {
-        invalid!(
+        out_of_range!(
             "--stations: {} stations; a blade is described by at most {MAX_STATIONS} (each one is a section fit and its polars)",
             o.stations.len()
         );
     }
     if let Some(x) = o.stations.iter().find(|&&x| !(x > 0.0 && x <= 1.0)) {
-        invalid!("--stations: r/R {x} is outside (0, 1]");
+        out_of_range!("--stations: r/R {x} is outside (0, 1]");
     }
     if !(o.slab > 0.0 && o.slab.is_finite()) {
-        invalid!("--slab {}: must be a positive thickness in mm", 1000.0 * o.slab);
+        out_of_range!("--slab {}: must be a positive thickness in mm", 1000.0 * o.slab);
     }
     let path = &spec.input;
     let bytes = crate::read_bytes(path)?;
@@ -79,10 +79,10 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
     let geometry = if is_stl {
-        let mesh = read_stl(&bytes, &label).map_err(|e| Error::Invalid(e.to_string()))?;
+        let mesh = read_stl(&bytes, &label)?;
         scan_mesh(&mesh, o)
     } else {
-        let cloud = read_cloud(&bytes, &label).map_err(|e| Error::Invalid(e.to_string()))?;
+        let cloud = read_cloud(&bytes, &label)?;
         scan_cloud(&cloud, o)
     }
     .map_err(|e| Error::input(path, e))?;
@@ -185,13 +185,13 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
     };
     let n = omegas.len().saturating_mul(other);
     if n > MAX_POINTS {
-        invalid!(
+        out_of_range!(
             "the sweep has {} RPM values x {other} J or V values = {n} operating points; at most {MAX_POINTS} in one sweep",
             omegas.len()
         );
     }
     if let Some(bad) = omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
-        invalid!(
+        out_of_range!(
             "--rpm: {} is beyond any small propeller's speed (at most 500000)",
             propbet_units::show(propbet_units::omega_to_rpm(*bad))
         );
@@ -200,7 +200,7 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
         .iter()
         .find(|&&w| w > 0.0 && w < propbet_measure::limits::OMEGA_MIN)
     {
-        invalid!(
+        out_of_range!(
             "--rpm: {} is below 1 rpm, where the coefficients divide by almost nothing (0 is allowed: the propeller at rest)",
             propbet_units::show(propbet_units::omega_to_rpm(*bad))
         );
@@ -210,14 +210,14 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
         SweepAxis::V(v) => v.iter().any(|v| v.abs() > propbet_measure::limits::AIRSPEED),
     };
     if speeds {
-        invalid!(
+        out_of_range!(
             "--j / --v: beyond any small propeller's operating range (|J| at most {}, |V| at most {} m/s)",
             propbet_measure::limits::ADVANCE_RATIO,
             propbet_measure::limits::AIRSPEED
         );
     }
     if let Some(bad) = omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
-        invalid!(
+        out_of_range!(
             "--rpm: rotation speed must not be negative, found {}",
             crate::values::rpm_text(*bad)
         );
@@ -225,7 +225,7 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
     Ok(match axis {
         SweepAxis::J(j) => {
             if omegas.contains(&0.0) {
-                invalid!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
+                conflict!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
             }
             grid_omega_j(omegas, j, tip_radius)
         }

@@ -81,7 +81,7 @@ impl GeometrySource {
         match s {
             "uiuc" => Ok(Self::Uiuc),
             "pe0" => Ok(Self::Pe0),
-            _ => Err(Error::Invalid(format!("geometry {s:?}: `uiuc` or `pe0`"))),
+            _ => Err(Error::value("--geometry", s, "`uiuc` or `pe0`")),
         }
     }
 
@@ -153,18 +153,20 @@ impl Sections {
             Some((n, x)) => match x.trim().parse::<f64>() {
                 Ok(v) if (0.01..=0.4).contains(&v) => (n, Some(v)),
                 _ => {
-                    return Err(Error::Invalid(format!(
-                        "--generic-section '{}': the thickness ratio after ':' must be a number in 0.01..0.4",
-                        propbet_bemt::units::excerpt(t)
-                    )))
+                    return Err(Error::value(
+                        "--generic-section",
+                        &propbet_bemt::units::excerpt(t),
+                        "the thickness ratio after ':' must be a number in 0.01..0.4",
+                    ))
                 }
             },
         };
         if name.trim().is_empty() {
-            return Err(Error::Invalid(format!(
-                "--generic-section '{}': an airfoil name, NAME or NAME:T/C, or `none`",
-                propbet_bemt::units::excerpt(t)
-            )));
+            return Err(Error::value(
+                "--generic-section",
+                &propbet_bemt::units::excerpt(t),
+                "an airfoil name, NAME or NAME:T/C, or `none`",
+            ));
         }
         Ok(Some(Sections::Assumed {
             airfoil: name.trim().to_string(),

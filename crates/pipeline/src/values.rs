@@ -1,22 +1,23 @@
 //! Values as users write them (flags and case files): number lists and ranges, and quantities
 //! with units, converted to SI here, once; and back to text for a stage's command line.
 
-use crate::{invalid, Error, Result};
+use crate::{Error, Result};
 
-/// `Option` → `Result` with an [`Error::Invalid`] message.
-trait OrInvalid<T> {
-    fn with_context(self, f: impl FnOnce() -> String) -> Result<T>;
+/// `Option` or `Result` → `Result` with an [`Error::Value`]: the flag, the text, and the
+/// problem `f` says.
+trait OrValue<T> {
+    fn or_value(self, flag: &str, text: &str, f: impl FnOnce() -> String) -> Result<T>;
 }
 
-impl<T, E> OrInvalid<T> for std::result::Result<T, E> {
-    fn with_context(self, f: impl FnOnce() -> String) -> Result<T> {
-        self.map_err(|_| Error::Invalid(f()))
+impl<T, E> OrValue<T> for std::result::Result<T, E> {
+    fn or_value(self, flag: &str, text: &str, f: impl FnOnce() -> String) -> Result<T> {
+        self.map_err(|_| Error::value(flag, text, f()))
     }
 }
 
-impl<T> OrInvalid<T> for Option<T> {
-    fn with_context(self, f: impl FnOnce() -> String) -> Result<T> {
-        self.ok_or_else(|| Error::Invalid(f()))
+impl<T> OrValue<T> for Option<T> {
+    fn or_value(self, flag: &str, text: &str, f: impl FnOnce() -> String) -> Result<T> {
+        self.ok_or_else(|| Error::value(flag, text, f()))
     }
 }
 
@@ -26,15 +27,15 @@ pub fn parse_list(flag: &str, text: &str) -> Result<Vec<f64>> {
     let mut out = Vec::new();
     for item in text.split(',').map(str::trim) {
         if item.is_empty() {
-            invalid!("{flag} '{text}': empty item");
+            return Err(Error::value(flag, text, "empty item"));
         }
         let num = |s: &str| -> Result<f64> {
             let v: f64 = s
                 .trim()
                 .parse()
-                .with_context(|| format!("{flag} '{text}': '{s}' is not a number"))?;
+                .or_value(flag, text, || format!("'{s}' is not a number"))?;
             if !v.is_finite() {
-                invalid!("{flag} '{text}': '{s}' is not a finite number");
+                return Err(Error::value(flag, text, format!("'{s}' is not a finite number")));
             }
             Ok(v)
         };
@@ -45,9 +46,13 @@ pub fn parse_list(flag: &str, text: &str) -> Result<Vec<f64>> {
                 let n: usize = n
                     .trim()
                     .parse()
-                    .with_context(|| format!("{flag} '{text}': '{n}' is not a whole number of points"))?;
+                    .or_value(flag, text, || format!("'{n}' is not a whole number of points"))?;
                 if n == 0 || n > 1_000_000 {
-                    invalid!("{flag} '{text}': the number of points must be 1..1000000, found {n}");
+                    return Err(Error::value(
+                        flag,
+                        text,
+                        format!("the number of points must be 1..1000000, found {n}"),
+                    ));
                 }
                 if n == 1 {
                     out.push(start);
@@ -57,18 +62,22 @@ pub fn parse_list(flag: &str, text: &str) -> Result<Vec<f64>> {
             } else {
                 let (b, step) = rest
                     .split_once(':')
-                    .with_context(|| format!("{flag} '{text}': use start:stop:step or start:stop/N"))?;
+                    .or_value(flag, text, || "use start:stop:step or start:stop/N".into())?;
                 let stop = num(b)?;
                 let step = num(step)?;
                 if step <= 0.0 {
-                    invalid!("{flag} '{text}': the step must be positive, found {step}");
+                    return Err(Error::value(
+                        flag,
+                        text,
+                        format!("the step must be positive, found {step}"),
+                    ));
                 }
                 let count = ((stop - start) / step + 1e-9).floor();
                 if count < 0.0 {
-                    invalid!("{flag} '{text}': stop {stop} is below start {start}");
+                    return Err(Error::value(flag, text, format!("stop {stop} is below start {start}")));
                 }
                 if count > 1e6 {
-                    invalid!("{flag} '{text}': more than a million points");
+                    return Err(Error::value(flag, text, "more than a million points"));
                 }
                 out.extend((0..=count as usize).map(|i| start + step * i as f64));
             }
@@ -95,19 +104,25 @@ fn split_unit(text: &str) -> Option<(f64, &str)> {
 
 /// A temperature with a unit suffix (`15C`, `288.15K`, `59F`) [K].
 pub fn parse_temperature(text: &str) -> Result<f64> {
-    let (v, unit) = split_unit(text).with_context(|| format!("--temp '{text}': not a number with a unit"))?;
+    let (v, unit) = split_unit(text).or_value("--temp", text, || "not a number with a unit".into())?;
     Ok(match unit {
         "C" | "degC" | "°C" | "ºC" => v + 273.15,
         "K" => v,
         "F" | "degF" | "°F" => (v - 32.0) * 5.0 / 9.0 + 273.15,
-        "" => invalid!("--temp '{text}': give a unit: C, K or F (for example 20C)"),
-        u => invalid!("--temp '{text}': unknown temperature unit '{u}' (use C, K or F)"),
+        "" => return Err(Error::value("--temp", text, "give a unit: C, K or F (for example 20C)")),
+        u => {
+            return Err(Error::value(
+                "--temp",
+                text,
+                format!("unknown temperature unit '{u}' (use C, K or F)"),
+            ))
+        }
     })
 }
 
 /// A pressure, Pa unless suffixed (`Pa`, `hPa`, `mbar`, `kPa`, `bar`, `inHg`, `psi`) [Pa].
 pub fn parse_pressure(text: &str) -> Result<f64> {
-    let (v, unit) = split_unit(text).with_context(|| format!("--pressure '{text}': not a number"))?;
+    let (v, unit) = split_unit(text).or_value("--pressure", text, || "not a number".into())?;
     Ok(v * match unit {
         "" | "Pa" => 1.0,
         "hPa" | "mbar" => 100.0,
@@ -115,17 +130,27 @@ pub fn parse_pressure(text: &str) -> Result<f64> {
         "bar" => 1e5,
         "inHg" => 3386.389,
         "psi" => 6894.757,
-        u => invalid!("--pressure '{text}': unknown pressure unit '{u}' (use Pa, hPa, mbar, kPa, bar, inHg or psi)"),
+        u => {
+            return Err(Error::value(
+                "--pressure",
+                text,
+                format!("unknown pressure unit '{u}' (use Pa, hPa, mbar, kPa, bar, inHg or psi)"),
+            ))
+        }
     })
 }
 
 /// Relative humidity in percent (`45%` or `45`) or as a fraction below 1 with no suffix is
 /// ambiguous, so a bare number is read as percent [-, 0..1].
 pub fn parse_humidity(text: &str) -> Result<f64> {
-    let (v, unit) = split_unit(text).with_context(|| format!("--humidity '{text}': not a number"))?;
+    let (v, unit) = split_unit(text).or_value("--humidity", text, || "not a number".into())?;
     match unit {
         "" | "%" => Ok(v / 100.0),
-        u => invalid!("--humidity '{text}': unknown unit '{u}' (give percent, for example 45%)"),
+        u => Err(Error::value(
+            "--humidity",
+            text,
+            format!("unknown unit '{u}' (give percent, for example 45%)"),
+        )),
     }
 }
 
@@ -160,7 +185,7 @@ pub fn parse_length_unit(text: &str) -> Result<f64> {
         "cm" => 0.01,
         "mm" => 0.001,
         "in" | "inch" => 0.0254,
-        u => invalid!("--units '{u}': unknown length unit (use m, cm, mm or in)"),
+        u => return Err(Error::value("--units", u, "unknown length unit (use m, cm, mm or in)")),
     })
 }
 
@@ -176,7 +201,11 @@ pub fn length_unit_name(metres: f64) -> Option<&'static str> {
 pub fn split_atmosphere(text: &str) -> Result<[String; 3]> {
     let parts: Vec<&str> = text.split(',').map(str::trim).collect();
     if parts.len() != 3 {
-        invalid!("--atmosphere '{text}': give temperature, pressure and humidity, for example 22,1009hPa,40");
+        return Err(Error::value(
+            "--atmosphere",
+            text,
+            "give temperature, pressure and humidity, for example 22,1009hPa,40",
+        ));
     }
     let t = if parts[0].parse::<f64>().is_ok() {
         format!("{}C", parts[0])
@@ -191,7 +220,7 @@ pub fn split_atmosphere(text: &str) -> Result<[String; 3]> {
 pub fn parse_atmosphere(text: &str) -> Result<propbet_atmosphere::AirState> {
     let [t, p, rh] = split_atmosphere(text)?;
     propbet_atmosphere::AirState::new(parse_temperature(&t)?, parse_pressure(&p)?, parse_humidity(&rh)?)
-        .map_err(|e| Error::Invalid(format!("--atmosphere '{text}': {e}")))
+        .map_err(|e| Error::value("--atmosphere", text, e))
 }
 
 /// The shortest decimal text of a value in the user's unit that converts back to exactly

@@ -34,7 +34,7 @@ impl Case {
             {
                 return Err(at(
                     "[geometry] scan_args",
-                    Error::Invalid(format!("{flag} is set by {key}")),
+                    Error::Conflict(format!("{flag} is set by {key}")),
                 ));
             }
         }
@@ -56,7 +56,7 @@ impl Case {
             if scan_only != ScanSettings::default() {
                 return Err(at(
                     "[geometry]",
-                    Error::Invalid(format!(
+                    Error::Conflict(format!(
                         "{} set a scan's settings, and the case has no scan (`prop` is used as it is)",
                         scan_only.as_keys()
                     )),

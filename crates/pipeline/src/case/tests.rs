@@ -36,7 +36,7 @@ fn the_section_model_decides_what_the_stages_solve_with() {
 
 fn scan_plan(geometry: &str) -> Result<RunPlan> {
     let text = format!("name = \"x\"\n[geometry]\n{geometry}\n[sweep]\nrpm = \"4000\"\nj = \"0\"\n");
-    let case: Case = toml::from_str(&text).map_err(|e| Error::Invalid(e.to_string()))?;
+    let case: Case = toml::from_str(&text).map_err(|e| Error::input("case.toml", e))?;
     case.plan(Path::new("case"), Path::new("out"), &XfoilProcessSpec::default())
 }
 

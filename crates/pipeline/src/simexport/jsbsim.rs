@@ -69,7 +69,7 @@ fn propeller_xml(
 pub fn jsbsim(src: &Source) -> Result<Exported> {
     check(src)?;
     let Some((ixx, ixx_how)) = src.ixx.clone() else {
-        invalid!(
+        unsuited!(
             "JSBSim's propeller needs its moment of inertia: give --prop (estimated from the blade's chords) \
              or --ixx (kg m^2)"
         );

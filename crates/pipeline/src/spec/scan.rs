@@ -8,7 +8,7 @@ use propbet_geometry::cloud::parse_colour;
 use propbet_geometry::scan::{default_stations, BoxSpec, Manual, ScanOptions, SectionKind};
 
 use crate::values::{parse_length_unit, parse_list};
-use crate::{invalid, Error, Result};
+use crate::{conflict, Error, Result};
 
 /// Slab thickness of a cloud's sections when none is given [mm].
 pub const DEFAULT_SLAB_MM: f64 = 0.25;
@@ -76,11 +76,15 @@ fn numbers(flag: &str, text: &str, n: usize) -> Result<Vec<f64>> {
                 .parse::<f64>()
                 .ok()
                 .filter(|x| x.is_finite())
-                .ok_or_else(|| Error::Invalid(format!("{flag} '{text}': '{}' is not a number", s.trim())))
+                .ok_or_else(|| Error::value(flag, text, format!("'{}' is not a number", s.trim())))
         })
         .collect::<Result<_>>()?;
     if v.len() != n {
-        invalid!("{flag} '{text}': expected {n} numbers, found {}", v.len());
+        return Err(Error::value(
+            flag,
+            text,
+            format!("expected {n} numbers, found {}", v.len()),
+        ));
     }
     Ok(v)
 }
@@ -92,7 +96,7 @@ fn vec3(flag: &str, text: &str) -> Result<Vector3<f64>> {
 
 fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
     text.split(',')
-        .map(|s| parse_colour(s).map_err(|e| Error::Invalid(format!("{flag}: {e}"))))
+        .map(|s| parse_colour(s).map_err(|e| Error::value(flag, s, e)))
         .collect()
 }
 
@@ -104,7 +108,7 @@ impl ScanSettings {
         let mut it = args.iter();
         while let Some(a) = it.next() {
             let Some(flag) = a.strip_prefix("--") else {
-                invalid!("scan_args: `{a}` is not a flag of propbet scan");
+                return Err(Error::value("scan_args", a, "not a flag of propbet scan"));
             };
             let (name, inline) = match flag.split_once('=') {
                 Some((n, v)) => (n, Some(v.to_string())),
@@ -120,12 +124,12 @@ impl ScanSettings {
                 continue;
             }
             let Some(value) = inline.or_else(|| it.next().cloned()) else {
-                invalid!("scan_args: --{name} needs a value");
+                return Err(Error::value("scan_args", &format!("--{name}"), "needs a value"));
             };
             let number = |v: &str| {
                 v.trim()
                     .parse::<f64>()
-                    .map_err(|_| Error::Invalid(format!("scan_args: --{name} {v}: not a number")))
+                    .map_err(|_| Error::value("scan_args", v, format!("--{name}: not a number")))
             };
             let value = match key.as_str() {
                 "slab" | "colour_threshold" => toml::Value::Float(number(&value)?),
@@ -136,7 +140,7 @@ impl ScanSettings {
         }
         toml::Value::Table(table)
             .try_into()
-            .map_err(|e: toml::de::Error| Error::Invalid(format!("scan_args: {}", e.message())))
+            .map_err(|e: toml::de::Error| Error::value("scan_args", &args.join(" "), e.message()))
     }
 
     /// The keys a case's `[geometry]` would hold for these settings (for the deprecation
@@ -215,7 +219,11 @@ impl ScanSettings {
             let v = numbers("--known-length", k, 7)?;
             let d = (Vector3::new(v[0], v[1], v[2]) - Vector3::new(v[3], v[4], v[5])).norm();
             if d <= 0.0 || v[6] <= 0.0 {
-                invalid!("--known-length '{k}': two distinct points and a positive length are needed");
+                return Err(Error::value(
+                    "--known-length",
+                    k,
+                    "two distinct points and a positive length are needed",
+                ));
             }
             scale = v[6] / d / 1000.0;
         }
@@ -256,13 +264,9 @@ impl ScanSettings {
             .split(['x', 'X', ','])
             .map(|s| s.trim().parse::<f64>().ok().filter(|x| *x > 0.0))
             .collect::<Option<_>>()
-            .ok_or_else(|| {
-                Error::Invalid(format!(
-                    "--box '{d}': expected three positive lengths, e.g. 50.8x48.26x50.8"
-                ))
-            })?;
+            .ok_or_else(|| Error::value("--box", d, "expected three positive lengths, e.g. 50.8x48.26x50.8"))?;
         if v.len() != 3 {
-            invalid!("--box '{d}': expected three lengths, e.g. 50.8x48.26x50.8");
+            return Err(Error::value("--box", d, "expected three lengths, e.g. 50.8x48.26x50.8"));
         }
         let o = vec3("--box-offset", self.box_offset.as_deref().unwrap_or(DEFAULT_BOX_OFFSET))?;
         Ok(Some(BoxSpec {
@@ -283,7 +287,11 @@ impl ScanSettings {
         }
         let v = numbers("--outliers", text, 2)?;
         if v[0] < 1.0 || v[1] <= 0.0 {
-            invalid!("--outliers '{text}': neighbours >= 1 and sigmas > 0, or 'off'");
+            return Err(Error::value(
+                "--outliers",
+                text,
+                "neighbours >= 1 and sigmas > 0, or 'off'",
+            ));
         }
         Ok(Some((v[0] as usize, v[1])))
     }
@@ -301,7 +309,7 @@ impl ScanSettings {
                 }))
             }
             (None, None) => Ok(None),
-            _ => invalid!("--root-point and --tip-point: manual alignment needs both"),
+            _ => conflict!("--root-point and --tip-point: manual alignment needs both"),
         }
     }
 }

@@ -12,12 +12,12 @@ use super::*;
 pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
     if let Some(p) = spec.poles {
         if p < 2 || p % 2 != 0 {
-            invalid!("--poles {p}: a motor has an even number of poles, at least 2");
+            out_of_range!("--poles {p}: a motor has an even number of poles, at least 2");
         }
     }
     if let Some(r) = spec.rho {
         let air = propbet_units::air::DENSITY;
-        propbet_units::air::check("--rho", r, &air, "kg/m^3").map_err(Error::Invalid)?;
+        propbet_units::air::check("--rho", r, &air, "kg/m^3").map_err(Error::Range)?;
     }
     let air = AirChoice {
         given: spec.atmosphere,
@@ -152,10 +152,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
         .map(|s| s.trim().to_string())
         .filter(|s| !s.is_empty())
         .collect();
-    let mut candidates = model
-        .registry
-        .select(&list)
-        .map_err(|e| Error::Invalid(e.to_string()))?;
+    let mut candidates = model.registry.select(&list)?;
     // Effects already in the baseline are not candidates.
     candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
     let (air, sets) = load_measured(&spec.measured)?;
@@ -163,7 +160,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     Provenance::of(&sets).narrow(&mut candidates);
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
     crate::settings::WINDOW.check(spec.window)?;
-    let data = Data::from_points(&points, spec.window).map_err(|e| Error::Invalid(e.to_string()))?;
+    let data = Data::from_points(&points, spec.window)?;
     // The model's own effects stay in the model, under the candidates.
     let dmodel = propbet_diagnose::Model {
         rotor: &model.rotor,
@@ -176,7 +173,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
         max_steps: spec.max_steps,
         ..Options::default()
     };
-    let diagnosis = discover(&dmodel, &data, &candidates, &opts).map_err(|e| Error::Invalid(e.to_string()))?;
+    let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
     Ok(Diagnosed { sets, data, diagnosis })
 }
 

@@ -16,8 +16,7 @@ pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
 
 /// An airfoil file's text, parsed and normalised, with what was repaired in it.
 pub fn parse_airfoil(text: &str, path: &Path) -> Result<(Airfoil, Vec<String>)> {
-    let (mut foil, repairs) =
-        Airfoil::parse(text, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?;
+    let (mut foil, repairs) = Airfoil::parse(text, &path.display().to_string())?;
     foil.normalise();
     Ok((
         foil,
@@ -33,7 +32,7 @@ pub fn parse_airfoil(text: &str, path: &Path) -> Result<(Airfoil, Vec<String>)> 
 pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<String>)> {
     let (mut foil, notes) = match naca4_from_name(name) {
         Some(r) => {
-            let mut foil = r.map_err(|e| Error::Invalid(format!("--airfoil {name}: {e}")))?;
+            let mut foil = r.map_err(|e| Error::about(format!("--airfoil {name}"), e))?;
             foil.normalise();
             (foil, Vec::new())
         }
@@ -42,7 +41,7 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
     if let Some(t) = thickness {
         foil = foil
             .scale_thickness(t)
-            .map_err(|e| Error::Invalid(format!("--thickness {}: {e}", propbet_units::show(t))))?;
+            .map_err(|e| Error::about(format!("--thickness {}", propbet_units::show(t)), e))?;
     }
     Ok((foil, notes))
 }
@@ -62,7 +61,7 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
     let engine = PolarEngine::new(xfoil, cache);
     Ok(match p.budget.unwrap_or(crate::spec::DEFAULT_XFOIL_BUDGET) {
         b if b.is_finite() && b > 0.0 => engine.with_budget(b),
-        b => invalid!(
+        b => out_of_range!(
             "--xfoil-budget {}: a positive number of seconds",
             propbet_units::show(b)
         ),
@@ -89,7 +88,11 @@ pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
         None => vec![foil.clone().expect("spec_airfoil: an airfoil without station sections")],
         Some(dir) => {
             if !dir.is_dir() {
-                invalid!("--station-airfoils {}: not a directory", dir.display());
+                return Err(Error::value(
+                    "--station-airfoils",
+                    &dir.display().to_string(),
+                    "not a directory",
+                ));
             }
             let n = geometry.file.rows.len();
             let texts = (0..n)
@@ -115,10 +118,10 @@ pub fn spec_airfoil(spec: &PolarsSpec) -> Result<(Option<Airfoil>, Vec<String>)>
     match (&spec.airfoil, &spec.station_airfoils) {
         (Some(a), _) => load_airfoil(a, spec.thickness).map(|(f, n)| (Some(f), n)),
         (None, None) => {
-            invalid!("--airfoil: the section of every station (or --station-airfoils, the scanned sections)")
+            conflict!("--airfoil: the section of every station (or --station-airfoils, the scanned sections)")
         }
         (None, Some(_)) if spec.thickness.is_some() => {
-            invalid!(
+            conflict!(
                 "--thickness scales the --airfoil section; without --airfoil each station keeps its scanned thickness"
             )
         }
@@ -165,7 +168,7 @@ pub fn station_foils(
     }
     let have: Vec<usize> = (0..own.len()).filter(|&i| own[i].is_some()).collect();
     if have.is_empty() {
-        invalid!(
+        nothing!(
             "{}: no station has a section file and no airfoil was given for them (`airfoil` in [polars], --airfoil)",
             dir.display()
         );
@@ -243,8 +246,7 @@ impl ExportCheck {
     ) -> Result<Option<ExportCheck>> {
         let law = file
             .to_blade(propbet_qprop::RadiusReading::Documented)
-            .to_rotor(propbet_bemt::Discretization::default())
-            .map_err(|e| Error::Invalid(e.to_string()))?;
+            .to_rotor(propbet_bemt::Discretization::default())?;
         let mut tables = law.clone();
         let Ok((r, models)) = blade.models() else {
             return Ok(None);
@@ -289,13 +291,13 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
     let tip = input.geometry.file.tip_radius(propbet_qprop::RadiusReading::Documented);
     let points = grid(&spec.omegas, &spec.axis, tip)?;
     if points.is_empty() {
-        invalid!("--rpm / --j / --v: no operating point for the polars to cover");
+        nothing!("--rpm / --j / --v: no operating point for the polars to cover");
     }
     if let Some(p) = points.iter().find(|p| p.omega <= 0.0) {
-        invalid!("--rpm: {} must be positive", crate::values::rpm_text(p.omega));
+        out_of_range!("--rpm: {} must be positive", crate::values::rpm_text(p.omega));
     }
     if let Some(p) = points.iter().find(|p| p.v < 0.0) {
-        invalid!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
+        out_of_range!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
     }
     spec.xfoil.check()?;
     let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.ncrit)?;

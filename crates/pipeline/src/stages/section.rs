@@ -4,7 +4,7 @@
 use propbet_polar::{fit_qprop, Airfoil, AlphaWeights, Polar, PolarJob, Progress, QpropFit, DEFAULT_RE_EXP};
 
 use crate::spec::XfoilSpec;
-use crate::{invalid, Result};
+use crate::{nothing, out_of_range, Result};
 
 /// What the section stage is asked: Reynolds numbers, Mach number and how XFOIL runs.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,10 +21,10 @@ impl SectionSpec {
     /// Reynolds numbers XFOIL can take and a Mach number below its limit.
     pub fn check(&self) -> Result<()> {
         if let Some(bad) = self.res.iter().find(|r| !(r.is_finite() && **r > 0.0)) {
-            invalid!("--re: Reynolds number must be positive, found {bad}");
+            out_of_range!("--re: Reynolds number must be positive, found {bad}");
         }
         if !(self.mach.is_finite() && (0.0..0.9).contains(&self.mach)) {
-            invalid!("--mach: {} must be in [0, 0.9)", self.mach);
+            out_of_range!("--mach: {} must be in [0, 0.9)", self.mach);
         }
         Ok(())
     }
@@ -66,7 +66,7 @@ impl SectionPolars {
     /// An error where no polar could be computed.
     pub fn check(&self) -> Result<()> {
         if self.polars().is_empty() {
-            invalid!("no polar could be computed for {}", self.name);
+            nothing!("no polar could be computed for {}", self.name);
         }
         Ok(())
     }

@@ -9,7 +9,7 @@ use propbet_effects::Stack;
 use serde::Serialize;
 
 use crate::model::Model;
-use crate::{invalid, Result};
+use crate::{out_of_range, Error, Result};
 
 /// The format of synthetic measurements.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,10 +60,10 @@ pub fn parse_noise(s: &str) -> Result<f64> {
         None => t.parse::<f64>(),
     };
     let Ok(v) = v else {
-        invalid!("--noise '{s}': not a number (write 1% or 0.01)");
+        return Err(Error::value("--noise", s, "not a number (write 1% or 0.01)"));
     };
     if !(0.0..0.5).contains(&v) {
-        invalid!("--noise '{s}': must be between 0 and 50 %");
+        return Err(Error::value("--noise", s, "must be between 0 and 50 %"));
     }
     Ok(v)
 }
@@ -125,7 +125,7 @@ pub fn synth(spec: &SynthSpec, m: &Model) -> Result<Synthesized> {
     };
     let rpms = spec.rpms.clone().unwrap_or_else(|| synth::default_rpms(m.diameter));
     if let Some(bad) = rpms.iter().find(|&&r| r.is_nan() || r <= 0.0) {
-        invalid!("--rpm: rotation speeds must be positive, found {bad}");
+        out_of_range!("--rpm: rotation speeds must be positive, found {bad}");
     }
     let js = match (&spec.js, spec.format) {
         (Some(j), _) => j.clone(),
@@ -133,7 +133,7 @@ pub fn synth(spec: &SynthSpec, m: &Model) -> Result<Synthesized> {
         (None, _) => synth::default_js(&base, &fluid, rpms[rpms.len() / 2]),
     };
     if let Some(bad) = js.iter().find(|&&j| j < 0.0) {
-        invalid!("--j: advance ratios must not be negative, found {bad}");
+        out_of_range!("--j: advance ratios must not be negative, found {bad}");
     }
     let plan = Plan {
         rpms,

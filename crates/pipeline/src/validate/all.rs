@@ -8,14 +8,14 @@ use propbet_qprop::apc::{pe0_name, pe0_unknown};
 
 use super::{find_apc_file, uiuc_props, validate_prop, Row, Sections, ValidateSpec, Validated};
 use crate::spec::XfoilSpec;
-use crate::{invalid, Result};
+use crate::{nothing, Result};
 
 /// The props of the UIUC directory `uiuc` to validate: all of them, or those whose name
 /// contains one of `only`'s comma-separated keys.
 pub fn select_props(uiuc: &Path, only: Option<&str>) -> Result<Vec<String>> {
     let mut props = uiuc_props(uiuc)?;
     if props.is_empty() {
-        invalid!(
+        nothing!(
             "{}: no UIUC propeller files in it (<family>_<D>x<P>_geom.txt, _static_*.txt or _<run>_<rpm>.txt)",
             uiuc.display()
         );
@@ -24,7 +24,7 @@ pub fn select_props(uiuc: &Path, only: Option<&str>) -> Result<Vec<String>> {
         let keys: Vec<&str> = only.split(',').map(str::trim).collect();
         props.retain(|g| keys.iter().any(|k| g.contains(k)));
         if props.is_empty() {
-            invalid!("{}: no UIUC propeller matches --only {only}", uiuc.display());
+            nothing!("{}: no UIUC propeller matches --only {only}", uiuc.display());
         }
     }
     Ok(props)
@@ -156,7 +156,7 @@ pub fn validate_all(
         }
     }
     if out.rows.is_empty() {
-        invalid!(
+        nothing!(
             "{}: no propeller could be validated: {}",
             spec.uiuc.display(),
             out.skipped

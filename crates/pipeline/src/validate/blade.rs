@@ -53,7 +53,7 @@ pub(super) fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
         k.clone()
     };
     if let Some(foil) = naca4_from_name(&naca) {
-        return foil.map_err(|e| Error::Invalid(e.to_string()));
+        return Ok(foil?);
     }
     let coordinates = first_file(dir, |n| {
         let p = Path::new(n);
@@ -62,7 +62,7 @@ pub(super) fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
     })?;
     match coordinates {
         Some(file) => Ok(stages::read_airfoil(&file)?.0),
-        None => Err(Error::Invalid(format!(
+        None => Err(Error::Nothing(format!(
             "APC airfoil {name:?}: no coordinates for it in {} (a file {k}.dat; APC12 and NACA 4-digit names are generated)",
             dir.display()
         ))),
@@ -100,7 +100,7 @@ pub(super) struct Blade {
 
 /// The blade (metres) and each station's section scaled to the PE0 thickness there.
 pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Result<Blade> {
-    let d = uiuc_diameter(prop).ok_or_else(|| Error::Invalid(format!("{prop}: no diameter in the name")))?;
+    let d = uiuc_diameter(prop).ok_or_else(|| Error::Nothing(format!("{prop}: no diameter in the name")))?;
     let big_r = 0.5 * d;
     let geom_path = spec.uiuc.join(format!("{prop}_geom.txt"));
     let uiuc_geometry = geom_path.exists();
@@ -110,17 +110,14 @@ pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Res
         None
     };
     let (pe0, assumed) = match sections {
-        Sections::Apc(path) => (
-            read_pe0(&read_text(path)?, &path.display().to_string()).map_err(|e| Error::Invalid(e.to_string()))?,
-            None,
-        ),
+        Sections::Apc(path) => (read_pe0(&read_text(path)?, &path.display().to_string())?, None),
         Sections::Assumed {
             airfoil,
             thickness,
             why,
         } => {
             let Some(table) = &uiuc_table else {
-                return Err(Error::Invalid(format!(
+                return Err(Error::Nothing(format!(
                     "{why}, and no UIUC geometry file: no blade to predict"
                 )));
             };
@@ -138,7 +135,7 @@ pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Res
         None => (pe0_table(&pe0, big_r), GeometrySource::Pe0),
     };
     if table.len() < 2 {
-        return Err(Error::Invalid(format!(
+        return Err(Error::Nothing(format!(
             "{prop}: no UIUC geometry file, and APC's PE0 blade covers fewer than two of UIUC's stations (r/R 0.15 to 1)"
         )));
     }
@@ -166,14 +163,14 @@ pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Res
         } else if frac >= 1.0 {
             f2.clone()
         } else {
-            f1.blend(&f2, frac, 80).map_err(|e| Error::Invalid(e.to_string()))?
+            f1.blend(&f2, frac, 80)?
         };
         let tc = pe0.thickness_at(r);
         // APC scales its sections "based on thickness ratio" and defines pitch on a flat bottom
         // (`Airfoil::scale_as_apc`: thinned or flat-bottomed sections as a whole, thickened
         // cambered ones about their camber line; docs/studies/section-scaling.md).
         let scaled = base.scale_as_apc(tc);
-        let mut foil = scaled.map_err(|e| Error::Invalid(e.to_string()))?;
+        let mut foil = scaled?;
         foil.name = format!("{} t/c {:.3}", base.name, tc);
         airfoils.push((i, foil.to_selig()));
     }

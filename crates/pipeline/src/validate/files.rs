@@ -78,7 +78,7 @@ pub(super) fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
         }
     }
     if !(lo.is_finite() && hi > 0.0) {
-        return Err(Error::Invalid("no measured point to cover".into()));
+        return Err(Error::Nothing("no measured point to cover".into()));
     }
     let (lo, hi) = ((lo / 100.0).floor().max(1.0) * 100.0, (hi / 100.0).ceil() * 100.0);
     let rpms = vec![lo, (0.5 * (lo + hi) / 100.0).round() * 100.0, hi];
@@ -113,7 +113,7 @@ pub(super) fn measured_files(spec: &ValidateSpec, prop: &str) -> Result<Measured
         .collect();
     measured.sort();
     if measured.is_empty() {
-        return Err(Error::Invalid("no static or J-sweep file".into()));
+        return Err(Error::Nothing("no static or J-sweep file".into()));
     }
     let mut left_out = Vec::new();
     measured.retain(|f| match stages::load_measured(&MeasuredSpec::files(vec![f.clone()])) {
@@ -127,7 +127,7 @@ pub(super) fn measured_files(spec: &ValidateSpec, prop: &str) -> Result<Measured
         }
     });
     if measured.is_empty() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::Nothing(format!(
             "no file of it reads: {}",
             left_out
                 .iter()
