@@ -65,18 +65,13 @@ pub struct MeasuredArgs {
     /// Measured files: RCbenchmark/Tyto CSV, UIUC .txt, or generic CSV.
     #[arg(long, required = true, num_args = 1..)]
     pub measured: Vec<PathBuf>,
-    /// Motor poles: electrical RPM readings are multiplied by 2/N.
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::POLES.flag, help = propbet_pipeline::settings::POLES.help)]
     pub poles: Option<u32>,
     #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum)]
     pub rpm_source: Option<RpmSourceArg>,
-    /// Air state T,P,RH overriding what the files log: temperature (°C unless suffixed K or F),
-    /// pressure (Pa unless suffixed hPa, mbar, kPa, inHg, psi), relative humidity (%). Example:
-    /// 22,1009hPa,40.
-    #[arg(long)]
+    #[arg(long = propbet_pipeline::settings::AIR.flag, help = propbet_pipeline::settings::AIR.help)]
     pub atmosphere: Option<String>,
-    /// Air density [kg/m^3], overriding the one from any air state (to reproduce a study).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long = propbet_pipeline::settings::RHO.flag, help = propbet_pipeline::settings::RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Column map (TOML) for generic CSV files.
     #[arg(long)]

@@ -72,13 +72,11 @@ pub struct ExportArgs {
     /// Measured files instead of a prediction: RCbenchmark/Tyto CSV, UIUC .txt, generic CSV.
     #[arg(long, num_args = 1..)]
     pub measured: Vec<PathBuf>,
-    /// Motor poles of the thrust-stand logs (electrical RPM times 2/N).
-    #[arg(long, requires = "measured")]
+    #[arg(long = propbet_pipeline::settings::POLES.flag, help = propbet_pipeline::settings::POLES.help, requires = "measured")]
     pub poles: Option<u32>,
     #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum, requires = "measured")]
     pub rpm_source: Option<RpmSourceArg>,
-    /// Air state T,P,RH of the measurements, overriding what the files log (as `compare`).
-    #[arg(long, requires = "measured")]
+    #[arg(long = propbet_pipeline::settings::AIR.flag, help = propbet_pipeline::settings::AIR.help, requires = "measured")]
     pub atmosphere: Option<String>,
     /// Column map (TOML) for generic CSV files.
     #[arg(long, requires = "measured")]

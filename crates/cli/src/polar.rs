@@ -33,10 +33,7 @@ pub struct XfoilProcess {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    /// Total XFOIL time of the command (of each prop in `validate`) [s]: polars not started by
-    /// then are errors, a running one gives up its remaining angles (each polar has 120 s of its
-    /// own at most). Default 3600.
-    #[arg(long, value_name = "SECONDS")]
+    #[arg(long = propbet_pipeline::settings::XFOIL_BUDGET.flag, help = propbet_pipeline::settings::XFOIL_BUDGET.help, value_name = "SECONDS")]
     pub xfoil_budget: Option<f64>,
 }
 

@@ -117,8 +117,7 @@ pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
 /// [--humidity] through the atmosphere model.
 #[derive(Debug, Args)]
 pub struct FluidArgs {
-    /// Air density [kg/m^3] (default 1.225, QPROP's; with --temp, overrides its density).
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long = propbet_pipeline::settings::RHO.flag, help = propbet_pipeline::settings::RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
     #[arg(long, allow_negative_numbers = true)]

@@ -237,14 +237,23 @@ mod tests {
         let e = crate::values::parse_list("--rpm", "1,,2").unwrap_err();
         assert!(matches!(e, Error::Value { .. }), "{e:?}");
         assert_eq!(e.to_string(), "--rpm '1,,2': empty item");
-        assert!(matches!(crate::values::parse_length_unit("furlong"), Err(Error::Value { .. })));
+        assert!(matches!(
+            crate::values::parse_length_unit("furlong"),
+            Err(Error::Value { .. })
+        ));
         let e = crate::spec::check_ncrit_effect(&[25.0], 5.0).unwrap_err();
         assert!(matches!(e, Error::Setting(_)), "{e:?}");
         assert!(e.to_string().starts_with("--ncrit-effect 25: "), "{e}");
-        assert!(matches!(crate::spec::check_ncrit_effect(&[5.0], 5.0), Err(Error::Conflict(_))));
+        assert!(matches!(
+            crate::spec::check_ncrit_effect(&[5.0], 5.0),
+            Err(Error::Conflict(_))
+        ));
         let e = Error::about("polars stage", Error::Nothing("no polar".into()));
         assert_eq!(e.to_string(), "polars stage: no polar");
-        assert!(std::error::Error::source(&e).is_none(), "the cause is in the message, not the chain");
+        assert!(
+            std::error::Error::source(&e).is_none(),
+            "the cause is in the message, not the chain"
+        );
     }
 
     #[test]

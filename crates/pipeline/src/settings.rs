@@ -384,6 +384,55 @@ impl std::fmt::Display for Rotation {
     }
 }
 
+/// The air of the measurements, overriding what their files log.
+pub const AIR: Setting<&str> = Setting {
+    flag: "atmosphere",
+    key: "[atmosphere] air",
+    default: "",
+    allowed: Allowed::Text,
+    help: "Air state T,P,RH of the measurements, overriding what the files log: temperature (°C unless \
+           suffixed K or F), pressure (Pa unless suffixed hPa, mbar, kPa, inHg, psi), relative humidity (%). \
+           Example: 22,1009hPa,40",
+};
+
+/// Air density, overriding every other source.
+pub const RHO: Setting<&str> = Setting {
+    flag: "rho",
+    key: "[atmosphere] rho",
+    default: "",
+    allowed: Allowed::Text,
+    help: "Air density [kg/m^3], overriding every other source: QPROP's 1.225 where no air is given, the \
+           density of an air state (--temp, --atmosphere) or of the files' logged air (to reproduce a study)",
+};
+
+/// Motor poles of thrust-stand logs whose RPM is electrical.
+pub const POLES: Setting<&str> = Setting {
+    flag: "poles",
+    key: "[measured] poles",
+    default: "",
+    allowed: Allowed::Text,
+    help: "Motor poles of the thrust-stand logs: electrical RPM readings are multiplied by 2/N (an even \
+           number, at least 2)",
+};
+
+/// The XFOIL time of one command (of one prop in `validate`) [s]: a prop's polars take a few
+/// minutes; an XFOIL that never finishes a polar (each stops at 120 s) cannot hold a command
+/// for longer than this.
+pub const XFOIL_BUDGET: Setting<f64> = Setting {
+    flag: "xfoil-budget",
+    key: "",
+    default: 3600.0,
+    allowed: Allowed::Between {
+        low: 0.0,
+        low_open: true,
+        high: f64::MAX,
+        meaning: "a positive number of seconds",
+    },
+    help: "Total XFOIL time of the command (of each prop in `validate`) [s]: polars not started by then are \
+           errors, a running one gives up its remaining angles (each polar has 120 s of its own at most). \
+           Default 3600",
+};
+
 /// Every declared setting, for the tests that hold the flags and keys to them.
 pub fn all() -> Vec<About> {
     vec![
@@ -400,6 +449,10 @@ pub fn all() -> Vec<About> {
         UNITS.about(),
         STATIONS.about(),
         RPM_SOURCE.about(),
+        AIR.about(),
+        RHO.about(),
+        POLES.about(),
+        XFOIL_BUDGET.about(),
     ]
 }
 
@@ -429,7 +482,7 @@ mod tests {
 
     #[test]
     fn every_default_is_allowed_and_every_flag_and_key_is_declared_once() {
-        for s in [NCRIT, AIRFOIL_NCRIT, DRAG_FACTOR, WINDOW] {
+        for s in [NCRIT, AIRFOIL_NCRIT, DRAG_FACTOR, WINDOW, XFOIL_BUDGET] {
             s.check(s.default).unwrap();
         }
         for s in [FOLDS, MAX_STEPS] {

@@ -56,7 +56,7 @@ pub struct XfoilProcessSpec {
     pub no_cache: bool,
     /// No progress bar.
     pub quiet: bool,
-    /// Total XFOIL time of the command [s] (None: [`DEFAULT_XFOIL_BUDGET`]).
+    /// Total XFOIL time of the command [s] (None: [`crate::settings::XFOIL_BUDGET`]'s default).
     pub budget: Option<f64>,
 }
 
@@ -79,11 +79,6 @@ impl XfoilProcessSpec {
         }
     }
 }
-
-/// The XFOIL time of one command (of one prop in `validate`) when `--xfoil-budget` is not
-/// given [s]: a prop's polars take a few minutes; an XFOIL that never finishes a polar (each
-/// stops at 120 s) cannot hold a command for longer than this.
-pub const DEFAULT_XFOIL_BUDGET: f64 = 3600.0;
 
 /// `3,9`: the values of `--ncrit-effect` as the command line takes them.
 pub fn ncrit_effect_text(v: &[f64]) -> String {

@@ -59,13 +59,8 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
         }
     };
     let engine = PolarEngine::new(xfoil, cache);
-    Ok(match p.budget.unwrap_or(crate::spec::DEFAULT_XFOIL_BUDGET) {
-        b if b.is_finite() && b > 0.0 => engine.with_budget(b),
-        b => out_of_range!(
-            "--xfoil-budget {}: a positive number of seconds",
-            propbet_units::show(b)
-        ),
-    })
+    let budget = crate::settings::XFOIL_BUDGET;
+    Ok(engine.with_budget(budget.check(p.budget.unwrap_or(budget.default))?))
 }
 
 /// What the polars stage reads: the blade and its sections.
