@@ -5,11 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_pipeline::measure::{Loads, Speed};
-use propbet_pipeline::model::Model;
-use propbet_pipeline::simexport::{self, Point, Source, Target};
-use propbet_pipeline::spec::{drag_factor_or_default, ModelSpec, PredictSpec, Rotation, TableFormat};
-use propbet_pipeline::values::parse_length_unit;
+use propbet_pipeline::simexport::{self, ExportFrom, ExportSpec, Said, Target};
+use propbet_pipeline::spec::{drag_factor_or_default, MeasuredSpec, ModelSpec, PredictSpec, Rotation, TableFormat};
+use propbet_pipeline::values::{parse_atmosphere, parse_length_unit};
 
 use crate::compare::RpmSourceArg;
 use crate::output;
@@ -179,227 +177,62 @@ impl ExportArgs {
     }
 }
 
-/// The blade's inertia from the prop file, or the one given.
-fn inertia(args: &ExportArgs, model: Option<&Model>) -> Option<(f64, String)> {
-    if let Some(i) = args.ixx {
-        return Some((i, "given (--ixx)".into()));
-    }
-    let m = model?;
-    let blade = m
-        .loaded
-        .file
-        .to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
-    let (t_c, density) = simexport::IXX_ASSUMED;
-    let i = simexport::blade_ixx(blade.blades, &blade.r, &blade.chord, t_c, density);
-    Some((
-        i,
-        format!(
-            "estimated from the prop file's chords: {} blades, section area 0.685 t c at t/c {t_c}, \
-             {density} kg/m^3 (glass-filled nylon), hub left out; a weighed value belongs here (the ixx option)",
-            blade.blades
-        ),
-    ))
-}
-
-fn predicted(args: &ExportArgs, prop: &Path) -> Result<Source> {
-    let model_spec = args.model_spec(prop)?;
-    let model = crate::predict::load_model(&model_spec, false)?;
-    let sweep = SweepArgs {
-        rpm: args.rpm.clone().unwrap_or_default(),
-        j: args.j.clone(),
-        v: args.v.clone(),
-    };
-    let (omegas, axis) = sweep.spec()?;
-    let spec = PredictSpec {
-        model: model_spec,
-        omegas,
-        axis,
-        air: args.air.spec()?,
-        format: TableFormat::Csv,
-        out: None,
-        stations: None,
-    };
-    let (fluid, fluid_source) = spec.air.fluid()?;
-    let ops = propbet_pipeline::stages::operating_points(&spec, model.rotor.tip_radius)?;
-    let results = propbet_pipeline::stages::sweep(&model, &fluid, &ops)?;
-    let unconverged = results.iter().filter(|p| p.not_converged > 0).count();
-    if unconverged > 0 {
-        eprintln!("propbet: {unconverged} operating points did not converge everywhere; they are left out");
-    }
-    let points: Vec<Point> = results
-        .iter()
-        .filter(|p| p.not_converged == 0)
-        .filter_map(|p| {
-            Some(Point {
-                rpm: p.rpm,
-                j: p.j?,
-                ct: p.ct?,
-                cp: p.cp?,
+impl ExportArgs {
+    /// The stage's spec (flags in SI).
+    pub fn spec(&self) -> Result<ExportSpec> {
+        let from = if self.measured.is_empty() {
+            let Some(prop) = &self.prop else {
+                bail!("give --prop with --rpm (a prediction) or --measured (measurements)");
+            };
+            let sweep = SweepArgs {
+                rpm: self.rpm.clone().unwrap_or_default(),
+                j: self.j.clone(),
+                v: self.v.clone(),
+            };
+            let (omegas, axis) = sweep.spec()?;
+            ExportFrom::Prediction(PredictSpec {
+                model: self.model_spec(prop)?,
+                omegas,
+                axis,
+                air: self.air.spec()?,
+                format: TableFormat::Csv,
+                out: None,
+                stations: None,
             })
-        })
-        .collect();
-    let m = &spec.model;
-    let section = format!(
-        "{}, drag factor {}, rotation {}",
-        m.polars.as_ref().map_or_else(
-            || "the prop file's QPROP coefficients".to_string(),
-            |p| format!("XFOIL polars {} as tables", p.display())
-        ),
-        m.drag_factor,
-        m.rotation.name()
-    );
-    let ixx = inertia(args, Some(&model));
-    Ok(Source {
-        points,
-        diameter: model.diameter,
-        blades: model.rotor.blades,
-        ixx,
-        origin: format!(
-            "propbet's prediction of {} ({section}) at {} rpm, {} ({fluid_source}, rho {} kg/m^3)",
-            prop.display(),
-            args.rpm.as_deref().unwrap_or(""),
-            match (&args.j, &args.v) {
-                (Some(j), _) => format!("J {j}"),
-                (None, Some(v)) => format!("V {v} m/s"),
-                _ => "static".to_string(),
-            },
-            fluid.rho
-        ),
-        name: args.name.clone().unwrap_or_else(|| model.loaded.file.name.clone()),
-        measured: false,
-    })
-}
-
-fn measured(args: &ExportArgs) -> Result<Source> {
-    let model = match &args.prop {
-        Some(p) => Some(crate::predict::load_model(&args.model_spec(p)?, false)?),
-        None => None,
-    };
-    let diameter = match (&model, &args.diameter) {
-        (Some(m), _) => m.diameter,
-        (None, Some(d)) => parse_diameter(d)?,
-        (None, None) => bail!(
-            "the measurements' propeller diameter is needed for its coefficients: give --diameter (like 10in) or --prop"
-        ),
-    };
-    let spec = propbet_pipeline::spec::MeasuredSpec {
-        files: args.measured.clone(),
-        poles: args.poles,
-        rpm_source: args.rpm_source.map(RpmSourceArg::source),
-        atmosphere: args
-            .atmosphere
-            .as_deref()
-            .map(propbet_pipeline::values::parse_atmosphere)
-            .transpose()?,
-        rho: args.air.rho,
-        columns: args.columns.clone(),
-    };
-    let (air, sets) = propbet_pipeline::stages::load_measured(&spec)?;
-    let mut points = Vec::new();
-    let mut flagged = 0;
-    for (file, set) in args.measured.iter().zip(&sets) {
-        if !set.has_torque {
-            bail!(
-                "{}: no torque or power measured; every export needs the torque (momentConstant, CP)",
-                file.display()
-            );
-        }
-        for p in &set.points {
-            if !p.flags.is_empty() {
-                flagged += 1;
-                continue;
+        } else {
+            ExportFrom::Measured {
+                measured: MeasuredSpec {
+                    files: self.measured.clone(),
+                    poles: self.poles,
+                    rpm_source: self.rpm_source.map(RpmSourceArg::source),
+                    atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+                    rho: self.air.rho,
+                    columns: self.columns.clone(),
+                },
+                model: self.prop.as_deref().map(|p| self.model_spec(p)).transpose()?,
+                diameter: self.diameter.as_deref().map(parse_diameter).transpose()?,
+                blades: self.blades,
             }
-            let rho = propbet_pipeline::compare::point_air(p, &air).fluid.rho;
-            let omega = p.omega.mean;
-            let n = propbet_pipeline::units::omega_to_rev_per_s(omega);
-            let j = match p.speed {
-                Speed::Airspeed(v) => v.mean / (n * diameter),
-                Speed::AdvanceRatio(j) => j,
-            };
-            let (ct, cp) = match p.loads {
-                Loads::Coefficients { ct, cp } => (ct, cp),
-                Loads::Forces { thrust, torque } => {
-                    let q = propbet_pipeline::compare::Quantities::from_forces(
-                        thrust.mean,
-                        torque.map(|q| q.mean),
-                        omega,
-                        j * n * diameter,
-                        rho,
-                        diameter,
-                    );
-                    match (q.ct, q.cp) {
-                        (Some(ct), Some(cp)) => (ct, cp),
-                        _ => continue,
-                    }
-                }
-            };
-            points.push(Point {
-                rpm: p.rpm(),
-                j,
-                ct,
-                cp,
-            });
-        }
+        };
+        Ok(ExportSpec {
+            from,
+            targets: targets(&self.to)?,
+            rpm_range: self.rpm_range.as_deref().map(parse_range).transpose()?,
+            ixx: self.ixx,
+            name: self.name.clone(),
+        })
     }
-    if flagged > 0 {
-        eprintln!("propbet: {flagged} measured points flagged as unsteady or implausible are left out");
-    }
-    let first = args.measured[0]
-        .file_stem()
-        .map_or_else(|| "propeller".to_string(), |s| s.to_string_lossy().into_owned());
-    Ok(Source {
-        points,
-        diameter,
-        blades: model.as_ref().map_or(args.blades.unwrap_or(2.0), |m| m.rotor.blades),
-        ixx: inertia(args, model.as_ref()),
-        origin: format!(
-            "measurements {} ({} points, diameter {:.4} m{})",
-            args.measured
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect::<Vec<_>>()
-                .join(", "),
-            sets.iter().map(|s| s.points.len()).sum::<usize>(),
-            diameter,
-            if model.is_some() { " from the prop file" } else { "" }
-        ),
-        name: args
-            .name
-            .clone()
-            .or_else(|| model.as_ref().map(|m| m.loaded.file.name.clone()))
-            .unwrap_or(first),
-        measured: true,
-    })
 }
 
 /// Runs `propbet export`.
 pub fn run(args: &ExportArgs) -> Result<bool> {
-    let targets = targets(&args.to)?;
-    let rpm_range = args.rpm_range.as_deref().map(parse_range).transpose()?;
-    if let Some(i) = args.ixx {
-        if !(i.is_finite() && i > 0.0 && i < 100.0) {
-            bail!("--ixx {i}: a moment of inertia in kg m^2, above 0 (a small propeller's is about 1e-5)");
-        }
-    }
+    let spec = args.spec()?;
     let inputs = args.inputs();
     output::refuse_inputs_inside(&args.out, &inputs)?;
-    let src = if args.measured.is_empty() {
-        let Some(prop) = &args.prop else {
-            bail!("give --prop with --rpm (a prediction) or --measured (measurements)");
-        };
-        predicted(args, prop)?
-    } else {
-        measured(args)?
-    };
-    // Every export is made before any file is written: one the data cannot support stops
-    // them all, nothing written.
-    let made = targets
-        .iter()
-        .map(|&t| match t {
-            Target::Gazebo => simexport::gazebo(&src, rpm_range),
-            t => simexport::export(t, &src),
-        })
-        .collect::<std::result::Result<Vec<_>, _>>()?;
+    let made = simexport::exports(&spec, &|said| match said {
+        Said::Warning(w) => eprintln!("propbet: warning: {w}"),
+        Said::LeftOut(n) => eprintln!("propbet: {n}"),
+    })?;
     std::fs::create_dir_all(&args.out)
         .map_err(|e| anyhow::anyhow!("{}: cannot create the output folder: {e}", args.out.display()))?;
     for e in &made {

@@ -592,8 +592,10 @@ pub fn map(src: &Source) -> Result<Exported> {
 }
 
 mod jsbsim;
+mod source;
 
 pub use jsbsim::{blade_ixx, jsbsim, IXX_ASSUMED};
+pub use source::{exports, source, ExportFrom, ExportSpec, Said};
 
 #[cfg(test)]
 mod tests;
