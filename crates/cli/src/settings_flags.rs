@@ -90,3 +90,45 @@ fn every_declared_case_key_is_a_case_key_that_carries_its_flag() {
         );
     }
 }
+
+/// The book's table of settings, as the declarations make it.
+fn settings_table() -> String {
+    let cell = |s: &str| s.replace('|', "\\|");
+    let mut t = String::from("| flag | case key | default | values | what it is |\n|---|---|---|---|---|\n");
+    for s in settings::all() {
+        let key = if s.key.is_empty() {
+            "—".to_string()
+        } else {
+            format!("`{}`", s.key)
+        };
+        let default = if s.default.is_empty() {
+            "—".to_string()
+        } else {
+            format!("`{}`", s.default)
+        };
+        let values = if !s.names.is_empty() {
+            s.names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", ")
+        } else if !s.range.is_empty() {
+            cell(s.range)
+        } else {
+            "—".to_string()
+        };
+        t.push_str(&format!(
+            "| `--{}` | {key} | {default} | {values} | {} |\n",
+            s.flag,
+            cell(s.help)
+        ));
+    }
+    t
+}
+
+/// `docs/settings.md` holds the table the declarations make: the book cannot drift from them.
+#[test]
+fn the_book_lists_every_setting_as_declared() {
+    let page = std::fs::read_to_string(crate::tests::repo().join("docs/settings.md")).unwrap();
+    let table = settings_table();
+    assert!(
+        page.contains(&table),
+        "docs/settings.md's table differs from the declarations; the table they make:\n{table}"
+    );
+}

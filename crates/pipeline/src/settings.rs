@@ -128,6 +128,8 @@ pub struct About {
     pub default: String,
     /// The names a choice takes.
     pub names: &'static [&'static str],
+    /// What a number may be, in words (empty for a choice or a text).
+    pub range: &'static str,
     /// The help.
     pub help: &'static str,
 }
@@ -140,6 +142,7 @@ impl<T: std::fmt::Display> Setting<T> {
             key: self.key,
             default: self.default.to_string(),
             names: self.names(),
+            range: self.allowed_meaning(),
             help: self.help,
         }
     }
