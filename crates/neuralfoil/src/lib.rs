@@ -14,6 +14,8 @@
 use std::io::{Read, Seek};
 use std::path::Path;
 
+pub mod cst;
+
 use ndarray::{Array1, Array2};
 use ndarray_npy::NpzReader;
 

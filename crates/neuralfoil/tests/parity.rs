@@ -86,3 +86,61 @@ fn the_default_network_gives_the_packages_coefficients() {
 fn the_smallest_network_too() {
     parity("xxsmall");
 }
+
+/// The coordinates of a Selig `.dat` file: every line of two numbers.
+fn coordinates(path: &str) -> Vec<[f64; 2]> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+            (v.len() == 2).then(|| [v[0], v[1]])
+        })
+        .collect()
+}
+
+/// propbet's Kulfan fit gives the package's parameters on every shipped airfoil, and so its
+/// coefficients; the fit's shape error is small against the section's thickness.
+#[test]
+fn the_kulfan_fit_is_the_packages() {
+    let net = Network::shipped(propbet_neuralfoil::DEFAULT_SIZE).unwrap();
+    let cases = reference(propbet_neuralfoil::DEFAULT_SIZE);
+    let mut seen = std::collections::BTreeMap::new();
+    for c in &cases {
+        seen.entry(c["airfoil"].as_str().unwrap().to_string()).or_insert(c);
+    }
+    for (path, c) in seen {
+        let fit = propbet_neuralfoil::cst::fit(&coordinates(&path)).unwrap();
+        let k = &c["kulfan"];
+        let theirs: Vec<f64> = numbers(&k["upper"])
+            .into_iter()
+            .chain(numbers(&k["lower"]))
+            .chain([k["leading_edge"].as_f64().unwrap(), k["te_thickness"].as_f64().unwrap()])
+            .collect();
+        let ours: Vec<f64> = fit
+            .kulfan
+            .upper
+            .into_iter()
+            .chain(fit.kulfan.lower)
+            .chain([fit.kulfan.leading_edge, fit.kulfan.te_thickness])
+            .collect();
+        let worst = ours.iter().zip(&theirs).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        eprintln!(
+            "{path}: parameters within {worst:.1e} of the package's; shape error RMS {:.2e}, largest {:.2e} chord",
+            fit.rms, fit.max
+        );
+        assert!(worst < 1e-9, "{path}: {ours:?} against {theirs:?}");
+        assert!(fit.max < 0.01, "{path}: shape error {}", fit.max);
+        let a = net.evaluate(
+            &fit.kulfan,
+            &Condition {
+                alpha_deg: c["alpha"].as_f64().unwrap(),
+                re: c["re"].as_f64().unwrap(),
+                ncrit: c["ncrit"].as_f64().unwrap(),
+                xtr_upper: c["xtr"].as_f64().unwrap(),
+                xtr_lower: c["xtr"].as_f64().unwrap(),
+            },
+        );
+        assert!((a.cl - c["cl"].as_f64().unwrap()).abs() < 0.005, "{path}");
+    }
+}
