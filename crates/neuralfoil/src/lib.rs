@@ -17,6 +17,7 @@ use std::path::Path;
 pub mod cst;
 
 use ndarray::{Array1, Array2};
+
 use ndarray_npy::NpzReader;
 
 /// The network sizes shipped (NeuralFoil's names; `xxxlarge` is not copied).
@@ -98,11 +99,18 @@ pub struct Aero {
     pub bot_xtr: f64,
 }
 
+/// One layer: weights (outputs x inputs) and biases.
+#[derive(Debug, Clone)]
+struct Layer {
+    weights: nalgebra::DMatrix<f64>,
+    biases: nalgebra::DVector<f64>,
+}
+
 /// One of NeuralFoil's networks with its training inputs' statistics.
 #[derive(Debug, Clone)]
 pub struct Network {
-    /// Layers in order: weights (out x in) and biases.
-    layers: Vec<(Array2<f64>, Array1<f64>)>,
+    /// Layers in order.
+    layers: Vec<Layer>,
     /// Mean of the scaled training inputs.
     mean: Array1<f64>,
     /// Inverse covariance of the scaled training inputs.
@@ -179,7 +187,11 @@ impl Network {
                 });
             }
             width = w.nrows();
-            layers.push((f64s(w), f64s(b)));
+            let rows: Vec<f64> = w.iter().map(|&v| f64::from(v)).collect();
+            layers.push(Layer {
+                weights: nalgebra::DMatrix::from_row_slice(w.nrows(), w.ncols(), &rows),
+                biases: nalgebra::DVector::from_iterator(b.len(), b.iter().map(|&v| f64::from(v))),
+            });
         }
         if width < 6 {
             return Err(WeightsError::Format {
@@ -230,75 +242,101 @@ impl Network {
         Network::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("weights"), size)
     }
 
-    /// The raw network: scaled inputs to scaled outputs, the confidence's logit lowered by the
-    /// inputs' squared Mahalanobis distance over twice the input count.
-    fn raw(&self, x: &[f64; N_INPUTS]) -> Vec<f64> {
-        let mut v: Vec<f64> = x.to_vec();
+    /// The raw network on a batch (one column per case): scaled inputs to scaled outputs, each
+    /// case's confidence logit lowered by its inputs' squared Mahalanobis distance over twice the
+    /// input count.
+    fn raw(&self, x: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
         let last = self.layers.len() - 1;
-        for (k, (w, b)) in self.layers.iter().enumerate() {
-            let mut next: Vec<f64> = w
-                .rows()
-                .into_iter()
-                .zip(b)
-                .map(|(row, bi)| row.iter().zip(&v).map(|(a, c)| a * c).sum::<f64>() + bi)
-                .collect();
+        let mut v = x.clone();
+        for (k, layer) in self.layers.iter().enumerate() {
+            let mut next = &layer.weights * &v;
+            for mut col in next.column_iter_mut() {
+                col += &layer.biases;
+            }
             if k != last {
                 // Swish: x sigmoid(x).
-                for y in &mut next {
-                    *y /= 1.0 + (-*y).exp();
-                }
+                next.apply(|y| *y /= 1.0 + (-*y).exp());
             }
             v = next;
         }
-        let d: Vec<f64> = x.iter().zip(&self.mean).map(|(a, m)| a - m).collect();
-        let mut m2 = 0.0;
-        for i in 0..N_INPUTS {
-            for j in 0..N_INPUTS {
-                m2 += d[i] * self.inv_cov[[i, j]] * d[j];
+        for (j, col) in x.column_iter().enumerate() {
+            let d: Vec<f64> = col.iter().zip(&self.mean).map(|(a, m)| a - m).collect();
+            let mut m2 = 0.0;
+            for i in 0..N_INPUTS {
+                for l in 0..N_INPUTS {
+                    m2 += d[i] * self.inv_cov[[i, l]] * d[l];
+                }
+            }
+            v[(0, j)] -= m2 / (2.0 * N_INPUTS as f64);
+        }
+        v
+    }
+
+    /// The section at each condition (one batch through the network).
+    pub fn evaluate_many(&self, k: &Kulfan, conditions: &[Condition]) -> Vec<Aero> {
+        let n = conditions.len();
+        // Columns 0..n: the section; n..2n: its mirror image (surfaces swapped and negated,
+        // the angle negated, transition swapped).
+        let mut x = nalgebra::DMatrix::<f64>::zeros(N_INPUTS, 2 * n);
+        for (j, c) in conditions.iter().enumerate() {
+            let a = c.alpha_deg.to_radians();
+            let mut v = [0.0; N_INPUTS];
+            v[..8].copy_from_slice(&k.upper);
+            v[8..16].copy_from_slice(&k.lower);
+            v[16] = k.leading_edge;
+            v[17] = k.te_thickness * 50.0;
+            v[18] = (2.0 * a).sin();
+            v[19] = a.cos();
+            v[20] = 1.0 - a.cos().powi(2);
+            v[21] = (c.re.ln() - 12.5) / 3.5;
+            v[22] = (c.ncrit - 9.0) / 4.5;
+            v[23] = c.xtr_upper;
+            v[24] = c.xtr_lower;
+            let mut f = v;
+            for i in 0..8 {
+                f[i] = -v[8 + i];
+                f[8 + i] = -v[i];
+            }
+            f[16] = -v[16];
+            f[18] = -v[18];
+            f[23] = v[24];
+            f[24] = v[23];
+            for i in 0..N_INPUTS {
+                x[(i, j)] = v[i];
+                x[(i, n + j)] = f[i];
             }
         }
-        v[0] -= m2 / (2.0 * N_INPUTS as f64);
-        v
+        let y = self.raw(&x);
+        (0..n)
+            .map(|j| {
+                let (a, b) = (y.column(j), y.column(n + j));
+                // The mirror's outputs back: lift and moment negated, transition points swapped.
+                let fused = |i: usize, back: f64| 0.5 * (a[i] + back);
+                let confidence = 1.0 / (1.0 + (-fused(0, b[0]).clamp(ln_eps(), -ln_eps())).exp());
+                Aero {
+                    confidence,
+                    cl: fused(1, -b[1]) / 2.0,
+                    cd: ((fused(2, b[2]) - 2.0) * 2.0).exp(),
+                    cm: fused(3, -b[3]) / 20.0,
+                    top_xtr: fused(4, b[5]).clamp(0.0, 1.0),
+                    bot_xtr: fused(5, b[4]).clamp(0.0, 1.0),
+                }
+            })
+            .collect()
     }
 
     /// The section's coefficients at a condition.
     pub fn evaluate(&self, k: &Kulfan, c: &Condition) -> Aero {
-        let a = c.alpha_deg.to_radians();
-        let mut x = [0.0; N_INPUTS];
-        x[..8].copy_from_slice(&k.upper);
-        x[8..16].copy_from_slice(&k.lower);
-        x[16] = k.leading_edge;
-        x[17] = k.te_thickness * 50.0;
-        x[18] = (2.0 * a).sin();
-        x[19] = a.cos();
-        x[20] = 1.0 - a.cos().powi(2);
-        x[21] = (c.re.ln() - 12.5) / 3.5;
-        x[22] = (c.ncrit - 9.0) / 4.5;
-        x[23] = c.xtr_upper;
-        x[24] = c.xtr_lower;
-        // The mirror image: surfaces swapped and negated, the angle negated, transition swapped.
-        let mut xf = x;
-        for i in 0..8 {
-            xf[i] = -x[8 + i];
-            xf[8 + i] = -x[i];
-        }
-        xf[16] = -x[16];
-        xf[18] = -x[18];
-        xf[23] = x[24];
-        xf[24] = x[23];
-        let y = self.raw(&x);
-        let yf = self.raw(&xf);
-        // The mirror's outputs back: lift and moment negated, transition points swapped.
-        let fused = |i: usize, back: f64| 0.5 * (y[i] + back);
-        let confidence = 1.0 / (1.0 + (-fused(0, yf[0]).clamp(ln_eps(), -ln_eps())).exp());
-        Aero {
-            confidence,
-            cl: fused(1, -yf[1]) / 2.0,
-            cd: ((fused(2, yf[2]) - 2.0) * 2.0).exp(),
-            cm: fused(3, -yf[3]) / 20.0,
-            top_xtr: fused(4, yf[5]).clamp(0.0, 1.0),
-            bot_xtr: fused(5, yf[4]).clamp(0.0, 1.0),
-        }
+        self.evaluate_many(k, std::slice::from_ref(c))[0]
+    }
+
+    /// A polar: the section at each angle of `alphas_deg`, the rest of the condition as `c`.
+    pub fn polar(&self, k: &Kulfan, alphas_deg: &[f64], c: &Condition) -> Vec<Aero> {
+        let conditions: Vec<Condition> = alphas_deg
+            .iter()
+            .map(|&alpha_deg| Condition { alpha_deg, ..*c })
+            .collect();
+        self.evaluate_many(k, &conditions)
     }
 }
 
