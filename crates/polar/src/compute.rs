@@ -102,6 +102,14 @@ pub enum PolarError {
         /// The budget [s].
         seconds: f64,
     },
+    /// NeuralFoil's Kulfan fit of the section failed.
+    #[error("{airfoil}: NeuralFoil cannot take this section: {reason}")]
+    Kulfan {
+        /// Airfoil name.
+        airfoil: String,
+        /// Why.
+        reason: String,
+    },
     /// The cache directory cannot be used.
     #[error("polar cache {path}: {source}")]
     Cache {
@@ -121,6 +129,40 @@ pub enum Source {
     Xfoil,
     /// The cache entry was corrupt; computed again and replaced.
     RecomputedCorrupt,
+    /// Made by NeuralFoil's networks (in whole: the `neuralfoil` engine, or `auto` where XFOIL
+    /// gave no polar).
+    NeuralFoil,
+}
+
+/// Which program makes the polars.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Engine {
+    /// XFOIL.
+    Xfoil,
+    /// NeuralFoil's networks.
+    NeuralFoil,
+    /// XFOIL, with what it leaves out (unconverged angles, polars it could not make) from
+    /// NeuralFoil.
+    Auto,
+}
+
+impl Engine {
+    /// Every engine.
+    pub const ALL: [Engine; 3] = [Engine::Xfoil, Engine::NeuralFoil, Engine::Auto];
+
+    /// The name the command line and a case use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Engine::Xfoil => "xfoil",
+            Engine::NeuralFoil => "neuralfoil",
+            Engine::Auto => "auto",
+        }
+    }
+
+    /// The engine of a name.
+    pub fn parse(name: &str) -> Option<Engine> {
+        Engine::ALL.into_iter().find(|e| e.name() == name)
+    }
 }
 
 #[derive(Serialize, Deserialize)]
@@ -195,7 +237,8 @@ impl PolarCache {
 /// XFOIL plus an optional cache.
 #[derive(Debug)]
 pub struct PolarEngine {
-    xfoil: Xfoil,
+    xfoil: Option<Xfoil>,
+    neural: Option<std::sync::Arc<propbet_neuralfoil::Network>>,
     cache: Option<PolarCache>,
     identity: OnceLock<String>,
     /// The command's budget: (deadline, its length [s]).
@@ -209,11 +252,40 @@ impl PolarEngine {
     /// An engine; `cache` None computes everything afresh.
     pub fn new(xfoil: Xfoil, cache: Option<PolarCache>) -> Self {
         PolarEngine {
-            xfoil,
+            xfoil: Some(xfoil),
+            neural: None,
             cache,
             identity: OnceLock::new(),
             deadline: None,
             cache_error: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// An engine of NeuralFoil's network alone (no XFOIL, no cache: a polar takes
+    /// milliseconds).
+    pub fn neuralfoil(net: propbet_neuralfoil::Network) -> Self {
+        PolarEngine {
+            xfoil: None,
+            neural: Some(std::sync::Arc::new(net)),
+            cache: None,
+            identity: OnceLock::new(),
+            deadline: None,
+            cache_error: std::sync::Mutex::new(None),
+        }
+    }
+
+    /// This XFOIL engine with NeuralFoil's network filling what XFOIL leaves out (`auto`).
+    pub fn with_neuralfoil(mut self, net: propbet_neuralfoil::Network) -> Self {
+        self.neural = Some(std::sync::Arc::new(net));
+        self
+    }
+
+    /// Which program makes the polars.
+    pub fn engine(&self) -> Engine {
+        match (&self.xfoil, &self.neural) {
+            (Some(_), Some(_)) => Engine::Auto,
+            (None, _) => Engine::NeuralFoil,
+            (Some(_), None) => Engine::Xfoil,
         }
     }
 
@@ -239,7 +311,10 @@ impl PolarEngine {
     /// SHA-256 of the XFOIL executable and the script version.
     fn identity(&self) -> &str {
         self.identity.get_or_init(|| {
-            let exe = &self.xfoil.config().executable;
+            let Some(xfoil) = &self.xfoil else {
+                return String::new();
+            };
+            let exe = &xfoil.config().executable;
             let mut h = Sha256::new();
             h.update(SCRIPT_VERSION);
             match std::fs::read(exe) {
@@ -272,8 +347,40 @@ impl PolarEngine {
         hex(&h.finalize())
     }
 
-    /// One polar, from the cache when it holds it.
+    /// One polar: XFOIL's (from the cache when it holds it), NeuralFoil's, or XFOIL's with
+    /// NeuralFoil filling its gaps, as the engine is.
     pub fn compute(&self, job: &PolarJob) -> Result<(Polar, Source), PolarError> {
+        let (xfoil, neural) = (&self.xfoil, &self.neural);
+        let section = crate::neural::Section {
+            airfoil: &job.airfoil,
+            re: job.re,
+            ncrit: job.ncrit,
+            trip: job.trip,
+        };
+        let kulfan = |e: crate::neural::NeuralError| PolarError::Kulfan {
+            airfoil: job.airfoil.name.clone(),
+            reason: e.0,
+        };
+        let whole = |net: &propbet_neuralfoil::Network| {
+            crate::neural::polar(&section, &job.alphas_deg, net)
+                .map(|p| (p, Source::NeuralFoil))
+                .map_err(kulfan)
+        };
+        match (xfoil, neural) {
+            (None, Some(net)) => whole(net),
+            (Some(x), Some(net)) => match self.xfoil_polar(x, job) {
+                Ok((p, s)) => Ok((crate::neural::fill(p, &section, net).map_err(kulfan)?, s)),
+                // No polar from XFOIL (a crash, the budget): NeuralFoil's.
+                Err(PolarError::Xfoil { .. } | PolarError::Budget { .. }) => whole(net),
+                Err(e) => Err(e),
+            },
+            (Some(x), None) => self.xfoil_polar(x, job),
+            (None, None) => unreachable!("an engine has XFOIL or NeuralFoil"),
+        }
+    }
+
+    /// XFOIL's polar, from the cache when it holds it.
+    fn xfoil_polar(&self, xfoil: &Xfoil, job: &PolarJob) -> Result<(Polar, Source), PolarError> {
         let req = job.request()?;
         let key = self.key(&req);
         let mut source = Source::Xfoil;
@@ -285,7 +392,7 @@ impl PolarEngine {
             }
         }
         let out = match self.deadline {
-            None => self.xfoil.sweep(&req),
+            None => xfoil.sweep(&req),
             Some((deadline, seconds)) => {
                 if std::time::Instant::now() >= deadline {
                     return Err(PolarError::Budget {
@@ -294,7 +401,7 @@ impl PolarEngine {
                         seconds,
                     });
                 }
-                self.xfoil.sweep_until(&req, deadline)
+                xfoil.sweep_until(&req, deadline)
             }
         }
         .map_err(|source| PolarError::Xfoil {
@@ -311,6 +418,7 @@ impl PolarEngine {
             unconverged_deg: out.unconverged_deg,
             hysteresis: out.hysteresis,
             faults: out.faults,
+            neuralfoil: Vec::new(),
         };
         // A hang or a budget run out may be the machine's load, not XFOIL's answer (the limits
         // are wall time): a polar with one is not cached, so the next run asks XFOIL again.

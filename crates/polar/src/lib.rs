@@ -13,14 +13,15 @@
 
 pub mod airfoil;
 pub mod compute;
+pub mod neural;
 pub mod reduce;
 pub mod table;
 pub mod tabulated;
 
 pub use airfoil::{naca4, naca4_from_name, Airfoil, AirfoilError, NacaStyle};
-pub use compute::{no_progress, PolarCache, PolarEngine, PolarError, PolarJob, Progress, Source};
+pub use compute::{no_progress, Engine, PolarCache, PolarEngine, PolarError, PolarJob, Progress, Source};
 pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit, DEFAULT_RE_EXP};
-pub use table::{Polar, PolarPoint};
+pub use table::{Filled, Polar, PolarPoint};
 pub use tabulated::TabulatedAero;
 pub mod blade;
 pub use blade::{BladePolars, StationPolars};

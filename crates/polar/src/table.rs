@@ -31,6 +31,19 @@ pub struct Polar {
     pub hysteresis: Vec<Branches>,
     /// Crashes and hangs of XFOIL while computing this polar.
     pub faults: Vec<Fault>,
+    /// The points NeuralFoil made (all of a NeuralFoil polar's; those `auto` filled in where
+    /// XFOIL did not converge), each with the network's confidence; empty: XFOIL made them all.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub neuralfoil: Vec<Filled>,
+}
+
+/// A polar point NeuralFoil made.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Filled {
+    /// Its angle [deg].
+    pub alpha_deg: f64,
+    /// The network's confidence in it, 0 to 1.
+    pub confidence: f64,
 }
 
 impl Polar {
@@ -121,6 +134,7 @@ impl Polar {
             unconverged_deg: vec![],
             hysteresis: vec![],
             faults: vec![],
+            neuralfoil: Vec::new(),
         }
     }
 
@@ -196,6 +210,7 @@ mod tests {
             unconverged_deg: vec![12.0],
             hysteresis: vec![],
             faults: vec![],
+            neuralfoil: Vec::new(),
         }
     }
 

@@ -584,6 +584,7 @@ mod tests {
                 })
                 .collect(),
             faults: vec![],
+            neuralfoil: Vec::new(),
         };
         let station = |polars: Vec<Polar>| StationPolars {
             r: 0.1,
