@@ -626,3 +626,56 @@ fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
         assert!(!dir.path().join("x.qprop").exists());
     }
 }
+
+/// `--engine neuralfoil` needs no XFOIL (the one given crashes and is never started) and makes
+/// every station's polars, each point listed as NeuralFoil's with its confidence; `--engine
+/// auto` with that crashing XFOIL takes every polar from NeuralFoil instead of failing.
+#[test]
+fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let fake = crashing_xfoil(dir.path());
+    let blade = repo().join("benchsuite/blade25.qprop");
+    for engine in ["neuralfoil", "auto"] {
+        let out = dir.path().join(engine);
+        std::fs::create_dir_all(&out).unwrap();
+        let o = run_or_hang(
+            &[
+                "polars",
+                "--geometry",
+                blade.to_str().unwrap(),
+                "--airfoil",
+                "naca4412",
+                "--rpm",
+                "6000",
+                "--engine",
+                engine,
+                "--no-cache",
+                "--quiet",
+                "--xfoil",
+                fake.to_str().unwrap(),
+                "--out-prop",
+                out.join("fit.qprop").to_str().unwrap(),
+                "--out-polars",
+                out.join("polars.json").to_str().unwrap(),
+            ],
+            dir.path(),
+        );
+        assert!(matches!(o.status.code(), Some(0 | 1)), "{engine}: {}", stderr(&o));
+        let j: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("polars.json")).unwrap()).unwrap();
+        let stations = j["stations"].as_array().unwrap();
+        assert_eq!(stations.len(), 25, "{engine}");
+        for s in stations {
+            for p in s["polars"].as_array().unwrap() {
+                let n = p["points"].as_array().unwrap().len();
+                assert!(n >= 20, "{engine}: {n} points");
+                assert_eq!(
+                    p["neuralfoil"].as_array().unwrap().len(),
+                    n,
+                    "{engine}: every point NeuralFoil's"
+                );
+            }
+        }
+        assert!(std::fs::read_to_string(out.join("fit.qprop")).unwrap().lines().count() > 25);
+    }
+}

@@ -183,6 +183,14 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "--ncrit-effect",
     ),
     ("polars", "trip", "trip = \"free\"", "polars", "--trip free"),
+    ("polars", "engine", "engine = \"auto\"", "polars", "--engine auto"),
+    (
+        "polars",
+        "neuralfoil_size",
+        "neuralfoil_size = \"large\"",
+        "polars",
+        "--neuralfoil-size large",
+    ),
     ("polars", "alpha", "alpha = \"-4:12:1\"", "polars", "--alpha"),
     ("polars", "model", "model = \"qprop\"", "predict", "--prop"),
     ("polars", "rotation", "rotation = \"off\"", "predict", "--rotation off"),
@@ -343,6 +351,8 @@ fn each_case_key_and_its_flag_give_the_same_spec() {
         no_cache: false,
         quiet: true,
         xfoil_budget: None,
+        engine: "xfoil".into(),
+        neuralfoil_size: None,
     };
     let plan_of = |text: &str| {
         let dir = tempfile::tempdir().unwrap();

@@ -316,6 +316,8 @@ mod tests {
             no_cache: false,
             quiet: true,
             xfoil_budget: Some(600.0),
+            engine: "auto".into(),
+            neuralfoil_size: Some("large".into()),
         };
         let mut n = 0;
         for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {

@@ -35,6 +35,19 @@ pub struct XfoilProcess {
     pub quiet: bool,
     #[arg(long = propbet_pipeline::settings::XFOIL_BUDGET.flag, help = propbet_pipeline::settings::XFOIL_BUDGET.help, value_name = "SECONDS")]
     pub xfoil_budget: Option<f64>,
+    #[arg(
+        long = propbet_pipeline::settings::ENGINE.flag,
+        help = propbet_pipeline::settings::ENGINE.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::ENGINE.names().iter().copied()),
+        default_value = propbet_pipeline::settings::ENGINE.default,
+    )]
+    pub engine: String,
+    #[arg(
+        long = propbet_pipeline::settings::NEURALFOIL_SIZE.flag,
+        help = propbet_pipeline::settings::NEURALFOIL_SIZE.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::NEURALFOIL_SIZE.names().iter().copied()),
+    )]
+    pub neuralfoil_size: Option<String>,
 }
 
 impl XfoilProcess {
@@ -46,6 +59,8 @@ impl XfoilProcess {
             no_cache: self.no_cache,
             quiet: self.quiet,
             budget: self.xfoil_budget,
+            engine: propbet_pipeline::polar::Engine::parse(&self.engine).unwrap_or_default(),
+            neuralfoil_size: self.neuralfoil_size.clone(),
         }
     }
 }

@@ -139,6 +139,11 @@ pub struct PolarSection {
     /// Rotational augmentation of the section lift: `off` or `snel` (default: the tabulated
     /// model's default; off with `model = "qprop"`).
     pub rotation: Option<String>,
+    /// Which program makes the polars: `xfoil`, `neuralfoil` or `auto`
+    /// ([`crate::settings::ENGINE`]; default: the command line's).
+    pub engine: Option<String>,
+    /// NeuralFoil's network size ([`crate::settings::NEURALFOIL_SIZE`]).
+    pub neuralfoil_size: Option<String>,
     /// Every section's drag times this (default: the tabulated model's default,
     /// [`crate::settings::DRAG_FACTOR`]; 1 with `model = "qprop"`).
     pub drag_factor: Option<f64>,
@@ -251,6 +256,16 @@ pub fn read_case(dir: &Path) -> Result<Case> {
         crate::settings::SECTION_MODEL
             .choose(&p.model)
             .map_err(|e| at_key(&path, "[polars] model", e))?;
+        if let Some(e) = &p.engine {
+            crate::settings::ENGINE
+                .choose(e)
+                .map_err(|e| at_key(&path, "[polars] engine", e))?;
+        }
+        if let Some(s) = &p.neuralfoil_size {
+            crate::settings::NEURALFOIL_SIZE
+                .choose(s)
+                .map_err(|e| at_key(&path, "[polars] neuralfoil_size", e))?;
+        }
         if let Some(x) = p.ncrit {
             crate::settings::NCRIT
                 .check(x)

@@ -73,6 +73,9 @@ pub enum Error {
     /// An APC PE0 file does not read.
     #[error(transparent)]
     Pe0(#[from] propbet_qprop::apc::ReadPe0Error),
+    /// NeuralFoil's weights cannot be used.
+    #[error(transparent)]
+    Weights(#[from] propbet_neuralfoil::WeightsError),
     /// The diagnosis cannot run on these data.
     #[error(transparent)]
     Diagnose(#[from] propbet_diagnose::DiagnoseError),

@@ -436,6 +436,28 @@ pub const XFOIL_BUDGET: Setting<f64> = Setting {
            Default 3600",
 };
 
+/// Which program makes the section polars.
+pub const ENGINE: Setting<&str> = Setting {
+    flag: "engine",
+    key: "[polars] engine",
+    default: "xfoil",
+    allowed: Allowed::OneOf(&["xfoil", "neuralfoil", "auto"]),
+    help: "Polar engine: `xfoil` (the XFOIL program), `neuralfoil` (NeuralFoil's networks, evaluated in \
+           propbet: milliseconds a polar, no XFOIL needed) or `auto` (XFOIL, with the angles it does not \
+           converge and the polars it cannot make from NeuralFoil); every NeuralFoil point is listed with \
+           its confidence in polars.json",
+};
+
+/// NeuralFoil's network size.
+pub const NEURALFOIL_SIZE: Setting<&str> = Setting {
+    flag: "neuralfoil-size",
+    key: "[polars] neuralfoil_size",
+    default: propbet_neuralfoil::DEFAULT_SIZE,
+    allowed: Allowed::OneOf(&propbet_neuralfoil::SIZES),
+    help: "NeuralFoil's network size (with --engine neuralfoil or auto): larger is closer to XFOIL and \
+           slower",
+};
+
 /// Every declared setting, for the tests that hold the flags and keys to them.
 pub fn all() -> Vec<About> {
     vec![
@@ -456,6 +478,8 @@ pub fn all() -> Vec<About> {
         RHO.about(),
         POLES.about(),
         XFOIL_BUDGET.about(),
+        ENGINE.about(),
+        NEURALFOIL_SIZE.about(),
     ]
 }
 
@@ -491,7 +515,7 @@ mod tests {
         for s in [FOLDS, MAX_STEPS] {
             s.check(s.default).unwrap();
         }
-        for s in [SECTION_MODEL, UNITS] {
+        for s in [SECTION_MODEL, UNITS, ENGINE, NEURALFOIL_SIZE] {
             assert!(s.names().contains(&s.default), "{}", s.flag);
         }
         assert!(ROTATION.names().contains(&ROTATION.default.name()));

@@ -58,6 +58,10 @@ pub struct XfoilProcessSpec {
     pub quiet: bool,
     /// Total XFOIL time of the command [s] (None: [`crate::settings::XFOIL_BUDGET`]'s default).
     pub budget: Option<f64>,
+    /// Which program makes the polars.
+    pub engine: propbet_polar::Engine,
+    /// NeuralFoil's network size (None: [`crate::settings::NEURALFOIL_SIZE`]'s default).
+    pub neuralfoil_size: Option<String>,
 }
 
 impl XfoilProcessSpec {
@@ -76,6 +80,12 @@ impl XfoilProcessSpec {
         }
         if self.quiet {
             v.push("--quiet".into());
+        }
+        if self.engine != propbet_polar::Engine::default() {
+            push(v, "--engine", self.engine.name());
+        }
+        if let Some(s) = &self.neuralfoil_size {
+            push(v, "--neuralfoil-size", s.clone());
         }
     }
 }

@@ -135,9 +135,10 @@ pub enum Source {
 }
 
 /// Which program makes the polars.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Engine {
     /// XFOIL.
+    #[default]
     Xfoil,
     /// NeuralFoil's networks.
     NeuralFoil,

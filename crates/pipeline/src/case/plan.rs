@@ -128,7 +128,15 @@ impl Case {
                         axis,
                         air: AirSpec::default(),
                         xfoil: XfoilSpec {
-                            process: xfoil.clone(),
+                            process: XfoilProcessSpec {
+                                engine: p
+                                    .engine
+                                    .as_deref()
+                                    .and_then(propbet_polar::Engine::parse)
+                                    .unwrap_or(xfoil.engine),
+                                neuralfoil_size: p.neuralfoil_size.clone().or_else(|| xfoil.neuralfoil_size.clone()),
+                                ..xfoil.clone()
+                            },
                             ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
                             trip: match &p.trip {
                                 None => Some(crate::settings::TRIP.default),

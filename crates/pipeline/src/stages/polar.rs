@@ -48,6 +48,13 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
 
 /// XFOIL and the polar cache, as the spec says.
 pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
+    use propbet_polar::Engine;
+    let size = crate::settings::NEURALFOIL_SIZE;
+    let size = size.choose(p.neuralfoil_size.as_deref().unwrap_or(size.default))?;
+    let network = || propbet_neuralfoil::Network::shipped(size);
+    if p.engine == Engine::NeuralFoil {
+        return Ok(PolarEngine::neuralfoil(network()?));
+    }
     let exe = xfoil_runner::find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
     let xfoil = xfoil_runner::Xfoil::new(xfoil_runner::XfoilConfig::new(exe))?;
     let cache = if p.no_cache {
@@ -58,7 +65,10 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
             None => None,
         }
     };
-    let engine = PolarEngine::new(xfoil, cache);
+    let mut engine = PolarEngine::new(xfoil, cache);
+    if p.engine == Engine::Auto {
+        engine = engine.with_neuralfoil(network()?);
+    }
     let budget = crate::settings::XFOIL_BUDGET;
     Ok(engine.with_budget(budget.check(p.budget.unwrap_or(budget.default))?))
 }

@@ -36,6 +36,8 @@ fn xfoil_has_a_total_budget_unless_one_is_given() {
     let dir = tempfile::tempdir().unwrap();
     let exe = xfoil_runner::fake::write_fake_xfoil(dir.path(), "").unwrap();
     let spec = |budget| XfoilProcessSpec {
+        engine: Default::default(),
+        neuralfoil_size: None,
         xfoil: Some(exe.clone()),
         cache: None,
         no_cache: true,
