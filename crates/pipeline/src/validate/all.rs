@@ -89,6 +89,22 @@ impl ValidateSpec {
             self.rotation.name(),
             self.drag_factor
         );
+        let size = self
+            .xfoil
+            .neuralfoil_size
+            .as_deref()
+            .unwrap_or(crate::settings::NEURALFOIL_SIZE.default);
+        match self.xfoil.engine {
+            propbet_polar::Engine::Xfoil => {}
+            propbet_polar::Engine::NeuralFoil => {
+                text.push_str(&format!(
+                    ", the polars from NeuralFoil's {size} network instead of XFOIL"
+                ));
+            }
+            propbet_polar::Engine::Auto => {
+                text.push_str(&format!(", what XFOIL leaves out from NeuralFoil's {size} network"));
+            }
+        }
         if let Some(p) = &self.user_effects {
             text.push_str(&format!(", user effects of {} among the candidates", p.display()));
         }
