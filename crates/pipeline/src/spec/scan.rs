@@ -114,11 +114,7 @@ impl ScanSettings {
                 Some((n, v)) => (n, Some(v.to_string())),
                 None => (flag, None),
             };
-            let key = if name == "box" {
-                "box".to_string()
-            } else {
-                name.replace('-', "_")
-            };
+            let key = name.replace('-', "_");
             if key == "planar" {
                 table.insert(key, toml::Value::Boolean(true));
                 continue;
