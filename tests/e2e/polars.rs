@@ -678,4 +678,30 @@ fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
         }
         assert!(std::fs::read_to_string(out.join("fit.qprop")).unwrap().lines().count() > 25);
     }
+    // One section's polar table says which engine made each point, and how sure NeuralFoil is.
+    let o = run_or_hang(
+        &[
+            "polar",
+            "--airfoil",
+            "naca4412",
+            "--re",
+            "1e5",
+            "--engine",
+            "neuralfoil",
+            "--quiet",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let csv = String::from_utf8(o.stdout).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines.next().unwrap().ends_with(",engine,confidence"), "{csv}");
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows.len() > 20, "{csv}");
+    for row in rows {
+        let cols: Vec<&str> = row.split(',').collect();
+        assert_eq!(cols[10], "neuralfoil", "{row}");
+        let c: f64 = cols[11].parse().unwrap();
+        assert!((0.0..=1.0).contains(&c), "{row}");
+    }
 }

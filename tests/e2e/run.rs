@@ -490,3 +490,45 @@ fn a_case_s_user_effects_are_candidates_of_its_diagnosis() {
         "{e}"
     );
 }
+
+#[test]
+fn the_default_case_on_neuralfoil_needs_no_xfoil_and_says_who_made_the_polars() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo().join("props/apcsf_10x4.7");
+    let o = run(
+        &[
+            "run",
+            case.to_str().unwrap(),
+            "--engine",
+            "neuralfoil",
+            "--xfoil",
+            "/nonexistent/xfoil",
+            "-o",
+            "out",
+            "--quiet",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(" NeuralFoil polars used as tables"),
+        "{}",
+        stderr(&o)
+    );
+    let out = dir.path().join("out");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let polars = &summary["polars"];
+    assert_eq!(polars["engine"], "neuralfoil");
+    let made = &polars["made"];
+    assert!(made["polars"].as_u64().unwrap() > 20, "{polars}");
+    assert_eq!(made["neuralfoil"], made["polars"], "{polars}");
+    assert!(
+        polars["text"].as_str().unwrap().contains("NeuralFoil polars"),
+        "{polars}"
+    );
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(html.contains("NeuralFoil polars (Ncrit"), "the plan names the engine");
+    assert!(html.contains(" NeuralFoil polars covering the Reynolds numbers"));
+    assert!(!html.contains("XFOIL polars covering"));
+}

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::case::parse_fraction;
-use propbet_pipeline::polar::{Airfoil, Polar, QpropFit};
+use propbet_pipeline::polar::{Airfoil, Makers, Polar, QpropFit};
 use propbet_pipeline::qprop::write_prop;
 use propbet_pipeline::spec::{PolarsSpec, XfoilProcessSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
@@ -282,6 +282,9 @@ fn report_failures(what: &str, p: &Polar) {
     for f in &p.faults {
         eprintln!("propbet: {what}: {f}");
     }
+    if let Some(why) = &p.not_filled {
+        eprintln!("propbet: {what}: {why}: XFOIL's polar kept with its gaps");
+    }
 }
 
 fn fit_summary(re: f64, f: &QpropFit) -> String {
@@ -403,12 +406,13 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     Ok(p.clean())
 }
 
-/// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL made and
+/// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL or
+/// NeuralFoil made and
 /// how often it failed (the tables interpolate across), and how far the exported QPROP file's
 /// law is from the tables the prediction uses; every station's detail is in the report.
 pub fn polars_brief(p: &Polars) -> Vec<String> {
     let stations = &p.blade.stations;
-    let polars: usize = stations.iter().map(|s| s.polars.len()).sum();
+    let makers = Makers::of(stations.iter().flat_map(|s| &s.polars));
     let unconverged: usize = stations
         .iter()
         .map(|s| s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count())
@@ -419,14 +423,18 @@ pub fn polars_brief(p: &Polars) -> Vec<String> {
         .sum();
     let without = stations.iter().filter(|s| s.polars.is_empty()).count();
     let mut out = vec![format!(
-        "{} stations, {polars} XFOIL polars used as tables{}",
+        "{} stations, {} used as tables{}",
         stations.len(),
+        makers.words(),
         if without > 0 {
             format!(", {without} stations without a polar")
         } else {
             String::new()
         }
     )];
+    if let Some(d) = makers.doubts() {
+        out.push(d);
+    }
     if unconverged + faults > 0 {
         out.push(format!(
             "XFOIL missed some angles in {unconverged} polars and failed {faults} times: the tables interpolate across"

@@ -1,6 +1,6 @@
 //! `propbet run CASE_DIR`: the main job. A case directory's `case.toml` names a scan (or a
 //! prop file), the sections, the operating points, the measurements and the air; the run
-//! chains scan → XFOIL polars at each station's Reynolds number → BEMT sweeps → comparison →
+//! chains scan → XFOIL or NeuralFoil polars at each station's Reynolds number → BEMT sweeps → comparison →
 //! diagnosis in memory (`propbet_pipeline::run::run_case`), each stage the documented command
 //! it is equivalent to, then writes every stage's outputs and one HTML report that holds them.
 

@@ -19,7 +19,7 @@ pub mod atmosphere {
 
 /// Sections and their polars ([`propbet_polar`]).
 pub mod polar {
-    pub use propbet_polar::{Airfoil, Engine, Polar, QpropFit};
+    pub use propbet_polar::{Airfoil, Engine, Makers, Polar, QpropFit};
 }
 
 /// XFOIL's runner ([`xfoil_runner`]): its limits, and the signal handler that stops every XFOIL.

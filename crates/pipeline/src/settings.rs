@@ -444,8 +444,8 @@ pub const ENGINE: Setting<&str> = Setting {
     allowed: Allowed::OneOf(&["xfoil", "neuralfoil", "auto"]),
     help: "Polar engine: `xfoil` (the XFOIL program), `neuralfoil` (NeuralFoil's networks, evaluated in \
            propbet: milliseconds a polar, no XFOIL needed) or `auto` (XFOIL, with the angles it does not \
-           converge and the polars it cannot make from NeuralFoil); every NeuralFoil point is listed with \
-           its confidence in polars.json",
+           converge and the polars it cannot make from NeuralFoil); every point says which engine made it \
+           and NeuralFoil's its confidence (polars.json, the polar table, a run's summary.json and report)",
 };
 
 /// NeuralFoil's network size.

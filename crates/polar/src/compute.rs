@@ -370,7 +370,7 @@ impl PolarEngine {
         match (xfoil, neural) {
             (None, Some(net)) => whole(net),
             (Some(x), Some(net)) => match self.xfoil_polar(x, job) {
-                Ok((p, s)) => Ok((crate::neural::fill(p, &section, net).map_err(kulfan)?, s)),
+                Ok((p, s)) => Ok((crate::neural::fill(p, &section, net), s)),
                 // No polar from XFOIL (a crash, the budget): NeuralFoil's.
                 Err(PolarError::Xfoil { .. } | PolarError::Budget { .. }) => whole(net),
                 Err(e) => Err(e),
@@ -420,6 +420,7 @@ impl PolarEngine {
             hysteresis: out.hysteresis,
             faults: out.faults,
             neuralfoil: Vec::new(),
+            not_filled: None,
         };
         // A hang or a budget run out may be the machine's load, not XFOIL's answer (the limits
         // are wall time): a polar with one is not cached, so the next run asks XFOIL again.

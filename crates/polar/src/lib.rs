@@ -21,7 +21,7 @@ pub mod tabulated;
 pub use airfoil::{naca4, naca4_from_name, Airfoil, AirfoilError, NacaStyle};
 pub use compute::{no_progress, Engine, PolarCache, PolarEngine, PolarError, PolarJob, Progress, Source};
 pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit, DEFAULT_RE_EXP};
-pub use table::{Filled, Polar, PolarPoint};
+pub use table::{Filled, Makers, Polar, PolarPoint};
 pub use tabulated::TabulatedAero;
 pub mod blade;
 pub use blade::{BladePolars, StationPolars};

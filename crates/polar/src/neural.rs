@@ -23,6 +23,34 @@ pub struct Section<'a> {
     pub trip: Option<f64>,
 }
 
+/// Reynolds numbers NeuralFoil is trusted over: its networks learned from XFOIL runs inside
+/// them, and answer outside only by extrapolation.
+pub const TRUSTED_RE: [f64; 2] = [1e3, 1e8];
+/// The largest angle of attack [deg] NeuralFoil is trusted at (beyond stall its training runs
+/// thin out, and XFOIL's own answers there are unreliable).
+pub const TRUSTED_ALPHA_DEG: f64 = 25.0;
+/// The confidence a point outside [`TRUSTED_RE`] or [`TRUSTED_ALPHA_DEG`] gets at most: it is
+/// listed as uncertain whatever the network says.
+pub const OUTSIDE_CONFIDENCE: f64 = 0.1;
+
+/// The thickest trailing edge NeuralFoil takes [chords]: its training sections' Kulfan
+/// trailing-edge thickness is 0.004 ± 0.007 (the scaling file's mean and deviation); a
+/// thicker one is a shape it never saw.
+pub const MAX_TE_THICKNESS: f64 = 0.03;
+/// The largest miss of the Kulfan fit [chords] NeuralFoil is asked about: beyond it the network
+/// would answer for another section (the shared airfoils miss by at most 0.0024).
+pub const MAX_SHAPE_ERROR: f64 = 0.01;
+
+/// The network's confidence, capped outside the trusted ranges.
+fn trusted(confidence: f64, re: f64, alpha_deg: f64) -> f64 {
+    let inside = (TRUSTED_RE[0]..=TRUSTED_RE[1]).contains(&re) && alpha_deg.abs() <= TRUSTED_ALPHA_DEG;
+    if inside {
+        confidence
+    } else {
+        confidence.min(OUTSIDE_CONFIDENCE)
+    }
+}
+
 /// Why NeuralFoil cannot take a section (the airfoil's or the Kulfan fit's words).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{0}")]
@@ -34,6 +62,18 @@ fn points(job: &Section<'_>, net: &Network, alphas_deg: &[f64]) -> Result<Vec<(P
         .check(&job.airfoil.name)
         .map_err(|e| NeuralError(e.to_string()))?;
     let fit = cst::fit(&job.airfoil.points).map_err(|e| NeuralError(e.to_string()))?;
+    if fit.kulfan.te_thickness > MAX_TE_THICKNESS {
+        return Err(NeuralError(format!(
+            "a blunt trailing edge {:.3} chords thick (NeuralFoil learned sections up to {MAX_TE_THICKNESS})",
+            fit.kulfan.te_thickness
+        )));
+    }
+    if fit.max > MAX_SHAPE_ERROR {
+        return Err(NeuralError(format!(
+            "its Kulfan fit misses the contour by up to {:.4} chords (more than {MAX_SHAPE_ERROR}): a shape NeuralFoil's 18 parameters cannot represent",
+            fit.max
+        )));
+    }
     // The network's angle is the fitted section's: its chord line turned by the normalisation.
     let shifted: Vec<f64> = alphas_deg.iter().map(|a| a + fit.normalization.rotation_deg).collect();
     let xtr = job.trip.unwrap_or(1.0);
@@ -63,7 +103,7 @@ fn points(job: &Section<'_>, net: &Network, alphas_deg: &[f64]) -> Result<Vec<(P
                     xtr_top: a.top_xtr,
                     xtr_bottom: a.bot_xtr,
                 },
-                a.confidence,
+                trusted(a.confidence, job.re, alpha_deg),
             )
         })
         .collect())
@@ -88,23 +128,31 @@ pub fn polar(job: &Section<'_>, alphas_deg: &[f64], net: &Network) -> Result<Pol
         unconverged_deg: Vec::new(),
         hysteresis: Vec::new(),
         faults: Vec::new(),
+        not_filled: None,
     })
 }
 
 /// An XFOIL polar with its unconverged angles made by NeuralFoil (at the XFOIL polar's Mach:
 /// the network has none, and a few angles at one Mach are not worth a polar of their own).
-pub fn fill(mut polar: Polar, job: &Section<'_>, net: &Network) -> Result<Polar, NeuralError> {
+/// A section NeuralFoil cannot take leaves the polar as XFOIL made it, saying why in
+/// `not_filled`.
+pub fn fill(mut polar: Polar, job: &Section<'_>, net: &Network) -> Polar {
     if polar.unconverged_deg.is_empty() {
-        return Ok(polar);
+        return polar;
     }
-    let missing = std::mem::take(&mut polar.unconverged_deg);
-    for (p, confidence) in points(job, net, &missing)? {
-        polar.neuralfoil.push(Filled {
-            alpha_deg: p.alpha_deg,
-            confidence,
-        });
-        polar.points.push(p);
+    match points(job, net, &polar.unconverged_deg) {
+        Ok(made) => {
+            polar.unconverged_deg.clear();
+            for (p, confidence) in made {
+                polar.neuralfoil.push(Filled {
+                    alpha_deg: p.alpha_deg,
+                    confidence,
+                });
+                polar.points.push(p);
+            }
+            polar.points.sort_by(|a, b| a.alpha_deg.total_cmp(&b.alpha_deg));
+        }
+        Err(e) => polar.not_filled = Some(format!("NeuralFoil cannot take this section: {}", e.0)),
     }
-    polar.points.sort_by(|a, b| a.alpha_deg.total_cmp(&b.alpha_deg));
-    Ok(polar)
+    polar
 }

@@ -7,7 +7,13 @@ use serde::{Deserialize, Serialize};
 pub use xfoil_runner::{Branches, Fault, XfoilPoint as PolarPoint};
 
 /// Columns of a polar CSV.
-pub const CSV_HEADER: &str = "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom";
+/// Columns of a polar CSV: `engine` is the program that made the point (`xfoil` or
+/// `neuralfoil`), `confidence` NeuralFoil's in its point (empty for XFOIL's).
+pub const CSV_HEADER: &str = "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom,engine,confidence";
+
+/// NeuralFoil's confidence below which a point is said to be uncertain (its training data
+/// are thin there: beyond stall, far outside its Reynolds numbers or shapes).
+pub const LOW_CONFIDENCE: f64 = 0.5;
 
 /// One polar: the points XFOIL converged, ascending in alpha, and what failed.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -35,6 +41,10 @@ pub struct Polar {
     /// XFOIL did not converge), each with the network's confidence; empty: XFOIL made them all.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub neuralfoil: Vec<Filled>,
+    /// Why NeuralFoil could not fill the angles XFOIL left out (`auto` with a section the
+    /// Kulfan fit cannot take): XFOIL's polar is kept with its gaps.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub not_filled: Option<String>,
 }
 
 /// A polar point NeuralFoil made.
@@ -47,6 +57,15 @@ pub struct Filled {
 }
 
 impl Polar {
+    /// NeuralFoil's confidence in the point at `alpha_deg` if NeuralFoil made it (`None`: XFOIL
+    /// did).
+    pub fn neuralfoil_at(&self, alpha_deg: f64) -> Option<f64> {
+        self.neuralfoil
+            .iter()
+            .find(|f| f.alpha_deg == alpha_deg)
+            .map(|f| f.confidence)
+    }
+
     /// The angles with two solutions, in words (`None` without any): each angle with the lift
     /// kept and the other branch's.
     pub fn hysteresis_text(&self) -> Option<String> {
@@ -135,6 +154,7 @@ impl Polar {
             hysteresis: vec![],
             faults: vec![],
             neuralfoil: Vec::new(),
+            not_filled: None,
         }
     }
 
@@ -161,13 +181,97 @@ impl Polar {
     pub fn csv_rows(&self) -> String {
         let mut out = String::new();
         for p in &self.points {
+            let (engine, confidence) = match self.neuralfoil_at(p.alpha_deg) {
+                Some(c) => ("neuralfoil", c.to_string()),
+                None => ("xfoil", String::new()),
+            };
             let _ = writeln!(
                 out,
-                "{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{engine},{confidence}",
                 self.re, self.mach, self.ncrit, p.alpha_deg, p.cl, p.cd, p.cdp, p.cm, p.xtr_top, p.xtr_bottom
             );
         }
         out
+    }
+}
+
+/// Which program made a set of polars: XFOIL, NeuralFoil, or XFOIL with NeuralFoil filling
+/// what it left out (the `auto` engine), and how sure NeuralFoil was.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Makers {
+    /// Polars in all.
+    pub polars: usize,
+    /// Polars NeuralFoil made in whole.
+    pub neuralfoil: usize,
+    /// Polars XFOIL made with some angles from NeuralFoil.
+    pub filled: usize,
+    /// Angles NeuralFoil made in the polars XFOIL made.
+    pub filled_points: usize,
+    /// Points NeuralFoil made in all.
+    pub neuralfoil_points: usize,
+    /// Of them, those below [`LOW_CONFIDENCE`].
+    pub unsure: usize,
+}
+
+impl Makers {
+    /// Counts `polars`.
+    pub fn of<'a>(polars: impl IntoIterator<Item = &'a Polar>) -> Makers {
+        let mut m = Makers::default();
+        for p in polars {
+            m.polars += 1;
+            let made = p.neuralfoil.len();
+            if made == 0 {
+                continue;
+            }
+            if made >= p.points.len() {
+                m.neuralfoil += 1;
+            } else {
+                m.filled += 1;
+                m.filled_points += made;
+            }
+            m.neuralfoil_points += made;
+            m.unsure += p.neuralfoil.iter().filter(|f| f.confidence < LOW_CONFIDENCE).count();
+        }
+        m
+    }
+
+    /// The program that made every polar, or "XFOIL and NeuralFoil".
+    pub fn engine(&self) -> &'static str {
+        match (self.neuralfoil, self.filled) {
+            (0, 0) => "XFOIL",
+            (n, 0) if n == self.polars => "NeuralFoil",
+            _ => "XFOIL and NeuralFoil",
+        }
+    }
+
+    /// "97 XFOIL polars", "97 NeuralFoil polars", or "97 polars: XFOIL's, 31 angles in 12 of
+    /// them and 3 in whole from NeuralFoil".
+    pub fn words(&self) -> String {
+        let n = self.polars;
+        match self.engine() {
+            "XFOIL" => format!("{n} XFOIL polars"),
+            "NeuralFoil" => format!("{n} NeuralFoil polars"),
+            _ => {
+                let mut parts = Vec::new();
+                if self.filled > 0 {
+                    parts.push(format!("{} angles in {} of them", self.filled_points, self.filled));
+                }
+                if self.neuralfoil > 0 {
+                    parts.push(format!("{} in whole", self.neuralfoil));
+                }
+                format!("{n} polars: XFOIL's, {} from NeuralFoil", parts.join(" and "))
+            }
+        }
+    }
+
+    /// How many of NeuralFoil's points it is unsure of (`None`: none).
+    pub fn doubts(&self) -> Option<String> {
+        (self.unsure > 0).then(|| {
+            format!(
+                "NeuralFoil is unsure (confidence below {LOW_CONFIDENCE}) of {} of its {} points",
+                self.unsure, self.neuralfoil_points
+            )
+        })
     }
 }
 
@@ -211,6 +315,7 @@ mod tests {
             hysteresis: vec![],
             faults: vec![],
             neuralfoil: Vec::new(),
+            not_filled: None,
         }
     }
 
@@ -260,5 +365,45 @@ mod tests {
             "{csv}"
         );
         assert_eq!(csv.lines().filter(|l| l.starts_with("100000,")).count(), 5);
+    }
+
+    #[test]
+    fn every_point_says_which_engine_made_it() {
+        let xfoil = polar();
+        let mut filled = polar();
+        filled.neuralfoil.push(Filled {
+            alpha_deg: 4.0,
+            confidence: 0.3,
+        });
+        let mut whole = polar();
+        whole.neuralfoil = whole
+            .points
+            .iter()
+            .map(|p| Filled {
+                alpha_deg: p.alpha_deg,
+                confidence: 0.9,
+            })
+            .collect();
+        let rows = filled.csv_rows();
+        assert!(rows.lines().nth(2).unwrap().ends_with(",neuralfoil,0.3"), "{rows}");
+        assert!(rows.lines().nth(1).unwrap().ends_with(",xfoil,"), "{rows}");
+        assert_eq!(
+            CSV_HEADER.split(',').count(),
+            rows.lines().next().unwrap().split(',').count()
+        );
+
+        assert_eq!(Makers::of([&xfoil, &xfoil]).words(), "2 XFOIL polars");
+        assert_eq!(Makers::of([&whole]).words(), "1 NeuralFoil polars");
+        let m = Makers::of([&xfoil, &filled, &whole]);
+        assert_eq!(m.engine(), "XFOIL and NeuralFoil");
+        assert_eq!(
+            m.words(),
+            "3 polars: XFOIL's, 1 angles in 1 of them and 1 in whole from NeuralFoil"
+        );
+        assert_eq!(
+            m.doubts().unwrap(),
+            "NeuralFoil is unsure (confidence below 0.5) of 1 of its 6 points"
+        );
+        assert_eq!(Makers::of([&xfoil]).doubts(), None);
     }
 }

@@ -148,14 +148,17 @@ fn polars_html(h: &mut String, run: &RunOutcome) {
     match &run.polars {
         Some(p) => {
             let b = &p.blade;
+            let makers = propbet_polar::Makers::of(b.stations.iter().flat_map(|s| &s.polars));
             let _ = writeln!(
                 h,
-                "<p>XFOIL polars covering the Reynolds numbers each station sees from {:.0} to {:.0} rpm and {:.1} to {:.1} m/s (five per decade in Re), used as tables in α and Re; sections: {}. The QPROP columns are the exported prop file's fit (centred on the geometric mean of the Re range), with its fallbacks in the problem column.</p>",
+                "<p>{} covering the Reynolds numbers each station sees from {:.0} to {:.0} rpm and {:.1} to {:.1} m/s (five per decade in Re), used as tables in α and Re; sections: {}. The QPROP columns are the exported prop file's fit (centred on the geometric mean of the Re range), with its fallbacks in the problem column.{}</p>",
+                esc(&makers.words()),
                 b.rpm[0],
                 b.rpm[1],
                 b.v[0],
                 b.v[1],
-                esc(&b.airfoil)
+                esc(&b.airfoil),
+                makers.doubts().map_or(String::new(), |d| format!(" {}.", esc(&d)))
             );
             h.push_str("<table><tr><th>r [mm]</th><th>chord [mm]</th><th>Re range</th><th>Mach</th><th>α range [deg]</th><th>CL0</th><th>CL_a [/rad]</th><th>CLmax</th><th>CD0</th><th>CD2u</th><th class=\"text\">problem</th></tr>\n");
             for s in &b.stations {
@@ -390,6 +393,15 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         .diagnosed
         .as_ref()
         .map(|d| crate::diagnose::diagnosis_json(&d.diagnosis));
+    // Which program made the polars, in counts (each point's own is in the polar table).
+    let polars = plan.polars.as_ref().map(|(p, _)| {
+        let made = run
+            .polars
+            .as_ref()
+            .map(|r| propbet_polar::Makers::of(r.blade.stations.iter().flat_map(|s| &s.polars)));
+        let text = made.map(|m| m.doubts().map_or(m.words(), |d| format!("{}; {d}", m.words())));
+        json!({"engine": p.xfoil.process.engine.name(), "made": made, "text": text})
+    });
     json!({
         "format": "propbet-run-summary-1",
         "case": plan.name,
@@ -399,6 +411,7 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "problems": problems,
         "headline": headline,
         "diagnosis": diagnosis,
+        "polars": polars,
         "qprop_export": match &run.qprop_export {
             Ok(x) => json!({
                 "file": plan.predict.out.as_ref().and_then(|o| o.parent()).map(|d| d.join(propbet_pipeline::export::FILE_NAME).display().to_string()),
@@ -436,7 +449,8 @@ pub fn what_it_does(plan: &RunPlan) -> String {
                 (false, a) => format!("the {} section at every station", a.unwrap_or_default()),
             };
             parts.push(format!(
-                "XFOIL polars (Ncrit {}, {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
+                "{} polars (Ncrit {}, {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
+                engine_words(p.xfoil.process.engine),
                 p.xfoil.ncrit,
                 p.xfoil
                     .trip
@@ -530,6 +544,15 @@ fn station_problems(s: &propbet_polar::blade::StationPolars) -> String {
     station_problem_list(s).join("; ")
 }
 
+/// The program a run's plan makes its polars with.
+fn engine_words(e: propbet_polar::Engine) -> &'static str {
+    match e {
+        propbet_polar::Engine::Xfoil => "XFOIL",
+        propbet_polar::Engine::NeuralFoil => "NeuralFoil",
+        propbet_polar::Engine::Auto => "XFOIL (NeuralFoil where XFOIL fails)",
+    }
+}
+
 /// Everything wrong at a station of the polars, for the table's problem column and the run's
 /// summary: the stage's own note, angles XFOIL did not converge, the QPROP fit's verdicts and
 /// fallbacks, XFOIL's faults (rungs without a polar: the tables interpolate across them).
@@ -556,6 +579,25 @@ fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> 
     }
     if s.polars.iter().any(|p| !p.faults.is_empty()) {
         v.push("XFOIL faults (crash, hang or budget) at some Reynolds numbers".into());
+    }
+    if let Some(why) = s.polars.iter().find_map(|p| p.not_filled.as_ref()) {
+        v.push(format!("{why}: XFOIL's polars kept with their gaps"));
+    }
+    let m = propbet_polar::Makers::of(&s.polars);
+    if m.filled_points > 0 {
+        v.push(format!(
+            "NeuralFoil made {} of the angles of {} polars (where XFOIL did not converge)",
+            m.filled_points,
+            s.polars.len()
+        ));
+    }
+    if m.unsure > 0 {
+        v.push(format!(
+            "NeuralFoil is unsure (confidence below {}) at {} of the angles of {} polars",
+            propbet_polar::table::LOW_CONFIDENCE,
+            m.unsure,
+            s.polars.len()
+        ));
     }
     v
 }
@@ -585,6 +627,7 @@ mod tests {
                 .collect(),
             faults: vec![],
             neuralfoil: Vec::new(),
+            not_filled: None,
         };
         let station = |polars: Vec<Polar>| StationPolars {
             r: 0.1,
@@ -613,5 +656,24 @@ mod tests {
         let grouped = crate::page::group_alike(vec![one[0].clone(), more[0].clone()]);
         assert_eq!(grouped.len(), 1, "{grouped:?}");
         assert!(station_problem_list(&station(vec![polar(vec![], 0)])).is_empty());
+
+        // auto: NeuralFoil's angles and its doubts are listed; a section it could not take too.
+        let mut filled = polar(vec![], 0);
+        filled.neuralfoil = vec![propbet_polar::Filled {
+            alpha_deg: 12.0,
+            confidence: 0.3,
+        }];
+        let mut kept = polar(vec![14.0], 0);
+        kept.not_filled = Some("NeuralFoil cannot take this section: the contour crosses itself".into());
+        assert_eq!(
+            station_problem_list(&station(vec![filled, kept])),
+            vec![
+                "XFOIL did not converge at 1 of the angles of 2 polars".to_string(),
+                "NeuralFoil cannot take this section: the contour crosses itself: XFOIL's polars kept with their gaps"
+                    .to_string(),
+                "NeuralFoil made 1 of the angles of 2 polars (where XFOIL did not converge)".to_string(),
+                "NeuralFoil is unsure (confidence below 0.5) at 1 of the angles of 2 polars".to_string(),
+            ]
+        );
     }
 }
