@@ -678,6 +678,46 @@ fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
         }
         assert!(std::fs::read_to_string(out.join("fit.qprop")).unwrap().lines().count() > 25);
     }
+    // Weights from a folder of the user's: a corrupt or missing file is named, exit 2.
+    let weights = dir.path().join("weights");
+    std::fs::create_dir_all(&weights).unwrap();
+    std::fs::write(weights.join("nn-xlarge.npz"), b"PK\x03\x04 not a zip").unwrap();
+    let stats = "scaled_input_distribution.npz";
+    std::fs::copy(
+        repo().join("crates/neuralfoil/weights").join(stats),
+        weights.join(stats),
+    )
+    .unwrap();
+    let polar = [
+        "polar",
+        "--airfoil",
+        "naca4412",
+        "--re",
+        "1e5",
+        "--engine",
+        "neuralfoil",
+        "--quiet",
+    ];
+    for (what, size) in [("not NeuralFoil's weights", "xlarge"), ("cannot read", "large")] {
+        let o = crate::bin()
+            .args(polar)
+            .args(["--neuralfoil-size", size])
+            .env("PROPBET_NEURALFOIL_WEIGHTS", &weights)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let named = weights.join(if size == "xlarge" {
+            "nn-xlarge.npz"
+        } else {
+            "nn-large.npz"
+        });
+        assert!(
+            stderr(&o).contains(&format!("{}: {what}", named.display())),
+            "{}",
+            stderr(&o)
+        );
+    }
     // One section's polar table says which engine made each point, and how sure NeuralFoil is.
     let o = run_or_hang(
         &[

@@ -26,8 +26,30 @@ pub const SIZES: [&str; 7] = ["xxsmall", "xsmall", "small", "medium", "large", "
 /// The size used when none is asked for (NeuralFoil's own default).
 pub const DEFAULT_SIZE: &str = "xlarge";
 
+/// The environment variable naming a folder of NeuralFoil weights to use instead of the
+/// built-in ones.
+pub const WEIGHTS_ENV: &str = "PROPBET_NEURALFOIL_WEIGHTS";
+
+/// The package's weights, built in (`weights/PROVENANCE.md`).
+const BUILT_IN: [(&str, &[u8]); 7] = [
+    ("xxsmall", include_bytes!("../weights/nn-xxsmall.npz")),
+    ("xsmall", include_bytes!("../weights/nn-xsmall.npz")),
+    ("small", include_bytes!("../weights/nn-small.npz")),
+    ("medium", include_bytes!("../weights/nn-medium.npz")),
+    ("large", include_bytes!("../weights/nn-large.npz")),
+    ("xlarge", include_bytes!("../weights/nn-xlarge.npz")),
+    ("xxlarge", include_bytes!("../weights/nn-xxlarge.npz")),
+];
+/// The inputs' scaling of the training data.
+const STATS: &[u8] = include_bytes!("../weights/scaled_input_distribution.npz");
+
 /// Inputs of the networks.
 const N_INPUTS: usize = 25;
+/// Batches of at least this many columns (cases and their mirror images) are split between
+/// two threads.
+const PARALLEL_COLUMNS: usize = 32;
+/// The outputs used: confidence, CL, CD, CM and the two transition points.
+const N_OUTPUTS: usize = 6;
 
 /// A weights file that cannot be used.
 #[derive(Debug, thiserror::Error)]
@@ -100,10 +122,10 @@ pub struct Aero {
 }
 
 /// One layer: weights (outputs x inputs) and biases.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 struct Layer {
-    weights: nalgebra::DMatrix<f64>,
-    biases: nalgebra::DVector<f64>,
+    weights: nalgebra::DMatrix<f32>,
+    biases: nalgebra::DVector<f32>,
 }
 
 /// One of NeuralFoil's networks with its training inputs' statistics.
@@ -112,9 +134,9 @@ pub struct Network {
     /// Layers in order.
     layers: Vec<Layer>,
     /// Mean of the scaled training inputs.
-    mean: Array1<f64>,
+    mean: nalgebra::DVector<f64>,
     /// Inverse covariance of the scaled training inputs.
-    inv_cov: Array2<f64>,
+    inv_cov: nalgebra::DMatrix<f64>,
 }
 
 fn f64s<D: ndarray::Dimension>(a: ndarray::Array<f32, D>) -> ndarray::Array<f64, D> {
@@ -187,17 +209,23 @@ impl Network {
                 });
             }
             width = w.nrows();
-            let rows: Vec<f64> = w.iter().map(|&v| f64::from(v)).collect();
+            let rows: Vec<f32> = w.iter().copied().collect();
             layers.push(Layer {
                 weights: nalgebra::DMatrix::from_row_slice(w.nrows(), w.ncols(), &rows),
-                biases: nalgebra::DVector::from_iterator(b.len(), b.iter().map(|&v| f64::from(v))),
+                biases: nalgebra::DVector::from_iterator(b.len(), b.iter().copied()),
             });
         }
-        if width < 6 {
+        if width < N_OUTPUTS {
             return Err(WeightsError::Format {
                 name: net_name.into(),
-                reason: format!("the last layer has {width} outputs, fewer than the 6 coefficients"),
+                reason: format!("the last layer has {width} outputs, fewer than the {N_OUTPUTS} coefficients"),
             });
+        }
+        // Only the coefficients are used: the last layer's other rows (the boundary layer's
+        // data along the chord) are not computed.
+        if let Some(last) = layers.last_mut() {
+            last.weights = last.weights.rows(0, N_OUTPUTS).into_owned();
+            last.biases = last.biases.rows(0, N_OUTPUTS).into_owned();
         }
         let mut st = open(stats_name, std::io::Cursor::new(stats))?;
         let mean: Array1<f32> = array(&mut st, stats_name, "mean_inputs_scaled")?;
@@ -210,8 +238,8 @@ impl Network {
         }
         Ok(Network {
             layers,
-            mean: f64s(mean),
-            inv_cov,
+            mean: nalgebra::DVector::from_iterator(N_INPUTS, f64s(mean)),
+            inv_cov: nalgebra::DMatrix::from_fn(N_INPUTS, N_INPUTS, |i, l| inv_cov[[i, l]]),
         })
     }
 
@@ -237,17 +265,37 @@ impl Network {
         )
     }
 
-    /// The network of `size` from the weights shipped with this crate.
+    /// The network of `size`: from the folder `$PROPBET_NEURALFOIL_WEIGHTS` names when it is
+    /// set (the package's files of another version, say), else the weights built into propbet
+    /// (this crate's `weights/`, included at compile time, so a copied binary has them).
     pub fn shipped(size: &str) -> Result<Network, WeightsError> {
-        Network::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("weights"), size)
+        match std::env::var_os(WEIGHTS_ENV) {
+            Some(dir) => Network::load(Path::new(&dir), size),
+            None => Network::built_in(size),
+        }
     }
 
-    /// The raw network on a batch (one column per case): scaled inputs to scaled outputs, each
-    /// case's confidence logit lowered by its inputs' squared Mahalanobis distance over twice the
-    /// input count.
-    fn raw(&self, x: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
+    /// The network of `size` from the weights built into propbet.
+    pub fn built_in(size: &str) -> Result<Network, WeightsError> {
+        let net = BUILT_IN
+            .iter()
+            .find(|(s, _)| *s == size)
+            .ok_or_else(|| WeightsError::Size(size.into()))?;
+        Network::from_bytes(
+            &format!("nn-{size}.npz (built into propbet)"),
+            net.1,
+            "scaled_input_distribution.npz (built into propbet)",
+            STATS,
+        )
+    }
+
+    /// The layers on a block of scaled inputs (one column per case), in single precision as
+    /// the weights are stored: the networks' own precision, twice the speed of double
+    /// (differences from the package's double-precision evaluation are below 1e-5 in CL and
+    /// ln CD: the parity test).
+    fn layers(&self, x: nalgebra::DMatrixView<'_, f64>) -> nalgebra::DMatrix<f32> {
         let last = self.layers.len() - 1;
-        let mut v = x.clone();
+        let mut v: nalgebra::DMatrix<f32> = x.map(|a| a as f32);
         for (k, layer) in self.layers.iter().enumerate() {
             let mut next = &layer.weights * &v;
             for mut col in next.column_iter_mut() {
@@ -255,18 +303,39 @@ impl Network {
             }
             if k != last {
                 // Swish: x sigmoid(x).
-                next.apply(|y| *y /= 1.0 + (-*y).exp());
+                next.apply(|y| *y /= 1.0 + fast_exp(-*y));
             }
             v = next;
         }
-        for (j, col) in x.column_iter().enumerate() {
-            let d: Vec<f64> = col.iter().zip(&self.mean).map(|(a, m)| a - m).collect();
-            let mut m2 = 0.0;
-            for i in 0..N_INPUTS {
-                for l in 0..N_INPUTS {
-                    m2 += d[i] * self.inv_cov[[i, l]] * d[l];
-                }
-            }
+        v
+    }
+
+    /// The raw network on a batch (one column per case): scaled inputs to scaled outputs, each
+    /// case's confidence logit lowered by its inputs' squared Mahalanobis distance over twice the
+    /// input count.
+    fn raw(&self, x: &nalgebra::DMatrix<f64>) -> nalgebra::DMatrix<f64> {
+        let n = x.ncols();
+        // A large batch is split between two threads, half the columns each (as numpy's BLAS
+        // would share the package's products between the cores).
+        let v = if n >= PARALLEL_COLUMNS {
+            let h = n / 2;
+            let (a, b) = rayon::join(|| self.layers(x.columns(0, h)), || self.layers(x.columns(h, n - h)));
+            let mut v = nalgebra::DMatrix::<f32>::zeros(a.nrows(), n);
+            v.columns_mut(0, h).copy_from(&a);
+            v.columns_mut(h, n - h).copy_from(&b);
+            v
+        } else {
+            self.layers(x.columns(0, n))
+        };
+        let mut v: nalgebra::DMatrix<f64> = v.map(f64::from);
+        // Squared Mahalanobis distances d' S^-1 d of every column at once.
+        let mut d = x.clone();
+        for mut col in d.column_iter_mut() {
+            col -= &self.mean;
+        }
+        let sd = &self.inv_cov * &d;
+        for j in 0..x.ncols() {
+            let m2 = d.column(j).dot(&sd.column(j));
             v[(0, j)] -= m2 / (2.0 * N_INPUTS as f64);
         }
         v
@@ -340,6 +409,28 @@ impl Network {
     }
 }
 
+/// e^x in single precision, within 2e-7 relative of `f32::exp` (the test) and branch-free, so
+/// that a layer's activations vectorise (the library's `expf` was a quarter of the time).
+/// Written here because no well-kept crate offers a vectorisable `exp` for `f32` slices: the
+/// classic reduction x = n ln 2 + r, |r| <= ln 2 / 2, e^r by its Taylor polynomial to r^7,
+/// 2^n put into the exponent bits.
+#[inline]
+fn fast_exp(x: f32) -> f32 {
+    // 1.5 2^23: adding it rounds to an integer held in the low bits of the sum's mantissa
+    // (no float-to-integer conversion, which does not vectorise).
+    const SHIFT: f32 = 12_582_912.0;
+    let x = x.clamp(-87.0, 88.0);
+    let t = x * std::f32::consts::LOG2_E + SHIFT;
+    let n = t - SHIFT;
+    // ln 2 in two parts, the first exact in f32, so that r keeps its precision.
+    let r = x - n * 0.693_145_75 - n * 1.428_606_8e-6;
+    let p = 1.0
+        + r * (1.0
+            + r * (0.5
+                + r * (1.0 / 6.0 + r * (1.0 / 24.0 + r * (1.0 / 120.0 + r * (1.0 / 720.0 + r * (1.0 / 5040.0)))))));
+    p * f32::from_bits(t.to_bits().wrapping_sub(SHIFT.to_bits()).wrapping_add(127) << 23)
+}
+
 /// ln of the package's clipping epsilon (10 / the largest f64), which bounds the sigmoid's
 /// argument.
 fn ln_eps() -> f64 {
@@ -353,16 +444,33 @@ mod tests {
     #[test]
     fn every_shipped_size_reads_and_a_bad_file_is_named() {
         for s in SIZES {
-            let n = Network::shipped(s).unwrap();
+            let n = Network::built_in(s).unwrap();
             assert!(n.layers.len() >= 2, "{s}");
+            // The built-in weights are the files in weights/.
+            let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("weights");
+            let from_files = Network::load(&dir, s).unwrap();
+            assert_eq!(from_files.layers, n.layers, "{s}");
         }
+        assert_eq!(BUILT_IN.map(|b| b.0), SIZES);
         let e = Network::load(Path::new("/nowhere"), "xlarge").unwrap_err().to_string();
         assert!(e.contains("/nowhere/nn-xlarge.npz") && e.contains("cannot read"), "{e}");
         let e = Network::from_bytes("x.npz", b"not a zip", "s.npz", b"")
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("x.npz: not NeuralFoil's weights"), "{e}");
-        assert!(matches!(Network::shipped("huge"), Err(WeightsError::Size(_))));
+        assert!(matches!(Network::built_in("huge"), Err(WeightsError::Size(_))));
         assert!((ln_eps() + 707.48).abs() < 0.01);
+    }
+
+    #[test]
+    fn the_fast_exponential_is_the_librarys() {
+        let mut worst = 0.0f32;
+        for i in -87_000..=88_000 {
+            let x = i as f32 / 1000.0;
+            worst = worst.max((fast_exp(x) / x.exp() - 1.0).abs());
+        }
+        assert!(worst < 2e-7, "{worst}");
+        assert_eq!(fast_exp(-200.0), fast_exp(-87.0), "clamped, not a wrapped exponent");
+        assert!(fast_exp(200.0).is_finite());
     }
 }

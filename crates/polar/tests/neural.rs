@@ -54,7 +54,9 @@ fn auto_fills_only_what_xfoil_left_out() {
     let angles: Vec<f64> = filled.neuralfoil.iter().map(|f| f.alpha_deg).collect();
     assert_eq!(angles, [3.0, 9.0], "only the filled angles are NeuralFoil's");
     assert!(filled.points.windows(2).all(|w| w[0].alpha_deg < w[1].alpha_deg));
-    assert!((filled.at_alpha(3.0).unwrap().cl - whole.at_alpha(3.0).unwrap().cl).abs() < 1e-12);
+    // The same point as in the whole polar, to single precision (the network's: another batch
+    // size sums its products in another order).
+    assert!((filled.at_alpha(3.0).unwrap().cl - whole.at_alpha(3.0).unwrap().cl).abs() < 1e-5);
     for e in Engine::ALL {
         assert_eq!(Engine::parse(e.name()), Some(e));
     }
