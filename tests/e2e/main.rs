@@ -216,6 +216,7 @@ mod compare;
 mod diagnose;
 mod docs;
 mod exit_codes;
+mod neuralfoil;
 mod polars;
 mod qprop_real;
 mod run;

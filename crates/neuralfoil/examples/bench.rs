@@ -13,14 +13,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 fn main() {
     let path = std::env::args().nth(1).expect("an airfoil .dat file");
-    let points: Vec<[f64; 2]> = std::fs::read_to_string(&path)
-        .expect("the airfoil file")
-        .lines()
-        .filter_map(|l| {
-            let v: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
-            (v.len() == 2).then(|| [v[0], v[1]])
-        })
-        .collect();
+    let points = cst::selig_points(&std::fs::read_to_string(&path).expect("the airfoil file"));
     let net = Network::shipped(DEFAULT_SIZE).expect("the shipped weights");
     let alphas: Vec<f64> = (-8..=16).map(f64::from).collect();
     let c = Condition {

@@ -96,6 +96,18 @@ fn solve(a: &DMatrix<f64>, b: &DVector<f64>) -> Result<(DVector<f64>, DVector<f6
     Ok((x, r))
 }
 
+/// The coordinates of a Selig `.dat` text as the package reads them: every line of two
+/// numbers, nothing repaired (propbet's airfoil reader repairs what it can; the comparison with
+/// the package must not).
+pub fn selig_points(text: &str) -> Vec<[f64; 2]> {
+    text.lines()
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+            (v.len() == 2).then(|| [v[0], v[1]])
+        })
+        .collect()
+}
+
 /// Fits a section's Kulfan parameters to its coordinates (Selig order: trailing edge, upper
 /// surface, leading edge, lower surface, trailing edge).
 pub fn fit(points: &[[f64; 2]]) -> Result<Fit, FitError> {

@@ -87,16 +87,9 @@ fn the_smallest_network_too() {
     parity("xxsmall");
 }
 
-/// The coordinates of a Selig `.dat` file: every line of two numbers.
+/// The coordinates of a Selig `.dat` file.
 fn coordinates(path: &str) -> Vec<[f64; 2]> {
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .filter_map(|l| {
-            let v: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
-            (v.len() == 2).then(|| [v[0], v[1]])
-        })
-        .collect()
+    propbet_neuralfoil::cst::selig_points(&std::fs::read_to_string(path).unwrap())
 }
 
 /// propbet's Kulfan fit gives the package's parameters on every shipped airfoil, and so its

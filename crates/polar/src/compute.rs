@@ -235,11 +235,21 @@ impl PolarCache {
     }
 }
 
-/// XFOIL plus an optional cache.
+/// The programs an engine runs.
+#[derive(Debug)]
+enum Programs {
+    /// XFOIL alone.
+    Xfoil(Xfoil),
+    /// NeuralFoil's network alone.
+    NeuralFoil(propbet_neuralfoil::Network),
+    /// XFOIL, NeuralFoil filling what it leaves out.
+    Auto(Xfoil, propbet_neuralfoil::Network),
+}
+
+/// XFOIL and/or NeuralFoil, plus an optional cache of XFOIL's polars.
 #[derive(Debug)]
 pub struct PolarEngine {
-    xfoil: Option<Xfoil>,
-    neural: Option<std::sync::Arc<propbet_neuralfoil::Network>>,
+    programs: Programs,
     cache: Option<PolarCache>,
     identity: OnceLock<String>,
     /// The command's budget: (deadline, its length [s]).
@@ -253,8 +263,7 @@ impl PolarEngine {
     /// An engine; `cache` None computes everything afresh.
     pub fn new(xfoil: Xfoil, cache: Option<PolarCache>) -> Self {
         PolarEngine {
-            xfoil: Some(xfoil),
-            neural: None,
+            programs: Programs::Xfoil(xfoil),
             cache,
             identity: OnceLock::new(),
             deadline: None,
@@ -266,8 +275,7 @@ impl PolarEngine {
     /// milliseconds).
     pub fn neuralfoil(net: propbet_neuralfoil::Network) -> Self {
         PolarEngine {
-            xfoil: None,
-            neural: Some(std::sync::Arc::new(net)),
+            programs: Programs::NeuralFoil(net),
             cache: None,
             identity: OnceLock::new(),
             deadline: None,
@@ -276,17 +284,20 @@ impl PolarEngine {
     }
 
     /// This XFOIL engine with NeuralFoil's network filling what XFOIL leaves out (`auto`).
-    pub fn with_neuralfoil(mut self, net: propbet_neuralfoil::Network) -> Self {
-        self.neural = Some(std::sync::Arc::new(net));
-        self
+    pub fn with_neuralfoil(self, net: propbet_neuralfoil::Network) -> Self {
+        let programs = match self.programs {
+            Programs::Xfoil(x) | Programs::Auto(x, _) => Programs::Auto(x, net),
+            Programs::NeuralFoil(_) => Programs::NeuralFoil(net),
+        };
+        PolarEngine { programs, ..self }
     }
 
     /// Which program makes the polars.
     pub fn engine(&self) -> Engine {
-        match (&self.xfoil, &self.neural) {
-            (Some(_), Some(_)) => Engine::Auto,
-            (None, _) => Engine::NeuralFoil,
-            (Some(_), None) => Engine::Xfoil,
+        match self.programs {
+            Programs::Xfoil(_) => Engine::Xfoil,
+            Programs::NeuralFoil(_) => Engine::NeuralFoil,
+            Programs::Auto(..) => Engine::Auto,
         }
     }
 
@@ -312,7 +323,7 @@ impl PolarEngine {
     /// SHA-256 of the XFOIL executable and the script version.
     fn identity(&self) -> &str {
         self.identity.get_or_init(|| {
-            let Some(xfoil) = &self.xfoil else {
+            let (Programs::Xfoil(xfoil) | Programs::Auto(xfoil, _)) = &self.programs else {
                 return String::new();
             };
             let exe = &xfoil.config().executable;
@@ -351,7 +362,6 @@ impl PolarEngine {
     /// One polar: XFOIL's (from the cache when it holds it), NeuralFoil's, or XFOIL's with
     /// NeuralFoil filling its gaps, as the engine is.
     pub fn compute(&self, job: &PolarJob) -> Result<(Polar, Source), PolarError> {
-        let (xfoil, neural) = (&self.xfoil, &self.neural);
         let section = crate::neural::Section {
             airfoil: &job.airfoil,
             re: job.re,
@@ -367,16 +377,15 @@ impl PolarEngine {
                 .map(|p| (p, Source::NeuralFoil))
                 .map_err(kulfan)
         };
-        match (xfoil, neural) {
-            (None, Some(net)) => whole(net),
-            (Some(x), Some(net)) => match self.xfoil_polar(x, job) {
+        match &self.programs {
+            Programs::NeuralFoil(net) => whole(net),
+            Programs::Auto(x, net) => match self.xfoil_polar(x, job) {
                 Ok((p, s)) => Ok((crate::neural::fill(p, &section, net), s)),
                 // No polar from XFOIL (a crash, the budget): NeuralFoil's.
                 Err(PolarError::Xfoil { .. } | PolarError::Budget { .. }) => whole(net),
                 Err(e) => Err(e),
             },
-            (Some(x), None) => self.xfoil_polar(x, job),
-            (None, None) => unreachable!("an engine has XFOIL or NeuralFoil"),
+            Programs::Xfoil(x) => self.xfoil_polar(x, job),
         }
     }
 

@@ -317,13 +317,13 @@ fn cl_limits(
     let all = &centre.points;
     if hi == all.len() - 1 {
         notes.push(format!(
-            "CLmax = {cl_max:.3} is the last converged point (alpha {} deg), not a stall XFOIL resolved",
+            "CLmax = {cl_max:.3} is the last converged point (alpha {} deg), not a stall the polars resolved",
             all[hi].alpha_deg
         ));
     }
     if lo == 0 {
         notes.push(format!(
-            "CLmin = {cl_min:.3} is the first converged point (alpha {} deg), not a stall XFOIL resolved",
+            "CLmin = {cl_min:.3} is the first converged point (alpha {} deg), not a stall the polars resolved",
             all[0].alpha_deg
         ));
     }
@@ -343,7 +343,7 @@ fn fit_verdict(
 ) {
     if grown.tol > LINEAR_RANGE_CL_TOL {
         unfit.push(format!(
-            "XFOIL's lift curve is straight only within {:.2} in cl near the working angle",
+            "the polars' lift curve is straight only within {:.2} in cl near the working angle",
             grown.tol
         ));
     }
@@ -366,12 +366,12 @@ fn fit_verdict(
     }
     if cl_max_error > FIT_CL_TOL {
         unfit.push(format!(
-            "the lift line misses XFOIL by up to {cl_max_error:.3} in cl over the linear range"
+            "the lift line misses the polars by up to {cl_max_error:.3} in cl over the linear range"
         ));
     }
     if cd_max_rel_error > FIT_CD_REL_TOL {
         unfit.push(format!(
-            "the two-parabola drag law misses XFOIL by up to {:.0} % over the linear range",
+            "the two-parabola drag law misses the polars by up to {:.0} % over the linear range",
             cd_max_rel_error * 100.0
         ));
     }
@@ -460,7 +460,7 @@ pub fn fit_qprop(
         let (a, b) = (pts[0], pts[pts.len() - 1]);
         slope_deg = (b.cl - a.cl) / (b.alpha_deg - a.alpha_deg);
         cl0_m = a.cl - slope_deg * a.alpha_deg;
-        unfit.push("XFOIL's lift does not rise with alpha near the working angle; CL_a is the secant across the attached range".into());
+        unfit.push("the polars' lift does not rise with alpha near the working angle; CL_a is the secant across the attached range".into());
     }
     let beta = (1.0 - centre.mach * centre.mach).max(0.1).sqrt();
     let cl_fit = |alpha_deg: f64| cl0_m + slope_deg * alpha_deg;
