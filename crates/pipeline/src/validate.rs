@@ -6,6 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
+
 use propbet_compare::metrics::{
     halves, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift, Regimes, VALIDATION_J_WINDOW,
 };
@@ -182,6 +184,9 @@ pub const DEFAULT_GENERIC_SECTION: &str = "sd7037";
 
 /// Held out: a ladder fitted to each half of the files predicts the other half; "after" is
 /// scored on those predictions only. The CT and CP errors, and each half's ladder.
+/// One half's held-out CT and CP errors and its ladder in words.
+type HeldOutHalf = (Vec<f64>, Vec<f64>, String);
+
 fn held_out(
     model: &Model,
     dspec: &DiagnoseSpec,
@@ -193,29 +198,41 @@ fn held_out(
     let (mut ct1, mut cp1) = (Vec::new(), Vec::new());
     let mut held_out_ladders = [String::new(), String::new()];
     let folds = halves(&measured.files);
-    for k in 0..2 {
-        let (train, test) = (&folds[k], &folds[1 - k]);
-        if train.is_empty() || test.is_empty() {
-            held_out_ladders[k] = "none (a single file: nothing to hold out)".into();
-            continue;
+    // Each half's ladder on its own thread (each spreads its points over the pool too).
+    let halves: Vec<Option<HeldOutHalf>> = (0..2)
+        .into_par_iter()
+        .map(|k| {
+            let (train, test) = (&folds[k], &folds[1 - k]);
+            if train.is_empty() || test.is_empty() {
+                return Ok(None);
+            }
+            let fold_spec = DiagnoseSpec {
+                measured: MeasuredSpec::files(train.clone()),
+                out: dir.join(format!("held_out_{k}")),
+                ..dspec.clone()
+            };
+            let fitted = stages::diagnose(model, &fold_spec)?;
+            let fx = fitted.diagnosis.final_effects();
+            let ladder = ladder_text(&fx);
+            let fold_model_spec = ModelSpec {
+                effects: fx,
+                ..model_spec_all.clone()
+            };
+            let fold_model = Model::from_parts(&fold_model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
+            let predicted = stages::compare(&fold_model, &MeasuredSpec::files(test.clone()))?;
+            let (a, b) = window_errors(&predicted.points, VALIDATION_J_WINDOW);
+            Ok(Some((a, b, ladder)))
+        })
+        .collect::<Result<_>>()?;
+    for (k, half) in halves.into_iter().enumerate() {
+        match half {
+            None => held_out_ladders[k] = "none (a single file: nothing to hold out)".into(),
+            Some((a, b, ladder)) => {
+                ct1.extend(a);
+                cp1.extend(b);
+                held_out_ladders[k] = ladder;
+            }
         }
-        let fold_spec = DiagnoseSpec {
-            measured: MeasuredSpec::files(train.clone()),
-            out: dir.join(format!("held_out_{k}")),
-            ..dspec.clone()
-        };
-        let fitted = stages::diagnose(model, &fold_spec)?;
-        let fx = fitted.diagnosis.final_effects();
-        held_out_ladders[k] = ladder_text(&fx);
-        let fold_model_spec = ModelSpec {
-            effects: fx,
-            ..model_spec_all.clone()
-        };
-        let fold_model = Model::from_parts(&fold_model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
-        let predicted = stages::compare(&fold_model, &MeasuredSpec::files(test.clone()))?;
-        let (a, b) = window_errors(&predicted.points, VALIDATION_J_WINDOW);
-        ct1.extend(a);
-        cp1.extend(b);
     }
     Ok((ct1, cp1, held_out_ladders))
 }
@@ -300,24 +317,15 @@ fn compare_stage(spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord
 /// What the calibration made: the diagnosis (and its spec), the ladder's effects, and the
 /// comparison with them and its model.
 struct Calibration {
-    dspec: DiagnoseSpec,
     diagnosed: Diagnosed,
     effects: Vec<String>,
     compared: Compared,
     model: Model,
 }
 
-/// The diagnosis of the prop's measurements with `model`, and the comparison with its
-/// ladder's effects (as the command line gives them).
-fn calibrate(
-    model_spec: ModelSpec,
-    model: &Model,
-    polars: &Polars,
-    measured: &MeasuredSpec,
-    dir: &Path,
-    records: &mut Vec<StageRecord>,
-) -> Result<Calibration> {
-    let dspec = DiagnoseSpec {
+/// The ladder validate runs on a prop's files: every effect, the defaults of a diagnosis.
+fn ladder_spec(model_spec: &ModelSpec, measured: &MeasuredSpec, dir: &Path) -> DiagnoseSpec {
+    DiagnoseSpec {
         model: model_spec.clone(),
         measured: measured.clone(),
         effects: vec!["all".into()],
@@ -325,11 +333,24 @@ fn calibrate(
         max_steps: crate::settings::MAX_STEPS.default,
         window: VALIDATION_J_WINDOW,
         out: dir.join("diagnose"),
-    };
+    }
+}
+
+/// The diagnosis of the prop's measurements with `model` (`dspec`), and the comparison with
+/// its ladder's effects (as the command line gives them).
+fn calibrate(
+    model_spec: ModelSpec,
+    dspec: &DiagnoseSpec,
+    model: &Model,
+    polars: &Polars,
+    measured: &MeasuredSpec,
+    dir: &Path,
+    records: &mut Vec<StageRecord>,
+) -> Result<Calibration> {
     let diagnosed = timed(
         records,
         StageSpec::Diagnose(dspec.clone()),
-        || stages::diagnose(model, &dspec),
+        || stages::diagnose(model, dspec),
         |_| true,
     )?;
     // Calibrated: the ladder's effects as the command line gives them.
@@ -351,7 +372,6 @@ fn calibrate(
         records,
     )?;
     Ok(Calibration {
-        dspec,
         diagnosed,
         effects,
         compared: calibrated,
@@ -422,15 +442,20 @@ pub fn validate_prop(
         &mut records,
     )?;
     let model_spec_all = model_spec.clone();
+    // The ladder on every file and the held-out ladders on each half run side by side.
+    let dspec = ladder_spec(&model_spec, &measured, &dir);
+    let (calibration, held) = rayon::join(
+        || calibrate(model_spec, &dspec, &model, &polars, &measured, &dir, &mut records),
+        || held_out(&model, &dspec, &model_spec_all, &polars, &measured, &dir),
+    );
     let Calibration {
-        dspec,
         diagnosed,
         effects,
         compared: calibrated,
         model: cal_model,
-    } = calibrate(model_spec, &model, &polars, &measured, &dir, &mut records)?;
+    } = calibration?;
+    let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let (ct1, cp1, held_out_ladders) = held_out(&model, &dspec, &model_spec_all, &polars, &measured, &dir)?;
     let per3 = match &per3_file {
         None => None,
         Some(path) => Some(per3_score(&crate::stages::read_per3(path)?, &compared.points)),
