@@ -448,12 +448,7 @@ pub fn validate_prop(
         || calibrate(model_spec, &dspec, &model, &polars, &measured, &dir, &mut records),
         || held_out(&model, &dspec, &model_spec_all, &polars, &measured, &dir),
     );
-    let Calibration {
-        diagnosed,
-        effects,
-        compared: calibrated,
-        model: cal_model,
-    } = calibration?;
+    let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
     let per3 = match &per3_file {
@@ -473,7 +468,7 @@ pub fn validate_prop(
             after: median_p90(&cp1),
         },
         per3,
-        ladder: ladder_text(&effects),
+        ladder: ladder_text(&cal.effects),
         held_out_ladders,
         twist_gap: if uiuc_geometry && assumed.is_none() {
             twist_gap(&table, &pe0, big_r)
@@ -494,9 +489,9 @@ pub fn validate_prop(
         airfoils,
         polars: (polars, input),
         compared: (compared, model),
-        diagnosed,
-        effects,
-        calibrated: (calibrated, cal_model),
+        diagnosed: cal.diagnosed,
+        effects: cal.effects,
+        calibrated: (cal.compared, cal.model),
         stages: records,
         row,
     })
