@@ -218,6 +218,10 @@ struct CsvRow<'a> {
     zero_thrust_j_change_predicted: Num,
     ladder: &'a str,
     held_out_ladders: String,
+    /// The relative deviation of one repeated point (the diagnosis' repeatability).
+    repeatability: Num,
+    /// Why the prop is an outlier (CT or CP median above 15 %); empty otherwise.
+    outlier_reason: String,
 }
 
 fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> Result<(String, Vec<u8>)> {
@@ -260,6 +264,8 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             zero_thrust_j_change_predicted: Num::from(r.zero_thrust_shift.and_then(|z| z.predicted_change())),
             ladder: &r.ladder,
             held_out_ladders: r.held_out_ladders.join(" / "),
+            repeatability: Num::from(r.repeatability),
+            outlier_reason: propbet_report::validate::outlier_reason(r).unwrap_or_default(),
         })?;
     }
     Ok((

@@ -483,6 +483,7 @@ pub fn validate_prop(
         static_rise: static_rise(&compared.points),
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
         zero_thrust_shift: zero_thrust_shift(&compared.points),
+        repeatability: cal.diagnosed.diagnosis.repeatability.as_ref().map(|r| r.sd),
     };
     Ok(Validated {
         geometry,

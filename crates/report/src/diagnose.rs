@@ -141,6 +141,18 @@ fn nothing_found(d: &Diagnosis) -> String {
             sig(s.p_value)
         ));
     }
+    // Never without a lead: the largest pattern in the errors, as the signatures say it.
+    let largest = d
+        .before
+        .iter()
+        .filter(|s| !s.parts.is_empty())
+        .max_by(|a, b| a.rms.total_cmp(&b.rms));
+    if let Some(s) = largest {
+        text.push_str(&format!(
+            " The largest signature of the errors: {}.",
+            words::part_sentence(s, &s.parts[0].shows)
+        ));
+    }
     text
 }
 

@@ -261,7 +261,7 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             .collect();
         let _ = write!(
             h,
-            "<li>{}: the polars stage's own prop file, QPROP's law fitted to each station's XFOIL polars (to run QPROP on this prediction, take the file above){}",
+            "<li>{}: the polars stage's own prop file, QPROP's law fitted to each station's polars (to run QPROP on this prediction, take the file above){}",
             link(out, &spec.out_prop),
             p.export.as_ref().map_or(String::new(), |e| format!(
                 "; it differs from the tables this report's prediction uses by {:.1} % in CT and {:.1} % in CP (median; {:.1} % and {:.1} % at most)",

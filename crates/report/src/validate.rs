@@ -35,8 +35,51 @@ fn head(apc: bool) -> Vec<&'static str> {
         "APC design − measured twist, r/R 0.6-0.9",
         "ladder (all files)",
         "held-out ladders (each half of the files)",
+        "why an outlier (CT or CP median above 15 %)",
     ]);
     h
+}
+
+/// A prop whose CT or CP median error is above this is an outlier whose row says why.
+pub const OUTLIER: f64 = 0.15;
+
+/// Why a prop's error is far above the rest, from what its data show (None below
+/// [`OUTLIER`]): a blade nobody measured, a measured twist far from APC's design, assumed
+/// sections, repeat runs that disagree, the hover efficiency; always the largest signature
+/// of its errors, so that an outlier is never without a reason.
+pub fn outlier_reason(r: &Row) -> Option<String> {
+    if !(r.ct.before.median > OUTLIER || r.cp.before.median > OUTLIER) {
+        return None;
+    }
+    let mut why = Vec::new();
+    if let Some(a) = &r.assumed_section {
+        why.push(format!("sections assumed ({})", a.split(' ').next().unwrap_or(a)));
+    } else if !r.uiuc_geometry {
+        why.push("APC's design blade: no UIUC geometry to check its twist and chord against".into());
+    } else if r.twist_gap.abs() > 2.0 {
+        why.push(format!(
+            "UIUC's measured twist is {:+.1}° from APC's design (r/R 0.6-0.9)",
+            -r.twist_gap
+        ));
+    }
+    if let Some(sd) = r.repeatability.filter(|sd| *sd > 0.02) {
+        why.push(format!("its repeated points disagree by {:.1} %", 100.0 * sd));
+    }
+    if r.static_fm.abs() > OUTLIER {
+        why.push(format!("static figure of merit {:+.0} %", 100.0 * r.static_fm));
+    }
+    // The regime and coefficient with the largest signed error.
+    let largest = REGIMES
+        .iter()
+        .zip(r.regimes.all())
+        .filter(|(_, g)| g.points > 0)
+        .flat_map(|(name, g)| [("CT", g.ct, *name), ("CP", g.cp, *name)])
+        .filter(|(_, e, _)| e.is_finite())
+        .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+    if let Some((coef, e, regime)) = largest {
+        why.push(format!("largest error {coef} {:+.0} % ({regime})", 100.0 * e));
+    }
+    Some(why.join("; "))
 }
 
 /// The numeric columns of a row, in table order (NaN where missing).
@@ -76,6 +119,7 @@ fn cells(r: &Row, apc: bool) -> Vec<String> {
     });
     v.push(r.ladder.clone());
     v.push(format!("{} / {}", r.held_out_ladders[0], r.held_out_ladders[1]));
+    v.push(outlier_reason(r).unwrap_or_default());
     v
 }
 
@@ -91,8 +135,14 @@ fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
         v.push(pct(quantile(col, 0.5)));
     }
-    // The signed columns (figure of merit, twist) and the ladders have no median.
-    v.extend([String::new(), String::new(), String::new(), String::new()]);
+    // The signed columns (figure of merit, twist), the ladders and the reasons have no median.
+    v.extend([
+        String::new(),
+        String::new(),
+        String::new(),
+        String::new(),
+        String::new(),
+    ]);
     v
 }
 
@@ -104,9 +154,10 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     let mut out: Vec<(Vec<String>, bool)> = rows.iter().map(|r| (cells(r, apc), false)).collect();
     for (prop, why) in skipped {
         let mut v = vec![prop.clone(), family(prop), "0".into()];
-        v.resize(h.len() - 3, "–".into());
+        v.resize(h.len() - 4, "–".into());
         v.push(String::new());
         v.push(format!("not validated: {why}"));
+        v.push(String::new());
         v.push(String::new());
         out.push((v, false));
     }
@@ -218,7 +269,7 @@ const REGIME_INTRO: &str =
 fn intro(model: &str) -> String {
     format!(
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
-         (static points included). Before: the blade + APC sections + XFOIL polars covering each \
+         (static points included). Before: the blade + APC sections + their polars covering each \
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
          measurements) on the same points; after: held out, each half of a prop's files (sorted by \
          RPM, alternately) predicted with the effects the ladder fitted to the other half. The static \
@@ -439,7 +490,32 @@ mod tests {
                 measured: (0.651, 0.615),
                 predicted: Some((0.612, 0.631)),
             }),
+            repeatability: Some(0.004),
         }
+    }
+
+    #[test]
+    fn an_outlier_always_says_why() {
+        assert_eq!(outlier_reason(&row("apce_a", 0.1, false)), None);
+        // Nothing stands out in its data but its errors: the largest of them is the reason.
+        let r = row("apce_b", 0.3, false);
+        assert_eq!(
+            outlier_reason(&r).unwrap(),
+            "largest error CT -30 % (forward, J0/2 to 0.85 J0)"
+        );
+        let mut r = row("apcsf_c", 0.2, false);
+        r.twist_gap = -3.8;
+        r.repeatability = Some(0.031);
+        r.static_fm = 0.24;
+        assert_eq!(
+            outlier_reason(&r).unwrap(),
+            "UIUC's measured twist is +3.8° from APC's design (r/R 0.6-0.9); its repeated points disagree by 3.1 %; \
+             static figure of merit +24 %; largest error CT -20 % (forward, J0/2 to 0.85 J0)"
+        );
+        r.uiuc_geometry = false;
+        assert!(outlier_reason(&r)
+            .unwrap()
+            .starts_with("APC's design blade: no UIUC geometry"));
     }
 
     #[test]

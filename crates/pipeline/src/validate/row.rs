@@ -64,6 +64,9 @@ pub struct Row {
     /// measured one down where the sections' Reynolds numbers move the model's up; None with
     /// fewer than two sweeps reaching zero thrust.
     pub zero_thrust_shift: Option<ZeroThrustShift>,
+    /// How well the prop's measurements repeat (the relative deviation of one point,
+    /// [`propbet_diagnose::Repeatability`]): None without repeated operating points.
+    pub repeatability: Option<f64>,
 }
 
 /// The CT error's (predicted / measured − 1) change with RPM at fixed J over the J sweeps'
