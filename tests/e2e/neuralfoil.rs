@@ -96,19 +96,7 @@ fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
         );
     }
     // One section's polar table says which engine made each point, and how sure NeuralFoil is.
-    let o = run_or_hang(
-        &[
-            "polar",
-            "--airfoil",
-            "naca4412",
-            "--re",
-            "1e5",
-            "--engine",
-            "neuralfoil",
-            "--quiet",
-        ],
-        dir.path(),
-    );
+    let o = run_or_hang(&polar, dir.path());
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let csv = String::from_utf8(o.stdout).unwrap();
     let mut lines = csv.lines();

@@ -13,6 +13,16 @@ fn job() -> PolarJob {
     j
 }
 
+/// The job's section and condition, as NeuralFoil takes them.
+fn section_of(j: &PolarJob) -> neural::Section<'_> {
+    neural::Section {
+        airfoil: &j.airfoil,
+        re: j.re,
+        ncrit: j.ncrit,
+        trip: j.trip,
+    }
+}
+
 #[test]
 fn a_neuralfoil_polar_has_every_angle_and_says_so() {
     let engine = PolarEngine::neuralfoil(Network::shipped(DEFAULT_SIZE).unwrap());
@@ -36,12 +46,7 @@ fn a_neuralfoil_polar_has_every_angle_and_says_so() {
 fn auto_fills_only_what_xfoil_left_out() {
     let net = Network::shipped(DEFAULT_SIZE).unwrap();
     let j = job();
-    let section = neural::Section {
-        airfoil: &j.airfoil,
-        re: j.re,
-        ncrit: j.ncrit,
-        trip: j.trip,
-    };
+    let section = section_of(&j);
     let whole = neural::polar(&section, &j.alphas_deg, &net).unwrap();
     // An XFOIL polar with two angles unconverged.
     let mut xfoil = whole.clone();
@@ -74,12 +79,7 @@ fn auto_keeps_xfoils_polar_where_neuralfoil_cannot_take_the_section() {
             p[1] = -p[1] - 0.05;
         }
     }
-    let section = neural::Section {
-        airfoil: &j.airfoil,
-        re: j.re,
-        ncrit: j.ncrit,
-        trip: j.trip,
-    };
+    let section = section_of(&j);
     let err = neural::polar(&section, &j.alphas_deg, &net).unwrap_err();
     assert!(err.0.contains("crosses itself"), "{err}");
     let xfoil = propbet_polar::Polar {
