@@ -110,3 +110,52 @@ fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
         assert!((0.0..=1.0).contains(&c), "{row}");
     }
 }
+
+/// `auto` on a machine without XFOIL (none given, none on PATH) makes NeuralFoil's polars and
+/// says so; an XFOIL given that is not there stays an error.
+#[test]
+fn auto_without_xfoil_is_neuralfoil_and_a_missing_given_xfoil_an_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let blade = repo().join("benchsuite/blade25.qprop");
+    let polars = dir.path().join("polars.json");
+    let args = [
+        "polars",
+        "--geometry",
+        blade.to_str().unwrap(),
+        "--airfoil",
+        "naca4412",
+        "--rpm",
+        "6000",
+        "--engine",
+        "auto",
+        "--quiet",
+        "--out-prop",
+        "fit.qprop",
+        "--out-polars",
+        polars.to_str().unwrap(),
+    ];
+    let o = bin()
+        .args(args)
+        .env("PATH", dir.path())
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&polars).unwrap()).unwrap();
+    for s in j["stations"].as_array().unwrap() {
+        for p in s["polars"].as_array().unwrap() {
+            assert_eq!(
+                p["neuralfoil"].as_array().unwrap().len(),
+                p["points"].as_array().unwrap().len()
+            );
+        }
+    }
+    let o = bin()
+        .args(args)
+        .args(["--xfoil", "/nonexistent/xfoil"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("/nonexistent/xfoil"), "{}", stderr(&o));
+}

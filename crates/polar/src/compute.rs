@@ -381,8 +381,9 @@ impl PolarEngine {
             Programs::NeuralFoil(net) => whole(net),
             Programs::Auto(x, net) => match self.xfoil_polar(x, job) {
                 Ok((p, s)) => Ok((crate::neural::fill(p, &section, net), s)),
-                // No polar from XFOIL (a crash, the budget): NeuralFoil's.
-                Err(PolarError::Xfoil { .. } | PolarError::Budget { .. }) => whole(net),
+                // No polar from XFOIL (a crash, the budget): NeuralFoil's, or XFOIL's failure
+                // where NeuralFoil cannot take the section either.
+                Err(e @ (PolarError::Xfoil { .. } | PolarError::Budget { .. })) => whole(net).or(Err(e)),
                 Err(e) => Err(e),
             },
             Programs::Xfoil(x) => self.xfoil_polar(x, job),

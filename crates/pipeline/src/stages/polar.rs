@@ -55,7 +55,13 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
     if p.engine == Engine::NeuralFoil {
         return Ok(PolarEngine::neuralfoil(network()?));
     }
-    let exe = xfoil_runner::find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref())?;
+    let exe = match xfoil_runner::find_xfoil(p.xfoil.as_deref(), std::env::var_os("PATH").as_deref()) {
+        Ok(exe) => exe,
+        // `auto` on a machine without XFOIL (none given, none on PATH): NeuralFoil's polars,
+        // which every output then names as such.
+        Err(_) if p.engine == Engine::Auto && p.xfoil.is_none() => return Ok(PolarEngine::neuralfoil(network()?)),
+        Err(e) => return Err(e.into()),
+    };
     let xfoil = xfoil_runner::Xfoil::new(xfoil_runner::XfoilConfig::new(exe))?;
     let cache = if p.no_cache {
         None
