@@ -1,6 +1,8 @@
 //! The NeuralFoil engine from the command line: polars without XFOIL, `auto` with an XFOIL
 //! that crashes, the engine and confidence of every point, weights that cannot be used.
 
+use std::path::Path;
+
 use super::polars::crashing_xfoil;
 use super::{bin, repo, run_or_hang, stderr};
 
@@ -11,32 +13,12 @@ use super::{bin, repo, run_or_hang, stderr};
 fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
     let dir = tempfile::tempdir().unwrap();
     let fake = crashing_xfoil(dir.path());
-    let blade = repo().join("benchsuite/blade25.qprop");
     for engine in ["neuralfoil", "auto"] {
         let out = dir.path().join(engine);
         std::fs::create_dir_all(&out).unwrap();
-        let o = run_or_hang(
-            &[
-                "polars",
-                "--geometry",
-                blade.to_str().unwrap(),
-                "--airfoil",
-                "naca4412",
-                "--rpm",
-                "6000",
-                "--engine",
-                engine,
-                "--no-cache",
-                "--quiet",
-                "--xfoil",
-                fake.to_str().unwrap(),
-                "--out-prop",
-                out.join("fit.qprop").to_str().unwrap(),
-                "--out-polars",
-                out.join("polars.json").to_str().unwrap(),
-            ],
-            dir.path(),
-        );
+        let mut args = blade_polars(engine, &out);
+        args.extend(["--no-cache", "--xfoil", fake.to_str().unwrap()].map(String::from));
+        let o = run_or_hang(&args.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
         assert!(matches!(o.status.code(), Some(0 | 1)), "{engine}: {}", stderr(&o));
         let j: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("polars.json")).unwrap()).unwrap();
@@ -116,31 +98,15 @@ fn the_neuralfoil_engine_needs_no_xfoil_and_auto_falls_back_to_it() {
 #[test]
 fn auto_without_xfoil_is_neuralfoil_and_a_missing_given_xfoil_an_error() {
     let dir = tempfile::tempdir().unwrap();
-    let blade = repo().join("benchsuite/blade25.qprop");
-    let polars = dir.path().join("polars.json");
-    let args = [
-        "polars",
-        "--geometry",
-        blade.to_str().unwrap(),
-        "--airfoil",
-        "naca4412",
-        "--rpm",
-        "6000",
-        "--engine",
-        "auto",
-        "--quiet",
-        "--out-prop",
-        "fit.qprop",
-        "--out-polars",
-        polars.to_str().unwrap(),
-    ];
+    let args = blade_polars("auto", dir.path());
     let o = bin()
-        .args(args)
+        .args(&args)
         .env("PATH", dir.path())
         .current_dir(dir.path())
         .output()
         .unwrap();
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let polars = dir.path().join("polars.json");
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&polars).unwrap()).unwrap();
     for s in j["stations"].as_array().unwrap() {
         for p in s["polars"].as_array().unwrap() {
@@ -151,11 +117,29 @@ fn auto_without_xfoil_is_neuralfoil_and_a_missing_given_xfoil_an_error() {
         }
     }
     let o = bin()
-        .args(args)
+        .args(&args)
         .args(["--xfoil", "/nonexistent/xfoil"])
         .current_dir(dir.path())
         .output()
         .unwrap();
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("/nonexistent/xfoil"), "{}", stderr(&o));
+}
+
+/// `propbet polars` of the 25-station benchmark blade (NACA 4412, 6000 rpm static) with
+/// `engine`, writing `fit.qprop` and `polars.json` into `out`.
+fn blade_polars(engine: &str, out: &Path) -> Vec<String> {
+    let blade = repo().join("benchsuite/blade25.qprop");
+    let path = |f: &str| out.join(f).to_str().unwrap().to_string();
+    let mut v: Vec<String> = ["polars", "--geometry", blade.to_str().unwrap(), "--airfoil", "naca4412"]
+        .map(String::from)
+        .to_vec();
+    v.extend(["--rpm", "6000", "--engine", engine, "--quiet"].map(String::from));
+    v.extend([
+        "--out-prop".to_string(),
+        path("fit.qprop"),
+        "--out-polars".into(),
+        path("polars.json"),
+    ]);
+    v
 }
