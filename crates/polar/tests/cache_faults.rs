@@ -1,5 +1,6 @@
 //! The polar cache and XFOIL's faults, with a fake `xfoil` (`xfoil_runner::fake`): a polar whose XFOIL hung is not cached, since a hang may be
-//! the machine's load rather than XFOIL's answer; a polar without one is.
+//! the machine's load rather than XFOIL's answer; a polar without one is; `auto` where XFOIL
+//! gives no polar.
 
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -55,4 +56,26 @@ fn polars_not_started_within_the_commands_budget_are_errors() {
     std::thread::sleep(Duration::from_millis(10));
     let err = e.compute(&job()).unwrap_err().to_string();
     assert!(err.contains("Re 100000") && err.contains("XFOIL time budget"), "{err}");
+}
+
+#[test]
+fn auto_answers_with_neuralfoil_where_xfoil_gave_nothing_and_with_xfoils_error_where_neither_can() {
+    let dir = tempfile::tempdir().unwrap();
+    let net = propbet_neuralfoil::Network::shipped(propbet_neuralfoil::DEFAULT_SIZE).unwrap();
+    let e = engine(fake(dir.path(), ""), &dir.path().join("cache"))
+        .with_neuralfoil(net)
+        .with_budget(0.001);
+    std::thread::sleep(Duration::from_millis(10));
+    let (p, source) = e.compute(&job()).unwrap();
+    assert_eq!(source, Source::NeuralFoil);
+    assert_eq!(p.neuralfoil.len(), p.points.len());
+    // A trailing edge 4 % of the chord thick: XFOIL takes it, NeuralFoil does not, and the
+    // budget's error stands.
+    let mut blunt = job();
+    let n = blunt.airfoil.points.len();
+    for (i, q) in blunt.airfoil.points.iter_mut().enumerate() {
+        q[1] += if i < n / 2 { 0.02 } else { -0.02 } * q[0];
+    }
+    let err = e.compute(&blunt).unwrap_err().to_string();
+    assert!(err.contains("XFOIL time budget"), "{err}");
 }
