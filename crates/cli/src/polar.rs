@@ -407,9 +407,9 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
 }
 
 /// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL or
-/// NeuralFoil made and
-/// how often it failed (the tables interpolate across), and how far the exported QPROP file's
-/// law is from the tables the prediction uses; every station's detail is in the report.
+/// NeuralFoil made and how often XFOIL failed (the tables interpolate across), and how far the
+/// exported QPROP file's law is from the tables the prediction uses; every station's detail is
+/// in the report.
 pub fn polars_brief(p: &Polars) -> Vec<String> {
     let stations = &p.blade.stations;
     let makers = Makers::of(stations.iter().flat_map(|s| &s.polars));

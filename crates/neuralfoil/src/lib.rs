@@ -17,7 +17,6 @@ use std::path::Path;
 pub mod cst;
 
 use ndarray::{Array1, Array2};
-
 use ndarray_npy::NpzReader;
 
 /// The network sizes shipped (NeuralFoil's names; `xxxlarge` is not copied).

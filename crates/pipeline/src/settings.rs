@@ -519,6 +519,9 @@ mod tests {
             assert!(s.names().contains(&s.default), "{}", s.flag);
         }
         assert!(ROTATION.names().contains(&ROTATION.default.name()));
+        let engines: Vec<&str> = propbet_polar::Engine::ALL.iter().map(|e| e.name()).collect();
+        assert_eq!(ENGINE.names(), engines.as_slice(), "the polar engines, by their names");
+        assert_eq!(ENGINE.default, propbet_polar::Engine::default().name());
         TRIP.check(TRIP.default).unwrap();
         let all = all();
         for a in &all {

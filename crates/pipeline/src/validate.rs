@@ -182,11 +182,11 @@ impl Sections {
 /// low-Re sections on the two shared props of other makers (docs/studies/other-makers.md).
 pub const DEFAULT_GENERIC_SECTION: &str = "sd7037";
 
-/// Held out: a ladder fitted to each half of the files predicts the other half; "after" is
-/// scored on those predictions only. The CT and CP errors, and each half's ladder.
 /// One half's held-out CT and CP errors and its ladder in words.
 type HeldOutHalf = (Vec<f64>, Vec<f64>, String);
 
+/// Held out: a ladder fitted to each half of the files predicts the other half; "after" is
+/// scored on those predictions only. The CT and CP errors, and each half's ladder.
 fn held_out(
     model: &Model,
     dspec: &DiagnoseSpec,
@@ -314,8 +314,8 @@ fn compare_stage(spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord
     )
 }
 
-/// What the calibration made: the diagnosis (and its spec), the ladder's effects, and the
-/// comparison with them and its model.
+/// What the calibration made: the diagnosis, the ladder's effects, and the comparison with
+/// them and its model.
 struct Calibration {
     diagnosed: Diagnosed,
     effects: Vec<String>,

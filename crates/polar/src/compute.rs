@@ -18,6 +18,7 @@ use thiserror::Error;
 use xfoil_runner::{SweepRequest, Xfoil, XfoilError, DEFAULT_MAX_ITER, DEFAULT_PANELS};
 
 use crate::airfoil::{Airfoil, AirfoilError};
+pub use crate::engine::Engine;
 use crate::table::Polar;
 
 /// Bumped whenever the XFOIL script or the meaning of a cached polar changes.
@@ -134,38 +135,6 @@ pub enum Source {
     NeuralFoil,
 }
 
-/// Which program makes the polars.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Engine {
-    /// XFOIL.
-    #[default]
-    Xfoil,
-    /// NeuralFoil's networks.
-    NeuralFoil,
-    /// XFOIL, with what it leaves out (unconverged angles, polars it could not make) from
-    /// NeuralFoil.
-    Auto,
-}
-
-impl Engine {
-    /// Every engine.
-    pub const ALL: [Engine; 3] = [Engine::Xfoil, Engine::NeuralFoil, Engine::Auto];
-
-    /// The name the command line and a case use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Engine::Xfoil => "xfoil",
-            Engine::NeuralFoil => "neuralfoil",
-            Engine::Auto => "auto",
-        }
-    }
-
-    /// The engine of a name.
-    pub fn parse(name: &str) -> Option<Engine> {
-        Engine::ALL.into_iter().find(|e| e.name() == name)
-    }
-}
-
 #[derive(Serialize, Deserialize)]
 struct Entry {
     key: String,
@@ -260,10 +229,9 @@ pub struct PolarEngine {
 }
 
 impl PolarEngine {
-    /// An engine; `cache` None computes everything afresh.
-    pub fn new(xfoil: Xfoil, cache: Option<PolarCache>) -> Self {
+    fn of(programs: Programs, cache: Option<PolarCache>) -> Self {
         PolarEngine {
-            programs: Programs::Xfoil(xfoil),
+            programs,
             cache,
             identity: OnceLock::new(),
             deadline: None,
@@ -271,16 +239,15 @@ impl PolarEngine {
         }
     }
 
+    /// An engine; `cache` None computes everything afresh.
+    pub fn new(xfoil: Xfoil, cache: Option<PolarCache>) -> Self {
+        PolarEngine::of(Programs::Xfoil(xfoil), cache)
+    }
+
     /// An engine of NeuralFoil's network alone (no XFOIL, no cache: a polar takes
     /// milliseconds).
     pub fn neuralfoil(net: propbet_neuralfoil::Network) -> Self {
-        PolarEngine {
-            programs: Programs::NeuralFoil(net),
-            cache: None,
-            identity: OnceLock::new(),
-            deadline: None,
-            cache_error: std::sync::Mutex::new(None),
-        }
+        PolarEngine::of(Programs::NeuralFoil(net), None)
     }
 
     /// This XFOIL engine with NeuralFoil's network filling what XFOIL leaves out (`auto`).

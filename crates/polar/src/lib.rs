@@ -13,6 +13,7 @@
 
 pub mod airfoil;
 pub mod compute;
+pub mod engine;
 pub mod neural;
 pub mod reduce;
 pub mod table;

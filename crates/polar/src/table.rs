@@ -4,9 +4,10 @@
 use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
+
+use crate::engine::Engine;
 pub use xfoil_runner::{Branches, Fault, XfoilPoint as PolarPoint};
 
-/// Columns of a polar CSV.
 /// Columns of a polar CSV: `engine` is the program that made the point (`xfoil` or
 /// `neuralfoil`), `confidence` NeuralFoil's in its point (empty for XFOIL's).
 pub const CSV_HEADER: &str = "re,mach,ncrit,alpha_deg,cl,cd,cdp,cm,xtr_top,xtr_bottom,engine,confidence";
@@ -235,12 +236,12 @@ impl Makers {
         m
     }
 
-    /// The program that made every polar, or "XFOIL and NeuralFoil".
-    pub fn engine(&self) -> &'static str {
+    /// The engine that made these polars as they are: XFOIL, NeuralFoil, or both (`Auto`).
+    pub fn engine(&self) -> Engine {
         match (self.neuralfoil, self.filled) {
-            (0, 0) => "XFOIL",
-            (n, 0) if n == self.polars => "NeuralFoil",
-            _ => "XFOIL and NeuralFoil",
+            (0, 0) => Engine::Xfoil,
+            (n, 0) if n == self.polars => Engine::NeuralFoil,
+            _ => Engine::Auto,
         }
     }
 
@@ -249,9 +250,9 @@ impl Makers {
     pub fn words(&self) -> String {
         let n = self.polars;
         match self.engine() {
-            "XFOIL" => format!("{n} XFOIL polars"),
-            "NeuralFoil" => format!("{n} NeuralFoil polars"),
-            _ => {
+            Engine::Xfoil => format!("{n} XFOIL polars"),
+            Engine::NeuralFoil => format!("{n} NeuralFoil polars"),
+            Engine::Auto => {
                 let mut parts = Vec::new();
                 if self.filled > 0 {
                     parts.push(format!("{} angles in {} of them", self.filled_points, self.filled));
@@ -395,7 +396,7 @@ mod tests {
         assert_eq!(Makers::of([&xfoil, &xfoil]).words(), "2 XFOIL polars");
         assert_eq!(Makers::of([&whole]).words(), "1 NeuralFoil polars");
         let m = Makers::of([&xfoil, &filled, &whole]);
-        assert_eq!(m.engine(), "XFOIL and NeuralFoil");
+        assert_eq!(m.engine(), Engine::Auto);
         assert_eq!(
             m.words(),
             "3 polars: XFOIL's, 1 angles in 1 of them and 1 in whole from NeuralFoil"
