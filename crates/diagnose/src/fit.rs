@@ -1,14 +1,15 @@
 //! Bounded Levenberg-Marquardt fit of effect parameters to the residual rows.
 //!
 //! Parameters are scaled by each one's typical change ([`propbet_effects::Param::scale`]); a
-//! step that leaves the bounds is projected back onto them; the Jacobian is a forward
-//! difference of 1 % of the scale (the solver converges to 1e-6 in the wake angle, far below
-//! that). Bounded least-squares crates exist (`rmpfit`, a port of MINPACK's MPFIT with box
-//! constraints; `ganesh`); this one is kept because it is tailored to the diagnosis: scaled
-//! parameters, a stop on the relative fall of the SSE at the solver's accuracy, and the
-//! Jacobian reused for the covariance and the folds' Gauss-Newton refits. nalgebra does the
-//! linear algebra. The iteration ([`levenberg_marquardt`]) works on any residual function and
-//! says why it stopped ([`Stop`]).
+//! parameter on a bound that the descent pushes outwards is held there while the others step
+//! (an active set), and a step that leaves the bounds is projected back onto them; the
+//! Jacobian is a forward difference of 1 % of the scale (the solver converges to 1e-6 in the
+//! wake angle, far below that). Bounded least-squares crates exist (`rmpfit`, a port of
+//! MINPACK's MPFIT with box constraints; `ganesh`); this one is kept because it is tailored to
+//! the diagnosis: scaled parameters, a stop on the relative fall of the SSE at the solver's
+//! accuracy, and the Jacobian reused for the covariance and the folds' Gauss-Newton refits.
+//! nalgebra does the linear algebra. The iteration ([`levenberg_marquardt`]) works on any
+//! residual function and says why it stopped ([`Stop`]).
 //!
 //! Confidence intervals are 1.96 standard deviations from the covariance
 //! s^2 (J^T J)^-1 with s^2 = SSE/(rows - parameters), computed by SVD so that a parameter the
@@ -81,7 +82,8 @@ pub struct LmResult {
 }
 
 /// Bounded Levenberg-Marquardt on `residuals(p)`, from `start` (clamped into the bounds), in
-/// coordinates scaled by `scale`; a step leaving the box [`lo`, `hi`] is projected onto it.
+/// coordinates scaled by `scale`; a parameter on a bound the descent pushes against is held
+/// there, and a step leaving the box [`lo`, `hi`] is projected onto it.
 /// The Jacobian is a forward difference of 1 % of each scale (backward at an upper bound).
 pub fn levenberg_marquardt<E>(
     mut residuals: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
@@ -123,12 +125,25 @@ pub fn levenberg_marquardt<E>(
         let jx = DMatrix::from_fn(jac.nrows(), k, |i, c| jac[(i, c)] * scale[c]);
         let a = jx.transpose() * &jx;
         let g = jx.transpose() * DVector::from_column_slice(&r);
+        // A parameter on a bound that the descent pushes outwards is held there and the step
+        // solved for the others (an active set): projecting the full step instead leaves the
+        // others with a step meant for a point outside the box, and the damping then creeps.
+        let held: Vec<bool> = (0..k)
+            .map(|c| (p[c] <= lo[c] && g[c] > 0.0) || (p[c] >= hi[c] && g[c] < 0.0))
+            .collect();
+        let mut g = g;
         let mut accepted = None;
         let mut projected = false;
         for _try in 0..10 {
             let mut m = a.clone();
             for d in 0..k {
                 m[(d, d)] += lambda * a[(d, d)].max(1e-12);
+            }
+            for c in (0..k).filter(|&c| held[c]) {
+                m.row_mut(c).fill(0.0);
+                m.column_mut(c).fill(0.0);
+                m[(c, c)] = 1.0;
+                g[c] = 0.0;
             }
             let Some(dx) = m
                 .clone()
@@ -458,6 +473,26 @@ mod tests {
             r.stop
         );
         assert!(r.sse > 1e-4);
+    }
+
+    #[test]
+    fn a_parameter_held_on_its_bound_lets_the_others_converge() {
+        // y = a + b x over x in [10, 11], whose free fit wants a < 0: with a >= 0 the answer is
+        // a = 0, b = sum(x y) / sum(x^2). a and b are nearly collinear here: a step projected
+        // back onto the box creeps (the iteration limit), one with a held on its bound does not.
+        let x: Vec<f64> = (0..11).map(|i| 10.0 + 0.1 * i as f64).collect();
+        let y: Vec<f64> = x.iter().map(|x| -3.0 + 1.5 * x + 0.01 * (7.0 * x).sin()).collect();
+        let mut calls = 0;
+        let line = |p: &[f64]| {
+            calls += 1;
+            Ok::<_, ()>(x.iter().zip(&y).map(|(x, y)| p[0] + p[1] * x - y).collect::<Vec<_>>())
+        };
+        let r = levenberg_marquardt(line, &[1.0, 1.0], &[0.0, -10.0], &[10.0, 10.0], &[1.0, 0.1]).unwrap();
+        let b = x.iter().zip(&y).map(|(x, y)| x * y).sum::<f64>() / x.iter().map(|x| x * x).sum::<f64>();
+        assert_eq!(r.p[0], 0.0, "{:?}", r.p);
+        assert!((r.p[1] - b).abs() < 1e-6 * b, "{:?} against b = {b}", r.p);
+        assert_ne!(r.stop, Stop::IterationLimit);
+        assert!(calls < 60, "{calls} evaluations");
     }
 
     /// A truth a hair inside the box (less than a thousandth of the range from the bound) is
