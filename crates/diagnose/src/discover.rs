@@ -58,6 +58,10 @@ pub struct Options {
     pub max_steps: usize,
     /// Seed of the fold assignment.
     pub seed: u64,
+    /// Whether the residuals' signatures before and after the ladder are found (every
+    /// candidate probed on both models): a diagnosis whose ladder alone is wanted (validate's
+    /// held-out halves) skips them.
+    pub signatures: bool,
 }
 
 impl Default for Options {
@@ -67,6 +71,7 @@ impl Default for Options {
             alpha: 0.01,
             max_steps: 3,
             seed: 7,
+            signatures: true,
         }
     }
 }
@@ -154,9 +159,9 @@ pub struct Diagnosis {
     pub ranking: Vec<Scored>,
     /// The ladder, baseline first.
     pub ladder: Vec<Rung>,
-    /// Where the baseline fails, in words.
+    /// Where the baseline fails, in words (none without [`Options::signatures`]).
     pub before: Vec<Signature>,
-    /// What is left after the ladder.
+    /// What is left after the ladder (none without [`Options::signatures`]).
     pub after: Vec<Signature>,
     /// True when at least one effect is significant.
     pub found: bool,
@@ -566,17 +571,22 @@ pub fn diagnose(
     let final_residuals = current.fit.residuals.clone();
     // The candidates' responses on the baseline, and on the final model where the ladder
     // added something (the same ones otherwise).
-    let first = responses(model, data, &Stack::baseline(), &r0, candidates);
-    let last = if current.fit.stack.active.is_empty() {
-        first.clone()
+    let (before, after) = if opts.signatures {
+        let first = responses(model, data, &Stack::baseline(), &r0, candidates);
+        let last = if current.fit.stack.active.is_empty() {
+            first.clone()
+        } else {
+            responses(model, data, &current.fit.stack, &final_residuals, candidates)
+        };
+        (signatures(data, &r0, &first), signatures(data, &final_residuals, &last))
     } else {
-        responses(model, data, &current.fit.stack, &final_residuals, candidates)
+        (Vec::new(), Vec::new())
     };
     Ok(Diagnosis {
         rows,
         points: data.obs.len(),
-        before: signatures(data, &r0, &first),
-        after: signatures(data, &final_residuals, &last),
+        before,
+        after,
         found: ladder.len() > 1,
         noise_estimate: rms(&final_residuals),
         repeatability,

@@ -211,7 +211,7 @@ fn held_out(
                 out: dir.join(format!("held_out_{k}")),
                 ..dspec.clone()
             };
-            let fitted = stages::diagnose(model, &fold_spec)?;
+            let fitted = stages::diagnose_with(model, &fold_spec, false)?;
             let fx = fitted.diagnosis.final_effects();
             let ladder = ladder_text(&fx);
             let fold_model_spec = ModelSpec {

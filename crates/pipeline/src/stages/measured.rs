@@ -145,6 +145,12 @@ pub struct Diagnosed {
 
 /// Runs the diagnose stage.
 pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
+    diagnose_with(model, spec, true)
+}
+
+/// [`diagnose`], with the residuals' signatures before and after the ladder or without them
+/// (`signatures`: what validate's held-out halves, which want the ladder alone, skip).
+pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Result<Diagnosed> {
     crate::settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
@@ -171,6 +177,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
     let opts = Options {
         folds: spec.folds,
         max_steps: spec.max_steps,
+        signatures,
         ..Options::default()
     };
     let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
