@@ -13,10 +13,10 @@ pb="target/release/propbet --threads 2"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 mkdir -p benchsuite/results
-hyperfine --runs "${RUNS:-5}" --export-json "$out/blade.json" \
+# Each command exits 1 when a stage reports a problem (a station's prop-file law marked UNFIT,
+# stations unconverged past windmilling): timed all the same.
+hyperfine --ignore-failure --runs "${RUNS:-5}" --export-json "$out/blade.json" \
   "$pb polars --geometry benchsuite/blade25.qprop --airfoil naca4412 --rpm 6000 --alpha -8:16:1 --quiet --no-cache --engine neuralfoil --out-prop $out/fit.qprop"
-# run and validate exit 1 when a stage reports a problem (stations unconverged past
-# windmilling): timed all the same.
 hyperfine --ignore-failure --runs "${RUNS:-5}" --export-json "$out/run.json" --prepare "rm -rf $out/cache $out/run" \
   "$pb run props/apcsf_10x4.7 --quiet --engine neuralfoil --cache $out/cache -o $out/run"
 hyperfine --ignore-failure --runs "${RUNS_VALIDATE:-1}" --export-json "$out/validate.json" --prepare "rm -rf $out/cache $out/val" \

@@ -23,5 +23,8 @@ pub use propbet_units as units;
 pub use aero::{DragInput, LiftEval, QpropAirfoil, QpropCoefficients, Rotational, SectionAero};
 pub use fluid::Fluid;
 pub use rotor::{Discretization, QpropBlade, Rotor, RotorError, Station};
-pub use solve::{solve_point_scalar, Convergence, OperatingPoint, PointResult, SolverOptions, StationResult};
+pub use solve::{
+    solve_point_scalar, solve_point_scalar_psi, Convergence, OperatingPoint, PointResult, Psi, SolverOptions,
+    StationResult,
+};
 pub use sweep::{grid_omega_j, grid_omega_v, grid_rpm_j, grid_rpm_v, solve_point, solve_points, Solver};

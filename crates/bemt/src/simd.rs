@@ -621,6 +621,64 @@ mod tests {
     }
 
     #[test]
+    fn a_warm_start_finds_the_cold_roots_in_fewer_iterations() {
+        use crate::{solve_point_scalar, solve_point_scalar_psi, Convergence, Psi};
+        let rotor = rotor();
+        let fluid = Fluid::default();
+        let iterations = |p: &PointResult| -> u32 {
+            p.stations
+                .iter()
+                .map(|s| match s.convergence {
+                    Convergence::Newton { iterations } => iterations,
+                    _ => 0,
+                })
+                .sum()
+        };
+        let (mut cold_iterations, mut warm_iterations) = (0, 0);
+        for rpm in [1500.0, 6000.0, 14000.0, 30000.0] {
+            for v in [0.0, 3.0, 11.0, 25.0] {
+                let base = SolverOptions {
+                    keep_stations: true,
+                    ..Default::default()
+                };
+                let mut psi = Vec::new();
+                let op = OperatingPoint::from_rpm(v, rpm);
+                let recorded = solve_point_scalar_psi(&rotor, &fluid, op, &base, Psi::Record(&mut psi));
+                assert_eq!(psi.len(), rotor.stations.len());
+                assert!(psi.iter().all(|p| p.is_finite()), "{psi:?}");
+                // Recording changes nothing; no start given is the cold start.
+                let cold = solve_point_scalar(&rotor, &fluid, op, &base);
+                assert_eq!(recorded.thrust.to_bits(), cold.thrust.to_bits());
+                let none = solve_point_scalar_psi(&rotor, &fluid, op, &base, Psi::From(&[]));
+                assert_eq!(none.torque.to_bits(), cold.torque.to_bits());
+                // A model a little apart (a forward difference of the pitch): the same root, to
+                // the Newton tolerance (1e-6 rad in psi: cold and warm stop at other iterates).
+                let near = SolverOptions {
+                    dbeta: 0.01f64.to_radians(),
+                    ..base
+                };
+                let cold = solve_point_scalar(&rotor, &fluid, op, &near);
+                let warm = solve_point_scalar_psi(&rotor, &fluid, op, &near, Psi::From(&psi));
+                let scale = cold.thrust.abs() + cold.torque.abs() / rotor.tip_radius + 1e-12;
+                assert!(
+                    (warm.thrust - cold.thrust).abs() < 1e-6 * scale,
+                    "{rpm} rpm, {v} m/s: {} vs {}",
+                    warm.thrust,
+                    cold.thrust
+                );
+                assert!((warm.torque - cold.torque).abs() < 1e-6 * scale * rotor.tip_radius);
+                assert_eq!(warm.not_converged, cold.not_converged);
+                cold_iterations += iterations(&cold);
+                warm_iterations += iterations(&warm);
+            }
+        }
+        assert!(
+            (warm_iterations as f64) < 0.8 * cold_iterations as f64,
+            "{warm_iterations} warm Newton iterations against {cold_iterations} cold"
+        );
+    }
+
+    #[test]
     fn batches_of_points_match_single_points() {
         let rotor = rotor();
         let prepared = Prepared::new(&rotor).unwrap();

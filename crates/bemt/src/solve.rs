@@ -253,6 +253,50 @@ pub fn solve_point_scalar(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts
     )
 }
 
+/// Where each station's Newton iteration starts.
+#[derive(Debug)]
+pub enum Psi<'a> {
+    /// QPROP's cold start at every station.
+    Cold,
+    /// The cold start, with the wake angles solved left in the vector, one a station (NaN
+    /// where Newton did not give one).
+    Record(&'a mut Vec<f64>),
+    /// Each station from the wake angle at its index where it is finite (a nearby solve's,
+    /// recorded with [`Psi::Record`]), the cold start otherwise or where that fails: the same
+    /// roots in fewer iterations, for solves of one point with a model a little apart (the
+    /// diagnosis' forward differences).
+    From(&'a [f64]),
+}
+
+/// [`solve_point_scalar`] with each station's Newton iteration started as `psi` says.
+pub fn solve_point_scalar_psi(
+    rotor: &Rotor,
+    fluid: &Fluid,
+    op: OperatingPoint,
+    opts: &SolverOptions,
+    psi: Psi<'_>,
+) -> PointResult {
+    let ctx = context(rotor, fluid, op, opts);
+    let stations = rotor.stations.iter().enumerate();
+    match psi {
+        Psi::Cold => solve_point_scalar(rotor, fluid, op, opts),
+        Psi::Record(out) => {
+            out.clear();
+            out.resize(rotor.stations.len(), f64::NAN);
+            let solved = stations.map(|(i, st)| {
+                let (r, p) = station::solve_station_from(st, &ctx, None);
+                out[i] = p.unwrap_or(f64::NAN);
+                r
+            });
+            integrate(rotor, fluid, op, opts, solved)
+        }
+        Psi::From(start) => {
+            let solved = stations.map(|(i, st)| station::solve_station_from(st, &ctx, start.get(i).copied()).0);
+            integrate(rotor, fluid, op, opts, solved)
+        }
+    }
+}
+
 /// The context of one operating point for the station solves.
 pub(crate) fn context(rotor: &Rotor, fluid: &Fluid, op: OperatingPoint, opts: &SolverOptions) -> Ctx {
     Ctx {

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use crate::fluid::Fluid;
 use crate::rotor::Rotor;
 use crate::simd::{solve_batch, solve_point_prepared, Prepared};
-use crate::solve::{OperatingPoint, PointResult, SolverOptions};
+use crate::solve::{solve_point_scalar_psi, OperatingPoint, PointResult, Psi, SolverOptions};
 
 /// Solves one operating point, eight stations at a time in vector lanes where the rotor allows
 /// (the same result as [`crate::solve_point_scalar`] to rounding).
@@ -54,6 +54,20 @@ impl<'a> Solver<'a> {
     /// Solves one operating point (same result as [`crate::solve_point`]).
     pub fn solve(&self, op: OperatingPoint) -> PointResult {
         solve_point_prepared(self.rotor, self.prepared.as_ref(), &self.fluid, op, &self.opts)
+    }
+
+    /// Solves one operating point with each station's Newton iteration started as `psi` says
+    /// ([`crate::solve_point_scalar_psi`]) where the rotor takes the scalar path; on the
+    /// vector path every start is the cold one (and nothing is recorded).
+    pub fn solve_psi(&self, op: OperatingPoint, psi: Psi<'_>) -> PointResult {
+        match (&self.prepared, psi) {
+            (None, psi) => solve_point_scalar_psi(self.rotor, &self.fluid, op, &self.opts, psi),
+            (Some(_), Psi::Record(out)) => {
+                out.clear();
+                self.solve(op)
+            }
+            (Some(_), _) => self.solve(op),
+        }
     }
 
     /// Solves many operating points, in order; eight at a time in vector lanes where possible.

@@ -18,7 +18,7 @@ pub mod provenance;
 pub mod signature;
 pub mod synth;
 
-use propbet_bemt::{Fluid, OperatingPoint, Rotor, SolverOptions};
+use propbet_bemt::{Fluid, OperatingPoint, Psi, Rotor, SolverOptions};
 use propbet_compare::{metrics::rpm_group, ComparedPoint, RELATIVE_FLOOR};
 use propbet_effects::{EffectError, Loads, Stack};
 use rayon::prelude::*;
@@ -183,35 +183,75 @@ impl Data {
 impl Model<'_> {
     /// Predicted loads of the points `which` with the effects of `stack` (in parallel).
     pub fn loads(&self, data: &Data, stack: &Stack, which: &[usize]) -> Result<Vec<Loads>, EffectError> {
-        let combined;
-        let stack = if self.fixed.is_empty() {
-            stack
+        let stack = self.with_fixed(stack);
+        which
+            .par_iter()
+            .map(|&i| self.predict(&stack, &data.obs[i], Psi::Cold))
+            .collect()
+    }
+
+    /// Predicted loads of every point with the effects of `stack`, `psi` holding a vector of
+    /// wake angles a point: recorded there when `near` is false, each station's Newton
+    /// iteration started from them when true (for a model a little apart from the one
+    /// recorded: the forward differences of a fit; [`propbet_bemt::Psi`]).
+    pub fn loads_near(
+        &self,
+        data: &Data,
+        stack: &Stack,
+        psi: &mut [Vec<f64>],
+        near: bool,
+    ) -> Result<Vec<Loads>, EffectError> {
+        let stack = self.with_fixed(stack);
+        data.obs
+            .par_iter()
+            .zip(psi.par_iter_mut())
+            .map(|(o, psi)| {
+                let start = if near { Psi::From(psi) } else { Psi::Record(psi) };
+                self.predict(&stack, o, start)
+            })
+            .collect()
+    }
+
+    /// The model's own effects under `stack`'s.
+    fn with_fixed<'s>(&self, stack: &'s Stack) -> std::borrow::Cow<'s, Stack> {
+        if self.fixed.is_empty() {
+            std::borrow::Cow::Borrowed(stack)
         } else {
             let mut active = self.fixed.active.clone();
             active.extend(stack.active.iter().cloned());
-            combined = Stack { active };
-            &combined
-        };
-        which
-            .par_iter()
-            .map(|&i| {
-                let o = &data.obs[i];
-                stack
-                    .predict(
-                        self.rotor,
-                        &self.opts,
-                        &o.fluid,
-                        self.diameter,
-                        OperatingPoint { v: o.v, omega: o.omega },
-                    )
-                    .map(|p| p.loads)
-            })
-            .collect()
+            std::borrow::Cow::Owned(Stack { active })
+        }
+    }
+
+    fn predict(&self, stack: &Stack, o: &Observation, psi: Psi<'_>) -> Result<Loads, EffectError> {
+        stack
+            .predict_psi(
+                self.rotor,
+                &self.opts,
+                &o.fluid,
+                self.diameter,
+                OperatingPoint { v: o.v, omega: o.omega },
+                psi,
+            )
+            .map(|p| p.loads)
     }
 
     /// Residual rows of the points `which` with `stack`.
     pub fn residuals(&self, data: &Data, stack: &Stack, which: &[usize]) -> Result<Vec<f64>, EffectError> {
         Ok(data.residuals(which, &self.loads(data, stack, which)?))
+    }
+
+    /// Residual rows of every point with `stack`, the solves' wake angles recorded in or
+    /// started from `psi` ([`Model::loads_near`]).
+    pub fn residuals_near(
+        &self,
+        data: &Data,
+        stack: &Stack,
+        psi: &mut [Vec<f64>],
+        near: bool,
+    ) -> Result<Vec<f64>, EffectError> {
+        let all: Vec<usize> = (0..data.obs.len()).collect();
+        Ok(data.residuals(&all, &self.loads_near(data, stack, psi, near)?))
     }
 }
 

@@ -2,7 +2,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use propbet_bemt::{Fluid, OperatingPoint, PointResult, Rotor, Solver, SolverOptions};
+use propbet_bemt::{Fluid, OperatingPoint, PointResult, Psi, Rotor, Solver, SolverOptions};
 
 use crate::effect::*;
 use crate::section;
@@ -49,6 +49,20 @@ impl Stack {
         fluid: &Fluid,
         diameter: f64,
         op: OperatingPoint,
+    ) -> Result<Prediction, EffectError> {
+        self.predict_psi(rotor, opts, fluid, diameter, op, Psi::Cold)
+    }
+
+    /// [`Stack::predict`] with each station's Newton iteration started as `psi` says
+    /// ([`propbet_bemt::Psi`]: the wake angles of a nearby solve, or recorded for one).
+    pub fn predict_psi(
+        &self,
+        rotor: &Rotor,
+        opts: &SolverOptions,
+        fluid: &Fluid,
+        diameter: f64,
+        op: OperatingPoint,
+        psi: Psi<'_>,
     ) -> Result<Prediction, EffectError> {
         let mut point = PointState {
             omega: op.omega,
@@ -114,10 +128,13 @@ impl Stack {
         for a in self.with(Hook::Inflow) {
             a.effect.inflow(&a.values, &point, rotor, &mut o);
         }
-        let result = Solver::new(solve_rotor, &point.fluid, &o).solve(OperatingPoint {
-            v: point.v,
-            omega: point.omega,
-        });
+        let result = Solver::new(solve_rotor, &point.fluid, &o).solve_psi(
+            OperatingPoint {
+                v: point.v,
+                omega: point.omega,
+            },
+            psi,
+        );
         if let Some(e) = errors.lock().map(|mut g| g.take()).unwrap_or(None) {
             return Err(e);
         }

@@ -112,37 +112,65 @@ fn eval(st: &Station, c: &Ctx, beta: f64, ua: f64, ut: f64, u: f64, psi: f64) ->
 }
 
 pub(crate) fn solve_station(st: &Station, c: &Ctx) -> StationResult {
+    solve_station_from(st, c, None).0
+}
+
+/// [`solve_station`] with Newton started from `warm` where it is given and finite (the wake
+/// angle of a nearby solve): the same root in fewer iterations. A warm start that does not
+/// converge falls back to the cold solve. Also returns the wake angle Newton converged at
+/// (None where the station needed no iteration or the bracketed solve).
+pub(crate) fn solve_station_from(st: &Station, c: &Ctx, warm: Option<f64>) -> (StationResult, Option<f64>) {
     let beta = st.beta + c.opts.dbeta;
     let ua = c.v;
     let ut = c.omega * st.r;
     let u = (ua * ua + ut * ut).sqrt();
     if u == 0.0 {
-        return unloaded(st.r, st.chord, beta, Convergence::NoFlow);
+        return (unloaded(st.r, st.chord, beta, Convergence::NoFlow), None);
     }
     if c.omega == 0.0 {
-        return parked(st, c, beta);
+        return (parked(st, c, beta), None);
     }
     let psi0 = ua.atan2(ut);
     if st.chord == 0.0 {
         // Gamma = 0 is the exact solution: no induction.
         let e = eval(st, c, beta, ua, ut, u, psi0);
-        return finish(st, c, beta, ua, ut, &e, Convergence::ZeroChord);
+        return (finish(st, c, beta, ua, ut, &e, Convergence::ZeroChord), None);
+    }
+    let triangle = Triangle { beta, ua, ut, u };
+    if let Some(found) = warm.filter(|w| w.is_finite()).and_then(|w| newton(st, c, &triangle, w)) {
+        return found;
     }
     let start = psi0.max(beta - st.aero.alpha_zero_lift());
+    newton(st, c, &triangle, start).unwrap_or_else(|| (bracketed(st, c, beta, ua, ut, u, psi0, start), None))
+}
+
+/// A station's twist and velocity triangle at one operating point.
+#[derive(Clone, Copy)]
+struct Triangle {
+    beta: f64,
+    ua: f64,
+    ut: f64,
+    u: f64,
+}
+
+/// QPROP's Newton iteration on psi from `start`: the result and its psi, None where it fails.
+fn newton(st: &Station, c: &Ctx, t: &Triangle, start: f64) -> Option<(StationResult, Option<f64>)> {
+    let Triangle { beta, ua, ut, u } = *t;
     let mut psi = start;
     for iter in 1..=c.opts.max_newton {
         let e = eval(st, c, beta, ua, ut, u, psi);
         let dpsi = -e.res / e.res_psi;
         if !dpsi.is_finite() || !e.res.is_finite() {
-            break;
+            return None;
         }
         let dpsi = dpsi.clamp(-0.1, 0.1);
         if dpsi.abs() < c.opts.tol {
-            return finish(st, c, beta, ua, ut, &e, Convergence::Newton { iterations: iter });
+            let r = finish(st, c, beta, ua, ut, &e, Convergence::Newton { iterations: iter });
+            return Some((r, Some(psi)));
         }
         psi += dpsi;
     }
-    bracketed(st, c, beta, ua, ut, u, psi0, start)
+    None
 }
 
 /// Guaranteed-convergence fallback (after Ning 2014): sample the residual around the whole
