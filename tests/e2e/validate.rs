@@ -204,6 +204,18 @@ fn check_subset_table(dir: &Path) {
     assert!(r[col(&h, "zero_thrust_j_change_measured")].is_empty(), "{r:?}");
     assert!(r[col(&h, "zero_thrust_j_change_predicted")].is_empty(), "{r:?}");
     assert!(md.contains("(2763-6768 rpm) | – | – |"), "{md}");
+    // The Re ladder reaches every station at every compared point: 25 station solves a point
+    // (every compared point, the scored window's and those beyond it), none beyond the polars'
+    // rungs.
+    assert!(
+        v("station_solves") >= 25.0 * v("points") && v("station_solves") % 25.0 == 0.0,
+        "{r:?}"
+    );
+    assert_eq!(v("stations_beyond_polars"), 0.0, "{r:?}");
+    assert!(
+        md.contains(&format!("| 0 of {} |", r[col(&h, "station_solves")])),
+        "{md}"
+    );
     // APC's own prediction scored on the same points (PER3 covers 1000 rpm steps and J to
     // about 0.9: every point of the window).
     assert!(v("apc_points") >= v("points") - 2.0, "{r:?}");

@@ -53,13 +53,26 @@ pub fn figure_of_merit(t: f64, power: f64, rho: f64, area: f64) -> f64 {
 /// Stations of `p` (solved with `keep_stations`) whose Reynolds number lies below half the
 /// lowest or above twice the highest of their section data's ([`crate::SectionAero::reynolds_range`]).
 pub fn outside_data(rotor: &Rotor, p: &PointResult) -> usize {
+    outside(rotor, p, 2.0)
+}
+
+/// Stations of `p` (solved with `keep_stations`) whose Reynolds number lies beyond their
+/// section data's at all (below the lowest polar or above the highest): solved on the end
+/// polar's extrapolation in Re, however near.
+pub fn beyond_data(rotor: &Rotor, p: &PointResult) -> usize {
+    outside(rotor, p, 1.0)
+}
+
+/// Stations below `1 / factor` of their data's lowest Reynolds number or above `factor` times
+/// its highest.
+fn outside(rotor: &Rotor, p: &PointResult, factor: f64) -> usize {
     p.stations
         .iter()
         .zip(&rotor.stations)
         .filter(|(s, st)| {
             st.aero
                 .reynolds_range()
-                .is_some_and(|(lo, hi)| s.re < 0.5 * lo || s.re > 2.0 * hi)
+                .is_some_and(|(lo, hi)| s.re < lo / factor || s.re > hi * factor)
         })
         .count()
 }

@@ -192,6 +192,9 @@ struct CsvRow<'a> {
     cp_median_after: Num,
     cp_p90_after: Num,
     implausible_points: usize,
+    /// Station solves beyond their polars' Reynolds-number range, of `station_solves`.
+    stations_beyond_polars: usize,
+    station_solves: usize,
     apc_points: Option<usize>,
     apc_ct_median: Num,
     apc_ct_p90: Num,
@@ -241,6 +244,8 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             cp_median_after: Num::from(Some(r.cp.after.median)),
             cp_p90_after: Num::from(Some(r.cp.after.p90)),
             implausible_points: r.implausible,
+            stations_beyond_polars: r.beyond_polars.0,
+            station_solves: r.beyond_polars.1,
             apc_points: r.per3.as_ref().map(|p| p.points),
             apc_ct_median: Num::from(r.per3.as_ref().map(|p| p.ct.median)),
             apc_ct_p90: Num::from(r.per3.as_ref().map(|p| p.ct.p90)),

@@ -171,6 +171,9 @@ pub struct ComparedPoint {
     pub mach_tip: f64,
     /// Stations the solver did not converge.
     pub not_converged: usize,
+    /// Stations solved at a Reynolds number beyond their polars' (below the lowest rung or above
+    /// the highest: [`propbet_bemt::check::beyond_data`]), and the stations solved.
+    pub beyond_polars: (usize, usize),
     /// What is physically wrong with the prediction at this point
     /// ([`propbet_bemt::check`]): reported with the point, never silently scored.
     pub model_flags: Vec<String>,
@@ -330,6 +333,10 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
         re75: re_at(&result, 0.75 * tip),
         mach_tip: (omega * tip).hypot(v) / air.fluid.a,
         not_converged: result.not_converged,
+        beyond_polars: (
+            propbet_bemt::check::beyond_data(setup.rotor, &result),
+            result.stations.len(),
+        ),
         model_flags,
         flags: p.flags.clone(),
         rel_floor: Quantities::default(),

@@ -459,6 +459,10 @@ pub fn validate_prop(
         prop: prop.to_string(),
         points: ct0.len(),
         implausible: compared.points.iter().filter(|p| !p.model_flags.is_empty()).count(),
+        beyond_polars: compared
+            .points
+            .iter()
+            .fold((0, 0), |(a, b), p| (a + p.beyond_polars.0, b + p.beyond_polars.1)),
         ct: BeforeAfter {
             before: median_p90(&ct0),
             after: median_p90(&ct1),

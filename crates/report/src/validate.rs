@@ -197,6 +197,7 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
     h.push("static CT rise with RPM: measured / predicted".into());
     h.push("CT error's change with RPM at fixed J, J sweeps".into());
     h.push("zero-thrust J from the lowest to the highest sweep RPM: measured / predicted".into());
+    h.push("station solves beyond the polars' Re range".into());
     let signed = |x: f64| {
         if x.is_finite() {
             format!("{:+.1}", 100.0 * x)
@@ -244,6 +245,8 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
                 ),
                 None => "–".into(),
             });
+            let (beyond, solves) = r.beyond_polars;
+            v.push(format!("{beyond} of {solves}"));
             v
         })
         .collect();
@@ -259,12 +262,15 @@ const REGIME_INTRO: &str =
      predicted (the sections' Reynolds-number dependence, and whatever else grows with RPM); and in \
      forward flight, how the CT error changes with RPM at fixed J over the J sweeps (the median over J \
      bins of its slope against ln RPM, over the RPM range they typically span: negative where the \
-     measured CT grows faster with RPM than the model's). Last, where the J sweeps reach zero thrust, \
+     measured CT grows faster with RPM than the model's). Then, where the J sweeps reach zero thrust, \
      how their zero-thrust J moves from the lowest to the highest sweep RPM (a line against ln RPM \
      through the sweeps'), measured and predicted: the blade's effective pitch at each speed. The \
      sections' Reynolds numbers move it up a little as the RPM rises; a measured one that falls \
      while the model's rises is a blade that twists nose-down as it speeds up (a flexible blade's \
-     elastic washout, the diagnosis's elastic-twist), which no section model makes.";
+     elastic washout, the diagnosis's elastic-twist), which no section model makes. Last, how many \
+     of the station solves at the compared points fell beyond their polars' Reynolds-number range \
+     (below the ladder's lowest rung or above its highest, where the end rung is extrapolated): \
+     whether the ladder reaches every station at every operating point.";
 
 fn intro(model: &str) -> String {
     format!(
@@ -429,6 +435,7 @@ mod tests {
             prop: p.into(),
             points: 10,
             implausible: 0,
+            beyond_polars: (0, 250),
             ct: BeforeAfter {
                 before: Spread {
                     median: x,

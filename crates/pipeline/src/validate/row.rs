@@ -19,6 +19,10 @@ pub struct Row {
     /// Points (of all compared) where the prediction is physically implausible (scored, and
     /// named in the prop's points.csv).
     pub implausible: usize,
+    /// Station solves at the compared points whose Reynolds number lies beyond their polars'
+    /// (the Re ladder's lowest or highest rung), and all the station solves there: whether the
+    /// ladder reaches every station at every operating point.
+    pub beyond_polars: (usize, usize),
     /// CT's errors before and after calibration.
     pub ct: BeforeAfter,
     /// CP's errors before and after calibration.
