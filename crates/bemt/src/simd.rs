@@ -580,6 +580,25 @@ mod tests {
         .unwrap()
     }
 
+    /// `a`'s thrust and torque within `tol` of `b`'s, relative to `b`'s thrust plus torque over
+    /// the tip radius; the same stations unconverged.
+    fn assert_loads_agree(a: &PointResult, b: &PointResult, rotor: &Rotor, tol: f64, what: &str) {
+        assert_eq!(a.not_converged, b.not_converged, "{what}");
+        let scale = b.thrust.abs() + b.torque.abs() / rotor.tip_radius + 1e-12;
+        assert!(
+            (a.thrust - b.thrust).abs() < tol * scale,
+            "{what}: thrust {} vs {}",
+            a.thrust,
+            b.thrust
+        );
+        assert!(
+            (a.torque - b.torque).abs() < tol * scale * rotor.tip_radius,
+            "{what}: torque {} vs {}",
+            a.torque,
+            b.torque
+        );
+    }
+
     #[test]
     fn vector_and_scalar_paths_agree() {
         let rotor = rotor();
@@ -659,15 +678,7 @@ mod tests {
                 };
                 let cold = solve_point_scalar(&rotor, &fluid, op, &near);
                 let warm = solve_point_scalar_psi(&rotor, &fluid, op, &near, Psi::From(&psi));
-                let scale = cold.thrust.abs() + cold.torque.abs() / rotor.tip_radius + 1e-12;
-                assert!(
-                    (warm.thrust - cold.thrust).abs() < 1e-6 * scale,
-                    "{rpm} rpm, {v} m/s: {} vs {}",
-                    warm.thrust,
-                    cold.thrust
-                );
-                assert!((warm.torque - cold.torque).abs() < 1e-6 * scale * rotor.tip_radius);
-                assert_eq!(warm.not_converged, cold.not_converged);
+                assert_loads_agree(&warm, &cold, &rotor, 1e-6, &format!("{rpm} rpm, {v} m/s"));
                 cold_iterations += iterations(&cold);
                 warm_iterations += iterations(&warm);
             }
@@ -696,15 +707,7 @@ mod tests {
                 let many = solve_batch(&rotor, &prepared, &fluid, batch, &opts);
                 for (op, a) in batch.iter().zip(&many) {
                     let b = solve_point_prepared(&rotor, None, &fluid, *op, &opts);
-                    assert_eq!(a.not_converged, b.not_converged);
-                    let scale = b.thrust.abs() + b.torque.abs() / rotor.tip_radius + 1e-12;
-                    assert!(
-                        (a.thrust - b.thrust).abs() < 1e-9 * scale,
-                        "{op:?}: {} vs {}",
-                        a.thrust,
-                        b.thrust
-                    );
-                    assert!((a.torque - b.torque).abs() < 1e-9 * scale * rotor.tip_radius, "{op:?}");
+                    assert_loads_agree(a, &b, &rotor, 1e-9, &format!("{op:?}"));
                     assert!((a.cd_avg - b.cd_avg).abs() < 1e-9 * b.cd_avg.abs().max(1e-3), "{op:?}");
                 }
             }
