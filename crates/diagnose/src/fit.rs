@@ -146,6 +146,9 @@ pub fn levenberg_marquardt_near<E>(
             .map(|c| (p[c] <= lo[c] && g[c] > 0.0) || (p[c] >= hi[c] && g[c] < 0.0))
             .collect();
         let mut g = g;
+        for c in (0..k).filter(|&c| held[c]) {
+            g[c] = 0.0;
+        }
         let mut accepted = None;
         let mut projected = false;
         for _try in 0..10 {
@@ -157,7 +160,6 @@ pub fn levenberg_marquardt_near<E>(
                 m.row_mut(c).fill(0.0);
                 m.column_mut(c).fill(0.0);
                 m[(c, c)] = 1.0;
-                g[c] = 0.0;
             }
             let Some(dx) = m
                 .clone()
