@@ -31,8 +31,8 @@ pub use blade::pe0_table;
 use blade::{blade, Blade};
 use files::{cover, measured_files};
 pub use files::{find_apc_file, uiuc_name, uiuc_props};
+use row::{beyond_polars, ladder_text, median_p90};
 pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
-use row::{ladder_text, median_p90};
 
 /// Where validate reads and what it asks.
 #[derive(Debug, Clone)]
@@ -459,10 +459,7 @@ pub fn validate_prop(
         prop: prop.to_string(),
         points: ct0.len(),
         implausible: compared.points.iter().filter(|p| !p.model_flags.is_empty()).count(),
-        beyond_polars: compared
-            .points
-            .iter()
-            .fold((0, 0), |(a, b), p| (a + p.beyond_polars.0, b + p.beyond_polars.1)),
+        beyond_polars: beyond_polars(&compared.points),
         ct: BeforeAfter {
             before: median_p90(&ct0),
             after: median_p90(&ct1),

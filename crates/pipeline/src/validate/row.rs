@@ -8,6 +8,14 @@ use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
 use propbet_qprop::apc::Pe0;
 
+/// The station solves beyond their polars' Reynolds-number range over `points`, and all their
+/// station solves ([`Row::beyond_polars`]).
+pub fn beyond_polars(points: &[ComparedPoint]) -> (usize, usize) {
+    points
+        .iter()
+        .fold((0, 0), |(a, b), p| (a + p.beyond_polars.0, b + p.beyond_polars.1))
+}
+
 /// One row of the validation table: |pred/meas − 1| of CT and CP below 85 % of each sweep's
 /// zero-thrust J, before and after calibration.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
