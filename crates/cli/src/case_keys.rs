@@ -182,7 +182,7 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "polars",
         "--ncrit-effect",
     ),
-    ("polars", "trip", "trip = \"free\"", "polars", "--trip free"),
+    ("polars", "trip", "trip = 0.25", "polars", "--trip 0.25"),
     ("polars", "engine", "engine = \"auto\"", "polars", "--engine auto"),
     (
         "polars",

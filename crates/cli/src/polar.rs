@@ -377,7 +377,7 @@ impl PolarsArgs {
             air: self.air.spec()?,
             xfoil: self.xfoil.spec(
                 propbet_pipeline::settings::NCRIT.default,
-                Some(propbet_pipeline::settings::TRIP.default),
+                propbet_pipeline::settings::default_trip(),
             )?,
             ncrit_effect: self.ncrit_effect.clone(),
             out_prop: self.out_prop.clone(),

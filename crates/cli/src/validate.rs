@@ -96,7 +96,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         ),
         drag_factor: propbet_pipeline::spec::drag_factor_or_default(a.drag_factor, a.section_model == "tables"),
         trip: match &a.trip {
-            None => Some(propbet_pipeline::settings::TRIP.default),
+            None => propbet_pipeline::settings::default_trip(),
             Some(t) => propbet_pipeline::values::parse_trip(t)?,
         },
         per3: a.per3.clone(),

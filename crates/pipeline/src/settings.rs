@@ -186,14 +186,16 @@ pub const NCRIT_EFFECT: Setting<&str> = Setting {
            --effect transition:ncrit=N` applies it. Each value costs as much XFOIL time again",
 };
 
-/// Forced transition of a blade's polars: at mid-chord at the latest, both surfaces (free
-/// transition ahead of it still happens); `propbet polar` (one airfoil) keeps XFOIL's free
-/// transition. The shared props with each setting and the reasoning:
+/// Forced transition of a blade's polars: the chord fraction where transition is forced on both
+/// surfaces at the latest (free transition ahead of it still happens), or 1 (the trailing edge):
+/// free transition by Ncrit alone, the default for a blade as for `propbet polar`'s one airfoil.
+/// Free transition was chosen by cross-validation over the 35 shared APC props
+/// (`docs/studies/default-by-cross-validation.md`); what a trip does:
 /// `docs/studies/transition-trip.md`.
 pub const TRIP: Setting<f64> = Setting {
     flag: "trip",
     key: "[polars] trip",
-    default: 0.5,
+    default: 1.0,
     allowed: Allowed::Between {
         low: 0.0,
         low_open: true,
@@ -202,9 +204,20 @@ pub const TRIP: Setting<f64> = Setting {
             "`free`, or the chord fraction where transition is forced, in (0, 1] (0.05: just behind the leading edge)",
     },
     help: "Force transition at this chord fraction on both surfaces, at the latest (XFOIL's XTR), \
-           or `free` (by Ncrit alone). Default: 0.5 for a propeller's blades, free for `polar`'s \
-           one airfoil (docs/studies/transition-trip.md)",
+           or `free` (by Ncrit alone; the default, chosen by cross-validation over the shared \
+           props: docs/studies/default-by-cross-validation.md)",
 };
+
+/// A trip as `--trip` takes it: `free` or the chord fraction (`values::parse_trip` reads it back).
+pub fn trip_text(trip: Option<f64>) -> String {
+    trip.map_or_else(|| "free".to_string(), |x| format!("{x}"))
+}
+
+/// The trip of a blade's polars when none is given: [`TRIP`]'s default as the polar stage
+/// takes it (`None`: free transition).
+pub fn default_trip() -> Option<f64> {
+    Some(TRIP.default).filter(|x| *x < 1.0)
+}
 
 /// Angles of attack of the polar commands [deg].
 pub const ALPHA: Setting<&str> = Setting {
@@ -463,7 +476,10 @@ pub fn all() -> Vec<About> {
     vec![
         NCRIT.about(),
         NCRIT_EFFECT.about(),
-        TRIP.about(),
+        About {
+            default: trip_text(default_trip()),
+            ..TRIP.about()
+        },
         ALPHA.about(),
         ROTATION.about(),
         DRAG_FACTOR.about(),

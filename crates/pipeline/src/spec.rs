@@ -150,8 +150,8 @@ impl XfoilSpec {
         if self.ncrit != crate::settings::NCRIT.default {
             push(v, "--ncrit", format!("{}", self.ncrit));
         }
-        if self.trip != Some(crate::settings::TRIP.default) {
-            push(v, "--trip", crate::values::trip_text(self.trip));
+        if self.trip != crate::settings::default_trip() {
+            push(v, "--trip", crate::settings::trip_text(self.trip));
         }
         let default = crate::values::parse_list("", crate::settings::ALPHA.default).unwrap_or_default();
         if self.alphas_deg != default {

@@ -173,11 +173,6 @@ pub fn parse_trip(text: &str) -> Result<Option<f64>> {
     }
 }
 
-/// The text [`parse_trip`] reads back.
-pub fn trip_text(trip: Option<f64>) -> String {
-    trip.map_or_else(|| "free".to_string(), |x| format!("{x}"))
-}
-
 /// A length unit for prop-file radii and chords: metres per unit.
 pub fn parse_length_unit(text: &str) -> Result<f64> {
     Ok(match text {

@@ -139,7 +139,7 @@ impl Case {
                             },
                             ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
                             trip: match &p.trip {
-                                None => Some(crate::settings::TRIP.default),
+                                None => crate::settings::default_trip(),
                                 Some(NumberOrList::Number(x)) => {
                                     crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
                                 }

@@ -4,11 +4,11 @@ use super::*;
 
 #[test]
 fn trips_read_back_as_written() {
-    use crate::values::{parse_trip, trip_text};
+    use crate::{settings::trip_text, values::parse_trip};
     assert_eq!(parse_trip("free").unwrap(), None);
     assert_eq!(parse_trip("1").unwrap(), None);
     assert_eq!(parse_trip("0.5").unwrap(), Some(0.5));
-    for t in [None, Some(0.05), Some(crate::settings::TRIP.default)] {
+    for t in [None, Some(0.05), Some(0.5), crate::settings::default_trip()] {
         assert_eq!(parse_trip(&trip_text(t)).unwrap(), t);
     }
     for bad in ["0", "-0.1", "1.5", "nan", "mid"] {
