@@ -145,13 +145,11 @@ fn prediction_against_the_measurements(out: &Path) {
     );
     assert!(e_ct.abs() < 0.25 && e_cp.abs() < 0.35, "static CT {e_ct}, CP {e_cp}");
     // The polars cover the measured RPM range: static CT rises with RPM (Reynolds number).
-    // Measured +22.7 % from 2377 to 6528 rpm; predicted +9.4 % with the default transition
-    // (Ncrit 5, forced by mid-chord), +14.4 % with free transition, +1 % when the polars were
-    // taken at one RPM. Following the measured rise within a third (+15.1 % or more) is not
-    // reached. This prop's rise is the largest of the six shared props (the 9x4.7
-    // SF of the same family: +5.5 %); on the other five the default follows the static rise
-    // within 2.3 points, where free transition overshoots it on all five
-    // (docs/studies/transition-trip.md). Asserted: the rise is there, at least 0.3 of it.
+    // Measured +22.7 % from 2377 to 6528 rpm; predicted +14.6 % with the default, free
+    // transition (Ncrit 5), +9.4 % with transition forced by mid-chord, +1 % when the polars
+    // were taken at one RPM. This prop's rise is the largest of the first six shared props
+    // (the 9x4.7 SF of the same family: +5.5 %: docs/studies/transition-trip.md). Asserted:
+    // the rise is there, at least 0.3 of it.
     let rpm = col(&h, "rpm");
     let lo = stat.iter().min_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
     let hi = stat.iter().max_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
@@ -181,21 +179,22 @@ fn diagnosis_of_the_default_case(out: &Path) {
         .collect();
     eprintln!("default case, ladder held-out RMS: {ladder:.4?}");
     // The report names the static test's RPM trend at fixed J with its size (the measured
-    // static CT grows faster with RPM than the model's: -12.5 % from 2377 to 6528 rpm), beside
-    // the J sweeps' own.
+    // static CT grows faster with RPM than the model's: -7.7 % from 2377 to 6528 rpm), beside
+    // the J sweeps' own (+2.0 %: with free transition the model follows the forward-flight
+    // trend; -3.8 % with transition forced by mid-chord).
     let thrust = d["diagnosis"]["before"][0]["text"].as_str().unwrap();
     let at = thrust.find("(statically by -").expect(thrust);
     let size: f64 = thrust[at + 16..].split(' ').next().unwrap().parse().unwrap();
     assert!(size > 5.0, "{thrust}");
     assert!(thrust[at..].contains("from 2377 to 6528 rpm)"), "{thrust}");
     assert!(thrust.contains("grows faster with RPM than the model's"), "{thrust}");
-    // Which effects can make that trend, from the model's own response to each: re-lift (the
-    // sections' lift with Re) can; pitch-offset, the ladder's first step (it takes the J
-    // pattern: the blade's pitch gap), cannot.
-    let (can, cannot) = effect_lists(thrust, "At fixed J");
-    assert!(can.contains(&"re-lift") && cannot.contains(&"pitch-offset"), "{thrust}");
-    assert!(effect_lists(thrust, "").0.contains(&"pitch-offset"), "{thrust}");
-    // Thrust against torque (-21 % and -14 % on average): the same way, which the angles, the
+    // A trend in the static test alone is said to be the static blade's (maximum lift and
+    // stall), and the J pattern (the blade's pitch gap, the ladder's first step) is
+    // pitch-offset's, from the model's own response to each effect.
+    assert!(thrust.contains("statically, not in forward flight"), "{thrust}");
+    let (can, cannot) = effect_lists(thrust, "");
+    assert!(can.contains(&"pitch-offset") && cannot.contains(&"re-lift"), "{thrust}");
+    // Thrust against torque (-44 % and -29 % on average): the same way, which the angles, the
     // inflow, the air or the RPM make; from the model, pitch-offset can make both.
     let torque = d["diagnosis"]["before"][1]["text"].as_str().unwrap();
     assert!(torque.contains("Thrust and torque are off the same way"), "{torque}");
@@ -208,8 +207,9 @@ fn diagnosis_of_the_default_case(out: &Path) {
         "{ladder:?}"
     );
     // Which step takes which trend (the ladder's columns): pitch-offset, first, the J trend
-    // (−27.4 → −5.1 %); re-lift, where it is added, the RPM trend at fixed J
-    // (−6.2 → −1.0 %).
+    // (−52.9 → −11.0 %); the forward-flight RPM trend at fixed J is small from the start
+    // (+2.0 %), and stays so (with transition forced by mid-chord it was −6.2 %, and re-lift
+    // took it).
     let rungs = d["diagnosis"]["ladder"].as_array().unwrap();
     let t = |i: usize, k: &str| rungs[i][k].as_f64().unwrap();
     assert_eq!(rungs[1]["added"], "pitch-offset");
@@ -217,12 +217,10 @@ fn diagnosis_of_the_default_case(out: &Path) {
         t(1, "thrust_j_trend").abs() < 0.5 * t(0, "thrust_j_trend").abs(),
         "{rungs:?}"
     );
-    let k = rungs
-        .iter()
-        .position(|r| r["added"] == "re-lift")
-        .expect("re-lift in the ladder");
     assert!(
-        t(k, "thrust_rpm_trend").abs() < 0.5 * t(k - 1, "thrust_rpm_trend").abs(),
+        rungs
+            .iter()
+            .all(|r| r["thrust_rpm_trend"].as_f64().unwrap().abs() < 0.05),
         "{rungs:?}"
     );
 }
@@ -247,7 +245,7 @@ fn report_has_every_part(out: &Path, o: &Output) {
     // The stages' problems are summarised once at the top: the polars stage's
     // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
     assert!(html.contains(
-        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, transition by x/c 0.5) of the e63.dat section"
+        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, free transition) of the e63.dat section"
     ));
     // The base model's settings are named with it.
     assert!(html.contains("used as tables in alpha and Re; rotational augmentation snel, section drag times 1.25;"));

@@ -169,17 +169,21 @@ fn check_subset_table(dir: &Path) {
     // Static (16 points) and the 6029 rpm sweep (17) below 85 % of its zero-thrust J (all of
     // it when the sweep stops before zero thrust).
     assert!(v("points") >= 20.0 && v("points") <= 33.0, "{r:?}");
-    // The prediction is of the right size, and the held-out calibration (the static file's
-    // ladder predicting the sweep, and the other way round) does not make it worse.
+    // The prediction is of the right size, and so is the held-out calibration (the static
+    // file's ladder predicting the sweep, and the other way round). With transition forced by
+    // mid-chord it was no worse than the prediction; with free transition, the default, it is
+    // (CT 5.9 -> 12.2 %: each file's ladder predicts the other worse), as on 17 of the 35
+    // shared props (docs/studies/default-by-cross-validation.md).
     assert!(v("ct_median") < 0.3 && v("cp_median") < 0.3, "{r:?}");
-    assert!(v("ct_median_after") <= v("ct_median") + 1e-9, "{r:?}");
+    assert!(v("ct_median_after") < 0.3 && v("cp_median_after") < 0.3, "{r:?}");
     assert!(r[col(&h, "held_out_ladders")].contains(" / "), "{r:?}");
     // An outlier (a median above 15 %) says why, anything else nothing.
     let outlier = v("ct_median") > 0.15 || v("cp_median") > 0.15;
     assert_eq!(r[col(&h, "outlier_reason")].is_empty(), !outlier, "{r:?}");
-    // Where the error is: this 9x4.7 makes too much thrust statically and in forward flight
-    // (about +12 and +15 % on the shared set), signed, each regime also in the Markdown.
-    assert!(v("static_ct_error") > 0.0 && v("low_j_ct_error") > 0.0, "{r:?}");
+    // Where the error is: this 9x4.7 makes too much thrust statically (+6.6 %) and a little
+    // too little in forward flight below J0/2 (-4.9 %), signed, each regime also in the
+    // Markdown.
+    assert!(v("static_ct_error") > 0.0 && v("low_j_ct_error").abs() < 0.1, "{r:?}");
     assert!(
         md.contains("Where the error is") && md.contains("| apcsf_9x4.7 | +"),
         "{md}"
@@ -216,6 +220,14 @@ fn check_subset_table(dir: &Path) {
         md.contains(&format!("| 0 of {} |", r[col(&h, "station_solves")])),
         "{md}"
     );
+    // The uncertainty band (blade angle, chord, drag): the share of the measured CT and CP
+    // inside it and its median half-width, in the CSV and in the regime table's last column.
+    for q in ["ct", "cp"] {
+        let inside = v(&format!("band_{q}_coverage"));
+        let width = v(&format!("band_{q}_half_width"));
+        assert!((0.0..=1.0).contains(&inside) && width > 0.01 && width < 0.5, "{r:?}");
+    }
+    assert!(md.contains("band: measured CT / CP inside (median half-width)"), "{md}");
     // APC's own prediction scored on the same points (PER3 covers 1000 rpm steps and J to
     // about 0.9: every point of the window).
     assert!(v("apc_points") >= v("points") - 2.0, "{r:?}");

@@ -225,6 +225,14 @@ struct CsvRow<'a> {
     repeatability: Num,
     /// Why the prop is an outlier (CT or CP median above 15 %); empty otherwise.
     outlier_reason: String,
+    /// The share of the scored points whose measured CT lies inside the uncertainty band.
+    band_ct_coverage: Num,
+    /// The band's median half-width relative to the predicted CT.
+    band_ct_half_width: Num,
+    /// The same for CP.
+    band_cp_coverage: Num,
+    /// The same for CP.
+    band_cp_half_width: Num,
 }
 
 fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &str) -> Result<(String, Vec<u8>)> {
@@ -271,6 +279,10 @@ fn table(rows: &[Row], skipped: &[propbet_report::validate::Skipped], model: &st
             held_out_ladders: r.held_out_ladders.join(" / "),
             repeatability: Num::from(r.repeatability),
             outlier_reason: propbet_report::validate::outlier_reason(r).unwrap_or_default(),
+            band_ct_coverage: Num::from(r.band[0].map(|c| c.inside)),
+            band_ct_half_width: Num::from(r.band[0].map(|c| c.half_width)),
+            band_cp_coverage: Num::from(r.band[1].map(|c| c.inside)),
+            band_cp_half_width: Num::from(r.band[1].map(|c| c.half_width)),
         })?;
     }
     Ok((

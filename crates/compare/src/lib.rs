@@ -3,6 +3,7 @@
 //! ([`metrics`]); [`curves`] gives the model's curves beside them (pages: `propbet-report`).
 #![deny(missing_docs)]
 
+pub mod band;
 pub mod curves;
 pub mod metrics;
 pub mod plausible;

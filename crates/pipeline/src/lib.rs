@@ -17,6 +17,7 @@
 #![deny(missing_docs)]
 
 pub mod artifacts;
+pub mod band;
 pub mod case;
 mod error;
 pub mod export;

@@ -235,15 +235,23 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
 
 /// Solves `points` with the model (its effects included), in order.
 pub fn solve(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
-    if model.effects.is_empty() {
+    solve_with(model, &model.effects, fluid, points)
+}
+
+/// Solves `points` with the model's rotor and `effects` instead of the model's, in order.
+pub fn solve_with(
+    model: &Model,
+    effects: &Stack,
+    fluid: &Fluid,
+    points: &[OperatingPoint],
+) -> Result<Vec<PointResult>> {
+    if effects.is_empty() {
         return Ok(Solver::new(&model.rotor, fluid, &model.opts).solve_many(points));
     }
     points
         .iter()
         .map(|&op| {
-            let p = model
-                .effects
-                .predict(&model.rotor, &model.opts, fluid, model.diameter, op)?;
+            let p = effects.predict(&model.rotor, &model.opts, fluid, model.diameter, op)?;
             Ok(p.result.with_loads(
                 p.loads.thrust,
                 p.loads.torque,
@@ -257,9 +265,19 @@ pub fn solve(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<
 
 /// Solves `points` in parallel chunks of 128 (in order).
 pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
+    sweep_with(model, &model.effects, fluid, points)
+}
+
+/// [`sweep`] with `effects` instead of the model's.
+pub fn sweep_with(
+    model: &Model,
+    effects: &Stack,
+    fluid: &Fluid,
+    points: &[OperatingPoint],
+) -> Result<Vec<PointResult>> {
     let chunks: Vec<Vec<PointResult>> = points
         .par_chunks(128)
-        .map(|c| solve(model, fluid, c))
+        .map(|c| solve_with(model, effects, fluid, c))
         .collect::<Result<_>>()?;
     Ok(chunks.into_iter().flatten().collect())
 }

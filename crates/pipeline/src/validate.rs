@@ -31,7 +31,7 @@ pub use blade::pe0_table;
 use blade::{blade, Blade};
 use files::{cover, measured_files};
 pub use files::{find_apc_file, uiuc_name, uiuc_props};
-use row::{beyond_polars, ladder_text, median_p90};
+use row::{band_coverage, beyond_polars, ladder_text, median_p90};
 pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 
 /// Where validate reads and what it asks.
@@ -451,6 +451,7 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
+    let bands = crate::band::BandSpec::default().at_compared(&model, compared.air, &compared.sets, &compared.points)?;
     let per3 = match &per3_file {
         None => None,
         Some(path) => Some(per3_score(&crate::stages::read_per3(path)?, &compared.points)),
@@ -485,6 +486,7 @@ pub fn validate_prop(
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
         zero_thrust_shift: zero_thrust_shift(&compared.points),
         repeatability: cal.diagnosed.diagnosis.repeatability.as_ref().map(|r| r.sd),
+        band: band_coverage(&compared.points, &bands),
     };
     Ok(Validated {
         geometry,

@@ -198,6 +198,7 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
     h.push("CT error's change with RPM at fixed J, J sweeps".into());
     h.push("zero-thrust J from the lowest to the highest sweep RPM: measured / predicted".into());
     h.push("station solves beyond the polars' Re range".into());
+    h.push("band: measured CT / CP inside (median half-width)".into());
     let signed = |x: f64| {
         if x.is_finite() {
             format!("{:+.1}", 100.0 * x)
@@ -247,6 +248,16 @@ fn regime_table(rows: &[Row]) -> (Vec<String>, Vec<Vec<String>>) {
             });
             let (beyond, solves) = r.beyond_polars;
             v.push(format!("{beyond} of {solves}"));
+            v.push(match r.band {
+                [Some(t), Some(p)] => format!(
+                    "{:.0} / {:.0} % (±{:.1} / ±{:.1} %)",
+                    100.0 * t.inside,
+                    100.0 * p.inside,
+                    100.0 * t.half_width,
+                    100.0 * p.half_width
+                ),
+                _ => "–".into(),
+            });
             v
         })
         .collect();
@@ -436,6 +447,7 @@ mod tests {
             points: 10,
             implausible: 0,
             beyond_polars: (0, 250),
+            band: [None, None],
             ct: BeforeAfter {
                 before: Spread {
                     median: x,

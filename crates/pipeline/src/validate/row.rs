@@ -79,6 +79,26 @@ pub struct Row {
     /// How well the prop's measurements repeat (the relative deviation of one point,
     /// [`propbet_diagnose::Repeatability`]): None without repeated operating points.
     pub repeatability: Option<f64>,
+    /// The uncertainty band's coverage of the measured CT and CP over the scored points (the
+    /// share inside it) and its median relative half-width ([`band_coverage`]); None where no
+    /// point has the quantity.
+    pub band: [Option<propbet_compare::band::Coverage>; 2],
+}
+
+/// The band's coverage of CT and CP over the points inside the validation window
+/// ([`propbet_compare::band::coverage`]; `bands` in the points' order).
+pub fn band_coverage(
+    points: &[ComparedPoint],
+    bands: &[propbet_compare::band::PointBand],
+) -> [Option<propbet_compare::band::Coverage>; 2] {
+    let (p, b): (Vec<_>, Vec<_>) = points
+        .iter()
+        .zip(bands)
+        .zip(in_window(points, VALIDATION_J_WINDOW))
+        .filter(|(_, inside)| *inside)
+        .map(|(pb, _)| pb)
+        .unzip();
+    propbet_compare::band::coverage(&p, &b)
 }
 
 /// The CT error's (predicted / measured − 1) change with RPM at fixed J over the J sweeps'

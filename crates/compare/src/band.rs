@@ -1,0 +1,143 @@
+//! An uncertainty band from the model's own response to what is uncertain: each source is
+//! solved at its low and its high end, and the band's two sides are the root-sum-square over
+//! the sources of how far each moves the value up and down (the sources taken as independent;
+//! a source that moves the value the same way at both ends counts once, its larger move).
+
+use crate::{ComparedPoint, Quantities};
+
+/// The low and high ends of a band around one value.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Bounds {
+    /// Low end.
+    pub lo: f64,
+    /// High end.
+    pub hi: f64,
+}
+
+impl Bounds {
+    /// True when `x` is inside (the ends included).
+    pub fn contains(&self, x: f64) -> bool {
+        x >= self.lo && x <= self.hi
+    }
+
+    /// Half the band's width relative to `centre` (NaN where the centre is zero).
+    pub fn relative_half_width(&self, centre: f64) -> f64 {
+        0.5 * (self.hi - self.lo) / centre.abs()
+    }
+}
+
+/// The band around each of `base` from `variants`: one pair of value lists per source (its low
+/// and its high end, each as long as `base`). A NaN variant value (a point a source's solve
+/// cannot give) leaves that source out of the point's band.
+pub fn combine(base: &[f64], variants: &[[Vec<f64>; 2]]) -> Vec<Bounds> {
+    base.iter()
+        .enumerate()
+        .map(|(i, &b)| {
+            let (mut up, mut down) = (0.0f64, 0.0f64);
+            for [lo, hi] in variants {
+                let d = [lo[i] - b, hi[i] - b];
+                let u = d.iter().filter(|x| x.is_finite()).fold(0.0f64, |a, &x| a.max(x));
+                let w = d.iter().filter(|x| x.is_finite()).fold(0.0f64, |a, &x| a.max(-x));
+                up += u * u;
+                down += w * w;
+            }
+            Bounds {
+                lo: b - down.sqrt(),
+                hi: b + up.sqrt(),
+            }
+        })
+        .collect()
+}
+
+/// The bands of CT, CP and efficiency at compared points, from the same points predicted at
+/// each source's two ends (`variants`: one pair of comparisons per source, in the points'
+/// order).
+pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -> Vec<PointBand> {
+    let pick = |points: &[ComparedPoint], f: fn(&Quantities) -> Option<f64>| -> Vec<f64> {
+        points.iter().map(|p| f(&p.predicted).unwrap_or(f64::NAN)).collect()
+    };
+    let band = |f: fn(&Quantities) -> Option<f64>| {
+        let v: Vec<[Vec<f64>; 2]> = variants.iter().map(|[a, b]| [pick(a, f), pick(b, f)]).collect();
+        combine(&pick(base, f), &v)
+    };
+    let (ct, cp, eta) = (band(|q| q.ct), band(|q| q.cp), band(|q| q.eta));
+    (0..base.len())
+        .map(|i| PointBand {
+            ct: ct[i],
+            cp: cp[i],
+            eta: eta[i],
+        })
+        .collect()
+}
+
+/// The band of one point.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct PointBand {
+    /// Thrust coefficient.
+    pub ct: Bounds,
+    /// Power coefficient.
+    pub cp: Bounds,
+    /// Efficiency.
+    pub eta: Bounds,
+}
+
+/// How a band fits the measurements: the share of measured values inside it and its median
+/// relative half-width, over the points given.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Coverage {
+    /// Points counted.
+    pub n: usize,
+    /// Share of the measured values inside the band.
+    pub inside: f64,
+    /// Median of the band's half-width over the predicted value.
+    pub half_width: f64,
+}
+
+/// The coverage of CT's and CP's bands over `points` (those with a measured value).
+pub fn coverage(points: &[&ComparedPoint], bands: &[&PointBand]) -> [Option<Coverage>; 2] {
+    let one = |m: fn(&Quantities) -> Option<f64>, b: fn(&PointBand) -> Bounds| {
+        let mut inside = 0;
+        let mut widths = Vec::new();
+        for (p, band) in points.iter().zip(bands) {
+            let (Some(x), Some(c)) = (m(&p.measured), m(&p.predicted)) else {
+                continue;
+            };
+            let w = b(band).relative_half_width(c);
+            if !w.is_finite() {
+                continue;
+            }
+            inside += usize::from(b(band).contains(x));
+            widths.push(w);
+        }
+        let n = widths.len();
+        (n > 0).then(|| Coverage {
+            n,
+            inside: inside as f64 / n as f64,
+            half_width: crate::metrics::quantile(widths, 0.5),
+        })
+    };
+    [one(|q| q.ct, |b| b.ct), one(|q| q.cp, |b| b.cp)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_side_is_the_root_sum_square_of_the_sources_moves_that_way() {
+        // Source 1 moves the value -3 / +4, source 2 +1 at both ends (counted once), source 3
+        // cannot be solved at its low end.
+        let base = [10.0];
+        let v = [
+            [vec![7.0], vec![14.0]],
+            [vec![11.0], vec![10.5]],
+            [vec![f64::NAN], vec![8.0]],
+        ];
+        let b = combine(&base, &v)[0];
+        assert!((b.hi - (10.0 + (16.0f64 + 1.0).sqrt())).abs() < 1e-12, "{b:?}");
+        assert!((b.lo - (10.0 - (9.0f64 + 4.0).sqrt())).abs() < 1e-12, "{b:?}");
+        assert!(b.contains(10.0) && !b.contains(14.2) && b.contains(b.lo));
+        assert!((b.relative_half_width(10.0) - 0.5 * (b.hi - b.lo) / 10.0).abs() < 1e-15);
+        assert_eq!(combine(&base, &[])[0], Bounds { lo: 10.0, hi: 10.0 });
+    }
+}

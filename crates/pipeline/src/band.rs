@@ -1,0 +1,203 @@
+//! What is uncertain in a prediction, as effects at the two ends of their plausible range: the
+//! blade angle (the twist a scan or a file gives, and the sections' zero-lift angle at low
+//! Reynolds numbers, which acts the same way), the chord, and the sections' drag. Each source
+//! is solved at both ends and the band is their root-sum-square
+//! ([`propbet_compare::band::combine`]).
+
+use propbet_bemt::{Fluid, OperatingPoint};
+use propbet_compare::band::{Bounds, PointBand};
+use propbet_compare::{AirChoice, ComparedPoint};
+use propbet_effects::{parse_spec, Stack};
+use propbet_measure::MeasuredSet;
+
+use crate::model::Model;
+use crate::Result;
+
+/// The half-ranges of the band's sources.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BandSpec {
+    /// Every blade angle, ± [deg].
+    pub angle_deg: f64,
+    /// Every chord, ± this fraction.
+    pub chord: f64,
+    /// Every section's drag, ± this fraction.
+    pub drag: f64,
+}
+
+impl Default for BandSpec {
+    /// ±1° of blade angle (UIUC's measured twist and APC's design differ by 0.2-1.6° over
+    /// r/R 0.6-0.9 on the shared props; a trip at mid-chord moves a thin section's zero-lift
+    /// angle by about 2°), ±3 % of chord (the shipped scan against UIUC's table: 2.1 % RMS),
+    /// ±20 % of drag (the drag factor's plausible 1.0-1.5 about its 1.25:
+    /// `docs/studies/drag-factor.md`).
+    fn default() -> Self {
+        Self {
+            angle_deg: 1.0,
+            chord: 0.03,
+            drag: 0.2,
+        }
+    }
+}
+
+impl BandSpec {
+    /// Each source's name and its two ends as effect specs.
+    pub fn sources(&self) -> Vec<(&'static str, [String; 2])> {
+        let (a, c, d) = (self.angle_deg, self.chord, self.drag);
+        vec![
+            (
+                "blade angle",
+                [format!("pitch-offset:deg={}", -a), format!("pitch-offset:deg={a}")],
+            ),
+            (
+                "chord",
+                [
+                    format!("chord-scale:factor={}", 1.0 - c),
+                    format!("chord-scale:factor={}", 1.0 + c),
+                ],
+            ),
+            (
+                "section drag",
+                [
+                    format!("drag-scale:factor={}", 1.0 - d),
+                    format!("drag-scale:factor={}", 1.0 + d),
+                ],
+            ),
+        ]
+    }
+
+    /// The model's effects with each source's two ends added, source by source.
+    fn stacks(&self, model: &Model) -> Result<Vec<[Stack; 2]>> {
+        let with = |spec: &str| -> Result<Stack> {
+            let mut s = model.effects.clone();
+            s.active.push(model.registry.resolve(&parse_spec(spec)?)?);
+            Ok(s)
+        };
+        self.sources()
+            .iter()
+            .map(|(_, [lo, hi])| Ok([with(lo)?, with(hi)?]))
+            .collect()
+    }
+
+    /// The band at compared points (`base`: the model's own comparison of `sets`).
+    pub fn at_compared(
+        &self,
+        model: &Model,
+        air: AirChoice,
+        sets: &[MeasuredSet],
+        base: &[ComparedPoint],
+    ) -> Result<Vec<PointBand>> {
+        let variants = self
+            .stacks(model)?
+            .into_iter()
+            .map(|pair| {
+                let [lo, hi] = pair.map(|s| propbet_compare::compare(&crate::stages::setup(model, air, s), sets));
+                Ok([lo?, hi?])
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(propbet_compare::band::of_points(base, &variants))
+    }
+
+    /// The band of CT, CP and efficiency at sweep points (`base`: the model's own solve of
+    /// `points`).
+    pub fn at_points(
+        &self,
+        model: &Model,
+        fluid: &Fluid,
+        points: &[OperatingPoint],
+        base: &[propbet_bemt::PointResult],
+    ) -> Result<Vec<PointBand>> {
+        type Pick = fn(&propbet_bemt::PointResult) -> f64;
+        let picks: [Pick; 3] = [
+            |p: &propbet_bemt::PointResult| p.ct.unwrap_or(f64::NAN),
+            |p: &propbet_bemt::PointResult| p.cp.unwrap_or(f64::NAN),
+            |p: &propbet_bemt::PointResult| p.eta,
+        ];
+        let mut solved = Vec::new();
+        for [lo, hi] in self.stacks(model)? {
+            let solve = |effects: &Stack| crate::stages::sweep_with(model, effects, fluid, points);
+            solved.push([solve(&lo)?, solve(&hi)?]);
+        }
+        let bands: Vec<Vec<Bounds>> = picks
+            .iter()
+            .map(|f| {
+                let v: Vec<[Vec<f64>; 2]> = solved
+                    .iter()
+                    .map(|[a, b]| [a.iter().map(f).collect(), b.iter().map(f).collect()])
+                    .collect();
+                propbet_compare::band::combine(&base.iter().map(f).collect::<Vec<_>>(), &v)
+            })
+            .collect();
+        Ok((0..base.len())
+            .map(|i| PointBand {
+                ct: bands[0][i],
+                cp: bands[1][i],
+                eta: bands[2][i],
+            })
+            .collect())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// QPROP's example prop (shipped in `props/cam6x3`) at 6000 rpm over its J range.
+    fn cam6x3() -> (Model, Fluid, Vec<OperatingPoint>) {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../props/cam6x3/cam6x3.qprop");
+        let model = Model::load(&crate::spec::ModelSpec::prop(path), false).unwrap();
+        let omega = 6000.0 * std::f64::consts::PI / 30.0;
+        let j: Vec<f64> = (0..6).map(|k| 0.1 * k as f64).collect();
+        let points = propbet_bemt::grid_omega_j(&[omega], &j, model.rotor.tip_radius);
+        (model, Fluid::default(), points)
+    }
+
+    #[test]
+    fn the_band_holds_the_prediction_and_widens_with_each_source() {
+        let (model, fluid, points) = cam6x3();
+        let base = crate::stages::sweep(&model, &fluid, &points).unwrap();
+        let band = |spec: BandSpec| spec.at_points(&model, &fluid, &points, &base).unwrap();
+        let full = band(BandSpec::default());
+        let angle_only = band(BandSpec {
+            chord: 0.0,
+            drag: 0.0,
+            ..BandSpec::default()
+        });
+        let none = band(BandSpec {
+            angle_deg: 0.0,
+            chord: 0.0,
+            drag: 0.0,
+        });
+        for (i, p) in base.iter().enumerate() {
+            let ct = p.ct.unwrap();
+            assert!(
+                full[i].ct.contains(ct) && full[i].cp.contains(p.cp.unwrap()),
+                "{i}: {:?}",
+                full[i]
+            );
+            // A degree of blade angle moves CT by several per cent; the other sources add to it.
+            let w = angle_only[i].ct.relative_half_width(ct);
+            assert!(w > 0.02, "{i}: {w}");
+            assert!(full[i].ct.relative_half_width(ct) > w, "{i}");
+            // No source, no band.
+            assert!((none[i].ct.hi - none[i].ct.lo).abs() < 1e-12 * ct, "{i}: {:?}", none[i]);
+        }
+        // Thrust rises with the blade angle: the high end of the angle is the band's top.
+        let raised = crate::stages::sweep_with(
+            &model,
+            &{
+                let mut s = model.effects.clone();
+                s.active.push(
+                    model
+                        .registry
+                        .resolve(&parse_spec("pitch-offset:deg=1").unwrap())
+                        .unwrap(),
+                );
+                s
+            },
+            &fluid,
+            &points,
+        )
+        .unwrap();
+        assert!((raised[0].ct.unwrap() - angle_only[0].ct.hi).abs() < 1e-12);
+    }
+}
