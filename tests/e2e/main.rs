@@ -296,6 +296,41 @@ fn predict_sweeps_j_and_writes_json_and_stations() {
     assert!(rows.iter().all(|r| r[col(&h, "convergence")] == "newton"));
 }
 
+/// `--band`: the uncertainty band's six columns after the others, which stay as they are
+/// without it; each band holds its value, and the same band in JSON.
+#[test]
+fn predict_gives_the_uncertainty_band() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = cam6x3();
+    let sweep = |extra: &[&str], out: &str| {
+        let mut args = vec!["predict", "--prop", prop.to_str().unwrap(), "--rpm", "4000,6000"];
+        args.extend(["--j", "0:0.4:0.1", "--out", out]);
+        args.extend(extra);
+        let o = run(&args, dir.path());
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    sweep(&[], "plain.csv");
+    sweep(&["--band"], "band.csv");
+    sweep(&["--band", "--format", "json"], "band.json");
+    let (h0, plain) = read_csv(&dir.path().join("plain.csv"));
+    let (h, rows) = read_csv(&dir.path().join("band.csv"));
+    assert_eq!(h[..h0.len()], h0[..]);
+    assert_eq!(h[h0.len()..], ["ct_lo", "ct_hi", "cp_lo", "cp_hi", "eta_lo", "eta_hi"]);
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("band.json")).unwrap()).unwrap();
+    for (i, (r, p)) in rows.iter().zip(&plain).enumerate() {
+        assert_eq!(r[..h0.len()], p[..]);
+        let v = |k: &str| r[col(&h, k)].parse::<f64>().unwrap();
+        for q in ["ct", "cp"] {
+            let (lo, x, hi) = (v(&format!("{q}_lo")), v(q), v(&format!("{q}_hi")));
+            // Blade angle ±1°, chord ±3 %, drag ±20 %: a few per cent of CT at least.
+            assert!(lo < x && x < hi && (hi - lo) / x > 0.02, "{q} row {i}: {r:?}");
+            let json = doc["band"][i][q]["hi"].as_f64().unwrap();
+            assert!((json / hi - 1.0).abs() < 1e-6, "{q} row {i}: {json} vs {hi}");
+        }
+    }
+}
+
 /// `propbet predict --prop cam6x3.qprop --format json` with `args`.
 fn predict_json(args: &[&str], dir: &Path) -> Output {
     let prop = cam6x3();

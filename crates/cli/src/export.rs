@@ -198,6 +198,7 @@ impl ExportArgs {
                 format: TableFormat::Csv,
                 out: None,
                 stations: None,
+                band: false,
             })
         } else {
             ExportFrom::Measured {

@@ -279,6 +279,7 @@ mod tests {
             format: propbet_pipeline::spec::TableFormat::Json,
             out: Some("r/predict/sweep.csv".into()),
             stations: None,
+            band: true,
         };
         spec.model.polars = Some("r/polars/polars.json".into());
         spec.model.effects = vec!["pitch-offset:deg=1.2".into()];

@@ -5,7 +5,9 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::{Args, ValueEnum};
 use propbet_pipeline::atmosphere::AirState;
+use propbet_pipeline::band::BandSpec;
 use propbet_pipeline::bemt::{Fluid, PointResult};
+use propbet_pipeline::compare::band::PointBand;
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, Rotation, SweepAxis, TableFormat};
 use propbet_pipeline::units::rpm_to_omega;
@@ -46,6 +48,12 @@ pub struct PredictArgs {
     /// was once called that and still answers to it.)
     #[arg(long = "out-stations", alias = "stations", value_name = "FILE")]
     pub stations: Option<PathBuf>,
+    /// Also give the uncertainty band of CT, CP and efficiency at each point (columns `ct_lo`,
+    /// `ct_hi`, `cp_lo`, `cp_hi`, `eta_lo`, `eta_hi`; `band` in JSON): every blade angle ±1°,
+    /// every chord ±3 %, the sections' drag ±20 %, each solved at both ends, their
+    /// root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven times.
+    #[arg(long)]
+    pub band: bool,
 }
 
 /// The propeller model: a prop file, how to read it, and what to change in it.
@@ -168,6 +176,9 @@ struct JsonOut<'a> {
     dbeta_deg: f64,
     warnings: &'a [String],
     points: &'a [PointResult],
+    /// The uncertainty band at each point (`--band`), in the points' order.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    band: Option<&'a [PointBand]>,
 }
 
 impl PredictArgs {
@@ -185,6 +196,7 @@ impl PredictArgs {
             },
             out: self.out.clone(),
             stations: self.stations.clone(),
+            band: self.band,
         })
     }
 }
@@ -225,7 +237,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
     // needs them (JSON, the station table).
-    let csv = spec.format == TableFormat::Csv;
+    let csv = spec.format == TableFormat::Csv && !spec.band;
     let keep_results = !csv || spec.stations.is_some();
     struct Chunk {
         results: Vec<PointResult>,
@@ -264,7 +276,21 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     }
     let inputs = spec.model.inputs();
     if !csv {
-        body = vec![json_doc(&spec, &model, &fluid, &fluid_source, &results)?];
+        // The band needs every point's base solve: written after the whole sweep.
+        let band = spec
+            .band
+            .then(|| BandSpec::default().at_points(&model, &fluid, &points, &results))
+            .transpose()?;
+        body = vec![match spec.format {
+            TableFormat::Csv => band_rows(
+                &results,
+                band.as_deref().unwrap_or(&[]),
+                fluid.rho,
+                &fluid_source,
+                model.rotor.tip_radius,
+            )?,
+            TableFormat::Json => json_doc(&spec, &model, &fluid, &fluid_source, &results, band.as_deref())?,
+        }];
     }
     emit(spec.out.as_deref(), &body, &inputs)?;
     if let Some(path) = &spec.stations {
@@ -285,6 +311,7 @@ fn json_doc(
     fluid: &Fluid,
     source: &str,
     results: &[PointResult],
+    band: Option<&[PointBand]>,
 ) -> Result<Vec<u8>> {
     let doc = JsonOut {
         prop: &spec.model.prop.to_string_lossy(),
@@ -298,16 +325,24 @@ fn json_doc(
         dbeta_deg: spec.model.dbeta.to_degrees(),
         warnings: &model.loaded.warnings,
         points: results,
+        band,
     };
     let mut s = serde_json::to_vec_pretty(&doc)?;
     s.push(b'\n');
     Ok(s)
 }
 
-/// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage).
+/// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage), with
+/// the uncertainty band's columns when the spec asks for them.
 pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<()> {
     let (fluid, source) = spec.air.fluid()?;
-    let body = [summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?];
+    let body = [if spec.band {
+        let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+        let band = BandSpec::default().at_points(model, &fluid, &ops, points)?;
+        band_rows(points, &band, fluid.rho, &source, model.rotor.tip_radius)?
+    } else {
+        summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?
+    }];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
     Ok(())
 }
@@ -340,33 +375,65 @@ struct SweepRow {
     air: String,
 }
 
-fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
+/// The band's columns of a sweep row.
+#[derive(serde::Serialize)]
+struct BandColumns {
+    ct_lo: Num,
+    ct_hi: Num,
+    cp_lo: Num,
+    cp_hi: Num,
+    eta_lo: Num,
+    eta_hi: Num,
+}
+
+/// The sweep table with the band's columns after the others (`band` in the points' order).
+fn band_rows(results: &[PointResult], band: &[PointBand], rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
     csv_rows(
-        results.iter().map(|p| SweepRow {
-            rpm: p.rpm.into(),
-            v_m_s: p.v.into(),
-            j: p.j.into(),
-            thrust_n: p.thrust.into(),
-            torque_nm: p.torque.into(),
-            power_w: p.power.into(),
-            ct: p.ct.into(),
-            cp: p.cp.into(),
-            cq: p.cq.into(),
-            eta: p.eta.into(),
-            ct_qprop: p.ct_qprop.into(),
-            cp_qprop: p.cp_qprop.into(),
-            adv_qprop: p.adv_qprop.into(),
-            dv_m_s: p.dv.into(),
-            cl_avg: p.cl_avg.into(),
-            cd_avg: p.cd_avg.into(),
-            not_converged: p.not_converged,
-            flags: propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
-            rho_kg_m3: rho.into(),
-            // No comma in the cell: the table stays splittable on commas.
-            air: air.replace(',', ";"),
+        results.iter().zip(band).map(|(p, b)| {
+            (
+                sweep_row(p, rho, air, tip_radius),
+                BandColumns {
+                    ct_lo: b.ct.lo.into(),
+                    ct_hi: b.ct.hi.into(),
+                    cp_lo: b.cp.lo.into(),
+                    cp_hi: b.cp.hi.into(),
+                    eta_lo: b.eta.lo.into(),
+                    eta_hi: b.eta.hi.into(),
+                },
+            )
         }),
-        header,
+        true,
     )
+}
+
+fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
+    csv_rows(results.iter().map(|p| sweep_row(p, rho, air, tip_radius)), header)
+}
+
+fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -> SweepRow {
+    SweepRow {
+        rpm: p.rpm.into(),
+        v_m_s: p.v.into(),
+        j: p.j.into(),
+        thrust_n: p.thrust.into(),
+        torque_nm: p.torque.into(),
+        power_w: p.power.into(),
+        ct: p.ct.into(),
+        cp: p.cp.into(),
+        cq: p.cq.into(),
+        eta: p.eta.into(),
+        ct_qprop: p.ct_qprop.into(),
+        cp_qprop: p.cp_qprop.into(),
+        adv_qprop: p.adv_qprop.into(),
+        dv_m_s: p.dv.into(),
+        cl_avg: p.cl_avg.into(),
+        cd_avg: p.cd_avg.into(),
+        not_converged: p.not_converged,
+        flags: propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
+        rho_kg_m3: rho.into(),
+        // No comma in the cell: the table stays splittable on commas.
+        air: air.replace(',', ";"),
+    }
 }
 
 /// A row of the per-station table.

@@ -316,6 +316,9 @@ pub struct PredictSpec {
     pub out: Option<PathBuf>,
     /// Per-station table.
     pub stations: Option<PathBuf>,
+    /// Also the uncertainty band of CT, CP and efficiency ([`crate::band::BandSpec`]'s
+    /// default sources).
+    pub band: bool,
 }
 
 /// Measured files and how to read them.

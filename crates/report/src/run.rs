@@ -233,8 +233,13 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
     if let Some(o) = &plan.predict.out {
         let _ = write!(
             h,
-            "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep</li>",
-            link(out, o)
+            "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep{}</li>",
+            link(out, o),
+            if plan.predict.band {
+                ", with an uncertainty band for CT, CP and efficiency (every blade angle ±1°, chord ±3 %, drag ±20 %: the columns ct_lo to eta_hi)"
+            } else {
+                ""
+            }
         );
         match (&run.qprop_export, o.parent()) {
             (Ok(x), Some(dir)) => {

@@ -291,6 +291,7 @@ impl Case {
             format: TableFormat::Csv,
             out: Some(out.join("predict/sweep.csv")),
             stations: None,
+            band: true,
         };
         let compare = self.compare_specs(dir, out, model, state)?;
         Ok(RunPlan {

@@ -82,6 +82,9 @@ impl StageSpec {
                 if let Some(o) = &s.stations {
                     push(&mut v, "--out-stations", path(o));
                 }
+                if s.band {
+                    v.push("--band".into());
+                }
             }
             StageSpec::Compare(s) => {
                 s.model.push_argv(&mut v);
@@ -132,6 +135,7 @@ impl PredictSpec {
             format: TableFormat::Csv,
             out: None,
             stations: None,
+            band: false,
             ..self.clone()
         };
         let mut argv = StageSpec::Predict(plain).argv();
