@@ -70,6 +70,62 @@ pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -
         .collect()
 }
 
+/// A band along a model curve: (x, the band there), x as the curve's (J or RPM).
+pub type BandCurve = Vec<(f64, PointBand)>;
+
+/// The band along each of a comparison's model curves ([`crate::curves::Curves`]).
+#[derive(Debug, Clone, Default)]
+pub struct BandCurves {
+    /// Per J sweep, as the curves' `j_sweeps`.
+    pub j_sweeps: Vec<Option<BandCurve>>,
+    /// Along the static curve.
+    pub statics: Option<BandCurve>,
+}
+
+/// The band along `base`'s curves from the same curves solved at each source's two ends (the
+/// same x grid: the curves' grid comes from the compared points, not from the model).
+pub fn of_curves(base: &crate::curves::Curves, variants: &[[crate::curves::Curves; 2]]) -> BandCurves {
+    let along = |c: &crate::curves::Curve, pick: &dyn Fn(&crate::curves::Curves) -> Option<&crate::curves::Curve>| {
+        let q = |curve: &crate::curves::Curve, f: fn(&Quantities) -> Option<f64>| -> Vec<f64> {
+            curve.iter().map(|(_, v)| f(v).unwrap_or(f64::NAN)).collect()
+        };
+        let band = |f: fn(&Quantities) -> Option<f64>| {
+            let v: Vec<[Vec<f64>; 2]> = variants
+                .iter()
+                .filter_map(|[a, b]| Some([q(pick(a)?, f), q(pick(b)?, f)]))
+                .filter(|[a, b]| a.len() == c.len() && b.len() == c.len())
+                .collect();
+            combine(&q(c, f), &v)
+        };
+        let (ct, cp, eta) = (band(|v| v.ct), band(|v| v.cp), band(|v| v.eta));
+        c.iter()
+            .enumerate()
+            .map(|(i, (x, _))| {
+                (
+                    *x,
+                    PointBand {
+                        ct: ct[i],
+                        cp: cp[i],
+                        eta: eta[i],
+                    },
+                )
+            })
+            .collect()
+    };
+    BandCurves {
+        j_sweeps: base
+            .j_sweeps
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                s.as_ref()
+                    .map(|(_, c)| along(c, &|v| v.j_sweeps.get(k)?.as_ref().map(|s| &s.1)))
+            })
+            .collect(),
+        statics: base.statics.as_ref().map(|c| along(c, &|v| v.statics.as_ref())),
+    }
+}
+
 /// The band of one point.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PointBand {

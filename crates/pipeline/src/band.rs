@@ -97,6 +97,27 @@ impl BandSpec {
         Ok(propbet_compare::band::of_points(base, &variants))
     }
 
+    /// The band along a comparison's model curves (`base`: the model's own,
+    /// [`propbet_compare::curves::curves`] of `points`).
+    pub fn along_curves(
+        &self,
+        model: &Model,
+        air: AirChoice,
+        points: &[ComparedPoint],
+        base: &propbet_compare::curves::Curves,
+    ) -> Result<propbet_compare::band::BandCurves> {
+        let variants = self
+            .stacks(model)?
+            .into_iter()
+            .map(|pair| {
+                let [lo, hi] =
+                    pair.map(|s| propbet_compare::curves::curves(&crate::stages::setup(model, air, s), points));
+                Ok([lo?, hi?])
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(propbet_compare::band::of_curves(base, &variants))
+    }
+
     /// The band of CT, CP and efficiency at sweep points (`base`: the model's own solve of
     /// `points`).
     pub fn at_points(

@@ -25,6 +25,9 @@ pub enum Mark {
     Dashed,
     /// Separate dots (with vertical error bars when the series has them).
     Dots,
+    /// A shaded area: the points are its outline, in order (a band's lower edge left to right,
+    /// then its upper edge right to left), drawn faint under the other series.
+    Area,
 }
 
 /// One named series.
@@ -293,9 +296,19 @@ fn draw_series<'a, DB: DrawingBackend + 'a>(
         .collect();
     // Points beyond a clipped axis go on its edge (marked below).
     let clip = |p: (f64, f64)| (p.0, p.1.clamp(y0, y1));
-    let outside: Vec<(f64, f64)> = data.iter().map(|d| d.1).filter(|p| p.1 < y0 || p.1 > y1).collect();
+    let outside: Vec<(f64, f64)> = if s.mark == Mark::Area {
+        Vec::new()
+    } else {
+        data.iter().map(|d| d.1).filter(|p| p.1 < y0 || p.1 > y1).collect()
+    };
     let xy = data.iter().map(|d| clip(d.1));
     let drawn = match s.mark {
+        Mark::Area => chart
+            .draw_series(std::iter::once(Polygon::new(
+                xy.collect::<Vec<_>>(),
+                c.mix(0.15).filled(),
+            )))
+            .map_err(err)?,
         Mark::Line => chart.draw_series(LineSeries::new(xy, c.stroke_width(2))).map_err(err)?,
         Mark::Dashed => chart
             .draw_series(DashedLineSeries::new(xy, 6, 4, c.stroke_width(2)))

@@ -38,6 +38,8 @@ pub struct ReportInput<'a> {
     pub diameter: f64,
     /// The model's curves (from `propbet_compare::curves`).
     pub curves: &'a Curves,
+    /// The uncertainty band along them (shaded in the figures), if computed.
+    pub band: Option<&'a propbet_compare::band::BandCurves>,
     /// The command that made the report.
     pub command: String,
     /// Another prediction drawn and scored beside propbet's (APC's own, `--per3`).
@@ -469,10 +471,10 @@ fn points_table_html(h: &mut String, pts: &[ComparedPoint]) {
 fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figure)> {
     let pts = input.points;
     let mut figures = Vec::new();
-    if let Some(f) = coefficient_figure(input.curves, pts, reference) {
+    if let Some(f) = coefficient_figure(input.curves, input.band, pts, reference) {
         figures.push(("coefficients".to_string(), f));
     }
-    if let Some(f) = static_figure(input.curves, pts, reference) {
+    if let Some(f) = static_figure(input.curves, input.band, pts, reference) {
         figures.push(("static".to_string(), f));
     }
     if let Some(f) = crate::answer::hover_figure(input.curves, pts) {
@@ -482,15 +484,25 @@ fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figu
     figures
 }
 
+/// What the shaded band is, for the figures' captions.
+const BAND_CAPTION: &str = "; shaded: the prediction's uncertainty band (every blade angle ±1°, chord ±3 %, section drag ±20 %, each solved at both ends, their root-sum-square)";
+
 /// The figures as inline SVG, each with its caption.
-fn figures_html(h: &mut String, figures: &[(String, Figure)], reference: Option<&Scored>) -> Result<(), PlotError> {
+fn figures_html(
+    h: &mut String,
+    figures: &[(String, Figure)],
+    reference: Option<&Scored>,
+    band: bool,
+) -> Result<(), PlotError> {
     h.push_str("<h2>Figures</h2>\n");
     for (name, f) in figures {
         let caption = match name.as_str() {
             "coefficients" => format!(
-                "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}.</figcaption>",
+                "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}{}.</figcaption>",
+                if band { BAND_CAPTION } else { "" },
                 reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
             ),
+            "static" if band => format!("<figcaption>{}.</figcaption>", &BAND_CAPTION[2..]),
             _ => String::new(),
         };
         let _ = writeln!(
@@ -556,7 +568,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         }
         h.push_str("</ul>\n");
     }
-    figures_html(&mut h, &figures, reference.as_ref())?;
+    figures_html(&mut h, &figures, reference.as_ref(), input.band.is_some())?;
     let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * propbet_compare::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
     top.extend(m.static_points.iter());

@@ -22,8 +22,30 @@ pub(super) fn measured_series(
     s
 }
 
+/// A band's shaded outline along a curve for quantity `q` (`ct`, `cp`, `eta`; efficiency
+/// where its band is positive), in colour `k`.
+pub(super) fn band_series(band: &propbet_compare::band::BandCurve, q: &str, k: usize) -> Series {
+    let pick = |b: &propbet_compare::band::PointBand| match q {
+        "ct" => b.ct,
+        "cp" => b.cp,
+        _ => b.eta,
+    };
+    let kept: Vec<(f64, propbet_compare::band::Bounds)> = band
+        .iter()
+        .map(|(x, b)| (*x, pick(b)))
+        .filter(|(x, b)| x.is_finite() && b.lo.is_finite() && b.hi.is_finite() && (q != "eta" || b.lo > 0.0))
+        .collect();
+    let outline = kept
+        .iter()
+        .map(|(x, b)| (*x, b.lo))
+        .chain(kept.iter().rev().map(|(x, b)| (*x, b.hi)))
+        .collect();
+    Series::new("", outline, Mark::Area, Some(k))
+}
+
 pub(super) fn coefficient_figure(
     curves: &Curves,
+    band: Option<&propbet_compare::band::BandCurves>,
     points: &[ComparedPoint],
     reference: Option<&Scored>,
 ) -> Option<Figure> {
@@ -55,6 +77,9 @@ pub(super) fn coefficient_figure(
         // which line is whose, so that no legend hides data.
         for (i, (panel, q)) in panels.iter_mut().zip(["ct", "cp", "eta"]).enumerate() {
             let legend = if i == 0 { name.clone() } else { String::new() };
+            if let Some(Some(b)) = band.and_then(|b| b.j_sweeps.get(k)) {
+                panel.series.push(band_series(b, q, k));
+            }
             panel.series.push(measured_series(legend, pts, |p| p.j, q, k));
             // Efficiency only where it is defined (positive).
             let line = |c: &[(f64, propbet_compare::Quantities)]| -> Vec<(f64, f64)> {
@@ -76,7 +101,12 @@ pub(super) fn coefficient_figure(
     })
 }
 
-pub(super) fn static_figure(curves: &Curves, points: &[ComparedPoint], reference: Option<&Scored>) -> Option<Figure> {
+pub(super) fn static_figure(
+    curves: &Curves,
+    band: Option<&propbet_compare::band::BandCurves>,
+    points: &[ComparedPoint],
+    reference: Option<&Scored>,
+) -> Option<Figure> {
     let stat: Vec<&ComparedPoint> = points.iter().filter(|p| p.is_static()).collect();
     if stat.is_empty() {
         return None;
@@ -100,7 +130,18 @@ pub(super) fn static_figure(curves: &Curves, points: &[ComparedPoint], reference
                 } else {
                     format!("{name} [{unit}]")
                 },
-                series: std::iter::once(measured_series("measured".into(), &stat, |p| p.rpm, q, 0))
+                series: band
+                    .and_then(|b| b.statics.as_ref())
+                    .filter(|_| matches!(*q, "ct" | "cp"))
+                    .map(|b| band_series(b, q, 1))
+                    .into_iter()
+                    .chain(std::iter::once(measured_series(
+                        "measured".into(),
+                        &stat,
+                        |p| p.rpm,
+                        q,
+                        0,
+                    )))
                     .chain(std::iter::once(Series::new(
                         "predicted",
                         curve.iter().filter_map(|(r, c)| c.get(q).map(|v| (*r, v))).collect(),
