@@ -65,8 +65,15 @@ impl BandSpec {
         ]
     }
 
-    /// The model's effects with each source's two ends added, source by source.
-    fn stacks(&self, model: &Model) -> Result<Vec<[Stack; 2]>> {
+    /// `solve` with the model's effects and each source's two ends added, source by source.
+    fn at_both_ends<T, E>(
+        &self,
+        model: &Model,
+        solve: impl Fn(Stack) -> std::result::Result<T, E>,
+    ) -> Result<Vec<[T; 2]>>
+    where
+        crate::Error: From<E>,
+    {
         let with = |spec: &str| -> Result<Stack> {
             let mut s = model.effects.clone();
             s.active.push(model.registry.resolve(&parse_spec(spec)?)?);
@@ -74,7 +81,7 @@ impl BandSpec {
         };
         self.sources()
             .iter()
-            .map(|(_, [lo, hi])| Ok([with(lo)?, with(hi)?]))
+            .map(|(_, [lo, hi])| Ok([solve(with(lo)?)?, solve(with(hi)?)?]))
             .collect()
     }
 
@@ -86,14 +93,9 @@ impl BandSpec {
         sets: &[MeasuredSet],
         base: &[ComparedPoint],
     ) -> Result<Vec<PointBand>> {
-        let variants = self
-            .stacks(model)?
-            .into_iter()
-            .map(|pair| {
-                let [lo, hi] = pair.map(|s| propbet_compare::compare(&crate::stages::setup(model, air, s), sets));
-                Ok([lo?, hi?])
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let variants = self.at_both_ends(model, |s| {
+            propbet_compare::compare(&crate::stages::setup(model, air, s), sets)
+        })?;
         Ok(propbet_compare::band::of_points(base, &variants))
     }
 
@@ -106,15 +108,9 @@ impl BandSpec {
         points: &[ComparedPoint],
         base: &propbet_compare::curves::Curves,
     ) -> Result<propbet_compare::band::BandCurves> {
-        let variants = self
-            .stacks(model)?
-            .into_iter()
-            .map(|pair| {
-                let [lo, hi] =
-                    pair.map(|s| propbet_compare::curves::curves(&crate::stages::setup(model, air, s), points));
-                Ok([lo?, hi?])
-            })
-            .collect::<Result<Vec<_>>>()?;
+        let variants = self.at_both_ends(model, |s| {
+            propbet_compare::curves::curves(&crate::stages::setup(model, air, s), points)
+        })?;
         Ok(propbet_compare::band::of_curves(base, &variants))
     }
 
@@ -133,11 +129,7 @@ impl BandSpec {
             |p: &propbet_bemt::PointResult| p.cp.unwrap_or(f64::NAN),
             |p: &propbet_bemt::PointResult| p.eta,
         ];
-        let mut solved = Vec::new();
-        for [lo, hi] in self.stacks(model)? {
-            let solve = |effects: &Stack| crate::stages::sweep_with(model, effects, fluid, points);
-            solved.push([solve(&lo)?, solve(&hi)?]);
-        }
+        let solved = self.at_both_ends(model, |s| crate::stages::sweep_with(model, &s, fluid, points))?;
         let bands: Vec<Vec<Bounds>> = picks
             .iter()
             .map(|f| {
