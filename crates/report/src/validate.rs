@@ -316,11 +316,60 @@ fn intro_for(rows: &[Row], model: &str) -> String {
     s
 }
 
+/// The answer in one sentence: the medians over the props predicted with their maker's
+/// sections (validate's medians), APC's beside them, the held-out calibration's and the band's;
+/// None without such a prop.
+pub fn headline(rows: &[Row]) -> Option<String> {
+    let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
+    if apc.is_empty() {
+        return None;
+    }
+    let med = |f: &dyn Fn(&Row) -> Option<f64>| {
+        let v: Vec<f64> = apc.iter().filter_map(|r| f(r)).filter(|x| x.is_finite()).collect();
+        (!v.is_empty()).then(|| quantile(v, 0.5))
+    };
+    let p = |x: Option<f64>| x.map_or("–".to_string(), pct);
+    let mut s = format!(
+        "Over the {} props predicted with their maker's sections, the median error is {} in CT and {} in CP",
+        apc.len(),
+        p(med(&|r| Some(r.ct.before.median))),
+        p(med(&|r| Some(r.cp.before.median)))
+    );
+    if apc.iter().any(|r| r.per3.is_some()) {
+        let _ = write!(
+            s,
+            " (APC's own code on the same points: {} and {})",
+            p(med(&|r| r.per3.as_ref().map(|a| a.ct.median))),
+            p(med(&|r| r.per3.as_ref().map(|a| a.cp.median)))
+        );
+    }
+    let _ = write!(
+        s,
+        "; after the held-out calibration {} and {}",
+        p(med(&|r| Some(r.ct.after.median))),
+        p(med(&|r| Some(r.cp.after.median)))
+    );
+    if let (Some(inside), Some(width)) = (
+        med(&|r| r.band[0].map(|c| c.inside)),
+        med(&|r| r.band[0].map(|c| c.half_width)),
+    ) {
+        let _ = write!(
+            s,
+            "; the uncertainty band holds {} of the measured CT at a half-width of {}",
+            pct(inside),
+            pct(width)
+        );
+    }
+    s.push('.');
+    Some(s)
+}
+
 /// The table as Markdown.
 pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     let (h, body) = table(rows, skipped);
     let mut md = format!(
-        "{}\n\n| {} |\n|{}\n",
+        "{}{}\n\n| {} |\n|{}\n",
+        headline(rows).map_or(String::new(), |h| format!("**{h}**\n\n")),
         intro_for(rows, model),
         h.join(" | "),
         "---|".repeat(h.len())
@@ -378,7 +427,8 @@ const LEFT_OUT_INTRO: &str = "Files left out (they did not read; each prop was v
 pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     let (h, body) = table(rows, skipped);
     let mut s = format!(
-        "<h1>Validation on measured propellers</h1>\n<p class=\"note\">{}</p>\n<table><tr>",
+        "<h1>Validation on measured propellers</h1>\n{}<p class=\"note\">{}</p>\n<table><tr>",
+        headline(rows).map_or(String::new(), |h| format!("<p><b>{}</b></p>\n", esc(&h))),
         esc(&intro_for(rows, model))
     );
     // The last two columns (the ladders) are text: left-aligned; numbers keep their "%" on
@@ -575,7 +625,22 @@ mod tests {
             md.contains("| apce_a | +7.6 / -3.0 % (4) | – | -10.0 / +0.0 % (6) | – | – | – |"),
             "{md}"
         );
+        // The answer first: the medians over the three props (no PER3, no band: not said).
+        assert!(
+            md.starts_with(
+                "**Over the 3 props predicted with their maker's sections, the median error is 20.0 % in CT and 20.0 % in CP; after the held-out calibration 10.0 % and"
+            ),
+            "{md}"
+        );
+        assert!(
+            !md.contains("APC's own code on the same points") && !md.contains("band holds"),
+            "{md}"
+        );
         let page = html(&rows, &skipped, "tables");
+        assert!(
+            page.contains("<h1>Validation on measured propellers</h1>\n<p><b>Over the 3 props"),
+            "{page}"
+        );
         // 7 rows in the first table, 1 + 3 in the second.
         assert_eq!(page.matches("<tr>").count() + page.matches("<tr class").count(), 11);
         assert!(page.contains("<h2>Where the error is</h2>"), "{page}");
