@@ -126,6 +126,32 @@ pub fn of_curves(base: &crate::curves::Curves, variants: &[[crate::curves::Curve
     }
 }
 
+/// `bands` at `points` widened by the measurements' repeatability: `rel` (one repeated
+/// point's relative deviation) at two standard deviations of each predicted value, added to
+/// each side in root-sum-square.
+pub fn with_repeatability(bands: &[PointBand], points: &[ComparedPoint], rel: f64) -> Vec<PointBand> {
+    let widen = |b: Bounds, c: Option<f64>| {
+        let Some(c) = c.filter(|c| c.is_finite()) else {
+            return b;
+        };
+        let m = 2.0 * rel * c.abs();
+        let side = |d: f64| (d * d + m * m).sqrt();
+        Bounds {
+            lo: c - side(c - b.lo),
+            hi: c + side(b.hi - c),
+        }
+    };
+    bands
+        .iter()
+        .zip(points)
+        .map(|(b, p)| PointBand {
+            ct: widen(b.ct, p.predicted.ct),
+            cp: widen(b.cp, p.predicted.cp),
+            eta: widen(b.eta, p.predicted.eta),
+        })
+        .collect()
+}
+
 /// The band of one point.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct PointBand {
@@ -195,5 +221,23 @@ mod tests {
         assert!(b.contains(10.0) && !b.contains(14.2) && b.contains(b.lo));
         assert!((b.relative_half_width(10.0) - 0.5 * (b.hi - b.lo) / 10.0).abs() < 1e-15);
         assert_eq!(combine(&base, &[])[0], Bounds { lo: 10.0, hi: 10.0 });
+    }
+
+    #[test]
+    fn repeatability_widens_each_side_about_the_prediction() {
+        let mut p = ComparedPoint::default();
+        p.predicted.ct = Some(0.1);
+        let b = Bounds { lo: 0.097, hi: 0.104 };
+        let band = PointBand { ct: b, cp: b, eta: b };
+        // 1 % repeatability: 2 % of 0.1 = 0.002 added in root-sum-square to 0.003 and 0.004.
+        let w = with_repeatability(&[band], &[p], 0.01)[0].ct;
+        assert!(
+            (0.1 - w.lo - (0.003f64.powi(2) + 0.002f64.powi(2)).sqrt()).abs() < 1e-12,
+            "{w:?}"
+        );
+        assert!(
+            (w.hi - 0.1 - (0.004f64.powi(2) + 0.002f64.powi(2)).sqrt()).abs() < 1e-12,
+            "{w:?}"
+        );
     }
 }

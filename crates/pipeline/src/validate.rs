@@ -486,7 +486,14 @@ pub fn validate_prop(
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
         zero_thrust_shift: zero_thrust_shift(&compared.points),
         repeatability: cal.diagnosed.diagnosis.repeatability.as_ref().map(|r| r.sd),
-        band: band_coverage(&compared.points, &bands),
+        // Against measurements, their own repeatability widens the band (where it is measured).
+        band: band_coverage(
+            &compared.points,
+            &match &cal.diagnosed.diagnosis.repeatability {
+                Some(r) => propbet_compare::band::with_repeatability(&bands, &compared.points, r.sd),
+                None => bands,
+            },
+        ),
     };
     Ok(Validated {
         geometry,

@@ -283,8 +283,9 @@ const REGIME_INTRO: &str =
      (below the ladder's lowest rung or above its highest, where the end rung is extrapolated): \
      whether the ladder reaches every station at every operating point. Last, the uncertainty \
      band's (blade angle ±1°, chord ±3 %, section drag ±20 %, each solved at both ends, their \
-     root-sum-square): the share of the measured CT and CP inside it over the scored points, and \
-     its median half-width relative to the prediction.";
+     root-sum-square, with twice the measurements' repeatability where they repeat a point): the \
+     share of the measured CT and CP inside it over the scored points, and its median half-width \
+     relative to the prediction.";
 
 fn intro(model: &str) -> String {
     format!(
