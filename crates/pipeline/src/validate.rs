@@ -400,14 +400,12 @@ pub fn validate_prop(
     let (geometry, input) =
         geometry_and_sections(prop, &dir, geometry_used, assumed.as_deref(), big_r, rows, &airfoils)?;
     let mut records = Vec::new();
-
     let files::MeasuredFiles {
         files: measured,
         left_out,
     } = measured_files(spec, prop)?;
     let measured = MeasuredSpec::files(measured);
     let (omegas, js) = cover(&measured)?;
-
     let polars_spec = polars_spec(spec, &dir, omegas, js)?;
     let engine = stages::polar_engine(&spec.xfoil)?;
     let polars = timed(
@@ -452,10 +450,7 @@ pub fn validate_prop(
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
     let bands = crate::band::BandSpec::default().at_compared(&model, compared.air, &compared.sets, &compared.points)?;
-    let per3 = match &per3_file {
-        None => None,
-        Some(path) => Some(per3_score(&crate::stages::read_per3(path)?, &compared.points)),
-    };
+    let per3 = per3_file.as_ref().map(|f| crate::stages::read_per3(f)).transpose()?;
     let row = Row {
         prop: prop.to_string(),
         points: ct0.len(),
@@ -469,7 +464,7 @@ pub fn validate_prop(
             before: median_p90(&cp0),
             after: median_p90(&cp1),
         },
-        per3,
+        per3: per3.map(|p| per3_score(&p, &compared.points)),
         ladder: ladder_text(&cal.effects),
         held_out_ladders,
         twist_gap: if uiuc_geometry && assumed.is_none() {
@@ -486,13 +481,10 @@ pub fn validate_prop(
         forward_rpm_trend: forward_rpm_trend(&compared.points, VALIDATION_J_WINDOW),
         zero_thrust_shift: zero_thrust_shift(&compared.points),
         repeatability: cal.diagnosed.diagnosis.repeatability.as_ref().map(|r| r.sd),
-        // Against measurements, their own repeatability widens the band (where it is measured).
         band: band_coverage(
             &compared.points,
-            &match &cal.diagnosed.diagnosis.repeatability {
-                Some(r) => propbet_compare::band::with_repeatability(&bands, &compared.points, r.sd),
-                None => bands,
-            },
+            &bands,
+            cal.diagnosed.diagnosis.repeatability.as_ref().map(|r| r.sd),
         ),
     };
     Ok(Validated {

@@ -86,14 +86,18 @@ pub struct Row {
 }
 
 /// The band's coverage of CT and CP over the points inside the validation window
-/// ([`propbet_compare::band::coverage`]; `bands` in the points' order).
+/// ([`propbet_compare::band::coverage`]; `bands` in the points' order), the band widened by the
+/// measurements' repeatability where they repeat a point (`repeatability`, the relative
+/// deviation of one point: [`propbet_compare::band::with_repeatability`]).
 pub fn band_coverage(
     points: &[ComparedPoint],
     bands: &[propbet_compare::band::PointBand],
+    repeatability: Option<f64>,
 ) -> [Option<propbet_compare::band::Coverage>; 2] {
+    let widened = repeatability.map(|r| propbet_compare::band::with_repeatability(bands, points, r));
     let (p, b): (Vec<_>, Vec<_>) = points
         .iter()
-        .zip(bands)
+        .zip(widened.as_deref().unwrap_or(bands))
         .zip(in_window(points, VALIDATION_J_WINDOW))
         .filter(|(_, inside)| *inside)
         .map(|(pb, _)| pb)
