@@ -236,9 +236,9 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     let points = propbet_pipeline::stages::operating_points(&spec, model.rotor.tip_radius)?;
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
-    // needs them (JSON, the station table).
-    let csv = spec.format == TableFormat::Csv && !spec.band;
-    let keep_results = !csv || spec.stations.is_some();
+    // needs them (JSON, the band, the station table).
+    let streamed = spec.format == TableFormat::Csv && !spec.band;
+    let keep_results = !streamed || spec.stations.is_some();
     struct Chunk {
         results: Vec<PointResult>,
         text: Vec<u8>,
@@ -253,7 +253,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
             .map(|(k, c)| {
                 let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
-                    text: if csv {
+                    text: if streamed {
                         summary_rows(&r, k == 0, fluid.rho, &fluid_source, model.rotor.tip_radius)?
                     } else {
                         Vec::new()
@@ -275,7 +275,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         body.push(c.text);
     }
     let inputs = spec.model.inputs();
-    if !csv {
+    if !streamed {
         // The band needs every point's base solve: written after the whole sweep.
         let band = spec
             .band

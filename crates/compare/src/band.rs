@@ -49,18 +49,22 @@ pub fn combine(base: &[f64], variants: &[[Vec<f64>; 2]]) -> Vec<Bounds> {
         .collect()
 }
 
-/// The bands of CT, CP and efficiency at compared points, from the same points predicted at
-/// each source's two ends (`variants`: one pair of comparisons per source, in the points'
-/// order).
-pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -> Vec<PointBand> {
-    let pick = |points: &[ComparedPoint], f: fn(&Quantities) -> Option<f64>| -> Vec<f64> {
-        points.iter().map(|p| f(&p.predicted).unwrap_or(f64::NAN)).collect()
-    };
-    let band = |f: fn(&Quantities) -> Option<f64>| {
-        let v: Vec<[Vec<f64>; 2]> = variants.iter().map(|[a, b]| [pick(a, f), pick(b, f)]).collect();
-        combine(&pick(base, f), &v)
-    };
-    let (ct, cp, eta) = (band(|q| q.ct), band(|q| q.cp), band(|q| q.eta));
+/// The bands of CT, CP and efficiency of each of `base`'s rows from the same rows solved at
+/// each source's two ends (`variants`: one pair per source, each as long as `base`), the three
+/// quantities read from a row by `values` (None where unknown).
+pub fn of_rows<R, V: AsRef<[R]>>(
+    base: &[R],
+    variants: &[[V; 2]],
+    values: [fn(&R) -> Option<f64>; 3],
+) -> Vec<PointBand> {
+    let [ct, cp, eta] = values.map(|f| {
+        let read = |rows: &[R]| -> Vec<f64> { rows.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect() };
+        let v: Vec<[Vec<f64>; 2]> = variants
+            .iter()
+            .map(|[a, b]| [read(a.as_ref()), read(b.as_ref())])
+            .collect();
+        combine(&read(base), &v)
+    });
     (0..base.len())
         .map(|i| PointBand {
             ct: ct[i],
@@ -68,6 +72,17 @@ pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -
             eta: eta[i],
         })
         .collect()
+}
+
+/// The bands of CT, CP and efficiency at compared points, from the same points predicted at
+/// each source's two ends (`variants`: one pair of comparisons per source, in the points'
+/// order).
+pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -> Vec<PointBand> {
+    of_rows(
+        base,
+        variants,
+        [|p| p.predicted.ct, |p| p.predicted.cp, |p| p.predicted.eta],
+    )
 }
 
 /// A band along a model curve: (x, the band there), x as the curve's (J or RPM).
@@ -85,32 +100,15 @@ pub struct BandCurves {
 /// The band along `base`'s curves from the same curves solved at each source's two ends (the
 /// same x grid: the curves' grid comes from the compared points, not from the model).
 pub fn of_curves(base: &crate::curves::Curves, variants: &[[crate::curves::Curves; 2]]) -> BandCurves {
-    let along = |c: &crate::curves::Curve, pick: &dyn Fn(&crate::curves::Curves) -> Option<&crate::curves::Curve>| {
-        let q = |curve: &crate::curves::Curve, f: fn(&Quantities) -> Option<f64>| -> Vec<f64> {
-            curve.iter().map(|(_, v)| f(v).unwrap_or(f64::NAN)).collect()
-        };
-        let band = |f: fn(&Quantities) -> Option<f64>| {
-            let v: Vec<[Vec<f64>; 2]> = variants
-                .iter()
-                .filter_map(|[a, b]| Some([q(pick(a)?, f), q(pick(b)?, f)]))
-                .filter(|[a, b]| a.len() == c.len() && b.len() == c.len())
-                .collect();
-            combine(&q(c, f), &v)
-        };
-        let (ct, cp, eta) = (band(|v| v.ct), band(|v| v.cp), band(|v| v.eta));
-        c.iter()
-            .enumerate()
-            .map(|(i, (x, _))| {
-                (
-                    *x,
-                    PointBand {
-                        ct: ct[i],
-                        cp: cp[i],
-                        eta: eta[i],
-                    },
-                )
-            })
-            .collect()
+    use crate::curves::{Curve, Curves};
+    let along = |c: &Curve, pick: &dyn Fn(&Curves) -> Option<&Curve>| -> BandCurve {
+        let v: Vec<[&Curve; 2]> = variants
+            .iter()
+            .filter_map(|[a, b]| Some([pick(a)?, pick(b)?]))
+            .filter(|[a, b]| a.len() == c.len() && b.len() == c.len())
+            .collect();
+        let bands = of_rows(c, &v, [|(_, q)| q.ct, |(_, q)| q.cp, |(_, q)| q.eta]);
+        c.iter().map(|(x, _)| *x).zip(bands).collect()
     };
     BandCurves {
         j_sweeps: base

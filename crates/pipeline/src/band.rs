@@ -5,7 +5,7 @@
 //! ([`propbet_compare::band::combine`]).
 
 use propbet_bemt::{Fluid, OperatingPoint};
-use propbet_compare::band::{Bounds, PointBand};
+use propbet_compare::band::PointBand;
 use propbet_compare::{AirChoice, ComparedPoint};
 use propbet_effects::{parse_spec, Stack};
 use propbet_measure::MeasuredSet;
@@ -123,30 +123,12 @@ impl BandSpec {
         points: &[OperatingPoint],
         base: &[propbet_bemt::PointResult],
     ) -> Result<Vec<PointBand>> {
-        type Pick = fn(&propbet_bemt::PointResult) -> f64;
-        let picks: [Pick; 3] = [
-            |p: &propbet_bemt::PointResult| p.ct.unwrap_or(f64::NAN),
-            |p: &propbet_bemt::PointResult| p.cp.unwrap_or(f64::NAN),
-            |p: &propbet_bemt::PointResult| p.eta,
-        ];
         let solved = self.at_both_ends(model, |s| crate::stages::sweep_with(model, &s, fluid, points))?;
-        let bands: Vec<Vec<Bounds>> = picks
-            .iter()
-            .map(|f| {
-                let v: Vec<[Vec<f64>; 2]> = solved
-                    .iter()
-                    .map(|[a, b]| [a.iter().map(f).collect(), b.iter().map(f).collect()])
-                    .collect();
-                propbet_compare::band::combine(&base.iter().map(f).collect::<Vec<_>>(), &v)
-            })
-            .collect();
-        Ok((0..base.len())
-            .map(|i| PointBand {
-                ct: bands[0][i],
-                cp: bands[1][i],
-                eta: bands[2][i],
-            })
-            .collect())
+        Ok(propbet_compare::band::of_rows(
+            base,
+            &solved,
+            [|p| p.ct, |p| p.cp, |p| Some(p.eta)],
+        ))
     }
 }
 
