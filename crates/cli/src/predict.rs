@@ -228,17 +228,46 @@ impl SweepArgs {
     }
 }
 
+/// A prediction's tables as `propbet predict` writes them.
+pub struct Tables {
+    /// The sweep table (CSV or JSON, as the spec asks), in pieces written one after another.
+    pub body: Vec<Vec<u8>>,
+    /// The per-station table (CSV), when asked for.
+    pub stations: Option<Vec<u8>>,
+    /// Station solutions that did not converge, and at how many points.
+    pub failed: (usize, usize),
+}
+
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
     let spec = args.spec()?;
-    let model = load_model(&spec.model, spec.stations.is_some())?;
+    let t = tables(&spec, spec.stations.is_some())?;
+    let inputs = spec.model.inputs();
+    emit(spec.out.as_deref(), &t.body, &inputs)?;
+    if let (Some(path), Some(table)) = (&spec.stations, &t.stations) {
+        emit(Some(path), std::slice::from_ref(table), &inputs)?;
+    }
+    let (failed, failed_points) = t.failed;
+    if failed > 0 {
+        eprintln!(
+            "propbet: {failed} station solutions at {failed_points} operating points did not converge; \
+             they are flagged in the per-station table"
+        );
+    }
+    Ok(failed == 0)
+}
+
+/// A prediction's tables, in memory: the sweep table as the spec's format says, and the
+/// per-station table when `stations`.
+pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
+    let model = load_model(&spec.model, stations)?;
     let (fluid, fluid_source) = spec.air.fluid()?;
-    let points = propbet_pipeline::stages::operating_points(&spec, model.rotor.tip_radius)?;
+    let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
     // needs them (JSON, the band, the station table).
     let streamed = spec.format == TableFormat::Csv && !spec.band;
-    let keep_results = !streamed || spec.stations.is_some();
+    let keep_results = !streamed || stations;
     struct Chunk {
         results: Vec<PointResult>,
         text: Vec<u8>,
@@ -274,7 +303,6 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         results.extend(c.results);
         body.push(c.text);
     }
-    let inputs = spec.model.inputs();
     if !streamed {
         // The band needs every point's base solve: written after the whole sweep.
         let band = spec
@@ -289,20 +317,14 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
                 &fluid_source,
                 model.rotor.tip_radius,
             )?,
-            TableFormat::Json => json_doc(&spec, &model, &fluid, &fluid_source, &results, band.as_deref())?,
+            TableFormat::Json => json_doc(spec, &model, &fluid, &fluid_source, &results, band.as_deref())?,
         }];
     }
-    emit(spec.out.as_deref(), &body, &inputs)?;
-    if let Some(path) = &spec.stations {
-        emit(Some(path), &[stations_csv(&results)?], &inputs)?;
-    }
-    if failed > 0 {
-        eprintln!(
-            "propbet: {failed} station solutions at {failed_points} operating points did not converge; \
-             they are flagged in the per-station table"
-        );
-    }
-    Ok(failed == 0)
+    Ok(Tables {
+        body,
+        stations: stations.then(|| stations_csv(&results)).transpose()?,
+        failed: (failed, failed_points),
+    })
 }
 
 fn json_doc(

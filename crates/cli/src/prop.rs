@@ -27,18 +27,24 @@ pub struct PropArgs {
     pub write: Option<PathBuf>,
 }
 
+impl PropArgs {
+    /// The file as a model's spec reads it (its units, QPROP's reading).
+    pub fn model_spec(&self) -> Result<ModelSpec> {
+        Ok(ModelSpec {
+            units: self
+                .units
+                .as_deref()
+                .map(propbet_pipeline::values::parse_length_unit)
+                .transpose()?,
+            qprop_compat: self.qprop_compat,
+            ..ModelSpec::prop(self.file.clone())
+        })
+    }
+}
+
 /// Runs `propbet prop`.
 pub fn run(args: &PropArgs) -> Result<bool> {
-    let spec = ModelSpec {
-        units: args
-            .units
-            .as_deref()
-            .map(propbet_pipeline::values::parse_length_unit)
-            .transpose()?,
-        qprop_compat: args.qprop_compat,
-        ..ModelSpec::prop(args.file.clone())
-    };
-    let model = load_model(&spec, false)?;
+    let model = load_model(&args.model_spec()?, false)?;
     let (loaded, rotor) = (&model.loaded, &model.rotor);
     println!("name: {}", loaded.file.name);
     println!("blades: {}", rotor.blades);

@@ -29,7 +29,7 @@ pub mod xfoil {
 
 /// Measured data ([`propbet_measure`]).
 pub mod measure {
-    pub use propbet_measure::{summarise_dropped, uiuc, Loads, MeasuredSet, RpmSource, Speed};
+    pub use propbet_measure::{summarise_dropped, uiuc, DropReason, Format, Loads, MeasuredSet, RpmSource, Speed};
 }
 
 /// The comparison ([`propbet_compare`]).
@@ -55,5 +55,5 @@ pub mod geometry {
 
 /// Unit conversions ([`propbet_units`]).
 pub mod units {
-    pub use propbet_units::{omega_to_rev_per_s, rpm_to_omega, rpm_to_rev_per_s};
+    pub use propbet_units::{omega_to_rev_per_s, omega_to_rpm, rpm_to_omega, rpm_to_rev_per_s};
 }

@@ -207,6 +207,7 @@ const RANKS: [(&str, u32); 16] = [
     ("propbet-pipeline", 5),
     ("propbet-report", 6),
     ("propbet-cli", 7),
+    ("propbet-python", 8),
 ];
 
 /// A crate's manifest: its package name and the names of its `[dependencies]`.
@@ -475,7 +476,7 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "data table",
     ),
     (
-        "crates/cli/src/main.rs",
+        "crates/cli/src/lib.rs",
         "specs_with_every_flag_parse_back",
         "data table",
     ),

@@ -1,0 +1,200 @@
+//! The commands' results in memory, for a program that runs propbet in its own process (the
+//! Python package): the same command lines, the same tables as the files the commands write,
+//! returned instead of written.
+
+use std::path::Path;
+
+use anyhow::{bail, Result};
+use clap::Parser;
+use propbet_pipeline::measure::{DropReason, Format, Loads, MeasuredSet, Speed};
+use propbet_pipeline::spec::StageSpec;
+
+use crate::compare::MeasuredArgs;
+use crate::output::{csv_rows, Num};
+use crate::{Cli, Command};
+
+/// The command line `argv` (without the program's name) parsed as `propbet`'s.
+fn parse(argv: &[String]) -> Result<Command> {
+    let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
+        .map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+    Ok(cli.command)
+}
+
+/// `propbet predict` with these flags (after `predict`), its tables in memory: the sweep table
+/// as it writes it (`--format` says CSV or JSON; `--out` is ignored), and the per-station table
+/// when `stations`.
+pub fn predict(argv: &[String], stations: bool) -> Result<crate::predict::Tables> {
+    let Command::Predict(a) = parse(argv)? else {
+        bail!("not a predict command: {}", argv.join(" "))
+    };
+    crate::predict::tables(&a.spec()?, stations)
+}
+
+/// The stages `propbet run` would run for a case directory, writing under `out`: each as its
+/// command line (without the program's name), in order.
+pub fn case_stages(dir: &Path, out: &Path) -> Result<Vec<Vec<String>>> {
+    let argv = ["run".to_string(), dir.display().to_string(), "-o".into(), out.display().to_string()];
+    let Command::Run(a) = parse(&argv)? else {
+        bail!("not a run command")
+    };
+    let plan = crate::run::plan(dir, out, &a.xfoil)?;
+    Ok(plan.stages().iter().map(StageSpec::argv).collect())
+}
+
+/// Measured files read with the measurement flags of `compare` (`--measured FILE...`,
+/// `--poles`, `--rpm-source`, `--atmosphere`, `--rho`, `--columns`): a table of the points
+/// (CSV, one row per point, every file's in order) and one of the rows dropped (CSV).
+pub fn measurements(argv: &[String]) -> Result<(Vec<u8>, Vec<u8>)> {
+    #[derive(Parser)]
+    #[command(name = "read_measurements")]
+    struct Flags {
+        #[command(flatten)]
+        data: MeasuredArgs,
+    }
+    let flags = Flags::try_parse_from(std::iter::once("read_measurements".to_string()).chain(argv.iter().cloned()))
+        .map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+    let spec = flags.data.spec()?;
+    let (_, sets) = propbet_pipeline::stages::load_measured(&spec)?;
+    let names: Vec<String> = spec.files.iter().map(|p| p.display().to_string()).collect();
+    Ok((points_csv(&names, &sets)?, dropped_csv(&names, &sets)?))
+}
+
+/// A measured point as a row.
+#[derive(serde::Serialize)]
+struct PointRow<'a> {
+    file: &'a str,
+    format: Format,
+    label: &'a str,
+    line_first: usize,
+    line_last: usize,
+    rpm: Num,
+    rpm_sd: Num,
+    samples: usize,
+    v_m_s: Num,
+    v_sd: Num,
+    j: Num,
+    thrust_n: Num,
+    thrust_sd: Num,
+    torque_nm: Num,
+    torque_sd: Num,
+    ct: Num,
+    cp: Num,
+    temperature_k: Num,
+    pressure_pa: Num,
+    humidity: Num,
+    transient: usize,
+    flags: String,
+}
+
+fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
+    let rpm = propbet_pipeline::units::omega_to_rpm;
+    let rows = names.iter().zip(sets).flat_map(|(file, s)| {
+        s.points.iter().map(move |p| {
+            let (v, v_sd, j) = match p.speed {
+                Speed::Airspeed(v) => (Some(v.mean), v.sd, None),
+                Speed::AdvanceRatio(j) => (None, None, Some(j)),
+            };
+            let (thrust, torque, ct, cp) = match p.loads {
+                Loads::Forces { thrust, torque } => (Some(thrust), torque, None, None),
+                Loads::Coefficients { ct, cp } => (None, None, Some(ct), Some(cp)),
+            };
+            PointRow {
+                file,
+                format: s.format,
+                label: &p.label,
+                line_first: p.lines.0,
+                line_last: p.lines.1,
+                rpm: rpm(p.omega.mean).into(),
+                rpm_sd: p.omega.sd.map(rpm).into(),
+                samples: p.omega.n,
+                v_m_s: v.into(),
+                v_sd: v_sd.into(),
+                j: j.into(),
+                thrust_n: thrust.map(|t| t.mean).into(),
+                thrust_sd: thrust.and_then(|t| t.sd).into(),
+                torque_nm: torque.map(|t| t.mean).into(),
+                torque_sd: torque.and_then(|t| t.sd).into(),
+                ct: ct.into(),
+                cp: cp.into(),
+                temperature_k: p.air.temperature.into(),
+                pressure_pa: p.air.pressure.into(),
+                humidity: p.air.humidity.into(),
+                transient: p.transient,
+                flags: p.flags.join("; "),
+            }
+        })
+    });
+    csv_rows(rows, true)
+}
+
+/// A dropped row.
+#[derive(serde::Serialize)]
+struct DroppedRow<'a> {
+    file: &'a str,
+    line: usize,
+    reason: DropReason,
+    detail: &'a str,
+}
+
+fn dropped_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
+    let rows = names.iter().zip(sets).flat_map(|(file, s)| {
+        s.dropped.iter().map(move |d| DroppedRow {
+            file,
+            line: d.line,
+            reason: d.reason,
+            detail: &d.detail,
+        })
+    });
+    csv_rows(rows, true)
+}
+
+/// A prop file's rows as `propbet prop FILE [--units U] [--qprop-compat]` reads them (flags
+/// after `prop`), in SI: radius, chord, blade angle and the ten QPROP section coefficients of
+/// each row (a row's own, or the file's global ones), as a table (CSV).
+pub fn stations(argv: &[String]) -> Result<Vec<u8>> {
+    let Command::Prop(a) = parse(argv)? else {
+        bail!("not a prop command: {}", argv.join(" "))
+    };
+    let model = crate::predict::load_model(&a.model_spec()?, false)?;
+    let file = &model.loaded.file;
+    let blade = file.to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
+    let rows = (0..blade.r.len()).map(|i| {
+        let c = &blade.coeffs[i];
+        StationRow {
+            r_m: blade.r[i].into(),
+            r_over_tip: (blade.r[i] / blade.tip_radius).into(),
+            chord_m: blade.chord[i].into(),
+            beta_deg: blade.beta[i].to_degrees().into(),
+            cl0: c.cl0.into(),
+            cl_a_per_rad: c.cl_a.into(),
+            cl_min: c.cl_min.into(),
+            cl_max: c.cl_max.into(),
+            cd0: c.cd0.into(),
+            cd2u: c.cd2u.into(),
+            cd2l: c.cd2l.into(),
+            cl_cd0: c.clcd0.into(),
+            re_ref: c.re_ref.into(),
+            re_exp: c.re_exp.into(),
+        }
+    });
+    csv_rows(rows, true)
+}
+
+/// A prop file's row in SI.
+#[derive(serde::Serialize)]
+struct StationRow {
+    r_m: Num,
+    r_over_tip: Num,
+    chord_m: Num,
+    beta_deg: Num,
+    cl0: Num,
+    cl_a_per_rad: Num,
+    cl_min: Num,
+    cl_max: Num,
+    cd0: Num,
+    cd2u: Num,
+    cd2l: Num,
+    cl_cd0: Num,
+    re_ref: Num,
+    re_exp: Num,
+}

@@ -1,0 +1,456 @@
+//! The `propbet` commands: thin glue over the library crates. Parses flags, converts them once
+//! to SI, runs, and says how it went: done, done with problems it reported, or an error (the
+//! binary's exit codes 0, 1, 2). A library so that the binary (`main.rs`) and the Python
+//! package (`crates/python`) run the same commands.
+
+use clap::{Parser, Subcommand};
+
+/// `eprintln!` that does not panic when standard error is closed (`propbet ... 2>&- `, or a
+/// pipe whose reader has gone): a message nobody can read is not a reason to abort. Defined
+/// before the modules, so it replaces the standard macro in all of them.
+macro_rules! eprintln {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($t)*);
+    }};
+}
+
+/// `println!` that does not panic when standard output is closed (`propbet ... | head -1`).
+macro_rules! println {
+    ($($t:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout(), $($t)*);
+    }};
+}
+
+pub mod api;
+mod compare;
+mod diagnose;
+mod export;
+mod output;
+mod polar;
+mod predict;
+mod prop;
+mod run;
+mod scan;
+mod synth;
+mod validate;
+
+/// Propeller performance from geometry, and why it disagrees with the thrust stand.
+#[derive(Debug, Parser)]
+#[command(name = "propbet", version, about, after_help = EXIT)]
+pub struct Cli {
+    /// Worker threads for sweeps (default: all cores).
+    #[arg(long, global = true)]
+    threads: Option<usize>,
+    /// The command.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The exit codes, as every help page states them.
+const EXIT: &str = "Exit status: 0 done; 1 done, with problems it reports (unfit stations, XFOIL faults, \
+dropped rows, unconverged points); 2 error (bad input or arguments: a message naming the file, line or value).";
+
+/// The commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// The main job: a case directory (case.toml) from scan to report — scan, polars (XFOIL or
+    /// NeuralFoil), sweeps, comparison with the measurements, diagnosis, one HTML report.
+    #[command(after_help = concat!(
+        "Example:\n  propbet run props/apcsf_10x4.7 -o run_apc\n\n",
+        "Exit status: 0 done; 1 done, with problems it reports; 2 error (the output folder keeps INCOMPLETE.txt)."
+    ))]
+    Run(Box<run::RunArgs>),
+    /// Blade geometry from a scan (STL mesh or PLY / COLMAP / XYZ cloud): sections, airfoil
+    /// fits, geometry CSV, geom.txt, QPROP prop file, airfoil files and plots.
+    #[command(after_help = concat!(
+        "Example:\n  propbet scan props/apcsf_10x4.7/apcsf_10x4.7.stl --units mm -o scan_apc\n\n",
+        "Exit status: 0 done; 1 done, with stations it could not measure or fit, which it reports; 2 error."
+    ))]
+    Scan(Box<scan::ScanArgs>),
+    /// Polars of every station of a blade at its operating Re and Mach, reduced to a QPROP file.
+    #[command(after_help = concat!(
+        "Example:\n  propbet polars --geometry props/apcsf_10x4.7/apcsf_10x4.7_geometry.qprop \\\n",
+        "    --airfoil props/airfoils/e63.dat --rpm 4000,6000 --j 0:0.6:0.1 --out-prop apc.qprop --out-polars apc.json\n\n",
+        "Exit status: 0 done; 1 done, with unfit stations or XFOIL faults it reports; 2 error."
+    ))]
+    Polars(Box<polar::PolarsArgs>),
+    /// Polars of one section from XFOIL at given Reynolds numbers, with their QPROP fit.
+    #[command(after_help = concat!(
+        "Example:\n  propbet polar --airfoil naca4412 --re 5e4,1e5 -o naca4412.csv\n\n",
+        "Exit status: 0 done; 1 done, with XFOIL faults it reports; 2 error."
+    ))]
+    Polar(Box<polar::PolarArgs>),
+    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
+    #[command(after_help = concat!(
+        "Example:\n  propbet predict --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05\n\n",
+        "Exit status: 0 done; 1 done, with unconverged points it reports; 2 error."
+    ))]
+    Predict(Box<predict::PredictArgs>),
+    /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
+    /// plots and an HTML report.
+    #[command(after_help = concat!(
+        "Example:\n  propbet compare --prop props/cam6x3/cam6x3.qprop \\\n",
+        "    --measured tests/data/hidden_effects/no_effect/cam6x3_steps.csv -o cmp\n\n",
+        "Exit status: 0 done; 1 done, with dropped rows or unconverged points it reports; 2 error."
+    ))]
+    Compare(Box<compare::CompareArgs>),
+    /// Which physical effect is missing: candidate effects fitted to the measurements, ranked
+    /// by held-out error, and the ladder of effects that help.
+    #[command(after_help = concat!(
+        "Example:\n  propbet diagnose --prop tests/data/hidden_effects/torque_tare/cam6x3.qprop \\\n",
+        "    --measured tests/data/hidden_effects/torque_tare/cam6x3_steps.csv --out dg\n\n",
+        "Exit status: 0 done; 1 done, with dropped rows it reports; 2 error."
+    ))]
+    Diagnose(Box<diagnose::DiagnoseArgs>),
+    /// List the effects (built-in and user-defined) with their parameters and physics.
+    #[command(after_help = concat!("Example:\n  propbet effects\n\n", "Exit status: 0 done; 2 error."))]
+    Effects(diagnose::EffectsArgs),
+    /// Write synthetic measurements made by the model with hidden effects and noise.
+    #[command(after_help = concat!(
+        "Example:\n  propbet synth --prop props/cam6x3/cam6x3.qprop --effect pitch-offset:deg=1.5 --noise 1% --out synth.csv\n\n",
+        "Exit status: 0 done; 2 error."
+    ))]
+    Synth(Box<synth::SynthArgs>),
+    /// Validation on real data: every UIUC propeller of the directory with an APC PE0 file,
+    /// predicted and compared with its static and J-sweep files, before and after calibration.
+    #[command(after_help = concat!(
+        "Example:\n  propbet validate --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",
+        "    --per3 ../shared/data/apc/PER3 -o validation\n\n",
+        "Exit status: 0 done; 1 done, with problems it reports; 2 error."
+    ))]
+    Validate(Box<validate::ValidateArgs>),
+    /// Flight-simulator files from a prediction or from measurements: Gazebo's motor model,
+    /// PX4 SIH's thruster parameters, a JSBSim propeller, a CT/CP map (CSV, JSON).
+    #[command(after_help = concat!(
+        "Example:\n  propbet export --to all --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05 -o sim\n\n",
+        "From a static thrust-stand log:\n  propbet export --to gazebo --measured log.csv --diameter 5in -o sim\n\n",
+        "Exit status: 0 done; 2 error (an export the data cannot support: what is missing, nothing written)."
+    ))]
+    Export(Box<export::ExportArgs>),
+    /// Inspect a QPROP prop file: stations, warnings; optionally write it back normalised.
+    #[command(after_help = concat!("Example:\n  propbet prop props/cam6x3/cam6x3.qprop\n\n", "Exit status: 0 done; 2 error."))]
+    Prop(prop::PropArgs),
+    /// Shell completions for bash, zsh, fish, elvish or PowerShell, on standard output.
+    #[command(
+        after_help = "Example:\n  propbet completions bash > /etc/bash_completion.d/propbet\n\nExit status: 0 done; 2 error."
+    )]
+    Completions {
+        /// The shell.
+        shell: clap_complete::Shell,
+    },
+    /// The manual page (roff), on standard output.
+    #[command(after_help = "Example:\n  propbet man > propbet.1 && man ./propbet.1\n\nExit status: 0 done; 2 error.")]
+    Man,
+}
+
+/// Runs a parsed command line: `Ok(true)` done, `Ok(false)` done with problems it reported
+/// (exit 1), `Err` an error (exit 2).
+pub fn run(cli: Cli) -> anyhow::Result<bool> {
+    if let Some(n) = cli.threads {
+        // More threads than a machine has cores gains nothing; thousands exhaust its
+        // processes (pid_max) and take minutes to start.
+        const MAX_THREADS: usize = 256;
+        if n == 0 || n > MAX_THREADS {
+            anyhow::bail!(
+                "--threads {n}: from 1 to {MAX_THREADS} (this machine has {} cores)",
+                std::thread::available_parallelism().map_or(1, |c| c.get())
+            );
+        }
+        rayon::ThreadPoolBuilder::new().num_threads(n).build_global()?;
+    }
+    dispatch(cli.command)
+}
+
+/// Runs `propbet` with these arguments (the program's name first) in this process, as the
+/// binary would: flags an error of clap's as an error (its message as clap prints it).
+pub fn execute<I, T>(argv: I) -> anyhow::Result<bool>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let cli = Cli::try_parse_from(argv).map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+    run(cli)
+}
+
+/// Runs one command.
+fn dispatch(command: Command) -> anyhow::Result<bool> {
+    match command {
+        Command::Run(a) => run::run(&a),
+        Command::Validate(a) => validate::run(&a),
+        Command::Predict(a) => predict::run(&a),
+        Command::Prop(a) => prop::run(&a),
+        Command::Export(a) => export::run(&a),
+        Command::Polar(a) => polar::run_polar(&a),
+        Command::Polars(a) => polar::run_polars(&a),
+        Command::Compare(a) => compare::run(&a),
+        Command::Diagnose(a) => diagnose::run(&a),
+        Command::Effects(a) => diagnose::list(&a),
+        Command::Synth(a) => synth::run(&a),
+        Command::Scan(a) => scan::run(&a),
+        Command::Completions { shell } => {
+            let mut cmd = <Cli as clap::CommandFactory>::command();
+            clap_complete::generate(shell, &mut cmd, "propbet", &mut std::io::stdout());
+            Ok(true)
+        }
+        Command::Man => {
+            let cmd = <Cli as clap::CommandFactory>::command();
+            let mut out = Vec::new();
+            clap_mangen::Man::new(cmd).render(&mut out)?;
+            std::io::Write::write_all(&mut std::io::stdout(), &out)?;
+            Ok(true)
+        }
+    }
+}
+
+#[cfg(test)]
+mod case_keys;
+mod settings_flags;
+#[cfg(test)]
+mod tests {
+    use std::path::{Path, PathBuf};
+
+    use clap::Parser;
+    use propbet_pipeline::spec::StageSpec;
+
+    use super::*;
+
+    /// The stage spec a stage's command line means (the commands `propbet run` and `propbet
+    /// validate` print for their stages).
+    pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_pipeline::spec::StageSpec>> {
+        use propbet_pipeline::spec::StageSpec;
+        Ok(Some(match command {
+            Command::Scan(a) => StageSpec::Scan(a.spec()?),
+            Command::Polars(a) => StageSpec::Polars(a.spec()?),
+            Command::Predict(a) => StageSpec::Predict(a.spec()?),
+            Command::Compare(a) => StageSpec::Compare(a.spec()?),
+            Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
+            _ => return Ok(None),
+        }))
+    }
+
+    /// Every subcommand's help ends with an example that parses and the exit codes; the
+    /// completions and the manual page are generated from the same definition.
+    #[test]
+    fn every_help_has_an_example_that_parses_and_the_exit_codes() {
+        use clap::CommandFactory;
+        let cmd = Cli::command();
+        let names: Vec<String> = cmd.get_subcommands().map(|c| c.get_name().to_string()).collect();
+        // Workflow order: the main job first, the tools after.
+        assert_eq!(&names[..3], ["run", "scan", "polars"]);
+        for sub in cmd.get_subcommands() {
+            let help = sub.get_after_help().map(|h| h.to_string()).unwrap_or_default();
+            assert!(help.contains("Exit status: 0"), "{}: {help}", sub.get_name());
+            let example = help
+                .split("Example:\n")
+                .nth(1)
+                .and_then(|e| e.split("\n\n").next())
+                .unwrap_or_else(|| panic!("{}: no example", sub.get_name()));
+            let line = example.replace("\\\n", " ");
+            let line = line.split('>').next().unwrap().split("&&").next().unwrap();
+            let argv: Vec<&str> = line.split_whitespace().collect();
+            assert_eq!(argv[1], sub.get_name());
+            Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{line}: {e}"));
+        }
+        let mut bash = Vec::new();
+        clap_complete::generate(clap_complete::Shell::Bash, &mut Cli::command(), "propbet", &mut bash);
+        assert!(String::from_utf8(bash).unwrap().contains("validate"));
+        let mut man = Vec::new();
+        clap_mangen::Man::new(Cli::command()).render(&mut man).unwrap();
+        assert!(String::from_utf8(man).unwrap().contains(".TH propbet"));
+    }
+
+    /// The export command a report prints for a prediction parses as `propbet export`.
+    #[test]
+    fn a_predictions_export_command_parses() {
+        let mut spec = propbet_pipeline::spec::PredictSpec {
+            model: propbet_pipeline::spec::ModelSpec::prop("r/polars/prop.qprop".into()),
+            omegas: vec![400.0, 600.0],
+            axis: propbet_pipeline::spec::SweepAxis::J(vec![0.0, 0.3]),
+            air: Default::default(),
+            format: propbet_pipeline::spec::TableFormat::Json,
+            out: Some("r/predict/sweep.csv".into()),
+            stations: None,
+            band: true,
+        };
+        spec.model.polars = Some("r/polars/polars.json".into());
+        spec.model.effects = vec!["pitch-offset:deg=1.2".into()];
+        spec.model.dbeta = 0.01;
+        let cmd = spec.export_command(std::path::Path::new("r/export"));
+        let argv: Vec<&str> = cmd.split_whitespace().collect();
+        let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{cmd}: {e}"));
+        let Command::Export(a) = cli.command else {
+            panic!("{cmd}")
+        };
+        assert_eq!(a.to, ["all"]);
+        assert_eq!(a.out, std::path::PathBuf::from("r/export"));
+        assert_eq!(a.effect, ["pitch-offset:deg=1.2"]);
+        assert!(a.polars.is_some() && a.j.is_some());
+    }
+
+    /// A spec's printed command line parses back to the same spec.
+    pub(crate) fn check(spec: &StageSpec) {
+        let argv = spec.argv();
+        let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
+            .unwrap_or_else(|e| panic!("{}: {e}", spec.command()));
+        let back = stage_spec(&cli.command).unwrap().expect("a stage");
+        assert_eq!(&back, spec, "{}", spec.command());
+    }
+
+    pub(crate) fn repo() -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+    }
+
+    #[test]
+    fn every_stage_of_the_shipped_cases_is_a_command_that_parses_back() {
+        let xfoil = polar::XfoilProcess {
+            xfoil: Some("/usr/bin/xfoil".into()),
+            cache: Some("/tmp/cache dir".into()),
+            no_cache: false,
+            quiet: true,
+            xfoil_budget: Some(600.0),
+            engine: "auto".into(),
+            neuralfoil_size: Some("large".into()),
+        };
+        let mut n = 0;
+        for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {
+            let plan = run::plan(&repo().join("props").join(case), Path::new("out"), &xfoil).unwrap();
+            for s in plan.stages() {
+                check(&s);
+                n += 1;
+            }
+        }
+        assert_eq!(n, 5 + 3 + 1);
+    }
+
+    #[test]
+    fn specs_with_every_flag_parse_back() {
+        let parse = |line: &[&str]| -> StageSpec {
+            let cli = Cli::try_parse_from(std::iter::once("propbet").chain(line.iter().copied())).unwrap();
+            stage_spec(&cli.command).unwrap().unwrap()
+        };
+        for line in [
+            &[
+                "predict",
+                "--prop",
+                "p.qprop",
+                "--rpm",
+                "2400,6512",
+                "--v",
+                "0:20/7",
+                "--temp",
+                "22C",
+                "--pressure",
+                "1009hPa",
+                "--humidity",
+                "40",
+                "--dbeta=-1.5",
+                "--units",
+                "in",
+                "--qprop-compat",
+                "--no-tip-loss",
+                "--effect",
+                "pitch-offset:deg=1.2",
+                "--format",
+                "json",
+                "--out-stations",
+                "s.csv",
+            ][..],
+            &[
+                "compare",
+                "--prop",
+                "p.qprop",
+                "--measured",
+                "a.csv",
+                "b.txt",
+                "--poles",
+                "14",
+                "--rpm-source",
+                "electrical",
+                "--atmosphere",
+                "22,1009hPa,40",
+                "--rho",
+                "1.1648",
+                "--columns",
+                "c.toml",
+                "-o",
+                "o",
+            ],
+            &[
+                "diagnose",
+                "--prop",
+                "p.qprop",
+                "--measured",
+                "a.csv",
+                "--effects",
+                "pitch-offset,torque-tare",
+                "--folds",
+                "4",
+                "--max-steps",
+                "2",
+                "-o",
+                "o",
+            ],
+            &[
+                "polars",
+                "--geometry",
+                "g.qprop",
+                "--units",
+                "mm",
+                "--airfoil",
+                "naca4412",
+                "--thickness",
+                "8%",
+                "--rpm",
+                "6000,8000",
+                "--j",
+                "0:0.5:0.1",
+                "--ncrit",
+                "6",
+                "--alpha=-4:12:0.5",
+                "--panels",
+                "160",
+                "--iter",
+                "50",
+                "--no-cache",
+                "--xfoil-budget",
+                "90",
+                "--out-prop",
+                "o.qprop",
+            ],
+            &[
+                "scan",
+                "x.ply",
+                "-o",
+                "o",
+                "--units",
+                "in",
+                "--stations",
+                "0.2:0.9/8",
+                "--planar",
+                "--slab",
+                "0.5",
+                "--slab-points",
+                "0",
+                "--blade-colour",
+                "orange,#102030",
+                "--colour-threshold",
+                "40",
+                "--box",
+                "50.8x48.26x50.8",
+                "--box-seeds=1,2,3;4,5,6",
+                "--crop=-80,-200,-200,200,200,200",
+                "--outliers",
+                "10,3",
+                "--root-point=1,2,3",
+                "--tip-point=4,5,6",
+                "--rotate=0,1,2",
+                "--known-length",
+                "0,0,0,2,0,0,25",
+            ],
+        ] {
+            check(&parse(line));
+        }
+    }
+}

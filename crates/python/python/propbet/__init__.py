@@ -1,0 +1,607 @@
+"""propbet from Python: propeller performance from geometry, compared with measurements.
+
+The same engine as the ``propbet`` command line, run in this process: every function here is
+a command with its flags given as keyword arguments (``ncrit=7`` is ``--ncrit 7``,
+``rpm=[4000, 6000]`` is ``--rpm 4000,6000``, ``qprop_compat=True`` is ``--qprop-compat``), and
+its tables returned as pandas DataFrames with the columns and digits of the files the command
+writes. Nothing is computed twice: the numbers are the command line's.
+
+    import propbet
+    prop = propbet.Prop.from_qprop("props/cam6x3/cam6x3.qprop")
+    sweep = prop.predict(rpm=[4000, 6000], j=np.arange(0, 0.61, 0.05))
+
+Bad input raises :class:`InputError` with the command line's message (the file, line or value);
+the GIL is released while propbet computes.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import numbers
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Iterator, Mapping, Optional, Sequence, Union
+
+import pandas as pd
+
+from . import _native
+from ._native import InputError, InternalError
+
+__all__ = [
+    "Prop",
+    "Comparison",
+    "Diagnosis",
+    "RunResult",
+    "Validation",
+    "read_measurements",
+    "compare",
+    "diagnose",
+    "run",
+    "validate",
+    "execute",
+    "InputError",
+    "InternalError",
+]
+__version__ = _native.__version__
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+# Flags given once per value (`--effect a --effect b`); every other list is comma-joined.
+_REPEATED = {"effect"}
+# Flags that take several values after one flag (`--measured a b c`).
+_MANY = {"measured"}
+
+
+def _number(name: str, value: Any, index: Optional[int] = None) -> str:
+    where = name if index is None else f"{name}[{index}]"
+    x = float(value)
+    if math.isnan(x) or math.isinf(x):
+        raise InputError(f"{where} = {value!r}: not a finite number")
+    return repr(x) if not float(x).is_integer() else str(int(x)) if abs(x) < 1e15 else repr(x)
+
+
+def _text(name: str, value: Any) -> str:
+    """One flag's value as the command line writes it."""
+    if isinstance(value, (str, os.PathLike)):
+        return os.fspath(value)
+    if isinstance(value, bool):
+        raise InputError(f"{name} = {value!r}: a switch takes True or False alone")
+    if isinstance(value, numbers.Real):
+        return _number(name, value)
+    try:
+        items = list(value)
+    except TypeError:
+        raise InputError(f"{name} = {value!r}: not a number, a text or a list") from None
+    if not items:
+        raise InputError(f"{name}: an empty list")
+    parts = []
+    for i, v in enumerate(items):
+        if isinstance(v, numbers.Real) and not isinstance(v, bool):
+            parts.append(_number(name, v, i))
+        elif isinstance(v, (str, os.PathLike)):
+            parts.append(os.fspath(v))
+        else:
+            raise InputError(f"{name}[{i}] = {v!r}: not a number")
+    return ",".join(parts)
+
+
+def _flags(options: Mapping[str, Any]) -> list[str]:
+    """Keyword arguments as command-line flags: ``key_name=value`` is ``--key-name value``,
+    True a switch, None and False nothing."""
+    argv: list[str] = []
+    for key, value in options.items():
+        if value is None or value is False:
+            continue
+        flag = "--" + key.replace("_", "-")
+        if value is True:
+            argv.append(flag)
+        elif key in _REPEATED and not isinstance(value, (str, os.PathLike)):
+            for v in value:
+                argv += [flag, _text(key, v)]
+        elif key in _MANY:
+            values = [value] if isinstance(value, (str, os.PathLike)) else list(value)
+            argv += [flag, *(os.fspath(v) for v in values)]
+        else:
+            argv += [flag, _text(key, value)]
+    return argv
+
+
+def _csv(data: bytes) -> pd.DataFrame:
+    """A table propbet wrote (CSV bytes), its numbers as written."""
+    if not data.strip():
+        return pd.DataFrame()
+    table = pd.read_csv(io.BytesIO(data), keep_default_na=False, na_values=[""])
+    # An empty cell is a number not given (NaN) in a numeric column, an empty text in the others.
+    for name in table.columns:
+        if not pd.api.types.is_numeric_dtype(table[name]):
+            table[name] = table[name].fillna("")
+    return table
+
+
+def _read_csv(path: Path) -> pd.DataFrame:
+    return _csv(path.read_bytes()) if path.is_file() else pd.DataFrame()
+
+
+def _read_json(path: Path) -> Any:
+    return json.loads(path.read_text()) if path.is_file() else None
+
+
+def _folder(out: Optional[PathLike], prefix: str) -> Path:
+    """The output folder: ``out``, or a new temporary folder (kept: the report is in it)."""
+    if out is None:
+        return Path(tempfile.mkdtemp(prefix=f"propbet-{prefix}-"))
+    Path(out).mkdir(parents=True, exist_ok=True)
+    return Path(out)
+
+
+def execute(*argv: Any) -> bool:
+    """Runs ``propbet ARGV...`` as the command line does, in this process (its files written
+    where its flags say). Returns True when done, False when done with problems it reported
+    (the command line's exit status 1); raises :class:`InputError` on an error (exit 2)."""
+    return _native.execute([os.fspath(a) if isinstance(a, os.PathLike) else str(a) for a in argv])
+
+
+def _air(air: Optional[Mapping[str, Any]]) -> list[str]:
+    """The air as flags: ``{"rho": 1.2}``, or ``{"temp": "20C", "pressure": "1013hPa",
+    "humidity": 40}``, and ``mu``, ``a``."""
+    if air is None:
+        return []
+    if not isinstance(air, Mapping):
+        raise InputError(f"air = {air!r}: a dict such as {{'temp': '20C', 'pressure': '101325'}} or {{'rho': 1.2}}")
+    known = {"rho", "mu", "a", "temp", "pressure", "humidity"}
+    unknown = sorted(set(air) - known)
+    if unknown:
+        raise InputError(f"air: unknown key {unknown[0]!r}; the keys are {', '.join(sorted(known))}")
+    return _flags(air)
+
+
+def _sweep(rpm: Any, j: Any, v: Any) -> list[str]:
+    if rpm is None:
+        raise InputError("rpm: the rotation speeds are needed (a number, a list or 'start:stop:step')")
+    if j is not None and v is not None:
+        raise InputError("j and v: give one of them (advance ratios or axial speeds)")
+    return _flags({"rpm": rpm, "j": j, "v": v})
+
+
+class Prop:
+    """A propeller model: a QPROP prop file, the tabulated polars that replace its section
+    coefficients (after :meth:`polars`), and the model flags every prediction uses.
+
+    Made by :meth:`from_qprop`, :meth:`from_scan` or :meth:`from_case`.
+    """
+
+    def __init__(
+        self,
+        path: PathLike,
+        *,
+        polars: Optional[PathLike] = None,
+        model_flags: Sequence[str] = (),
+        geometry: Optional[PathLike] = None,
+        sections: Sequence[str] = (),
+        folder: Optional[PathLike] = None,
+        sweep: Sequence[str] = (),
+        air_flags: Sequence[str] = (),
+    ) -> None:
+        self.path = Path(path)
+        """The prop file the predictions read."""
+        self.polars_file = Path(polars) if polars is not None else None
+        """The tabulated polars (JSON) that replace the file's coefficients, if any."""
+        self.geometry = Path(geometry) if geometry is not None else self.path
+        """The blade geometry :meth:`polars` computes polars for."""
+        self.folder = Path(folder) if folder is not None else None
+        """The folder the scan, polars or case stages wrote, if any."""
+        self._model_flags = list(model_flags)
+        self._sections = list(sections)
+        self._sweep = list(sweep)
+        self._air = list(air_flags)
+
+    def __repr__(self) -> str:
+        polars = f", polars={str(self.polars_file)!r}" if self.polars_file else ""
+        return f"Prop({str(self.path)!r}{polars})"
+
+    def model_args(self) -> list[str]:
+        """The model's flags as ``predict``, ``compare`` and ``diagnose`` take them."""
+        argv = ["--prop", str(self.path)]
+        if self.polars_file is not None:
+            argv += ["--polars", str(self.polars_file)]
+        return argv + self._model_flags
+
+    @classmethod
+    def from_qprop(cls, path: PathLike, **options: Any) -> "Prop":
+        """A QPROP prop file as it is. ``options`` are the model flags of ``propbet predict``:
+        ``units="in"``, ``qprop_compat=True``, ``no_tip_loss=True``, ``dbeta=1.5`` [deg],
+        ``rotation="snel"``, ``drag_factor=1.1``, ``effects=["pitch-offset:deg=1"]``,
+        ``user_effects=path``, ``polars=path`` (tables from :meth:`polars`)."""
+        options = dict(options)
+        effects = options.pop("effects", None)
+        if effects is not None:
+            options["effect"] = [effects] if isinstance(effects, str) else list(effects)
+        polars = options.pop("polars", None)
+        prop = cls(path, polars=polars, model_flags=_flags(options))
+        prop.stations  # read once: a bad file fails here, naming itself
+        return prop
+
+    @classmethod
+    def from_scan(cls, path: PathLike, out: Optional[PathLike] = None, **options: Any) -> "Prop":
+        """Blade geometry from a scan (STL mesh, PLY / COLMAP / XYZ cloud) by ``propbet scan``:
+        ``options`` are its flags (``units="mm"``, ``stations="0.2:0.96/20"``,
+        ``blade_colour=...``, ``reference=path``, ...). Written into ``out`` (a new temporary
+        folder without it); the prop is the scan's ``prop.qprop``, its sections the scan's
+        airfoils."""
+        folder = _folder(out, "scan")
+        ok = execute("scan", os.fspath(path), "-o", str(folder), *_flags(options))
+        if not ok:
+            warnings.warn(f"propbet scan: some stations could not be measured or fitted (see {folder})")
+        airfoils = folder / "airfoils"
+        sections = ["--station-airfoils", str(airfoils)] if airfoils.is_dir() else []
+        return cls(folder / "prop.qprop", sections=sections, folder=folder)
+
+    @classmethod
+    def from_case(cls, case: PathLike, out: Optional[PathLike] = None) -> "Prop":
+        """The model of a case directory (``case.toml``): its scan and polars stages run as
+        ``propbet run`` runs them, into ``out`` (a new temporary folder without it); the
+        prediction's model flags, air and sweep are the case's (``predict()`` without
+        ``rpm`` sweeps the case's operating points)."""
+        folder = _folder(out, "case")
+        stages = _native.case_stages(os.fspath(case), str(folder))
+        geometry, sections, predict = None, [], None
+        for argv in stages:
+            if argv[0] == "scan":
+                execute(*argv)
+            elif argv[0] == "polars":
+                # `propbet run` makes each stage's folder; the command alone writes into one.
+                for flag in ("--out-prop", "--out-polars"):
+                    target = _value(argv, flag)
+                    if target is not None:
+                        Path(target).parent.mkdir(parents=True, exist_ok=True)
+                execute(*argv)
+                geometry, sections = _polars_inputs(argv)
+            elif argv[0] == "predict":
+                predict = argv
+        if predict is None:
+            raise InternalError(f"{case}: the case has no prediction stage")
+        model, sweep, air = _split_predict(predict[1:])
+        prop = _value(model, "--prop")
+        polars = _value(model, "--polars")
+        rest = _without(model, {"--prop", "--polars"})
+        return cls(
+            prop, polars=polars, model_flags=rest, geometry=geometry, sections=sections,
+            folder=folder, sweep=sweep, air_flags=air,
+        )
+
+    @property
+    def stations(self) -> pd.DataFrame:
+        """The prop file's rows in SI: ``r_m``, ``r_over_tip``, ``chord_m``, ``beta_deg`` and
+        the ten QPROP section coefficients of each row."""
+        argv = ["prop", str(self.path)]
+        for flag in ("--units", "--qprop-compat"):
+            if flag in self._model_flags:
+                i = self._model_flags.index(flag)
+                argv += self._model_flags[i : i + (1 if flag == "--qprop-compat" else 2)]
+        return _csv(_native.stations(argv))
+
+    def polars(
+        self,
+        rpm: Any,
+        j: Any = None,
+        v: Any = None,
+        *,
+        engine: Optional[str] = None,
+        ncrit: Optional[float] = None,
+        airfoil: Optional[PathLike] = None,
+        out: Optional[PathLike] = None,
+        **options: Any,
+    ) -> "Prop":
+        """Polars of every station at its Reynolds and Mach numbers over these operating points
+        (``propbet polars``, with its cache): ``engine`` "xfoil", "neuralfoil" or "auto",
+        ``ncrit``, ``trip``, ``airfoil`` (a file or a NACA 4-digit name; the scan's sections
+        without it), and the command's other flags. Returns the prop with the tables as its
+        section model; files in ``out`` (a new temporary folder without it)."""
+        folder = _folder(out, "polars")
+        sections = ["--airfoil", os.fspath(airfoil)] if airfoil is not None else self._sections
+        if not sections:
+            raise InputError(
+                f"{self.geometry}: no sections known for this blade: give airfoil= (a file or a NACA name)"
+            )
+        argv = [
+            "polars", "--geometry", str(self.geometry), *sections, *_sweep(rpm, j, v),
+            *_flags({"engine": engine, "ncrit": ncrit, **options}),
+            "--out-prop", str(folder / "prop.qprop"), "--out-polars", str(folder / "polars.json"),
+        ]
+        if not execute(*argv):
+            warnings.warn(f"propbet polars: some stations were not fitted or XFOIL faulted ({folder})")
+        return Prop(
+            folder / "prop.qprop", polars=folder / "polars.json", model_flags=self._model_flags,
+            geometry=self.geometry, sections=self._sections, folder=folder, sweep=self._sweep,
+            air_flags=self._air,
+        )
+
+    def predict(
+        self,
+        rpm: Any = None,
+        j: Any = None,
+        v: Any = None,
+        *,
+        air: Optional[Mapping[str, Any]] = None,
+        effects: Iterable[str] = (),
+        band: bool = False,
+        stations: bool = False,
+    ) -> Any:
+        """Performance over every RPM with every J (or V, or static without either): a
+        DataFrame with the columns of ``propbet predict``'s CSV (``rpm``, ``v_m_s``, ``j``,
+        ``thrust_n``, ``torque_nm``, ``power_w``, ``ct``, ``cp``, ``cq``, ``eta``, ...), and
+        ``ct_lo`` ... ``eta_hi`` with ``band=True``. ``air`` as a dict (``{"rho": 1.2}``,
+        ``{"temp": "20C", "pressure": "1013hPa"}``), ``effects`` added to the model
+        (``"pitch-offset:deg=1.2"``). With ``stations=True``, a pair: the sweep and the
+        per-station table."""
+        if rpm is None and self._sweep:
+            points = list(self._sweep)
+            if j is not None or v is not None:
+                raise InputError("j and v: give rpm with them")
+        else:
+            points = _sweep(rpm, j, v)
+        effect = [effects] if isinstance(effects, str) else list(effects)
+        argv = [
+            "predict", *self.model_args(), *_flags({"effect": effect or None}), *points,
+            *(_air(air) if air is not None else self._air), *(["--band"] if band else []),
+        ]
+        table, per_station, failed, at_points = _native.predict(argv, stations)
+        sweep = _csv(table)
+        sweep.attrs["not_converged"] = failed
+        if failed:
+            warnings.warn(
+                f"propbet predict: {failed} station solutions at {at_points} operating points did not converge"
+            )
+        return (sweep, _csv(per_station)) if stations else sweep
+
+
+def _value(argv: Sequence[str], flag: str) -> Optional[str]:
+    for i, a in enumerate(argv):
+        if a == flag and i + 1 < len(argv):
+            return argv[i + 1]
+        if a.startswith(flag + "="):
+            return a[len(flag) + 1 :]
+    return None
+
+
+# The flags of a command line that take a value (the others here are switches).
+_SWITCHES = {"--band", "--qprop-compat", "--no-tip-loss"}
+
+
+def _pairs(argv: Sequence[str]) -> Iterator[list[str]]:
+    """A command line's flags, each with its value."""
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        if a in _SWITCHES or "=" in a or not a.startswith("-") or i + 1 == len(argv):
+            yield [a]
+            i += 1
+        else:
+            yield [a, argv[i + 1]]
+            i += 2
+
+
+def _flag_name(a: str) -> str:
+    return a.split("=", 1)[0]
+
+
+def _without(argv: Sequence[str], flags: set) -> list[str]:
+    return [x for p in _pairs(argv) if _flag_name(p[0]) not in flags for x in p]
+
+
+def _split_predict(argv: Sequence[str]) -> tuple:
+    """A predict command line's model flags, its sweep and its air."""
+    sweep_flags = {"--rpm", "--j", "--v"}
+    air_flags = {"--rho", "--mu", "--a", "--temp", "--pressure", "--humidity"}
+    output = {"--out", "-o", "--format", "--out-stations", "--band"}
+    model, sweep, air = [], [], []
+    for p in _pairs(argv):
+        name = _flag_name(p[0])
+        if name in sweep_flags:
+            sweep += p
+        elif name in air_flags:
+            air += p
+        elif name not in output:
+            model += p
+    return model, sweep, air
+
+
+def _polars_inputs(argv: Sequence[str]) -> tuple:
+    """A polars command line's geometry and sections."""
+    geometry = _value(argv, "--geometry")
+    sections = [x for p in _pairs(argv) if _flag_name(p[0]) in {"--airfoil", "--station-airfoils"} for x in p]
+    return geometry, sections
+
+
+def read_measurements(paths: Union[PathLike, Sequence[PathLike]], **options: Any) -> pd.DataFrame:
+    """Measured files (RCbenchmark / Tyto logs, UIUC files, generic CSV with ``columns=`` a
+    TOML column map) read as ``compare`` reads them: one row per steady point (``rpm``,
+    ``v_m_s`` or ``j``, ``thrust_n`` and ``torque_nm`` or ``ct`` and ``cp``, their standard
+    deviations, the lines they came from). ``options``: ``poles``, ``rpm_source``,
+    ``atmosphere``, ``rho``, ``columns``. The rows not used are in ``.attrs["dropped"]``
+    (file, line, reason, detail)."""
+    argv = _flags({"measured": paths, **options})
+    points, dropped = _native.read_measurements(argv)
+    table = _csv(points)
+    table.attrs["dropped"] = _csv(dropped)
+    return table
+
+
+@dataclass
+class Comparison:
+    """What ``propbet compare`` writes: ``metrics`` (metrics.json), ``points`` (points.csv:
+    measured beside predicted), ``summary`` (summary.json), the ``report`` page, and ``ok``
+    (False when it reported problems: dropped rows, unconverged points). Unpacks as
+    ``metrics, points``."""
+
+    metrics: dict
+    points: pd.DataFrame
+    summary: dict
+    report: Path
+    folder: Path
+    ok: bool
+
+    def __iter__(self) -> Iterator[Any]:
+        return iter((self.metrics, self.points))
+
+
+def _measured_args(measured: Any, options: Mapping[str, Any]) -> list[str]:
+    return _flags({"measured": measured, **options})
+
+
+def _prop(prop: Union[Prop, PathLike]) -> Prop:
+    return prop if isinstance(prop, Prop) else Prop.from_qprop(prop)
+
+
+def compare(
+    prop: Union[Prop, PathLike],
+    measured: Union[PathLike, Sequence[PathLike]],
+    out: Optional[PathLike] = None,
+    **options: Any,
+) -> Comparison:
+    """Measurements against the prediction (``propbet compare``): ``options`` are its flags
+    (``per3=path``, ``poles=14``, ``atmosphere="20C,101325,40%"``, ``columns=path``, ...).
+    Files in ``out`` (a new temporary folder without it)."""
+    prop = _prop(prop)
+    folder = _folder(out, "compare")
+    ok = execute("compare", *prop.model_args(), *_measured_args(measured, options), "--out", str(folder))
+    return Comparison(
+        metrics=_read_json(folder / "metrics.json"),
+        points=_read_csv(folder / "points.csv"),
+        summary=_read_json(folder / "summary.json"),
+        report=folder / "report.html",
+        folder=folder,
+        ok=ok,
+    )
+
+
+@dataclass
+class Diagnosis:
+    """What ``propbet diagnose`` writes: ``answer`` (the verdict in words), ``effects`` (the
+    effects it found, as ``--effect`` specs), ``ladder`` and ``ranking`` (DataFrames), the whole
+    ``diagnosis.json`` as ``json``, ``summary`` (summary.json), the ``report`` page, ``ok``."""
+
+    answer: str
+    effects: list
+    ladder: pd.DataFrame
+    ranking: pd.DataFrame
+    json: dict
+    summary: dict
+    report: Path
+    folder: Path
+    ok: bool
+
+
+def diagnose(
+    prop: Union[Prop, PathLike],
+    measured: Union[PathLike, Sequence[PathLike]],
+    out: Optional[PathLike] = None,
+    **options: Any,
+) -> Diagnosis:
+    """Which physical effect is missing (``propbet diagnose``): ``options`` are its flags
+    (``effects="all"`` or a list of ids, ``folds``, ``max_steps``, ``window``, the measurement
+    flags). Files in ``out`` (a new temporary folder without it)."""
+    prop = _prop(prop)
+    folder = _folder(out, "diagnose")
+    options = dict(options)
+    candidates = options.pop("effects", None)
+    if candidates is not None and not isinstance(candidates, str):
+        candidates = ",".join(candidates)
+    argv = ["diagnose", *prop.model_args(), *_measured_args(measured, options)]
+    argv += _flags({"effects": candidates}) + ["--out", str(folder)]
+    ok = execute(*argv)
+    doc = _read_json(folder / "diagnosis.json") or {}
+    summary = _read_json(folder / "summary.json") or {}
+    found = summary.get("diagnosis", {})
+    inner = doc.get("diagnosis", {})
+    return Diagnosis(
+        answer=found.get("verdict", ""),
+        effects=list(doc.get("final_effects", [])),
+        ladder=pd.DataFrame(inner.get("ladder", [])),
+        ranking=pd.DataFrame(inner.get("ranking", [])),
+        json=doc,
+        summary=summary,
+        report=folder / "report.html",
+        folder=folder,
+        ok=ok,
+    )
+
+
+@dataclass
+class RunResult:
+    """What ``propbet run`` writes: ``summary`` (summary.json: the headline, the diagnosis,
+    every stage's command), the ``sweep`` (predict/sweep.csv), the compared ``points``
+    (compare/points.csv, empty without measurements), the ``diagnosis`` (diagnosis.json, None
+    without measurements), the ``report`` page, and ``ok`` (False when it reported problems)."""
+
+    summary: dict
+    sweep: pd.DataFrame
+    points: pd.DataFrame
+    diagnosis: Optional[dict]
+    report: Path
+    folder: Path
+    ok: bool
+
+
+def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **options: Any) -> RunResult:
+    """The main job on a case directory (``propbet run``; the shipped default case without
+    one): scan, polars, sweeps, comparison, diagnosis and one report, in ``out`` (a new
+    temporary folder without it). ``options``: ``verbose``, ``xfoil``, ``cache``, ...
+    """
+    folder = _folder(out, "run")
+    argv = ["run"] + ([os.fspath(case)] if case is not None else []) + ["-o", str(folder)] + _flags(options)
+    ok = execute(*argv)
+    return RunResult(
+        summary=_read_json(folder / "summary.json"),
+        sweep=_read_csv(folder / "predict" / "sweep.csv"),
+        points=_read_csv(folder / "compare" / "points.csv"),
+        diagnosis=_read_json(folder / "diagnose" / "diagnosis.json"),
+        report=folder / "report.html",
+        folder=folder,
+        ok=ok,
+    )
+
+
+@dataclass
+class Validation:
+    """What ``propbet validate`` writes: the ``table`` (validation.csv, one row per prop),
+    the ``markdown`` text (validation.md), the ``report`` page, and ``ok``."""
+
+    table: pd.DataFrame
+    markdown: str
+    report: Path
+    folder: Path
+    ok: bool
+
+
+def validate(
+    uiuc: PathLike,
+    pe0: PathLike,
+    airfoils: PathLike,
+    out: Optional[PathLike] = None,
+    **options: Any,
+) -> Validation:
+    """Validation on UIUC's measurements (``propbet validate``): ``options`` are its flags
+    (``per3=path``, ``only="apce_9x6"`` or a list, ``engine="neuralfoil"``, ``quiet=True``,
+    ``trip``, ``ncrit``, ...). Files in ``out`` (a new temporary folder without it)."""
+    folder = _folder(out, "validate")
+    options = dict(options)
+    only = options.pop("only", None)
+    if only is not None and not isinstance(only, str):
+        only = ",".join(only)
+    argv = ["validate", "--uiuc", os.fspath(uiuc), "--pe0", os.fspath(pe0), "--airfoils", os.fspath(airfoils)]
+    argv += _flags({"only": only, **options}) + ["-o", str(folder)]
+    ok = execute(*argv)
+    md = folder / "validation.md"
+    return Validation(
+        table=_read_csv(folder / "validation.csv"),
+        markdown=md.read_text() if md.is_file() else "",
+        report=folder / "validation.html",
+        folder=folder,
+        ok=ok,
+    )
