@@ -58,4 +58,6 @@ fi
 if [ "${1:-}" != "--no-build" ]; then
   cargo build --release --locked -p propbet-cli
   echo "setup: built target/release/propbet"
+  # The Python package over the same engine, into .venv (`.venv/bin/python -c "import propbet"`).
+  scripts/python-package.sh
 fi

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Runs the test suite (unit, property, QPROP reference and end-to-end tests).
 #   scripts/test.sh          everything, the slow tests included (real XFOIL, whole cases,
-#                            headless Chromium), in the release profile: what CI runs
+#                            headless Chromium), in the release profile, then the Python
+#                            package's tests (its wheel built and installed into .venv, pytest
+#                            against the binary just built): what CI runs
 #   scripts/test.sh --fast   without the slow tests (they are marked #[ignore = "slow: ..."]
 #                            and listed as ignored), in the `fast` profile (optimised, no LTO,
-#                            incremental): no XFOIL, no Chromium, no timed assertion
+#                            incremental): no XFOIL, no Chromium, no timed assertion, no
+#                            Python package
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ "${1:-}" = "--fast" ]; then
@@ -18,4 +21,6 @@ if [ "${1:-}" = "--fast" ]; then
   PATH="$shims:$PATH" cargo test --workspace --locked --profile fast
 else
   cargo test --workspace --locked --release --no-fail-fast -- --include-ignored
+  scripts/python-package.sh
+  PROPBET_BIN="$PWD/target/release/propbet" .venv/bin/python -m pytest -q -p no:cacheprovider crates/python/tests
 fi

@@ -61,7 +61,7 @@ def _number(name: str, value: Any, index: Optional[int] = None) -> str:
     where = name if index is None else f"{name}[{index}]"
     x = float(value)
     if math.isnan(x) or math.isinf(x):
-        raise InputError(f"{where} = {value!r}: not a finite number")
+        raise InputError(f"{where} = {x!r}: not a finite number")
     return repr(x) if not float(x).is_integer() else str(int(x)) if abs(x) < 1e15 else repr(x)
 
 

@@ -1,0 +1,82 @@
+"""Measurements, comparison, diagnosis and validation from Python, checked against the command
+line's files for the same input."""
+
+import json
+
+import pandas as pd
+import pytest
+
+import propbet
+
+PHOTO = "props/photofoil_8x4.5"
+LOG = f"{PHOTO}/StepsTestV2_2022-01-18_153833.csv"
+TARE = "tests/data/hidden_effects/torque_tare"
+
+
+def read(path):
+    return propbet._csv(open(path, "rb").read())
+
+
+def test_read_measurements_gives_the_points_compare_scores(cli, tmp_path):
+    points = propbet.read_measurements(LOG)
+    cli("compare", "--prop", f"{PHOTO}/QProp_8x4_5.txt", "--measured", LOG, "--rho", "1.1648", "--out", tmp_path)
+    compared = read(tmp_path / "points.csv")
+    assert len(points) == len(compared) > 10
+    for col in ["rpm", "thrust_n", "torque_nm", "line_first", "line_last"]:
+        pd.testing.assert_series_equal(points[col], compared[col], check_exact=True)
+    assert set(points.format) == {"rc_benchmark"}
+    dropped = points.attrs["dropped"]
+    assert list(dropped.columns) == ["file", "line", "reason", "detail"]
+
+
+def test_read_measurements_of_uiuc_files_give_coefficients():
+    files = [f"props/apcsf_10x4.7/uiuc/apcsf_10x4.7_static_kt0835.txt", "props/apcsf_10x4.7/uiuc/apcsf_10x4.7_kt0836_4014.txt"]
+    points = propbet.read_measurements(files)
+    assert set(points.file) == set(files)
+    sweep = points[points.file == files[1]]
+    assert sweep.j.notna().all() and sweep.ct.notna().all() and sweep.thrust_n.isna().all()
+
+
+def test_compare_is_the_command_lines(cli, tmp_path):
+    prop = propbet.Prop.from_qprop(f"{PHOTO}/QProp_8x4_5.txt")
+    result = propbet.compare(prop, LOG, out=tmp_path / "py", rho=1.1648)
+    cli("compare", "--prop", f"{PHOTO}/QProp_8x4_5.txt", "--measured", LOG, "--rho", "1.1648", "--out", tmp_path / "cli")
+    pd.testing.assert_frame_equal(result.points, read(tmp_path / "cli" / "points.csv"), check_exact=True)
+    expected = json.loads((tmp_path / "cli" / "metrics.json").read_text())
+    # The same but for the output folder in the command it records.
+    assert result.metrics["command"].replace(str(tmp_path / "py"), str(tmp_path / "cli")) == expected.pop("command")
+    assert {k: v for k, v in result.metrics.items() if k != "command"} == expected
+    metrics, points = result
+    assert metrics is result.metrics and result.report.is_file()
+    assert points.thrust_pred.notna().all()
+
+
+def test_diagnose_finds_the_hidden_torque_tare(cli, tmp_path):
+    found = propbet.diagnose(f"{TARE}/cam6x3.qprop", f"{TARE}/cam6x3_steps.csv", out=tmp_path / "py")
+    cli("diagnose", "--prop", f"{TARE}/cam6x3.qprop", "--measured", f"{TARE}/cam6x3_steps.csv", "--out", tmp_path / "cli")
+    expected = json.loads((tmp_path / "cli" / "diagnosis.json").read_text())
+    assert found.effects == expected["final_effects"]
+    assert found.effects[0].startswith("torque-tare")
+    assert "torque-tare" in found.answer
+    assert list(found.ladder.added)[:2] == ["baseline", "torque-tare"]
+    assert found.ranking.id.iloc[0] == "torque-tare"
+    assert found.report.is_file() and found.ok
+
+
+def test_validate_is_the_command_lines(cli, tmp_path):
+    data = dict(uiuc="tests/data/validate/uiuc", pe0="tests/data/validate/pe0", airfoils="props/airfoils")
+    result = propbet.validate(**data, out=tmp_path / "py", only=["apcsf_9x4.7"], engine="neuralfoil", quiet=True)
+    cli("validate", "--uiuc", data["uiuc"], "--pe0", data["pe0"], "--airfoils", data["airfoils"], "--only",
+        "apcsf_9x4.7", "--engine", "neuralfoil", "--quiet", "-o", tmp_path / "cli")
+    pd.testing.assert_frame_equal(result.table, read(tmp_path / "cli" / "validation.csv"), check_exact=True)
+    assert list(result.table.prop) == ["apcsf_9x4.7"]
+    assert "median error" in result.markdown and result.report.is_file()
+
+
+def test_a_scan_gives_a_prop(cli, tmp_path):
+    stl = "props/apcsf_10x4.7/apcsf_10x4.7.stl"
+    prop = propbet.Prop.from_scan(stl, out=tmp_path / "py", units="mm", stations="0.3:0.9/5")
+    cli("scan", stl, "--units", "mm", "--stations", "0.3:0.9/5", "-o", tmp_path / "cli")
+    assert prop.path.read_text() == (tmp_path / "cli" / "prop.qprop").read_text()
+    st = prop.stations
+    assert len(st) == 5 and st.r_over_tip.between(0.29, 0.91).all()
