@@ -33,7 +33,12 @@ pub fn predict(argv: &[String], stations: bool) -> Result<crate::predict::Tables
 /// The stages `propbet run` would run for a case directory, writing under `out`: each as its
 /// command line (without the program's name), in order.
 pub fn case_stages(dir: &Path, out: &Path) -> Result<Vec<Vec<String>>> {
-    let argv = ["run".to_string(), dir.display().to_string(), "-o".into(), out.display().to_string()];
+    let argv = [
+        "run".to_string(),
+        dir.display().to_string(),
+        "-o".into(),
+        out.display().to_string(),
+    ];
     let Command::Run(a) = parse(&argv)? else {
         bail!("not a run command")
     };

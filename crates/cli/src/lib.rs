@@ -92,7 +92,7 @@ pub enum Command {
     /// plots and an HTML report.
     #[command(after_help = concat!(
         "Example:\n  propbet compare --prop props/cam6x3/cam6x3.qprop \\\n",
-        "    --measured tests/data/hidden_effects/no_effect/cam6x3_steps.csv -o cmp\n\n",
+        "    --measured tests/data/hidden_effects/no_effect/cam6x3_tunnel.csv -o cmp\n\n",
         "Exit status: 0 done; 1 done, with dropped rows or unconverged points it reports; 2 error."
     ))]
     Compare(Box<compare::CompareArgs>),

@@ -92,10 +92,7 @@ fn case_stages(py: Python<'_>, case: PathBuf, out: PathBuf) -> PyResult<Vec<Vec<
 /// Measured files read with `compare`'s measurement flags: the points and the dropped rows
 /// (CSV bytes each).
 #[pyfunction]
-fn read_measurements<'py>(
-    py: Python<'py>,
-    argv: Vec<String>,
-) -> PyResult<(Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
+fn read_measurements<'py>(py: Python<'py>, argv: Vec<String>) -> PyResult<(Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
     let (points, dropped) = guarded(py, || propbet_cli::api::measurements(&argv))?;
     Ok((PyBytes::new(py, &points), PyBytes::new(py, &dropped)))
 }

@@ -26,3 +26,11 @@ def test_the_dask_example_validates_two_props_on_two_workers(repo):
     rows = {l.split()[0]: l.split() for l in lines[1:]}
     assert set(rows) == {"apcsf_9x4.7", "gwsdd_9x5"}
     assert all(0 < float(r[2]) < 0.5 for r in rows.values())
+
+
+def test_the_readmes_python_example_runs(repo, tmp_path):
+    text = (repo / "README.md").read_text()
+    block = text.split("```python\n", 1)[1].split("```", 1)[0]
+    (tmp_path / "readme.py").write_text(block)
+    out = run(tmp_path / "readme.py", cwd=repo)
+    assert "torque-tare" in out
