@@ -20,14 +20,24 @@ fn parse(argv: &[String]) -> Result<Command> {
     Ok(cli.command)
 }
 
-/// `propbet predict` with these flags (after `predict`), its tables in memory: the sweep table
-/// as it writes it (`--format` says CSV or JSON; `--out` is ignored), and the per-station table
-/// when `stations`.
-pub fn predict(argv: &[String], stations: bool) -> Result<crate::predict::Tables> {
+/// `propbet predict` with these flags (after `predict`), its tables as columns
+/// ([`crate::predict::columns`]): the sweep's, the per-station table's when `stations`, and
+/// the count of station solutions that did not converge and of the points they are at.
+pub fn predict(
+    argv: &[String],
+    stations: bool,
+) -> Result<(crate::columns::Table, Option<crate::columns::Table>, (usize, usize))> {
     let Command::Predict(a) = parse(argv)? else {
         bail!("not a predict command: {}", argv.join(" "))
     };
-    crate::predict::tables(&a.spec()?, stations)
+    crate::predict::columns(&a.spec()?, stations)
+}
+
+/// A number as propbet's tables write it (7 significant digits; empty when it is not finite).
+pub fn format_number(v: f64) -> String {
+    let mut b = Vec::new();
+    crate::output::push_num(&mut b, Some(v));
+    String::from_utf8(b).unwrap_or_default()
 }
 
 /// The stages `propbet run` would run for a case directory, writing under `out`: each as its

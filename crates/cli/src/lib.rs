@@ -24,6 +24,7 @@ macro_rules! println {
 }
 
 pub mod api;
+pub mod columns;
 mod compare;
 mod diagnose;
 mod export;

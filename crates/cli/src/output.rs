@@ -82,6 +82,14 @@ impl From<Option<f64>> for Num {
 
 impl serde::Serialize for Num {
     fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        if !s.is_human_readable() {
+            // The number the text says, for tables handed over as columns (`columns`): none
+            // where the text would be an empty cell.
+            return match self.0.and_then(written) {
+                Some(v) => s.serialize_f64(v),
+                None => s.serialize_none(),
+            };
+        }
         // One buffer per thread: a 20,000-row table has 340,000 cells.
         thread_local! {
             static BUF: std::cell::RefCell<Vec<u8>> = std::cell::RefCell::new(Vec::with_capacity(32));
@@ -115,6 +123,56 @@ fn pow10(e: i32) -> f64 {
     }
 }
 
+/// `a` (positive, normal, within 1e-290..1e290) as 7 decimal digits `m` and the exponent of
+/// the first: a = m × 10^(e10 − 6), rounded.
+fn decimal(a: f64) -> (u32, i32) {
+    // Decimal exponent from the binary one, then corrected against the table.
+    let e2 = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
+    let mut e10 = (e2 as f64 * std::f64::consts::LOG10_2).floor() as i32;
+    if a >= pow10(e10 + 1) {
+        e10 += 1;
+    } else if a < pow10(e10) {
+        e10 -= 1;
+    }
+    let scaled = if DIGITS - 1 - e10 >= 0 {
+        a * pow10(DIGITS - 1 - e10)
+    } else {
+        a / pow10(e10 - DIGITS + 1)
+    };
+    let mut m = scaled.round() as u32;
+    if m >= 10_000_000 {
+        m = (m + 5) / 10;
+        e10 += 1;
+    }
+    (m, e10)
+}
+
+/// `v` as [`push_num`] writes it, read back: the number of the written digits (None where the
+/// cell is empty). Computed without the text where the decimal power is exact (10^0 to
+/// 10^22), so one division or product of exact numbers rounds it as reading the text does.
+pub fn written(v: f64) -> Option<f64> {
+    if !v.is_finite() {
+        return None;
+    }
+    let a = v.abs();
+    if a == 0.0 {
+        return Some(0.0);
+    }
+    if (1e-15..1e22).contains(&a) {
+        let (m, e10) = decimal(a);
+        let k = DIGITS - 1 - e10;
+        let r = if k >= 0 {
+            m as f64 / pow10(k)
+        } else {
+            m as f64 * pow10(-k)
+        };
+        return Some(r.copysign(v));
+    }
+    let mut b = Vec::new();
+    push_num(&mut b, Some(v));
+    std::str::from_utf8(&b).ok().and_then(|t| t.parse().ok())
+}
+
 /// Appends `v` with 7 significant digits (the solver's accuracy: its Newton exit,
 /// |d psi| < 1e-6 as QPROP's, leaves ~1e-7 relative error; QPROP prints 4), trailing zeros dropped, in plain notation from 1e-5 to
 /// 1e16 and exponent notation outside; an empty cell for `None`. Hand-written because it runs
@@ -139,24 +197,7 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
         buf.extend_from_slice(format!("{m}e{exp}").as_bytes());
         return;
     }
-    // Decimal exponent from the binary one, then corrected against the table.
-    let e2 = ((a.to_bits() >> 52) & 0x7ff) as i32 - 1023;
-    let mut e10 = (e2 as f64 * std::f64::consts::LOG10_2).floor() as i32;
-    if a >= pow10(e10 + 1) {
-        e10 += 1;
-    } else if a < pow10(e10) {
-        e10 -= 1;
-    }
-    let scaled = if DIGITS - 1 - e10 >= 0 {
-        a * pow10(DIGITS - 1 - e10)
-    } else {
-        a / pow10(e10 - DIGITS + 1)
-    };
-    let mut m = scaled.round() as u32;
-    if m >= 10_000_000 {
-        m = (m + 5) / 10;
-        e10 += 1;
-    }
+    let (mut m, e10) = decimal(a);
     let mut digits = [0u8; DIGITS as usize];
     for d in digits.iter_mut().rev() {
         *d = b'0' + (m % 10) as u8;
@@ -383,6 +424,50 @@ pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path])
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The number a table hands over as a column is the number its text says, over every
+    /// magnitude and at the halfway digits where rounding could differ.
+    #[test]
+    fn the_written_number_is_the_texts() {
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut values = vec![
+            4000.0,
+            0.05,
+            0.1 + 0.2,
+            1.0 / 3.0,
+            2.5e-7,
+            9_999_999.5,
+            1e-300,
+            5e300,
+            -0.15,
+        ];
+        for _ in 0..200_000 {
+            let mantissa = (next() % 100_000_000) as f64 / 1e7;
+            let exp = (next() % 70) as i32 - 35;
+            values.push(mantissa * 10f64.powi(exp));
+            // Halfway between two 7-digit numbers, as near as a double gets.
+            values.push(((next() % 9_000_000 + 1_000_000) as f64 + 0.5) * 10f64.powi(exp - 6));
+        }
+        for v in values {
+            let mut b = Vec::new();
+            push_num(&mut b, Some(v));
+            let text: f64 = std::str::from_utf8(&b).unwrap().parse().unwrap();
+            assert_eq!(
+                written(v),
+                Some(text),
+                "{v:e} written as {}",
+                std::str::from_utf8(&b).unwrap()
+            );
+        }
+        assert_eq!(written(f64::NAN), None);
+        assert_eq!(written(f64::INFINITY), None);
+    }
 
     #[test]
     fn an_output_has_no_name_until_it_is_complete() {

@@ -14,6 +14,7 @@ use propbet_pipeline::units::rpm_to_omega;
 use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
 use serde::Serialize;
 
+use crate::columns::Table;
 use crate::output::{csv_rows, emit, Num};
 
 /// Output format.
@@ -257,6 +258,34 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     Ok(failed == 0)
 }
 
+/// A prediction's tables as columns (the Python package): the sweep table's (with the band's
+/// when the spec asks) and, when `stations`, the per-station table's; the same columns as the
+/// CSV files, the numbers unrounded. The spec's format and output files are not used.
+pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Table>, (usize, usize))> {
+    use rayon::prelude::*;
+    let model = load_model(&spec.model, stations)?;
+    let (fluid, source) = spec.air.fluid()?;
+    let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+    let chunks: Vec<Vec<PointResult>> = points
+        .par_chunks(128)
+        .map(|c| propbet_pipeline::stages::solve(&model, &fluid, c))
+        .collect::<std::result::Result<_, _>>()?;
+    let results: Vec<PointResult> = chunks.into_iter().flatten().collect();
+    let (rho, tip) = (fluid.rho, model.rotor.tip_radius);
+    let sweep = if spec.band {
+        let band = BandSpec::default().at_points(&model, &fluid, &points, &results)?;
+        crate::columns::table(with_band(&results, &band, rho, &source, tip))?
+    } else {
+        crate::columns::table(results.iter().map(|p| sweep_row(p, rho, &source, tip)))?
+    };
+    let per_station = stations
+        .then(|| crate::columns::table(station_rows(&results)))
+        .transpose()?;
+    let failed = results.iter().map(|p| p.not_converged).sum();
+    let failed_points = results.iter().filter(|p| p.not_converged > 0).count();
+    Ok((sweep, per_station, (failed, failed_points)))
+}
+
 /// A prediction's tables, in memory: the sweep table as the spec's format says, and the
 /// per-station table when `stations`.
 pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
@@ -410,22 +439,30 @@ struct BandColumns {
 
 /// The sweep table with the band's columns after the others (`band` in the points' order).
 fn band_rows(results: &[PointResult], band: &[PointBand], rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
-    csv_rows(
-        results.iter().zip(band).map(|(p, b)| {
-            (
-                sweep_row(p, rho, air, tip_radius),
-                BandColumns {
-                    ct_lo: b.ct.lo.into(),
-                    ct_hi: b.ct.hi.into(),
-                    cp_lo: b.cp.lo.into(),
-                    cp_hi: b.cp.hi.into(),
-                    eta_lo: b.eta.lo.into(),
-                    eta_hi: b.eta.hi.into(),
-                },
-            )
-        }),
-        true,
-    )
+    csv_rows(with_band(results, band, rho, air, tip_radius), true)
+}
+
+/// The sweep's rows with the band's columns after the others.
+fn with_band<'a>(
+    results: &'a [PointResult],
+    band: &'a [PointBand],
+    rho: f64,
+    air: &'a str,
+    tip_radius: f64,
+) -> impl Iterator<Item = (SweepRow, BandColumns)> + 'a {
+    results.iter().zip(band).map(move |(p, b)| {
+        (
+            sweep_row(p, rho, air, tip_radius),
+            BandColumns {
+                ct_lo: b.ct.lo.into(),
+                ct_hi: b.ct.hi.into(),
+                cp_lo: b.cp.lo.into(),
+                cp_hi: b.cp.hi.into(),
+                eta_lo: b.eta.lo.into(),
+                eta_hi: b.eta.hi.into(),
+            },
+        )
+    })
 }
 
 fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
@@ -484,7 +521,11 @@ struct StationRow {
 }
 
 fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
-    let rows = results.iter().flat_map(|p| {
+    csv_rows(station_rows(results), true)
+}
+
+fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '_ {
+    results.iter().flat_map(|p| {
         p.stations.iter().map(move |st| StationRow {
             rpm: p.rpm.into(),
             v_m_s: p.v.into(),
@@ -514,6 +555,5 @@ fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
                 propbet_pipeline::bemt::Convergence::ZeroChord => "zero_chord",
             },
         })
-    });
-    csv_rows(rows, true)
+    })
 }

@@ -8,9 +8,10 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
+use propbet_cli::columns::{Column, Table};
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBytes, PyTuple};
 
 pyo3::create_exception!(
     propbet,
@@ -56,24 +57,59 @@ fn execute(py: Python<'_>, argv: Vec<String>) -> PyResult<bool> {
     })
 }
 
-/// `propbet predict ARGV...` in memory: the sweep table (bytes, CSV or JSON as `--format`
-/// says), the per-station table (CSV bytes, when `stations`), and the count of station
-/// solutions that did not converge and of the points they are at.
+/// `propbet predict ARGV...` in memory: the sweep table and (when `stations`) the per-station
+/// table, each a list of columns `(name, kind, values)` in the CSV's order (kind "f8" and
+/// "i8": the numbers as native-endian bytes, "b1": one byte each, "str": a list of texts), and
+/// the count of station solutions that did not converge and of the points they are at.
 #[pyfunction]
 #[allow(clippy::type_complexity)]
 fn predict<'py>(
     py: Python<'py>,
     argv: Vec<String>,
     stations: bool,
-) -> PyResult<(Bound<'py, PyBytes>, Option<Bound<'py, PyBytes>>, usize, usize)> {
-    let t = guarded(py, || propbet_cli::api::predict(&argv, stations))?;
-    let body: Vec<u8> = t.body.concat();
+) -> PyResult<(Vec<Bound<'py, PyTuple>>, Option<Vec<Bound<'py, PyTuple>>>, usize, usize)> {
+    let (sweep, per_station, (failed, at)) = guarded(py, || propbet_cli::api::predict(&argv, stations))?;
     Ok((
-        PyBytes::new(py, &body),
-        t.stations.as_deref().map(|s| PyBytes::new(py, s)),
-        t.failed.0,
-        t.failed.1,
+        columns(py, sweep)?,
+        per_station.map(|t| columns(py, t)).transpose()?,
+        failed,
+        at,
     ))
+}
+
+/// A table's columns for Python.
+fn columns(py: Python<'_>, t: Table) -> PyResult<Vec<Bound<'_, PyTuple>>> {
+    t.names
+        .into_iter()
+        .zip(t.columns)
+        .map(|(name, c)| {
+            let (kind, values): (&str, Bound<'_, PyAny>) = match c {
+                Column::Num(v) => ("f8", PyBytes::new(py, &bytes(&v, |x| x.to_ne_bytes())).into_any()),
+                Column::Int(v) => ("i8", PyBytes::new(py, &bytes(&v, |x| x.to_ne_bytes())).into_any()),
+                Column::Bool(v) => ("b1", PyBytes::new(py, &bytes(&v, |x| [u8::from(*x)])).into_any()),
+                Column::Text(v) => ("str", v.into_pyobject(py)?.into_any()),
+            };
+            PyTuple::new(
+                py,
+                [
+                    name.into_pyobject(py)?.into_any(),
+                    kind.into_pyobject(py)?.into_any(),
+                    values,
+                ],
+            )
+        })
+        .collect()
+}
+
+/// Values as bytes, one after another.
+fn bytes<T, const N: usize>(values: &[T], each: impl Fn(&T) -> [u8; N]) -> Vec<u8> {
+    values.iter().flat_map(each).collect()
+}
+
+/// A number as propbet's tables write it (7 significant digits).
+#[pyfunction]
+fn format_number(v: f64) -> String {
+    propbet_cli::api::format_number(v)
 }
 
 /// A prop file's rows (`propbet prop ARGV...`) in SI, as CSV bytes.
@@ -105,6 +141,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(execute, m)?)?;
     m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_function(wrap_pyfunction!(format_number, m)?)?;
     m.add_function(wrap_pyfunction!(stations, m)?)?;
     m.add_function(wrap_pyfunction!(case_stages, m)?)?;
     m.add_function(wrap_pyfunction!(read_measurements, m)?)?;

@@ -33,3 +33,46 @@ def cli(repo):
 def at_repo(repo, monkeypatch):
     """Every test runs from the repository root, as the command-line tests do."""
     monkeypatch.chdir(repo)
+
+
+def written(table):
+    """A DataFrame's cells as propbet's CSV files write them: numbers to 7 significant digits
+    (the binary's own formatter), empty where a number is NaN."""
+    import math
+
+    import propbet
+
+    cells = {}
+    for name in table.columns:
+        col = table[name]
+        if col.dtype.kind == "f":
+            cells[name] = ["" if math.isnan(v) else propbet._native.format_number(v) for v in col]
+        elif col.dtype.kind == "b":
+            cells[name] = ["true" if v else "false" for v in col]
+        else:
+            cells[name] = [str(v) for v in col]
+    return cells
+
+
+def file_cells(path):
+    """A CSV file's cells as text."""
+    import pandas as pd
+
+    t = pd.read_csv(path, dtype=str, keep_default_na=False)
+    return {name: list(t[name]) for name in t.columns}
+
+
+@pytest.fixture(scope="session")
+def same_as_file():
+    """Asserts that a DataFrame is a CSV file of propbet's to the last digit written: the same
+    columns in the same order, every cell the same text."""
+
+    def check(table, path):
+        expected = file_cells(path)
+        assert list(table.columns) == list(expected), f"{path}: columns"
+        got = written(table)
+        for name in expected:
+            diff = [(i, a, b) for i, (a, b) in enumerate(zip(got[name], expected[name])) if a != b]
+            assert not diff and len(got[name]) == len(expected[name]), f"{path}: {name}: {diff[:5]}"
+
+    return check

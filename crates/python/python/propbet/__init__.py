@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterable, Iterator, Mapping, Optional, Sequence, Union
 
+import numpy as np
 import pandas as pd
 
 from . import _native
@@ -121,6 +122,14 @@ def _csv(data: bytes) -> pd.DataFrame:
         if not pd.api.types.is_numeric_dtype(table[name]):
             table[name] = table[name].fillna("")
     return table
+
+
+def _frame(columns: Sequence[tuple]) -> pd.DataFrame:
+    """A table propbet handed over as columns (name, kind, values): numbers as arrays."""
+    data = {}
+    for name, kind, values in columns:
+        data[name] = values if kind == "str" else np.frombuffer(values, dtype=np.dtype(kind)).copy()
+    return pd.DataFrame(data)
 
 
 def _read_csv(path: Path) -> pd.DataFrame:
@@ -333,7 +342,8 @@ class Prop:
         stations: bool = False,
     ) -> Any:
         """Performance over every RPM with every J (or V, or static without either): a
-        DataFrame with the columns of ``propbet predict``'s CSV (``rpm``, ``v_m_s``, ``j``,
+        DataFrame with the columns of ``propbet predict``'s CSV and its numbers (7 significant
+        digits, the solver's accuracy; NaN where it leaves a cell empty) (``rpm``, ``v_m_s``, ``j``,
         ``thrust_n``, ``torque_nm``, ``power_w``, ``ct``, ``cp``, ``cq``, ``eta``, ...), and
         ``ct_lo`` ... ``eta_hi`` with ``band=True``. ``air`` as a dict (``{"rho": 1.2}``,
         ``{"temp": "20C", "pressure": "1013hPa"}``), ``effects`` added to the model
@@ -351,13 +361,13 @@ class Prop:
             *(_air(air) if air is not None else self._air), *(["--band"] if band else []),
         ]
         table, per_station, failed, at_points = _native.predict(argv, stations)
-        sweep = _csv(table)
+        sweep = _frame(table)
         sweep.attrs["not_converged"] = failed
         if failed:
             warnings.warn(
                 f"propbet predict: {failed} station solutions at {at_points} operating points did not converge"
             )
-        return (sweep, _csv(per_station)) if stations else sweep
+        return (sweep, _frame(per_station)) if stations else sweep
 
 
 def _value(argv: Sequence[str], flag: str) -> Optional[str]:
