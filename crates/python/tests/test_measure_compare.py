@@ -80,3 +80,30 @@ def test_a_scan_gives_a_prop(cli, tmp_path):
     assert prop.path.read_text() == (tmp_path / "cli" / "prop.qprop").read_text()
     st = prop.stations
     assert len(st) == 5 and st.r_over_tip.between(0.29, 0.91).all()
+
+
+def test_read_measurements_of_a_generic_csv_with_a_column_map(tmp_path):
+    (tmp_path / "map.toml").write_text(
+        'rpm = { column = "Motor speed", unit = "rpm" }\n'
+        'thrust = { column = "Pull", unit = "N" }\n'
+        'torque = { column = "Q", unit = "N m" }\n'
+    )
+    points = propbet.read_measurements("tests/data/bad_inputs/colmap_gen.csv", columns=tmp_path / "map.toml")
+    assert list(points.rpm[:2]) == [3000, 4000]
+    assert list(points.thrust_n[:2]) == [0.01, 0.02] and list(points.torque_nm[:2]) == [0.002, 0.004]
+    generic = propbet.read_measurements("tests/data/hidden_effects/no_effect/cam6x3_tunnel.csv")
+    assert generic.v_m_s.max() > 0 and (generic.temperature_k == 288.15).all()
+
+
+def test_an_error_is_the_command_lines_message(repo):
+    import os
+    import subprocess
+
+    binary = os.environ.get("PROPBET_BIN", str(repo / "target" / "release" / "propbet"))
+    argv = ["compare", "--prop", "props/cam6x3/cam6x3.qprop", "--measured", "tests/data/bad_inputs/stand_thrust_1e308.csv",
+            "--out", "unused"]
+    done = subprocess.run([binary, *argv], capture_output=True, text=True)
+    assert done.returncode == 2
+    with pytest.raises(propbet.InputError) as e:
+        propbet.execute(*argv)
+    assert done.stderr.strip() == f"propbet: error: {e.value}"
