@@ -212,7 +212,7 @@ fn held_out(
                 ..dspec.clone()
             };
             let fitted = stages::diagnose_with(model, &fold_spec, false)?;
-            let fx = fitted.diagnosis.final_effects();
+            let fx = held_out_effects(&fitted.diagnosis);
             let ladder = ladder_text(&fx);
             let fold_model_spec = ModelSpec {
                 effects: fx,
@@ -235,6 +235,25 @@ fn held_out(
         }
     }
     Ok((ct1, cp1, held_out_ladders))
+}
+
+/// The effects a half's ladder carries to the other half. The halves differ in RPM, so the
+/// ladder is cut where its leave-one-RPM-out error (on the half it was fitted to) is lowest:
+/// a rung that only calibrates to the RPMs it saw is not carried to others. Without that
+/// error (one RPM in the half), the whole ladder.
+fn held_out_effects(d: &propbet_diagnose::discover::Diagnosis) -> Vec<String> {
+    let loro: Option<Vec<f64>> = d.ladder.iter().map(|r| r.loro_rms.filter(|x| x.is_finite())).collect();
+    let Some(loro) = loro.filter(|l| l.len() > 1) else {
+        return d.final_effects();
+    };
+    let best = (0..loro.len()).fold(0, |b, i| if loro[i] < loro[b] { i } else { b });
+    if best == 0 {
+        Vec::new()
+    } else if best + 1 == loro.len() {
+        d.final_effects()
+    } else {
+        d.ladder[best].stack.split(" + ").map(str::to_string).collect()
+    }
 }
 
 /// The blade written as validate predicts it: its prop file (UIUC's stations, generic
