@@ -331,8 +331,12 @@ pub fn headline(rows: &[Row]) -> Option<String> {
     };
     let p = |x: Option<f64>| x.map_or("–".to_string(), pct);
     let mut s = format!(
-        "Over the {} props predicted with their maker's sections, the median error is {} in CT and {} in CP",
-        apc.len(),
+        "{} predicted with {} maker's sections, the median error is {} in CT and {} in CP",
+        match apc.len() {
+            1 => "For the one prop".to_string(),
+            n => format!("Over the {n} props"),
+        },
+        if apc.len() == 1 { "its" } else { "their" },
         p(med(&|r| Some(r.ct.before.median))),
         p(med(&|r| Some(r.cp.before.median)))
     );

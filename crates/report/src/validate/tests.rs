@@ -147,6 +147,12 @@ fn tables_have_a_row_per_prop_family_medians_and_the_median_over_props() {
         !md.contains("APC's own code on the same points") && !md.contains("band holds"),
         "{md}"
     );
+    // One prop: said in the singular.
+    let one = headline(&rows[..1]).unwrap();
+    assert!(
+        one.starts_with("For the one prop predicted with its maker's sections, the median error is"),
+        "{one}"
+    );
     let page = html(&rows, &skipped, "tables");
     assert!(
         page.contains("<h1>Validation on measured propellers</h1>\n<p><b>Over the 3 props"),
