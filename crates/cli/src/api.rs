@@ -16,7 +16,7 @@ use crate::{Cli, Command};
 /// The command line `argv` (without the program's name) parsed as `propbet`'s.
 fn parse(argv: &[String]) -> Result<Command> {
     let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
-        .map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+        .map_err(crate::clap_error)?;
     Ok(cli.command)
 }
 
@@ -67,7 +67,7 @@ pub fn measurements(argv: &[String]) -> Result<(Vec<u8>, Vec<u8>)> {
         data: MeasuredArgs,
     }
     let flags = Flags::try_parse_from(std::iter::once("read_measurements".to_string()).chain(argv.iter().cloned()))
-        .map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+        .map_err(crate::clap_error)?;
     let spec = flags.data.spec()?;
     let (_, sets) = propbet_pipeline::stages::load_measured(&spec)?;
     let names: Vec<String> = spec.files.iter().map(|p| p.display().to_string()).collect();

@@ -171,8 +171,13 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = Cli::try_parse_from(argv).map_err(|e| anyhow::anyhow!("{}", e.render().to_string().trim_end()))?;
+    let cli = Cli::try_parse_from(argv).map_err(clap_error)?;
     run(cli)
+}
+
+/// A command-line error of clap's as an error, its message as clap prints it.
+pub(crate) fn clap_error(e: clap::Error) -> anyhow::Error {
+    anyhow::anyhow!("{}", e.render().to_string().trim_end())
 }
 
 /// Runs one command.
