@@ -110,3 +110,15 @@ def test_the_package_functions_refuse_them_too(tmp_path):
         propbet.Prop.from_qprop(CAM).predict(rpm="1000:20000/100000", j="0:1/100000")
     with pytest.raises(propbet.InputError, match=r"stand_thrust_1e308.csv: no usable rows.*line 2: thrust"):
         propbet.read_measurements(f"{B}/stand_thrust_1e308.csv")
+
+
+def test_propbets_warnings_are_python_warnings_and_its_messages_reach_sys_stderr(capsys):
+    """A notebook shows sys.stdout and sys.stderr, not the process's own: what propbet prints
+    goes through them, its warnings as PropbetWarning."""
+    with pytest.warns(propbet.PropbetWarning, match="QPROP 1.22 takes it unscaled"):
+        propbet.Prop.from_qprop("props/photofoil_8x4.5/QProp_8x4_5.txt").predict(rpm=5000)
+    capsys.readouterr()
+    result = propbet.compare("props/photofoil_8x4.5/QProp_8x4_5.txt", "props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv", rho=1.1648)
+    printed = capsys.readouterr()
+    assert f"report: {result.report}" in printed.out
+    assert "12 rows -> 11 points" in printed.err

@@ -21,11 +21,13 @@ import json
 import math
 import numbers
 import os
+import sys
 import tempfile
+import threading
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Iterator, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Iterable, Iterator, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import pandas as pd
@@ -47,6 +49,7 @@ __all__ = [
     "execute",
     "InputError",
     "InternalError",
+    "PropbetWarning",
 ]
 __version__ = _native.__version__
 
@@ -148,11 +151,66 @@ def _folder(out: Optional[PathLike], prefix: str) -> Path:
     return Path(out)
 
 
+class PropbetWarning(UserWarning):
+    """A warning of propbet's (the command line's ``propbet: warning: ...`` lines): what it read
+    differently from QPROP, a setting it corrected, ..."""
+
+
+# What propbet prints is caught while any call runs (the file descriptors are the process's:
+# calls in several threads share one capture, relayed when the last ends).
+_TERMINAL = threading.Lock()
+_capture: dict = {"calls": 0}
+
+
+def _relay(out: Any, err: Any) -> None:
+    out.seek(0)
+    err.seek(0)
+    printed, errors = (f.read().decode("utf-8", "replace") for f in (out, err))
+    if printed:
+        sys.stdout.write(printed)
+    for line in errors.splitlines():
+        if line.startswith("propbet: warning: "):
+            warnings.warn(line[len("propbet: warning: ") :], PropbetWarning, stacklevel=4)
+        elif line.strip():
+            sys.stderr.write(line + "\n")
+
+
+def _relayed(call: Callable[[], Any]) -> Any:
+    """Runs ``call`` with what propbet prints to the process's standard output and error
+    caught, then writes it through ``sys.stdout`` and ``sys.stderr`` (which a notebook shows,
+    unlike the process's own), its warnings as :class:`PropbetWarning`."""
+    with _TERMINAL:
+        if _capture["calls"] == 0:
+            for stream in (sys.stdout, sys.stderr):
+                stream.flush()
+            files = (tempfile.TemporaryFile(), tempfile.TemporaryFile())
+            _capture.update(saved=(os.dup(1), os.dup(2)), files=files)
+            os.dup2(files[0].fileno(), 1)
+            os.dup2(files[1].fileno(), 2)
+        _capture["calls"] += 1
+    try:
+        return call()
+    finally:
+        with _TERMINAL:
+            _capture["calls"] -= 1
+            if _capture["calls"] == 0:
+                saved, files = _capture.pop("saved"), _capture.pop("files")
+                for fd, old in zip((1, 2), saved):
+                    os.dup2(old, fd)
+                    os.close(old)
+                try:
+                    _relay(*files)
+                finally:
+                    for f in files:
+                        f.close()
+
+
 def execute(*argv: Any) -> bool:
     """Runs ``propbet ARGV...`` as the command line does, in this process (its files written
     where its flags say). Returns True when done, False when done with problems it reported
     (the command line's exit status 1); raises :class:`InputError` on an error (exit 2)."""
-    return _native.execute([os.fspath(a) if isinstance(a, os.PathLike) else str(a) for a in argv])
+    args = [os.fspath(a) if isinstance(a, os.PathLike) else str(a) for a in argv]
+    return _relayed(lambda: _native.execute(args))
 
 
 def _air(air: Optional[Mapping[str, Any]]) -> list[str]:
@@ -292,7 +350,7 @@ class Prop:
             if flag in self._model_flags:
                 i = self._model_flags.index(flag)
                 argv += self._model_flags[i : i + (1 if flag == "--qprop-compat" else 2)]
-        return _csv(_native.stations(argv))
+        return _csv(_relayed(lambda: _native.stations(argv)))
 
     def polars(
         self,
@@ -360,7 +418,7 @@ class Prop:
             "predict", *self.model_args(), *_flags({"effect": effect or None}), *points,
             *(_air(air) if air is not None else self._air), *(["--band"] if band else []),
         ]
-        table, per_station, failed, at_points = _native.predict(argv, stations)
+        table, per_station, failed, at_points = _relayed(lambda: _native.predict(argv, stations))
         sweep = _frame(table)
         sweep.attrs["not_converged"] = failed
         if failed:
@@ -436,7 +494,7 @@ def read_measurements(paths: Union[PathLike, Sequence[PathLike]], **options: Any
     ``atmosphere``, ``rho``, ``columns``. The rows not used are in ``.attrs["dropped"]``
     (file, line, reason, detail)."""
     argv = _flags({"measured": paths, **options})
-    points, dropped = _native.read_measurements(argv)
+    points, dropped = _relayed(lambda: _native.read_measurements(argv))
     table = _csv(points)
     table.attrs["dropped"] = _csv(dropped)
     return table
