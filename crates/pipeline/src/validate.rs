@@ -242,18 +242,22 @@ fn held_out(
 /// a rung that only calibrates to the RPMs it saw is not carried to others. Without that
 /// error (one RPM in the half), the whole ladder.
 fn held_out_effects(d: &propbet_diagnose::discover::Diagnosis) -> Vec<String> {
-    let loro: Option<Vec<f64>> = d.ladder.iter().map(|r| r.loro_rms.filter(|x| x.is_finite())).collect();
-    let Some(loro) = loro.filter(|l| l.len() > 1) else {
-        return d.final_effects();
-    };
-    let best = (0..loro.len()).fold(0, |b, i| if loro[i] < loro[b] { i } else { b });
-    if best == 0 {
-        Vec::new()
-    } else if best + 1 == loro.len() {
-        d.final_effects()
-    } else {
-        d.ladder[best].stack.split(" + ").map(str::to_string).collect()
+    let loro: Vec<Option<f64>> = d.ladder.iter().map(|r| r.loro_rms).collect();
+    match lowest_rung(&loro) {
+        Some(0) => Vec::new(),
+        Some(best) if best + 1 < loro.len() => d.ladder[best].stack.split(" + ").map(str::to_string).collect(),
+        _ => d.final_effects(),
     }
+}
+
+/// The rung (0: the baseline) with the lowest leave-one-RPM-out error, the first of equals;
+/// None when a rung has none (one RPM) or there is no rung above the baseline.
+fn lowest_rung(loro: &[Option<f64>]) -> Option<usize> {
+    let errors: Vec<f64> = loro
+        .iter()
+        .map(|x| x.filter(|x| x.is_finite()))
+        .collect::<Option<_>>()?;
+    (errors.len() > 1).then(|| (0..errors.len()).fold(0, |b, i| if errors[i] < errors[b] { i } else { b }))
 }
 
 /// The blade written as validate predicts it: its prop file (UIUC's stations, generic

@@ -172,3 +172,20 @@ fn an_assumed_section_rides_on_uiucs_blade() {
         "one airfoil: the blend is all the second, the same"
     );
 }
+
+/// A held-out half's ladder is cut at its lowest leave-one-RPM-out error: the baseline when no
+/// rung beats it, the whole ladder when its last rung is lowest, and not cut without the error.
+#[test]
+fn a_held_out_ladder_is_cut_at_its_lowest_leave_one_rpm_out_error() {
+    assert_eq!(lowest_rung(&[Some(0.10), Some(0.07), Some(0.08)]), Some(1));
+    assert_eq!(lowest_rung(&[Some(0.10), Some(0.12), Some(0.11)]), Some(0));
+    assert_eq!(lowest_rung(&[Some(0.10), Some(0.08), Some(0.06)]), Some(2));
+    assert_eq!(
+        lowest_rung(&[Some(0.10), Some(0.10)]),
+        Some(0),
+        "equal: the shorter ladder"
+    );
+    assert_eq!(lowest_rung(&[Some(0.10), None]), None, "one RPM: no such error");
+    assert_eq!(lowest_rung(&[Some(0.10), Some(f64::NAN)]), None);
+    assert_eq!(lowest_rung(&[Some(0.10)]), None, "the baseline alone");
+}
