@@ -51,8 +51,10 @@ pub struct PredictArgs {
     pub stations: Option<PathBuf>,
     /// Also give the uncertainty band of CT, CP and efficiency at each point (columns `ct_lo`,
     /// `ct_hi`, `cp_lo`, `cp_hi`, `eta_lo`, `eta_hi`; `band` in JSON): every blade angle ±1°,
-    /// every chord ±3 %, the sections' drag ±20 %, each solved at both ends, their
-    /// root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven times.
+    /// every chord ±3 %, the sections' drag ±20 %, and with tabulated polars (`--polars`) the
+    /// sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both
+    /// ends, their root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven
+    /// (nine) times.
     #[arg(long)]
     pub band: bool,
 }

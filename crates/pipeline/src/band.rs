@@ -1,8 +1,9 @@
 //! What is uncertain in a prediction, as effects at the two ends of their plausible range: the
 //! blade angle (the twist a scan or a file gives, and the sections' zero-lift angle at low
-//! Reynolds numbers, which acts the same way), the chord, and the sections' drag. Each source
-//! is solved at both ends and the band is their root-sum-square
-//! ([`propbet_compare::band::combine`]).
+//! Reynolds numbers, which acts the same way), the chord, the sections' drag, and, where the
+//! model's tables carry them, the sections' transition (the tables at Ncrit 3 tripped at
+//! mid-chord and at Ncrit 7, made from NeuralFoil's difference: `propbet_polar::blade::BAND_ENDS`). Each source is solved at both
+//! ends and the band is their root-sum-square ([`propbet_compare::band::combine`]).
 
 use propbet_bemt::{Fluid, OperatingPoint};
 use propbet_compare::band::PointBand;
@@ -79,10 +80,26 @@ impl BandSpec {
             s.active.push(model.registry.resolve(&parse_spec(spec)?)?);
             Ok(s)
         };
-        self.sources()
+        let mut solved: Vec<[T; 2]> = self
+            .sources()
             .iter()
             .map(|(_, [lo, hi])| Ok([solve(with(lo)?)?, solve(with(hi)?)?]))
-            .collect()
+            .collect::<Result<_>>()?;
+        // The sections' transition: the tables at the band's two ends, where the model's
+        // tables carry them (`Model::band_sections`).
+        if let Some(effect) = &model.band_sections {
+            let at = |ncrit: f64| {
+                let mut s = model.effects.clone();
+                s.active.push(propbet_effects::Active {
+                    effect: effect.clone(),
+                    values: vec![ncrit],
+                });
+                s
+            };
+            let [lo, hi] = propbet_polar::blade::BAND_NCRIT;
+            solved.push([solve(at(lo))?, solve(at(hi))?]);
+        }
+        Ok(solved)
     }
 
     /// The band at compared points (`base`: the model's own comparison of `sets`).

@@ -78,6 +78,11 @@ pub struct Model {
     pub registry: Registry,
     /// The effects added to the model.
     pub effects: Stack,
+    /// The uncertainty band's section-model source: the tables at the band's two ends (early
+    /// and late transition, `propbet_polar::blade::BAND_ENDS`, keyed by their Ncrit) as a
+    /// `transition` effect kept out of the registry (never a diagnosis candidate). None
+    /// without tables that carry them.
+    pub band_sections: Option<std::sync::Arc<dyn propbet_effects::Effect>>,
 }
 
 impl Model {
@@ -133,10 +138,15 @@ impl Model {
             }
             (None, _) => None,
         };
-        let mut transition = None;
+        let (mut transition, mut band_sections) = (None, None);
         if let (Some(path), Some(blade)) = (&spec.polars, blade) {
             tabulate(&mut rotor, blade, path)?;
-            transition = transition_effect(blade, path)?;
+            transition = transition_effect(blade, path, &blade.other_ncrits(), |n| blade.models_at_ncrit(n))?;
+            let band: Vec<f64> = propbet_polar::blade::BAND_NCRIT
+                .into_iter()
+                .filter(|&n| blade.stations.iter().any(|s| s.band.iter().any(|p| p.ncrit == n)))
+                .collect();
+            band_sections = transition_effect(blade, path, &band, |n| blade.band_models(n))?;
         }
         crate::settings::DRAG_FACTOR.check(spec.drag_factor)?;
         let rotor = rotor
@@ -167,6 +177,7 @@ impl Model {
             diameter,
             registry,
             effects: Stack { active },
+            band_sections,
         })
     }
 }
@@ -195,13 +206,15 @@ impl ModelSpec {
 /// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file
 /// (`path` names it in messages).
 /// The `transition` effect of polars that have tables at other Ncrit values than their own
-/// (`propbet polars --ncrit-effect`), None when they have none.
+/// (`others`, their tables `models_at` each: `propbet polars --ncrit-effect`, or the band's),
+/// None when they have none.
 fn transition_effect(
     blade: &propbet_polar::BladePolars,
     path: &Path,
+    others: &[f64],
+    models_at: impl Fn(f64) -> propbet_polar::blade::StationModels,
 ) -> Result<Option<std::sync::Arc<dyn propbet_effects::Effect>>> {
     use propbet_effects::transition::{Level, Transition};
-    let others = blade.other_ncrits();
     if others.is_empty() {
         return Ok(None);
     }
@@ -224,7 +237,7 @@ fn transition_effect(
     // A level whose every polar failed is left out (each failure is in its station's problem).
     let levels: Vec<Level> = others
         .iter()
-        .map(|&n| level(n, blade.models_at_ncrit(n)))
+        .map(|&n| level(n, models_at(n)))
         .filter(|l| !l.models.is_empty())
         .collect();
     if levels.is_empty() {

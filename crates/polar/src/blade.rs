@@ -70,6 +70,12 @@ pub struct StationPolars {
     /// effect that fits Ncrit between them; empty unless asked for (`--ncrit-effect`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub other_ncrit: Vec<Polar>,
+    /// The same rungs at the uncertainty band's two ends ([`BAND_ENDS`], keyed by their Ncrit):
+    /// each polar the station's own moved by NeuralFoil's difference between that end and the
+    /// polar's own transition (the band's section-model source; never a diagnosis candidate). Empty where NeuralFoil
+    /// cannot take the section.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub band: Vec<Polar>,
     /// QPROP fit, when the polars allowed one.
     pub fit: Option<QpropFit>,
     /// What went wrong at this station, if anything.
@@ -140,10 +146,21 @@ impl BladePolars {
     /// Tabulated section models at Ncrit `ncrit` from the stations' other-Ncrit polars: radii
     /// and models of the stations that have one.
     pub fn models_at_ncrit(&self, ncrit: f64) -> StationModels {
+        self.models_of(ncrit, |s| &s.other_ncrit)
+    }
+
+    /// Tabulated section models of the uncertainty band's end keyed `ncrit` ([`BAND_NCRIT`], from
+    /// the stations' [`StationPolars::band`] polars): radii and models of the stations that
+    /// have one.
+    pub fn band_models(&self, ncrit: f64) -> StationModels {
+        self.models_of(ncrit, |s| &s.band)
+    }
+
+    fn models_of(&self, ncrit: f64, polars: impl Fn(&StationPolars) -> &Vec<Polar>) -> StationModels {
         let mut r = Vec::new();
         let mut m = Vec::new();
         for s in &self.stations {
-            let at: Vec<Polar> = s.other_ncrit.iter().filter(|p| p.ncrit == ncrit).cloned().collect();
+            let at: Vec<Polar> = polars(s).iter().filter(|p| p.ncrit == ncrit).cloned().collect();
             if let Some(t) = TabulatedAero::new(&at) {
                 r.push(s.r);
                 m.push(t);
@@ -151,6 +168,62 @@ impl BladePolars {
         }
         (r, m)
     }
+}
+
+/// The two ends of the uncertainty band's section-model source, each an Ncrit and a forced
+/// transition x/c: early transition (Ncrit 3 and a trip at mid-chord: a turbulent tunnel, a
+/// rough blade; the tripped model the cross-validation weighed against free transition) and
+/// late (Ncrit 7 free: a quiet one), about the model's Ncrit 5 free. Each end's tables are
+/// keyed by its Ncrit.
+pub const BAND_ENDS: [(f64, Option<f64>); 2] = [(3.0, Some(0.5)), (7.0, None)];
+
+/// The Ncrit values the band's two ends are keyed by ([`BAND_ENDS`]).
+pub const BAND_NCRIT: [f64; 2] = [BAND_ENDS[0].0, BAND_ENDS[1].0];
+
+/// A station's polars at the band's two ends ([`BAND_ENDS`]): each polar moved, angle by
+/// angle, by NeuralFoil's difference between that end and the polar's own Ncrit and transition
+/// on the same section and Re (so an XFOIL table keeps its own shape and takes NeuralFoil's
+/// sensitivity; an end's trip never later than the polar's own). Empty where NeuralFoil
+/// cannot take the section.
+fn band_polars(foil: &crate::Airfoil, polars: &[Polar], net: &propbet_neuralfoil::Network) -> Vec<Polar> {
+    let mut out = Vec::new();
+    for p in polars {
+        let alphas: Vec<f64> = p.points.iter().map(|q| q.alpha_deg).collect();
+        if alphas.is_empty() {
+            continue;
+        }
+        let at = |ncrit: f64, trip: Option<f64>| {
+            let job = crate::neural::Section {
+                airfoil: foil,
+                re: p.re,
+                ncrit,
+                trip,
+            };
+            crate::neural::polar(&job, &alphas, net).ok()
+        };
+        let Some(own) = at(p.ncrit, p.trip) else { continue };
+        for (n, trip) in BAND_ENDS {
+            let trip = match (trip, p.trip) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+            let Some(other) = at(n, trip) else { continue };
+            let mut moved = Polar {
+                ncrit: n,
+                points: p.points.clone(),
+                ..Polar::from_law(p.re, 0, 0, |_| (0.0, 0.0))
+            };
+            moved.mach = p.mach;
+            moved.trip = p.trip;
+            for ((q, a), b) in moved.points.iter_mut().zip(&own.points).zip(&other.points) {
+                q.cl += b.cl - a.cl;
+                // Drag stays positive: at most halved by the move.
+                q.cd = (q.cd + b.cd - a.cd).max(0.5 * q.cd);
+            }
+            out.push(moved);
+        }
+    }
+    out
 }
 
 /// How XFOIL is asked for a blade's polars: transition, angles, panels, iterations.
@@ -393,6 +466,7 @@ fn station_polars(
         alpha_range_deg,
         polars,
         other_ncrit,
+        band: Vec::new(),
         fit,
         problem: (!problems.is_empty()).then(|| problems.join("; ")),
     }
@@ -432,10 +506,18 @@ pub fn compute_blade(
         .into_iter()
         .map(|r| Some(r.map(|(p, _)| p).map_err(|e| e.to_string())))
         .collect();
-    let out: Vec<StationPolars> = stations
+    let mut out: Vec<StationPolars> = stations
         .into_iter()
         .map(|st| station_polars(job, st, &jobs, &mut results))
         .collect();
+    // The band's section-model source: NeuralFoil's networks are built in, so this costs
+    // milliseconds whatever made the polars.
+    if let Ok(net) = propbet_neuralfoil::Network::shipped(propbet_neuralfoil::DEFAULT_SIZE) {
+        use rayon::prelude::*;
+        out.par_iter_mut().enumerate().for_each(|(i, st)| {
+            st.band = band_polars(&job.foils[i.min(job.foils.len() - 1)], &st.polars, &net);
+        });
+    }
     let names: Vec<&str> = job.foils.iter().map(|f| f.name.as_str()).collect();
     let rpms: Vec<f64> = job
         .points
@@ -470,6 +552,44 @@ mod tests {
         assert!(check_polar(&p).unwrap_err().contains("Mach number 1.2"));
         p.mach = f64::NAN;
         assert!(check_polar(&p).is_err());
+    }
+
+    /// The band's two ends move a polar, angle by angle, by NeuralFoil's difference between
+    /// that end (Ncrit 3 tripped at mid-chord; Ncrit 7) and the polar's own transition; the
+    /// angles, the Reynolds number and the rest of the polar's own shape stay.
+    #[test]
+    fn the_bands_ends_move_a_polar_by_neuralfoils_difference() {
+        let foil = crate::naca4_from_name("naca4412").unwrap().unwrap();
+        let net = propbet_neuralfoil::Network::shipped(propbet_neuralfoil::DEFAULT_SIZE).unwrap();
+        // An XFOIL-like polar of its own (any shape: only the difference is NeuralFoil's).
+        let mut base = Polar::from_law(6e4, -2, 8, |a| (0.45 + 0.1 * a, 0.015 + 0.0005 * a * a));
+        base.ncrit = 5.0;
+        let ends = band_polars(&foil, std::slice::from_ref(&base), &net);
+        assert_eq!(ends.iter().map(|p| p.ncrit).collect::<Vec<_>>(), BAND_NCRIT);
+        let alphas: Vec<f64> = base.points.iter().map(|q| q.alpha_deg).collect();
+        let nf = |ncrit: f64, trip: Option<f64>| {
+            let job = crate::neural::Section {
+                airfoil: &foil,
+                re: 6e4,
+                ncrit,
+                trip,
+            };
+            crate::neural::polar(&job, &alphas, &net).unwrap()
+        };
+        let own = nf(5.0, None);
+        for (e, (ncrit, trip)) in ends.iter().zip(BAND_ENDS) {
+            assert_eq!((e.re, e.trip, e.points.len()), (base.re, base.trip, base.points.len()));
+            let other = nf(ncrit, trip);
+            let mut moved = 0.0_f64;
+            for (((q, b), o), x) in e.points.iter().zip(&base.points).zip(&own.points).zip(&other.points) {
+                assert_eq!(q.alpha_deg, b.alpha_deg);
+                assert!((q.cl - (b.cl + x.cl - o.cl)).abs() < 1e-12, "{ncrit}: {q:?}");
+                assert!(q.cd > 0.0 && (q.cd - (b.cd + x.cd - o.cd).max(0.5 * b.cd)).abs() < 1e-12);
+                moved = moved.max((q.cl - b.cl).abs());
+            }
+            // The transition moves this section's lift at Re 60,000 visibly.
+            assert!(moved > 0.01, "{ncrit}: largest lift move {moved}");
+        }
     }
 
     #[test]

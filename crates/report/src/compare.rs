@@ -485,7 +485,7 @@ fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figu
 }
 
 /// What the shaded band is, for the figures' captions.
-const BAND_CAPTION: &str = "; shaded: the prediction's uncertainty band (every blade angle ±1°, chord ±3 %, section drag ±20 %, each solved at both ends, their root-sum-square)";
+const BAND_CAPTION: &str = "; shaded: the prediction's uncertainty band (every blade angle ±1°, chord ±3 %, section drag ±20 %, and with tabulated polars the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both ends, their root-sum-square)";
 
 /// The figures as inline SVG, each with its caption.
 fn figures_html(

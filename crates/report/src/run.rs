@@ -236,7 +236,7 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep{}</li>",
             link(out, o),
             if plan.predict.band {
-                ", with an uncertainty band for CT, CP and efficiency (every blade angle ±1°, chord ±3 %, drag ±20 %: the columns ct_lo to eta_hi)"
+                ", with an uncertainty band for CT, CP and efficiency (every blade angle ±1°, chord ±3 %, drag ±20 %, the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7: the columns ct_lo to eta_hi)"
             } else {
                 ""
             }
@@ -644,6 +644,7 @@ mod tests {
             alpha_range_deg: [0.0, 8.0],
             polars,
             other_ncrit: vec![],
+            band: vec![],
             fit: None,
             problem: None,
         };

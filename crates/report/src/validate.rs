@@ -282,7 +282,7 @@ const REGIME_INTRO: &str =
      of the station solves at the compared points fell beyond their polars' Reynolds-number range \
      (below the ladder's lowest rung or above its highest, where the end rung is extrapolated): \
      whether the ladder reaches every station at every operating point. Last, the uncertainty \
-     band's (blade angle ±1°, chord ±3 %, section drag ±20 %, each solved at both ends, their \
+     band's (blade angle ±1°, chord ±3 %, section drag ±20 %, the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both ends, their \
      root-sum-square, with twice the measurements' repeatability where they repeat a point): the \
      share of the measured CT and CP inside it over the scored points, and its median half-width \
      relative to the prediction.";
