@@ -140,13 +140,16 @@ impl Model {
         };
         let (mut transition, mut band_sections) = (None, None);
         if let (Some(path), Some(blade)) = (&spec.polars, blade) {
-            tabulate(&mut rotor, blade, path)?;
-            transition = transition_effect(blade, path, &blade.other_ncrits(), |n| blade.models_at_ncrit(n))?;
+            // The tables at the polars' own Ncrit, built once: the rotor's, and the base of
+            // both `transition` effects.
+            let base = blade.models().map_err(|e| Error::input(path, e))?;
+            tabulate(&mut rotor, &base, path)?;
+            transition = transition_effect(blade, &base, path, &blade.other_ncrits(), |n| blade.models_at_ncrit(n))?;
             let band: Vec<f64> = propbet_polar::blade::BAND_NCRIT
                 .into_iter()
                 .filter(|&n| blade.stations.iter().any(|s| s.band.iter().any(|p| p.ncrit == n)))
                 .collect();
-            band_sections = transition_effect(blade, path, &band, |n| blade.band_models(n))?;
+            band_sections = transition_effect(blade, &base, path, &band, |n| blade.band_models(n))?;
         }
         crate::settings::DRAG_FACTOR.check(spec.drag_factor)?;
         let rotor = rotor
@@ -203,13 +206,12 @@ impl ModelSpec {
     }
 }
 
-/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file
-/// (`path` names it in messages).
 /// The `transition` effect of polars that have tables at other Ncrit values than their own
 /// (`others`, their tables `models_at` each: `propbet polars --ncrit-effect`, or the band's),
-/// None when they have none.
+/// about the tables at their own (`base`); None when they have none.
 fn transition_effect(
     blade: &propbet_polar::BladePolars,
+    base: &propbet_polar::blade::StationModels,
     path: &Path,
     others: &[f64],
     models_at: impl Fn(f64) -> propbet_polar::blade::StationModels,
@@ -233,7 +235,7 @@ fn transition_effect(
         .map(|p| p.ncrit)
         .next()
         .ok_or_else(|| Error::input(path, "no station has a polar"))?;
-    let base = level(own, blade.models().map_err(|e| Error::input(path, e))?);
+    let base = level(own, base.clone());
     // A level whose every polar failed is left out (each failure is in its station's problem).
     let levels: Vec<Level> = others
         .iter()
@@ -247,8 +249,9 @@ fn transition_effect(
     Ok(Some(std::sync::Arc::new(t)))
 }
 
-fn tabulate(rotor: &mut Rotor, blade: &propbet_polar::BladePolars, path: &Path) -> Result<()> {
-    let (r, models) = blade.models().map_err(|e| Error::input(path, e))?;
+/// Replaces the rotor's section models by the tabulated polars of a `propbet polars` file
+/// (`(r, models)`: its tables at their own Ncrit; `path` names it in messages).
+fn tabulate(rotor: &mut Rotor, (r, models): &propbet_polar::blade::StationModels, path: &Path) -> Result<()> {
     let (lo, hi) = (rotor.stations[0].r, rotor.stations[rotor.stations.len() - 1].r);
     if r[0] > hi || r[r.len() - 1] < lo {
         return Err(Error::input(
@@ -260,7 +263,7 @@ fn tabulate(rotor: &mut Rotor, blade: &propbet_polar::BladePolars, path: &Path) 
             ),
         ));
     }
-    propbet_polar::tabulated::apply_to_rotor(rotor, &r, &models);
+    propbet_polar::tabulated::apply_to_rotor(rotor, r, models);
     Ok(())
 }
 
