@@ -49,14 +49,19 @@ pub struct PredictArgs {
     /// was once called that and still answers to it.)
     #[arg(long = "out-stations", alias = "stations", value_name = "FILE")]
     pub stations: Option<PathBuf>,
-    /// Also give the uncertainty band of CT, CP and efficiency at each point (columns `ct_lo`,
-    /// `ct_hi`, `cp_lo`, `cp_hi`, `eta_lo`, `eta_hi`; `band` in JSON): every blade angle ±1°,
-    /// every chord ±3 %, the sections' drag ±20 %, and with tabulated polars (`--polars`) the
-    /// sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both
-    /// ends, their root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven
-    /// (nine) times.
-    #[arg(long)]
+    #[arg(long, help = band_help())]
     pub band: bool,
+}
+
+/// `--band`'s help.
+fn band_help() -> String {
+    format!(
+        "Also give the uncertainty band of CT, CP and efficiency at each point (columns `ct_lo`, `ct_hi`, \
+         `cp_lo`, `cp_hi`, `eta_lo`, `eta_hi`; `band` in JSON): {} (`--polars`), each solved at both \
+         ends, their root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven (nine) \
+         times.",
+        propbet_pipeline::band::SOURCES_TEXT
+    )
 }
 
 /// The propeller model: a prop file, how to read it, and what to change in it.

@@ -14,6 +14,12 @@ use propbet_measure::MeasuredSet;
 use crate::model::Model;
 use crate::Result;
 
+/// The band's sources in words, as the help and the reports say them: [`BandSpec::default`]'s
+/// ranges and the transition's two ends ([`propbet_polar::blade::BAND_ENDS`]; a test holds the
+/// words to them).
+pub const SOURCES_TEXT: &str = "every blade angle ±1°, chord ±3 %, section drag ±20 %, and with tabulated polars the \
+     sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7";
+
 /// The half-ranges of the band's sources.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BandSpec {
@@ -161,6 +167,22 @@ mod tests {
         let j: Vec<f64> = (0..6).map(|k| 0.1 * k as f64).collect();
         let points = propbet_bemt::grid_omega_j(&[omega], &j, model.rotor.tip_radius);
         (model, Fluid::default(), points)
+    }
+
+    /// The words the help and the reports use for the band are its sources' ranges.
+    #[test]
+    fn the_sources_text_says_the_default_ranges() {
+        let d = BandSpec::default();
+        let [(early, trip), (late, late_trip)] = propbet_polar::blade::BAND_ENDS;
+        for words in [
+            format!("blade angle ±{}°", d.angle_deg),
+            format!("chord ±{} %", 100.0 * d.chord),
+            format!("drag ±{} %", 100.0 * d.drag),
+            format!("from Ncrit {early} tripped at mid-chord to Ncrit {late}"),
+        ] {
+            assert!(SOURCES_TEXT.contains(&words), "{words}: {SOURCES_TEXT}");
+        }
+        assert_eq!((trip, late_trip), (Some(0.5), None));
     }
 
     #[test]

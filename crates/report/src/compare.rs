@@ -485,7 +485,12 @@ fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figu
 }
 
 /// What the shaded band is, for the figures' captions.
-const BAND_CAPTION: &str = "; shaded: the prediction's uncertainty band (every blade angle ±1°, chord ±3 %, section drag ±20 %, and with tabulated polars the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both ends, their root-sum-square)";
+fn band_caption() -> String {
+    format!(
+        "shaded: the prediction's uncertainty band ({}, each solved at both ends, their root-sum-square)",
+        propbet_pipeline::band::SOURCES_TEXT
+    )
+}
 
 /// The figures as inline SVG, each with its caption.
 fn figures_html(
@@ -499,10 +504,10 @@ fn figures_html(
         let caption = match name.as_str() {
             "coefficients" => format!(
                 "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}{}.</figcaption>",
-                if band { BAND_CAPTION } else { "" },
+                if band { format!("; {}", band_caption()) } else { String::new() },
                 reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
             ),
-            "static" if band => format!("<figcaption>{}.</figcaption>", &BAND_CAPTION[2..]),
+            "static" if band => format!("<figcaption>{}.</figcaption>", band_caption()),
             _ => String::new(),
         };
         let _ = writeln!(

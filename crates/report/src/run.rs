@@ -236,9 +236,12 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             "<li>{}: the prediction, thrust, torque, CT, CP and efficiency at every RPM and J of the sweep{}</li>",
             link(out, o),
             if plan.predict.band {
-                ", with an uncertainty band for CT, CP and efficiency (every blade angle ±1°, chord ±3 %, drag ±20 %, the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7: the columns ct_lo to eta_hi)"
+                format!(
+                    ", with an uncertainty band for CT, CP and efficiency ({}: the columns ct_lo to eta_hi)",
+                    propbet_pipeline::band::SOURCES_TEXT
+                )
             } else {
-                ""
+                String::new()
             }
         );
         match (&run.qprop_export, o.parent()) {

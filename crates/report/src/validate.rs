@@ -281,11 +281,18 @@ const REGIME_INTRO: &str =
      elastic washout, the diagnosis's elastic-twist), which no section model makes. Last, how many \
      of the station solves at the compared points fell beyond their polars' Reynolds-number range \
      (below the ladder's lowest rung or above its highest, where the end rung is extrapolated): \
-     whether the ladder reaches every station at every operating point. Last, the uncertainty \
-     band's (blade angle ±1°, chord ±3 %, section drag ±20 %, the sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7, each solved at both ends, their \
-     root-sum-square, with twice the measurements' repeatability where they repeat a point): the \
-     share of the measured CT and CP inside it over the scored points, and its median half-width \
-     relative to the prediction.";
+     whether the ladder reaches every station at every operating point.";
+
+/// [`REGIME_INTRO`] with its last column, the band's.
+fn regime_intro() -> String {
+    format!(
+        "{REGIME_INTRO} Last, the uncertainty band's ({}, each solved at both ends, their root-sum-square, \
+         with twice the measurements' repeatability where they repeat a point): the share of the \
+         measured CT and CP inside it over the scored points, and its median half-width relative to \
+         the prediction.",
+        propbet_pipeline::band::SOURCES_TEXT
+    )
+}
 
 fn intro(model: &str) -> String {
     format!(
@@ -397,7 +404,8 @@ pub fn markdown(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
     if !body.is_empty() {
         let _ = write!(
             md,
-            "\n{REGIME_INTRO}\n\n| {} |\n|{}\n",
+            "\n{}\n\n| {} |\n|{}\n",
+            regime_intro(),
             h.join(" | "),
             "---|".repeat(h.len())
         );
@@ -472,7 +480,7 @@ pub fn html(rows: &[Row], skipped: &[Skipped], model: &str) -> String {
         let _ = write!(
             s,
             "<h2>Where the error is</h2>\n<p class=\"note\">{}</p>\n<table><tr>",
-            esc(REGIME_INTRO)
+            esc(&regime_intro())
         );
         for c in &h {
             let _ = write!(s, "<th>{}</th>", esc(c));
