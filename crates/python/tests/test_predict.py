@@ -106,3 +106,12 @@ def test_the_gil_is_released_while_propbet_computes():
     # Held, the GIL would leave this loop a handful of turns before the call; released, it turns
     # every few microseconds for the whole sweep.
     assert ticks > 100, f"{ticks} turns in {elapsed:.3f} s: the GIL was held"
+
+
+def test_a_stage_command_line_splits_into_flags_and_values():
+    """from_case reads the case's stage command lines: a switch it does not know is still a
+    flag alone when another flag follows, and a negative number is a value."""
+    argv = ["--geometry", "g.qprop", "--no-cache", "--airfoil", "e63.dat", "--dbeta", "-1.5", "--rpm=4000", "--band"]
+    assert list(propbet._pairs(argv)) == [
+        ["--geometry", "g.qprop"], ["--no-cache"], ["--airfoil", "e63.dat"], ["--dbeta", "-1.5"], ["--rpm=4000"], ["--band"],
+    ]

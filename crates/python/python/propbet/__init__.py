@@ -437,16 +437,19 @@ def _value(argv: Sequence[str], flag: str) -> Optional[str]:
     return None
 
 
-# The flags of a command line that take a value (the others here are switches).
+# predict's switches (flags without a value).
 _SWITCHES = {"--band", "--qprop-compat", "--no-tip-loss"}
 
 
 def _pairs(argv: Sequence[str]) -> Iterator[list[str]]:
-    """A command line's flags, each with its value."""
+    """A command line's flags, each with its value: a flag alone when it is a known switch,
+    holds its value (``--rpm=4000``), or the next word is another flag (a value never starts
+    with ``--``: a negative number has one dash)."""
     i = 0
     while i < len(argv):
         a = argv[i]
-        if a in _SWITCHES or "=" in a or not a.startswith("-") or i + 1 == len(argv):
+        alone = a in _SWITCHES or "=" in a or not a.startswith("-") or i + 1 == len(argv)
+        if alone or argv[i + 1].startswith("--"):
             yield [a]
             i += 1
         else:
