@@ -2,10 +2,12 @@
 //! forward flight). Only scored (unflagged) points count.
 
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 use serde::Serialize;
 
 use crate::{ComparedPoint, QUANTITIES};
+use propbet_measure::MeasuredSet;
 
 /// Errors of one quantity over a set of points; error = predicted - measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -133,8 +135,13 @@ pub fn rpm_group(p: &ComparedPoint) -> (i64, String) {
 /// "5000 rpm" sweeps run at 4,997 and 5,018: one colour, one predicted curve), else its
 /// logged RPM to the nearest 100.
 pub fn sweep_group(p: &ComparedPoint) -> (i64, String) {
-    let k = (p.nominal_rpm.unwrap_or(p.rpm) / 100.0).round() as i64 * 100;
+    let k = sweep_key(p.nominal_rpm.unwrap_or(p.rpm));
     (k, format!("{k} rpm"))
+}
+
+/// A sweep's RPM to the nearest 100: the runs of one UIUC sweep share it.
+pub fn sweep_key(rpm: f64) -> i64 {
+    (rpm / 100.0).round() as i64 * 100
 }
 
 fn j_group(p: &ComparedPoint) -> (i64, String) {
@@ -548,17 +555,47 @@ pub fn twist_gap(stations: &[(f64, f64)], design: impl Fn(f64) -> f64) -> f64 {
     }
 }
 
-/// The two halves of a prop's files for a held-out calibration: sorted by the RPM in their
-/// names (UIUC's names; static files, which have none, first), alternately to each half, so
-/// that each half has sweeps across the RPM range and every sweep is predicted by a ladder
-/// that did not see it.
-pub fn halves(files: &[std::path::PathBuf]) -> [Vec<std::path::PathBuf>; 2] {
-    let rpm = |p: &std::path::PathBuf| propbet_measure::uiuc::rpm_from_name(&p.to_string_lossy()).unwrap_or(0.0);
-    let mut sorted = files.to_vec();
-    sorted.sort_by(|a, b| rpm(a).total_cmp(&rpm(b)).then(a.cmp(b)));
-    let mut out = [Vec::new(), Vec::new()];
-    for (k, f) in sorted.into_iter().enumerate() {
-        out[k % 2].push(f);
+/// The two halves of a prop's measurements (`sets`, read from `files` in that order) for a
+/// held-out calibration, each a fair sample of the whole: the runs of one sweep, UIUC's files
+/// whose names give the same RPM to the nearest 100 ([`sweep_key`]: at the higher RPMs UIUC
+/// measures a sweep's low and high advance ratios in two runs, "7013" and "7018"), go to the
+/// same half, the sweeps sorted by RPM alternately to each half; a static test (no RPM in its
+/// name; one row per RPM) is shared point by point, alternately in file order. So each half
+/// holds whole sweeps across the RPM range and static points across theirs, and every point
+/// is predicted by a ladder that did not see it. Runs dealt one by one would put every high-J
+/// run in one half and every low-J run in the other; a whole static file in one half would
+/// leave the other's ladder fitted to forward flight alone and scored on hover.
+pub fn halves(files: &[PathBuf], sets: &[MeasuredSet]) -> [Vec<MeasuredSet>; 2] {
+    let rpm = |p: &PathBuf| propbet_measure::uiuc::rpm_from_name(&p.to_string_lossy());
+    let mut sweeps: Vec<(f64, &PathBuf, &MeasuredSet)> = Vec::new();
+    let mut out: [Vec<MeasuredSet>; 2] = [Vec::new(), Vec::new()];
+    for (file, set) in files.iter().zip(sets) {
+        match rpm(file) {
+            Some(r) => sweeps.push((r, file, set)),
+            None => {
+                for (k, half) in out.iter_mut().enumerate() {
+                    let points: Vec<_> = set.points.iter().skip(k).step_by(2).cloned().collect();
+                    if !points.is_empty() {
+                        half.push(MeasuredSet {
+                            rows: points.len(),
+                            dropped: Vec::new(),
+                            points,
+                            ..set.clone()
+                        });
+                    }
+                }
+            }
+        }
+    }
+    sweeps.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(b.1)));
+    let (mut half, mut last) = (1, None);
+    for (r, _, set) in sweeps {
+        let key = Some(sweep_key(r));
+        if key != last {
+            half = 1 - half;
+        }
+        last = key;
+        out[half].push(set.clone());
     }
     out
 }

@@ -185,8 +185,11 @@ pub const DEFAULT_GENERIC_SECTION: &str = "sd7037";
 /// One half's held-out CT and CP errors and its ladder in words.
 type HeldOutHalf = (Vec<f64>, Vec<f64>, String);
 
-/// Held out: a ladder fitted to each half of the files predicts the other half; "after" is
-/// scored on those predictions only. The CT and CP errors, and each half's ladder.
+/// Held out: a ladder fitted to each half of the measurements ([`halves`]) predicts the other
+/// half with the rung that scores lowest on its own half by validate's metric
+/// ([`validation_score`]: the diagnosis ranks by an RMS that the points near zero thrust
+/// dominate, which a rung can lower while raising the median error); "after" is scored on
+/// those predictions only. The CT and CP errors, and each half's rung in words.
 fn held_out(
     model: &Model,
     dspec: &DiagnoseSpec,
@@ -197,7 +200,8 @@ fn held_out(
 ) -> Result<(Vec<f64>, Vec<f64>, [String; 2])> {
     let (mut ct1, mut cp1) = (Vec::new(), Vec::new());
     let mut held_out_ladders = [String::new(), String::new()];
-    let folds = halves(&measured.files);
+    let (air, sets) = stages::load_measured(measured)?;
+    let folds = halves(&measured.files, &sets);
     // Each half's ladder on its own thread (each spreads its points over the pool too).
     let halves: Vec<Option<HeldOutHalf>> = (0..2)
         .into_par_iter()
@@ -207,19 +211,30 @@ fn held_out(
                 return Ok(None);
             }
             let fold_spec = DiagnoseSpec {
-                measured: MeasuredSpec::files(train.clone()),
                 out: dir.join(format!("held_out_{k}")),
                 ..dspec.clone()
             };
-            let fitted = stages::diagnose_with(model, &fold_spec, false)?;
-            let fx = held_out_effects(&fitted.diagnosis);
-            let ladder = ladder_text(&fx);
-            let fold_model_spec = ModelSpec {
-                effects: fx,
-                ..model_spec_all.clone()
-            };
-            let fold_model = Model::from_parts(&fold_model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
-            let predicted = stages::compare(&fold_model, &MeasuredSpec::files(test.clone()))?;
+            let fitted = stages::diagnose_sets(model, &fold_spec, air, train.clone(), false)?;
+            // The rung scored best by validate's own metric on the half it was fitted to.
+            let rungs = rung_effects(&fitted.diagnosis);
+            let models = rungs
+                .iter()
+                .map(|fx| {
+                    let spec = ModelSpec {
+                        effects: fx.clone(),
+                        ..model_spec_all.clone()
+                    };
+                    Model::from_parts(&spec, polars.prop.clone(), Some(&polars.blade), false)
+                })
+                .collect::<Result<Vec<_>>>()?;
+            let scores = models
+                .iter()
+                .map(|m| Ok(validation_score(&stages::compare_sets(m, air, train.clone())?.points)))
+                .collect::<Result<Vec<_>>>()?;
+            let best = lowest(&scores);
+            let ladder = ladder_text(&rungs[best]);
+            let fold_model = &models[best];
+            let predicted = stages::compare_sets(fold_model, air, test.clone())?;
             let (a, b) = window_errors(&predicted.points, VALIDATION_J_WINDOW);
             Ok(Some((a, b, ladder)))
         })
@@ -237,27 +252,35 @@ fn held_out(
     Ok((ct1, cp1, held_out_ladders))
 }
 
-/// The effects a half's ladder carries to the other half. The halves differ in RPM, so the
-/// ladder is cut where its leave-one-RPM-out error (on the half it was fitted to) is lowest:
-/// a rung that only calibrates to the RPMs it saw is not carried to others. Without that
-/// error (one RPM in the half), the whole ladder.
-fn held_out_effects(d: &propbet_diagnose::discover::Diagnosis) -> Vec<String> {
-    let loro: Vec<Option<f64>> = d.ladder.iter().map(|r| r.loro_rms).collect();
-    match lowest_rung(&loro) {
-        Some(0) => Vec::new(),
-        Some(best) if best + 1 < loro.len() => d.ladder[best].stack.split(" + ").map(str::to_string).collect(),
-        _ => d.final_effects(),
-    }
+/// The effects of each rung of a ladder, the baseline's (none) first.
+fn rung_effects(d: &propbet_diagnose::discover::Diagnosis) -> Vec<Vec<String>> {
+    let n = d.ladder.len();
+    (0..n.max(1))
+        .map(|k| match k {
+            0 => Vec::new(),
+            k if k + 1 < n => d.ladder[k].stack.split(" + ").map(str::to_string).collect(),
+            _ => d.final_effects(),
+        })
+        .collect()
 }
 
-/// The rung (0: the baseline) with the lowest leave-one-RPM-out error, the first of equals;
-/// None when a rung has none (one RPM) or there is no rung above the baseline.
-fn lowest_rung(loro: &[Option<f64>]) -> Option<usize> {
-    let errors: Vec<f64> = loro
-        .iter()
-        .map(|x| x.filter(|x| x.is_finite()))
-        .collect::<Option<_>>()?;
-    (errors.len() > 1).then(|| (0..errors.len()).fold(0, |b, i| if errors[i] < errors[b] { i } else { b }))
+/// Validate's metric on a set of compared points: the mean of the CT and CP medians of
+/// |predicted/measured − 1| over the points inside the window.
+fn validation_score(points: &[propbet_compare::ComparedPoint]) -> f64 {
+    let (ct, cp) = window_errors(points, VALIDATION_J_WINDOW);
+    0.5 * (median_p90(&ct).median + median_p90(&cp).median)
+}
+
+/// The index of the lowest score, the first of equals (NaN never lowest); 0 when none is
+/// finite.
+fn lowest(scores: &[f64]) -> usize {
+    (0..scores.len()).fold(0, |b, i| {
+        if scores[i] < scores[b] || (!scores[b].is_finite() && scores[i].is_finite()) {
+            i
+        } else {
+            b
+        }
+    })
 }
 
 /// The blade written as validate predicts it: its prop file (UIUC's stations, generic

@@ -299,8 +299,9 @@ fn intro(model: &str) -> String {
         "Relative errors |pred/meas − 1| of CT and CP, points below 85 % of each sweep's zero-thrust J \
          (static points included). Before: the blade + APC sections + their polars covering each \
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
-         measurements) on the same points; after: held out, each half of a prop's files (sorted by \
-         RPM, alternately) predicted with the effects the ladder fitted to the other half. The static \
+         measurements) on the same points; after: held out, each half of a prop's measurements (whole \
+         sweeps alternately by RPM, the static points alternately) predicted with the rung of the \
+         other half's ladder that scores lowest on that half. The static \
          figure of merit (CT^1.5 / CP · sqrt(2/π)) column is the median over the static points of the \
          predicted over the measured, minus 1: the hover efficiency's error, whatever its split \
          between thrust and power. The twist column is APC's design twist (PE0) minus UIUC's measured β, averaged over r/R 0.6-0.9: a \

@@ -254,18 +254,63 @@ fn flagged_points_are_not_scored() {
 }
 
 #[test]
-fn halves_alternate_by_rpm_static_first() {
-    let f = |n: &str| std::path::PathBuf::from(format!("uiuc/{n}.txt"));
-    let files = [
-        f("p_kt1_6000"),
-        f("p_static_kt0"),
-        f("p_kt2_4000"),
-        f("p_kt3_5000"),
-        f("p_kt4_5010"),
+fn halves_hold_whole_sweeps_alternately_by_rpm_and_share_the_static_points() {
+    let read = |name: &str, text: &str| {
+        let opts = propbet_measure::ReadOptions {
+            name: Some(name.to_string()),
+            ..Default::default()
+        };
+        propbet_measure::read(text, &opts).unwrap()
+    };
+    let sweep = "J CT CP eta\n0.2 0.10 0.05 0.40\n0.4 0.08 0.05 0.64\n";
+    let statics = "RPM CT CP\n3000 0.10 0.05\n4000 0.11 0.05\n5000 0.12 0.05\n6000 0.12 0.05\n7000 0.13 0.06\n";
+    let names = [
+        "p_kt1_6000",
+        "p_static_kt0",
+        "p_kt2_4000",
+        "p_kt3_5000",
+        "p_kt4_5010",
+        "p_kt5_6019",
+        "p_kt6_7013",
+        "p_kt7_7018",
     ];
-    let [a, b] = halves(&files);
-    assert_eq!(a, vec![f("p_static_kt0"), f("p_kt3_5000"), f("p_kt1_6000")]);
-    assert_eq!(b, vec![f("p_kt2_4000"), f("p_kt4_5010")]);
+    let files: Vec<PathBuf> = names.iter().map(|n| PathBuf::from(format!("uiuc/{n}.txt"))).collect();
+    let sets: Vec<MeasuredSet> = names
+        .iter()
+        .map(|n| read(&format!("{n}.txt"), if n.contains("static") { statics } else { sweep }))
+        .collect();
+    let [a, b] = halves(&files, &sets);
+    // Each set as the RPMs of its points, rounded.
+    let rpms = |h: &[MeasuredSet]| -> Vec<Vec<i64>> {
+        h.iter()
+            .map(|s| s.points.iter().map(|p| p.rpm().round() as i64).collect())
+            .collect()
+    };
+    // The static test's rows alternately (first, third and fifth to the first half), then the
+    // sweeps by RPM, each sweep's runs together: 4000 and 6000 (two runs) to the first half,
+    // 5000 (two runs) and 7000 (two runs) to the second.
+    let sweep_at = |r: i64| vec![r, r];
+    assert_eq!(
+        rpms(&a),
+        vec![vec![3000, 5000, 7000], sweep_at(4000), sweep_at(6000), sweep_at(6019)]
+    );
+    assert_eq!(
+        rpms(&b),
+        vec![
+            vec![4000, 6000],
+            sweep_at(5000),
+            sweep_at(5010),
+            sweep_at(7013),
+            sweep_at(7018)
+        ]
+    );
+    assert_eq!((a[0].rows, b[0].rows), (3, 2));
+    // No point in both halves, none lost.
+    let count = |h: &[MeasuredSet]| h.iter().map(|s| s.points.len()).sum::<usize>();
+    assert_eq!(
+        count(&a) + count(&b),
+        sets.iter().map(|s| s.points.len()).sum::<usize>()
+    );
 }
 
 #[test]

@@ -123,6 +123,11 @@ pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> 
 /// Runs the compare stage.
 pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
     let (air, sets) = load_measured(measured)?;
+    compare_sets(model, air, sets)
+}
+
+/// [`compare`] of measurements already read (validate's held-out halves).
+pub fn compare_sets(model: &Model, air: AirChoice, sets: Vec<MeasuredSet>) -> Result<Compared> {
     let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
     let metrics = metrics(&points);
     Ok(Compared {
@@ -151,6 +156,27 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
 /// [`diagnose`], with the residuals' signatures before and after the ladder or without them
 /// (`signatures`: what validate's held-out halves, which want the ladder alone, skip).
 pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Result<Diagnosed> {
+    // The command line's own mistakes are named before any file is read.
+    let candidates = candidates(model, spec)?;
+    let (air, sets) = load_measured(&spec.measured)?;
+    diagnose_read(model, spec, candidates, air, sets, signatures)
+}
+
+/// [`diagnose_with`] of measurements already read (validate's held-out halves); `spec`'s
+/// measured files are not read.
+pub fn diagnose_sets(
+    model: &Model,
+    spec: &DiagnoseSpec,
+    air: AirChoice,
+    sets: Vec<MeasuredSet>,
+    signatures: bool,
+) -> Result<Diagnosed> {
+    let candidates = candidates(model, spec)?;
+    diagnose_read(model, spec, candidates, air, sets, signatures)
+}
+
+/// The candidate effects `spec` names, less those already in the model's baseline.
+fn candidates(model: &Model, spec: &DiagnoseSpec) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
     crate::settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
@@ -159,9 +185,19 @@ pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Re
         .filter(|s| !s.is_empty())
         .collect();
     let mut candidates = model.registry.select(&list)?;
-    // Effects already in the baseline are not candidates.
     candidates.retain(|c| !model.effects.active.iter().any(|a| a.effect.id() == c.id()));
-    let (air, sets) = load_measured(&spec.measured)?;
+    Ok(candidates)
+}
+
+/// The diagnosis of measurements read, over `candidates`.
+fn diagnose_read(
+    model: &Model,
+    spec: &DiagnoseSpec,
+    mut candidates: Vec<std::sync::Arc<dyn propbet_effects::Effect>>,
+    air: AirChoice,
+    sets: Vec<MeasuredSet>,
+    signatures: bool,
+) -> Result<Diagnosed> {
     // The files' provenance bounds some candidates (an optical RPM, a lab's own air).
     Provenance::of(&sets).narrow(&mut candidates);
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;

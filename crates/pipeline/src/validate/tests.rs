@@ -173,19 +173,15 @@ fn an_assumed_section_rides_on_uiucs_blade() {
     );
 }
 
-/// A held-out half's ladder is cut at its lowest leave-one-RPM-out error: the baseline when no
-/// rung beats it, the whole ladder when its last rung is lowest, and not cut without the error.
+/// A held-out half carries the rung its own points score lowest: the baseline when no rung
+/// beats it, the shorter ladder of equals, never a rung without a score.
 #[test]
-fn a_held_out_ladder_is_cut_at_its_lowest_leave_one_rpm_out_error() {
-    assert_eq!(lowest_rung(&[Some(0.10), Some(0.07), Some(0.08)]), Some(1));
-    assert_eq!(lowest_rung(&[Some(0.10), Some(0.12), Some(0.11)]), Some(0));
-    assert_eq!(lowest_rung(&[Some(0.10), Some(0.08), Some(0.06)]), Some(2));
-    assert_eq!(
-        lowest_rung(&[Some(0.10), Some(0.10)]),
-        Some(0),
-        "equal: the shorter ladder"
-    );
-    assert_eq!(lowest_rung(&[Some(0.10), None]), None, "one RPM: no such error");
-    assert_eq!(lowest_rung(&[Some(0.10), Some(f64::NAN)]), None);
-    assert_eq!(lowest_rung(&[Some(0.10)]), None, "the baseline alone");
+fn a_held_out_half_carries_the_rung_it_scores_lowest() {
+    assert_eq!(lowest(&[0.10, 0.07, 0.08]), 1);
+    assert_eq!(lowest(&[0.10, 0.12, 0.11]), 0);
+    assert_eq!(lowest(&[0.10, 0.08, 0.06]), 2);
+    assert_eq!(lowest(&[0.10, 0.10]), 0, "equal: the shorter ladder");
+    assert_eq!(lowest(&[0.10, f64::NAN, 0.09]), 2);
+    assert_eq!(lowest(&[f64::NAN, 0.12]), 1);
+    assert_eq!(lowest(&[0.10]), 0, "the baseline alone");
 }
