@@ -169,13 +169,13 @@ fn check_subset_table(dir: &Path) {
     // Static (16 points) and the 6029 rpm sweep (17) below 85 % of its zero-thrust J (all of
     // it when the sweep stops before zero thrust).
     assert!(v("points") >= 20.0 && v("points") <= 33.0, "{r:?}");
-    // The prediction is of the right size, and so is the held-out calibration (the static
-    // file's ladder predicting the sweep, and the other way round). With transition forced by
-    // mid-chord it was no worse than the prediction; with free transition, the default, it is
-    // (CT 5.9 -> 12.2 %: each file's ladder predicts the other worse), as on 17 of the 35
-    // shared props (docs/studies/default-by-cross-validation.md).
+    // The prediction is of the right size, and so is the held-out calibration: the halves
+    // share the static points, one has the sweep, and each carries the rung that scores lowest
+    // on itself (CT 5.9 -> 6.6 %, CP 4.8 -> 4.1 %). With the static file whole in one half and
+    // the ladder cut by its leave-one-RPM-out RMS, CT went 5.9 -> 12.2 %
+    // (docs/studies/diagnosis-trades.md, the last section).
     assert!(v("ct_median") < 0.3 && v("cp_median") < 0.3, "{r:?}");
-    assert!(v("ct_median_after") < 0.3 && v("cp_median_after") < 0.3, "{r:?}");
+    assert!(v("ct_median_after") < 0.1 && v("cp_median_after") < 0.3, "{r:?}");
     assert!(r[col(&h, "held_out_ladders")].contains(" / "), "{r:?}");
     // An outlier (a median above 15 %) says why, anything else nothing.
     let outlier = v("ct_median") > 0.15 || v("cp_median") > 0.15;

@@ -6,10 +6,8 @@
 
 use std::path::{Path, PathBuf};
 
-use rayon::prelude::*;
-
 use propbet_compare::metrics::{
-    halves, static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift, Regimes, VALIDATION_J_WINDOW,
+    static_figure_of_merit_error, static_rise, window_errors, zero_thrust_shift, Regimes, VALIDATION_J_WINDOW,
 };
 use propbet_qprop::{PropFile, PropRow};
 
@@ -24,6 +22,7 @@ use crate::{Error, Result};
 mod all;
 mod blade;
 mod files;
+mod held_out;
 mod row;
 
 pub use all::{sections_for, select_props, validate_all, PropSections, Validation};
@@ -31,6 +30,7 @@ pub use blade::pe0_table;
 use blade::{blade, Blade};
 use files::{cover, measured_files};
 pub use files::{find_apc_file, uiuc_name, uiuc_props};
+use held_out::held_out;
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
 pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 
@@ -181,107 +181,6 @@ impl Sections {
 /// The default of `--generic-section`: SD7037 as drawn (t/c 0.092), the best of four thin
 /// low-Re sections on the two shared props of other makers (docs/studies/other-makers.md).
 pub const DEFAULT_GENERIC_SECTION: &str = "sd7037";
-
-/// One half's held-out CT and CP errors and its ladder in words.
-type HeldOutHalf = (Vec<f64>, Vec<f64>, String);
-
-/// Held out: a ladder fitted to each half of the measurements ([`halves`]) predicts the other
-/// half with the rung that scores lowest on its own half by validate's metric
-/// ([`validation_score`]: the diagnosis ranks by an RMS that the points near zero thrust
-/// dominate, which a rung can lower while raising the median error); "after" is scored on
-/// those predictions only. The CT and CP errors, and each half's rung in words.
-fn held_out(
-    model: &Model,
-    dspec: &DiagnoseSpec,
-    model_spec_all: &ModelSpec,
-    polars: &Polars,
-    measured: &MeasuredSpec,
-    dir: &Path,
-) -> Result<(Vec<f64>, Vec<f64>, [String; 2])> {
-    let (mut ct1, mut cp1) = (Vec::new(), Vec::new());
-    let mut held_out_ladders = [String::new(), String::new()];
-    let (air, sets) = stages::load_measured(measured)?;
-    let folds = halves(&measured.files, &sets);
-    // Each half's ladder on its own thread (each spreads its points over the pool too).
-    let halves: Vec<Option<HeldOutHalf>> = (0..2)
-        .into_par_iter()
-        .map(|k| {
-            let (train, test) = (&folds[k], &folds[1 - k]);
-            if train.is_empty() || test.is_empty() {
-                return Ok(None);
-            }
-            let fold_spec = DiagnoseSpec {
-                out: dir.join(format!("held_out_{k}")),
-                ..dspec.clone()
-            };
-            let fitted = stages::diagnose_sets(model, &fold_spec, air, train.clone(), false)?;
-            // The rung scored best by validate's own metric on the half it was fitted to.
-            let rungs = rung_effects(&fitted.diagnosis);
-            let models = rungs
-                .iter()
-                .map(|fx| {
-                    let spec = ModelSpec {
-                        effects: fx.clone(),
-                        ..model_spec_all.clone()
-                    };
-                    Model::from_parts(&spec, polars.prop.clone(), Some(&polars.blade), false)
-                })
-                .collect::<Result<Vec<_>>>()?;
-            let scores = models
-                .iter()
-                .map(|m| Ok(validation_score(&stages::compare_sets(m, air, train.clone())?.points)))
-                .collect::<Result<Vec<_>>>()?;
-            let best = lowest(&scores);
-            let ladder = ladder_text(&rungs[best]);
-            let fold_model = &models[best];
-            let predicted = stages::compare_sets(fold_model, air, test.clone())?;
-            let (a, b) = window_errors(&predicted.points, VALIDATION_J_WINDOW);
-            Ok(Some((a, b, ladder)))
-        })
-        .collect::<Result<_>>()?;
-    for (k, half) in halves.into_iter().enumerate() {
-        match half {
-            None => held_out_ladders[k] = "none (a single file: nothing to hold out)".into(),
-            Some((a, b, ladder)) => {
-                ct1.extend(a);
-                cp1.extend(b);
-                held_out_ladders[k] = ladder;
-            }
-        }
-    }
-    Ok((ct1, cp1, held_out_ladders))
-}
-
-/// The effects of each rung of a ladder, the baseline's (none) first.
-fn rung_effects(d: &propbet_diagnose::discover::Diagnosis) -> Vec<Vec<String>> {
-    let n = d.ladder.len();
-    (0..n.max(1))
-        .map(|k| match k {
-            0 => Vec::new(),
-            k if k + 1 < n => d.ladder[k].stack.split(" + ").map(str::to_string).collect(),
-            _ => d.final_effects(),
-        })
-        .collect()
-}
-
-/// Validate's metric on a set of compared points: the mean of the CT and CP medians of
-/// |predicted/measured − 1| over the points inside the window.
-fn validation_score(points: &[propbet_compare::ComparedPoint]) -> f64 {
-    let (ct, cp) = window_errors(points, VALIDATION_J_WINDOW);
-    0.5 * (median_p90(&ct).median + median_p90(&cp).median)
-}
-
-/// The index of the lowest score, the first of equals (NaN never lowest); 0 when none is
-/// finite.
-fn lowest(scores: &[f64]) -> usize {
-    (0..scores.len()).fold(0, |b, i| {
-        if scores[i] < scores[b] || (!scores[b].is_finite() && scores[i].is_finite()) {
-            i
-        } else {
-            b
-        }
-    })
-}
 
 /// The blade written as validate predicts it: its prop file (UIUC's stations, generic
 /// coefficients) and each station's section, as the polars stage takes them.
@@ -485,12 +384,11 @@ pub fn validate_prop(
         &model,
         &mut records,
     )?;
-    let model_spec_all = model_spec.clone();
     // The ladder on every file and the held-out ladders on each half run side by side.
     let dspec = ladder_spec(&model_spec, &measured, &dir);
     let (calibration, held) = rayon::join(
         || calibrate(model_spec, &dspec, &model, &polars, &measured, &dir, &mut records),
-        || held_out(&model, &dspec, &model_spec_all, &polars, &measured, &dir),
+        || held_out(&model, &dspec, &measured, &dir),
     );
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;

@@ -1,6 +1,7 @@
 //! Unit tests of `validate.rs`.
 
 use super::blade::{apc_airfoil, assumed_pe0};
+use super::held_out::lowest;
 use super::*;
 use propbet_compare::ComparedPoint;
 
