@@ -298,8 +298,11 @@ fn calibrate(
         || stages::diagnose(model, dspec),
         |_| true,
     )?;
-    // Calibrated: the ladder's effects as the command line gives them.
-    let effects = diagnosed.diagnosis.final_effects();
+    // Calibrated: the rung of the ladder that scores lowest on the measurements by validate's
+    // metric (as the held-out halves carry theirs), as the command line gives its effects.
+    let (air, _) = stages::load_measured(measured)?;
+    let rung = held_out::best_rung(model, air, &diagnosed.sets, &diagnosed.diagnosis)?;
+    let effects = held_out::added_effects(model, &rung);
     let cal_spec = ModelSpec {
         effects: effects.clone(),
         ..model_spec

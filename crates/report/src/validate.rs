@@ -33,8 +33,8 @@ fn head(apc: bool) -> Vec<&'static str> {
         "CP p90 after",
         "static figure of merit, predicted / measured − 1",
         "APC design − measured twist, r/R 0.6-0.9",
-        "ladder (all files)",
-        "held-out ladders (each half of the files)",
+        "calibration (all files)",
+        "held-out calibrations (each half)",
         "why an outlier (CT or CP median above 15 %)",
     ]);
     h
@@ -301,7 +301,9 @@ fn intro(model: &str) -> String {
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
          measurements) on the same points; after: held out, each half of a prop's measurements (whole \
          sweeps alternately by RPM, the static points alternately) predicted with the rung of the \
-         other half's ladder that scores lowest on that half. The static \
+         other half's ladder that scores lowest on that half; the calibration column is the rung of \
+         the ladder on all files that scores lowest on them (the diagnosis's whole ladder is its own \
+         report's). The static \
          figure of merit (CT^1.5 / CP · sqrt(2/π)) column is the median over the static points of the \
          predicted over the measured, minus 1: the hover efficiency's error, whatever its split \
          between thrust and power. The twist column is APC's design twist (PE0) minus UIUC's measured β, averaged over r/R 0.6-0.9: a \

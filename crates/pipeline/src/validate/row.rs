@@ -38,10 +38,11 @@ pub struct Row {
     /// APC's own prediction (PER3) on the same points: CT and CP (median, p90), and the points
     /// it covers; None without `--per3` or its file.
     pub per3: Option<Per3Score>,
-    /// The ladder's effects (fitted to all the prop's files: the calibration in `calibrated/`).
+    /// The calibration: the effects of the rung of the ladder fitted to all the prop's files
+    /// that scores lowest on them (`calibrated/`; the whole ladder is the diagnosis's).
     pub ladder: String,
-    /// The ladders fitted to each half of the files, whose predictions of the other half are
-    /// the "after" columns.
+    /// The rungs each half of the measurements carries to the other, whose predictions are the
+    /// "after" columns.
     pub held_out_ladders: [String; 2],
     /// APC's design twist minus UIUC's measured β [deg], the mean over UIUC's stations at
     /// r/R 0.6-0.9 (where most of the thrust is made): what a `pitch-offset` fitted on UIUC's
