@@ -123,11 +123,6 @@ pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> 
 /// Runs the compare stage.
 pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
     let (air, sets) = load_measured(measured)?;
-    compare_sets(model, air, sets)
-}
-
-/// [`compare`] of measurements already read (validate's held-out halves).
-pub fn compare_sets(model: &Model, air: AirChoice, sets: Vec<MeasuredSet>) -> Result<Compared> {
     let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
     let metrics = metrics(&points);
     Ok(Compared {
