@@ -301,7 +301,8 @@ fn intro(model: &str) -> String {
          prop's measured RPM and J range ({model}); APC: APC's own predictions (PER3 files, not \
          measurements) on the same points; after: held out, each half of a prop's measurements (whole \
          sweeps alternately by RPM, the static points alternately) predicted with the rung of the \
-         other half's ladder that scores lowest on that half; the calibration column is the rung of \
+         other half's ladder that scores lowest on that half without raising its leave-one-RPM-out \
+         error; the calibration column is the rung of \
          the ladder on all files that scores lowest on them (the diagnosis's whole ladder is its own \
          report's). The static \
          figure of merit (CT^1.5 / CP · sqrt(2/π)) column is the median over the static points of the \

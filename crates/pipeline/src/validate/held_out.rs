@@ -65,7 +65,8 @@ pub(super) fn held_out(
 }
 
 /// The rung of a ladder diagnosed on `sets` (the baseline included) that scores lowest on
-/// those same points by validate's metric ([`validation_score`]): the calibration validate
+/// those same points by validate's metric ([`validation_score`]) without raising the ladder's
+/// leave-one-RPM-out error ([`carried`]): the calibration validate
 /// carries, to the other half of the measurements or to `calibrated/`. The diagnosis ranks by
 /// an RMS that the points near zero thrust dominate, which a rung can lower while it raises the
 /// median error validate scores (the 9x7.5 SF's whole ladder on its own points: CT 6.5 →
@@ -80,8 +81,26 @@ pub(super) fn best_rung(
         .into_iter()
         .map(|s| Ok((validation_score(&compare_with(model, air, &s, sets)?), s)))
         .collect::<Result<Vec<_>>>()?;
-    let best = lowest(&rungs.iter().map(|r| r.0).collect::<Vec<_>>());
-    Ok(rungs.swap_remove(best).1)
+    let scores: Vec<f64> = rungs.iter().map(|r| r.0).collect();
+    let loro: Vec<Option<f64>> = diagnosis.ladder.iter().map(|r| r.loro_rms).collect();
+    Ok(rungs.swap_remove(carried(&scores, &loro)).1)
+}
+
+/// The rung carried: the lowest of `scores` (the baseline's first) among the baseline and the
+/// rungs that do not raise the ladder's leave-one-RPM-out error (`loro`, the diagnosis's, one
+/// per rung) above the baseline's where both have one: a rung that only calibrates to the RPMs
+/// it saw is not carried to others.
+pub(super) fn carried(scores: &[f64], loro: &[Option<f64>]) -> usize {
+    let base = loro.first().copied().flatten();
+    let gated: Vec<f64> = scores
+        .iter()
+        .enumerate()
+        .map(|(k, &s)| match (base, loro.get(k).copied().flatten()) {
+            (Some(b), Some(l)) if k > 0 && l > b => f64::NAN,
+            _ => s,
+        })
+        .collect();
+    lowest(&gated)
 }
 
 /// The effects a stack adds to the model's own, as the command line gives them.

@@ -1,7 +1,7 @@
 //! Unit tests of `validate.rs`.
 
 use super::blade::{apc_airfoil, assumed_pe0};
-use super::held_out::lowest;
+use super::held_out::{carried, lowest};
 use super::*;
 use propbet_compare::ComparedPoint;
 
@@ -185,4 +185,17 @@ fn a_held_out_half_carries_the_rung_it_scores_lowest() {
     assert_eq!(lowest(&[0.10, f64::NAN, 0.09]), 2);
     assert_eq!(lowest(&[f64::NAN, 0.12]), 1);
     assert_eq!(lowest(&[0.10]), 0, "the baseline alone");
+}
+
+/// A rung that raises the ladder's leave-one-RPM-out error above the baseline's is not
+/// carried, however well it scores on its own points; without that error, the score decides.
+#[test]
+fn a_rung_that_raises_the_leave_one_rpm_out_error_is_not_carried() {
+    let scores = [0.10, 0.07, 0.06];
+    assert_eq!(carried(&scores, &[Some(0.2), Some(0.18), Some(0.19)]), 2);
+    assert_eq!(carried(&scores, &[Some(0.2), Some(0.18), Some(0.21)]), 1);
+    assert_eq!(carried(&scores, &[Some(0.2), Some(0.22), Some(0.21)]), 0);
+    assert_eq!(carried(&scores, &[None, None, None]), 2, "one RPM: no such error");
+    assert_eq!(carried(&scores, &[Some(0.2), None, Some(0.25)]), 1);
+    assert_eq!(carried(&scores, &[]), 2);
 }
