@@ -48,6 +48,23 @@ fn a_clean_fake_converges_everything_in_one_run() {
     assert!(out.faults.is_empty() && out.unconverged_deg.is_empty());
 }
 
+/// An XFOIL executable held open for writing when it is started (as a just-written wrapper is
+/// by a process another thread forked a moment before, until that process execs) is started
+/// once it is free: the busy executable (ETXTBSY) is tried again, not a fault.
+#[test]
+fn an_executable_busy_for_a_moment_is_started_once_free() {
+    let (_d, exe) = fake("");
+    let held = std::fs::OpenOptions::new().append(true).open(&exe).unwrap();
+    let release = std::thread::spawn(move || {
+        std::thread::sleep(Duration::from_millis(60));
+        drop(held);
+    });
+    let out = runner(exe).sweep(&request()).unwrap();
+    release.join().unwrap();
+    assert_eq!(alphas(&out), (-3..=6).map(f64::from).collect::<Vec<_>>());
+    assert!(out.faults.is_empty(), "{:?}", out.faults);
+}
+
 /// A section that stalls at 5 deg on the way up and reattaches only at 2 deg on the way down.
 const STALL_LOOP: &str = r#"a=${arg%%.*}; [ $init = 1 ] && st=0
 if [ $a -ge 5 ]; then st=1; elif [ $a -le 2 ]; then st=0; fi

@@ -339,8 +339,7 @@ impl Xfoil {
             Some(d) => cmd.env("DISPLAY", d),
             None => cmd.env_remove("DISPLAY"),
         };
-        let mut child = cmd
-            .spawn()
+        let mut child = spawn_when_not_busy(&mut cmd)
             .map_err(|e| XfoilError::io(format!("cannot start XFOIL ({})", self.config.executable.display()), e))?;
         let tracked = crate::interrupt::Tracked::new(child.id(), path);
         let text = script::sweep_script(settings, warm_up, steps);
@@ -466,4 +465,22 @@ pub(super) fn tail(bytes: &[u8]) -> String {
     text.chars()
         .filter(|&c| !c.is_control() || c == '\n' || c == '\t')
         .collect()
+}
+
+/// Starts `cmd`, again a few times while its executable is busy (ETXTBSY): an executable
+/// written a moment ago (a wrapper script, a test's fake XFOIL) is held open for writing by
+/// any process another thread forked in the meantime, until that process execs.
+fn spawn_when_not_busy(cmd: &mut Command) -> std::io::Result<std::process::Child> {
+    let busy = rustix::io::Errno::TXTBSY.raw_os_error();
+    let mut wait = std::time::Duration::from_millis(5);
+    for _ in 0..8 {
+        match cmd.spawn() {
+            Err(e) if e.raw_os_error() == Some(busy) => {
+                std::thread::sleep(wait);
+                wait *= 2;
+            }
+            started => return started,
+        }
+    }
+    cmd.spawn()
 }
