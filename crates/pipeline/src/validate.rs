@@ -300,8 +300,7 @@ fn calibrate(
     )?;
     // Calibrated: the rung of the ladder that scores lowest on the measurements by validate's
     // metric (as the held-out halves carry theirs), as the command line gives its effects.
-    let (air, _) = stages::load_measured(measured)?;
-    let rung = held_out::best_rung(model, air, &diagnosed.sets, &diagnosed.diagnosis)?;
+    let rung = held_out::best_rung(model, diagnosed.air, &diagnosed.sets, &diagnosed.diagnosis)?;
     let effects = held_out::added_effects(model, &rung);
     let cal_spec = ModelSpec {
         effects: effects.clone(),
@@ -391,7 +390,7 @@ pub fn validate_prop(
     let dspec = ladder_spec(&model_spec, &measured, &dir);
     let (calibration, held) = rayon::join(
         || calibrate(model_spec, &dspec, &model, &polars, &measured, &dir, &mut records),
-        || held_out(&model, &dspec, &measured, &dir),
+        || held_out(&model, &dspec, &measured.files, compared.air, &compared.sets, &dir),
     );
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;

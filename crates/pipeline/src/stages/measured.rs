@@ -137,6 +137,8 @@ pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
 pub struct Diagnosed {
     /// The measured sets as read.
     pub sets: Vec<MeasuredSet>,
+    /// The air choice.
+    pub air: AirChoice,
     /// The residual rows.
     pub data: Data,
     /// The diagnosis.
@@ -212,7 +214,12 @@ fn diagnose_read(
         ..Options::default()
     };
     let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
-    Ok(Diagnosed { sets, data, diagnosis })
+    Ok(Diagnosed {
+        sets,
+        air,
+        data,
+        diagnosis,
+    })
 }
 
 /// Reads a QPROP output file (its printed sweep), naming the file in every error.

@@ -11,7 +11,7 @@ use propbet_measure::MeasuredSet;
 
 use super::row::{ladder_text, median_p90};
 use crate::model::Model;
-use crate::spec::{DiagnoseSpec, MeasuredSpec};
+use crate::spec::DiagnoseSpec;
 use crate::stages;
 use crate::{Error, Result};
 
@@ -25,11 +25,12 @@ type HeldOutHalf = (Vec<f64>, Vec<f64>, String);
 pub(super) fn held_out(
     model: &Model,
     dspec: &DiagnoseSpec,
-    measured: &MeasuredSpec,
+    files: &[std::path::PathBuf],
+    air: AirChoice,
+    sets: &[MeasuredSet],
     dir: &std::path::Path,
 ) -> Result<(Vec<f64>, Vec<f64>, [String; 2])> {
-    let (air, sets) = stages::load_measured(measured)?;
-    let folds = halves(&measured.files, &sets);
+    let folds = halves(files, sets);
     // Each half's ladder on its own thread (each spreads its points over the pool too).
     let results: Vec<Option<HeldOutHalf>> = (0..2)
         .into_par_iter()
