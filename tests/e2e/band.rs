@@ -1,5 +1,5 @@
-//! The uncertainty band end to end: `predict --band`'s columns, and the sections' transition
-//! that tabulated polars add to it.
+//! The uncertainty band end to end: `predict --band`'s columns, the sections' transition that
+//! tabulated polars add to it, and the geometry's own accuracy a scan's prop file carries.
 
 use super::{cam6x3, col, read_csv, repo, run, stderr};
 
@@ -102,4 +102,64 @@ fn tabulated_polars_add_the_sections_transition_to_the_band() {
         with.iter().zip(&without).any(|(a, b)| a > &(1.05 * b)),
         "{with:?} {without:?}"
     );
+}
+
+/// A prop file's own geometry accuracy (the comment line a scan writes) adds to the band's
+/// blade angle and chord in root-sum-square: a coarse one widens every band, a fine one leaves
+/// it as the stated ranges make it; a line that cannot be read is an error naming it.
+#[test]
+fn a_prop_files_own_geometry_accuracy_widens_its_band() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(cam6x3()).unwrap();
+    let with = |name: &str, line: &str| {
+        std::fs::write(dir.path().join(name), format!("{text}\n{line}\n")).unwrap();
+    };
+    with("plain.qprop", "");
+    with(
+        "coarse.qprop",
+        "# geometry accuracy: blade_angle_deg=2 chord_fraction=0.1",
+    );
+    with(
+        "fine.qprop",
+        "# geometry accuracy: blade_angle_deg=0.01 chord_fraction=0.001",
+    );
+    with(
+        "bad.qprop",
+        "# geometry accuracy: blade_angle_deg=-2 chord_fraction=0.1",
+    );
+    let predict = |prop: &str| {
+        let out = format!("{prop}.csv");
+        let args = [
+            "predict",
+            "--prop",
+            prop,
+            "--rpm",
+            "6000",
+            "--j",
+            "0:0.4:0.1",
+            "--band",
+            "--out",
+            &out,
+        ];
+        let o = run(&args, dir.path());
+        (o, dir.path().join(out))
+    };
+    let width = |prop: &str| {
+        let (o, out) = predict(prop);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (h, rows) = read_csv(&out);
+        let v = |r: &Vec<String>, k: &str| r[col(&h, k)].parse::<f64>().unwrap();
+        rows.iter().map(|r| v(r, "ct_hi") - v(r, "ct_lo")).collect::<Vec<f64>>()
+    };
+    let (plain, coarse, fine) = (width("plain.qprop"), width("coarse.qprop"), width("fine.qprop"));
+    for ((p, c), f) in plain.iter().zip(&coarse).zip(&fine) {
+        assert!(*c > 1.5 * p, "{plain:?} {coarse:?}");
+        assert!((f / p - 1.0).abs() < 0.01, "{plain:?} {fine:?}");
+    }
+    let (o, out) = predict("bad.qprop");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let lines = text.lines().count() + 2;
+    let expect = format!("bad.qprop: line {lines}: blade_angle_deg = -2 lies outside 0 to 45");
+    assert!(stderr(&o).contains(&expect), "{expect}: {}", stderr(&o));
+    assert!(!out.exists());
 }

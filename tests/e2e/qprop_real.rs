@@ -147,6 +147,13 @@ fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(
     assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
     let out = t.path().join("out");
     let file = out.join("predict/qprop_export.qprop");
+    // A scanned blade's own accuracy travels in the export, on a comment line QPROP skips.
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert_eq!(
+        text.contains("# geometry accuracy:"),
+        out.join("scan/prop.qprop").exists(),
+        "{text}"
+    );
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     let fid = &summary["qprop_export"]["fidelity"];

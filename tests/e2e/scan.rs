@@ -249,6 +249,52 @@ fn shared_synthetic_cloud_with_box_against_its_truth() {
         summary["notes"]
     );
     assert!(dir.path().join("out/plots/colour_histogram.svg").is_file());
+    // The prop file carries the scan's own accuracy from its residuals: the median station's
+    // spread of blade angle between the blades, and twice its CST fit's RMS over the chord.
+    // The median station: the one nearest rank (n - 1) / 2.
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[((v.len() - 1) as f64 * 0.5).round() as usize]
+    };
+    let spread = median(rows.iter().map(|r| num(&r[col(&h, "blade_spread_deg")])).collect());
+    let fit = median(
+        rows.iter()
+            .map(|r| 2.0 * num(&r[col(&h, "rms_cst_mm")]) / num(&r[col(&h, "chord_mm")]))
+            .collect(),
+    );
+    let prop = std::fs::read_to_string(dir.path().join("out/prop.qprop")).unwrap();
+    let line = prop
+        .lines()
+        .find(|l| l.starts_with("# geometry accuracy:"))
+        .unwrap_or_else(|| panic!("{prop}"));
+    let value = |key: &str| {
+        let v = line
+            .split(&format!("{key}="))
+            .nth(1)
+            .unwrap()
+            .split_whitespace()
+            .next()
+            .unwrap();
+        num(v)
+    };
+    eprintln!("shared synthetic cloud: {line} (median spread {spread:.4} deg, fit {fit:.5})");
+    assert!(
+        (value("blade_angle_deg") - spread).abs() <= 1e-4 && spread > 0.01,
+        "{line}: {spread}"
+    );
+    assert!(
+        (value("chord_fraction") - fit).abs() <= 1e-4 && fit > 1e-3,
+        "{line}: {fit}"
+    );
+    assert!(
+        stdout_of(&o).contains(&format!("measured to {spread:.2}° of blade angle")),
+        "{}",
+        stdout_of(&o)
+    );
+}
+
+fn stdout_of(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 #[test]

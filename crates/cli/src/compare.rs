@@ -229,7 +229,7 @@ pub fn write(
 ) -> Result<(String, Option<serde_json::Value>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
     let curves = propbet_pipeline::compare::curves::curves(&setup, &c.points)?;
-    let band = propbet_pipeline::band::BandSpec::default().along_curves(model, c.air, &c.points, &curves)?;
+    let band = propbet_pipeline::band::BandSpec::for_model(model).along_curves(model, c.air, &c.points, &curves)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(
@@ -260,6 +260,7 @@ pub fn write(
             .collect(),
         points: &c.points,
         band: Some(&band),
+        band_sources: propbet_pipeline::band::BandSpec::sources_text(&model.loaded.file),
         metrics: &c.metrics,
         diameter: model.diameter,
         curves: &curves,

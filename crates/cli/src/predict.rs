@@ -280,7 +280,7 @@ pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Tabl
     let results: Vec<PointResult> = chunks.into_iter().flatten().collect();
     let (rho, tip) = (fluid.rho, model.rotor.tip_radius);
     let sweep = if spec.band {
-        let band = BandSpec::default().at_points(&model, &fluid, &points, &results)?;
+        let band = BandSpec::for_model(&model).at_points(&model, &fluid, &points, &results)?;
         crate::columns::table(with_band(&results, &band, rho, &source, tip))?
     } else {
         crate::columns::table(results.iter().map(|p| sweep_row(p, rho, &source, tip)))?
@@ -343,7 +343,7 @@ pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
         // The band needs every point's base solve: written after the whole sweep.
         let band = spec
             .band
-            .then(|| BandSpec::default().at_points(&model, &fluid, &points, &results))
+            .then(|| BandSpec::for_model(&model).at_points(&model, &fluid, &points, &results))
             .transpose()?;
         body = vec![match spec.format {
             TableFormat::Csv => band_rows(
@@ -396,7 +396,7 @@ pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) ->
     let (fluid, source) = spec.air.fluid()?;
     let body = [if spec.band {
         let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
-        let band = BandSpec::default().at_points(model, &fluid, &ops, points)?;
+        let band = BandSpec::for_model(model).at_points(model, &fluid, &ops, points)?;
         band_rows(points, &band, fluid.rho, &source, model.rotor.tip_radius)?
     } else {
         summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?

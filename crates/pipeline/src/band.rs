@@ -18,7 +18,8 @@ use crate::Result;
 /// ranges and the transition's two ends ([`propbet_polar::blade::BAND_ENDS`]; a test holds the
 /// words to them).
 pub const SOURCES_TEXT: &str = "every blade angle ±1°, chord ±3 %, section drag ±20 %, and with tabulated polars the \
-     sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7";
+     sections' transition from Ncrit 3 tripped at mid-chord to Ncrit 7; a scanned blade's own accuracy added to \
+     its angle's and chord's";
 
 /// The half-ranges of the band's sources.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,6 +48,44 @@ impl Default for BandSpec {
 }
 
 impl BandSpec {
+    /// The band of a model's prop file ([`BandSpec::for_file`]).
+    pub fn for_model(model: &Model) -> Self {
+        Self::for_file(&model.loaded.file)
+    }
+
+    /// The stated ranges ([`BandSpec::default`]), and where the file says how well its geometry
+    /// is known (a scan's own accuracy: `propbet_qprop::GeometryAccuracy`), that added to the
+    /// blade angle's and the chord's in root-sum-square: independent errors, the scan's
+    /// measurement of its mesh on top of how far any blade's numbers stand from the propeller.
+    pub fn for_file(file: &propbet_qprop::PropFile) -> Self {
+        let stated = Self::default();
+        match file.accuracy {
+            None => stated,
+            Some(a) => Self {
+                angle_deg: stated.angle_deg.hypot(a.blade_angle_deg),
+                chord: stated.chord.hypot(a.chord),
+                ..stated
+            },
+        }
+    }
+
+    /// The band's sources in words for a prop file: [`SOURCES_TEXT`], and where the file
+    /// carries its geometry's own accuracy, what it is and the ranges it makes.
+    pub fn sources_text(file: &propbet_qprop::PropFile) -> String {
+        let Some(a) = file.accuracy else {
+            return SOURCES_TEXT.to_string();
+        };
+        let b = Self::for_file(file);
+        format!(
+            "{SOURCES_TEXT}: here {:.2}° and {:.1} % (the scan's spread of blade angle between blades and \
+             twice its section fits' RMS residual), which make ±{:.2}° and ±{:.1} %",
+            a.blade_angle_deg,
+            100.0 * a.chord,
+            b.angle_deg,
+            100.0 * b.chord
+        )
+    }
+
     /// Each source's name and its two ends as effect specs.
     pub fn sources(&self) -> Vec<(&'static str, [String; 2])> {
         let (a, c, d) = (self.angle_deg, self.chord, self.drag);

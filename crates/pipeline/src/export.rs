@@ -430,6 +430,8 @@ fn fit_file(
     rows.push(row(r1, n - 1, c1, b1));
     let mut file = PropFile::metric(name.to_string(), rotor.blades, rotor.tip_radius, rows);
     file.global = fits[0];
+    // The geometry's own accuracy (a scan's) travels with it: the file's band is the model's.
+    file.accuracy = model.loaded.file.accuracy;
     file
 }
 

@@ -17,7 +17,7 @@ use propbet_measure::uiuc::GeometryRow;
 use propbet_measure::{MeasuredSet, ReadOptions};
 use propbet_polar::blade::{compute_blade, BladeJob, XfoilSettings, BLADE_PANELS};
 use propbet_polar::{naca4_from_name, Airfoil, BladePolars, PolarCache, PolarEngine, Progress};
-use propbet_qprop::{PropFile, PropRow};
+use propbet_qprop::{GeometryAccuracy, PropFile, PropRow};
 use rayon::prelude::*;
 
 use crate::model::{as_written, load_prop, LoadedProp, Model};
@@ -104,9 +104,43 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
     })
 }
 
+/// How well a scan measured its blade, from its own residuals, each at its median station: the
+/// blade angle to the blades' spread of it (the largest minus the smallest blade's), the chord
+/// to twice the section fit's RMS distance (each edge that far off), relative to the chord (the
+/// CST fit's, the NACA fit's where a station has none). The prop file carries it; the
+/// uncertainty band adds it to its stated ranges ([`crate::band::BandSpec::for_file`]).
+pub fn scan_accuracy(g: &Geometry) -> GeometryAccuracy {
+    // A station whose blades could not be compared (a spread of -inf) says nothing; no value
+    // beyond what the file's line may hold ([`GeometryAccuracy`]'s maxima).
+    let median = |v: Vec<f64>, max: f64| {
+        let v: Vec<f64> = v.into_iter().filter(|x| x.is_finite() && *x >= 0.0).collect();
+        if v.is_empty() {
+            0.0
+        } else {
+            // Rounded (0.0001° and 0.01 % of chord are far below what the band resolves), so
+            // that the prop file's line reads plainly.
+            (propbet_compare::metrics::quantile(v, 0.5).min(max) * 1e4).round() / 1e4
+        }
+    };
+    GeometryAccuracy {
+        blade_angle_deg: median(
+            g.stations.iter().map(|s| s.blade_spread.to_degrees()).collect(),
+            GeometryAccuracy::MAX_ANGLE_DEG,
+        ),
+        chord: median(
+            g.stations
+                .iter()
+                .filter(|s| s.chord > 0.0)
+                .map(|s| 2.0 * s.cst.as_ref().map_or(s.naca.rms, |c| c.rms) / s.chord)
+                .collect(),
+            GeometryAccuracy::MAX_CHORD,
+        ),
+    }
+}
+
 /// The scan's prop file: radii and chords in metres, β in degrees; CL0 from thin-airfoil theory
 /// on the fitted camber, the rest [`propbet_qprop::GENERIC`] until `propbet polars` (XFOIL at
-/// each station's Re) replaces them.
+/// each station's Re) replaces them; its accuracy ([`scan_accuracy`]) on a comment line.
 pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
     let generic = propbet_qprop::GENERIC;
     let rows = g
@@ -127,7 +161,10 @@ pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
             }
         })
         .collect();
-    PropFile::metric(name.to_string(), g.blades as f64, g.tip_radius, rows)
+    PropFile {
+        accuracy: Some(scan_accuracy(g)),
+        ..PropFile::metric(name.to_string(), g.blades as f64, g.tip_radius, rows)
+    }
 }
 
 /// Each station's CST section as a Selig file (`airfoils/station_NN.dat`), with notes: where

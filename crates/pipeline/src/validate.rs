@@ -395,7 +395,8 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let bands = crate::band::BandSpec::default().at_compared(&model, compared.air, &compared.sets, &compared.points)?;
+    let bands =
+        crate::band::BandSpec::for_model(&model).at_compared(&model, compared.air, &compared.sets, &compared.points)?;
     let per3 = per3_file.as_ref().map(|f| crate::stages::read_per3(f)).transpose()?;
     let row = Row {
         prop: prop.to_string(),

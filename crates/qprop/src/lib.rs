@@ -16,7 +16,9 @@ pub mod propfile;
 
 pub use command::qprop_sequence;
 pub use output::{parse_output, ParseOutputError, Printed, QpropOutput};
-pub use propfile::{parse_prop, write_prop, ParsePropError, PropFile, PropRow, RadiusReading, Warning};
+pub use propfile::{
+    parse_prop, write_prop, GeometryAccuracy, ParsePropError, PropFile, PropRow, RadiusReading, Warning,
+};
 
 use propbet_bemt::QpropCoefficients;
 

@@ -55,6 +55,10 @@ pub struct PropFile {
     /// (Rfac, Radd) it would lie inside the blade.
     #[serde(default)]
     pub radius_in_metres: bool,
+    /// How well the geometry is known, where the file says (a scan's, on its
+    /// [`accuracy::ACCURACY_PREFIX`] comment line).
+    #[serde(default)]
+    pub accuracy: Option<GeometryAccuracy>,
     /// 1-based line number of line 2 (Nblades, R) in the source, 0 when not read from a file
     /// (not part of equality).
     #[serde(skip)]
@@ -74,6 +78,7 @@ impl PartialEq for PropFile {
             && self.scale == o.scale
             && self.offset == o.offset
             && self.rows == o.rows
+            && self.accuracy == o.accuracy
     }
 }
 
@@ -157,6 +162,8 @@ struct Lines<'a> {
     iter: std::iter::Enumerate<std::str::Lines<'a>>,
     last: usize,
     warnings: Vec<Warning>,
+    /// The accuracy comment lines passed (line number, text).
+    accuracy: Vec<(usize, &'a str)>,
 }
 
 impl<'a> Lines<'a> {
@@ -173,6 +180,9 @@ impl<'a> Lines<'a> {
             };
             let t = raw.trim_start();
             if t.is_empty() || t.starts_with('#') || t.starts_with('!') {
+                if accuracy::is_accuracy_line(t) {
+                    self.accuracy.push((line, t));
+                }
                 continue;
             }
             if raw.chars().count() > QPROP_LINE_MAX {
@@ -284,6 +294,7 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
         iter: text.lines().enumerate(),
         last: 0,
         warnings: Vec::new(),
+        accuracy: Vec::new(),
     };
     let (_, name) = lines.next_data().ok_or(ParsePropError::Truncated {
         line: 1,
@@ -349,6 +360,7 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
         offset,
         rows,
         row_lines,
+        accuracy: accuracy::parse(&lines.accuracy)?,
     };
     // QPROP 1.22 takes R unscaled, in metres; propbet reads it in the r column's units. Where
     // that would put the tip inside the blade and metres do not, the file was written for
@@ -389,6 +401,7 @@ impl PropFile {
             offset: [0.0, 0.0, 0.0],
             rows,
             row_lines: Vec::new(),
+            accuracy: None,
         }
     }
 
@@ -516,6 +529,7 @@ impl PropFile {
         global[8] = re_ref;
         PropFile {
             global,
+            accuracy: self.accuracy,
             ..PropFile::metric(
                 self.name.clone(),
                 self.blades,
@@ -612,6 +626,7 @@ impl PropFile {
             offset: [0.0, 0.0, 0.0],
             rows,
             row_lines: Vec::new(),
+            accuracy: None,
         }
     }
 }
@@ -627,8 +642,10 @@ fn within_rounding(a: f64, b: f64) -> bool {
     (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
 }
 
+mod accuracy;
 mod write;
 
+pub use accuracy::{GeometryAccuracy, ACCURACY_PREFIX};
 pub use write::write_prop;
 
 #[cfg(test)]

@@ -40,6 +40,8 @@ pub struct ReportInput<'a> {
     pub curves: &'a Curves,
     /// The uncertainty band along them (shaded in the figures), if computed.
     pub band: Option<&'a propbet_compare::band::BandCurves>,
+    /// The band's sources in words (`propbet_pipeline::band::BandSpec::sources_text`).
+    pub band_sources: String,
     /// The command that made the report.
     pub command: String,
     /// Another prediction drawn and scored beside propbet's (APC's own, `--per3`).
@@ -485,11 +487,8 @@ fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figu
 }
 
 /// What the shaded band is, for the figures' captions.
-fn band_caption() -> String {
-    format!(
-        "shaded: the prediction's uncertainty band ({}, each solved at both ends, their root-sum-square)",
-        propbet_pipeline::band::SOURCES_TEXT
-    )
+fn band_caption(sources: &str) -> String {
+    format!("shaded: the prediction's uncertainty band ({sources}; each solved at both ends, their root-sum-square)")
 }
 
 /// The figures as inline SVG, each with its caption.
@@ -497,17 +496,17 @@ fn figures_html(
     h: &mut String,
     figures: &[(String, Figure)],
     reference: Option<&Scored>,
-    band: bool,
+    band: Option<&str>,
 ) -> Result<(), PlotError> {
     h.push_str("<h2>Figures</h2>\n");
     for (name, f) in figures {
         let caption = match name.as_str() {
             "coefficients" => format!(
                 "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}{}.</figcaption>",
-                if band { format!("; {}", band_caption()) } else { String::new() },
+                band.map_or(String::new(), |b| format!("; {}", esc(&band_caption(b)))),
                 reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
             ),
-            "static" if band => format!("<figcaption>{}.</figcaption>", band_caption()),
+            "static" => band.map_or(String::new(), |b| format!("<figcaption>{}.</figcaption>", esc(&band_caption(b)))),
             _ => String::new(),
         };
         let _ = writeln!(
@@ -573,7 +572,12 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         }
         h.push_str("</ul>\n");
     }
-    figures_html(&mut h, &figures, reference.as_ref(), input.band.is_some())?;
+    figures_html(
+        &mut h,
+        &figures,
+        reference.as_ref(),
+        input.band.map(|_| input.band_sources.as_str()),
+    )?;
     let _ = write!(h, "<h2>Metrics</h2>\n<p class=\"note\">error = predicted − measured; relative error = error / measured, computed where |measured| is at least {:.0} % of its largest value (near zero thrust a ratio says nothing).</p>\n", 100.0 * propbet_compare::RELATIVE_FLOOR);
     let mut top: Vec<&MetricGroup> = vec![&m.overall];
     top.extend(m.static_points.iter());

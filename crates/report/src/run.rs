@@ -238,7 +238,7 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             if plan.predict.band {
                 format!(
                     ", with an uncertainty band for CT, CP and efficiency ({}: the columns ct_lo to eta_hi)",
-                    propbet_pipeline::band::SOURCES_TEXT
+                    propbet_pipeline::band::BandSpec::sources_text(&run.model.loaded.file)
                 )
             } else {
                 String::new()

@@ -137,6 +137,24 @@ fn writes_what_it_reads() {
     let (f, _) = parse_prop(CAM).unwrap();
     let (g, _) = parse_prop(&write_prop(&f)).unwrap();
     assert_eq!(f, g);
+    // A scan's accuracy travels as a comment line QPROP skips, and reads back exactly.
+    let scanned = PropFile {
+        accuracy: Some(GeometryAccuracy {
+            blade_angle_deg: 0.1 + 0.2,
+            chord: 0.0204,
+        }),
+        ..f.clone()
+    };
+    let text = write_prop(&scanned);
+    let (back, w) = parse_prop(&text).unwrap();
+    assert_eq!(back, scanned);
+    assert!(w.is_empty(), "{w:?}");
+    let skipped: String = text
+        .lines()
+        .filter(|l| !l.starts_with(ACCURACY_PREFIX))
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_eq!(parse_prop(&skipped).unwrap().0, f);
     // A name with a newline (a case's name, --name) stays one line.
     let h = PropFile {
         name: "two\nlines\r\tname".into(),
@@ -184,7 +202,7 @@ proptest! {
             if coeffs.len() > 8 { coeffs[8] = coeffs[8].abs() + 1.0; }
             rows.push(PropRow { r, chord: 0.01 + s, beta: 40.0 * s, coeffs });
         }
-        let f = PropFile { name: "p".into(), blades: blades as f64, radius, radius_in_metres: false, radius_line: 0, global,
+        let f = PropFile { name: "p".into(), blades: blades as f64, radius, radius_in_metres: false, radius_line: 0, global, accuracy: None,
             scale: [1.0, 1.0, 1.0], offset: [0.0; 3], rows, row_lines: vec![] };
         let text = write_prop(&f);
         let (g1, _) = parse_prop(&text).unwrap();

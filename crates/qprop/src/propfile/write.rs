@@ -55,6 +55,10 @@ pub fn write_prop(file: &PropFile) -> String {
     out.push_str(&format!(" {}   ! REref REexp\n\n", join(&g[8..10])));
     out.push_str(&format!(" {}   ! Rfac Cfac Bfac\n", join(&file.scale)));
     out.push_str(&format!(" {}   ! Radd Cadd Badd\n\n", join(&file.offset)));
+    if let Some(a) = &file.accuracy {
+        out.push_str(&a.line());
+        out.push_str("\n\n");
+    }
     out.push_str("#  r  chord  beta  [CL0 CL_a CLmin CLmax CD0 CD2u CD2l CLCD0 REref REexp]\n");
     for row in &file.rows {
         let mut vals = vec![row.r, row.chord, row.beta];

@@ -1,0 +1,129 @@
+//! How well a prop file's geometry is known, as the tool that measured it says: one comment
+//! line QPROP skips (`# geometry accuracy: blade_angle_deg=0.03 chord_fraction=0.02`), which
+//! propbet writes for a blade it scanned and reads back for the uncertainty band.
+
+use serde::{Deserialize, Serialize};
+
+use super::ParsePropError;
+
+/// The comment line's opening words.
+pub const ACCURACY_PREFIX: &str = "# geometry accuracy:";
+
+/// The geometry's own accuracy, ± about the values in the rows.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct GeometryAccuracy {
+    /// Every blade angle, ± [deg].
+    pub blade_angle_deg: f64,
+    /// Every chord, ± this fraction.
+    pub chord: f64,
+}
+
+impl GeometryAccuracy {
+    /// The largest blade angle the line may hold [deg]: beyond it the geometry is no measurement.
+    pub const MAX_ANGLE_DEG: f64 = 45.0;
+    /// The largest chord fraction the line may hold.
+    pub const MAX_CHORD: f64 = 1.0;
+
+    /// The comment line (no newline), in the key=value form [`parse`] reads.
+    pub fn line(&self) -> String {
+        format!(
+            "{ACCURACY_PREFIX} blade_angle_deg={} chord_fraction={}   (the band adds it to its ranges)",
+            self.blade_angle_deg, self.chord
+        )
+    }
+}
+
+/// Whether a raw comment line is an accuracy line.
+pub(super) fn is_accuracy_line(trimmed: &str) -> bool {
+    trimmed.starts_with(ACCURACY_PREFIX)
+}
+
+/// Reads the accuracy lines found (line number, text): at most one, both keys, each a finite
+/// number from 0 to its maximum.
+pub(super) fn parse(found: &[(usize, &str)]) -> Result<Option<GeometryAccuracy>, ParsePropError> {
+    let Some(&(line, text)) = found.first() else {
+        return Ok(None);
+    };
+    if let Some(&(again, _)) = found.get(1) {
+        return Err(ParsePropError::Invalid {
+            line: again,
+            message: format!("a second '{ACCURACY_PREFIX}' line (the first is line {line})"),
+        });
+    }
+    let invalid = |message: String| ParsePropError::Invalid { line, message };
+    let body = text.trim_start()[ACCURACY_PREFIX.len()..]
+        .split('(')
+        .next()
+        .unwrap_or("");
+    let mut angle = None;
+    let mut chord = None;
+    for token in body.split_whitespace() {
+        let (key, value) = token
+            .split_once('=')
+            .ok_or_else(|| invalid(format!("'{}' is not key=value ({})", excerpt(token), expected())))?;
+        let (slot, max) = match key {
+            "blade_angle_deg" => (&mut angle, GeometryAccuracy::MAX_ANGLE_DEG),
+            "chord_fraction" => (&mut chord, GeometryAccuracy::MAX_CHORD),
+            _ => return Err(invalid(format!("unknown key '{}' ({})", excerpt(key), expected()))),
+        };
+        let v: f64 = value
+            .parse()
+            .map_err(|_| invalid(format!("{key} = '{}' is not a number", excerpt(value))))?;
+        if !(0.0..=max).contains(&v) {
+            return Err(invalid(format!("{key} = {value} lies outside 0 to {max}")));
+        }
+        *slot = Some(v);
+    }
+    match (angle, chord) {
+        (Some(a), Some(c)) => Ok(Some(GeometryAccuracy {
+            blade_angle_deg: a,
+            chord: c,
+        })),
+        _ => Err(invalid(format!("the accuracy line needs both keys ({})", expected()))),
+    }
+}
+
+fn expected() -> String {
+    format!("expected '{ACCURACY_PREFIX} blade_angle_deg=X chord_fraction=Y'")
+}
+
+fn excerpt(s: &str) -> String {
+    propbet_bemt::units::excerpt(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_written_reads_back() {
+        let a = GeometryAccuracy {
+            blade_angle_deg: 0.0312,
+            chord: 0.0204,
+        };
+        let line = a.line();
+        let back = parse(&[(7, line.as_str())]).unwrap().unwrap();
+        assert_eq!(back, a);
+        assert_eq!(parse(&[]).unwrap(), None);
+    }
+
+    #[test]
+    fn a_bad_accuracy_line_is_an_error_naming_its_line_and_value() {
+        let err = |text: &str| parse(&[(5, text)]).unwrap_err().to_string();
+        let e = err("# geometry accuracy: blade_angle_deg=nan chord_fraction=0.02");
+        assert!(e.starts_with("line 5: blade_angle_deg = nan lies outside"), "{e}");
+        let e = err("# geometry accuracy: blade_angle_deg=-1 chord_fraction=0.02");
+        assert!(e.contains("blade_angle_deg = -1 lies outside 0 to 45"), "{e}");
+        let e = err("# geometry accuracy: blade_angle_deg=abc chord_fraction=0.02");
+        assert!(e.contains("'abc' is not a number"), "{e}");
+        let e = err("# geometry accuracy: blade_angle_deg=1");
+        assert!(e.contains("needs both keys"), "{e}");
+        let e = err("# geometry accuracy: twist=1 chord_fraction=0.02");
+        assert!(e.contains("unknown key 'twist'"), "{e}");
+        let two = parse(&[
+            (3, "# geometry accuracy: blade_angle_deg=1 chord_fraction=0.02"),
+            (9, "x"),
+        ]);
+        assert!(two.unwrap_err().to_string().starts_with("line 9: a second"));
+    }
+}
