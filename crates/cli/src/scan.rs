@@ -318,6 +318,7 @@ pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
 pub fn print_summary(sc: &Scanned) {
     let (g, reference) = (&sc.geometry, sc.reference.as_deref());
     println!("{}", propbet_report::scan::summary(g));
+    println!("  {}", propbet_report::scan::accuracy(g));
     for n in &g.notes {
         println!("  {n}");
     }

@@ -109,7 +109,12 @@ fn geometry_html(h: &mut String, plan: &RunPlan, run: &RunOutcome) -> Result<(),
     match &run.scanned {
         Some(sc) => {
             let g = &sc.geometry;
-            let _ = writeln!(h, "<p>{}.</p>", esc(&crate::scan::summary(g)));
+            let _ = writeln!(
+                h,
+                "<p>{}; {}.</p>",
+                esc(&crate::scan::summary(g)),
+                esc(&crate::scan::accuracy(g))
+            );
             if let Some(line) = sc.reference.as_deref().and_then(|t| crate::scan::reference_check(g, t)) {
                 let _ = writeln!(h, "<p>{}.</p>", esc(&line));
             }

@@ -4,20 +4,26 @@ use propbet_geometry::scan::{ColourReport, Geometry};
 use propbet_measure::uiuc::GeometryRow;
 use propbet_plot::{Figure, Mark, Panel, Series};
 
-/// The scan in one sentence (terminal and page): blades, tip, hub and root radius, stations,
-/// and how well it measured them (`propbet_pipeline::stages::scan_accuracy`).
+/// The scan in one sentence (terminal and page): blades, tip, hub and root radius, stations.
 pub fn summary(g: &Geometry) -> String {
-    let a = propbet_pipeline::stages::scan_accuracy(g);
     format!(
-        "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed; \
-         measured to {:.2}° of blade angle and {:.1} % of chord (the blades' spread, the section fits' residuals: \
-         the prop file carries them to the uncertainty band)",
+        "{} blades, tip radius {:.2} mm, hub radius {}, blades from {:.2} mm; {} stations measured, {} failed",
         g.blades,
         1000.0 * g.tip_radius,
         g.hub_radius.map_or("none".into(), |h| format!("{:.2} mm", 1000.0 * h)),
         1000.0 * g.root_radius,
         g.stations.len(),
-        g.failed.len(),
+        g.failed.len()
+    )
+}
+
+/// How well the scan measured its blade, in one sentence
+/// (`propbet_pipeline::stages::scan_accuracy`).
+pub fn accuracy(g: &Geometry) -> String {
+    let a = propbet_pipeline::stages::scan_accuracy(g);
+    format!(
+        "measured to {:.2}° of blade angle and {:.1} % of chord (the blades' spread, the section fits' residuals; \
+         the prop file carries them to the uncertainty band)",
         a.blade_angle_deg,
         100.0 * a.chord
     )
