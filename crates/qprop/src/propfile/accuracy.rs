@@ -51,9 +51,10 @@ pub(super) fn parse(found: &[(usize, &str)]) -> Result<Option<GeometryAccuracy>,
         });
     }
     let invalid = |message: String| ParsePropError::Invalid { line, message };
-    let body = text.trim_start()[ACCURACY_PREFIX.len()..]
-        .split('(')
-        .next()
+    let body = text
+        .trim_start()
+        .strip_prefix(ACCURACY_PREFIX)
+        .and_then(|rest| rest.split('(').next())
         .unwrap_or("");
     let mut angle = None;
     let mut chord = None;
