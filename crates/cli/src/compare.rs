@@ -15,7 +15,7 @@ use propbet_pipeline::values::parse_atmosphere;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};
-use crate::predict::{load_model, ModelArgs};
+use crate::predict::{cover, load_model_at, ModelArgs};
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -208,7 +208,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
-    let model = load_model(&spec.model, false)?;
+    let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
     let other = Reference::load(&spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;

@@ -12,7 +12,7 @@ use propbet_report::diagnose::{self as report, JsonOut};
 
 use crate::compare::{print_measured, warn_faulty_rows, MeasuredArgs};
 use crate::output::{write_atomic, write_figure};
-use crate::predict::{load_model, ModelArgs};
+use crate::predict::{cover, load_model_at, ModelArgs};
 
 /// Arguments of `propbet diagnose`.
 #[derive(Debug, Args)]
@@ -59,7 +59,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
-    let model = load_model(&spec.model, false)?;
+    let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     let d = stages::diagnose(&model, &spec)?;
     write(&spec, &d)?;
     print(&spec, &d);

@@ -84,6 +84,11 @@ impl Bar {
         Bar(b)
     }
 
+    /// Clears the bar, drawn or not (a bar never left on the terminal).
+    pub fn clear(&self) {
+        self.0.finish_and_clear();
+    }
+
     /// The callback the polar engine calls.
     pub fn tick(&self, done: usize, total: usize) {
         self.0.set_length(total as u64);
@@ -92,6 +97,19 @@ impl Bar {
             self.0.finish_and_clear();
         }
     }
+}
+
+/// Where a blade file's sections come from, beside the file itself.
+#[derive(Debug, Args, Clone, Default)]
+pub struct DesignArgs {
+    /// APC's design file (PE0) whose sections a UIUC geometry table or blade table takes:
+    /// APC's airfoils blended across its transition and scaled to its thickness at each
+    /// station, as `propbet validate` models APC's propellers.
+    #[arg(long, value_name = "PE0")]
+    pub sections_from: Option<PathBuf>,
+    /// A directory of airfoil coordinates (`e63.dat`, ...) looked in before propbet's own.
+    #[arg(long, value_name = "DIR")]
+    pub airfoils: Option<PathBuf>,
 }
 
 /// How XFOIL runs, and the cache.
@@ -320,14 +338,17 @@ fn fit_summary(re: f64, f: &QpropFit) -> String {
 #[derive(Debug, Args)]
 pub struct PolarsArgs {
     /// Blade geometry: a QPROP prop file (its radii, chords and twists are used; its
-    /// coefficients only for the first estimate of each station's inflow).
+    /// coefficients only for the first estimate of each station's inflow), APC's design file
+    /// (PE0: its blade and sections), a UIUC geometry table or a blade table (CSV).
     #[arg(long)]
     pub geometry: PathBuf,
     #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
     /// The section used at every station (with --station-airfoils, at the stations without
-    /// their own): a coordinate file (Selig or Lednicer) or a NACA 4-digit name.
-    #[arg(long, required_unless_present = "station_airfoils")]
+    /// their own): a coordinate file (Selig or Lednicer), a NACA 4-digit name, APC12 or a name
+    /// of propbet's library (e63, clarky, sd7037, ...), or airfoils blended along the blade
+    /// (`E63@0.25,APC12@0.45`). Not needed for a PE0 file or a table naming its sections.
+    #[arg(long)]
     pub airfoil: Option<String>,
     /// Scale the --airfoil section to this thickness ratio t/c (0.06 or 6%), keeping its
     /// camber line.
@@ -338,6 +359,8 @@ pub struct PolarsArgs {
     /// uses `--airfoil`, or without it the nearest station's section.
     #[arg(long)]
     pub station_airfoils: Option<PathBuf>,
+    #[command(flatten)]
+    pub design: DesignArgs,
     /// The operating points whose Reynolds numbers the polars cover (give the sweep's, or the
     /// measured range).
     #[command(flatten)]
@@ -372,6 +395,8 @@ impl PolarsArgs {
             airfoil: self.airfoil.clone(),
             thickness: self.thickness.as_deref().map(parse_fraction).transpose()?,
             station_airfoils: self.station_airfoils.clone(),
+            sections_from: self.design.sections_from.clone(),
+            airfoils: self.design.airfoils.clone(),
             omegas,
             axis,
             air: self.air.spec()?,

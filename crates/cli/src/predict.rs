@@ -67,9 +67,14 @@ fn band_help() -> String {
 /// The propeller model: a prop file, how to read it, and what to change in it.
 #[derive(Debug, Args)]
 pub struct ModelArgs {
-    /// QPROP prop file.
+    /// The blade: a QPROP prop file, APC's design file (PE0: blade and sections), a UIUC
+    /// geometry table or a blade table (CSV of r, chord, beta; optionally t/c and airfoil). The
+    /// last three have no section coefficients: their polars are computed first (`--engine`).
     #[arg(long)]
     pub prop: PathBuf,
+    /// The sections of a blade file without coefficients.
+    #[command(flatten)]
+    pub blade: BladeArgs,
     /// Collective blade-angle change [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub dbeta: f64,
@@ -99,29 +104,99 @@ pub struct ModelArgs {
     pub user_effects: Option<PathBuf>,
 }
 
+/// The sections of a blade file without coefficients (APC's PE0, UIUC's table, a blade table)
+/// and how its polars are made.
+#[derive(Debug, Args)]
+pub struct BladeArgs {
+    /// The section of every station of a UIUC table or blade table (or replacing a PE0 file's):
+    /// a coordinate file, a NACA 4-digit name, APC12, a name of propbet's library (e63, clarky,
+    /// sd7037, e387, s1223), or airfoils blended along the blade (`E63@0.25,APC12@0.45`).
+    #[arg(long)]
+    pub airfoil: Option<String>,
+    /// Where APC's sections come from, and the airfoils' directory.
+    #[command(flatten)]
+    pub design: crate::polar::DesignArgs,
+    /// The polar engine, XFOIL and its cache.
+    #[command(flatten)]
+    pub process: crate::polar::XfoilProcess,
+}
+
 impl ModelArgs {
+    /// The blade file's design spec: Some for a blade file without coefficients, None for a
+    /// QPROP prop file (where the sections' flags are refused).
+    fn design(&self) -> Result<Option<propbet_pipeline::spec::DesignSpec>> {
+        use propbet_pipeline::design::{format_of_file, BladeFormat};
+        let b = &self.blade;
+        if format_of_file(&self.prop) == BladeFormat::Qprop {
+            if b.airfoil.is_some() || b.design.sections_from.is_some() {
+                anyhow::bail!(
+                    "--airfoil / --sections-from: {} is a QPROP prop file, whose coefficients are its sections",
+                    self.prop.display()
+                );
+            }
+            return Ok(None);
+        }
+        Ok(Some(propbet_pipeline::spec::DesignSpec {
+            airfoil: b.airfoil.clone(),
+            sections_from: b.design.sections_from.clone(),
+            airfoils: b.design.airfoils.clone(),
+            process: b.process.spec(),
+        }))
+    }
+
     /// The model's spec (flags in SI).
     pub fn spec(&self) -> Result<ModelSpec> {
+        let design = self.design()?;
+        let tables = self.polars.is_some() || design.is_some();
         Ok(ModelSpec {
+            design,
             prop: self.prop.clone(),
             dbeta: self.dbeta.to_radians(),
             units: self.units.as_deref().map(parse_length_unit).transpose()?,
             qprop_compat: self.qprop_compat,
             no_tip_loss: self.no_tip_loss,
             polars: self.polars.clone(),
-            rotation: Rotation::or_default(
-                self.rotation.as_deref().map(Rotation::parse).transpose()?,
-                self.polars.is_some(),
-            ),
-            drag_factor: propbet_pipeline::spec::drag_factor_or_default(self.drag_factor, self.polars.is_some()),
+            rotation: Rotation::or_default(self.rotation.as_deref().map(Rotation::parse).transpose()?, tables),
+            drag_factor: propbet_pipeline::spec::drag_factor_or_default(self.drag_factor, tables),
             effects: self.effect.clone(),
             user_effects: self.user_effects.clone(),
         })
     }
 }
 
+/// Reads the model a spec names, printing the prop file's warnings; a blade file without
+/// coefficients has its polars computed over `points` (the command's operating points).
+pub fn load_model_at(
+    spec: &ModelSpec,
+    points: impl FnOnce() -> Result<(Vec<f64>, SweepAxis)>,
+    keep_stations: bool,
+) -> Result<Model> {
+    if spec.design.is_none() {
+        return load_model(spec, keep_stations);
+    }
+    let (omegas, axis) = points()?;
+    let quiet = spec.design.as_ref().is_some_and(|d| d.process.quiet);
+    let bar = crate::polar::Bar::new(quiet);
+    let (m, polars) = propbet_pipeline::model::design_model(spec, omegas, axis, keep_stations, &|d, t| bar.tick(d, t))?
+        .ok_or_else(|| anyhow::anyhow!("{}: not a blade file without coefficients", spec.prop.display()))?;
+    bar.clear();
+    for line in crate::polar::polars_brief(&polars) {
+        eprintln!("propbet: {}: {line}", spec.prop.display());
+    }
+    if let Some(w) = &polars.cache_warning {
+        eprintln!("propbet: warning: {w}");
+    }
+    Ok(m)
+}
+
 /// Reads the model a spec names, printing the prop file's warnings.
 pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
+    if spec.design.is_some() {
+        anyhow::bail!(
+            "{}: a blade file without section coefficients; this command reads QPROP prop files only",
+            spec.prop.display()
+        );
+    }
     let m = Model::load(spec, keep_stations)?;
     for w in &m.loaded.warnings {
         eprintln!("propbet: warning: {w}");
@@ -270,7 +345,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
 /// CSV files, the numbers unrounded. The spec's format and output files are not used.
 pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Table>, (usize, usize))> {
     use rayon::prelude::*;
-    let model = load_model(&spec.model, stations)?;
+    let model = load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), stations)?;
     let (fluid, source) = spec.air.fluid()?;
     let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
     let chunks: Vec<Vec<PointResult>> = points
@@ -296,7 +371,7 @@ pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Tabl
 /// A prediction's tables, in memory: the sweep table as the spec's format says, and the
 /// per-station table when `stations`.
 pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
-    let model = load_model(&spec.model, stations)?;
+    let model = load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), stations)?;
     let (fluid, fluid_source) = spec.air.fluid()?;
     let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
     // Solve and format chunk by chunk in the same parallel task, so the table is written
@@ -563,4 +638,10 @@ fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '
             },
         })
     })
+}
+
+/// The operating points a blade file's polars cover for a comparison: the measured range.
+pub fn cover(measured: &propbet_pipeline::spec::MeasuredSpec) -> Result<(Vec<f64>, SweepAxis)> {
+    let (omegas, js) = propbet_pipeline::validate::cover(measured)?;
+    Ok((omegas, SweepAxis::J(js)))
 }

@@ -39,8 +39,12 @@ pub struct Case {
 pub struct GeometrySection {
     /// A scan (STL, PLY, points3D.txt, XYZ) for `propbet scan`.
     pub scan: Option<String>,
-    /// Or a QPROP prop file.
+    /// Or a blade file: a QPROP prop file, APC's design file (PE0), a UIUC geometry table or
+    /// a blade table (CSV).
     pub prop: Option<String>,
+    /// APC's design file (PE0): the blade and its sections, or with `prop` (UIUC's measured
+    /// table of the same prop) the sections alone, as `propbet validate` models APC's props.
+    pub pe0: Option<String>,
     /// A UIUC-style table (r/R c/R beta) to set the scan against.
     pub reference: Option<String>,
     /// Deprecated: `propbet scan` flags as a list, for example
@@ -69,6 +73,7 @@ impl TryFrom<toml::Table> for GeometrySection {
         }
         let scan = text(&mut t, "scan")?;
         let prop = text(&mut t, "prop")?;
+        let pe0 = text(&mut t, "pe0")?;
         let reference = text(&mut t, "reference")?;
         let scan_args = match t.remove("scan_args") {
             None => Vec::new(),
@@ -86,12 +91,13 @@ impl TryFrom<toml::Table> for GeometrySection {
                 Some((k, _)) if !e.message().starts_with("unknown field") => {
                     format!("[geometry] {k}: {}", e.message())
                 }
-                _ => format!("[geometry]: {} (or `scan`, `prop`, `reference`)", e.message()),
+                _ => format!("[geometry]: {} (or `scan`, `prop`, `pe0`, `reference`)", e.message()),
             }
         })?;
         Ok(GeometrySection {
             scan,
             prop,
+            pe0,
             reference,
             scan_args,
             settings,
@@ -104,9 +110,10 @@ impl TryFrom<toml::Table> for GeometrySection {
 #[serde(deny_unknown_fields)]
 pub struct PolarSection {
     /// `scan`: each station's section as the scan fitted it (the airfoil where the scan gave
-    /// none); `airfoil`: the airfoil at every station.
-    #[serde(default = "default_sections")]
-    pub sections: String,
+    /// none); `airfoil`: the airfoil at every station (or airfoils blended along the blade,
+    /// `E63@0.25,APC12@0.45`); `design`: the sections the blade file names (APC's PE0, a
+    /// table's airfoil column). Default: the geometry's (a scan's, a PE0's, else `airfoil`).
+    pub sections: Option<String>,
     /// Coordinate file (relative to the case) or a NACA 4-digit name: the section at every
     /// station (`sections = "airfoil"`, where it is required) or where the scan gave none
     /// (`sections = "scan"`; without it such a station takes the nearest station's section).
@@ -172,10 +179,6 @@ fn default_model() -> String {
     "tables".into()
 }
 
-fn default_sections() -> String {
-    "scan".into()
-}
-
 /// `[sweep]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -231,26 +234,69 @@ pub fn read_case(dir: &Path) -> Result<Case> {
     })?;
     case.name = propbet_units::printable(&case.name);
     let g = &case.geometry;
-    if g.scan.is_some() == g.prop.is_some() {
-        return Err(Error::input(&path, "[geometry] needs exactly one of `scan` and `prop`"));
+    if g.scan.is_some() == (g.prop.is_some() || g.pe0.is_some()) {
+        return Err(Error::input(
+            &path,
+            "[geometry] needs a `scan`, or a `prop` and / or a `pe0` (APC's design file)",
+        ));
     }
-    if let Some(p) = &case.polars {
-        if p.sections != "scan" && p.sections != "airfoil" {
+    // Every file the case names must be there before anything runs.
+    let named = [g.scan.as_ref(), g.prop.as_ref(), g.pe0.as_ref(), g.reference.as_ref()]
+        .into_iter()
+        .flatten()
+        .chain(
+            case.measured
+                .iter()
+                .flat_map(|m| m.files.iter().chain(m.columns.as_ref())),
+        );
+    for f in named {
+        if !dir.join(f).is_file() {
             return Err(Error::input(
                 &path,
-                format!("[polars] sections = {:?}: `scan` or `airfoil`", p.sections),
+                format!("names {f}, which is not in {}", dir.display()),
             ));
         }
-        if p.sections == "airfoil" && p.airfoil.is_none() {
+    }
+    // A blade file other than QPROP's has no section coefficients: its polars are computed.
+    let design = g.pe0.is_some()
+        || g.prop
+            .as_ref()
+            .is_some_and(|p| crate::design::format_of_file(&dir.join(p)) != crate::design::BladeFormat::Qprop);
+    if design && case.polars.is_none() {
+        case.polars = Some(toml::from_str("").map_err(|e| Error::input(&path, e.message()))?);
+    }
+    let g = &case.geometry;
+    if let Some(p) = &mut case.polars {
+        let default = if g.scan.is_some() {
+            "scan"
+        } else if g.pe0.is_some() || (design && p.airfoil.is_none()) {
+            "design"
+        } else {
+            "airfoil"
+        };
+        let sections = p.sections.get_or_insert_with(|| default.to_string()).clone();
+        if !["scan", "airfoil", "design"].contains(&sections.as_str()) {
+            return Err(Error::input(
+                &path,
+                format!("[polars] sections = {sections:?}: `scan`, `airfoil` or `design`"),
+            ));
+        }
+        if sections == "airfoil" && p.airfoil.is_none() {
             return Err(Error::input(
                 &path,
                 "[polars] sections = \"airfoil\" needs `airfoil`, the section of every station",
             ));
         }
-        if p.sections == "scan" && g.scan.is_none() {
+        if sections == "scan" && g.scan.is_none() {
             return Err(Error::input(
                 &path,
                 "[polars] sections = \"scan\" needs a [geometry] scan",
+            ));
+        }
+        if sections == "design" && !design {
+            return Err(Error::input(
+                &path,
+                "[polars] sections = \"design\" needs a [geometry] pe0, or a prop that is a PE0 file or a table naming its airfoils",
             ));
         }
         crate::settings::SECTION_MODEL
@@ -278,23 +324,6 @@ pub fn read_case(dir: &Path) -> Result<Case> {
         }
         if p.j.is_some() && p.v.is_some() {
             return Err(Error::input(&path, "[polars] takes `j` or `v`, not both"));
-        }
-    }
-    // Every file the case names must be there before anything runs.
-    let named = [g.scan.as_ref(), g.prop.as_ref(), g.reference.as_ref()]
-        .into_iter()
-        .flatten()
-        .chain(
-            case.measured
-                .iter()
-                .flat_map(|m| m.files.iter().chain(m.columns.as_ref())),
-        );
-    for f in named {
-        if !dir.join(f).is_file() {
-            return Err(Error::input(
-                &path,
-                format!("names {f}, which is not in {}", dir.display()),
-            ));
         }
     }
     Ok(case)

@@ -19,6 +19,7 @@
 pub mod artifacts;
 pub mod band;
 pub mod case;
+pub mod design;
 mod error;
 pub mod export;
 pub mod model;

@@ -207,6 +207,20 @@ pub fn drag_factor_or_default(asked: Option<f64>, tables: bool) -> f64 {
     })
 }
 
+/// Where a blade file's sections come from beside the file, and how its polars are made: what a
+/// command needs to predict from APC's design file (PE0), a UIUC geometry table or a blade table.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DesignSpec {
+    /// The user's sections (`--airfoil`: one airfoil, or `E63@0.25,APC12@0.45`).
+    pub airfoil: Option<String>,
+    /// APC's design file whose sections a table takes (`--sections-from`).
+    pub sections_from: Option<std::path::PathBuf>,
+    /// Airfoil coordinates looked in before propbet's library (`--airfoils`).
+    pub airfoils: Option<std::path::PathBuf>,
+    /// The polar engine, XFOIL's executable and the cache.
+    pub process: XfoilProcessSpec,
+}
+
 /// The propeller model: a prop file, how to read it, and what to change in it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ModelSpec {
@@ -230,6 +244,9 @@ pub struct ModelSpec {
     pub effects: Vec<String>,
     /// TOML file of user-defined effects.
     pub user_effects: Option<PathBuf>,
+    /// Where `prop` is a blade file other than QPROP's (APC's PE0, a UIUC table, a blade
+    /// table): its sections and how its polars are made ([`crate::model::design_model`]).
+    pub design: Option<DesignSpec>,
 }
 
 impl ModelSpec {
@@ -246,7 +263,14 @@ impl ModelSpec {
             drag_factor: 1.0,
             effects: Vec::new(),
             user_effects: None,
+            design: None,
         }
+    }
+
+    /// The section model is tables (polars given, or computed for a blade file without
+    /// coefficients): the defaults of rotation and drag factor follow it.
+    pub fn tabulated(&self) -> bool {
+        self.polars.is_some() || self.design.is_some()
     }
 
     fn push_argv(&self, v: &mut Argv) {
@@ -266,10 +290,22 @@ impl ModelSpec {
         if let Some(p) = &self.polars {
             push(v, "--polars", path(p));
         }
-        if self.rotation != Rotation::or_default(None, self.polars.is_some()) {
+        if let Some(d) = &self.design {
+            if let Some(a) = &d.airfoil {
+                push(v, "--airfoil", a.clone());
+            }
+            if let Some(p) = &d.sections_from {
+                push(v, "--sections-from", path(p));
+            }
+            if let Some(p) = &d.airfoils {
+                push(v, "--airfoils", path(p));
+            }
+            d.process.push_argv(v);
+        }
+        if self.rotation != Rotation::or_default(None, self.tabulated()) {
             push(v, "--rotation", self.rotation.name());
         }
-        if self.drag_factor != drag_factor_or_default(None, self.polars.is_some()) {
+        if self.drag_factor != drag_factor_or_default(None, self.tabulated()) {
             push_eq(v, "--drag-factor", format!("{}", self.drag_factor));
         }
         for e in &self.effects {
@@ -438,6 +474,10 @@ pub struct PolarsSpec {
     pub thickness: Option<f64>,
     /// Per-station sections (`station_NN.dat`).
     pub station_airfoils: Option<PathBuf>,
+    /// APC's design file (PE0) whose sections a blade table takes (`--sections-from`).
+    pub sections_from: Option<PathBuf>,
+    /// A directory of airfoil coordinates looked in before propbet's library (`--airfoils`).
+    pub airfoils: Option<PathBuf>,
     /// Rotation speeds whose Reynolds numbers the polars cover [rad/s].
     pub omegas: Vec<f64>,
     /// With the advance ratios or axial speeds.

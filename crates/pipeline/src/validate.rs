@@ -28,8 +28,8 @@ mod row;
 pub use all::{sections_for, select_props, validate_all, PropSections, Validation};
 pub use blade::pe0_table;
 use blade::{blade, Blade};
-use files::{cover, measured_files};
-pub use files::{find_apc_file, uiuc_name, uiuc_props};
+use files::measured_files;
+pub use files::{cover, find_apc_file, uiuc_name, uiuc_props};
 use held_out::held_out;
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
 pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
@@ -232,6 +232,8 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
         airfoil: Some(foil_dir.join("station_00.dat").display().to_string()),
         thickness: None,
         station_airfoils: Some(foil_dir),
+        sections_from: None,
+        airfoils: None,
         omegas,
         axis: crate::spec::SweepAxis::J(js),
         air: AirSpec::default(),

@@ -116,7 +116,15 @@ impl Case {
                     .map(parse_fraction)
                     .transpose()
                     .map_err(|e| at("[polars] thickness", e))?;
-                let scanned = p.sections == "scan";
+                let sections = p.sections.as_deref().unwrap_or("airfoil");
+                let scanned = sections == "scan";
+                let g = &self.geometry;
+                // With `pe0` beside `prop`, the blade is the prop's and the sections APC's.
+                let sections_from = match (&g.prop, &g.pe0) {
+                    (Some(_), Some(pe0)) if sections == "design" => Some(f(pe0)),
+                    _ => None,
+                };
+                let airfoil = if sections == "design" { None } else { airfoil };
                 Some((
                     PolarsSpec {
                         geometry: geometry.to_path_buf(),
@@ -124,6 +132,8 @@ impl Case {
                         airfoil,
                         thickness,
                         station_airfoils: scanned.then(|| out.join("scan/airfoils")),
+                        sections_from,
+                        airfoils: None,
                         omegas: rpms.into_iter().map(rpm_to_omega).collect(),
                         axis,
                         air: AirSpec::default(),
@@ -246,7 +256,7 @@ impl Case {
         let scan = self.scan_spec(dir, out, &mut warnings)?;
         let geometry = match &g.scan {
             Some(_) => out.join("scan/prop.qprop"),
-            None => f(g.prop.as_deref().unwrap_or_default()),
+            None => f(g.prop.as_deref().or(g.pe0.as_deref()).unwrap_or_default()),
         };
         let polars = self.polars_spec(dir, out, &geometry, units, xfoil)?;
         // The fitted prop file is in metres; a case's own prop file keeps its units. With

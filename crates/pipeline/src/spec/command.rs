@@ -49,6 +49,12 @@ impl StageSpec {
                 if let Some(d) = &s.station_airfoils {
                     push(&mut v, "--station-airfoils", path(d));
                 }
+                if let Some(d) = &s.sections_from {
+                    push(&mut v, "--sections-from", path(d));
+                }
+                if let Some(d) = &s.airfoils {
+                    push(&mut v, "--airfoils", path(d));
+                }
                 push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
                 match &s.axis {
                     SweepAxis::V(x) if x == &[0.0] => {}

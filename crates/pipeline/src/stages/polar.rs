@@ -93,7 +93,36 @@ pub struct PolarsInput {
 
 /// Reads the polars stage's inputs from the files its spec names.
 pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
+    if spec.station_airfoils.is_none() {
+        if let Some(input) = design_input(spec)? {
+            return Ok(input);
+        }
+    } else if spec.sections_from.is_some() {
+        conflict!("--sections-from gives every station APC's section; --station-airfoils gives each its own: one of them");
+    }
+    if spec.sections_from.is_some() {
+        conflict!(
+            "--sections-from: {} is a QPROP prop file; APC's sections go with a PE0 file, a UIUC geometry table or a blade table",
+            spec.geometry.display()
+        );
+    }
     let geometry = load_prop(&spec.geometry, spec.units)?;
+    // Airfoils blended along the blade (`E63@0.25,APC12@0.45`) on a prop file's stations.
+    if let Some(a) = spec.airfoil.as_deref().filter(|a| a.contains('@')) {
+        let plan = crate::design::SectionPlan::parse(a, "--airfoil")?;
+        let blade = geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
+        let radii: Vec<f64> = blade.r.clone();
+        let tip = geometry.file.tip_radius(propbet_qprop::RadiusReading::Documented);
+        let tcs = vec![spec.thickness; radii.len()];
+        let foils = crate::design::plan_sections(&plan, &radii, tip, &tcs, spec.airfoils.as_deref())?;
+        let foils = reread(&spec.geometry, foils.iter().map(Airfoil::to_selig).collect())?;
+        return Ok(PolarsInput {
+            geometry,
+            foils,
+            foil_name: a.to_string(),
+            notes: Vec::new(),
+        });
+    }
     let (foil, mut notes) = spec_airfoil(spec)?;
     let foils = match &spec.station_airfoils {
         None => vec![foil.clone().expect("spec_airfoil: an airfoil without station sections")],
@@ -121,6 +150,51 @@ pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
         foil_name: foil_name(foil.as_ref()),
         notes,
     })
+}
+
+/// The polars stage's inputs from a blade file other than QPROP's (APC's PE0, UIUC's table,
+/// a blade table): None for a QPROP prop file.
+fn design_input(spec: &PolarsSpec) -> Result<Option<PolarsInput>> {
+    let plan = spec
+        .airfoil
+        .as_deref()
+        .map(|a| crate::design::SectionPlan::parse(a, "--airfoil"))
+        .transpose()?;
+    let opts = crate::design::DesignOptions {
+        units: spec.units,
+        blades: None,
+        sections: plan,
+        thickness: spec.thickness,
+        sections_from: spec.sections_from.clone(),
+        airfoils: spec.airfoils.clone(),
+    };
+    let Some(d) = crate::design::read_design(&spec.geometry, &opts)? else {
+        return Ok(None);
+    };
+    let Some(texts) = d.sections else {
+        nothing!(
+            "{}: a {} names no sections: give --airfoil (`airfoil` in a case's [polars]), or --sections-from the prop's PE0 file",
+            spec.geometry.display(),
+            d.format.name()
+        );
+    };
+    let foils = reread(&spec.geometry, texts)?;
+    Ok(Some(PolarsInput {
+        geometry: d.geometry,
+        foils,
+        foil_name: d.description,
+        notes: Vec::new(),
+    }))
+}
+
+/// Sections (Selig texts) parsed as the station files `propbet` writes for them would be.
+fn reread(geometry: &Path, texts: Vec<String>) -> Result<Vec<Airfoil>> {
+    let dir = geometry.parent().unwrap_or(Path::new("."));
+    texts
+        .iter()
+        .enumerate()
+        .map(|(i, t)| parse_airfoil(t, &dir.join(format!("station_{i:02}.dat"))).map(|(f, _)| f))
+        .collect()
 }
 
 /// The spec's airfoil, loaded (and scaled) with its repair notes: None only when the stations

@@ -66,7 +66,7 @@ pub(super) fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Op
 
 /// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
 /// out to 100 rpm) with J from 0 to the largest measured, in steps of 0.05.
-pub(super) fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
+pub fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
     let (_, sets) = stages::load_measured(measured)?;
     let points = sets.iter().flat_map(|s| &s.points);
     let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
