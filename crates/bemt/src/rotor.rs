@@ -202,7 +202,7 @@ impl Rotor {
             }
             prev = s.r;
         }
-        if self.tip_radius < prev {
+        if self.tip_radius < prev && !propbet_units::same_radius(self.tip_radius, prev) {
             return Err(RotorError::TipInsideBlade {
                 tip: self.tip_radius,
                 last: prev,
@@ -319,7 +319,7 @@ impl QpropBlade {
                 }
             }
         }
-        if self.tip_radius < self.r[n - 1] {
+        if self.tip_radius < self.r[n - 1] && !propbet_units::same_radius(self.tip_radius, self.r[n - 1]) {
             return Err(RotorError::TipInsideBlade {
                 tip: self.tip_radius,
                 last: self.r[n - 1],
@@ -414,9 +414,15 @@ impl QpropBlade {
                 aero: Arc::new(QpropAirfoil::new(QpropCoefficients::from_array(k))),
             });
         }
+        // A tip at the last row's radius but for rounding is that radius (r / R never above 1).
+        let last = self.r.last().copied().unwrap_or(self.tip_radius);
         let rotor = Rotor {
             blades: self.blades,
-            tip_radius: self.tip_radius,
+            tip_radius: if propbet_units::same_radius(self.tip_radius, last) {
+                self.tip_radius.max(last)
+            } else {
+                self.tip_radius
+            },
             stations,
         };
         rotor.validate()?;

@@ -321,6 +321,14 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                 crate::compare::print(spec, c, reference.as_ref());
             }
             w.brief = propbet_report::answer::brief(&c.sets, &c.metrics, reference.as_ref());
+            let (ct, cp, n) = propbet_report::compare::accuracy(&c.points);
+            if n > 0 {
+                w.brief.push(format!(
+                    "median error CT {:.1} %, CP {:.1} % over {n} points below 85 % of the zero-thrust J (as validate scores)",
+                    100.0 * ct,
+                    100.0 * cp
+                ));
+            }
             w.page = Some(page);
             w.reference = reference;
         }

@@ -414,7 +414,10 @@ fn fit_file(
         .collect();
     // Rows: the blade's first and last radius around QPROP's own 25 stations.
     let st = &rotor.stations;
-    let (r0, r1) = (st[0].r - 0.5 * st[0].dr, st[n - 1].r + 0.5 * st[n - 1].dr);
+    let (r0, r1) = (
+        st[0].r - 0.5 * st[0].dr,
+        propbet_units::at_most_tip(st[n - 1].r + 0.5 * st[n - 1].dr, rotor.tip_radius),
+    );
     let row = |r: f64, k: usize, chord: f64, beta: f64| PropRow {
         r,
         chord,

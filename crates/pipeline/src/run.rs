@@ -184,36 +184,39 @@ pub fn run_case(
     if let Some((spec, scanned_sections)) = &plan.polars {
         let t = book.start(StageSpec::Polars(spec.clone()));
         let run = || -> Result<(Polars, PolarsInput)> {
-            let (foil, mut notes) = stages::spec_airfoil(spec)?;
-            let geometry = match &geometry {
-                Some(g) => g.clone(),
-                None => crate::model::load_prop(&spec.geometry, spec.units)?,
-            };
-            let foils = match (scanned_sections, &scanned, &spec.station_airfoils) {
-                (true, Some(sc), Some(dir)) => {
-                    let mut texts = vec![None; geometry.file.rows.len()];
-                    for (i, t) in &sc.airfoils {
-                        if *i < texts.len() {
-                            texts[*i] = Some((dir.join(format!("station_{i:02}.dat")), t.clone()));
+            // A scan's blade and sections are in memory; any other blade file is read as the
+            // polars command reads it.
+            let input = match &geometry {
+                None => stages::polars_input(spec)?,
+                Some(geometry) => {
+                    let (foil, mut notes) = stages::spec_airfoil(spec)?;
+                    let foils = match (scanned_sections, &scanned, &spec.station_airfoils) {
+                        (true, Some(sc), Some(dir)) => {
+                            let mut texts = vec![None; geometry.file.rows.len()];
+                            for (i, t) in &sc.airfoils {
+                                if *i < texts.len() {
+                                    texts[*i] = Some((dir.join(format!("station_{i:02}.dat")), t.clone()));
+                                }
+                            }
+                            stages::station_foils(dir, texts, foil.as_ref(), &mut notes)?
                         }
+                        _ => vec![foil.clone().ok_or_else(|| {
+                            crate::Error::Conflict("[polars] airfoil: the section of every station".into())
+                        })?],
+                    };
+                    PolarsInput {
+                        geometry: geometry.clone(),
+                        foils,
+                        foil_name: stages::foil_name(foil.as_ref()),
+                        notes,
                     }
-                    stages::station_foils(dir, texts, foil.as_ref(), &mut notes)?
                 }
-                _ => vec![foil
-                    .clone()
-                    .ok_or_else(|| crate::Error::Conflict("[polars] airfoil: the section of every station".into()))?],
-            };
-            let input = PolarsInput {
-                geometry,
-                foils,
-                foil_name: stages::foil_name(foil.as_ref()),
-                notes,
             };
             let engine = stages::polar_engine(&spec.xfoil.process)?;
             Ok((stages::polars(spec, &input, &engine, progress)?, input))
         };
         let (p, input) = run().map_err(|e| stage_err("polars", e))?;
-        book.done(t, p.clean(), Finished::Polars(&p, &input));
+        book.done(t, p.clean_for(plan.predict.model.polars.is_some()), Finished::Polars(&p, &input));
         polars = Some(p);
     }
 

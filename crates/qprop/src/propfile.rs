@@ -639,7 +639,7 @@ impl PropFile {
 /// Two lengths that differ only by the rounding of a decimal written and read back
 /// (0.1524 and 0.15239999999999998), relative to their size.
 fn within_rounding(a: f64, b: f64) -> bool {
-    (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+    propbet_units::same_radius(a, b)
 }
 
 mod accuracy;

@@ -119,6 +119,24 @@ pub fn headline_json(m: &Metrics) -> serde_json::Value {
     json!(groups)
 }
 
+/// The accuracy as `propbet validate` measures it: the median |predicted / measured − 1| of CT
+/// and CP over the points below 85 % of each sweep's zero-thrust J (the same points and numbers
+/// as a validation row's "before" columns), with the points counted.
+pub fn accuracy(points: &[ComparedPoint]) -> (f64, f64, usize) {
+    use propbet_compare::metrics::{quantile, window_errors, VALIDATION_J_WINDOW};
+    let (ct, cp) = window_errors(points, VALIDATION_J_WINDOW);
+    let n = ct.len();
+    (quantile(ct, 0.5), quantile(cp, 0.5), n)
+}
+
+/// [`accuracy`] as JSON (null where no point has the quantity).
+pub fn accuracy_json(points: &[ComparedPoint]) -> serde_json::Value {
+    let (ct, cp, n) = accuracy(points);
+    let num = |x: f64| if x.is_finite() { serde_json::json!(x) } else { serde_json::Value::Null };
+    serde_json::json!({"ct_median_error": num(ct), "cp_median_error": num(cp), "points": n,
+        "measure": "median |predicted / measured - 1| below 85 % of the zero-thrust J (propbet validate's)"})
+}
+
 /// `summary.json` of `propbet compare`: the command, the headline, the points outside the
 /// scored window, and the problems (rows dropped as faulty, station solutions that did not
 /// converge, points where the prediction is physically implausible).
@@ -136,6 +154,7 @@ pub fn summary_json(
         "points": points.len(),
         "outside_window": m.outside_window,
         "headline": headline_json(m),
+        "accuracy": accuracy_json(points),
         "problems": {
             "dropped_rows": problems.0,
             "unconverged_stations": problems.1,

@@ -88,10 +88,10 @@ fn stages_html(h: &mut String, plan: &RunPlan, run: &RunOutcome, problems: &[(&'
             "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td class=\"cmd\"><code>{}</code></td></tr>",
             s.spec.name(),
             s.seconds,
-            if s.clean && !problems.iter().any(|p| p.0 == s.spec.name()) {
-                "ok"
-            } else {
-                "problems"
+            match (s.clean, problems.iter().any(|p| p.0 == s.spec.name())) {
+                (true, false) => "ok",
+                (true, true) => "ok, with notes",
+                (false, _) => "problems",
             },
             esc(&s.spec.command())
         );
@@ -419,10 +419,12 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "format": "propbet-run-summary-1",
         "case": plan.name,
         "case_dir": plan.dir.display().to_string(),
-        "clean": run.clean() && problems.is_empty(),
+        "clean": run.clean(),
         "stages": stages,
-        "problems": problems,
+        "problems": problems.iter().filter(|p| !run.stages.iter().any(|s| s.clean && s.spec.name() == p["stage"])).collect::<Vec<_>>(),
+        "notes": problems.iter().filter(|p| run.stages.iter().any(|s| s.clean && s.spec.name() == p["stage"])).collect::<Vec<_>>(),
         "headline": headline,
+        "accuracy": run.compared.as_ref().map(|c| crate::compare::accuracy_json(&c.points)),
         "diagnosis": diagnosis,
         "polars": polars,
         "qprop_export": match &run.qprop_export {

@@ -212,3 +212,21 @@ mod show_tests {
         assert!(show(f64::MAX).len() < 14, "{}", show(f64::MAX));
     }
 }
+
+/// Whether two radii are the same but for floating-point rounding (within 1e-9 of the larger):
+/// a radius read back from numbers computed from it (a tip at r/R = 1.00 times R, a last row
+/// placed half a station beyond the last station's midpoint) is compared with this, never
+/// exactly. Every reader and writer of radii uses it.
+pub fn same_radius(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-9 * a.abs().max(b.abs())
+}
+
+/// `r`, or `tip` where `r` is the tip radius but for rounding ([`same_radius`]): a radius that
+/// must not lie beyond the tip, snapped to it.
+pub fn at_most_tip(r: f64, tip: f64) -> f64 {
+    if r > tip && same_radius(r, tip) {
+        tip
+    } else {
+        r
+    }
+}

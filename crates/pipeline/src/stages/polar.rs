@@ -367,6 +367,18 @@ impl Polars {
             .iter()
             .all(|s| s.fit.as_ref().is_some_and(|f| f.unfit.is_empty()) && s.polars.iter().all(|p| p.faults.is_empty()))
     }
+
+    /// Nothing to report for a model whose section model is the tables themselves (`tables`),
+    /// as [`Polars::clean`] for QPROP's law fitted to them: with tables, a station's fit is
+    /// only the exported QPROP file's (its fallbacks are notes about that file, its fidelity
+    /// measured), and an XFOIL fault that the tables interpolate across is a note; a problem is
+    /// a station without a polar, which the tables cannot cover.
+    pub fn clean_for(&self, tables: bool) -> bool {
+        if !tables {
+            return self.clean();
+        }
+        self.blade.stations.iter().all(|s| !s.polars.is_empty())
+    }
 }
 
 /// Runs the polars stage: XFOIL on the rungs of the Re ladder covering every station's Re and

@@ -4,69 +4,19 @@
 
 use std::path::Path;
 
-use propbet_polar::{naca4_from_name, Airfoil};
+use propbet_polar::Airfoil;
 use propbet_qprop::apc::{read_pe0, uiuc_diameter, Pe0};
 use propbet_qprop::PropRow;
 
-use super::files::first_file;
 use super::{GeometrySource, Sections, ValidateSpec};
 use crate::stages;
 use crate::{read_text, Error, Result};
 
-/// UIUC's stations (r/R 0.15 to 1 in steps of 0.05, as its geometry files give them), in
-/// hundredths (k / 100 is the double a file's "0.35" reads as): where a prop has no UIUC
-/// geometry file, the blade validate predicts is APC's design chord and twist there.
-pub(super) const UIUC_STATIONS: (u32, u32, u32) = (15, 5, 18);
+pub use crate::design::pe0_table;
 
-/// APC's design blade (PE0 chord and twist) at UIUC's stations, as a UIUC geometry table: the
-/// stations from one step inboard of APC's first (whose chord and twist are held there, as
-/// `--geometry pe0` holds them) to the tip.
-pub fn pe0_table(pe0: &propbet_qprop::apc::Pe0, big_r: f64) -> Vec<propbet_measure::uiuc::GeometryRow> {
-    let (start, step, n) = UIUC_STATIONS;
-    let first = pe0.chord.first().map_or(0.0, |c| c.0 / big_r);
-    (0..n)
-        .map(|k| f64::from(start + step * k) / 100.0)
-        .filter(|&x| x > first - f64::from(step) / 100.0 - 1e-9)
-        .map(|x| propbet_measure::uiuc::GeometryRow {
-            r_r: x,
-            c_r: pe0.chord_at(x * big_r) / big_r,
-            beta: pe0.twist_at(x * big_r).to_radians(),
-        })
-        .collect()
-}
-
-/// APC's airfoil name → a section: `APC12` is NACA 4412 (APC's note), a NACA 4-digit name is
-/// generated, and any other name is looked for in the directory as coordinates whose file
-/// stem is the name without case, spaces, hyphens or underscores (`CLARK-Y` → `clarky.dat`,
-/// `E63` → `e63.dat`, `SD7037` → `sd7037.dat`).
+/// APC's airfoil name → a section ([`crate::design::airfoil_by_name`], `dir` looked in first).
 pub(super) fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
-    let key = |s: &str| -> String {
-        s.chars()
-            .filter(|c| c.is_ascii_alphanumeric())
-            .map(|c| c.to_ascii_lowercase())
-            .collect()
-    };
-    let k = key(name);
-    let naca = if k == "apc12" {
-        "naca4412".to_string()
-    } else {
-        k.clone()
-    };
-    if let Some(foil) = naca4_from_name(&naca) {
-        return Ok(foil?);
-    }
-    let coordinates = first_file(dir, |n| {
-        let p = Path::new(n);
-        p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
-            && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
-    })?;
-    match coordinates {
-        Some(file) => Ok(stages::read_airfoil(&file)?.0),
-        None => Err(Error::Nothing(format!(
-            "APC airfoil {name:?}: no coordinates for it in {} (a file {k}.dat; APC12 and NACA 4-digit names are generated)",
-            dir.display()
-        ))),
-    }
+    crate::design::airfoil_by_name(name, Some(dir))
 }
 
 /// A PE0 file in memory for a prop whose sections are assumed: UIUC's chord and twist, one
@@ -157,21 +107,9 @@ pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Res
             beta,
             coeffs: Vec::new(),
         });
-        let frac = pe0.blend_at(r);
-        let base = if frac <= 0.0 {
-            f1.clone()
-        } else if frac >= 1.0 {
-            f2.clone()
-        } else {
-            f1.blend(&f2, frac, 80)?
-        };
-        let tc = pe0.thickness_at(r);
         // APC scales its sections "based on thickness ratio" and defines pitch on a flat bottom
-        // (`Airfoil::scale_as_apc`: thinned or flat-bottomed sections as a whole, thickened
-        // cambered ones about their camber line; docs/studies/section-scaling.md).
-        let scaled = base.scale_as_apc(tc);
-        let mut foil = scaled?;
-        foil.name = format!("{} t/c {:.3}", base.name, tc);
+        // (docs/studies/section-scaling.md).
+        let foil = crate::design::pe0_section(&pe0, &f1, &f2, r)?;
         airfoils.push((i, foil.to_selig()));
     }
     Ok(Blade {
