@@ -83,8 +83,8 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
         with(
             row(
                 "run",
-                "XFOIL crashes in the polars stage",
-                1,
+                "XFOIL crashes at some angles, which the tables interpolate across (a note)",
+                0,
                 &[
                     &p("tests/data/bad_inputs/case_prop_polars"),
                     "-o",
@@ -97,7 +97,36 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
             ),
             ("FAKE_MODE", "x_crash_mid"),
         ),
+        with(
+            row(
+                "run",
+                "XFOIL crashes in the polars stage of a case whose section model is QPROP's law fitted to them",
+                1,
+                &[
+                    &p("tests/data/bad_inputs/case_prop_polars_qprop"),
+                    "-o",
+                    "out",
+                    "--xfoil",
+                    &fake,
+                    "--no-cache",
+                    "--quiet",
+                ],
+            ),
+            ("FAKE_MODE", "x_crash_mid"),
+        ),
         row("run", "no case.toml", 2, &["/tmp", "-o", "out"]),
+        row(
+            "run",
+            "the default case with NeuralFoil's polars: its notes (standard air, the QPROP fit's fallbacks) are no problem",
+            0,
+            &["--engine", "neuralfoil", "-o", "out", "--quiet"],
+        ),
+        row(
+            "run",
+            "a case of APC's design file (PE0) with NeuralFoil's polars",
+            0,
+            &[&p("props/apcsp_10x7"), "--engine", "neuralfoil", "-o", "out", "--quiet"],
+        ),
         row(
             "scan",
             "every station measured",
@@ -163,6 +192,34 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
             "station solutions that do not converge (blades turned 60 deg back)",
             1,
             &["--prop", &cam, "--rpm", "3000", "--j", "0,0.5", "--dbeta=-60"],
+        ),
+        row(
+            "predict",
+            "APC's design file (PE0), its polars by NeuralFoil",
+            0,
+            &[
+                "--prop",
+                &p("props/apcsp_10x7/10x7-PERF.PE0"),
+                "--rpm",
+                "5000",
+                "--j",
+                "0:0.8:0.1",
+                "--engine",
+                "neuralfoil",
+            ],
+        ),
+        row(
+            "predict",
+            "a UIUC geometry table that names no section",
+            2,
+            &[
+                "--prop",
+                &p("props/apcsf_10x4.7/apcsf_10x4.7_geom.txt"),
+                "--rpm",
+                "5000",
+                "--engine",
+                "neuralfoil",
+            ],
         ),
         row(
             "predict",

@@ -51,18 +51,20 @@ fn qprop_point(prop: &Path, v: f64, rpm: f64, air: (f64, f64, f64)) -> (f64, f64
         .output()
         .unwrap();
     let text = String::from_utf8_lossy(&o.stdout);
-    // The result is the line after the column header (a comment line in a single-point run).
+    // The result is the first line of numbers after the column header (a comment line in a
+    // single-point run; QPROP's "GVCALC: Not converged" lines may come between).
     let row: Vec<f64> = text
         .lines()
         .skip_while(|l| !l.contains("V(m/s)"))
-        .nth(1)
-        .map(|l| {
+        .skip(1)
+        .filter(|l| !l.contains("GVCALC"))
+        .map(|l| -> Vec<f64> {
             l.trim_start_matches([' ', '#'])
                 .split_whitespace()
                 .filter_map(|w| w.parse().ok())
                 .collect()
         })
-        .filter(|v: &Vec<f64>| v.len() >= 5)
+        .find(|v: &Vec<f64>| v.len() >= 5)
         .unwrap_or_else(|| panic!("no QPROP result for {} at V {v} rpm {rpm}: {text}", prop.display()));
     (row[3], row[4])
 }
@@ -133,10 +135,16 @@ fn propbet_reads_and_solves_drelas_example_props_as_qprop_does() {
 /// of the sweep where the run's own fidelity check looks (the scored window): real QPROP agrees with propbet's QPROP-exact reading of the file (so the report's
 /// fidelity numbers are QPROP's), and with the prediction within `within` (median, worst).
 fn exported_file_through_real_qprop(case: &str, extra: &[&str], within: Option<(f64, f64)>) {
+    exported_case_through_real_qprop(&repo().join("props").join(case), extra, within);
+}
+
+/// [`exported_file_through_real_qprop`] for the case in `dir`.
+fn exported_case_through_real_qprop(dir: &Path, extra: &[&str], within: Option<(f64, f64)>) {
+    let case = dir.file_name().unwrap().to_string_lossy().to_string();
     let t = tempfile::tempdir().unwrap();
     let mut args = vec![
         "run".to_string(),
-        repo().join("props").join(case).display().to_string(),
+        dir.display().to_string(),
         "-o".into(),
         "out".into(),
         "--quiet".into(),
@@ -224,6 +232,39 @@ fn the_photofoil_export_through_real_qprop_is_the_prediction() {
     // A QPROP-law prop file without tables: the export keeps its coefficients (REref moved
     // exactly), so QPROP gives the prediction to its printed digits.
     exported_file_through_real_qprop("photofoil_8x4.5", &[], Some((PRINTED, PRINTED)));
+}
+
+/// Every UIUC geometry table of the shared data, as a case's blade (its stations end at
+/// r/R = 1.00, whose radius the export once read back a rounding beyond the tip), exports to a
+/// QPROP file the real QPROP 1.22 reads and solves as propbet reports.
+#[test]
+fn every_uiuc_geometry_exports_to_a_file_real_qprop_reads() {
+    let uiuc = repo().join("../shared/data/uiuc");
+    let mut tables: Vec<PathBuf> = std::fs::read_dir(&uiuc)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.to_string_lossy().ends_with("_geom.txt"))
+        .collect();
+    tables.sort();
+    assert!(tables.len() >= 13, "{tables:?}");
+    let t = tempfile::tempdir().unwrap();
+    for table in &tables {
+        let name = table.file_name().unwrap().to_string_lossy().replace("_geom.txt", "");
+        let dir = t.path().join(&name);
+        std::fs::create_dir(&dir).unwrap();
+        std::fs::copy(table, dir.join("geom.txt")).unwrap();
+        // The table's diameter is in UIUC's file name: the copy keeps it.
+        std::fs::rename(dir.join("geom.txt"), dir.join(table.file_name().unwrap())).unwrap();
+        std::fs::write(
+            dir.join("case.toml"),
+            format!(
+                "name = \"{name}\"\n[geometry]\nprop = \"{}\"\n[polars]\nairfoil = \"e63\"\n[sweep]\nrpm = \"5000\"\nj = \"0.3:0.9:0.1\"\n",
+                table.file_name().unwrap().to_string_lossy()
+            ),
+        )
+        .unwrap();
+        exported_case_through_real_qprop(&dir, &["--engine", "neuralfoil"], None);
+    }
 }
 
 #[test]

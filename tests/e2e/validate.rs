@@ -321,3 +321,139 @@ fn validate_bad_input() {
         &["bad.toml: user effect id `pitch-offset` is already taken"],
     );
 }
+
+/// A case of APC's design file (`[geometry] pe0`), and one of UIUC's measured table with APC's
+/// sections (`prop` and `pe0`), reproduce validate's rows of those props through `propbet run`:
+/// the same medians, on the same points, and the same calibration ladder.
+#[test]
+#[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
+fn a_pe0_case_reproduces_validates_row() {
+    let dir = tempfile::tempdir().unwrap();
+    let shared = repo().join("../shared/data");
+    let (uiuc, pe0, per3) = (shared.join("uiuc"), shared.join("apc/PE0"), shared.join("apc/PER3"));
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            uiuc.to_str().unwrap(),
+            "--pe0",
+            pe0.to_str().unwrap(),
+            "--per3",
+            per3.to_str().unwrap(),
+            "--airfoils",
+            repo().join("props/airfoils").to_str().unwrap(),
+            "--only",
+            "apcsp_10x7,apcsf_9x4.7",
+            "--cache",
+            "cache",
+            "--quiet",
+            "-o",
+            "val",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let (h, rows) = read_csv(&dir.path().join("val/validation.csv"));
+    let row = |prop: &str| {
+        rows.iter()
+            .find(|r| r[0] == prop)
+            .unwrap_or_else(|| panic!("{prop}: {rows:?}"))
+            .clone()
+    };
+    let num = |r: &[String], c: &str| -> f64 { r[col(&h, c)].parse().unwrap() };
+
+    // The second case: UIUC's measured 9x4.7 SF with the sections of its PE0 file.
+    let case = dir.path().join("apcsf_9x4.7");
+    std::fs::create_dir(&case).unwrap();
+    let mut files = Vec::new();
+    for e in std::fs::read_dir(&uiuc).unwrap() {
+        let p = e.unwrap().path();
+        let name = p.file_name().unwrap().to_string_lossy().to_string();
+        if name.starts_with("apcsf_9x4.7_") {
+            std::fs::copy(&p, case.join(&name)).unwrap();
+            if !name.ends_with("_geom.txt") {
+                files.push(format!("\"{name}\""));
+            }
+        }
+    }
+    std::fs::copy(pe0.join("9x47SF-PERF.PE0"), case.join("9x47SF-PERF.PE0")).unwrap();
+    files.sort();
+    // Its polars cover what validate's cover: the measured RPM range rounded out to 100 rpm at
+    // three speeds, J from 0 in steps of 0.05 past the largest measured.
+    let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
+    for f in &files {
+        let name = f.trim_matches('"');
+        let text = std::fs::read_to_string(case.join(name)).unwrap();
+        let nums = text
+            .lines()
+            .skip(1)
+            .filter_map(|l| l.split_whitespace().next()?.parse::<f64>().ok());
+        if name.contains("_static_") {
+            for rpm in nums {
+                (lo, hi) = (lo.min(rpm), hi.max(rpm));
+            }
+        } else {
+            let rpm: f64 = name
+                .trim_end_matches(".txt")
+                .rsplit('_')
+                .next()
+                .unwrap()
+                .parse()
+                .unwrap();
+            (lo, hi) = (lo.min(rpm), hi.max(rpm));
+            j_max = nums.fold(j_max, f64::max);
+        }
+    }
+    let (lo, hi) = ((lo / 100.0).floor() * 100.0, (hi / 100.0).ceil() * 100.0);
+    let rpms = format!("{lo},{},{hi}", (0.5 * (lo + hi) / 100.0).round() * 100.0);
+    let js = format!("0:{:.2}:0.05", 0.05 * (j_max / 0.05).ceil());
+    std::fs::write(
+        case.join("case.toml"),
+        format!(
+            "name = \"9x4.7 SF\"\n[geometry]\nprop = \"apcsf_9x4.7_geom.txt\"\npe0 = \"9x47SF-PERF.PE0\"\n\
+             [polars]\nrpm = \"{}\"\nj = \"{}\"\n[sweep]\nrpm = \"4000,6000\"\nj = \"0:0.6:0.1\"\n[measured]\nfiles = [{}]\n",
+            rpms,
+            js,
+            files.join(", ")
+        ),
+    )
+    .unwrap();
+    for (prop, case_dir) in [
+        ("apcsp_10x7", repo().join("props/apcsp_10x7")),
+        ("apcsf_9x4.7", case.clone()),
+    ] {
+        let v = row(prop);
+        let out = dir.path().join(format!("run_{prop}"));
+        let o = run(
+            &[
+                "run",
+                case_dir.to_str().unwrap(),
+                "--cache",
+                "cache",
+                "--quiet",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{prop}: {}", stderr(&o));
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let acc = &s["accuracy"];
+        assert_eq!(
+            acc["points"].as_u64().unwrap(),
+            num(&v, "points") as u64,
+            "{prop}: {acc}"
+        );
+        for (k, c) in [("ct_median_error", "ct_median"), ("cp_median_error", "cp_median")] {
+            let (a, b) = (acc[k].as_f64().unwrap(), num(&v, c));
+            assert!((a - b).abs() < 1e-6, "{prop} {k}: run {a} against validate's {b}");
+        }
+        eprintln!(
+            "{prop}: run and validate both CT {:.2} % CP {:.2} % over {} points",
+            100.0 * num(&v, "ct_median"),
+            100.0 * num(&v, "cp_median"),
+            num(&v, "points")
+        );
+    }
+}

@@ -372,7 +372,11 @@ impl RunPlan {
             },
         }
         if let Some(a) = self.polars.as_ref().and_then(|(p, _)| p.airfoil.as_ref()) {
-            v.push(PathBuf::from(a));
+            // Its names that are files (the plan wrote them as paths), not propbet's own.
+            v.extend(crate::design::resolve_in(a, Path::new("")).1);
+        }
+        if let Some(s) = self.polars.as_ref().and_then(|(p, _)| p.sections_from.as_ref()) {
+            v.push(s.clone());
         }
         if let Some((c, _)) = &self.compare {
             v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
@@ -385,16 +389,7 @@ impl RunPlan {
     /// not a file): checked before the first stage runs, so a copied case whose relative paths
     /// no longer resolve fails at once, with nothing written.
     pub fn missing_inputs(&self) -> Vec<PathBuf> {
-        let naca = self
-            .polars
-            .as_ref()
-            .and_then(|(p, _)| p.airfoil.as_ref())
-            .filter(|a| propbet_polar::naca4_from_name(a).is_some())
-            .map(PathBuf::from);
-        self.inputs()
-            .into_iter()
-            .filter(|f| Some(f) != naca.as_ref() && !f.exists())
-            .collect()
+        self.inputs().into_iter().filter(|f| !f.exists()).collect()
     }
 
     /// The specs in the order they run.

@@ -31,11 +31,13 @@ impl BladeFormat {
     /// The format of a blade file's text: PE0 by its airfoil lines, UIUC's table by its
     /// `r/R` header, a table by a comma-separated header naming a radius; QPROP otherwise.
     pub fn of(text: &str) -> BladeFormat {
-        if text.lines().any(|l| l.trim_start().starts_with("AIRFOIL1:")) && text.contains("AIRFOIL SUMMARY DATA")
-        {
+        if text.lines().any(|l| l.trim_start().starts_with("AIRFOIL1:")) && text.contains("AIRFOIL SUMMARY DATA") {
             return BladeFormat::Pe0;
         }
-        let first = text.lines().map(str::trim).find(|l| !l.is_empty() && !l.starts_with('#'));
+        let first = text
+            .lines()
+            .map(str::trim)
+            .find(|l| !l.is_empty() && !l.starts_with('#'));
         let Some(first) = first else { return BladeFormat::Qprop };
         let lower = first.to_ascii_lowercase();
         if lower.split_whitespace().next() == Some("r/r") {
@@ -95,7 +97,9 @@ impl SectionPlan {
                 return Err(Error::value(
                     what,
                     text,
-                    format!("'{p}' has no '@r/R': write each airfoil with the r/R it starts at, as E63@0.25,APC12@0.45"),
+                    format!(
+                        "'{p}' has no '@r/R': write each airfoil with the r/R it starts at, as E63@0.25,APC12@0.45"
+                    ),
                 ));
             };
             let x: f64 = at
@@ -144,7 +148,11 @@ fn key(s: &str) -> String {
 /// a coordinate file's path.
 pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
     let k = key(name);
-    let naca = if k == "apc12" { "naca4412".to_string() } else { k.clone() };
+    let naca = if k == "apc12" {
+        "naca4412".to_string()
+    } else {
+        k.clone()
+    };
     if let Some(foil) = naca4_from_name(&naca) {
         return Ok(foil?);
     }
@@ -166,6 +174,41 @@ pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
         names.join(", "),
         dir.map_or_else(String::new, |d| format!(", and no {k}.dat in {}", d.display()))
     )))
+}
+
+/// Whether `name` is an airfoil propbet knows without a file: APC12, a NACA 4-digit name or a
+/// name of the [`LIBRARY`].
+pub fn is_known_name(name: &str) -> bool {
+    let k = key(name);
+    k == "apc12" || naca4_from_name(&k).is_some() || LIBRARY.iter().any(|(n, _)| *n == k)
+}
+
+/// A section text (`--airfoil`, a case's `airfoil`) with each name that is a file of `dir`
+/// written as that file's path (a case's files are relative to it), the others as they are;
+/// and the files it names (each a file of `dir`, or neither a known name nor found there).
+pub fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
+    let mut files = Vec::new();
+    let mut resolve = |name: &str| -> String {
+        let n = name.trim();
+        if is_known_name(n) && !dir.join(n).is_file() {
+            return n.to_string();
+        }
+        let p = dir.join(n);
+        files.push(p.clone());
+        p.display().to_string()
+    };
+    let out = if text.contains('@') {
+        text.split(',')
+            .map(|part| match part.rsplit_once('@') {
+                Some((n, at)) => format!("{}@{}", resolve(n), at.trim()),
+                None => resolve(part),
+            })
+            .collect::<Vec<_>>()
+            .join(",")
+    } else {
+        resolve(text)
+    };
+    (out, files)
 }
 
 /// The first `.dat` file of `dir` (by name) whose stem keys as `k`.
@@ -282,7 +325,9 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
             let big_r = 0.5 * d;
             let rows = pe0_table(&pe0, big_r);
             if rows.len() < 2 {
-                return Err(at("the PE0 blade covers fewer than two stations of r/R 0.15 to 1".into()));
+                return Err(at(
+                    "the PE0 blade covers fewer than two stations of r/R 0.15 to 1".into()
+                ));
             }
             let st = rows
                 .iter()
@@ -331,7 +376,10 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
         Some(p) => {
             let t = crate::read_text(p)?;
             if BladeFormat::of(&t) != BladeFormat::Pe0 {
-                return Err(Error::input(p, "not an APC design file (PE0): no AIRFOIL1 / AIRFOIL2 lines"));
+                return Err(Error::input(
+                    p,
+                    "not an APC design file (PE0): no AIRFOIL1 / AIRFOIL2 lines",
+                ));
             }
             Some(read_pe0(&t, &p.display().to_string()).map_err(|e| Error::input(p, e.to_string()))?)
         }
@@ -385,19 +433,18 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
     };
     let description = format!("{} ({said})", format.name());
     let file = PropFile::metric(
-        format!("{} from {}", description, path.file_name().and_then(|n| n.to_str()).unwrap_or("?")),
+        format!(
+            "{} from {}",
+            description,
+            path.file_name().and_then(|n| n.to_str()).unwrap_or("?")
+        ),
         opts.blades.unwrap_or(2.0),
         big_r,
         rows,
     );
     let geometry = as_written(&file, path)?;
     // Each section as a Selig file written and read back gives it (as validate's files do).
-    let sections = sections.map(|foils| {
-        foils
-            .iter()
-            .map(|f| f.to_selig())
-            .collect::<Vec<String>>()
-    });
+    let sections = sections.map(|foils| foils.iter().map(|f| f.to_selig()).collect::<Vec<String>>());
     Ok(Some(DesignBlade {
         geometry,
         sections,
@@ -510,7 +557,10 @@ fn table_columns(header: &str) -> std::result::Result<Columns, String> {
     if let Some((_, u)) = names[beta].split_once('(') {
         let u = u.trim_end_matches(')').trim();
         if !matches!(u, "deg" | "degrees" | "°") {
-            return Err(format!("column `{}`: the blade angle is in degrees (`deg`)", names[beta]));
+            return Err(format!(
+                "column `{}`: the blade angle is in degrees (`deg`)",
+                names[beta]
+            ));
         }
     }
     Ok(Columns {
@@ -534,7 +584,9 @@ fn read_table(text: &str, units: Option<f64>) -> std::result::Result<Table, Stri
     let unit = match (c.unit, units) {
         (Some(u), _) | (None, Some(u)) => u,
         (None, None) => {
-            return Err("the radius and chord columns name no unit: write `r (mm)`, `chord (mm)`, or give --units".into())
+            return Err(
+                "the radius and chord columns name no unit: write `r (mm)`, `chord (mm)`, or give --units".into(),
+            )
         }
     };
     let mut t = Table {
@@ -589,4 +641,133 @@ fn read_table(text: &str, units: Option<f64>) -> std::result::Result<Table, Stri
         return Err("fewer than two stations".into());
     }
     Ok(t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_are_told_by_their_text() {
+        let pe0 = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../props/apcsp_10x7/10x7-PERF.PE0"
+        ))
+        .unwrap();
+        assert_eq!(BladeFormat::of(&pe0), BladeFormat::Pe0);
+        assert_eq!(
+            BladeFormat::of("r/R    c/R     beta\n0.15 0.1 30\n"),
+            BladeFormat::UiucTable
+        );
+        assert_eq!(
+            BladeFormat::of("# a blade\nr (mm),chord (mm),beta (deg)\n10,20,30\n"),
+            BladeFormat::Table
+        );
+        assert_eq!(BladeFormat::of("cam 6x3\n\n2 0.0762\n"), BladeFormat::Qprop);
+        assert_eq!(pe0_diameter(&pe0), Some(10.0 * 0.0254));
+        assert_eq!(pe0_diameter("4.2x4   (42x4.dat)\n"), Some(4.2 * 0.0254));
+        assert_eq!(pe0_diameter("no diameter\n"), None);
+    }
+
+    #[test]
+    fn section_plans_read_one_airfoil_or_a_blend_and_refuse_the_rest() {
+        assert_eq!(
+            SectionPlan::parse("e63", "--airfoil").unwrap().anchors,
+            vec![(0.0, "e63".into())]
+        );
+        let p = SectionPlan::parse("E63@0.25, APC12@0.45", "--airfoil").unwrap();
+        assert_eq!(p.anchors, vec![(0.25, "E63".into()), (0.45, "APC12".into())]);
+        for (bad, says) in [
+            ("E63@0.5,APC12@0.3", "must increase"),
+            ("E63@1.5", "between 0 and 1"),
+            ("E63,APC12@0.4", "no '@r/R'"),
+            ("@0.3", "names no airfoil"),
+            ("", "no airfoil"),
+        ] {
+            let e = SectionPlan::parse(bad, "--airfoil").unwrap_err().to_string();
+            assert!(e.contains(says) && e.contains("--airfoil"), "{bad}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_blend_moves_from_one_airfoil_to_the_next_between_its_radii() {
+        let plan = SectionPlan::parse("e63@0.3,naca4412@0.6", "x").unwrap();
+        let radii = [0.1, 0.3, 0.45, 0.6, 0.9];
+        let foils = plan_sections(&plan, &radii, 1.0, &[None; 5], None).unwrap();
+        let t: Vec<f64> = foils.iter().map(|f| f.max_thickness().0).collect();
+        assert!((t[0] - t[1]).abs() < 1e-9 && (t[3] - t[4]).abs() < 1e-9, "{t:?}");
+        assert!(t[0] < 0.05 && t[4] > 0.11 && t[2] > t[0] && t[2] < t[4], "{t:?}");
+        // A thickness ratio per station scales the section.
+        let scaled = plan_sections(&plan, &radii, 1.0, &[Some(0.08); 5], None).unwrap();
+        assert!(scaled.iter().all(|f| (f.max_thickness().0 - 0.08).abs() < 2e-3));
+    }
+
+    #[test]
+    fn names_propbet_knows_need_no_file() {
+        for n in ["E63", "clark-y", "APC12", "naca 4412", "SD7037"] {
+            assert!(is_known_name(n) && airfoil_by_name(n, None).is_ok(), "{n}");
+        }
+        let e = airfoil_by_name("nosuchfoil", None).unwrap_err().to_string();
+        assert!(e.contains("nosuchfoil") && e.contains("clarky"), "{e}");
+        let dir = Path::new("/case");
+        assert_eq!(resolve_in("e63", dir), ("e63".to_string(), vec![]));
+        let (t, files) = resolve_in("my.dat@0.2,APC12@0.5", dir);
+        assert_eq!(t, "/case/my.dat@0.2,APC12@0.5");
+        assert_eq!(files, vec![PathBuf::from("/case/my.dat")]);
+    }
+
+    #[test]
+    fn a_blade_table_reads_its_units_sections_and_refuses_bad_rows_by_line() {
+        let t = read_table(
+            "# stations\nr (mm),chord (mm),beta (deg),t/c,airfoil\n20,15,30,0.1,e63\n60,20,20,8%,clarky\n",
+            None,
+        )
+        .unwrap();
+        assert_eq!(t.rows.len(), 2);
+        assert!((t.rows[1].0 - 0.06).abs() < 1e-12 && (t.rows[1].1 - 0.02).abs() < 1e-12);
+        assert_eq!(t.thickness, vec![Some(0.1), Some(0.08)]);
+        assert_eq!(t.airfoils[1].as_deref(), Some("clarky"));
+        // Units from --units when the header gives none.
+        assert!(read_table("r,chord,beta\n1,1,30\n2,1,20\n", Some(0.0254)).is_ok());
+        for (text, says) in [
+            ("r,chord,beta\n1,1,30\n2,1,20\n", "name no unit"),
+            (
+                "r (mm),chord (mm),beta (deg)\n20,15,30\n10,15,30\n",
+                "line 3: the radius must increase",
+            ),
+            (
+                "r (mm),chord (mm),beta (deg)\n20,15,30\n30,x,30\n",
+                "line 3: chord 'x' is not a number",
+            ),
+            ("r (mm),chord (mm),beta (deg)\n20,15,95\n30,5,30\n", "line 2:"),
+            ("r (mm),chord (in),beta (deg)\n20,15,30\n", "same unit"),
+            ("r (mm),chord (mm),beta (rad)\n20,15,30\n", "degrees"),
+            ("r (mm),chord (mm),beta (deg)\n20,15,30\n", "fewer than two"),
+        ] {
+            let e = read_table(text, None).err().unwrap();
+            assert!(e.contains(says), "{text:?}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_pe0_blade_is_apcs_design_at_uiucs_stations_with_its_sections() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../props/apcsp_10x7/10x7-PERF.PE0"
+        ));
+        let d = read_design(path, &DesignOptions::default()).unwrap().unwrap();
+        let rows = &d.geometry.file.rows;
+        assert_eq!(rows.len(), 17, "r/R 0.20 to 1.00 (APC's first station is at r/R 0.24)");
+        assert!((rows.last().unwrap().r - 0.127).abs() < 1e-12);
+        let sections = d.sections.unwrap();
+        assert_eq!(sections.len(), rows.len());
+        assert!(
+            sections[0].contains("t/c 0.2") && d.description.contains("CLARK-Y"),
+            "{}",
+            d.description
+        );
+        // A QPROP file is not a design file.
+        let cam = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../props/cam6x3/cam6x3.qprop"));
+        assert!(read_design(cam, &DesignOptions::default()).unwrap().is_none());
+    }
 }

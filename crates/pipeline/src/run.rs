@@ -216,7 +216,11 @@ pub fn run_case(
             Ok((stages::polars(spec, &input, &engine, progress)?, input))
         };
         let (p, input) = run().map_err(|e| stage_err("polars", e))?;
-        book.done(t, p.clean_for(plan.predict.model.polars.is_some()), Finished::Polars(&p, &input));
+        book.done(
+            t,
+            p.clean_for(plan.predict.model.polars.is_some()),
+            Finished::Polars(&p, &input),
+        );
         polars = Some(p);
     }
 

@@ -132,7 +132,13 @@ pub fn accuracy(points: &[ComparedPoint]) -> (f64, f64, usize) {
 /// [`accuracy`] as JSON (null where no point has the quantity).
 pub fn accuracy_json(points: &[ComparedPoint]) -> serde_json::Value {
     let (ct, cp, n) = accuracy(points);
-    let num = |x: f64| if x.is_finite() { serde_json::json!(x) } else { serde_json::Value::Null };
+    let num = |x: f64| {
+        if x.is_finite() {
+            serde_json::json!(x)
+        } else {
+            serde_json::Value::Null
+        }
+    };
     serde_json::json!({"ct_median_error": num(ct), "cp_median_error": num(cp), "points": n,
         "measure": "median |predicted / measured - 1| below 85 % of the zero-thrust J (propbet validate's)"})
 }

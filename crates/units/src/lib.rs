@@ -230,3 +230,19 @@ pub fn at_most_tip(r: f64, tip: f64) -> f64 {
         r
     }
 }
+
+#[cfg(test)]
+mod radius_tests {
+    use super::*;
+
+    #[test]
+    fn radii_equal_but_for_rounding_are_the_same() {
+        let tip = 5.5 * 0.0254;
+        let read_back = 1.0 * tip + 1e-17 + 2.0 * f64::EPSILON * tip;
+        assert!(same_radius(tip, read_back) && read_back > tip);
+        assert_eq!(at_most_tip(read_back, tip), tip);
+        assert!(!same_radius(tip, tip * 1.001));
+        assert_eq!(at_most_tip(tip * 1.001, tip), tip * 1.001);
+        assert_eq!(at_most_tip(0.5 * tip, tip), 0.5 * tip);
+    }
+}

@@ -89,13 +89,7 @@ impl Case {
         Ok(match &self.polars {
             None => None,
             Some(p) => {
-                let airfoil = p.airfoil.as_ref().map(|a| {
-                    if propbet_polar::naca4_from_name(a).is_some() {
-                        a.clone()
-                    } else {
-                        f(a).display().to_string()
-                    }
-                });
+                let airfoil = p.airfoil.as_ref().map(|a| crate::design::resolve_in(a, dir).0);
                 let alpha = p.alpha.as_deref().unwrap_or(crate::settings::ALPHA.default);
                 let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
                 alphas.sort_by(f64::total_cmp);

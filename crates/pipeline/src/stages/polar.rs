@@ -98,7 +98,9 @@ pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
             return Ok(input);
         }
     } else if spec.sections_from.is_some() {
-        conflict!("--sections-from gives every station APC's section; --station-airfoils gives each its own: one of them");
+        conflict!(
+            "--sections-from gives every station APC's section; --station-airfoils gives each its own: one of them"
+        );
     }
     if spec.sections_from.is_some() {
         conflict!(
