@@ -170,7 +170,7 @@ pub fn stations(argv: &[String]) -> Result<Vec<u8>> {
     let Command::Prop(a) = parse(argv)? else {
         bail!("not a prop command: {}", argv.join(" "))
     };
-    let model = crate::predict::load_model(&a.model_spec()?, false)?;
+    let model = crate::prop::load(&a)?;
     let file = &model.loaded.file;
     let blade = file.to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
     let rows = (0..blade.r.len()).map(|i| {

@@ -22,13 +22,18 @@ pub struct ExportArgs {
     /// Output folder (created; files in it of the same names are replaced).
     #[arg(long, short)]
     pub out: PathBuf,
-    /// QPROP prop file: the propeller to predict (with --rpm), or, with --measured, where the
-    /// diameter, blade count and inertia come from.
+    /// The propeller to predict (with --rpm), or, with --measured, where the diameter, blade
+    /// count and inertia come from: a QPROP prop file, APC's design file (PE0), a UIUC geometry
+    /// table or a blade table, as `predict --prop` takes it.
     #[arg(long, required_unless_present = "measured")]
     pub prop: Option<PathBuf>,
     /// Tabulated polars for the prediction (`propbet polars --out-polars`), as `predict --polars`.
     #[arg(long, requires = "prop")]
     pub polars: Option<PathBuf>,
+    /// The sections of a blade file without coefficients (APC's PE0, a UIUC table, a blade
+    /// table), as `predict` takes them.
+    #[command(flatten)]
+    pub blade: crate::predict::BladeArgs,
     #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
     pub rotation: Option<String>,
     #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
@@ -159,11 +164,12 @@ impl ExportArgs {
         spec.effects = self.effect.clone();
         spec.user_effects = self.user_effects.clone();
         spec.polars = self.polars.clone();
+        spec.design = crate::predict::design_spec(prop, &self.blade)?;
         spec.rotation = Rotation::or_default(
             self.rotation.as_deref().map(Rotation::parse).transpose()?,
-            self.polars.is_some(),
+            spec.tabulated(),
         );
-        spec.drag_factor = drag_factor_or_default(self.drag_factor, self.polars.is_some());
+        spec.drag_factor = drag_factor_or_default(self.drag_factor, spec.tabulated());
         Ok(spec)
     }
 

@@ -121,27 +121,32 @@ pub struct BladeArgs {
     pub process: crate::polar::XfoilProcess,
 }
 
+/// The design spec of the blade file `prop`: Some for a blade file without coefficients,
+/// None for a QPROP prop file (where the sections' flags are refused).
+pub fn design_spec(prop: &std::path::Path, b: &BladeArgs) -> Result<Option<propbet_pipeline::spec::DesignSpec>> {
+    use propbet_pipeline::design::{format_of_file, BladeFormat};
+    if format_of_file(prop) == BladeFormat::Qprop {
+        if b.airfoil.is_some() || b.design.sections_from.is_some() {
+            anyhow::bail!(
+                "--airfoil / --sections-from: {} is a QPROP prop file, whose coefficients are its sections",
+                prop.display()
+            );
+        }
+        return Ok(None);
+    }
+    Ok(Some(propbet_pipeline::spec::DesignSpec {
+        airfoil: b.airfoil.clone(),
+        sections_from: b.design.sections_from.clone(),
+        airfoils: b.design.airfoils.clone(),
+        process: b.process.spec(),
+    }))
+}
+
 impl ModelArgs {
     /// The blade file's design spec: Some for a blade file without coefficients, None for a
     /// QPROP prop file (where the sections' flags are refused).
     fn design(&self) -> Result<Option<propbet_pipeline::spec::DesignSpec>> {
-        use propbet_pipeline::design::{format_of_file, BladeFormat};
-        let b = &self.blade;
-        if format_of_file(&self.prop) == BladeFormat::Qprop {
-            if b.airfoil.is_some() || b.design.sections_from.is_some() {
-                anyhow::bail!(
-                    "--airfoil / --sections-from: {} is a QPROP prop file, whose coefficients are its sections",
-                    self.prop.display()
-                );
-            }
-            return Ok(None);
-        }
-        Ok(Some(propbet_pipeline::spec::DesignSpec {
-            airfoil: b.airfoil.clone(),
-            sections_from: b.design.sections_from.clone(),
-            airfoils: b.design.airfoils.clone(),
-            process: b.process.spec(),
-        }))
+        design_spec(&self.prop, &self.blade)
     }
 
     /// The model's spec (flags in SI).

@@ -14,7 +14,8 @@ use crate::predict::load_model;
 /// Arguments of `propbet prop`.
 #[derive(Debug, Args)]
 pub struct PropArgs {
-    /// QPROP prop file.
+    /// The blade file: a QPROP prop file, APC's design file (PE0), a UIUC geometry table or a
+    /// blade table (CSV).
     pub file: PathBuf,
     #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
     pub units: Option<String>,
@@ -42,9 +43,28 @@ impl PropArgs {
     }
 }
 
+/// The blade file's model as `prop` shows it: a QPROP file as it is; APC's PE0, a UIUC table
+/// or a blade table as its stations with QPROP's generic coefficients (the polars of
+/// `predict` replace them).
+pub fn load(args: &PropArgs) -> Result<propbet_pipeline::model::Model> {
+    let spec = args.model_spec()?;
+    let opts = propbet_pipeline::design::DesignOptions {
+        units: spec.units,
+        ..Default::default()
+    };
+    match propbet_pipeline::design::read_design(&args.file, &opts)? {
+        Some(d) => Ok(propbet_pipeline::model::Model::from_loaded(
+            &ModelSpec { units: None, ..spec },
+            d.geometry,
+            false,
+        )?),
+        None => load_model(&spec, false),
+    }
+}
+
 /// Runs `propbet prop`.
 pub fn run(args: &PropArgs) -> Result<bool> {
-    let model = load_model(&args.model_spec()?, false)?;
+    let model = load(args)?;
     let (loaded, rotor) = (&model.loaded, &model.rotor);
     println!("name: {}", loaded.file.name);
     println!("blades: {}", rotor.blades);

@@ -432,12 +432,20 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
         (None, None, _) => (None, "no sections named".into()),
     };
     let description = format!("{} ({said})", format.name());
+    // The prop's name: APC's for its design file (`APC 10x7`), else the file's stem.
+    let label = match format {
+        BladeFormat::Pe0 => text
+            .split_whitespace()
+            .next()
+            .map_or_else(String::new, |n| format!("APC {}", propbet_units::printable(n))),
+        _ => path
+            .file_stem()
+            .and_then(|n| n.to_str())
+            .map(|s| propbet_units::printable(s.trim_end_matches("_geom")))
+            .unwrap_or_default(),
+    };
     let file = PropFile::metric(
-        format!(
-            "{} from {}",
-            description,
-            path.file_name().and_then(|n| n.to_str()).unwrap_or("?")
-        ),
+        format!("{label} ({description})"),
         opts.blades.unwrap_or(2.0),
         big_r,
         rows,

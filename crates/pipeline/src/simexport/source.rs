@@ -50,8 +50,19 @@ pub enum Said {
     LeftOut(String),
 }
 
-/// The model of a prop file, its warnings said.
-fn load(spec: &ModelSpec, say: &dyn Fn(Said)) -> Result<Model> {
+/// The model of a prop file, its warnings said; a blade file without coefficients has its
+/// polars computed over `points` (the export's operating points).
+fn load(
+    spec: &ModelSpec,
+    points: impl FnOnce() -> Result<(Vec<f64>, crate::spec::SweepAxis)>,
+    say: &dyn Fn(Said),
+) -> Result<Model> {
+    if spec.design.is_some() {
+        let (omegas, axis) = points()?;
+        let (model, _) = crate::model::design_model(spec, omegas, axis, false, &|_, _| {})?
+            .ok_or_else(|| crate::Error::Nothing("no design blade".into()))?;
+        return Ok(model);
+    }
     let model = Model::load(spec, false)?;
     for w in &model.loaded.warnings {
         say(Said::Warning(w.clone()));
@@ -92,7 +103,7 @@ fn rpms_text(omegas: &[f64]) -> String {
 
 /// The prediction's points (those that converged at every station).
 fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
-    let model = load(&spec.model, say)?;
+    let model = load(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), say)?;
     let (fluid, fluid_source) = spec.air.fluid()?;
     let ops = crate::stages::operating_points(spec, model.rotor.tip_radius)?;
     let results = crate::stages::sweep(&model, &fluid, &ops)?;
@@ -153,7 +164,16 @@ fn measured(
     say: &dyn Fn(Said),
 ) -> Result<Source> {
     use propbet_measure::{Loads, Speed};
-    let model = model_spec.as_ref().map(|s| load(s, say)).transpose()?;
+    let model = model_spec
+        .as_ref()
+        .map(|s| {
+            load(
+                s,
+                || crate::validate::cover(measured).map(|(o, j)| (o, crate::spec::SweepAxis::J(j))),
+                say,
+            )
+        })
+        .transpose()?;
     let diameter = match (&model, diameter) {
         (Some(m), _) => m.diameter,
         (None, Some(d)) => d,

@@ -294,6 +294,17 @@ class Prop:
         return prop
 
     @classmethod
+    def from_file(cls, path: PathLike, **options: Any) -> "Prop":
+        """The propeller you own, from what you have: APC's design file (PE0), a UIUC geometry
+        table, a blade table (CSV of ``r (mm)``, ``chord (mm)``, ``beta (deg)``, optionally
+        ``t/c`` and ``airfoil``) or a QPROP prop file. A file without section coefficients has
+        its polars computed at each prediction's operating points: ``engine="neuralfoil"`` (or
+        ``"xfoil"``, the default), ``airfoil="E63@0.25,APC12@0.45"`` (a UIUC table's sections),
+        ``sections_from=pe0_path`` (APC's sections on UIUC's measured blade); the other
+        ``options`` are :meth:`from_qprop`'s."""
+        return cls.from_qprop(path, **options)
+
+    @classmethod
     def from_scan(cls, path: PathLike, out: Optional[PathLike] = None, **options: Any) -> "Prop":
         """Blade geometry from a scan (STL mesh, PLY / COLMAP / XYZ cloud) by ``propbet scan``:
         ``options`` are its flags (``units="mm"``, ``stations="0.2:0.96/20"``,
