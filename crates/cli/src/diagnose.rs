@@ -128,10 +128,10 @@ pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
 
 /// The diagnosis on the terminal: verdict, where the baseline fails, ranking, ladder.
 pub fn print_result(d: &propbet_pipeline::diagnose::Diagnosis) {
-    println!("{}", report::verdict(d));
+    println!("{}", crate::output::wrapped(&report::verdict(d), "", ""));
     println!("where the baseline fails:");
     for s in &d.before {
-        println!("  {}", report::signature_text(s));
+        println!("{}", crate::output::wrapped(&report::signature_text(s), "  ", "    "));
     }
     println!("ranking (held-out RMS, p, significant):");
     for (i, s) in d.ranking.iter().enumerate() {
@@ -148,7 +148,7 @@ pub fn print_result(d: &propbet_pipeline::diagnose::Diagnosis) {
             ),
         }
         if let Some(r) = remark {
-            println!("      ({r})");
+            println!("{}", crate::output::wrapped(&format!("({r})"), "      ", "       "));
         }
     }
     println!("ladder (held-out error; the thrust error's trend with J at fixed RPM and with RPM at fixed J):");

@@ -39,7 +39,7 @@ mod validate;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
 #[derive(Debug, Parser)]
-#[command(name = "propbet", version, about, after_help = EXIT)]
+#[command(name = "propbet", version, about, after_help = EXIT, max_term_width = 100)]
 pub struct Cli {
     /// Worker threads for sweeps (default: all cores).
     #[arg(long, global = true)]

@@ -530,3 +530,17 @@ mod tests {
         }
     }
 }
+
+/// The terminal's width for propbet's sentences (and clap's help: `max_term_width`).
+pub const TERM_WIDTH: usize = 100;
+
+/// `text` wrapped at [`TERM_WIDTH`] columns, its first line after `first`, the others after
+/// `rest` (each an indent): a long sentence a person reads on a terminal.
+pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
+    let opts = textwrap::Options::new(TERM_WIDTH)
+        .initial_indent(first)
+        .subsequent_indent(rest)
+        .break_words(false)
+        .word_splitter(textwrap::WordSplitter::NoHyphenation);
+    textwrap::fill(text, opts)
+}

@@ -65,37 +65,67 @@ impl XfoilProcess {
     }
 }
 
-/// A progress bar on stderr for XFOIL jobs (drawn only when stderr is a terminal), hidden
-/// with `quiet`.
-pub struct Bar(indicatif::ProgressBar);
+/// A progress bar on stderr for polar jobs, drawn only when stderr is a terminal, hidden with
+/// `quiet`: made at the first job of a batch and cleared when the batch is done (or the bar is
+/// dropped), so that no bar is ever left on the terminal; labelled with the engine that makes the
+/// polars.
+pub struct Bar {
+    quiet: bool,
+    label: &'static str,
+    bar: std::sync::Mutex<Option<indicatif::ProgressBar>>,
+}
 
 impl Bar {
-    /// A bar; hidden when `quiet`.
-    pub fn new(quiet: bool) -> Self {
-        if quiet {
-            return Bar(indicatif::ProgressBar::hidden());
+    /// A bar for `engine`'s polars; never drawn when `quiet`.
+    pub fn new(quiet: bool, engine: propbet_pipeline::polar::Engine) -> Self {
+        let label = match engine {
+            propbet_pipeline::polar::Engine::NeuralFoil => "NeuralFoil",
+            _ => "XFOIL",
+        };
+        Bar {
+            quiet,
+            label,
+            bar: std::sync::Mutex::new(None),
         }
-        let b = indicatif::ProgressBar::new(0);
-        if let Ok(style) = indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} polars, {eta} left")
-        {
-            b.set_style(style.progress_chars("=> "));
-        }
-        b.set_prefix("XFOIL");
-        Bar(b)
     }
 
-    /// Clears the bar, drawn or not (a bar never left on the terminal).
+    /// Clears the bar, drawn or not.
     pub fn clear(&self) {
-        self.0.finish_and_clear();
+        if let Some(b) = self.bar.lock().unwrap_or_else(|e| e.into_inner()).take() {
+            b.finish_and_clear();
+        }
     }
 
-    /// The callback the polar engine calls.
+    /// The callback the polar engine calls: `done` of `total` jobs.
     pub fn tick(&self, done: usize, total: usize) {
-        self.0.set_length(total as u64);
-        self.0.set_position(done as u64);
-        if done == total {
-            self.0.finish_and_clear();
+        if self.quiet || total == 0 {
+            return;
         }
+        let mut slot = self.bar.lock().unwrap_or_else(|e| e.into_inner());
+        if done >= total {
+            if let Some(b) = slot.take() {
+                b.finish_and_clear();
+            }
+            return;
+        }
+        let b = slot.get_or_insert_with(|| {
+            let b = indicatif::ProgressBar::new(total as u64);
+            if let Ok(style) =
+                indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} polars, {eta} left")
+            {
+                b.set_style(style.progress_chars("=> "));
+            }
+            b.set_prefix(self.label);
+            b
+        });
+        b.set_length(total as u64);
+        b.set_position(done as u64);
+    }
+}
+
+impl Drop for Bar {
+    fn drop(&mut self) {
+        self.clear();
     }
 }
 
@@ -220,7 +250,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
             .xfoil
             .spec(propbet_pipeline::settings::AIRFOIL_NCRIT.default, None)?,
     };
-    let bar = Bar::new(spec.xfoil.process.quiet);
+    let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
     let section = stages::section(&spec, &foil, &|d, t| bar.tick(d, t))?;
     for (re, r) in &section.runs {
         match r {
@@ -424,7 +454,7 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
         eprintln!("propbet: warning: {w}");
     }
     let engine = stages::polar_engine(&spec.xfoil.process)?;
-    let bar = Bar::new(spec.xfoil.process.quiet);
+    let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
     let p = stages::polars(&spec, &input, &engine, &|d, t| bar.tick(d, t))?;
     print_polars(&spec, &input, &p);
     write_polars(&spec, &p)?;

@@ -181,13 +181,26 @@ pub fn load_model_at(
     }
     let (omegas, axis) = points()?;
     let quiet = spec.design.as_ref().is_some_and(|d| d.process.quiet);
-    let bar = crate::polar::Bar::new(quiet);
+    let bar = crate::polar::Bar::new(
+        quiet,
+        spec.design.as_ref().map(|d| d.process.engine).unwrap_or_default(),
+    );
     let (m, polars) = propbet_pipeline::model::design_model(spec, omegas, axis, keep_stations, &|d, t| bar.tick(d, t))?
         .ok_or_else(|| anyhow::anyhow!("{}: not a blade file without coefficients", spec.prop.display()))?;
     bar.clear();
-    for line in crate::polar::polars_brief(&polars) {
-        eprintln!("propbet: {}: {line}", spec.prop.display());
-    }
+    // What the polars are, in a line (the exported file's fidelity is no question here).
+    let name = spec
+        .prop
+        .file_name()
+        .map_or_else(|| spec.prop.display().to_string(), |n| n.to_string_lossy().into());
+    let brief: Vec<String> = crate::polar::polars_brief(&polars)
+        .into_iter()
+        .filter(|l| !l.starts_with("the exported QPROP file"))
+        .collect();
+    eprintln!(
+        "{}",
+        crate::output::wrapped(&format!("propbet: polars of {name}: {}", brief.join("; ")), "", "  ")
+    );
     if let Some(w) = &polars.cache_warning {
         eprintln!("propbet: warning: {w}");
     }
@@ -340,6 +353,23 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         eprintln!(
             "propbet: {failed} station solutions at {failed_points} operating points did not converge; \
              they are flagged in the per-station table"
+        );
+    }
+    // What it wrote, in one line (a table on standard output speaks for itself).
+    if let Some(out) = &spec.out {
+        let speeds = spec.omegas.len();
+        let points = speeds
+            * match &spec.axis {
+                SweepAxis::J(v) | SweepAxis::V(v) => v.len().max(1),
+            };
+        eprintln!(
+            "propbet predict: {points} operating points at {speeds} speed{} -> {}{}{}",
+            if speeds == 1 { "" } else { "s" },
+            out.display(),
+            spec.stations
+                .as_ref()
+                .map_or(String::new(), |s| format!(", stations -> {}", s.display())),
+            if spec.band { " (with the uncertainty band)" } else { "" }
         );
     }
     Ok(failed == 0)

@@ -163,7 +163,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
-    let bar = Bar::new(a.xfoil.quiet);
+    let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec().engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<serde_json::Value> = None;
     let mut write_err: Option<anyhow::Error> = None;

@@ -113,14 +113,14 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
     let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
-    let quiet = a.xfoil.quiet;
+    let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec().engine);
     let validation = validate_all(
         &spec,
         &props,
         generic.as_ref(),
         &mut |k, total, prop| {
             eprintln!("propbet validate [{}/{total}] {prop}", k + 1);
-            let bar = Bar::new(quiet);
+            let bar = Bar::new(quiet, engine);
             Box::new(move |d, t| bar.tick(d, t))
         },
         &mut |prop, v| {
