@@ -157,17 +157,31 @@ fn effect_lists<'a>(text: &'a str, after: &str) -> (Vec<&'a str>, Vec<&'a str>) 
 /// (package `chromium`, installed by scripts/setup.sh): a probe copy of the page with one line
 /// of script that writes the difference into the DOM Chromium dumps. Negative: it fits.
 fn overflow_px(report: &Path) -> i64 {
+    probe(
+        report,
+        "String(document.documentElement.scrollWidth - window.innerWidth)",
+        (1300, 900),
+    )
+    .parse()
+    .unwrap()
+}
+
+/// The value of a JavaScript expression `js` on the page at `report`, in headless Chromium at
+/// `window` (width, height) px: a probe copy of the page writes it into the DOM Chromium dumps.
+fn probe(report: &Path, js: &str, window: (u32, u32)) -> String {
     let dir = tempfile::tempdir().unwrap();
     let probe = dir.path().join("probe.html");
     let mut html = std::fs::read_to_string(report).unwrap();
-    html.push_str("<script>document.body.setAttribute('data-overflow', String(document.documentElement.scrollWidth - window.innerWidth));</script>");
+    html.push_str(&format!(
+        "<script>document.body.setAttribute('data-overflow', {js});</script>"
+    ));
     std::fs::write(&probe, html).unwrap();
     let out = Command::new("chromium")
         .args([
             "--headless",
             "--no-sandbox",
             "--disable-gpu",
-            "--window-size=1300,900",
+            &format!("--window-size={},{}", window.0, window.1),
             "--dump-dom",
         ])
         .arg(format!("--user-data-dir={}", dir.path().join("profile").display()))
@@ -185,7 +199,7 @@ fn overflow_px(report: &Path) -> i64 {
                 String::from_utf8_lossy(&out.stderr)
             )
         });
-    v.parse().unwrap()
+    v.to_string()
 }
 
 /// A CSV file's header and rows (quoted fields, such as a ladder's `q0=0,q1=...`, kept whole).

@@ -49,6 +49,16 @@ fn default_case_from_scan_to_report() {
         assert!(at(s) < at("id=\"geometry\""), "{s} after the geometry");
     }
     diagnosis_agrees(&dir.path().join("out/diagnose"), &html);
+    // The calibrated model's regimes worse than the prediction: in summary.json, and on the
+    // first screen exactly when there are any.
+    let worse = summary["calibrated_worse"].as_array().unwrap();
+    assert_eq!(
+        !worse.is_empty(),
+        html.contains("The calibrated model (the prediction with these effects) is worse")
+    );
+    for w in worse {
+        assert!(html.contains(w.as_str().unwrap().split(" (").next().unwrap()), "{w}");
+    }
     export_command_runs(&html, dir.path(), &out);
     outputs_geometry_and_polars(&out);
     prediction_against_the_measurements(&out);
@@ -579,6 +589,44 @@ fn the_tours_commands_under_a_terminal() {
             assert!(
                 !(shown.contains("XFOIL [") && cmd.contains("neuralfoil")),
                 "`{cmd}`: {shown:?}"
+            );
+        }
+    }
+}
+
+/// The report's first screen (1400 x 900 in headless Chromium) holds the verdict and one figure,
+/// measured against predicted: on the default case and on the PE0 case.
+#[test]
+#[ignore = "slow: headless Chromium (scripts/test.sh runs it)"]
+fn the_reports_first_screen_holds_the_verdict_and_a_figure() {
+    let dir = tempfile::tempdir().unwrap();
+    for (case, name) in [("props/apcsf_10x4.7", "sf"), ("props/apcsp_10x7", "apc")] {
+        let case = repo().join(case).display().to_string();
+        let o = run(
+            &["run", &case, "--engine", "neuralfoil", "-o", name, "--quiet"],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let report = dir.path().join(name).join("report.html");
+        let html = std::fs::read_to_string(&report).unwrap();
+        let verdict = html.find("id=\"verdict\"").expect("the verdict block");
+        assert!(verdict < html.find("How close the prediction is").unwrap());
+        assert!(html[verdict..].contains("median error") && html[verdict..].contains("<svg"));
+        // The bottom of the figure and of the verdict's text, in px from the top of the page.
+        let bottom = |sel: &str| -> f64 {
+            super::probe(
+                &report,
+                &format!("String(document.querySelector('{sel}').getBoundingClientRect().bottom)"),
+                (1400, 900),
+            )
+            .parse()
+            .unwrap()
+        };
+        for sel in ["#verdict figure svg", "#verdict > div"] {
+            let b = bottom(sel);
+            assert!(
+                b > 100.0 && b <= 900.0,
+                "{name}: {sel} ends at {b} px, below the first screen"
             );
         }
     }

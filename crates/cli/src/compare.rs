@@ -212,7 +212,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     // A reference that cannot be read stops the command before anything is computed.
     let other = Reference::load(&spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;
-    let (_, reference) = write(&spec, &model, &c, other.as_ref())?;
+    let (_, reference, _) = write(&spec, &model, &c, other.as_ref())?;
     print(&spec, &c, reference.as_ref());
     Ok(c.clean())
 }
@@ -226,7 +226,7 @@ pub fn write(
     model: &Model,
     c: &Compared,
     other: Option<&Reference>,
-) -> Result<(String, Option<serde_json::Value>)> {
+) -> Result<(String, Option<serde_json::Value>, Option<propbet_plot::Figure>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
     let curves = propbet_pipeline::compare::curves::curves(&setup, &c.points)?;
     let band = propbet_pipeline::band::BandSpec::for_model(model).along_curves(model, c.air, &c.points, &curves)?;
@@ -299,7 +299,8 @@ pub fn write(
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;
     let reference = rep.json.get("reference").cloned();
-    Ok((rep.body, reference))
+    let lead = report::lead_figure(&rep.figures);
+    Ok((rep.body, reference, lead))
 }
 
 /// Another code's prediction a comparison names (`--per3` or `--qprop-output`), read once.

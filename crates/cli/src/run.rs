@@ -166,6 +166,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec().engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<serde_json::Value> = None;
+    let mut lead: Option<propbet_plot::Figure> = None;
     let mut write_err: Option<anyhow::Error> = None;
     let verbose = a.verbose;
     let outcome = run_case(&plan, &|d, t| bar.tick(d, t), &mut |e| match e {
@@ -185,6 +186,9 @@ pub fn run(a: &RunArgs) -> Result<bool> {
                         if w.reference.is_some() {
                             reference = w.reference;
                         }
+                        if w.lead.is_some() {
+                            lead = w.lead;
+                        }
                         lines = w.brief;
                     }
                     Err(e) => write_err = Some(e),
@@ -200,7 +204,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // The report.
     let t0 = Instant::now();
     let total = outcome.stages.len() + 1;
-    let html = propbet_report::run::page(&plan, &outcome, &pages, reference.as_ref())?;
+    let html = propbet_report::run::page(&plan, &outcome, &pages, reference.as_ref(), lead.as_ref())?;
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
     let mut summary = serde_json::to_vec_pretty(&propbet_report::run::summary_json(&plan, &outcome))?;
@@ -249,6 +253,8 @@ struct Written {
     page: Option<String>,
     /// Another code's prediction scored beside propbet's (compare's reference headline).
     reference: Option<serde_json::Value>,
+    /// The figure the run's report leads with (compare's).
+    lead: Option<propbet_plot::Figure>,
     /// The stage's short status: its first line, then a few details (empty with `--verbose`,
     /// which prints the stage's own full output instead).
     brief: Vec<String>,
@@ -260,6 +266,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
     let mut w = Written {
         page: None,
         reference: None,
+        lead: None,
         brief: Vec::new(),
     };
     match (&record.spec, made) {
@@ -316,7 +323,8 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::Reference::load(spec, model.diameter)?;
-            let (page, reference) = crate::compare::write(spec, model, c, other.as_ref())?;
+            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref())?;
+            w.lead = lead;
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());
             }

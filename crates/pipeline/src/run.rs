@@ -66,6 +66,9 @@ pub enum Event<'a> {
 
 /// Everything a run made.
 pub struct RunOutcome {
+    /// The calibrated model's scores at the measured points (the prediction with the
+    /// diagnosis's effects), where the diagnosis found effects.
+    pub calibrated: Option<propbet_compare::metrics::Metrics>,
     /// The scan (cases with a scan).
     pub scanned: Option<Scanned>,
     /// The polars (cases with `[polars]`).
@@ -256,7 +259,19 @@ pub fn run_case(
         book.done(t, true, Finished::Diagnose(&d));
         diagnosed = Some(d);
     }
+    // The calibrated model (the prediction with the diagnosis's effects) at the measured
+    // points: where it is worse than the prediction, the report says so.
+    let calibrated = match (&compared, &diagnosed) {
+        (Some(c), Some(d)) if d.diagnosis.found => {
+            let setup = stages::setup(&model, c.air, d.diagnosis.final_stack.clone());
+            propbet_compare::compare(&setup, &c.sets)
+                .ok()
+                .map(|p| propbet_compare::metrics::metrics(&p))
+        }
+        _ => None,
+    };
     Ok(RunOutcome {
+        calibrated,
         scanned,
         polars,
         model,

@@ -511,6 +511,19 @@ fn figures(input: &ReportInput, reference: Option<&Scored>) -> Vec<(String, Figu
     figures
 }
 
+/// The figure a report leads with, from its figures: measured against predicted CT and CP over
+/// J (the J sweeps, with the band), or thrust and torque over RPM for static data alone; compact
+/// (two panels, 900 x 380 px) for the first screen.
+pub fn lead_figure(figures: &[(String, Figure)]) -> Option<Figure> {
+    let (_, f) = figures.iter().find(|(n, _)| n == "coefficients" || n == "static")?;
+    let mut f = f.clone();
+    f.panels.truncate(2);
+    f.columns = 2;
+    f.width = 900;
+    f.height = 380;
+    Some(f)
+}
+
 /// What the shaded band is, for the figures' captions.
 fn band_caption(sources: &str) -> String {
     format!("shaded: the prediction's uncertainty band ({sources}; each solved at both ends, their root-sum-square)")

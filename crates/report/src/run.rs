@@ -17,11 +17,13 @@ pub fn page(
     run: &RunOutcome,
     pages: &[(&'static str, String)],
     reference: Option<&serde_json::Value>,
+    lead: Option<&Figure>,
 ) -> Result<String, PlotError> {
     let mut h = String::with_capacity(4_000_000);
     let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
+    lead_html(&mut h, run, lead, reference)?;
     if !plan.description.is_empty() {
-        let _ = writeln!(h, "<p>{}</p>", esc(&plan.description));
+        let _ = writeln!(h, "<p class=\"note\">{}</p>", esc(&plan.description));
     }
     answer_html(&mut h, run, reference);
     h.push_str(&outputs_html(plan, run));
@@ -56,6 +58,91 @@ pub fn page(
     }
     notes_html(&mut h, &problems);
     Ok(crate::page::page(&format!("propbet run: {}", plan.name), "", &h))
+}
+
+/// The first screen: the verdict in a few sentences (how close, validate's measure; what is
+/// missing; where the calibrated model is worse than the prediction) beside one figure,
+/// measured against predicted (`lead`, with the band).
+fn lead_html(
+    h: &mut String,
+    run: &RunOutcome,
+    lead: Option<&Figure>,
+    reference: Option<&serde_json::Value>,
+) -> Result<(), PlotError> {
+    let Some(c) = &run.compared else { return Ok(()) };
+    h.push_str("<div id=\"verdict\" style=\"display:flex;gap:1.5em;align-items:flex-start;flex-wrap:wrap\">\n<div style=\"flex:1 1 360px;font-size:1.05em\">\n");
+    let (ct, cp, n) = crate::compare::accuracy(&c.points);
+    if n > 0 {
+        let _ = writeln!(
+            h,
+            "<p><strong>The prediction's median error: {:.1} % in CT, {:.1} % in CP</strong> (|predicted / measured − 1| over {n} points below 85 % of the zero-thrust J, as <code>propbet validate</code> scores).</p>",
+            100.0 * ct,
+            100.0 * cp
+        );
+    }
+    for r in crate::answer::headline_rows(&c.metrics, None) {
+        let errs: Vec<String> = r
+            .errors
+            .iter()
+            .map(|(q, m, _)| format!("{q} {:+.1} %", 100.0 * m.mean_rel))
+            .collect();
+        let name = r.name.split(',').next().unwrap_or(&r.name).to_string();
+        let _ = writeln!(
+            h,
+            "<p>{} ({} points): {} mean error.</p>",
+            esc(&name),
+            r.points,
+            errs.join(", ")
+        );
+    }
+    if let Some(d) = &run.diagnosed {
+        let _ = writeln!(h, "<p>{}</p>", esc(&crate::diagnose::verdict(&d.diagnosis)));
+    }
+    if let Some(cal) = &run.calibrated {
+        let worse = calibrated_worse(&c.metrics, cal);
+        if !worse.is_empty() {
+            let _ = writeln!(
+                h,
+                "<p class=\"warn\">The calibrated model (the prediction with these effects) is worse than the prediction in {}: it fits the measurements as a whole, not each regime.</p>",
+                esc(&worse.join("; "))
+            );
+        }
+    }
+    h.push_str("</div>\n");
+    if let Some(f) = lead {
+        let _ = writeln!(
+            h,
+            "<figure style=\"flex:0 1 900px;margin:0\">{}<figcaption class=\"note\">Dots: measured, one colour per speed; lines: propbet's prediction; shaded: its uncertainty band{}.</figcaption></figure>",
+            propbet_plot::svg_inline(f)?,
+            reference.map_or(String::new(), |r| format!("; dashed: {}", esc(&crate::answer::reference_name(r))))
+        );
+    }
+    h.push_str("</div>\n");
+    Ok(())
+}
+
+/// The regimes and quantities where the calibrated model's mean |error| is larger than the
+/// prediction's by more than a point: "static thrust (mean error −10.4 % → +17.0 %)".
+pub fn calibrated_worse(
+    prediction: &propbet_compare::metrics::Metrics,
+    calibrated: &propbet_compare::metrics::Metrics,
+) -> Vec<String> {
+    let before = crate::answer::headline_rows(prediction, None);
+    let after = crate::answer::headline_rows(calibrated, None);
+    let mut out = Vec::new();
+    for (b, a) in before.iter().zip(&after) {
+        for ((q, mb, _), (_, ma, _)) in b.errors.iter().zip(&a.errors) {
+            if ma.mean_abs_rel > mb.mean_abs_rel + 0.01 {
+                let name = b.name.split(',').next().unwrap_or(&b.name);
+                out.push(format!(
+                    "{name} {q} (mean error {:+.1} % → {:+.1} %)",
+                    100.0 * mb.mean_rel,
+                    100.0 * ma.mean_rel
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The answer first: how close the prediction is and what is missing.
@@ -425,6 +512,12 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "notes": problems.iter().filter(|p| run.stages.iter().any(|s| s.clean && s.spec.name() == p["stage"])).collect::<Vec<_>>(),
         "headline": headline,
         "accuracy": run.compared.as_ref().map(|c| crate::compare::accuracy_json(&c.points)),
+        // Where the calibrated model (the prediction with the diagnosis's effects) is worse
+        // than the prediction (the report's first screen says it too).
+        "calibrated_worse": match (&run.compared, &run.calibrated) {
+            (Some(c), Some(cal)) => json!(calibrated_worse(&c.metrics, cal)),
+            _ => json!([]),
+        },
         "diagnosis": diagnosis,
         "polars": polars,
         "qprop_export": match &run.qprop_export {
