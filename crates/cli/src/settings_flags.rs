@@ -132,3 +132,63 @@ fn the_book_lists_every_setting_as_declared() {
         "docs/settings.md's table differs from the declarations; the table they make:\n{table}"
     );
 }
+
+/// Every default a page of the book (and the README) states for a setting, next to its case key
+/// (`trip = 0.5 (default "free")`) or its flag (`--ncrit ... (default 5)`), is the declared one:
+/// a page cannot keep an old default after the code changed it.
+#[test]
+fn every_default_the_book_states_is_the_declared_one() {
+    let root = crate::tests::repo();
+    let mut pages: Vec<std::path::PathBuf> = vec![root.join("README.md")];
+    let mut dirs = vec![root.join("docs")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "md") {
+                pages.push(p);
+            }
+        }
+    }
+    let mut checked = 0;
+    for page in &pages {
+        let text = std::fs::read_to_string(page).unwrap();
+        for (n, line) in text.lines().enumerate() {
+            for s in settings::all().iter().filter(|s| !s.default.is_empty()) {
+                let key = s.key.rsplit(' ').next().unwrap_or_default();
+                let flag = format!("--{}", s.flag);
+                for name in [key, flag.as_str()].into_iter().filter(|k| !k.is_empty()) {
+                    // `name ... (default V)` within a few words of the name, on one line.
+                    let Some(at) = line
+                        .find(&format!("{name} "))
+                        .or_else(|| line.find(&format!("{name} =")))
+                    else {
+                        continue;
+                    };
+                    let rest = &line[at + name.len()..];
+                    let Some(d) = rest.find("(default ") else { continue };
+                    if d > 24 || rest[..d].contains(',') {
+                        continue;
+                    }
+                    let value = rest[d + "(default ".len()..]
+                        .split([')', ';', ','])
+                        .next()
+                        .unwrap_or_default()
+                        .trim()
+                        .trim_matches(['"', '`']);
+                    assert_eq!(
+                        value,
+                        s.default,
+                        "{}:{}: `{name}` says its default is {value}, the declaration {}: {line}",
+                        page.display(),
+                        n + 1,
+                        s.default
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 1, "no stated default found: the test reads nothing");
+}

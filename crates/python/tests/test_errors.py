@@ -112,13 +112,46 @@ def test_the_package_functions_refuse_them_too(tmp_path):
         propbet.read_measurements(f"{B}/stand_thrust_1e308.csv")
 
 
-def test_propbets_warnings_are_python_warnings_and_its_messages_reach_sys_stderr(capsys):
-    """A notebook shows sys.stdout and sys.stderr, not the process's own: what propbet prints
-    goes through them, its warnings as PropbetWarning."""
+def test_propbets_warnings_are_python_warnings_and_its_messages_reach_sys_stderr(capsys, monkeypatch, caplog):
+    """A notebook shows sys.stdout and sys.stderr, not the process's own: with
+    ``propbet.verbose`` what propbet prints goes through them; without it, only to the
+    ``propbet`` logger; its warnings are PropbetWarning either way."""
     with pytest.warns(propbet.PropbetWarning, match="QPROP 1.22 takes it unscaled"):
         propbet.Prop.from_qprop("props/photofoil_8x4.5/QProp_8x4_5.txt").predict(rpm=5000)
+    args = ("props/photofoil_8x4.5/QProp_8x4_5.txt", "props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv")
     capsys.readouterr()
-    result = propbet.compare("props/photofoil_8x4.5/QProp_8x4_5.txt", "props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv", rho=1.1648)
+    with caplog.at_level("INFO", logger="propbet"):
+        result = propbet.compare(*args, rho=1.1648)
+    printed = capsys.readouterr()
+    assert printed.out == "" and printed.err == "", printed
+    assert any("12 rows -> 11 points" in r.getMessage() for r in caplog.records)
+    monkeypatch.setattr(propbet, "verbose", True)
+    result = propbet.compare(*args, rho=1.1648)
     printed = capsys.readouterr()
     assert f"report: {result.report}" in printed.out
     assert "12 rows -> 11 points" in printed.err
+
+
+def test_calls_leave_no_files_behind_unless_given_out(tmp_path, monkeypatch):
+    """A call without ``out=`` writes into a temporary folder that goes with the object it
+    returned; with ``out=`` the files stay."""
+    import gc
+
+    monkeypatch.setattr(propbet.tempfile, "tempdir", str(tmp_path))
+    args = ("props/photofoil_8x4.5/QProp_8x4_5.txt", "props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv")
+    result = propbet.compare(*args, rho=1.1648)
+    folder = result.folder
+    assert folder.parent == tmp_path and result.report.is_file()
+    del result
+    gc.collect()
+    assert not folder.exists() and list(tmp_path.iterdir()) == []
+    kept = propbet.compare(*args, rho=1.1648, out=tmp_path / "kept")
+    del kept
+    gc.collect()
+    assert (tmp_path / "kept" / "report.html").is_file()
+
+
+def test_a_column_pandas_owns_is_renamed():
+    sweep = propbet.Prop.from_qprop("props/cam6x3/cam6x3.qprop").predict(rpm=3000, j=[0, 0.5])
+    assert "flags" not in sweep.columns and list(sweep.point_flags) == ["", ""]
+    assert propbet.column_name("flags") == "point_flags" and propbet.column_name("ct") == "ct"

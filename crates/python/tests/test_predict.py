@@ -62,7 +62,7 @@ def test_the_case_model_predicts_what_run_writes(tmp_path, same_as_file):
     assert prop.polars_file is not None and prop.polars_file.is_file()
     result = propbet.run("props/apcsf_10x4.7", out=tmp_path / "run")
     assert result.summary["case"] == "APC 10x4.7 Slow Flyer"
-    assert not result.ok  # the run reports problems (its polars' notes), exit status 1
+    assert result.ok  # its polars' notes are no problems: exit status 0
     sweep = prop.predict(band=True)
     same_as_file(sweep, result.folder / "predict" / "sweep.csv")
     assert result.report.is_file() and result.diagnosis["final_effects"]
@@ -115,3 +115,14 @@ def test_a_stage_command_line_splits_into_flags_and_values():
     assert list(propbet._pairs(argv)) == [
         ["--geometry", "g.qprop"], ["--no-cache"], ["--airfoil", "e63.dat"], ["--dbeta", "-1.5"], ["--rpm=4000"], ["--band"],
     ]
+
+
+def test_the_propeller_you_own_from_apcs_design_file(cli, tmp_path, same_as_file):
+    """APC's PE0 file as it is: the same table as the command line's."""
+    pe0 = "props/apcsp_10x7/10x7-PERF.PE0"
+    prop = propbet.Prop.from_file(pe0, engine="neuralfoil")
+    assert len(prop.stations) == 17
+    sweep = prop.predict(rpm=5000, j=[0, 0.2, 0.4, 0.6])
+    cli("predict", "--prop", pe0, "--engine", "neuralfoil", "--rpm", "5000", "--j", "0,0.2,0.4,0.6", "-o", tmp_path / "s.csv")
+    same_as_file(sweep, tmp_path / "s.csv")
+    assert sweep.ct.is_monotonic_decreasing and sweep.ct.iloc[0] > 0.1

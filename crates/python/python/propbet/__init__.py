@@ -11,13 +11,19 @@ writes. Nothing is computed twice: the numbers are the command line's.
     sweep = prop.predict(rpm=[4000, 6000], j=np.arange(0, 0.61, 0.05))
 
 Bad input raises :class:`InputError` with the command line's message (the file, line or value);
-the GIL is released while propbet computes.
+the GIL is released while propbet computes. Calls are quiet: propbet's warnings are
+:class:`PropbetWarning`, the rest of what the command line would print goes to the ``propbet``
+logger (``logging.INFO``), and to ``sys.stdout`` / ``sys.stderr`` as well with
+``propbet.verbose = True``. A call writes no file unless given ``out=`` (its temporary folder
+goes with the object it returned). A column whose name a DataFrame already uses as an attribute
+is renamed: ``flags`` is ``point_flags`` (``sweep.point_flags``).
 """
 
 from __future__ import annotations
 
 import io
 import json
+import logging
 import math
 import numbers
 import os
@@ -54,6 +60,24 @@ __all__ = [
 __version__ = _native.__version__
 
 PathLike = Union[str, "os.PathLike[str]"]
+
+verbose = False
+"""True: what the command line would print is written to ``sys.stdout`` and ``sys.stderr``
+too (it always goes to the ``propbet`` logger)."""
+
+_log = logging.getLogger("propbet")
+
+# Columns whose names a DataFrame owns as attributes (`df.flags`), renamed in the package's
+# tables; any other such name gets a trailing underscore.
+_COLUMN_NAMES = {"flags": "point_flags"}
+
+
+def column_name(name: str) -> str:
+    """The package's name of a column of propbet's files: the same, except where a DataFrame
+    attribute has it (``flags`` -> ``point_flags``)."""
+    if name in _COLUMN_NAMES:
+        return _COLUMN_NAMES[name]
+    return name + "_" if hasattr(pd.DataFrame, name) else name
 
 # Flags given once per value (`--effect a --effect b`); every other list is comma-joined.
 _REPEATED = {"effect"}
@@ -124,14 +148,14 @@ def _csv(data: bytes) -> pd.DataFrame:
     for name in table.columns:
         if not pd.api.types.is_numeric_dtype(table[name]):
             table[name] = table[name].fillna("")
-    return table
+    return table.rename(columns=column_name)
 
 
 def _frame(columns: Sequence[tuple]) -> pd.DataFrame:
     """A table propbet handed over as columns (name, kind, values): numbers as arrays."""
     data = {}
     for name, kind, values in columns:
-        data[name] = values if kind == "str" else np.frombuffer(values, dtype=np.dtype(kind)).copy()
+        data[column_name(name)] = values if kind == "str" else np.frombuffer(values, dtype=np.dtype(kind)).copy()
     return pd.DataFrame(data)
 
 
@@ -143,12 +167,14 @@ def _read_json(path: Path) -> Any:
     return json.loads(path.read_text()) if path.is_file() else None
 
 
-def _folder(out: Optional[PathLike], prefix: str) -> Path:
-    """The output folder: ``out``, or a new temporary folder (kept: the report is in it)."""
+def _folder(out: Optional[PathLike], prefix: str) -> tuple:
+    """The output folder: ``out``, or a new temporary folder, removed with the object the call
+    returns (which holds the second value, its owner; None for ``out``)."""
     if out is None:
-        return Path(tempfile.mkdtemp(prefix=f"propbet-{prefix}-"))
+        scratch = tempfile.TemporaryDirectory(prefix=f"propbet-{prefix}-")
+        return Path(scratch.name), scratch
     Path(out).mkdir(parents=True, exist_ok=True)
-    return Path(out)
+    return Path(out), None
 
 
 class PropbetWarning(UserWarning):
@@ -166,13 +192,18 @@ def _relay(out: Any, err: Any) -> None:
     out.seek(0)
     err.seek(0)
     printed, errors = (f.read().decode("utf-8", "replace") for f in (out, err))
-    if printed:
+    for line in printed.splitlines():
+        if line.strip():
+            _log.info(line)
+    if printed and verbose:
         sys.stdout.write(printed)
     for line in errors.splitlines():
         if line.startswith("propbet: warning: "):
             warnings.warn(line[len("propbet: warning: ") :], PropbetWarning, stacklevel=4)
         elif line.strip():
-            sys.stderr.write(line + "\n")
+            _log.info(line)
+            if verbose:
+                sys.stderr.write(line + "\n")
 
 
 def _relayed(call: Callable[[], Any]) -> Any:
@@ -266,6 +297,7 @@ class Prop:
         self._sections = list(sections)
         self._sweep = list(sweep)
         self._air = list(air_flags)
+        self._scratch: Any = None
 
     def __repr__(self) -> str:
         polars = f", polars={str(self.polars_file)!r}" if self.polars_file else ""
@@ -311,13 +343,15 @@ class Prop:
         ``blade_colour=...``, ``reference=path``, ...). Written into ``out`` (a new temporary
         folder without it); the prop is the scan's ``prop.qprop``, its sections the scan's
         airfoils."""
-        folder = _folder(out, "scan")
+        folder, scratch = _folder(out, "scan")
         ok = execute("scan", os.fspath(path), "-o", str(folder), *_flags(options))
         if not ok:
             warnings.warn(f"propbet scan: some stations could not be measured or fitted (see {folder})")
         airfoils = folder / "airfoils"
         sections = ["--station-airfoils", str(airfoils)] if airfoils.is_dir() else []
-        return cls(folder / "prop.qprop", sections=sections, folder=folder)
+        prop = cls(folder / "prop.qprop", sections=sections, folder=folder)
+        prop._scratch = scratch
+        return prop
 
     @classmethod
     def from_case(cls, case: PathLike, out: Optional[PathLike] = None) -> "Prop":
@@ -325,7 +359,7 @@ class Prop:
         ``propbet run`` runs them, into ``out`` (a new temporary folder without it); the
         prediction's model flags, air and sweep are the case's (``predict()`` without
         ``rpm`` sweeps the case's operating points)."""
-        folder = _folder(out, "case")
+        folder, scratch = _folder(out, "case")
         stages = _native.case_stages(os.fspath(case), str(folder))
         geometry, sections, predict = None, [], None
         for argv in stages:
@@ -347,10 +381,12 @@ class Prop:
         prop = _value(model, "--prop")
         polars = _value(model, "--polars")
         rest = _without(model, {"--prop", "--polars"})
-        return cls(
+        made = cls(
             prop, polars=polars, model_flags=rest, geometry=geometry, sections=sections,
             folder=folder, sweep=sweep, air_flags=air,
         )
+        made._scratch = scratch
+        return made
 
     @property
     def stations(self) -> pd.DataFrame:
@@ -380,7 +416,7 @@ class Prop:
         ``ncrit``, ``trip``, ``airfoil`` (a file or a NACA 4-digit name; the scan's sections
         without it), and the command's other flags. Returns the prop with the tables as its
         section model; files in ``out`` (a new temporary folder without it)."""
-        folder = _folder(out, "polars")
+        folder, scratch = _folder(out, "polars")
         sections = ["--airfoil", os.fspath(airfoil)] if airfoil is not None else self._sections
         if not sections:
             raise InputError(
@@ -393,11 +429,14 @@ class Prop:
         ]
         if not execute(*argv):
             warnings.warn(f"propbet polars: some stations were not fitted or XFOIL faulted ({folder})")
-        return Prop(
+        made = Prop(
             folder / "prop.qprop", polars=folder / "polars.json", model_flags=self._model_flags,
             geometry=self.geometry, sections=self._sections, folder=folder, sweep=self._sweep,
             air_flags=self._air,
         )
+        # The temporary folder lives as long as the props that read from it.
+        made._scratch = (scratch, getattr(self, "_scratch", None))
+        return made
 
     def predict(
         self,
@@ -527,6 +566,7 @@ class Comparison:
     report: Path
     folder: Path
     ok: bool
+    _scratch: Any = field(default=None, repr=False, compare=False)
 
     def __iter__(self) -> Iterator[Any]:
         return iter((self.metrics, self.points))
@@ -550,7 +590,7 @@ def compare(
     (``per3=path``, ``poles=14``, ``atmosphere="20C,101325,40%"``, ``columns=path``, ...).
     Files in ``out`` (a new temporary folder without it)."""
     prop = _prop(prop)
-    folder = _folder(out, "compare")
+    folder, scratch = _folder(out, "compare")
     ok = execute("compare", *prop.model_args(), *_measured_args(measured, options), "--out", str(folder))
     return Comparison(
         metrics=_read_json(folder / "metrics.json"),
@@ -559,6 +599,7 @@ def compare(
         report=folder / "report.html",
         folder=folder,
         ok=ok,
+        _scratch=scratch,
     )
 
 
@@ -577,6 +618,7 @@ class Diagnosis:
     report: Path
     folder: Path
     ok: bool
+    _scratch: Any = field(default=None, repr=False, compare=False)
 
 
 def diagnose(
@@ -589,7 +631,7 @@ def diagnose(
     (``effects="all"`` or a list of ids, ``folds``, ``max_steps``, ``window``, the measurement
     flags). Files in ``out`` (a new temporary folder without it)."""
     prop = _prop(prop)
-    folder = _folder(out, "diagnose")
+    folder, scratch = _folder(out, "diagnose")
     options = dict(options)
     candidates = options.pop("effects", None)
     if candidates is not None and not isinstance(candidates, str):
@@ -611,6 +653,7 @@ def diagnose(
         report=folder / "report.html",
         folder=folder,
         ok=ok,
+        _scratch=scratch,
     )
 
 
@@ -628,6 +671,7 @@ class RunResult:
     report: Path
     folder: Path
     ok: bool
+    _scratch: Any = field(default=None, repr=False, compare=False)
 
 
 def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **options: Any) -> RunResult:
@@ -635,7 +679,7 @@ def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **optio
     one): scan, polars, sweeps, comparison, diagnosis and one report, in ``out`` (a new
     temporary folder without it). ``options``: ``verbose``, ``xfoil``, ``cache``, ...
     """
-    folder = _folder(out, "run")
+    folder, scratch = _folder(out, "run")
     argv = ["run"] + ([os.fspath(case)] if case is not None else []) + ["-o", str(folder)] + _flags(options)
     ok = execute(*argv)
     return RunResult(
@@ -646,6 +690,7 @@ def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **optio
         report=folder / "report.html",
         folder=folder,
         ok=ok,
+        _scratch=scratch,
     )
 
 
@@ -659,6 +704,7 @@ class Validation:
     report: Path
     folder: Path
     ok: bool
+    _scratch: Any = field(default=None, repr=False, compare=False)
 
 
 def validate(
@@ -671,7 +717,7 @@ def validate(
     """Validation on UIUC's measurements (``propbet validate``): ``options`` are its flags
     (``per3=path``, ``only="apce_9x6"`` or a list, ``engine="neuralfoil"``, ``quiet=True``,
     ``trip``, ``ncrit``, ...). Files in ``out`` (a new temporary folder without it)."""
-    folder = _folder(out, "validate")
+    folder, scratch = _folder(out, "validate")
     options = dict(options)
     only = options.pop("only", None)
     if only is not None and not isinstance(only, str):
@@ -686,4 +732,5 @@ def validate(
         report=folder / "validation.html",
         folder=folder,
         ok=ok,
+        _scratch=scratch,
     )
