@@ -363,7 +363,51 @@ fn a_pe0_case_reproduces_validates_row() {
     let num = |r: &[String], c: &str| -> f64 { r[col(&h, c)].parse().unwrap() };
 
     // The second case: UIUC's measured 9x4.7 SF with the sections of its PE0 file.
-    let case = dir.path().join("apcsf_9x4.7");
+    let case = uiuc_table_with_pe0_case(dir.path(), &uiuc, &pe0);
+    for (prop, case_dir) in [
+        ("apcsp_10x7", repo().join("props/apcsp_10x7")),
+        ("apcsf_9x4.7", case.clone()),
+    ] {
+        let v = row(prop);
+        let out = dir.path().join(format!("run_{prop}"));
+        let o = run(
+            &[
+                "run",
+                case_dir.to_str().unwrap(),
+                "--cache",
+                "cache",
+                "--quiet",
+                "-o",
+                out.to_str().unwrap(),
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{prop}: {}", stderr(&o));
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        let acc = &s["accuracy"];
+        assert_eq!(
+            acc["points"].as_u64().unwrap(),
+            num(&v, "points") as u64,
+            "{prop}: {acc}"
+        );
+        for (k, c) in [("ct_median_error", "ct_median"), ("cp_median_error", "cp_median")] {
+            let (a, b) = (acc[k].as_f64().unwrap(), num(&v, c));
+            assert!((a - b).abs() < 1e-6, "{prop} {k}: run {a} against validate's {b}");
+        }
+        eprintln!(
+            "{prop}: run and validate both CT {:.2} % CP {:.2} % over {} points",
+            100.0 * num(&v, "ct_median"),
+            100.0 * num(&v, "cp_median"),
+            num(&v, "points")
+        );
+    }
+}
+
+/// A case of UIUC's measured 9x4.7 SF table with the sections of its PE0 file (`prop` and `pe0`),
+/// its measured files, and polars covering what validate's cover, in `dir`.
+fn uiuc_table_with_pe0_case(dir: &Path, uiuc: &Path, pe0: &Path) -> PathBuf {
+    let case = dir.join("apcsf_9x4.7");
     std::fs::create_dir(&case).unwrap();
     let mut files = Vec::new();
     for e in std::fs::read_dir(&uiuc).unwrap() {
@@ -418,42 +462,5 @@ fn a_pe0_case_reproduces_validates_row() {
         ),
     )
     .unwrap();
-    for (prop, case_dir) in [
-        ("apcsp_10x7", repo().join("props/apcsp_10x7")),
-        ("apcsf_9x4.7", case.clone()),
-    ] {
-        let v = row(prop);
-        let out = dir.path().join(format!("run_{prop}"));
-        let o = run(
-            &[
-                "run",
-                case_dir.to_str().unwrap(),
-                "--cache",
-                "cache",
-                "--quiet",
-                "-o",
-                out.to_str().unwrap(),
-            ],
-            dir.path(),
-        );
-        assert_eq!(o.status.code(), Some(0), "{prop}: {}", stderr(&o));
-        let s: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-        let acc = &s["accuracy"];
-        assert_eq!(
-            acc["points"].as_u64().unwrap(),
-            num(&v, "points") as u64,
-            "{prop}: {acc}"
-        );
-        for (k, c) in [("ct_median_error", "ct_median"), ("cp_median_error", "cp_median")] {
-            let (a, b) = (acc[k].as_f64().unwrap(), num(&v, c));
-            assert!((a - b).abs() < 1e-6, "{prop} {k}: run {a} against validate's {b}");
-        }
-        eprintln!(
-            "{prop}: run and validate both CT {:.2} % CP {:.2} % over {} points",
-            100.0 * num(&v, "ct_median"),
-            100.0 * num(&v, "cp_median"),
-            num(&v, "points")
-        );
-    }
+    case
 }

@@ -27,6 +27,7 @@ pub mod api;
 pub mod columns;
 mod compare;
 mod diagnose;
+mod engine;
 mod export;
 mod output;
 mod polar;

@@ -115,10 +115,10 @@ pub struct BladeArgs {
     pub airfoil: Option<String>,
     /// Where APC's sections come from, and the airfoils' directory.
     #[command(flatten)]
-    pub design: crate::polar::DesignArgs,
+    pub design: crate::engine::DesignArgs,
     /// The polar engine, XFOIL and its cache.
     #[command(flatten)]
-    pub process: crate::polar::XfoilProcess,
+    pub process: crate::engine::XfoilProcess,
 }
 
 /// The design spec of the blade file `prop`: Some for a blade file without coefficients,
@@ -181,19 +181,20 @@ pub fn load_model_at(
     }
     let (omegas, axis) = points()?;
     let quiet = spec.design.as_ref().is_some_and(|d| d.process.quiet);
-    let bar = crate::polar::Bar::new(
+    let bar = crate::engine::Bar::new(
         quiet,
         spec.design.as_ref().map(|d| d.process.engine).unwrap_or_default(),
     );
-    let (m, polars) = propbet_pipeline::model::design_model(spec, omegas, axis, keep_stations, &|d, t| bar.tick(d, t))?
-        .ok_or_else(|| anyhow::anyhow!("{}: not a blade file without coefficients", spec.prop.display()))?;
+    let (m, polars) =
+        propbet_pipeline::stages::design_model(spec, omegas, axis, keep_stations, &|d, t| bar.tick(d, t))?
+            .ok_or_else(|| anyhow::anyhow!("{}: not a blade file without coefficients", spec.prop.display()))?;
     bar.clear();
     // What the polars are, in a line (the exported file's fidelity is no question here).
     let name = spec
         .prop
         .file_name()
         .map_or_else(|| spec.prop.display().to_string(), |n| n.to_string_lossy().into());
-    let brief: Vec<String> = crate::polar::polars_brief(&polars)
+    let brief: Vec<String> = crate::engine::polars_brief(&polars)
         .into_iter()
         .filter(|l| !l.starts_with("the exported QPROP file"))
         .collect();

@@ -13,6 +13,7 @@ use propbet_qprop::{PropFile, PropRow};
 
 use crate::model::{as_written, LoadedProp};
 use crate::{Error, Result};
+use table::{read_table, table_columns};
 
 /// What a blade file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -315,51 +316,8 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
     let text = crate::read_text(path)?;
     let format = BladeFormat::of(&text);
     let at = |e: String| Error::input(path, e);
-    let (big_r, stations, own): (f64, Vec<(f64, f64, f64)>, Own) = match format {
-        BladeFormat::Qprop => return Ok(None),
-        BladeFormat::Pe0 => {
-            let pe0 = read_pe0(&text, &path.display().to_string()).map_err(|e| at(e.to_string()))?;
-            let d = pe0_diameter(&text).ok_or_else(|| {
-                at("line 1: no diameter (APC's `10x7`, inches before the x) to place the stations".into())
-            })?;
-            let big_r = 0.5 * d;
-            let rows = pe0_table(&pe0, big_r);
-            if rows.len() < 2 {
-                return Err(at(
-                    "the PE0 blade covers fewer than two stations of r/R 0.15 to 1".into()
-                ));
-            }
-            let st = rows
-                .iter()
-                .map(|g| (g.r_r * big_r, g.c_r * big_r, g.beta.to_degrees()))
-                .collect();
-            (big_r, st, Own::Pe0(Box::new(pe0)))
-        }
-        BladeFormat::UiucTable => {
-            let rows = propbet_measure::uiuc::read_geometry(&text).map_err(|e| at(e.to_string()))?;
-            let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
-            let d = propbet_qprop::apc::uiuc_diameter(name).ok_or_else(|| {
-                at("no diameter in the file's name: UIUC's tables name it (apce_10x7_geom.txt: 10 inches)".into())
-            })?;
-            let big_r = 0.5 * d;
-            let st = rows
-                .iter()
-                .map(|g| (g.r_r * big_r, g.c_r * big_r, g.beta.to_degrees()))
-                .collect();
-            (big_r, st, Own::None)
-        }
-        BladeFormat::Table => {
-            let t = read_table(&text, opts.units).map_err(at)?;
-            let big_r = t.rows.last().map_or(0.0, |r| r.0);
-            let own = if t.airfoils.iter().any(Option::is_some) {
-                Own::PerStation(t.airfoils, t.thickness)
-            } else if t.thickness.iter().any(Option::is_some) {
-                Own::Thickness(t.thickness)
-            } else {
-                Own::None
-            };
-            (big_r, t.rows, own)
-        }
+    let Some((big_r, stations, own)) = stations_of(format, &text, path, opts)? else {
+        return Ok(None);
     };
     let dir = opts.airfoils.as_deref();
     let rows: Vec<PropRow> = stations
@@ -461,6 +419,64 @@ pub fn read_design(path: &Path, opts: &DesignOptions) -> Result<Option<DesignBla
     }))
 }
 
+/// A blade file's stations (r [m], chord [m], beta [deg]), its tip radius [m] and the sections
+/// it says itself; None for a QPROP prop file.
+#[allow(clippy::type_complexity)]
+fn stations_of(
+    format: BladeFormat,
+    text: &str,
+    path: &Path,
+    opts: &DesignOptions,
+) -> Result<Option<(f64, Vec<(f64, f64, f64)>, Own)>> {
+    let at = |e: String| Error::input(path, e);
+    Ok(Some(match format {
+        BladeFormat::Qprop => return Ok(None),
+        BladeFormat::Pe0 => {
+            let pe0 = read_pe0(text, &path.display().to_string()).map_err(|e| at(e.to_string()))?;
+            let d = pe0_diameter(text).ok_or_else(|| {
+                at("line 1: no diameter (APC's `10x7`, inches before the x) to place the stations".into())
+            })?;
+            let big_r = 0.5 * d;
+            let rows = pe0_table(&pe0, big_r);
+            if rows.len() < 2 {
+                return Err(at(
+                    "the PE0 blade covers fewer than two stations of r/R 0.15 to 1".into()
+                ));
+            }
+            let st = rows
+                .iter()
+                .map(|g| (g.r_r * big_r, g.c_r * big_r, g.beta.to_degrees()))
+                .collect();
+            (big_r, st, Own::Pe0(Box::new(pe0)))
+        }
+        BladeFormat::UiucTable => {
+            let rows = propbet_measure::uiuc::read_geometry(text).map_err(|e| at(e.to_string()))?;
+            let name = path.file_name().and_then(|n| n.to_str()).unwrap_or_default();
+            let d = propbet_qprop::apc::uiuc_diameter(name).ok_or_else(|| {
+                at("no diameter in the file's name: UIUC's tables name it (apce_10x7_geom.txt: 10 inches)".into())
+            })?;
+            let big_r = 0.5 * d;
+            let st = rows
+                .iter()
+                .map(|g| (g.r_r * big_r, g.c_r * big_r, g.beta.to_degrees()))
+                .collect();
+            (big_r, st, Own::None)
+        }
+        BladeFormat::Table => {
+            let t = read_table(text, opts.units).map_err(at)?;
+            let big_r = t.rows.last().map_or(0.0, |r| r.0);
+            let own = if t.airfoils.iter().any(Option::is_some) {
+                Own::PerStation(t.airfoils, t.thickness)
+            } else if t.thickness.iter().any(Option::is_some) {
+                Own::Thickness(t.thickness)
+            } else {
+                Own::None
+            };
+            (big_r, t.rows, own)
+        }
+    }))
+}
+
 /// The sections of a plan at each station: an airfoil, or two blended, scaled to the station's
 /// thickness ratio where the table gives one.
 pub fn plan_sections(
@@ -521,261 +537,7 @@ enum Own {
     PerStation(Vec<Option<String>>, Vec<Option<f64>>),
 }
 
-/// A plain table read: (r [m], chord [m], beta [deg]) per station, with each station's
-/// airfoil and thickness ratio where the table has them.
-struct Table {
-    rows: Vec<(f64, f64, f64)>,
-    airfoils: Vec<Option<String>>,
-    thickness: Vec<Option<f64>>,
-}
-
-/// The columns of a table's header: radius, chord, blade angle (each index), their length unit
-/// [m] when the header says one, and the optional thickness and airfoil columns.
-struct Columns {
-    r: usize,
-    chord: usize,
-    beta: usize,
-    unit: Option<f64>,
-    thickness: Option<usize>,
-    airfoil: Option<usize>,
-}
-
-fn table_columns(header: &str) -> std::result::Result<Columns, String> {
-    let names: Vec<String> = header.split(',').map(|s| s.trim().to_ascii_lowercase()).collect();
-    let base = |s: &str| s.split('(').next().unwrap_or_default().trim().to_string();
-    let find = |want: &[&str]| names.iter().position(|n| want.contains(&base(n).as_str()));
-    let r = find(&["r", "radius"]).ok_or("no radius column (`r (mm)`, `radius`)")?;
-    let chord = find(&["chord", "c"]).ok_or("no chord column (`chord (mm)`)")?;
-    let beta = find(&["beta", "blade angle", "twist", "pitch angle"]).ok_or("no blade-angle column (`beta (deg)`)")?;
-    let unit_of = |i: usize| -> std::result::Result<Option<f64>, String> {
-        match names[i].split_once('(') {
-            None => Ok(None),
-            Some((_, u)) => {
-                let u = u.trim_end_matches(')').trim();
-                crate::values::parse_length_unit(u)
-                    .map(Some)
-                    .map_err(|_| format!("column `{}`: unit '{u}' is not m, cm, mm or in", names[i]))
-            }
-        }
-    };
-    let (ur, uc) = (unit_of(r)?, unit_of(chord)?);
-    if ur != uc {
-        return Err("the radius and chord columns must have the same unit".into());
-    }
-    if let Some((_, u)) = names[beta].split_once('(') {
-        let u = u.trim_end_matches(')').trim();
-        if !matches!(u, "deg" | "degrees" | "°") {
-            return Err(format!(
-                "column `{}`: the blade angle is in degrees (`deg`)",
-                names[beta]
-            ));
-        }
-    }
-    Ok(Columns {
-        r,
-        chord,
-        beta,
-        unit: ur,
-        thickness: find(&["t/c", "thickness", "thickness ratio"]),
-        airfoil: find(&["airfoil", "section"]),
-    })
-}
-
-/// Reads a plain table (header, then one station per line; `#` comments).
-fn read_table(text: &str, units: Option<f64>) -> std::result::Result<Table, String> {
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .filter(|(_, l)| !l.trim().is_empty() && !l.trim_start().starts_with('#'));
-    let (_, header) = lines.next().ok_or("empty")?;
-    let c = table_columns(header)?;
-    let unit = match (c.unit, units) {
-        (Some(u), _) | (None, Some(u)) => u,
-        (None, None) => {
-            return Err(
-                "the radius and chord columns name no unit: write `r (mm)`, `chord (mm)`, or give --units".into(),
-            )
-        }
-    };
-    let mut t = Table {
-        rows: Vec::new(),
-        airfoils: Vec::new(),
-        thickness: Vec::new(),
-    };
-    for (i, line) in lines {
-        let f: Vec<&str> = line.split(',').map(str::trim).collect();
-        let bad = |m: String| format!("line {}: {m}", i + 1);
-        let num = |k: usize, what: &str| -> std::result::Result<f64, String> {
-            let s = f.get(k).copied().unwrap_or_default();
-            s.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| bad(format!("{what} '{}' is not a number", propbet_units::excerpt(s))))
-        };
-        let r = num(c.r, "radius")? * unit;
-        let chord = num(c.chord, "chord")? * unit;
-        let beta = num(c.beta, "blade angle")?;
-        if r < 0.0 || chord <= 0.0 || beta.abs() >= 90.0 {
-            return Err(bad(format!(
-                "r = {}, chord = {}, beta = {beta}: radius at least 0, chord above 0, |beta| below 90 deg",
-                propbet_units::show(r),
-                propbet_units::show(chord)
-            )));
-        }
-        if let Some(&(last, _, _)) = t.rows.last() {
-            if r <= last {
-                return Err(bad("the radius must increase from row to row".into()));
-            }
-        }
-        t.rows.push((r, chord, beta));
-        t.thickness.push(match c.thickness {
-            Some(k) if f.get(k).is_some_and(|s| !s.is_empty()) => {
-                let v = crate::case::parse_fraction(f[k]).map_err(|e| bad(e.to_string()))?;
-                if !(v > 0.0 && v < 0.5) {
-                    return Err(bad(format!("t/c {v} is not between 0 and 0.5")));
-                }
-                Some(v)
-            }
-            _ => None,
-        });
-        t.airfoils.push(
-            c.airfoil
-                .and_then(|k| f.get(k))
-                .filter(|s| !s.is_empty())
-                .map(|s| s.to_string()),
-        );
-    }
-    if t.rows.len() < 2 {
-        return Err("fewer than two stations".into());
-    }
-    Ok(t)
-}
+mod table;
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn formats_are_told_by_their_text() {
-        let pe0 = std::fs::read_to_string(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../props/apcsp_10x7/10x7-PERF.PE0"
-        ))
-        .unwrap();
-        assert_eq!(BladeFormat::of(&pe0), BladeFormat::Pe0);
-        assert_eq!(
-            BladeFormat::of("r/R    c/R     beta\n0.15 0.1 30\n"),
-            BladeFormat::UiucTable
-        );
-        assert_eq!(
-            BladeFormat::of("# a blade\nr (mm),chord (mm),beta (deg)\n10,20,30\n"),
-            BladeFormat::Table
-        );
-        assert_eq!(BladeFormat::of("cam 6x3\n\n2 0.0762\n"), BladeFormat::Qprop);
-        assert_eq!(pe0_diameter(&pe0), Some(10.0 * 0.0254));
-        assert_eq!(pe0_diameter("4.2x4   (42x4.dat)\n"), Some(4.2 * 0.0254));
-        assert_eq!(pe0_diameter("no diameter\n"), None);
-    }
-
-    #[test]
-    fn section_plans_read_one_airfoil_or_a_blend_and_refuse_the_rest() {
-        assert_eq!(
-            SectionPlan::parse("e63", "--airfoil").unwrap().anchors,
-            vec![(0.0, "e63".into())]
-        );
-        let p = SectionPlan::parse("E63@0.25, APC12@0.45", "--airfoil").unwrap();
-        assert_eq!(p.anchors, vec![(0.25, "E63".into()), (0.45, "APC12".into())]);
-        for (bad, says) in [
-            ("E63@0.5,APC12@0.3", "must increase"),
-            ("E63@1.5", "between 0 and 1"),
-            ("E63,APC12@0.4", "no '@r/R'"),
-            ("@0.3", "names no airfoil"),
-            ("", "no airfoil"),
-        ] {
-            let e = SectionPlan::parse(bad, "--airfoil").unwrap_err().to_string();
-            assert!(e.contains(says) && e.contains("--airfoil"), "{bad}: {e}");
-        }
-    }
-
-    #[test]
-    fn a_blend_moves_from_one_airfoil_to_the_next_between_its_radii() {
-        let plan = SectionPlan::parse("e63@0.3,naca4412@0.6", "x").unwrap();
-        let radii = [0.1, 0.3, 0.45, 0.6, 0.9];
-        let foils = plan_sections(&plan, &radii, 1.0, &[None; 5], None).unwrap();
-        let t: Vec<f64> = foils.iter().map(|f| f.max_thickness().0).collect();
-        assert!((t[0] - t[1]).abs() < 1e-9 && (t[3] - t[4]).abs() < 1e-9, "{t:?}");
-        assert!(t[0] < 0.05 && t[4] > 0.11 && t[2] > t[0] && t[2] < t[4], "{t:?}");
-        // A thickness ratio per station scales the section.
-        let scaled = plan_sections(&plan, &radii, 1.0, &[Some(0.08); 5], None).unwrap();
-        assert!(scaled.iter().all(|f| (f.max_thickness().0 - 0.08).abs() < 2e-3));
-    }
-
-    #[test]
-    fn names_propbet_knows_need_no_file() {
-        for n in ["E63", "clark-y", "APC12", "naca 4412", "SD7037"] {
-            assert!(is_known_name(n) && airfoil_by_name(n, None).is_ok(), "{n}");
-        }
-        let e = airfoil_by_name("nosuchfoil", None).unwrap_err().to_string();
-        assert!(e.contains("nosuchfoil") && e.contains("clarky"), "{e}");
-        let dir = Path::new("/case");
-        assert_eq!(resolve_in("e63", dir), ("e63".to_string(), vec![]));
-        let (t, files) = resolve_in("my.dat@0.2,APC12@0.5", dir);
-        assert_eq!(t, "/case/my.dat@0.2,APC12@0.5");
-        assert_eq!(files, vec![PathBuf::from("/case/my.dat")]);
-    }
-
-    #[test]
-    fn a_blade_table_reads_its_units_sections_and_refuses_bad_rows_by_line() {
-        let t = read_table(
-            "# stations\nr (mm),chord (mm),beta (deg),t/c,airfoil\n20,15,30,0.1,e63\n60,20,20,8%,clarky\n",
-            None,
-        )
-        .unwrap();
-        assert_eq!(t.rows.len(), 2);
-        assert!((t.rows[1].0 - 0.06).abs() < 1e-12 && (t.rows[1].1 - 0.02).abs() < 1e-12);
-        assert_eq!(t.thickness, vec![Some(0.1), Some(0.08)]);
-        assert_eq!(t.airfoils[1].as_deref(), Some("clarky"));
-        // Units from --units when the header gives none.
-        assert!(read_table("r,chord,beta\n1,1,30\n2,1,20\n", Some(0.0254)).is_ok());
-        for (text, says) in [
-            ("r,chord,beta\n1,1,30\n2,1,20\n", "name no unit"),
-            (
-                "r (mm),chord (mm),beta (deg)\n20,15,30\n10,15,30\n",
-                "line 3: the radius must increase",
-            ),
-            (
-                "r (mm),chord (mm),beta (deg)\n20,15,30\n30,x,30\n",
-                "line 3: chord 'x' is not a number",
-            ),
-            ("r (mm),chord (mm),beta (deg)\n20,15,95\n30,5,30\n", "line 2:"),
-            ("r (mm),chord (in),beta (deg)\n20,15,30\n", "same unit"),
-            ("r (mm),chord (mm),beta (rad)\n20,15,30\n", "degrees"),
-            ("r (mm),chord (mm),beta (deg)\n20,15,30\n", "fewer than two"),
-        ] {
-            let e = read_table(text, None).err().unwrap();
-            assert!(e.contains(says), "{text:?}: {e}");
-        }
-    }
-
-    #[test]
-    fn a_pe0_blade_is_apcs_design_at_uiucs_stations_with_its_sections() {
-        let path = Path::new(concat!(
-            env!("CARGO_MANIFEST_DIR"),
-            "/../../props/apcsp_10x7/10x7-PERF.PE0"
-        ));
-        let d = read_design(path, &DesignOptions::default()).unwrap().unwrap();
-        let rows = &d.geometry.file.rows;
-        assert_eq!(rows.len(), 17, "r/R 0.20 to 1.00 (APC's first station is at r/R 0.24)");
-        assert!((rows.last().unwrap().r - 0.127).abs() < 1e-12);
-        let sections = d.sections.unwrap();
-        assert_eq!(sections.len(), rows.len());
-        assert!(
-            sections[0].contains("t/c 0.2") && d.description.contains("CLARK-Y"),
-            "{}",
-            d.description
-        );
-        // A QPROP file is not a design file.
-        let cam = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../props/cam6x3/cam6x3.qprop"));
-        assert!(read_design(cam, &DesignOptions::default()).unwrap().is_none());
-    }
-}
+mod tests;

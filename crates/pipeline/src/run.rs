@@ -191,29 +191,7 @@ pub fn run_case(
             // polars command reads it.
             let input = match &geometry {
                 None => stages::polars_input(spec)?,
-                Some(geometry) => {
-                    let (foil, mut notes) = stages::spec_airfoil(spec)?;
-                    let foils = match (scanned_sections, &scanned, &spec.station_airfoils) {
-                        (true, Some(sc), Some(dir)) => {
-                            let mut texts = vec![None; geometry.file.rows.len()];
-                            for (i, t) in &sc.airfoils {
-                                if *i < texts.len() {
-                                    texts[*i] = Some((dir.join(format!("station_{i:02}.dat")), t.clone()));
-                                }
-                            }
-                            stages::station_foils(dir, texts, foil.as_ref(), &mut notes)?
-                        }
-                        _ => vec![foil.clone().ok_or_else(|| {
-                            crate::Error::Conflict("[polars] airfoil: the section of every station".into())
-                        })?],
-                    };
-                    PolarsInput {
-                        geometry: geometry.clone(),
-                        foils,
-                        foil_name: stages::foil_name(foil.as_ref()),
-                        notes,
-                    }
-                }
+                Some(geometry) => scan_input(spec, geometry, *scanned_sections, scanned.as_ref())?,
             };
             let engine = stages::polar_engine(&spec.xfoil.process)?;
             Ok((stages::polars(spec, &input, &engine, progress)?, input))
@@ -259,19 +237,8 @@ pub fn run_case(
         book.done(t, true, Finished::Diagnose(&d));
         diagnosed = Some(d);
     }
-    // The calibrated model (the prediction with the diagnosis's effects) at the measured
-    // points: where it is worse than the prediction, the report says so.
-    let calibrated = match (&compared, &diagnosed) {
-        (Some(c), Some(d)) if d.diagnosis.found => {
-            let setup = stages::setup(&model, c.air, d.diagnosis.final_stack.clone());
-            propbet_compare::compare(&setup, &c.sets)
-                .ok()
-                .map(|p| propbet_compare::metrics::metrics(&p))
-        }
-        _ => None,
-    };
     Ok(RunOutcome {
-        calibrated,
+        calibrated: calibrated(&model, compared.as_ref(), diagnosed.as_ref()),
         scanned,
         polars,
         model,
@@ -282,4 +249,52 @@ pub fn run_case(
         diagnosed,
         stages: book.records,
     })
+}
+
+/// The polars stage's inputs from a scan's blade in memory: each station's scanned section
+/// (`scanned_sections`), or the spec's airfoil at every station.
+fn scan_input(
+    spec: &crate::spec::PolarsSpec,
+    geometry: &LoadedProp,
+    scanned_sections: bool,
+    scanned: Option<&Scanned>,
+) -> Result<PolarsInput> {
+    let (foil, mut notes) = stages::spec_airfoil(spec)?;
+    let foils = match (scanned_sections, scanned, &spec.station_airfoils) {
+        (true, Some(sc), Some(dir)) => {
+            let mut texts = vec![None; geometry.file.rows.len()];
+            for (i, t) in &sc.airfoils {
+                if *i < texts.len() {
+                    texts[*i] = Some((dir.join(format!("station_{i:02}.dat")), t.clone()));
+                }
+            }
+            stages::station_foils(dir, texts, foil.as_ref(), &mut notes)?
+        }
+        _ => vec![foil
+            .clone()
+            .ok_or_else(|| crate::Error::Conflict("[polars] airfoil: the section of every station".into()))?],
+    };
+    Ok(PolarsInput {
+        geometry: geometry.clone(),
+        foils,
+        foil_name: stages::foil_name(foil.as_ref()),
+        notes,
+    })
+}
+
+/// The calibrated model (the prediction with the diagnosis's effects) scored at the measured
+/// points: where it is worse than the prediction, the report says so.
+fn calibrated(
+    model: &Model,
+    compared: Option<&Compared>,
+    diagnosed: Option<&Diagnosed>,
+) -> Option<propbet_compare::metrics::Metrics> {
+    let (c, d) = (compared?, diagnosed?);
+    if !d.diagnosis.found {
+        return None;
+    }
+    let setup = stages::setup(model, c.air, d.diagnosis.final_stack.clone());
+    propbet_compare::compare(&setup, &c.sets)
+        .ok()
+        .map(|p| propbet_compare::metrics::metrics(&p))
 }

@@ -59,7 +59,7 @@ fn load(
 ) -> Result<Model> {
     if spec.design.is_some() {
         let (omegas, axis) = points()?;
-        let (model, _) = crate::model::design_model(spec, omegas, axis, false, &|_, _| {})?
+        let (model, _) = crate::stages::design_model(spec, omegas, axis, false, &|_, _| {})?
             .ok_or_else(|| crate::Error::Nothing("no design blade".into()))?;
         return Ok(model);
     }

@@ -440,3 +440,58 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         cache_warning,
     })
 }
+
+/// A model whose prop file is a blade file other than QPROP's: the blade's polars computed over
+/// the operating points `omegas` x `axis` (the polars stage with its defaults, in memory), and
+/// the model with them as its section tables, as `propbet run` models such a blade. None for a
+/// QPROP prop file (read as it is, by [`Model::load`]).
+pub fn design_model(
+    spec: &crate::spec::ModelSpec,
+    omegas: Vec<f64>,
+    axis: crate::spec::SweepAxis,
+    keep_stations: bool,
+    progress: &propbet_polar::Progress<'_>,
+) -> Result<Option<(crate::model::Model, Polars)>> {
+    let Some(design) = &spec.design else {
+        return Ok(None);
+    };
+    if spec.polars.is_some() {
+        return Err(Error::Conflict(format!(
+            "--polars: {} is a blade file without sections' coefficients; its polars are computed (leave out --polars)",
+            spec.prop.display()
+        )));
+    }
+    let pspec = crate::spec::PolarsSpec {
+        geometry: spec.prop.clone(),
+        units: spec.units,
+        airfoil: design.airfoil.clone(),
+        thickness: None,
+        station_airfoils: None,
+        sections_from: design.sections_from.clone(),
+        airfoils: design.airfoils.clone(),
+        omegas,
+        axis,
+        air: crate::spec::AirSpec::default(),
+        xfoil: crate::spec::XfoilSpec {
+            process: design.process.clone(),
+            ncrit: crate::settings::NCRIT.default,
+            trip: crate::settings::default_trip(),
+            alphas_deg: crate::values::parse_list("--alpha", crate::settings::ALPHA.default)?,
+            panels: None,
+            iter: xfoil_runner::DEFAULT_MAX_ITER,
+        },
+        ncrit_effect: Vec::new(),
+        out_prop: spec.prop.with_extension("polars.qprop"),
+        out_polars: None,
+    };
+    let input = polars_input(&pspec)?;
+    let engine = polar_engine(&design.process)?;
+    let polars = polars(&pspec, &input, &engine, progress)?;
+    let mspec = crate::spec::ModelSpec {
+        units: None,
+        polars: Some(spec.prop.with_extension("polars.json")),
+        ..spec.clone()
+    };
+    let model = crate::model::Model::from_parts(&mspec, polars.prop.clone(), Some(&polars.blade), keep_stations)?;
+    Ok(Some((model, polars)))
+}
