@@ -214,17 +214,23 @@ pub fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
 
 /// The first `.dat` file of `dir` (by name) whose stem keys as `k`.
 fn first_dat(dir: &Path, k: &str) -> Result<Option<PathBuf>> {
+    first_file(dir, |n| {
+        let p = Path::new(n);
+        p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
+            && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
+    })
+}
+
+/// The first (by name) file of `dir` whose name passes `wanted`.
+pub(crate) fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<PathBuf>> {
     let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|reason| Error::Read {
             path: dir.to_path_buf(),
             reason,
         })?
         .filter_map(|e| {
-            let p = e.ok()?.path();
-            let ok = p.extension().is_some_and(|x| x.eq_ignore_ascii_case("dat"))
-                && p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| key(s) == k)
-                && p.is_file();
-            ok.then_some(p)
+            let e = e.ok()?;
+            (wanted(e.file_name().to_str()?) && e.path().is_file()).then(|| e.path())
         })
         .collect();
     found.sort();

@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use super::ValidateSpec;
+use crate::design::first_file;
 use crate::spec::MeasuredSpec;
 use crate::stages;
 use crate::{Error, Result};
@@ -46,22 +47,6 @@ pub fn find_apc_file(dir: &Path, name: &str) -> Option<PathBuf> {
     let key = |s: &str| s.to_ascii_uppercase().replace('.', "");
     let want = key(name);
     first_file(dir, |n| key(n) == want).ok().flatten()
-}
-
-/// The first (by name) file of `dir` whose name passes `wanted`.
-pub(super) fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<PathBuf>> {
-    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|reason| Error::Read {
-            path: dir.to_path_buf(),
-            reason,
-        })?
-        .filter_map(|e| {
-            let e = e.ok()?;
-            (wanted(e.file_name().to_str()?) && e.path().is_file()).then(|| e.path())
-        })
-        .collect();
-    found.sort();
-    Ok(found.into_iter().next())
 }
 
 /// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
