@@ -410,7 +410,7 @@ fn uiuc_table_with_pe0_case(dir: &Path, uiuc: &Path, pe0: &Path) -> PathBuf {
     let case = dir.join("apcsf_9x4.7");
     std::fs::create_dir(&case).unwrap();
     let mut files = Vec::new();
-    for e in std::fs::read_dir(&uiuc).unwrap() {
+    for e in std::fs::read_dir(uiuc).unwrap() {
         let p = e.unwrap().path();
         let name = p.file_name().unwrap().to_string_lossy().to_string();
         if name.starts_with("apcsf_9x4.7_") {

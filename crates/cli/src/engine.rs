@@ -136,6 +136,9 @@ pub struct DesignArgs {
 }
 
 /// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL or
+/// NeuralFoil made and how often XFOIL failed (the tables interpolate across), and how far the
+/// exported QPROP file's law is from the tables the prediction uses; every station's detail is
+/// in the report.
 pub fn polars_brief(p: &Polars) -> Vec<String> {
     let stations = &p.blade.stations;
     let makers = Makers::of(stations.iter().flat_map(|s| &s.polars));

@@ -421,6 +421,20 @@ pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path])
     }
 }
 
+/// The terminal's width for propbet's sentences (and clap's help: `max_term_width`).
+pub const TERM_WIDTH: usize = 100;
+
+/// `text` wrapped at [`TERM_WIDTH`] columns, its first line after `first`, the others after
+/// `rest` (each an indent): a long sentence a person reads on a terminal.
+pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
+    let opts = textwrap::Options::new(TERM_WIDTH)
+        .initial_indent(first)
+        .subsequent_indent(rest)
+        .break_words(false)
+        .word_splitter(textwrap::WordSplitter::NoHyphenation);
+    textwrap::fill(text, opts)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -529,18 +543,4 @@ mod tests {
             proptest::prop_assert!((back - v).abs() <= 5.000001e-7 * v.abs(), "{} -> {}", v, s);
         }
     }
-}
-
-/// The terminal's width for propbet's sentences (and clap's help: `max_term_width`).
-pub const TERM_WIDTH: usize = 100;
-
-/// `text` wrapped at [`TERM_WIDTH`] columns, its first line after `first`, the others after
-/// `rest` (each an indent): a long sentence a person reads on a terminal.
-pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
-    let opts = textwrap::Options::new(TERM_WIDTH)
-        .initial_indent(first)
-        .subsequent_indent(rest)
-        .break_words(false)
-        .word_splitter(textwrap::WordSplitter::NoHyphenation);
-    textwrap::fill(text, opts)
 }

@@ -336,10 +336,6 @@ pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
     Ok(p.clean())
 }
 
-/// NeuralFoil made and how often XFOIL failed (the tables interpolate across), and how far the
-/// exported QPROP file's law is from the tables the prediction uses; every station's detail is
-/// in the report.
-
 /// Every station's polar faults and fit on the terminal.
 pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
     for n in &input.notes {
@@ -351,13 +347,22 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
         }
         match &s.fit {
             Some(f) => eprintln!(
-                "station {} (r = {:.4} m, alpha {:.1} deg): {}",
-                i + 1,
-                s.r,
-                s.alpha_deg,
-                fit_summary(s.re, f)
+                "{}",
+                crate::output::wrapped(
+                    &format!(
+                        "station {} (r = {:.4} m, alpha {:.1} deg): {}",
+                        i + 1,
+                        s.r,
+                        s.alpha_deg,
+                        fit_summary(s.re, f)
+                    ),
+                    "",
+                    "  "
+                )
             ),
             None => eprintln!(
+                "{}",
+                crate::output::wrapped(&format!(
                 "propbet: station {} (r = {:.4} m, Re {:.0}-{:.0}, alpha {:.1}..{:.1} deg): {}; fallback: {}, and the exported prop file keeps the coefficients of {} there",
                 i + 1,
                 s.r,
@@ -372,6 +377,7 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
                     "the tables use this station's polars as XFOIL gave them"
                 },
                 spec.geometry.display()
+                ), "", "  ")
             ),
         }
     }

@@ -138,7 +138,14 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     lock.finish()?;
-    println!("{md}");
+    // The page on the terminal: its tables as they are (data), its sentences wrapped.
+    for line in md.lines() {
+        if line.starts_with('|') {
+            println!("{line}");
+        } else {
+            println!("{}", crate::output::wrapped(line, "", ""));
+        }
+    }
     Ok(validation.clean)
 }
 
