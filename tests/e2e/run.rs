@@ -631,3 +631,40 @@ fn the_reports_first_screen_holds_the_verdict_and_a_figure() {
         }
     }
 }
+
+/// What the README says each command writes, it writes: `run`, `compare` and `diagnose` a
+/// report beside `summary.json`, `scan` its `scan.json`, `predict` a CSV; and the README says so.
+#[test]
+fn the_readmes_claims_about_outputs_hold() {
+    let readme = std::fs::read_to_string(repo().join("README.md")).unwrap();
+    for claim in [
+        "`run`, `compare` and `diagnose` write an HTML report beside a machine-readable `summary.json`",
+        "`scan` its geometry files and plots",
+        "`predict` a CSV (or JSON)",
+    ] {
+        assert!(readme.replace('\n', " ").contains(claim), "the README no longer says: {claim}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo().join("props/apcsp_10x7").display().to_string();
+    let o = run(&["run", &case, "--engine", "neuralfoil", "-o", "r", "--quiet"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    for f in [
+        "r/report.html",
+        "r/summary.json",
+        "r/compare/report.html",
+        "r/compare/summary.json",
+        "r/diagnose/report.html",
+        "r/diagnose/summary.json",
+        "r/predict/sweep.csv",
+    ] {
+        assert!(dir.path().join(f).is_file(), "{f} missing");
+    }
+    let stl = repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl").display().to_string();
+    let o = run(&["scan", &stl, "--units", "mm", "--stations", "0.3:0.9/4", "-o", "s"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(dir.path().join("s/scan.json").is_file() && dir.path().join("s/plots").is_dir());
+    let cam = repo().join("props/cam6x3/cam6x3.qprop").display().to_string();
+    let o = run(&["predict", "--prop", &cam, "--rpm", "4000", "--out", "p.csv"], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(dir.path().join("p.csv")).unwrap().starts_with("rpm,"));
+}
