@@ -347,13 +347,13 @@ fn bad_cases_get_clear_errors() {
         (good.replace("cam6x3.qprop", "missing.qprop"), "names missing.qprop"),
         (
             good.replace("prop = ", "scan = \"cam6x3.qprop\"\nprop = "),
-            "exactly one of `scan` and `prop`",
+            "needs a `scan`, or a `prop` and / or a `pe0`",
         ),
         (format!("{good}colour = 3\n"), "unknown field"),
         (good.replace("j = ", "jj = "), "unknown field `jj`"),
         (good.replace("j = \"0:0.5:0.1\"\n", ""), "missing field `j`"),
         (
-            format!("{good}[polars]\nairfoil = \"naca4412\"\nrpm = 5000\n"),
+            format!("{good}[polars]\nsections = \"scan\"\nairfoil = \"naca4412\"\nrpm = 5000\n"),
             "needs a [geometry] scan",
         ),
         (
@@ -642,11 +642,17 @@ fn the_readmes_claims_about_outputs_hold() {
         "`scan` its geometry files and plots",
         "`predict` a CSV (or JSON)",
     ] {
-        assert!(readme.replace('\n', " ").contains(claim), "the README no longer says: {claim}");
+        assert!(
+            readme.replace('\n', " ").contains(claim),
+            "the README no longer says: {claim}"
+        );
     }
     let dir = tempfile::tempdir().unwrap();
     let case = repo().join("props/apcsp_10x7").display().to_string();
-    let o = run(&["run", &case, "--engine", "neuralfoil", "-o", "r", "--quiet"], dir.path());
+    let o = run(
+        &["run", &case, "--engine", "neuralfoil", "-o", "r", "--quiet"],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     for f in [
         "r/report.html",
@@ -660,11 +666,19 @@ fn the_readmes_claims_about_outputs_hold() {
         assert!(dir.path().join(f).is_file(), "{f} missing");
     }
     let stl = repo().join("props/apcsf_10x4.7/apcsf_10x4.7.stl").display().to_string();
-    let o = run(&["scan", &stl, "--units", "mm", "--stations", "0.3:0.9/4", "-o", "s"], dir.path());
+    let o = run(
+        &["scan", &stl, "--units", "mm", "--stations", "0.3:0.9/4", "-o", "s"],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(dir.path().join("s/scan.json").is_file() && dir.path().join("s/plots").is_dir());
     let cam = repo().join("props/cam6x3/cam6x3.qprop").display().to_string();
-    let o = run(&["predict", "--prop", &cam, "--rpm", "4000", "--out", "p.csv"], dir.path());
+    let o = run(
+        &["predict", "--prop", &cam, "--rpm", "4000", "--out", "p.csv"],
+        dir.path(),
+    );
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    assert!(std::fs::read_to_string(dir.path().join("p.csv")).unwrap().starts_with("rpm,"));
+    assert!(std::fs::read_to_string(dir.path().join("p.csv"))
+        .unwrap()
+        .starts_with("rpm,"));
 }

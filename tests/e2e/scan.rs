@@ -349,7 +349,8 @@ fn the_reference_check_covers_the_outboard_blade() {
     let dir = tempfile::tempdir().unwrap();
     let o = scan_apc("0.5,0.8,0.9,0.96", dir.path());
     assert!(o.status.success(), "{}", stderr(&o));
-    let text = String::from_utf8_lossy(&o.stdout).into_owned();
+    // A long sentence is wrapped on the terminal, its continuation indented: read it whole.
+    let text = String::from_utf8_lossy(&o.stdout).replace("\n  ", " ");
     let line = text
         .lines()
         .find(|l| l.starts_with("against the reference table"))

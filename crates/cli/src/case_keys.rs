@@ -46,6 +46,13 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "",
         "without a scan: the prop file the polars and the model read (cam6x3 cases)",
     ),
+    (
+        "geometry",
+        "pe0",
+        "",
+        "",
+        "without a scan: APC's design file, the polars stage's --geometry (beside `prop`, its --sections-from); props/apcsp_10x7",
+    ),
     ("geometry", "units", "units = \"mm\"", "scan", "--units mm"),
     ("geometry", "stations", "stations = \"0.3:0.9/7\"", "scan", "--stations"),
     (

@@ -211,6 +211,9 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
          the difference between its tables at the fitted Ncrit and at the model's own."
     );
     // A closed pipe (`propbet effects | head`) is not an error.
-    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), out.as_bytes());
+    let _ = std::io::Write::write_all(
+        &mut std::io::stdout().lock(),
+        crate::output::for_terminal(&out).as_bytes(),
+    );
     Ok(true)
 }

@@ -421,6 +421,29 @@ pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path])
     }
 }
 
+/// `text` as the terminal gets it: each line longer than 160 characters wrapped at
+/// [`TERM_WIDTH`] (its continuation indented by two spaces more than it), unless it is a table
+/// row (CSV, or Markdown's `|`), which is data, or an error or a warning, which is read whole.
+pub fn for_terminal(text: &str) -> String {
+    if text.lines().all(|l| l.chars().count() <= 160) {
+        return text.to_string();
+    }
+    text.lines()
+        .map(|l| {
+            let table_row = l.matches(',').count() >= 4 || l.trim_start().starts_with('|');
+            // An error or a warning stays one line: scripts and the Python package read it so.
+            let message = l.starts_with("propbet: error") || l.starts_with("propbet: warning");
+            if l.chars().count() <= 160 || table_row || message {
+                return l.to_string();
+            }
+            let indent: String = l.chars().take_while(|c| *c == ' ').collect();
+            wrapped(l.trim_start(), &indent, &format!("{indent}  "))
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+        + if text.ends_with('\n') { "\n" } else { "" }
+}
+
 /// The terminal's width for propbet's sentences (and clap's help: `max_term_width`).
 pub const TERM_WIDTH: usize = 100;
 
