@@ -261,9 +261,7 @@ pub fn pe0_table(pe0: &Pe0, big_r: f64) -> Vec<propbet_measure::uiuc::GeometryRo
 /// The diameter a PE0 file's first line names (`10x4.7SF`, `4.2x4`: inches before the `x`)
 /// [m].
 pub fn pe0_diameter(text: &str) -> Option<f64> {
-    let first = text.lines().next()?.split_whitespace().next()?;
-    let d: f64 = first.split_once(['x', 'X'])?.0.parse().ok()?;
-    (d.is_finite() && d > 0.0).then_some(d * 0.0254)
+    propbet_qprop::apc::diameter_before_x(text.lines().next()?.split_whitespace().next()?)
 }
 
 /// APC's section at radius `r` [m] of a PE0 blade: its two airfoils (`f1`, `f2`) blended across

@@ -71,7 +71,13 @@ pub fn pe0_unknown(uiuc: &str) -> String {
 
 /// The diameter [m] from a UIUC size in inches (`apcsf_10x4.7` → 10 in).
 pub fn uiuc_diameter(uiuc: &str) -> Option<f64> {
-    let d_in: f64 = uiuc.split_once('_')?.1.split_once('x')?.0.parse().ok()?;
+    diameter_before_x(uiuc.split_once('_')?.1)
+}
+
+/// The diameter a propeller's size names (`10x4.7SF`, `4.2x4`: inches before the `x`, as
+/// UIUC and APC write it) [m].
+pub fn diameter_before_x(size: &str) -> Option<f64> {
+    let d_in: f64 = size.split_once('x')?.0.parse().ok()?;
     (d_in.is_finite() && d_in > 0.0).then_some(d_in * 0.0254)
 }
 
