@@ -6,7 +6,7 @@ use std::path::Path;
 
 use anyhow::{bail, Result};
 use clap::Parser;
-use propbet_pipeline::measure::{DropReason, Format, Loads, MeasuredSet, Speed};
+use propbet_pipeline::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
 use propbet_pipeline::spec::StageSpec;
 
 use crate::compare::MeasuredArgs;
@@ -69,9 +69,12 @@ pub fn measurements(argv: &[String]) -> Result<(Vec<u8>, Vec<u8>)> {
     let flags = Flags::try_parse_from(std::iter::once("read_measurements".to_string()).chain(argv.iter().cloned()))
         .map_err(crate::clap_error)?;
     let spec = flags.data.spec()?;
-    let (_, sets) = propbet_pipeline::stages::load_measured(&spec)?;
-    let names: Vec<String> = spec.files.iter().map(|p| p.display().to_string()).collect();
-    Ok((points_csv(&names, &sets)?, dropped_csv(&names, &sets)?))
+    // As `compare` reads them: each file on its own, a refused one in the dropped table.
+    let batch = propbet_pipeline::stages::load_batch(&spec)?;
+    Ok((
+        points_csv(&batch.names, &batch.sets)?,
+        dropped_csv(&batch.names, &batch.sets, &batch.refused)?,
+    ))
 }
 
 /// A measured point as a row.
@@ -85,6 +88,8 @@ struct PointRow<'a> {
     rpm: Num,
     rpm_sd: Num,
     samples: usize,
+    thrust_samples: Option<usize>,
+    torque_samples: Option<usize>,
     v_m_s: Num,
     v_sd: Num,
     j: Num,
@@ -122,6 +127,8 @@ fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
                 rpm: rpm(p.omega.mean).into(),
                 rpm_sd: p.omega.sd.map(rpm).into(),
                 samples: p.omega.n,
+                thrust_samples: thrust.map(|t| t.n),
+                torque_samples: torque.map(|t| t.n),
                 v_m_s: v.into(),
                 v_sd: v_sd.into(),
                 j: j.into(),
@@ -146,21 +153,35 @@ fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
 #[derive(serde::Serialize)]
 struct DroppedRow<'a> {
     file: &'a str,
-    line: usize,
-    reason: DropReason,
+    /// Empty for a file refused whole.
+    line: Option<usize>,
+    /// A [`DropReason`] in snake case, or `file_refused`.
+    reason: String,
     detail: &'a str,
 }
 
-fn dropped_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
+fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> Result<Vec<u8>> {
+    let reason = |r: DropReason| {
+        serde_json::to_value(r)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default()
+    };
     let rows = names.iter().zip(sets).flat_map(|(file, s)| {
         s.dropped.iter().map(move |d| DroppedRow {
             file,
-            line: d.line,
-            reason: d.reason,
+            line: Some(d.line),
+            reason: reason(d.reason),
             detail: &d.detail,
         })
     });
-    csv_rows(rows, true)
+    let refused = refused.iter().map(|r| DroppedRow {
+        file: &r.file,
+        line: None,
+        reason: "file_refused".into(),
+        detail: &r.reason,
+    });
+    csv_rows(rows.chain(refused), true)
 }
 
 /// A prop file's rows as `propbet prop FILE [--units U] [--qprop-compat]` reads them (flags

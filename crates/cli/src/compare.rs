@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use propbet_pipeline::compare::ComparedPoint;
-use propbet_pipeline::measure::{MeasuredSet, RpmSource};
+use propbet_pipeline::measure::{MeasuredSet, Refused, RpmSource};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared};
@@ -92,27 +92,37 @@ impl MeasuredArgs {
     }
 }
 
-/// One line per file: rows, points and what was dropped.
-pub fn print_measured(spec: &MeasuredSpec, sets: &[MeasuredSet]) {
-    for (p, s) in spec.files.iter().zip(sets) {
+/// One line per file read (rows, points, what was dropped) and per file refused (why).
+pub fn print_measured(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) {
+    for (n, s) in names.iter().zip(sets) {
         eprintln!(
-            "propbet: {}: {} rows -> {} points; {}",
-            p.display(),
+            "propbet: {n}: {} rows -> {} points; {}",
             s.rows,
             s.points.len(),
             propbet_pipeline::measure::summarise_dropped(&s.dropped)
         );
     }
+    for r in refused {
+        eprintln!("propbet: warning: {}: not read: {}", r.file, r.reason);
+    }
 }
 
-/// Says on the terminal how many measured rows were dropped as faulty (the report lists them);
-/// returns that count (`compare` and `diagnose` exit 1 when it is not zero).
-pub fn warn_faulty_rows(sets: &[MeasuredSet]) -> usize {
-    let faults = sets.iter().map(MeasuredSet::faults).sum();
+/// Says on the terminal how many measured rows were dropped as faulty (the report lists them)
+/// and each set's plausibility warning; returns the count of both (`compare` and `diagnose` exit
+/// 1 when it is not zero).
+pub fn warn_faulty_rows(names: &[String], sets: &[MeasuredSet]) -> usize {
+    let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
     if faults > 0 {
         eprintln!("propbet: {faults} rows were dropped as faulty; they are listed in the report");
     }
-    faults
+    let mut warned = 0;
+    for (n, s) in names.iter().zip(sets) {
+        for w in &s.warnings {
+            eprintln!("propbet: warning: {n}: {w}");
+            warned += 1;
+        }
+    }
+    faults + warned
 }
 
 impl CompareArgs {
@@ -135,6 +145,9 @@ struct PointRow {
     label: String,
     line_first: usize,
     line_last: usize,
+    samples_rpm: usize,
+    samples_thrust: Option<usize>,
+    samples_torque: Option<usize>,
     rpm: Num,
     rpm_sd: Num,
     v_m_s: Num,
@@ -162,13 +175,16 @@ struct PointRow {
     model_flags: String,
 }
 
-fn points_csv(files: &[std::path::PathBuf], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
+fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
     csv_rows(
         pts.iter().map(|p| PointRow {
-            file: files[p.file].display().to_string(),
+            file: files[p.file].clone(),
             label: p.label.clone(),
             line_first: p.lines.0,
             line_last: p.lines.1,
+            samples_rpm: p.samples.rpm,
+            samples_thrust: p.samples.thrust,
+            samples_torque: p.samples.torque,
             rpm: p.rpm.into(),
             rpm_sd: p.rpm_sd.into(),
             v_m_s: p.v.into(),
@@ -248,16 +264,14 @@ pub fn write(
         }),
         prop: spec.model.prop.display().to_string(),
         prop_notes,
-        files: spec
-            .measured
-            .files
+        files: c
+            .names
             .iter()
             .zip(&c.sets)
-            .map(|(p, set)| FileEntry {
-                path: p.display().to_string(),
-                set,
-            })
+            .map(|(p, set)| FileEntry { path: p.clone(), set })
             .collect(),
+        refused: &c.refused,
+        warnings: c.warnings(),
         points: &c.points,
         band: Some(&band),
         band_sources: propbet_pipeline::band::BandSpec::sources_text(&model.loaded.file),
@@ -283,7 +297,7 @@ pub fn write(
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
-    let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems());
+    let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems(), &c.warnings());
     if let (Some(r), serde_json::Value::Object(o)) = (rep.json.get("reference"), &mut summary) {
         o.insert("reference".into(), r.clone());
     }
@@ -293,7 +307,7 @@ pub fn write(
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(
         &out.join("points.csv"),
-        &[points_csv(&spec.measured.files, &c.points)?],
+        &[points_csv(&c.names, &c.points)?],
         &inputs,
     )?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
@@ -374,7 +388,7 @@ fn qprop_table(
 /// A short summary on the terminal; `reference`: another code's name and headline (from
 /// [`write`]), printed under propbet's.
 pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Value>) {
-    print_measured(&spec.measured, &c.sets);
+    print_measured(&c.names, &c.sets, &c.refused);
     let m = &c.metrics;
     // The headline: the scored window, static and forward flight apart (as the report).
     for g in &m.headline {
@@ -434,7 +448,7 @@ pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Va
         eprintln!("propbet: warning: {}", m.message());
     }
     let (_, unconverged) = c.problems();
-    warn_faulty_rows(&c.sets);
+    warn_faulty_rows(&c.names, &c.sets);
     if unconverged > 0 {
         eprintln!("propbet: {unconverged} station solutions did not converge");
     }

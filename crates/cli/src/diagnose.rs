@@ -63,7 +63,8 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
     let d = stages::diagnose(&model, &spec)?;
     write(&spec, &d)?;
     print(&spec, &d);
-    Ok(warn_faulty_rows(&d.sets) == 0)
+    let warned = warn_faulty_rows(&d.names, &d.sets);
+    Ok(warned == 0 && d.refused.is_empty())
 }
 
 /// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,
@@ -71,7 +72,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
 /// returns the report page's body (for the run's page, which nests it).
 pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let prop = spec.model.prop.display().to_string();
-    let measured: Vec<String> = spec.measured.files.iter().map(|p| p.display().to_string()).collect();
+    let measured: Vec<String> = d.names.clone();
     let command = StageSpec::Diagnose(spec.clone()).command();
     let dg = &d.diagnosis;
     let files: Vec<FileEntry> = measured
@@ -82,7 +83,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
             set,
         })
         .collect();
-    let rep = report::build(&d.data, dg, &prop, &files, &command)?;
+    let rep = report::build(&d.data, dg, &prop, &files, &d.refused, &command)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     let lock = crate::output::claim_folder(&spec.out, &command)?;
@@ -105,9 +106,14 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     let mut bytes = serde_json::to_vec_pretty(&json)?;
     bytes.push(b'\n');
     write_atomic(&spec.out.join("diagnosis.json"), &[bytes], &inputs)?;
+    let faults: usize = d.sets.iter().map(|s| s.faults()).sum();
+    let warnings = propbet_pipeline::stages::batch_warnings(&d.names, &d.sets, &d.refused);
     let summary = serde_json::json!({
         "format": "propbet-diagnose-summary-1",
         "command": command,
+        "clean": faults == 0 && warnings.is_empty(),
+        "warnings": warnings,
+        "problems": { "dropped_rows": faults },
         "diagnosis": report::diagnosis_json(dg),
     });
     let mut summary = serde_json::to_vec_pretty(&summary)?;
@@ -121,7 +127,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
 
 /// The diagnosis on the terminal.
 pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
-    print_measured(&spec.measured, &d.sets);
+    print_measured(&d.names, &d.sets, &d.refused);
     print_result(&d.diagnosis);
     println!("report: {}", spec.out.join("report.html").display());
 }

@@ -148,6 +148,9 @@ pub struct ComparedPoint {
     pub label: String,
     /// Lines of the file.
     pub lines: (usize, usize),
+    /// Readings that made the point: of RPM, thrust and torque (a sparse log logs the loads on
+    /// fewer rows than the RPM; a published table's point is one reading of each).
+    pub samples: Samples,
     /// Rotation speed [rpm].
     pub rpm: f64,
     /// Its scatter [rpm].
@@ -184,6 +187,35 @@ pub struct ComparedPoint {
     /// the comparison (near zero thrust, at the windmill end of a J sweep, a relative error
     /// says nothing).
     pub rel_floor: Quantities,
+}
+
+/// How many readings of each signal made a point.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct Samples {
+    /// RPM readings.
+    pub rpm: usize,
+    /// Thrust readings (none for coefficients).
+    pub thrust: Option<usize>,
+    /// Torque readings (none without a torque cell, or for coefficients).
+    pub torque: Option<usize>,
+}
+
+impl Samples {
+    /// Of a measured point.
+    pub fn of(p: &MeasuredPoint) -> Self {
+        match p.loads {
+            Loads::Forces { thrust, torque } => Samples {
+                rpm: p.omega.n,
+                thrust: Some(thrust.n),
+                torque: torque.map(|q| q.n),
+            },
+            Loads::Coefficients { .. } => Samples {
+                rpm: p.omega.n,
+                thrust: None,
+                torque: None,
+            },
+        }
+    }
 }
 
 /// Fraction of the largest |measured| value below which no relative error is computed.
@@ -323,6 +355,7 @@ fn compare_point(setup: &Setup, file: usize, p: &MeasuredPoint) -> Result<Compar
         file,
         label: p.label.clone(),
         lines: p.lines,
+        samples: Samples::of(p),
         rpm: p.rpm(),
         rpm_sd: p.omega.sd.map(propbet_units::omega_to_rpm),
         nominal_rpm: p.nominal_omega.map(propbet_units::omega_to_rpm),

@@ -206,7 +206,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         notes.push("no torque column: thrust-only comparison".into());
     }
     let mut dropped = Vec::new();
-    let s = samples(&table, &cols, &mut dropped);
+    let s = samples(&table, &cols, false, &mut dropped, &mut notes);
     let rows = table.rows.len();
     let (reduction, points) = reduce_log(s, cols.time.is_none(), &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
@@ -222,6 +222,8 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         has_torque: cols.torque.is_some(),
         rpm_source: None,
         notes,
+        series: None,
+        warnings: Vec::new(),
     })
 }
 

@@ -65,6 +65,14 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
         .filter(|d| *d > 0.0)
         .collect();
     let spike = (10.0 * median(&mut dts)).max(1.0);
+    // A log that writes each sensor on its own row stamps several rows alike: then a repeated
+    // time stamp is how it writes, not a fault.
+    let repeats = samples
+        .windows(2)
+        .filter(|w| w[0].time.is_some() && w[0].time == w[1].time)
+        .count();
+    let repeats_are_style = repeats * 20 > samples.len();
+    let first_time = samples.first().and_then(|s| s.time);
     let drop = |dropped: &mut Vec<Dropped>, s: &Sample, reason, detail: String| {
         dropped.push(Dropped {
             line: s.line,
@@ -87,13 +95,14 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
             continue;
         }
         if let Some(t) = s.time {
-            if kept.last().and_then(|k| k.time) == Some(t) {
-                drop(
-                    dropped,
-                    s,
-                    DropReason::DuplicateTime,
-                    format!("t = {t} s, as the row before"),
-                );
+            if !repeats_are_style && kept.last().and_then(|k| k.time) == Some(t) {
+                // The log's first time stamp repeated: the motor's first rows.
+                let (reason, why) = if Some(t) == first_time {
+                    (DropReason::Idle, "the log's first time stamp, repeated")
+                } else {
+                    (DropReason::DuplicateTime, "as the row before")
+                };
+                drop(dropped, s, reason, format!("t = {t} s, {why}"));
                 continue;
             }
             let prev = i.checked_sub(1).and_then(|j| samples[j].time);
@@ -118,50 +127,138 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
     kept
 }
 
-/// Orients thrust and torque so that both are positive for a propeller pulling and absorbing
-/// power, then drops rows of negative thrust: a fault without airspeed, the end of a J sweep
-/// (windmilling) with it.
+/// The sign that makes `pick` positive on the rows at the top of the RPM range (at least 90 %
+/// of the highest RPM): there the propeller pulls and absorbs power. When they read zero,
+/// the sign of the trend against RPM squared (thrust grows with it). +1 when neither tells.
+fn pull_sign(samples: &[Sample], pick: impl Fn(&Sample) -> Option<f64>) -> f64 {
+    let top = samples.iter().map(|s| s.omega).fold(0.0, f64::max);
+    let mut high: Vec<f64> = samples
+        .iter()
+        .filter(|s| s.omega >= 0.9 * top)
+        .filter_map(&pick)
+        .collect();
+    let m = median(&mut high);
+    if m.is_finite() && m != 0.0 {
+        return m.signum();
+    }
+    let xy: Vec<(f64, f64)> = samples
+        .iter()
+        .filter_map(|s| pick(s).map(|y| (s.omega * s.omega, y)))
+        .collect();
+    let n = xy.len() as f64;
+    let (mx, my) = xy
+        .iter()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let slope: f64 = xy.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
+    if slope < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
+}
+
+/// Orients thrust and torque by physics, each file on its own: both are made positive on the
+/// rows at the highest RPM ([`pull_sign`]), whatever most rows read. Then rows below
+/// [`limits::IDLE`](crate::set::limits::IDLE) of the highest RPM, and rows of negative thrust
+/// within the load cell's zero ([`limits::ZERO_THRUST`](crate::set::limits::ZERO_THRUST)) on a
+/// static stand, are left out as idle; a negative thrust beyond it is kept as data
+/// (windmilling: the flow drives the propeller; its point is flagged) unless the rows at the
+/// same RPM and airspeed pull, when it is a fault.
 fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<String>) -> Vec<Sample> {
-    let mut thrusts: Vec<f64> = samples.iter().map(|s| s.thrust).collect();
-    let flip_t = median(&mut thrusts) < 0.0;
-    let mut torques: Vec<f64> = samples.iter().filter_map(|s| s.torque).collect();
-    let flip_q = !torques.is_empty() && median(&mut torques) < 0.0;
-    if flip_t {
+    use crate::set::limits::{IDLE, ZERO_THRUST};
+    if samples.is_empty() {
+        return samples;
+    }
+    let top = samples.iter().map(|s| s.omega).fold(0.0, f64::max);
+    let (idle, samples): (Vec<Sample>, Vec<Sample>) = samples.into_iter().partition(|s| s.omega < IDLE * top);
+    for s in &idle {
+        dropped.push(Dropped {
+            line: s.line,
+            reason: DropReason::Idle,
+            detail: format!(
+                "{:.0} rpm, below {:.0} % of the log's highest ({:.0} rpm)",
+                propbet_units::omega_to_rpm(s.omega),
+                100.0 * IDLE,
+                propbet_units::omega_to_rpm(top)
+            ),
+        });
+    }
+    let sign_t = pull_sign(&samples, |s| Some(s.thrust));
+    let sign_q = pull_sign(&samples, |s| s.torque);
+    if sign_t < 0.0 {
         notes.push(
-            "thrust is logged negative when the propeller pulls (the stand's sign convention): sign flipped".into(),
+            "thrust is logged negative when the propeller pulls (the stand's sign convention, read from the rows at \
+             the highest RPM): sign flipped"
+                .into(),
         );
     }
-    if flip_q {
+    if samples.iter().any(|s| s.torque.is_some()) && sign_q < 0.0 {
         notes.push(
-            "torque is logged negative (the stand's sign convention for this rotation direction): sign flipped".into(),
+            "torque is logged negative (the stand's sign convention for this rotation direction, read from the rows \
+             at the highest RPM): sign flipped"
+                .into(),
         );
     }
+    let mut samples = samples;
+    for s in samples.iter_mut() {
+        s.thrust *= sign_t;
+        s.torque = s.torque.map(|q| q * sign_q);
+    }
+    let zero = ZERO_THRUST * samples.iter().map(|s| s.thrust.abs()).fold(0.0, f64::max);
+    // Rows by RPM, to find a negative row's neighbours at the same RPM and airspeed.
+    let mut by_omega: Vec<(f64, f64, bool)> = samples
+        .iter()
+        .map(|s| (s.omega, s.airspeed, s.thrust > zero))
+        .collect();
+    by_omega.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let pulling_beside = |s: &Sample| {
+        let lo = by_omega.partition_point(|r| r.0 < 0.97 * s.omega);
+        let hi = by_omega.partition_point(|r| r.0 <= 1.03 * s.omega);
+        let near = by_omega[lo..hi].iter().filter(|r| (r.1 - s.airspeed).abs() <= 0.5);
+        let (pull, all) = near.fold((0, 0), |(p, a), r| (p + usize::from(r.2), a + 1));
+        pull * 2 > all
+    };
     let mut out = Vec::with_capacity(samples.len());
-    for mut s in samples {
-        if flip_t {
-            s.thrust = -s.thrust;
-        }
-        if flip_q {
-            s.torque = s.torque.map(|q| -q);
-        }
-        if s.thrust < 0.0 {
-            dropped.push(Dropped {
-                line: s.line,
-                reason: if s.airspeed > 0.0 {
-                    DropReason::Windmilling
-                } else {
-                    DropReason::NegativeThrust
-                },
-                detail: format!(
-                    "thrust {:.4} N at {:.0} rpm, {:.2} m/s",
-                    s.thrust,
-                    propbet_units::omega_to_rpm(s.omega),
-                    s.airspeed
-                ),
-            });
+    let mut windmilling = 0;
+    for s in samples.iter() {
+        if s.thrust >= 0.0 {
+            out.push(*s);
             continue;
         }
-        out.push(s);
+        let at = format!(
+            "thrust {:.4} N at {:.0} rpm, {:.2} m/s",
+            s.thrust,
+            propbet_units::omega_to_rpm(s.omega),
+            s.airspeed
+        );
+        let reason = if s.airspeed <= 0.0 && -s.thrust <= zero {
+            Some((DropReason::Idle, format!("{at}: within the load cell's zero ({zero:.4} N)")))
+        } else if pulling_beside(s) {
+            Some((
+                DropReason::NegativeThrust,
+                format!("{at}, while the rows at the same RPM and airspeed pull"),
+            ))
+        } else {
+            None
+        };
+        match reason {
+            Some((reason, detail)) => dropped.push(Dropped {
+                line: s.line,
+                reason,
+                detail,
+            }),
+            None => {
+                windmilling += 1;
+                out.push(*s);
+            }
+        }
+    }
+    if windmilling > 0 {
+        notes.push(format!(
+            "{windmilling} rows of negative thrust (below the load cell's zero, where no row at the same RPM and \
+             airspeed pulls) kept as data: the flow drives the propeller (windmilling); their points are shown, \
+             flagged, not scored"
+        ));
     }
     out
 }
@@ -185,11 +282,37 @@ fn point(label: String, s: &[Sample], transient: usize, opts: &ReduceOptions, av
             Value::of(&xs)
         }
     };
-    let omega = col(&|x| x.omega);
-    let thrust = col(&|x| x.thrust);
-    let torque = s[0].torque.is_some().then(|| col(&|x| x.torque.unwrap_or(f64::NAN)));
+    // A sparse log's point: each load the mean of the readings logged within it (the rows
+    // between repeat the latest one).
+    let mut stale = Vec::new();
+    let mut own = |name: &str, fresh: fn(&Sample) -> bool, f: &dyn Fn(&Sample) -> f64| -> Value {
+        let xs: Vec<f64> = s.iter().filter(|x| fresh(x)).map(f).collect();
+        if averaged || xs.len() == s.len() {
+            return col(f);
+        }
+        if xs.is_empty() {
+            stale.push(name.to_string());
+            return col(f);
+        }
+        Value::of(&xs)
+    };
+    let omega = own("RPM", |x| x.fresh.omega, &|x| x.omega);
+    let thrust = own("thrust", |x| x.fresh.thrust, &|x| x.thrust);
+    let torque = s[0]
+        .torque
+        .is_some()
+        .then(|| own("torque", |x| x.fresh.torque, &|x| x.torque.unwrap_or(f64::NAN)));
     let airspeed = col(&|x| x.airspeed);
     let mut flags = Vec::new();
+    if !stale.is_empty() {
+        flags.push(format!(
+            "no {} reading logged within the point (a sparse log's earlier value only)",
+            stale.join(" or ")
+        ));
+    }
+    if thrust.mean < 0.0 {
+        flags.push("negative thrust: windmilling (the flow drives the propeller), shown, not scored".to_string());
+    }
     if omega.relative_sd() > opts.unsteady_rpm {
         flags.push(format!(
             "unsteady RPM: scatter {:.1} % of the mean (limit {:.0} %)",

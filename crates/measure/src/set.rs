@@ -135,6 +135,12 @@ impl MeasuredPoint {
 pub enum DropReason {
     /// RPM is zero: the propeller was not turning (idle steps; expected, not a fault).
     NotSpinning,
+    /// The motor idling, starting or stopping: below [`limits::IDLE`] of the log's highest
+    /// RPM, or a thrust at the load cell's zero on the wrong side (expected, not a fault).
+    Idle,
+    /// A sparse log's row before one of the needed sensors logged its first reading (expected,
+    /// not a fault).
+    BeforeFirstReading,
     /// A needed cell is empty.
     Missing,
     /// A needed cell is not a finite number.
@@ -173,6 +179,15 @@ pub mod limits {
     pub const COEFFICIENT: f64 = 10.0;
     /// Advance ratio.
     pub const ADVANCE_RATIO: f64 = 20.0;
+
+    /// Rows below this fraction of their log's highest RPM are the motor idling, starting or
+    /// stopping ([`DropReason::Idle`]): a propeller there makes 0.25 % of its top thrust,
+    /// below a load cell's zero drift.
+    pub const IDLE: f64 = 0.05;
+
+    /// A thrust within this fraction of the log's largest |thrust| on the side opposite the
+    /// pull, with no airspeed, is the load cell's zero, not windmilling.
+    pub const ZERO_THRUST: f64 = 0.02;
 
     /// Slowest rotation a measured point can have [rad/s] (1 rpm): below it the coefficients
     /// divide by almost nothing (a row of 1e-300 rpm is a corrupt cell, not a test).
@@ -227,13 +242,18 @@ pub mod limits {
 impl DropReason {
     /// True for rows that are wrong, as opposed to rows that are expected not to count.
     pub fn is_fault(self) -> bool {
-        !matches!(self, DropReason::NotSpinning | DropReason::Windmilling)
+        !matches!(
+            self,
+            DropReason::NotSpinning | DropReason::Windmilling | DropReason::Idle | DropReason::BeforeFirstReading
+        )
     }
 
     /// Short text.
     pub fn text(self) -> &'static str {
         match self {
             DropReason::NotSpinning => "not spinning (RPM 0)",
+            DropReason::Idle => "idle (motor starting, stopping or below 5 % of the top RPM; thrust at zero)",
+            DropReason::BeforeFirstReading => "before a sensor's first reading (sparse log)",
             DropReason::Missing => "empty cell",
             DropReason::NotANumber => "not a number",
             DropReason::NegativeRpm => "negative RPM",
@@ -262,8 +282,12 @@ pub struct Dropped {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Format {
-    /// RCbenchmark / Tyto Robotics CSV export.
+    /// RCbenchmark / Tyto Robotics CSV export (the older app).
     RcBenchmark,
+    /// Tyto Robotics' Flight Stand software's CSV export (`Powertrain 1 - ...` columns).
+    FlightStand,
+    /// Tyto Robotics' online test database's table (`Rotation speed (rpm)`, `Thrust (kgf)`).
+    TytoDatabase,
     /// UIUC static file (RPM CT CP).
     UiucStatic,
     /// UIUC advance-ratio sweep (J CT CP eta).
@@ -301,6 +325,20 @@ pub struct MeasuredSet {
     pub rpm_source: Option<RpmSource>,
     /// What was detected or assumed, for the report.
     pub notes: Vec<String>,
+    /// Which propulsion unit of a file of several (`Powertrain 2`, the Series 1780's `B`).
+    pub series: Option<String>,
+    /// Why the data may not be a propeller's (thrust not rising with RPM, torque against
+    /// thrust): said on the terminal and in the reports, exit 1.
+    pub warnings: Vec<String>,
+}
+
+/// A file of a batch that could not be read: the others are read, this one named with why.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Refused {
+    /// The file as given.
+    pub file: String,
+    /// Why it was not read.
+    pub reason: String,
 }
 
 impl MeasuredSet {

@@ -79,6 +79,21 @@ pub fn delimiter(header: &str) -> u8 {
     }
 }
 
+/// The cells of a header line, split at its [`delimiter`] (quotes removed, trimmed).
+pub fn header_cells(line: &str) -> Vec<String> {
+    let mut rdr = csv::ReaderBuilder::new()
+        .delimiter(delimiter(line))
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .from_reader(line.as_bytes());
+    rdr.records()
+        .next()
+        .and_then(Result::ok)
+        .map(|r| r.iter().map(str::to_string).collect())
+        .unwrap_or_default()
+}
+
 /// "1,25" or "-0,5e-3" as "1.25", "-0.5e-3": a decimal comma in a file whose separator is not
 /// a comma. None when the cell is not such a number.
 fn decimal_comma(cell: &str) -> Option<String> {
@@ -266,6 +281,100 @@ pub struct Sample {
     pub pressure: Option<f64>,
     /// Relative humidity [0..1].
     pub humidity: Option<f64>,
+    /// Which of the row's readings are its own, not a sparse log's latest earlier value.
+    pub fresh: Fresh,
+}
+
+/// Which readings of a row were logged on it (a thrust stand writes each sensor at its own
+/// rate: the other cells of a row are empty, and take the sensor's latest reading).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Fresh {
+    /// The rotation reading.
+    pub omega: bool,
+    /// The thrust reading.
+    pub thrust: bool,
+    /// The torque reading.
+    pub torque: bool,
+}
+
+impl Fresh {
+    /// Every reading the row's own.
+    pub const ALL: Fresh = Fresh {
+        omega: true,
+        thrust: true,
+        torque: true,
+    };
+}
+
+/// A sparse log's empty cells filled with each column's latest reading (the columns of
+/// `cols`, time excepted): the rows filled, which cells of each were filled (rotation, thrust,
+/// torque), the rows before a needed sensor's first reading, and how many cells were filled.
+struct Filled {
+    rows: Vec<CsvRow>,
+    fresh: Vec<Fresh>,
+    before_first: Vec<bool>,
+    cells: usize,
+}
+
+fn fill_sparse(table: &CsvTable, cols: &Columns) -> Filled {
+    let fill: Vec<usize> = [
+        &cols.esc,
+        &cols.rotation,
+        &cols.rotation_other,
+        &cols.thrust,
+        &cols.torque,
+        &cols.airspeed,
+        &cols.temperature,
+        &cols.pressure,
+        &cols.humidity,
+    ]
+    .into_iter()
+    .flatten()
+    .map(|c| c.index)
+    .collect();
+    let needed: Vec<usize> = [&cols.rotation, &cols.thrust, &cols.torque]
+        .into_iter()
+        .flatten()
+        .map(|c| c.index)
+        .collect();
+    let index = |c: &Option<Column>| c.as_ref().map(|c| c.index);
+    let (rot, thr, tor) = (index(&cols.rotation), index(&cols.thrust), index(&cols.torque));
+    let mut latest: Vec<Option<String>> = vec![None; table.headers.len()];
+    let mut out = Filled {
+        rows: Vec::with_capacity(table.rows.len()),
+        fresh: Vec::with_capacity(table.rows.len()),
+        before_first: Vec::with_capacity(table.rows.len()),
+        cells: 0,
+    };
+    for row in &table.rows {
+        let mut row = row.clone();
+        if row.cells.len() < table.headers.len() {
+            row.cells.resize(table.headers.len(), String::new());
+        }
+        let own = |i: Option<usize>, row: &CsvRow| i.is_none_or(|i| !row.cells[i].is_empty());
+        out.fresh.push(Fresh {
+            omega: own(rot, &row),
+            thrust: own(thr, &row),
+            torque: own(tor, &row),
+        });
+        let mut waiting = false;
+        for &i in &fill {
+            if row.cells[i].is_empty() {
+                match &latest[i] {
+                    Some(v) => {
+                        row.cells[i] = v.clone();
+                        out.cells += 1;
+                    }
+                    None => waiting |= needed.contains(&i),
+                }
+            } else {
+                latest[i] = Some(row.cells[i].clone());
+            }
+        }
+        out.before_first.push(waiting);
+        out.rows.push(row);
+    }
+    out
 }
 
 fn cell(row: &CsvRow, col: &Column) -> Result<f64, (DropReason, String)> {
@@ -290,8 +399,16 @@ fn cell(row: &CsvRow, col: &Column) -> Result<f64, (DropReason, String)> {
 }
 
 /// Converts rows to samples; rows with an unusable needed cell are dropped with the reason.
-/// `rotation` and `thrust` must be set.
-pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
+/// `rotation` and `thrust` must be set. `sparse`: a thrust stand's log, whose empty cells take
+/// their column's latest reading (rows before a needed sensor's first reading are left out as
+/// such), said in `notes`.
+pub fn samples(
+    table: &CsvTable,
+    cols: &Columns,
+    sparse: bool,
+    dropped: &mut Vec<Dropped>,
+    notes: &mut Vec<String>,
+) -> Vec<Sample> {
     let rot = cols.rotation.as_ref().expect("rotation column chosen");
     let thr = cols.thrust.as_ref().expect("thrust column chosen");
     let optional = |row: &CsvRow, c: &Option<Column>| c.as_ref().and_then(|c| cell(row, c).ok());
@@ -301,14 +418,42 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
     let width = table.headers.len();
     let short = table.rows.iter().filter(|r| r.cells.len() < width).count();
     let short_is_fault = short * 10 < table.rows.len();
-    for row in &table.rows {
-        if short_is_fault && row.cells.len() < width {
+    let filled = sparse.then(|| fill_sparse(table, cols));
+    if let Some(f) = filled.as_ref().filter(|f| f.cells > 0) {
+        let own = |pick: fn(&Fresh) -> bool| f.fresh.iter().filter(|x| pick(x)).count();
+        let torque = if cols.torque.is_some() {
+            format!(", torque on {}", own(|x| x.torque))
+        } else {
+            String::new()
+        };
+        notes.push(format!(
+            "sparse log (each sensor written at its own rate): {} empty cells took their column's latest reading; \
+             of {} rows, RPM is logged on {}, thrust on {}{torque}; each point's thrust and torque are the mean \
+             of the readings logged within it",
+            f.cells,
+            table.rows.len(),
+            own(|x| x.omega),
+            own(|x| x.thrust),
+        ));
+    }
+    let rows = filled.as_ref().map_or(&table.rows, |f| &f.rows);
+    for (k, row) in rows.iter().enumerate() {
+        if filled.as_ref().is_some_and(|f| f.before_first[k]) {
+            dropped.push(Dropped {
+                line: row.line,
+                reason: DropReason::BeforeFirstReading,
+                detail: "a needed sensor has not logged its first reading yet".into(),
+            });
+            continue;
+        }
+        let row_short = table.rows[k].cells.len() < width;
+        if short_is_fault && row_short {
             dropped.push(Dropped {
                 line: row.line,
                 reason: DropReason::Missing,
                 detail: format!(
                     "{} values where the header and the other rows have {width}: a cell is missing, the values after it would be read from the wrong columns",
-                    row.cells.len()
+                    table.rows[k].cells.len()
                 ),
             });
             continue;
@@ -353,6 +498,7 @@ pub fn samples(table: &CsvTable, cols: &Columns, dropped: &mut Vec<Dropped>) -> 
                 temperature: optional(row, &cols.temperature),
                 pressure: optional(row, &cols.pressure),
                 humidity: optional(row, &cols.humidity),
+                fresh: filled.as_ref().map_or(Fresh::ALL, |f| f.fresh[k]),
             }),
             Err((reason, detail)) => dropped.push(Dropped {
                 line: row.line,

@@ -187,6 +187,8 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
         has_torque: true,
         rpm_source: None,
         notes,
+        series: None,
+        warnings: Vec::new(),
     })
 }
 

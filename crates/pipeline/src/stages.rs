@@ -14,7 +14,7 @@ use propbet_geometry::cloud::read_cloud;
 use propbet_geometry::mesh::read_stl;
 use propbet_geometry::scan::{scan_cloud, scan_mesh, Geometry};
 use propbet_measure::uiuc::GeometryRow;
-use propbet_measure::{MeasuredSet, ReadOptions};
+use propbet_measure::{MeasuredSet, ReadOptions, Refused};
 use propbet_polar::blade::{compute_blade, BladeJob, XfoilSettings, BLADE_PANELS};
 use propbet_polar::{naca4_from_name, Airfoil, BladePolars, PolarCache, PolarEngine, Progress};
 use propbet_qprop::{GeometryAccuracy, PropFile, PropRow};
@@ -22,7 +22,7 @@ use rayon::prelude::*;
 
 use crate::model::{as_written, load_prop, LoadedProp, Model};
 use crate::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec};
-use crate::{conflict, nothing, out_of_range, read_text, Error, Result};
+use crate::{conflict, nothing, out_of_range, read_bytes, read_text, Error, Result};
 
 // ---------------------------------------------------------------------------------------
 // scan

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use propbet_compare::curves::Curves;
 use propbet_compare::metrics::{group_points, static_rise, sweep_group, zero_thrust_shift, MetricGroup, Metrics};
 use propbet_compare::{ComparedPoint, QUANTITIES};
-use propbet_measure::{DropReason, Dropped, MeasuredSet};
+use propbet_measure::{DropReason, Dropped, MeasuredSet, Refused};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
@@ -30,6 +30,11 @@ pub struct ReportInput<'a> {
     pub prop_notes: Vec<String>,
     /// Measured files.
     pub files: Vec<FileEntry<'a>>,
+    /// Measured files that were not read, with why.
+    pub refused: &'a [Refused],
+    /// The command's warnings about the measurements (refused files, logs that cannot be a
+    /// propeller's, another propeller's size), as the terminal says them.
+    pub warnings: Vec<String>,
     /// Compared points.
     pub points: &'a [ComparedPoint],
     /// Their scores.
@@ -151,12 +156,14 @@ pub fn summary_json(
     m: &Metrics,
     points: &[ComparedPoint],
     problems: (usize, usize),
+    warnings: &[String],
 ) -> serde_json::Value {
     let implausible = points.iter().filter(|p| !p.model_flags.is_empty()).count();
     serde_json::json!({
         "format": "propbet-compare-summary-1",
         "command": command,
-        "clean": problems == (0, 0) && implausible == 0,
+        "clean": problems == (0, 0) && implausible == 0 && warnings.is_empty(),
+        "warnings": warnings,
         "points": points.len(),
         "outside_window": m.outside_window,
         "headline": headline_json(m),
@@ -169,10 +176,86 @@ pub fn summary_json(
     })
 }
 
-/// The "Measured files" section of a page: each file's format, rows, points, notes, and its
-/// dropped rows as line ranges with their reasons.
-pub fn measured_files_html(files: &[FileEntry]) -> String {
+/// A file's verdict in the batch table.
+fn verdict(s: &MeasuredSet) -> String {
+    match (s.faults(), s.warnings.first()) {
+        (_, Some(w)) => format!("warning: {w}"),
+        (0, None) => "read".into(),
+        (n, None) => format!("read; {n} faulty rows"),
+    }
+}
+
+/// Rows dropped as faults and as expected (idle, not spinning), as "faults / expected".
+fn dropped_split(s: &MeasuredSet) -> String {
+    format!("{} / {}", s.faults(), s.dropped.len() - s.faults())
+}
+
+/// The batch table: one row per file (rows, points, dropped, verdict), the refused ones with
+/// why; empty for a single file read.
+fn batch_table_html(files: &[FileEntry], refused: &[Refused]) -> String {
+    if files.len() + refused.len() < 2 && refused.is_empty() {
+        return String::new();
+    }
+    let mut h = String::from(
+        "<table><tr><th>file</th><th>format</th><th>rows</th><th>points</th><th>dropped: faults / expected</th><th>verdict</th></tr>\n",
+    );
+    for f in files {
+        let s = f.set;
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td>{:?}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&f.path),
+            s.format,
+            s.rows,
+            s.points.len(),
+            dropped_split(s),
+            esc(&verdict(s))
+        );
+    }
+    for r in refused {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td></td><td></td><td>0</td><td></td><td><b>refused</b>: {}</td></tr>",
+            esc(&r.file),
+            esc(&r.reason)
+        );
+    }
+    h.push_str("</table>\n");
+    h
+}
+
+/// The batch table in Markdown (see [`batch_table_html`]).
+fn batch_table_md(files: &[FileEntry], refused: &[Refused]) -> String {
+    if files.len() + refused.len() < 2 && refused.is_empty() {
+        return String::new();
+    }
+    let mut md = String::from("| file | format | rows | points | dropped: faults / expected | verdict |\n|---|---|---|---|---|---|\n");
+    for f in files {
+        let s = f.set;
+        let _ = writeln!(
+            md,
+            "| `{}` | {:?} | {} | {} | {} | {} |",
+            f.path,
+            s.format,
+            s.rows,
+            s.points.len(),
+            dropped_split(s),
+            verdict(s).replace('|', "\\|")
+        );
+    }
+    for r in refused {
+        let _ = writeln!(md, "| `{}` | | | 0 | | refused: {} |", r.file, r.reason.replace('|', "\\|"));
+    }
+    md.push('\n');
+    md
+}
+
+/// The "Measured files" section of a page: a table of the batch (with the files refused),
+/// then each file's format, rows, points, notes, and its dropped rows as line ranges with their
+/// reasons.
+pub fn measured_files_html(files: &[FileEntry], refused: &[Refused]) -> String {
     let mut h = String::from("<h2>Measured files</h2>\n");
+    h.push_str(&batch_table_html(files, refused));
     for (i, f) in files.iter().enumerate() {
         let s = f.set;
         let _ = write!(
@@ -186,6 +269,9 @@ pub fn measured_files_html(files: &[FileEntry]) -> String {
             s.points.len(),
             esc(&propbet_measure::summarise_dropped(&s.dropped))
         );
+        for w in &s.warnings {
+            let _ = write!(h, "<li><b>warning</b>: {}</li>", esc(w));
+        }
         for n in &s.notes {
             let _ = write!(h, "<li>{}</li>", esc(n));
         }
@@ -212,9 +298,10 @@ pub fn measured_files_html(files: &[FileEntry]) -> String {
 }
 
 /// The "Measured files" section of a Markdown summary.
-pub fn measured_files_md(files: &[FileEntry]) -> String {
+pub fn measured_files_md(files: &[FileEntry], refused: &[Refused]) -> String {
     let mut md = String::new();
     md.push_str("## Measured files\n\n");
+    md.push_str(&batch_table_md(files, refused));
     for (i, f) in files.iter().enumerate() {
         let _ = writeln!(
             md,
@@ -227,6 +314,9 @@ pub fn measured_files_md(files: &[FileEntry]) -> String {
             f.set.points.len(),
             propbet_measure::summarise_dropped(&f.set.dropped)
         );
+        for w in &f.set.warnings {
+            let _ = writeln!(md, "   - **warning**: {w}");
+        }
         for n in &f.set.notes {
             let _ = writeln!(md, "   - {n}");
         }
@@ -442,6 +532,7 @@ fn warnings(input: &ReportInput) -> Vec<String> {
             m.unscored
         ));
     }
+    warnings.extend(input.warnings.iter().cloned());
     let faults: usize = input.files.iter().map(|f| f.set.faults()).sum();
     if faults > 0 {
         warnings.push(format!(
@@ -453,9 +544,15 @@ fn warnings(input: &ReportInput) -> Vec<String> {
     warnings
 }
 
+/// "120 / 14 / 14": the readings of RPM, thrust and torque that made a point.
+fn readings(s: &propbet_compare::Samples) -> String {
+    let opt = |n: Option<usize>| n.map_or("–".to_string(), |n| n.to_string());
+    format!("{} / {} / {}", s.rpm, opt(s.thrust), opt(s.torque))
+}
+
 /// The points' table rows, one per point: measured with its spread, predicted, errors, flags.
 fn points_table_html(h: &mut String, pts: &[ComparedPoint]) {
-    h.push_str("<table><tr><th>file</th><th>point</th><th>lines</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
+    h.push_str("<table><tr><th>file</th><th>point</th><th>lines</th><th title=\"readings of RPM / thrust / torque that made the point\">readings</th><th>RPM</th><th>V [m/s]</th><th>J</th><th>ρ</th><th>thrust meas. [N]</th><th>pred.</th><th>err.</th><th>torque meas. [N·m]</th><th>pred.</th><th>err.</th><th>CT meas.</th><th>CP meas.</th><th>η meas.</th><th>η pred.</th><th>Re 0.75R</th><th>M tip</th><th>flags</th></tr>\n");
     for p in pts {
         let pm = |q: &str| {
             let v = p.measured.get(q).map_or("–".into(), sig);
@@ -466,12 +563,13 @@ fn points_table_html(h: &mut String, pts: &[ComparedPoint]) {
         };
         let _ = writeln!(
             h,
-            "<tr{}><td>{}</td><td>{}</td><td>{}–{}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.3}</td><td>{}</td></tr>",
+            "<tr{}><td>{}</td><td>{}</td><td>{}–{}</td><td>{}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{:.0}</td><td>{:.3}</td><td>{}</td></tr>",
             if p.scored() { "" } else { " class=\"flagged\"" },
             p.file + 1,
             esc(&p.label),
             p.lines.0,
             p.lines.1,
+            readings(&p.samples),
             p.rpm,
             sig(p.v),
             sig(p.j),
@@ -636,7 +734,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     );
     points_table_html(&mut h, pts);
     h.push_str("</table></details>\n");
-    h.push_str(&measured_files_html(&input.files));
+    h.push_str(&measured_files_html(&input.files, input.refused));
     h.push_str("<h2>Air</h2>\n<ul>");
     for s in &air_sources {
         let _ = write!(h, "<li>{}</li>", esc(s));

@@ -13,6 +13,7 @@ use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
 use crate::compare::{measured_files_html, measured_files_md, FileEntry};
+use propbet_measure::Refused;
 use crate::page::{esc, page, sig};
 
 /// The report in its forms.
@@ -433,7 +434,7 @@ fn ranking_row(i: usize, s: &Scored, remark: Option<String>) -> String {
 
 /// The diagnosis in Markdown: the verdict, where the model fails, the ranking, the ladder, what
 /// is left, the measured files.
-fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry]) -> String {
+fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry], refused: &[Refused]) -> String {
     let mut md = format!("# Diagnosis\n\n{verdict}\n\n## Where the model fails\n\n");
     for s in &d.before {
         let _ = writeln!(md, "- {}", signature_text(s));
@@ -480,13 +481,20 @@ fn markdown(d: &Diagnosis, verdict: &str, files: &[FileEntry]) -> String {
         let _ = writeln!(md, "- {}", signature_text(s));
     }
     md.push('\n');
-    md.push_str(&measured_files_md(files));
+    md.push_str(&measured_files_md(files, refused));
     md
 }
 
 /// Builds the report. The measured files (with their dropped rows) are listed on the page and
 /// in the Markdown, not in the body that the run's page nests (its compare section lists them).
-pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], command: &str) -> Result<Report, PlotError> {
+pub fn build(
+    data: &Data,
+    d: &Diagnosis,
+    prop: &str,
+    files: &[FileEntry],
+    refused: &[Refused],
+    command: &str,
+) -> Result<Report, PlotError> {
     let measured: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     let panels = residual_panels(data, d);
     let rows = panels.len().div_ceil(2) as u32;
@@ -557,12 +565,12 @@ pub fn build(data: &Data, d: &Diagnosis, prop: &str, files: &[FileEntry], comman
         esc(&effect_args(d).join(" "))
     );
 
-    let md = markdown(d, &verdict, files);
+    let md = markdown(d, &verdict, files, refused);
     Ok(Report {
         html: page(
             &format!("propbet diagnosis: {prop}"),
             "",
-            &format!("{h}{}", measured_files_html(files)),
+            &format!("{h}{}", measured_files_html(files, refused)),
         ),
         body: h,
         markdown: crate::md_safe(&md),

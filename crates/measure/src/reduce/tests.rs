@@ -15,6 +15,7 @@ fn sample(line: usize, t: f64, esc: f64, rpm: f64, thrust: f64) -> Sample {
         temperature: None,
         pressure: None,
         humidity: None,
+        fresh: crate::table::Fresh::ALL,
     }
 }
 
@@ -114,7 +115,7 @@ fn faulty_rows_are_listed() {
     let mut log = step_log();
     log[30].time = log[29].time; // duplicate time
     log[50].time = Some(400.0); // stray row
-    log[60].thrust = -5.0; // negative thrust
+    log[65].thrust = -5.0; // negative thrust where the step's other rows pull
     log[70].omega = -100.0;
     let mut dropped = Vec::new();
     let (_, pts) = reduce_log(log, false, &mut dropped, &mut Vec::new(), &ReduceOptions::default());
@@ -130,34 +131,75 @@ fn faulty_rows_are_listed() {
             (32, DropReason::DuplicateTime),
             (52, DropReason::TimeOutOfOrder),
             (72, DropReason::NegativeRpm),
-            (62, DropReason::NegativeThrust),
+            (67, DropReason::NegativeThrust),
         ]
     );
 }
 
-/// Negative thrust in a stream is the end of a J sweep (windmilling), dropped but not a
-/// fault; without airspeed it is one.
+/// Negative thrust where no row at the same RPM and airspeed pulls is windmilling: kept as
+/// data, its point flagged; where the rows beside it pull, a fault; at the load cell's zero,
+/// idle.
 #[test]
-fn negative_thrust_in_a_stream_is_windmilling_not_a_fault() {
-    // Mostly positive thrust (the column's sign is taken from the median).
+fn negative_thrust_is_windmilling_a_fault_or_idle_by_its_neighbours() {
     let mut rows: Vec<Sample> = (5..9).map(|i| sample(i, i as f64, 1500.0, 5000.0, 2.0)).collect();
     rows.push(sample(3, 1.0, 1500.0, 5000.0, -0.3));
     rows[4].airspeed = 12.0;
     rows.push(sample(4, 2.0, 1500.0, 5000.0, -0.2));
+    rows.push(sample(9, 9.0, 1500.0, 5000.0, -0.01));
     let mut dropped = Vec::new();
     let out = orient(rows, &mut dropped, &mut Vec::new());
-    assert_eq!(out.len(), 4);
+    assert_eq!(out.len(), 5);
+    assert!(out.iter().any(|s| s.line == 3 && s.thrust == -0.3), "kept, never flipped");
     let reasons: Vec<(usize, DropReason, bool)> = dropped
         .iter()
         .map(|d| (d.line, d.reason, d.reason.is_fault()))
         .collect();
     assert_eq!(
         reasons,
-        vec![
-            (3, DropReason::Windmilling, false),
-            (4, DropReason::NegativeThrust, true)
-        ]
+        vec![(4, DropReason::NegativeThrust, true), (9, DropReason::Idle, false)]
     );
+}
+
+/// The pull direction is the highest-RPM rows', not the majority's: a polar run logged pull
+/// positive whose many low-RPM rows windmill keeps every sign as logged.
+#[test]
+fn the_sign_follows_the_highest_rpm_rows_not_the_majority() {
+    let mut rows: Vec<Sample> = (0..30)
+        .map(|i| sample(i + 2, i as f64, 1100.0, 1000.0 + 20.0 * i as f64, -10.0))
+        .collect();
+    rows.extend((0..10).map(|i| sample(i + 40, 40.0 + i as f64, 1900.0, 5000.0, 42.0)));
+    let mut notes = Vec::new();
+    let mut dropped = Vec::new();
+    let out = orient(rows, &mut dropped, &mut notes);
+    assert!(dropped.is_empty(), "{dropped:?}");
+    assert_eq!(out.len(), 40);
+    assert!(out.iter().filter(|s| s.omega > 400.0).all(|s| s.thrust == 42.0));
+    assert!(out.iter().filter(|s| s.omega < 400.0).all(|s| s.thrust == -10.0));
+    assert!(!notes.iter().any(|n| n.contains("thrust is logged negative")), "{notes:?}");
+    // Logged the other way round, both signs flip together.
+    let flipped: Vec<Sample> = out
+        .iter()
+        .map(|s| Sample {
+            thrust: -s.thrust,
+            ..*s
+        })
+        .collect();
+    let again = orient(flipped, &mut Vec::new(), &mut notes);
+    assert_eq!(again.iter().map(|s| s.thrust).collect::<Vec<_>>(), out.iter().map(|s| s.thrust).collect::<Vec<_>>());
+    assert!(notes.iter().any(|n| n.contains("thrust is logged negative")), "{notes:?}");
+}
+
+/// Rows far below the log's top RPM, and a repeated first time stamp, are idle, not faults.
+#[test]
+fn idle_rows_and_a_repeated_first_stamp_are_not_faults() {
+    let mut log = step_log().split_off(20);
+    log[5].omega = propbet_units::rpm_to_omega(2.0);
+    log[5].thrust = -0.0001;
+    log.insert(0, log[0]);
+    let mut dropped = Vec::new();
+    reduce_log(log, false, &mut dropped, &mut Vec::new(), &ReduceOptions::default());
+    assert!(dropped.iter().all(|d| !d.reason.is_fault()), "{dropped:?}");
+    assert!(dropped.iter().any(|d| d.reason == DropReason::Idle && d.detail.contains("first time stamp")));
 }
 
 #[test]

@@ -181,13 +181,18 @@ fn measured(
             "the measurements' propeller diameter is needed for its coefficients: give --diameter (like 10in) or --prop"
         ),
     };
-    let (air, sets) = crate::stages::load_measured(measured)?;
+    // Every file, read once; one that does not read stops the export.
+    let batch = crate::stages::load_batch(measured)?;
+    if let Some(r) = batch.refused.first() {
+        return Err(Error::input(std::path::Path::new(&r.file), r.reason.clone()));
+    }
+    let (air, sets) = (batch.air, &batch.sets);
     let mut points = Vec::new();
     let mut flagged = 0;
-    for (file, set) in measured.files.iter().zip(&sets) {
+    for (name, set) in batch.names.iter().zip(sets) {
         if !set.has_torque {
             return Err(Error::input(
-                file,
+                std::path::Path::new(name),
                 "no torque or power measured; every export needs the torque (momentConstant, CP)",
             ));
         }

@@ -8,8 +8,25 @@ use super::*;
 // ---------------------------------------------------------------------------------------
 // measurements, compare, diagnose
 
-/// Reads the measured files of a spec: the air choice and the measured sets.
-pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
+/// The measured files of a spec, each read or refused on its own.
+#[derive(Debug, Clone)]
+pub struct Batch {
+    /// The air choice.
+    pub air: AirChoice,
+    /// Every series of every file read (a thrust-stand file of several powertrains gives one
+    /// set per powertrain).
+    pub sets: Vec<MeasuredSet>,
+    /// Each set's name: its file, and its series when the file has several.
+    pub names: Vec<String>,
+    /// The files not read, with why.
+    pub refused: Vec<Refused>,
+}
+
+/// Reads the measured files of a spec, each on its own: a file that cannot be read is
+/// refused and named, the others read. An error for the command's own mistakes (a flag, a file
+/// given twice, a column map) and when no file reads (then the only file's own error, or every
+/// file's).
+pub fn load_batch(spec: &MeasuredSpec) -> Result<Batch> {
     if let Some(p) = spec.poles {
         if p < 2 || p % 2 != 0 {
             out_of_range!("--poles {p}: a motor has an even number of poles, at least 2");
@@ -45,24 +62,67 @@ pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>
         }
         seen.push((real, p));
     }
-    let sets = spec
-        .files
-        .iter()
-        .map(|p| read_measured(p, &opts))
-        .collect::<Result<_>>()?;
-    Ok((air, sets))
+    let mut batch = Batch {
+        air,
+        sets: Vec::new(),
+        names: Vec::new(),
+        refused: Vec::new(),
+    };
+    let mut errors = Vec::new();
+    for p in &spec.files {
+        match read_measured(p, &opts) {
+            Ok(sets) => {
+                let several = sets.len() > 1;
+                for s in sets {
+                    batch.names.push(match (&s.series, several) {
+                        (Some(series), true) => format!("{} [{series}]", p.display()),
+                        _ => p.display().to_string(),
+                    });
+                    batch.sets.push(s);
+                }
+            }
+            Err(e) => {
+                batch.refused.push(Refused {
+                    file: p.display().to_string(),
+                    reason: match &e {
+                        Error::Input { message, .. } => message.clone(),
+                        e => e.to_string(),
+                    },
+                });
+                errors.push(e);
+            }
+        }
+    }
+    if batch.sets.is_empty() {
+        if errors.len() == 1 {
+            return Err(errors.remove(0));
+        }
+        return Err(Error::Nothing(format!(
+            "none of the {} measured files reads: {}",
+            errors.len(),
+            errors.iter().map(ToString::to_string).collect::<Vec<_>>().join("; ")
+        )));
+    }
+    Ok(batch)
 }
 
-fn read_measured(path: &Path, opts: &ReadOptions) -> Result<MeasuredSet> {
-    let text = read_text(path).map_err(|e| match e {
-        Error::Input { path, message } => Error::input(path, format!("{message}; export the log as CSV")),
-        e => e,
-    })?;
+/// Reads the measured files of a spec, every one of them: the air choice and the measured sets
+/// (a file that cannot be read is the error).
+pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
+    let batch = load_batch(spec)?;
+    if let Some(r) = batch.refused.first() {
+        return Err(Error::input(Path::new(&r.file), r.reason.clone()));
+    }
+    Ok((batch.air, batch.sets))
+}
+
+fn read_measured(path: &Path, opts: &ReadOptions) -> Result<Vec<MeasuredSet>> {
+    let bytes = read_bytes(path)?;
     let opts = ReadOptions {
         name: path.file_name().map(|n| n.to_string_lossy().into_owned()),
         ..opts.clone()
     };
-    propbet_measure::read(&text, &opts).map_err(|e| Error::input(path, e))
+    propbet_measure::read_file(&bytes, &opts).map_err(|e| Error::input(path, e))
 }
 
 impl MeasuredSpec {
@@ -80,6 +140,10 @@ impl MeasuredSpec {
 pub struct Compared {
     /// The measured sets as read.
     pub sets: Vec<MeasuredSet>,
+    /// Each set's name ([`Batch::names`]).
+    pub names: Vec<String>,
+    /// The files not read.
+    pub refused: Vec<Refused>,
     /// The air choice.
     pub air: AirChoice,
     /// Every point, measured and predicted.
@@ -94,10 +158,20 @@ impl Compared {
         propbet_compare::plausible::of_points(&self.points)
     }
 
-    /// Nothing to report: no faulty row, every station converged, measurements of this
-    /// propeller's size.
+    /// Nothing to report: every file read, no faulty row, every station converged, every file
+    /// a propeller's, measurements of this propeller's size.
     pub fn clean(&self) -> bool {
-        self.problems() == (0, 0) && self.mismatch().is_none()
+        self.problems() == (0, 0) && self.warnings().is_empty()
+    }
+
+    /// Every warning the terminal prints, as sentences: refused files, logs that cannot be a
+    /// propeller's, measurements of another size (each makes the exit code 1).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = batch_warnings(&self.names, &self.sets, &self.refused);
+        if let Some(m) = self.mismatch() {
+            out.push(m.message());
+        }
+        out
     }
 
     /// Rows dropped as faulty and stations that did not converge (all reported).
@@ -107,6 +181,19 @@ impl Compared {
             self.points.iter().map(|p| p.not_converged).sum(),
         )
     }
+}
+
+/// The warnings of files read and refused: each refused file, each set's plausibility
+/// warnings (named by `names`).
+pub fn batch_warnings(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> Vec<String> {
+    let mut out: Vec<String> = refused
+        .iter()
+        .map(|r| format!("{}: not read: {}", r.file, r.reason))
+        .collect();
+    for (n, s) in names.iter().zip(sets) {
+        out.extend(s.warnings.iter().map(|w| format!("{n}: {w}")));
+    }
+    out
 }
 
 /// The solver setup of a model for the comparison (with the model's effects or without).
@@ -122,10 +209,17 @@ pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> 
 
 /// Runs the compare stage.
 pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
-    let (air, sets) = load_measured(measured)?;
+    let Batch {
+        air,
+        sets,
+        names,
+        refused,
+    } = load_batch(measured)?;
     let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
     let metrics = metrics(&points);
     Ok(Compared {
+        names,
+        refused,
         sets,
         air,
         points,
@@ -137,6 +231,10 @@ pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
 pub struct Diagnosed {
     /// The measured sets as read.
     pub sets: Vec<MeasuredSet>,
+    /// Each set's name ([`Batch::names`]).
+    pub names: Vec<String>,
+    /// The files not read.
+    pub refused: Vec<Refused>,
     /// The air choice.
     pub air: AirChoice,
     /// The residual rows.
@@ -155,8 +253,10 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
 pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Result<Diagnosed> {
     // The command line's own mistakes are named before any file is read.
     let candidates = candidates(model, spec)?;
-    let (air, sets) = load_measured(&spec.measured)?;
-    diagnose_read(model, spec, candidates, air, sets, signatures)
+    let batch = load_batch(&spec.measured)?;
+    let (names, refused) = (batch.names.clone(), batch.refused.clone());
+    let d = diagnose_read(model, spec, candidates, batch.air, batch.sets, signatures)?;
+    Ok(Diagnosed { names, refused, ..d })
 }
 
 /// [`diagnose_with`] of measurements already read (validate's held-out halves); `spec`'s
@@ -215,6 +315,8 @@ fn diagnose_read(
     };
     let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
     Ok(Diagnosed {
+        names: (0..sets.len()).map(|k| format!("file {}", k + 1)).collect(),
+        refused: Vec::new(),
         sets,
         air,
         data,

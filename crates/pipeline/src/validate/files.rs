@@ -52,7 +52,8 @@ pub fn find_apc_file(dir: &Path, name: &str) -> Option<PathBuf> {
 /// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
 /// out to 100 rpm) with J from 0 to the largest measured, in steps of 0.05.
 pub fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
-    let (_, sets) = stages::load_measured(measured)?;
+    // The files that read (a refused one is the comparison's to report).
+    let sets = stages::load_batch(measured)?.sets;
     let points = sets.iter().flat_map(|s| &s.points);
     let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
     for p in points {

@@ -543,9 +543,11 @@ def read_measurements(paths: Union[PathLike, Sequence[PathLike]], **options: Any
     """Measured files (RCbenchmark / Tyto logs, UIUC files, generic CSV with ``columns=`` a
     TOML column map) read as ``compare`` reads them: one row per steady point (``rpm``,
     ``v_m_s`` or ``j``, ``thrust_n`` and ``torque_nm`` or ``ct`` and ``cp``, their standard
-    deviations, the lines they came from). ``options``: ``poles``, ``rpm_source``,
-    ``atmosphere``, ``rho``, ``columns``. The rows not used are in ``.attrs["dropped"]``
-    (file, line, reason, detail)."""
+    deviations, ``samples`` / ``thrust_samples`` / ``torque_samples`` the readings of each
+    signal that made the point, the lines they came from). ``options``: ``poles``,
+    ``rpm_source``, ``atmosphere``, ``rho``, ``columns``. The rows not used are in
+    ``.attrs["dropped"]`` (file, line, reason, detail); a file that cannot be read is one row
+    there with reason ``file_refused`` and no line, as ``compare`` goes on without it."""
     argv = _flags({"measured": paths, **options})
     points, dropped = _relayed(lambda: _native.read_measurements(argv))
     table = _csv(points)

@@ -61,7 +61,7 @@ pub(super) fn markdown(
     for g in &m.per_rpm {
         md_table(&mut md, g);
     }
-    md.push_str(&measured_files_md(&input.files));
+    md.push_str(&measured_files_md(&input.files, input.refused));
 
     md
 }
