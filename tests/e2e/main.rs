@@ -237,6 +237,7 @@ mod qprop_real;
 mod run;
 mod scan;
 mod sim_export;
+mod stand_logs;
 mod validate;
 
 #[test]

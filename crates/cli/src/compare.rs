@@ -305,11 +305,7 @@ pub fn write(
     summary.push(b'\n');
     write_atomic(&out.join("summary.json"), &[summary], &inputs)?;
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    write_atomic(
-        &out.join("points.csv"),
-        &[points_csv(&c.names, &c.points)?],
-        &inputs,
-    )?;
+    write_atomic(&out.join("points.csv"), &[points_csv(&c.names, &c.points)?], &inputs)?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;
     let reference = rep.json.get("reference").cloned();

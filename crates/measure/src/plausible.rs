@@ -42,8 +42,14 @@ pub fn warnings(set: &MeasuredSet) -> Vec<String> {
         .filter(|(_, t, _)| *t > 0.0)
         .collect();
     if pts.len() >= MIN_POINTS {
-        let lo = pts.iter().min_by(|a, b| a.0.omega.mean.total_cmp(&b.0.omega.mean)).unwrap();
-        let hi = pts.iter().max_by(|a, b| a.0.omega.mean.total_cmp(&b.0.omega.mean)).unwrap();
+        let lo = pts
+            .iter()
+            .min_by(|a, b| a.0.omega.mean.total_cmp(&b.0.omega.mean))
+            .unwrap();
+        let hi = pts
+            .iter()
+            .max_by(|a, b| a.0.omega.mean.total_cmp(&b.0.omega.mean))
+            .unwrap();
         let ratio = hi.0.omega.mean / lo.0.omega.mean;
         if ratio >= MIN_RPM_RATIO {
             // Least squares of ln T on ln RPM.

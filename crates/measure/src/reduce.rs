@@ -146,9 +146,7 @@ fn pull_sign(samples: &[Sample], pick: impl Fn(&Sample) -> Option<f64>) -> f64 {
         .filter_map(|s| pick(s).map(|y| (s.omega * s.omega, y)))
         .collect();
     let n = xy.len() as f64;
-    let (mx, my) = xy
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (mx, my) = xy.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
     let slope: f64 = xy.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
     if slope < 0.0 {
         -1.0
@@ -206,10 +204,7 @@ fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<Stri
     }
     let zero = ZERO_THRUST * samples.iter().map(|s| s.thrust.abs()).fold(0.0, f64::max);
     // Rows by RPM, to find a negative row's neighbours at the same RPM and airspeed.
-    let mut by_omega: Vec<(f64, f64, bool)> = samples
-        .iter()
-        .map(|s| (s.omega, s.airspeed, s.thrust > zero))
-        .collect();
+    let mut by_omega: Vec<(f64, f64, bool)> = samples.iter().map(|s| (s.omega, s.airspeed, s.thrust > zero)).collect();
     by_omega.sort_by(|a, b| a.0.total_cmp(&b.0));
     let pulling_beside = |s: &Sample| {
         let lo = by_omega.partition_point(|r| r.0 < 0.97 * s.omega);
@@ -232,7 +227,10 @@ fn orient(samples: Vec<Sample>, dropped: &mut Vec<Dropped>, notes: &mut Vec<Stri
             s.airspeed
         );
         let reason = if s.airspeed <= 0.0 && -s.thrust <= zero {
-            Some((DropReason::Idle, format!("{at}: within the load cell's zero ({zero:.4} N)")))
+            Some((
+                DropReason::Idle,
+                format!("{at}: within the load cell's zero ({zero:.4} N)"),
+            ))
         } else if pulling_beside(s) {
             Some((
                 DropReason::NegativeThrust,

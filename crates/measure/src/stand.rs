@@ -73,9 +73,19 @@ fn is_load_or_speed(n: &str) -> bool {
 }
 
 fn not_a_reading(n: &str) -> bool {
-    ["efficien", "load cell", "target", "(mv)", "mv)", "power", "temp", "volt", "current"]
-        .iter()
-        .any(|w| n.contains(w))
+    [
+        "efficien",
+        "load cell",
+        "target",
+        "(mv)",
+        "mv)",
+        "power",
+        "temp",
+        "volt",
+        "current",
+    ]
+    .iter()
+    .any(|w| n.contains(w))
 }
 
 fn thrust_name(n: &str) -> bool {
@@ -111,11 +121,12 @@ fn speed_name(n: &str) -> Option<Option<RpmSource>> {
 pub fn looks_like(headers: &[String]) -> bool {
     let names: Vec<Named> = headers.iter().enumerate().map(|(i, h)| named(i, h)).collect();
     let has = |f: &dyn Fn(&Named) -> bool| names.iter().any(f);
-    let classic = has(&|n| n.name == "time") && has(&|n| esc_name(&n.name));
+    let time = |n: &Named| n.name == "time" && n.unit.as_deref() == Some("s");
+    let classic = has(&time) && has(&|n| esc_name(&n.name));
     let speed = has(&|n| {
         speed_name(&n.name).is_some_and(|s| s.is_some()) || (n.name.contains("rotation speed") && n.series.is_some())
     });
-    let tyto = has(&|n| n.name == "time") && has(&|n| n.name.contains("rotation speed"));
+    let tyto = has(&time) && has(&|n| n.name.contains("rotation speed"));
     let thrust = has(&|n| thrust_name(&n.name) && n.unit.is_some());
     classic || (thrust && (speed || tyto))
 }
@@ -184,9 +195,7 @@ fn series(table: &CsvTable) -> Vec<Series> {
             cols.extend(shared);
             Series { name: id, cols }
         })
-        .filter(|s| {
-            s.name.is_some() || !named_series || s.cols.iter().any(|n| thrust_name(&n.name))
-        })
+        .filter(|s| s.name.is_some() || !named_series || s.cols.iter().any(|n| thrust_name(&n.name)))
         .collect()
 }
 
@@ -199,7 +208,9 @@ fn rotation(
     notes: &mut Vec<String>,
 ) -> Result<(RpmSource, Column, Option<Column>), ReadError> {
     let logged = |c: Option<Column>| c.filter(|c| filled(table, c.index) > 0);
-    let electrical = logged(s.column(Quantity::Rotation, |n| speed_name(n) == Some(Some(RpmSource::Electrical)))?);
+    let electrical = logged(s.column(Quantity::Rotation, |n| {
+        speed_name(n) == Some(Some(RpmSource::Electrical))
+    })?);
     let optical = logged(s.column(Quantity::Rotation, |n| speed_name(n) == Some(Some(RpmSource::Optical)))?);
     let plain = logged(s.column(Quantity::Rotation, |n| speed_name(n) == Some(None))?);
     if let Some(p) = plain.filter(|_| optical.is_none() && electrical.is_none()) {
@@ -287,10 +298,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<Vec<MeasuredSet>, ReadErro
     for s in &all {
         match read_series(&table, s, format, opts) {
             Ok(set) => sets.push(set),
-            Err(e) if many => refused.push(format!(
-                "{}: {e}",
-                s.name.as_deref().unwrap_or("the first series")
-            )),
+            Err(e) if many => refused.push(format!("{}: {e}", s.name.as_deref().unwrap_or("the first series"))),
             Err(e) => return Err(e),
         }
     }
@@ -323,7 +331,10 @@ fn read_series(table: &CsvTable, s: &Series, format: Format, opts: &ReadOptions)
     let esc = s.find(esc_name).map(|n| Column {
         index: n.index,
         header: n.header.clone(),
-        conv: Conversion { scale: 1.0, offset: 0.0 },
+        conv: Conversion {
+            scale: 1.0,
+            offset: 0.0,
+        },
     });
     let mut cols = Columns {
         time: s.column(Quantity::Time, |n| n == "time")?,
@@ -422,7 +433,10 @@ mod tests {
     #[test]
     fn names_of_every_spelling_and_series() {
         let n = named(3, "Powertrain 2 - force Fz (thrust) (N)");
-        assert_eq!((n.series.as_deref(), n.name.as_str(), n.unit.as_deref()), (Some("Powertrain 2"), "force fz (thrust)", Some("N")));
+        assert_eq!(
+            (n.series.as_deref(), n.name.as_str(), n.unit.as_deref()),
+            (Some("Powertrain 2"), "force fz (thrust)", Some("N"))
+        );
         assert!(thrust_name(&n.name));
         let n = named(0, "Thrust B (N)");
         assert_eq!((n.series.as_deref(), n.name.as_str()), (Some("B"), "thrust"));
@@ -434,8 +448,12 @@ mod tests {
         assert!(esc_name("esc throttle") && esc_name("dshot") && !esc_name("esc temperature"));
         let h = |s: &str| s.split(',').map(str::to_string).collect::<Vec<_>>();
         assert!(looks_like(&h("Torque (N·m),Thrust (N),Motor Electrical Speed (RPM)")));
-        assert!(looks_like(&h("Time (s),Powertrain 1 - force Fz (thrust) (kgf),Powertrain 1 - rotation speed (rpm)")));
-        assert!(looks_like(&h("Time (s),Throttle (µs),Rotation speed (rpm),Thrust (kgf)")));
+        assert!(looks_like(&h(
+            "Time (s),Powertrain 1 - force Fz (thrust) (kgf),Powertrain 1 - rotation speed (rpm)"
+        )));
+        assert!(looks_like(&h(
+            "Time (s),Throttle (µs),Rotation speed (rpm),Thrust (kgf)"
+        )));
         assert!(!looks_like(&h("rpm,thrust_N")));
     }
 }

@@ -29,7 +29,9 @@ pub mod xfoil {
 
 /// Measured data ([`propbet_measure`]).
 pub mod measure {
-    pub use propbet_measure::{summarise_dropped, uiuc, DropReason, Format, Loads, MeasuredSet, Refused, RpmSource, Speed};
+    pub use propbet_measure::{
+        summarise_dropped, uiuc, DropReason, Format, Loads, MeasuredSet, Refused, RpmSource, Speed,
+    };
 }
 
 /// The comparison ([`propbet_compare`]).

@@ -107,3 +107,27 @@ def test_an_error_is_the_command_lines_message(repo):
     with pytest.raises(propbet.InputError) as e:
         propbet.execute(*argv)
     assert done.stderr.strip() == f"propbet: error: {e.value}"
+
+
+def test_read_measurements_of_every_stand_format_and_a_batch_match_compare(cli, tmp_path):
+    """Tyto's Flight Stand (two powertrains, sparse rows), its database table, a Latin-1
+    CR-only re-save and a file that cannot be read, in one batch: the points compare scores,
+    the refused file in the dropped table."""
+    stand = "tests/data/thrust_stand"
+    latin = tmp_path / "resaved.csv"
+    text = open(f"{stand}/series1580_gf_steps.csv", encoding="utf-8-sig").read()
+    latin.write_bytes(text.replace("\n", "\r").encode("latin-1"))
+    bad = tmp_path / "bad.csv"
+    bad.write_text("Time (s),ESC signal (µs),Thrust (N),Motor Optical Speed (RPM)\n0,1000,0.1,0\n0.1,1000,0.1,0\n")
+    files = [f"{stand}/flight_stand_two_powertrains.csv", f"{stand}/tyto_database.csv", str(latin), str(bad)]
+    points = propbet.read_measurements(files)
+    cli("compare", "--prop", "props/apcsf_10x4.7/apcsf_10x4.7.qprop", "--measured", *files, "--out", tmp_path / "out", ok=(0, 1))
+    compared = read(tmp_path / "out" / "points.csv")
+    assert len(points) == len(compared) > 20
+    for col in ["file", "rpm", "thrust_n", "torque_nm", "line_first", "line_last"]:
+        pd.testing.assert_series_equal(points[col], compared[col], check_exact=True)
+    assert set(points.format) == {"flight_stand", "tyto_database", "rc_benchmark"}
+    assert (points.thrust_samples < points.samples).any(), "sparse rows counted"
+    dropped = points.attrs["dropped"]
+    refused = dropped[dropped.reason == "file_refused"]
+    assert list(refused.file) == [str(bad)] and refused.line.isna().all()

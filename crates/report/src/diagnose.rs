@@ -13,8 +13,8 @@ use propbet_plot::{Figure, Mark, Panel, PlotError, Series, ERROR_AXIS};
 use serde::Serialize;
 
 use crate::compare::{measured_files_html, measured_files_md, FileEntry};
-use propbet_measure::Refused;
 use crate::page::{esc, page, sig};
+use propbet_measure::Refused;
 
 /// The report in its forms.
 pub struct Report {

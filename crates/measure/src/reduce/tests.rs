@@ -149,7 +149,10 @@ fn negative_thrust_is_windmilling_a_fault_or_idle_by_its_neighbours() {
     let mut dropped = Vec::new();
     let out = orient(rows, &mut dropped, &mut Vec::new());
     assert_eq!(out.len(), 5);
-    assert!(out.iter().any(|s| s.line == 3 && s.thrust == -0.3), "kept, never flipped");
+    assert!(
+        out.iter().any(|s| s.line == 3 && s.thrust == -0.3),
+        "kept, never flipped"
+    );
     let reasons: Vec<(usize, DropReason, bool)> = dropped
         .iter()
         .map(|d| (d.line, d.reason, d.reason.is_fault()))
@@ -175,7 +178,10 @@ fn the_sign_follows_the_highest_rpm_rows_not_the_majority() {
     assert_eq!(out.len(), 40);
     assert!(out.iter().filter(|s| s.omega > 400.0).all(|s| s.thrust == 42.0));
     assert!(out.iter().filter(|s| s.omega < 400.0).all(|s| s.thrust == -10.0));
-    assert!(!notes.iter().any(|n| n.contains("thrust is logged negative")), "{notes:?}");
+    assert!(
+        !notes.iter().any(|n| n.contains("thrust is logged negative")),
+        "{notes:?}"
+    );
     // Logged the other way round, both signs flip together.
     let flipped: Vec<Sample> = out
         .iter()
@@ -185,8 +191,14 @@ fn the_sign_follows_the_highest_rpm_rows_not_the_majority() {
         })
         .collect();
     let again = orient(flipped, &mut Vec::new(), &mut notes);
-    assert_eq!(again.iter().map(|s| s.thrust).collect::<Vec<_>>(), out.iter().map(|s| s.thrust).collect::<Vec<_>>());
-    assert!(notes.iter().any(|n| n.contains("thrust is logged negative")), "{notes:?}");
+    assert_eq!(
+        again.iter().map(|s| s.thrust).collect::<Vec<_>>(),
+        out.iter().map(|s| s.thrust).collect::<Vec<_>>()
+    );
+    assert!(
+        notes.iter().any(|n| n.contains("thrust is logged negative")),
+        "{notes:?}"
+    );
 }
 
 /// Rows far below the log's top RPM, and a repeated first time stamp, are idle, not faults.
@@ -199,7 +211,9 @@ fn idle_rows_and_a_repeated_first_stamp_are_not_faults() {
     let mut dropped = Vec::new();
     reduce_log(log, false, &mut dropped, &mut Vec::new(), &ReduceOptions::default());
     assert!(dropped.iter().all(|d| !d.reason.is_fault()), "{dropped:?}");
-    assert!(dropped.iter().any(|d| d.reason == DropReason::Idle && d.detail.contains("first time stamp")));
+    assert!(dropped
+        .iter()
+        .any(|d| d.reason == DropReason::Idle && d.detail.contains("first time stamp")));
 }
 
 #[test]
