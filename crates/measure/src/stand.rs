@@ -455,5 +455,46 @@ mod tests {
             "Time (s),Throttle (µs),Rotation speed (rpm),Thrust (kgf)"
         )));
         assert!(!looks_like(&h("rpm,thrust_N")));
+        assert!(!looks_like(&h("time,esc,rpm,thrust_N")));
+    }
+
+    /// The Series 1780's two sides as two series, a DShot ESC column without a unit, a speed in
+    /// rad/s.
+    #[test]
+    fn a_dual_stand_gives_one_set_per_side() {
+        let mut text = String::from(
+            "Time (s),DShot,Thrust (N),Torque (N·m),Motor Optical Speed (rad/s),Thrust B (N),Torque B (N·m),Motor Optical Speed B (rad/s)\n",
+        );
+        for (k, w) in [300.0, 500.0, 700.0].iter().enumerate() {
+            for i in 0..10 {
+                let t = 1e-4 * w * w;
+                text.push_str(&format!(
+                    "{},{},{t},{},{w},{},{},{}\n",
+                    10 * k + i,
+                    100 * k,
+                    t / 60.0,
+                    t / 2.0,
+                    t / 120.0,
+                    w / 2.0
+                ));
+            }
+        }
+        let sets = read(&text, &ReadOptions::default()).unwrap();
+        assert_eq!(sets.len(), 2);
+        assert_eq!(
+            (sets[0].series.as_deref(), sets[1].series.as_deref()),
+            (None, Some("B"))
+        );
+        assert_eq!(sets[0].points.len(), 3);
+        assert!(
+            (sets[0].points[2].omega.mean - 700.0).abs() < 1e-9,
+            "rad/s read as such"
+        );
+        assert!((sets[1].points[2].omega.mean - 350.0).abs() < 1e-9);
+        assert_eq!(
+            sets[0].reduction,
+            crate::Reduction::Steps,
+            "the DShot column makes the steps"
+        );
     }
 }

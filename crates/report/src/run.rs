@@ -538,7 +538,7 @@ fn problems(run: &RunOutcome) -> Vec<(&'static str, usize, String)> {
     add("predict", run.model.loaded.warnings.clone());
     if let Some(c) = &run.compared {
         let (faults, unconverged) = c.problems();
-        let mut v: Vec<String> = c.mismatch().map(|m| m.message()).into_iter().collect();
+        let mut v: Vec<String> = c.warnings();
         if faults > 0 {
             v.push(format!("{faults} measured rows dropped as faulty"));
         }
