@@ -653,10 +653,19 @@ fn ramp(samples: &[Sample], opts: &ReduceOptions, notes: &mut Vec<String>) -> Op
         ));
         return None;
     }
+    let why = if samples.iter().all(|s| s.esc.is_none()) {
+        "no ESC command logged"
+    } else {
+        "the ESC command is not held in steps"
+    };
     notes.push(format!(
-        "ESC changes continuously: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
+        "{why}: samples binned by RPM ({:.0} rpm bins{}); {} bins, {sparse} samples in bins of fewer than 3 not used",
         propbet_units::omega_to_rpm(width),
-        if vmax > vwidth { ", and 0.5 m/s airspeed bins" } else { "" },
+        if vmax > vwidth {
+            ", and 0.5 m/s airspeed bins"
+        } else {
+            ""
+        },
         pts.len()
     ));
     Some(pts)

@@ -328,6 +328,19 @@ fn thrust_stand_csv_and_column_maps() {
             &propbet_measure::ReadOptions::default(),
         ))
     });
+    // As bytes (any encoding, any line end), every series: the Flight Stand and database
+    // samples among the seeds.
+    let bytes_seeds = [
+        file("tests/data/thrust_stand/flight_stand_two_powertrains.csv"),
+        file("tests/data/thrust_stand/tyto_database.csv"),
+        file("tests/data/thrust_stand/series1580_gf_steps.csv"),
+    ];
+    fuzz("stand_bytes", &bytes_seeds, |b| {
+        match propbet_measure::read_file(b, &propbet_measure::ReadOptions::default()) {
+            Ok(sets) => sets.into_iter().all(|s| measured_finite(Ok(s))),
+            Err(_) => true,
+        }
+    });
     let csv = "time_s,speed,force\n0,5000,1.0\n1,5000,1.1\n2,6000,1.5\n".to_string();
     let map = b"rpm = { column = \"speed\", unit = \"rpm\" }\nthrust = { column = \"force\", unit = \"N\" }\n".to_vec();
     fuzz("column_map", &[map], |b| {
