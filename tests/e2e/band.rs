@@ -151,7 +151,13 @@ fn a_prop_files_own_geometry_accuracy_widens_its_band() {
         let v = |r: &Vec<String>, k: &str| r[col(&h, k)].parse::<f64>().unwrap();
         rows.iter().map(|r| v(r, "ct_hi") - v(r, "ct_lo")).collect::<Vec<f64>>()
     };
+    // The largest angle the line may hold makes a band (the pitch offset stays in bounds).
+    with(
+        "widest.qprop",
+        "# geometry accuracy: blade_angle_deg=2.5 chord_fraction=0.14",
+    );
     let (plain, coarse, fine) = (width("plain.qprop"), width("coarse.qprop"), width("fine.qprop"));
+    assert!(width("widest.qprop").iter().all(|w| w.is_finite() && *w > 0.0));
     for ((p, c), f) in plain.iter().zip(&coarse).zip(&fine) {
         assert!(*c > 1.5 * p, "{plain:?} {coarse:?}");
         assert!((f / p - 1.0).abs() < 0.01, "{plain:?} {fine:?}");
@@ -159,7 +165,7 @@ fn a_prop_files_own_geometry_accuracy_widens_its_band() {
     let (o, out) = predict("bad.qprop");
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     let lines = text.lines().count() + 2;
-    let expect = format!("bad.qprop: line {lines}: blade_angle_deg = -2 lies outside 0 to 45");
+    let expect = format!("bad.qprop: line {lines}: blade_angle_deg = -2 lies outside 0 to 2.5");
     assert!(stderr(&o).contains(&expect), "{expect}: {}", stderr(&o));
     assert!(!out.exists());
 }

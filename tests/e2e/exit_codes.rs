@@ -2,6 +2,8 @@
 //! problems it reports, 2 error), each checked against the code and against the "Exit status"
 //! line of that command's help (a code the help does not list fails the row).
 
+use std::path::Path;
+
 use super::{bin, repo, stderr};
 
 struct Row {
@@ -345,6 +347,42 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
             2,
             &["--to", "px4-sih", "--prop", &cam, "--rpm", "5000", "-o", "sim"],
         ),
+        row(
+            "export",
+            "measurements' diameter with an exponent and its unit",
+            0,
+            &["--to", "jsbsim", "--measured", &tunnel, "--diameter", "1.524e-1m", "--ixx", "1e-5", "-o", "sim"],
+        ),
+        row(
+            "export",
+            "a diameter without its unit (metres or inches?)",
+            2,
+            &["--to", "jsbsim", "--measured", &tunnel, "--diameter", "6", "--ixx", "1e-5", "-o", "sim"],
+        ),
+        row(
+            "export",
+            "no blade",
+            2,
+            &["--to", "jsbsim", "--measured", &tunnel, "--diameter", "6in", "--blades", "0", "-o", "sim"],
+        ),
+        row(
+            "export",
+            "a moment of inertia of 1e300 kg m^2",
+            2,
+            &["--to", "jsbsim", "--measured", &tunnel, "--diameter", "6in", "--ixx=1e300", "-o", "sim"],
+        ),
+        row(
+            "predict",
+            "sub-zero air given after a space (--temp -10C)",
+            0,
+            &["--prop", &cam, "--rpm", "4000", "--temp", "-10C", "--pressure", "101325Pa"],
+        ),
+        row(
+            "predict",
+            "a negative drag factor reaches its range check",
+            2,
+            &["--prop", &cam, "--rpm", "4000", "--drag-factor", "-1"],
+        ),
         row("prop", "a prop file", 0, &[&cam]),
         row("prop", "not a prop file", 2, &[&stl]),
         row("completions", "bash", 0, &["bash"]),
@@ -375,6 +413,28 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
             "p.qprop",
         ],
     ));
+    // NeuralFoil's weights of another size under this size's name (a renamed file).
+    let weights_dir = tempfile::tempdir().unwrap();
+    let weights: &'static Path = Box::leak(weights_dir.path().to_path_buf().into_boxed_path());
+    let shipped = repo().join("crates/neuralfoil/weights");
+    std::fs::copy(
+        shipped.join("scaled_input_distribution.npz"),
+        weights.join("scaled_input_distribution.npz"),
+    )
+    .unwrap();
+    std::fs::copy(shipped.join("nn-xxsmall.npz"), weights.join("nn-xlarge.npz")).unwrap();
+    let mut r = with(
+        row(
+            "polars",
+            "NeuralFoil weights renamed to another size",
+            2,
+            &["--engine", "neuralfoil"],
+        ),
+        ("PROPBET_NEURALFOIL_WEIGHTS", weights.to_str().unwrap()),
+    );
+    r.args
+        .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
+    rows.push(r);
     // validate's 0 and 1 take 25 s with the stand-in XFOIL: campaign::n18 runs it.
 
     let mut failures = Vec::new();

@@ -620,7 +620,7 @@ fn ncrit_tables_make_a_transition_effect_that_diagnose_finds() {
         "{listed}"
     );
     // An Ncrit the polars already have, or none XFOIL takes.
-    for (bad, says) in [("5", "the polars' own Ncrit"), ("30", "between 0 and 20")] {
+    for (bad, says) in [("5", "the polars' own Ncrit"), ("30", "from 0.1 to 20")] {
         let o = polars(&["--rpm", "6000", "--ncrit-effect", bad, "--out-prop", "x.qprop"]);
         assert_eq!(o.status.code(), Some(2), "{bad}");
         assert!(stderr(&o).contains(says), "{bad}: {}", stderr(&o));

@@ -11,11 +11,11 @@ use propbet_pipeline::spec::StageSpec;
 
 use crate::compare::MeasuredArgs;
 use crate::output::{csv_rows, Num};
-use crate::{Cli, Command};
+use crate::Command;
 
 /// The command line `argv` (without the program's name) parsed as `propbet`'s.
 fn parse(argv: &[String]) -> Result<Command> {
-    let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
+    let cli = crate::parse_args(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
         .map_err(crate::clap_error)?;
     Ok(cli.command)
 }
@@ -233,4 +233,36 @@ struct StationRow {
     cl_cd0: Num,
     re_ref: Num,
     re_exp: Num,
+}
+
+/// The flags a command takes, each as (name as a keyword: `drag_factor`, kind): `switch` (a
+/// flag alone), `number` (one number), `numbers` (one or more, repeated or listed), `text` (one
+/// value of any kind). What the Python package checks keyword arguments against at the call.
+pub fn flags_of(command: &str) -> Result<Vec<(String, &'static str)>> {
+    let cli = crate::command();
+    let Some(sub) = cli.get_subcommands().find(|c| c.get_name() == command) else {
+        bail!("no command '{command}'");
+    };
+    Ok(sub
+        .get_arguments()
+        .filter_map(|a| {
+            let long = a.get_long()?;
+            let parsed = a.get_value_parser().type_id();
+            let number = [
+                std::any::TypeId::of::<f64>(),
+                std::any::TypeId::of::<u32>(),
+                std::any::TypeId::of::<usize>(),
+            ]
+            .into_iter()
+            .any(|t| parsed == t);
+            let kind = match a.get_action() {
+                clap::ArgAction::SetTrue | clap::ArgAction::SetFalse => "switch",
+                clap::ArgAction::Append => "many",
+                _ if a.get_num_args().is_some_and(|n| n.max_values() > 1) => "many",
+                _ if number => "number",
+                _ => "text",
+            };
+            Some((long.replace('-', "_"), kind))
+        })
+        .collect())
 }

@@ -122,19 +122,7 @@ fn targets(names: &[String]) -> Result<Vec<Target>> {
 }
 
 fn parse_diameter(text: &str) -> Result<f64> {
-    let t = text.trim();
-    let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
-    let (num, unit) = t.split_at(split);
-    let v: f64 = num
-        .trim()
-        .parse()
-        .map_err(|_| anyhow::anyhow!("--diameter '{text}': a number with its unit, like 10in or 0.254m"))?;
-    let scale = if unit.is_empty() {
-        1.0
-    } else {
-        parse_length_unit(unit.trim())?
-    };
-    let d = v * scale;
+    let d = propbet_pipeline::values::parse_length("--diameter", text)?;
     if !(d.is_finite() && (0.01..=10.0).contains(&d)) {
         bail!("--diameter '{text}': {d} m is not a propeller's diameter (0.01 to 10 m)");
     }

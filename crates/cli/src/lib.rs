@@ -174,8 +174,39 @@ where
     I: IntoIterator<Item = T>,
     T: Into<std::ffi::OsString> + Clone,
 {
-    let cli = Cli::try_parse_from(argv).map_err(clap_error)?;
+    let cli = parse_args(argv).map_err(clap_error)?;
     run(cli)
+}
+
+/// The command line's definition: every flag of one value takes a value that starts with a
+/// dash as it is (`--temp -10C`, `--drag-factor -1` reaching its range check), as
+/// `--flag=value` does.
+pub fn command() -> clap::Command {
+    fn hyphens(c: clap::Command) -> clap::Command {
+        c.mut_args(|a| {
+            let one = a.get_long().is_some()
+                && matches!(a.get_action(), clap::ArgAction::Set)
+                && a.get_num_args().is_none_or(|n| n.max_values() == 1);
+            if one {
+                a.allow_hyphen_values(true)
+            } else {
+                a
+            }
+        })
+        .mut_subcommands(hyphens)
+    }
+    hyphens(<Cli as clap::CommandFactory>::command())
+}
+
+/// The arguments (the program's name first) as a [`Cli`], by [`command`] (what the binary,
+/// [`execute`] and [`api`] parse with).
+pub fn parse_args<I, T>(argv: I) -> Result<Cli, clap::Error>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let matches = command().try_get_matches_from(argv)?;
+    <Cli as clap::FromArgMatches>::from_arg_matches(&matches)
 }
 
 /// A command-line error of clap's as an error, its message as clap prints it.
@@ -260,7 +291,7 @@ mod tests {
             let line = line.split('>').next().unwrap().split("&&").next().unwrap();
             let argv: Vec<&str> = line.split_whitespace().collect();
             assert_eq!(argv[1], sub.get_name());
-            Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{line}: {e}"));
+            parse_args(&argv).unwrap_or_else(|e| panic!("{line}: {e}"));
         }
         let mut bash = Vec::new();
         clap_complete::generate(clap_complete::Shell::Bash, &mut Cli::command(), "propbet", &mut bash);
@@ -288,7 +319,7 @@ mod tests {
         spec.model.dbeta = 0.01;
         let cmd = spec.export_command(std::path::Path::new("r/export"));
         let argv: Vec<&str> = cmd.split_whitespace().collect();
-        let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| panic!("{cmd}: {e}"));
+        let cli = parse_args(&argv).unwrap_or_else(|e| panic!("{cmd}: {e}"));
         let Command::Export(a) = cli.command else {
             panic!("{cmd}")
         };
@@ -301,7 +332,7 @@ mod tests {
     /// A spec's printed command line parses back to the same spec.
     pub(crate) fn check(spec: &StageSpec) {
         let argv = spec.argv();
-        let cli = Cli::try_parse_from(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
+        let cli = parse_args(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
             .unwrap_or_else(|e| panic!("{}: {e}", spec.command()));
         let back = stage_spec(&cli.command).unwrap().expect("a stage");
         assert_eq!(&back, spec, "{}", spec.command());
@@ -336,7 +367,7 @@ mod tests {
     #[test]
     fn specs_with_every_flag_parse_back() {
         let parse = |line: &[&str]| -> StageSpec {
-            let cli = Cli::try_parse_from(std::iter::once("propbet").chain(line.iter().copied())).unwrap();
+            let cli = parse_args(std::iter::once("propbet").chain(line.iter().copied())).unwrap();
             stage_spec(&cli.command).unwrap().unwrap()
         };
         for line in [

@@ -4,11 +4,8 @@
 use std::io::Write as _;
 use std::process::ExitCode;
 
-use clap::Parser;
-use propbet_cli::Cli;
-
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let cli = match propbet_cli::parse_args(std::env::args_os()) {
         Ok(c) => c,
         Err(e) => {
             let code = if e.use_stderr() { 2 } else { 0 };

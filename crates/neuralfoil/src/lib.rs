@@ -22,6 +22,22 @@ use ndarray_npy::NpzReader;
 /// The network sizes shipped (NeuralFoil's names; `xxxlarge` is not copied).
 pub const SIZES: [&str; 7] = ["xxsmall", "xsmall", "small", "medium", "large", "xlarge", "xxlarge"];
 
+/// Each size's network as NeuralFoil's package ships it: layers, and the width of the hidden
+/// ones (a file renamed to another size is told by its shape).
+const SHAPES: [(&str, usize, usize); 7] = [
+    ("xxsmall", 3, 48),
+    ("xsmall", 4, 48),
+    ("small", 4, 64),
+    ("medium", 5, 64),
+    ("large", 5, 128),
+    ("xlarge", 6, 128),
+    ("xxlarge", 6, 256),
+];
+
+/// The largest weights file read [bytes]: the package's largest network is 1.2 MB; a bigger
+/// file is not NeuralFoil's and is refused before it is read.
+pub const MAX_FILE_BYTES: u64 = 16 << 20;
+
 /// The size used when none is asked for (NeuralFoil's own default).
 pub const DEFAULT_SIZE: &str = "xlarge";
 
@@ -207,6 +223,12 @@ impl Network {
                     ),
                 });
             }
+            if w.iter().chain(b.iter()).any(|x| !x.is_finite()) {
+                return Err(WeightsError::Format {
+                    name: net_name.into(),
+                    reason: format!("layer {i} holds a weight or bias that is not a finite number (NaN or infinite)"),
+                });
+            }
             width = w.nrows();
             let rows: Vec<f32> = w.iter().copied().collect();
             layers.push(Layer {
@@ -229,6 +251,12 @@ impl Network {
         let mut st = open(stats_name, std::io::Cursor::new(stats))?;
         let mean: Array1<f32> = array(&mut st, stats_name, "mean_inputs_scaled")?;
         let inv_cov: Array2<f64> = array(&mut st, stats_name, "inv_cov_inputs_scaled")?;
+        if mean.iter().any(|x| !x.is_finite()) || inv_cov.iter().any(|x| !x.is_finite()) {
+            return Err(WeightsError::Format {
+                name: stats_name.into(),
+                reason: "its statistics hold a value that is not a finite number".into(),
+            });
+        }
         if mean.len() != N_INPUTS || inv_cov.dim() != (N_INPUTS, N_INPUTS) {
             return Err(WeightsError::Format {
                 name: stats_name.into(),
@@ -249,19 +277,57 @@ impl Network {
             return Err(WeightsError::Size(size.into()));
         }
         let read = |p: &Path| {
-            std::fs::read(p).map_err(|e| WeightsError::Read {
+            use std::io::Read as _;
+            let error = |reason: String| WeightsError::Read {
                 name: p.display().to_string(),
-                reason: e.to_string(),
-            })
+                reason,
+            };
+            let file = std::fs::File::open(p).map_err(|e| error(e.to_string()))?;
+            let len = file.metadata().map_err(|e| error(e.to_string()))?.len();
+            if len > MAX_FILE_BYTES {
+                return Err(error(format!(
+                    "{len} bytes, more than any of NeuralFoil's networks ({} MB at most): not its weights",
+                    MAX_FILE_BYTES >> 20
+                )));
+            }
+            let mut bytes = Vec::with_capacity(len as usize);
+            file.take(MAX_FILE_BYTES + 1)
+                .read_to_end(&mut bytes)
+                .map_err(|e| error(e.to_string()))?;
+            if bytes.len() as u64 > MAX_FILE_BYTES {
+                return Err(error("it grew past the largest network's size while read".into()));
+            }
+            Ok(bytes)
         };
         let net = dir.join(format!("nn-{size}.npz"));
         let stats = dir.join("scaled_input_distribution.npz");
-        Network::from_bytes(
-            &net.display().to_string(),
-            &read(&net)?,
-            &stats.display().to_string(),
-            &read(&stats)?,
-        )
+        let name = net.display().to_string();
+        let network = Network::from_bytes(&name, &read(&net)?, &stats.display().to_string(), &read(&stats)?)?;
+        network.check_shape(&name, size)?;
+        Ok(network)
+    }
+
+    /// The network is of `size`'s shape (its layers and hidden width), else an error naming
+    /// the size it has.
+    fn check_shape(&self, name: &str, size: &str) -> Result<(), WeightsError> {
+        let shape = (self.layers.len(), self.layers[0].weights.nrows());
+        let Some(&(_, layers, width)) = SHAPES.iter().find(|s| s.0 == size) else {
+            return Err(WeightsError::Size(size.into()));
+        };
+        if shape == (layers, width) {
+            return Ok(());
+        }
+        let is = SHAPES.iter().find(|s| (s.1, s.2) == shape).map_or_else(
+            || "no size NeuralFoil ships".to_string(),
+            |s| format!("NeuralFoil's `{}`", s.0),
+        );
+        Err(WeightsError::Format {
+            name: name.into(),
+            reason: format!(
+                "named `{size}` ({layers} layers {width} wide), but its network has {} layers {} wide: {is}",
+                shape.0, shape.1
+            ),
+        })
     }
 
     /// The network of `size`: from the folder `$PROPBET_NEURALFOIL_WEIGHTS` names when it is
@@ -459,6 +525,52 @@ mod tests {
         assert!(e.starts_with("x.npz: not NeuralFoil's weights"), "{e}");
         assert!(matches!(Network::built_in("huge"), Err(WeightsError::Size(_))));
         assert!((ln_eps() + 707.48).abs() < 0.01);
+    }
+
+    /// A weights folder whose files are not what they claim: a renamed size, a NaN, a file of
+    /// 4 GB (sparse: nothing is written), each refused naming the file.
+    #[test]
+    fn weights_that_are_not_what_they_claim_are_refused() {
+        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("weights");
+        let dir = tempfile::tempdir().unwrap();
+        let stats = "scaled_input_distribution.npz";
+        std::fs::copy(shipped.join(stats), dir.path().join(stats)).unwrap();
+        std::fs::copy(shipped.join("nn-xxsmall.npz"), dir.path().join("nn-xlarge.npz")).unwrap();
+        let e = Network::load(dir.path(), "xlarge").unwrap_err().to_string();
+        assert!(
+            e.contains("named `xlarge`") && e.contains("NeuralFoil's `xxsmall`"),
+            "{e}"
+        );
+        // One weight NaN.
+        let mut npz = NpzReader::new(std::fs::File::open(shipped.join("nn-small.npz")).unwrap()).unwrap();
+        let names = npz.names().unwrap();
+        let mut out = ndarray_npy::NpzWriter::new(std::fs::File::create(dir.path().join("nn-small.npz")).unwrap());
+        for n in names {
+            let key = n.trim_end_matches(".npy");
+            if key.ends_with("weight") {
+                let mut w: Array2<f32> = npz.by_name(&n).unwrap();
+                if key == "net.2.weight" {
+                    w[[1, 1]] = f32::NAN;
+                }
+                out.add_array(key, &w).unwrap();
+            } else {
+                let b: Array1<f32> = npz.by_name(&n).unwrap();
+                out.add_array(key, &b).unwrap();
+            }
+        }
+        out.finish().unwrap();
+        let e = Network::load(dir.path(), "small").unwrap_err().to_string();
+        assert!(
+            e.contains("nn-small.npz") && e.contains("layer 2 holds a weight or bias that is not a finite"),
+            "{e}"
+        );
+        let huge = std::fs::File::create(dir.path().join("nn-medium.npz")).unwrap();
+        huge.set_len(4 << 30).unwrap();
+        let e = Network::load(dir.path(), "medium").unwrap_err().to_string();
+        assert!(
+            e.contains("nn-medium.npz") && e.contains("4294967296 bytes, more than any"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -67,11 +67,21 @@ impl<T: PartialOrd + Copy + std::fmt::Display> Setting<T> {
                 if above && x <= high {
                     Ok(x)
                 } else {
-                    Err(self.bad(x.to_string(), meaning.to_string()))
+                    Err(self.bad(short(&x), meaning.to_string()))
                 }
             }
             Allowed::OneOf(_) | Allowed::Text => Ok(x),
         }
+    }
+}
+
+/// A value as a message quotes it: a number of more than 12 characters in scientific notation
+/// (`1e300`, not its 301 digits).
+fn short<T: std::fmt::Display>(x: &T) -> String {
+    let s = x.to_string();
+    match s.parse::<f64>() {
+        Ok(v) if s.len() > 12 => propbet_units::show(v),
+        _ => s,
     }
 }
 
@@ -159,10 +169,10 @@ pub const NCRIT: Setting<f64> = Setting {
     key: "[polars] ncrit",
     default: 5.0,
     allowed: Allowed::Between {
-        low: 0.0,
-        low_open: true,
+        low: 0.1,
+        low_open: false,
         high: 20.0,
-        meaning: "XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)",
+        meaning: "XFOIL's transition amplification ratio, from 0.1 to 20 (9: a quiet wind tunnel)",
     },
     help: "Transition amplification ratio Ncrit (default: 5 for a propeller's blades, \
            docs/studies/ncrit-tables.md; 9, XFOIL's average wind tunnel, for `polar`'s one airfoil)",
@@ -509,9 +519,11 @@ mod tests {
         let e = NCRIT.check(25.0).unwrap_err().to_string();
         assert_eq!(
             e,
-            "--ncrit 25: XFOIL's transition amplification ratio, between 0 and 20 (9: a quiet wind tunnel)"
+            "--ncrit 25: XFOIL's transition amplification ratio, from 0.1 to 20 (9: a quiet wind tunnel)"
         );
-        assert!(NCRIT.check(0.0).is_err(), "the low end is open");
+        assert!(NCRIT.check(0.0).is_err() && NCRIT.check(1e-300).is_err() && NCRIT.check(0.1).is_ok());
+        let e = NCRIT.check(1e300).unwrap_err().to_string();
+        assert!(e.starts_with("--ncrit 1e300: "), "a number printed short: {e}");
         assert!(NCRIT.check(f64::NAN).is_err());
         assert!(DRAG_FACTOR.check(f64::INFINITY).is_err());
         assert!(

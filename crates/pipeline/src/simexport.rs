@@ -158,10 +158,12 @@ fn counted(points: &[Point]) -> Vec<Point> {
         .collect()
 }
 
+/// The comment lines every export starts with. What comes from the user (file names in the
+/// origin) is made printable: a newline in a path must not start a live line of the file.
 fn header(src: &Source, what: &str, fit: &Fit, prefix: &str) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{prefix}{what}, written by propbet {}.", env!("CARGO_PKG_VERSION"));
-    let _ = writeln!(s, "{prefix}From: {}", src.origin);
+    let _ = writeln!(s, "{prefix}From: {}", propbet_units::printable(&src.origin));
     let _ = writeln!(
         s,
         "{prefix}Diameter {:.4} m, {} blades. This file against those points: {}.",
@@ -284,12 +286,13 @@ pub fn px4_sih(src: &Source) -> Result<Exported> {
     if distinct_j(&pts) < 3 {
         unsuited!(
             "PX4 SIH's CT(J) and CP(J) need points at 3 or more advance ratios with thrust; {}: \
-             give a J sweep (`--j 0:0.6:0.05`, or wind-tunnel files)",
+             {}",
             if distinct_j(&src.points) <= 1 {
                 "these data have only static points (J = 0)".to_string()
             } else {
                 format!("these data have {} with thrust", distinct_j(&pts))
-            }
+            },
+            sweep_advice(src)
         );
     }
     let xs: Vec<f64> = pts.iter().map(|p| p.j).collect();
@@ -394,10 +397,13 @@ pub const SMOOTHING: &str = "each RPM's measured CT(J) and CP(J) smoothed by a l
 fn curves(src: &Source) -> Vec<Curve> {
     let mut pts = src.points.clone();
     pts.sort_by(|a, b| a.rpm.total_cmp(&b.rpm));
+    // Measurements within 3 % of RPM are one curve (a stand's steps drift); a prediction's
+    // points are each at their own RPM, and each RPM is its own curve, labelled with it.
+    let within = if src.measured { 1.03 } else { 1.0 };
     let mut groups: Vec<Vec<Point>> = Vec::new();
     for p in pts {
         match groups.last_mut() {
-            Some(g) if p.rpm <= g[0].rpm * 1.03 => g.push(p),
+            Some(g) if p.rpm <= g[0].rpm * within => g.push(p),
             _ => groups.push(vec![p]),
         }
     }
@@ -461,9 +467,20 @@ fn too_few_curves(src: &Source, what: &str) -> crate::Error {
         "no RPM of these data has 3 or more advance ratios".to_string()
     };
     crate::Error::Unsuited(format!(
-        "{what} needs curves over J (3 or more advance ratios at one RPM); {why}: give a J sweep \
-         (`--j 0:0.6:0.05`) or wind-tunnel files"
+        "{what} needs curves over J (3 or more advance ratios at one RPM); {why}: {}",
+        sweep_advice(src)
     ))
+}
+
+/// What would give the points over J an export needs: a sweep for a prediction, files of a
+/// stream for measurements (`--j` does not go with `--measured`).
+fn sweep_advice(src: &Source) -> &'static str {
+    if src.measured {
+        "give measurements in a stream (wind-tunnel files, or a log with airspeed), or export the \
+         prediction with --prop and --j 0:0.6:0.05"
+    } else {
+        "give a J sweep (`--j 0:0.6:0.05`)"
+    }
 }
 
 /// A name fit for a file: letters, digits, '-', '_' and '.' kept, the rest '_'.

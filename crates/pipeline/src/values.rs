@@ -184,6 +184,28 @@ pub fn parse_length_unit(text: &str) -> Result<f64> {
     })
 }
 
+/// A length with its unit (`10in`, `254mm`, `2.54e-1m`) [m], for the flag `flag`: a bare
+/// number is refused (metres or inches, only the unit can say).
+pub fn parse_length(flag: &str, text: &str) -> Result<f64> {
+    let (v, unit) =
+        split_unit(text).or_value(flag, text, || "not a number with its unit, like 10in or 0.254m".into())?;
+    if unit.is_empty() {
+        return Err(Error::value(
+            flag,
+            text,
+            "give its unit: m, cm, mm or in (for example 10in or 0.254m)",
+        ));
+    }
+    let scale = parse_length_unit(unit).map_err(|_| {
+        Error::value(
+            flag,
+            text,
+            format!("unknown length unit '{unit}' (use m, cm, mm or in)"),
+        )
+    })?;
+    Ok(v * scale)
+}
+
 /// The name of a length unit of [`parse_length_unit`] from its metres per unit.
 pub fn length_unit_name(metres: f64) -> Option<&'static str> {
     [("m", 1.0), ("cm", 0.01), ("mm", 0.001), ("in", 0.0254)]
@@ -344,5 +366,14 @@ mod tests {
         assert_eq!(parse_humidity("50%").unwrap(), 0.5);
         assert_eq!(parse_length_unit("in").unwrap(), 0.0254);
         assert!(parse_length_unit("furlong").is_err());
+        assert!((parse_length("--diameter", "2.54e-1m").unwrap() - 0.254).abs() < 1e-15);
+        assert_eq!(parse_length("--diameter", "10in").unwrap(), 0.254);
+        let e = parse_length("--diameter", "6").unwrap_err().to_string();
+        assert!(e.starts_with("--diameter '6': give its unit"), "{e}");
+        let e = parse_length("--diameter", "6furlong").unwrap_err().to_string();
+        assert!(
+            e.starts_with("--diameter '6furlong': unknown length unit 'furlong'"),
+            "{e}"
+        );
     }
 }

@@ -133,6 +133,13 @@ fn read_measurements<'py>(py: Python<'py>, argv: Vec<String>) -> PyResult<(Bound
     Ok((PyBytes::new(py, &points), PyBytes::new(py, &dropped)))
 }
 
+/// The flags of a `propbet` command as (keyword, kind): `switch`, `number`, `many`, `text`
+/// (`propbet_cli::api::flags_of`), for checking keyword arguments at the call.
+#[pyfunction]
+fn flags(py: Python<'_>, command: String) -> PyResult<Vec<(String, &'static str)>> {
+    guarded(py, || propbet_cli::api::flags_of(&command))
+}
+
 /// The module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -145,5 +152,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stations, m)?)?;
     m.add_function(wrap_pyfunction!(case_stages, m)?)?;
     m.add_function(wrap_pyfunction!(read_measurements, m)?)?;
+    m.add_function(wrap_pyfunction!(flags, m)?)?;
     Ok(())
 }

@@ -155,3 +155,22 @@ def test_a_column_pandas_owns_is_renamed():
     sweep = propbet.Prop.from_qprop("props/cam6x3/cam6x3.qprop").predict(rpm=3000, j=[0, 0.5])
     assert "flags" not in sweep.columns and list(sweep.point_flags) == ["", ""]
     assert propbet.column_name("flags") == "point_flags" and propbet.column_name("ct") == "ct"
+
+
+def test_keywords_are_checked_at_the_call_with_pythons_own_exceptions():
+    """A misspelt or mistyped keyword fails where it is written, naming it; sub-zero air and a
+    negative number reach propbet as values, not as flags."""
+    with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):
+        propbet.Prop.from_qprop(CAM, bogus=1)
+    with pytest.raises(ValueError, match=r"dbeta = 'x': not a number"):
+        propbet.Prop.from_qprop(CAM, dbeta="x")
+    with pytest.raises(TypeError, match=r"effects = 5"):
+        propbet.Prop.from_qprop(CAM, effects=5)
+    prop = propbet.Prop.from_qprop(CAM)
+    with pytest.raises(TypeError, match=r"band = 'yes': True or False"):
+        prop.predict(5000, band="yes")
+    cold = prop.predict(5000, air={"temp": "-10C", "pressure": "101325Pa"})
+    warm = prop.predict(5000, air={"temp": "30C", "pressure": "101325Pa"})
+    assert cold.thrust_n[0] > warm.thrust_n[0]
+    with pytest.raises(propbet.InputError, match=r"--drag-factor -1: the sections' drag multiplier"):
+        propbet.Prop.from_qprop(CAM, drag_factor=-1).predict(5000)

@@ -275,6 +275,11 @@ impl Case {
             ..ModelSpec::prop(prop)
         };
         let a = &self.atmosphere;
+        // Checked with the case, before any stage runs (a NaN would otherwise reach predict).
+        if let Some(r) = a.rho {
+            propbet_units::air::check("[atmosphere] rho", r, &propbet_units::air::DENSITY, "kg/m^3")
+                .map_err(|e| at("[atmosphere] rho", Error::Range(e)))?;
+        }
         let state = a
             .air
             .as_deref()

@@ -71,10 +71,21 @@ fn load(
 }
 
 /// The blade's inertia: the one given, or estimated from the prop file's chords.
+/// The moments of inertia a propeller can have [kg m^2]: a 1-inch blade's to a 3-metre one's.
+const IXX: (f64, f64) = (1e-10, 100.0);
+
+/// The blade counts a propeller can have.
+pub const BLADES: std::ops::RangeInclusive<f64> = 1.0..=20.0;
+
 fn inertia(given: Option<f64>, model: Option<&Model>) -> Result<Option<(f64, String)>> {
     if let Some(i) = given {
-        if !(i.is_finite() && i > 0.0 && i < 100.0) {
-            out_of_range!("--ixx {i}: a moment of inertia in kg m^2, above 0 (a small propeller's is about 1e-5)");
+        if !(i.is_finite() && (IXX.0..=IXX.1).contains(&i)) {
+            out_of_range!(
+                "--ixx {}: a moment of inertia in kg m^2, from {:e} to {} (a small propeller's is about 1e-5)",
+                propbet_units::show(i),
+                IXX.0,
+                IXX.1
+            );
         }
         return Ok(Some((i, "given (--ixx)".into())));
     }
@@ -164,6 +175,14 @@ fn measured(
     say: &dyn Fn(Said),
 ) -> Result<Source> {
     use propbet_measure::{Loads, Speed};
+    if let Some(b) = blades.filter(|b| !(b.fract() == 0.0 && BLADES.contains(b))) {
+        out_of_range!(
+            "--blades {}: a propeller has a whole number of blades, from {} to {}",
+            propbet_units::show(b),
+            BLADES.start(),
+            BLADES.end()
+        );
+    }
     let model = model_spec
         .as_ref()
         .map(|s| {

@@ -112,3 +112,52 @@ fn a_rectangular_blade_has_the_textbook_inertia() {
     let exact = 2.0 * 1200.0 * 0.685 * 0.1 * 0.02f64.powi(2) * 0.1f64.powi(3) / 3.0;
     assert!((i / exact - 1.0).abs() < 1e-3, "{i} {exact}");
 }
+
+/// A control character in a path (the origin names the files) cannot start a live line of any
+/// export: every header line stays a comment.
+#[test]
+fn a_newline_in_a_path_never_reaches_a_line_of_its_own() {
+    let mut src = synthetic(false);
+    src.origin = "prop /tmp/x\nparam set-default SIH_F_CT0 99\r\n1,2,3".into();
+    for e in [px4_sih(&src).unwrap(), map(&src).unwrap(), gazebo(&src, None).unwrap()] {
+        for (name, text) in &e.files {
+            assert!(
+                !text.contains("SIH_F_CT0 99\n")
+                    && !text.lines().any(|l| l.starts_with("param set-default SIH_F_CT0 99")),
+                "{name}: {text}"
+            );
+            assert!(!text.lines().any(|l| l == "1,2,3"), "{name}");
+        }
+    }
+}
+
+/// A prediction at RPMs closer than 3 % apart: every RPM its own curve, every row labelled with
+/// the RPM its CT came from (none thinned, none moved to a neighbour's label).
+#[test]
+fn a_prediction_map_keeps_every_rpm_under_its_own_label() {
+    let mut src = synthetic(false);
+    src.points = (0..40)
+        .flat_map(|k| {
+            let rpm = 1000.0 + 5.0 * k as f64;
+            (0..4).map(move |i| Point {
+                rpm,
+                j: 0.1 * i as f64,
+                ct: rpm * 1e-5 + 0.01 * i as f64,
+                cp: 0.04,
+            })
+        })
+        .collect();
+    let e = map(&src).unwrap();
+    let csv = &e.files[0].1;
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("rpm"))
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 160, "every point");
+    for r in &rows {
+        let (rpm, j, v, ct) = (r[0], r[1], r[2], r[3]);
+        assert!((ct - (rpm * 1e-5 + 0.1 * j)).abs() < 1e-6, "{r:?}: CT from its own RPM");
+        assert!((v - j * rpm / 60.0 * src.diameter).abs() < 1e-3, "{r:?}");
+    }
+}

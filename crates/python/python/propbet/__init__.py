@@ -118,9 +118,56 @@ def _text(name: str, value: Any) -> str:
     return ",".join(parts)
 
 
+# predict's flags that are not the model's: the sweep, the air, the outputs.
+_NOT_MODEL = {"rpm", "j", "v", "rho", "mu", "a", "temp", "pressure", "humidity", "out", "format", "out_stations", "band"}
+
+
+def _switch(where: str, name: str, value: Any) -> bool:
+    """A True/False keyword, checked: ``band="yes"`` is a TypeError, not True."""
+    if not isinstance(value, bool):
+        raise TypeError(f"{where}(): {name} = {value!r}: True or False")
+    return value
+
+
+def _check_options(where: str, options: Mapping[str, Any], command: str = "predict", exclude: set = frozenset(), extra: Mapping[str, str] = {}) -> None:
+    """Keyword arguments checked at the call against the flags ``command`` takes (the binary's
+    own list): an unknown name is a TypeError, a value of the wrong kind a TypeError or a
+    ValueError, each naming the keyword."""
+    known = {k: kind for k, kind in _native.flags(command) if k not in exclude}
+    known.update(extra)
+    for key, value in options.items():
+        kind = known.get(key)
+        if kind is None:
+            raise TypeError(f"{where}() got an unexpected keyword argument '{key}' (it takes: {', '.join(sorted(known))})")
+        if value is None:
+            continue
+        if kind == "switch":
+            _switch(where, key, value)
+        elif kind == "number":
+            if isinstance(value, bool) or not isinstance(value, (numbers.Real, str)):
+                raise TypeError(f"{where}(): {key} = {value!r}: a number")
+            if isinstance(value, str):
+                try:
+                    float(value)
+                except ValueError:
+                    raise ValueError(f"{where}(): {key} = {value!r}: not a number") from None
+        elif kind == "many":
+            items = [value] if isinstance(value, (str, os.PathLike)) else value
+            try:
+                items = list(items)
+            except TypeError:
+                raise TypeError(f"{where}(): {key} = {value!r}: a text or a list of them") from None
+            for v in items:
+                if isinstance(v, bool) or not isinstance(v, (str, os.PathLike, numbers.Real)):
+                    raise TypeError(f"{where}(): {key} holds {v!r}: a text or a list of them")
+        elif isinstance(value, bool) or not isinstance(value, (str, os.PathLike, numbers.Real)):
+            raise TypeError(f"{where}(): {key} = {value!r}: a text, path or number")
+
+
 def _flags(options: Mapping[str, Any]) -> list[str]:
-    """Keyword arguments as command-line flags: ``key_name=value`` is ``--key-name value``,
-    True a switch, None and False nothing."""
+    """Keyword arguments as command-line flags: ``key_name=value`` is ``--key-name=value`` (so
+    that a value with a leading dash, ``-10C``, stays a value), True a switch, None and False
+    nothing."""
     argv: list[str] = []
     for key, value in options.items():
         if value is None or value is False:
@@ -130,12 +177,12 @@ def _flags(options: Mapping[str, Any]) -> list[str]:
             argv.append(flag)
         elif key in _REPEATED and not isinstance(value, (str, os.PathLike)):
             for v in value:
-                argv += [flag, _text(key, v)]
+                argv.append(f"{flag}={_text(key, v)}")
         elif key in _MANY:
             values = [value] if isinstance(value, (str, os.PathLike)) else list(value)
             argv += [flag, *(os.fspath(v) for v in values)]
         else:
-            argv += [flag, _text(key, value)]
+            argv.append(f"{flag}={_text(key, value)}")
     return argv
 
 
@@ -316,6 +363,7 @@ class Prop:
         ``units="in"``, ``qprop_compat=True``, ``no_tip_loss=True``, ``dbeta=1.5`` [deg],
         ``rotation="snel"``, ``drag_factor=1.1``, ``effects=["pitch-offset:deg=1"]``,
         ``user_effects=path``, ``polars=path`` (tables from :meth:`polars`)."""
+        _check_options("from_qprop", options, exclude=_NOT_MODEL | {"effect", "prop"}, extra={"effects": "many"})
         options = dict(options)
         effects = options.pop("effects", None)
         if effects is not None:
@@ -393,10 +441,7 @@ class Prop:
         """The prop file's rows in SI: ``r_m``, ``r_over_tip``, ``chord_m``, ``beta_deg`` and
         the ten QPROP section coefficients of each row."""
         argv = ["prop", str(self.path)]
-        for flag in ("--units", "--qprop-compat"):
-            if flag in self._model_flags:
-                i = self._model_flags.index(flag)
-                argv += self._model_flags[i : i + (1 if flag == "--qprop-compat" else 2)]
+        argv += [x for p in _pairs(self._model_flags) if _flag_name(p[0]) in {"--units", "--qprop-compat"} for x in p]
         return _csv(_relayed(lambda: _native.stations(argv)))
 
     def polars(
@@ -463,6 +508,9 @@ class Prop:
                 raise InputError("j and v: give rpm with them")
         else:
             points = _sweep(rpm, j, v)
+        _check_options("predict", {"effects": effects}, extra={"effects": "many"}, exclude=set(n for n, _ in _native.flags("predict")))
+        _switch("predict", "band", band)
+        _switch("predict", "stations", stations)
         effect = [effects] if isinstance(effects, str) else list(effects)
         argv = [
             "predict", *self.model_args(), *_flags({"effect": effect or None}), *points,

@@ -19,10 +19,14 @@ pub struct GeometryAccuracy {
 }
 
 impl GeometryAccuracy {
-    /// The largest blade angle the line may hold [deg]: beyond it the geometry is no measurement.
-    pub const MAX_ANGLE_DEG: f64 = 45.0;
-    /// The largest chord fraction the line may hold.
-    pub const MAX_CHORD: f64 = 1.0;
+    /// The largest blade angle the line may hold [deg]: the band adds it to its own ±1° in
+    /// root-sum-square and moves every blade angle by the sum, within the ±3° a pitch offset
+    /// may take (`pitch-offset`'s bounds); a geometry known worse than this is to be measured
+    /// again, not banded.
+    pub const MAX_ANGLE_DEG: f64 = 2.5;
+    /// The largest chord fraction the line may hold: with the band's own ±3 % in
+    /// root-sum-square, within the ±15 % a chord scale may take (`chord-scale`'s bounds).
+    pub const MAX_CHORD: f64 = 0.14;
 
     /// The comment line (no newline), in the key=value form [`parse`] reads.
     pub fn line(&self) -> String {
@@ -33,9 +37,16 @@ impl GeometryAccuracy {
     }
 }
 
-/// Whether a raw comment line is an accuracy line.
+/// Whether a raw comment line is meant as an accuracy line: its words, blanks and case aside,
+/// open with `#geometryaccuracy` (a variant is then an error of [`parse`], never skipped).
 pub(super) fn is_accuracy_line(trimmed: &str) -> bool {
-    trimmed.starts_with(ACCURACY_PREFIX)
+    let squeezed: String = trimmed
+        .chars()
+        .filter(|c| !c.is_whitespace())
+        .take(20)
+        .collect::<String>()
+        .to_lowercase();
+    squeezed.starts_with("#geometryaccuracy")
 }
 
 /// Reads the accuracy lines found (line number, text): at most one, both keys, each a finite
@@ -51,6 +62,13 @@ pub(super) fn parse(found: &[(usize, &str)]) -> Result<Option<GeometryAccuracy>,
         });
     }
     let invalid = |message: String| ParsePropError::Invalid { line, message };
+    if !text.trim_start().starts_with(ACCURACY_PREFIX) {
+        return Err(invalid(format!(
+            "'{}' is not written as the accuracy line is ({})",
+            excerpt(text.trim()),
+            expected()
+        )));
+    }
     let body = text
         .trim_start()
         .strip_prefix(ACCURACY_PREFIX)
@@ -72,6 +90,9 @@ pub(super) fn parse(found: &[(usize, &str)]) -> Result<Option<GeometryAccuracy>,
             .map_err(|_| invalid(format!("{key} = '{}' is not a number", excerpt(value))))?;
         if !(0.0..=max).contains(&v) {
             return Err(invalid(format!("{key} = {value} lies outside 0 to {max}")));
+        }
+        if slot.is_some() {
+            return Err(invalid(format!("{key} given twice: once each ({})", expected())));
         }
         *slot = Some(v);
     }
@@ -114,7 +135,20 @@ mod tests {
         let e = err("# geometry accuracy: blade_angle_deg=nan chord_fraction=0.02");
         assert!(e.starts_with("line 5: blade_angle_deg = nan lies outside"), "{e}");
         let e = err("# geometry accuracy: blade_angle_deg=-1 chord_fraction=0.02");
-        assert!(e.contains("blade_angle_deg = -1 lies outside 0 to 45"), "{e}");
+        assert!(e.contains("blade_angle_deg = -1 lies outside 0 to 2.5"), "{e}");
+        let e = err("# geometry accuracy: blade_angle_deg=4 chord_fraction=0.02");
+        assert!(e.contains("blade_angle_deg = 4 lies outside 0 to 2.5"), "{e}");
+        for variant in [
+            "#geometry accuracy: blade_angle_deg=1 chord_fraction=0.02",
+            "# Geometry Accuracy: blade_angle_deg=1 chord_fraction=0.02",
+        ] {
+            assert!(is_accuracy_line(variant), "{variant}");
+            let e = err(variant);
+            assert!(e.contains("is not written as the accuracy line is"), "{e}");
+        }
+        assert!(!is_accuracy_line("# geometry of the blade"));
+        let e = err("# geometry accuracy: blade_angle_deg=1 blade_angle_deg=2 chord_fraction=0.02");
+        assert!(e.contains("blade_angle_deg given twice"), "{e}");
         let e = err("# geometry accuracy: blade_angle_deg=abc chord_fraction=0.02");
         assert!(e.contains("'abc' is not a number"), "{e}");
         let e = err("# geometry accuracy: blade_angle_deg=1");
