@@ -442,8 +442,8 @@ fn walk(d: &Path) -> Vec<(PathBuf, u64)> {
 
 #[test]
 fn a_copied_case_whose_paths_do_not_resolve_fails_before_anything_runs() {
-    // The shipped cases share ../airfoils; a copy elsewhere must fail at once, naming
-    // the file, and leave no output folder.
+    // A case that names a file beside its folder (../airfoils); a copy elsewhere must fail at
+    // once, naming the file, and leave no output folder.
     let dir = tempfile::tempdir().unwrap();
     let case = dir.path().join("copy");
     std::fs::create_dir_all(case.join("uiuc")).unwrap();
@@ -458,6 +458,9 @@ fn a_copied_case_whose_paths_do_not_resolve_fails_before_anything_runs() {
         let p = e.unwrap().path();
         std::fs::copy(&p, case.join("uiuc").join(p.file_name().unwrap())).unwrap();
     }
+    let toml = std::fs::read_to_string(case.join("case.toml")).unwrap();
+    let toml = toml.replace("airfoil = \"e63\"", "airfoil = \"../airfoils/e63.dat\"");
+    std::fs::write(case.join("case.toml"), toml).unwrap();
     let o = run(&["run", "copy", "-o", "out", "--quiet"], dir.path());
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(2), "{err}");

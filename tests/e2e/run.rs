@@ -342,6 +342,8 @@ fn bad_cases_get_clear_errors() {
     let case = dir.path().join("case");
     std::fs::create_dir(&case).unwrap();
     std::fs::copy(cam6x3(), case.join("cam6x3.qprop")).unwrap();
+    std::os::unix::fs::symlink("/etc/passwd", case.join("link.qprop")).unwrap();
+    std::fs::write(case.join("junk.csv"), "this,is\nnot,a log\n").unwrap();
     let good = "name = \"x\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"5000\"\nj = \"0:0.5:0.1\"\n";
     for (toml, expect) in [
         (good.replace("cam6x3.qprop", "missing.qprop"), "names missing.qprop"),
@@ -368,12 +370,21 @@ fn bad_cases_get_clear_errors() {
             format!("{good}[polars]\nsections = \"airfoil\"\nairfoil = \"naca4412\"\nrpm = 5000\nncrit_effect = \"3,abc\"\n"),
             "'abc' is not a number",
         ),
+        (format!("{good}[atmosphere]\nrho = nan\n"), "[atmosphere] rho"),
+        // Files outside the case: named, never read nor echoed, before anything runs.
+        (good.replace("cam6x3.qprop", "/etc/passwd"), "names files outside the case's folder: /etc/passwd"),
+        (good.replace("cam6x3.qprop", "../../../../../../etc/passwd"), "outside the case's folder"),
+        (good.replace("cam6x3.qprop", "link.qprop"), "outside the case's folder"),
+        (format!("{good}[measured]\nfiles = [\"/etc/passwd\"]\n"), "outside the case's folder"),
+        (format!("{good}[measured]\nfiles = [\"junk.csv\"]\n"), "[measured] files; nothing was run"),
     ] {
         std::fs::write(case.join("case.toml"), &toml).unwrap();
         let o = run(&["run", "case", "-o", "out"], dir.path());
         assert_eq!(o.status.code(), Some(2), "{toml}");
         let e = stderr(&o);
         assert!(e.contains("case.toml") && e.contains(expect), "{toml}: {e}");
+        assert!(!e.contains("root:"), "a system file's contents are never echoed: {e}");
+        assert!(!dir.path().join("out").exists(), "{toml}: nothing run, nothing written");
     }
     // A case that is not there, and an output directory that would hold the case.
     let o = run(&["run", "nowhere"], dir.path());
@@ -391,8 +402,13 @@ fn a_run_that_fails_leaves_its_folder_marked_incomplete() {
     let case = dir.path().join("case");
     std::fs::create_dir(&case).unwrap();
     std::fs::copy(cam6x3(), case.join("cam6x3.qprop")).unwrap();
-    // A measured file that is not a measurement: the compare stage fails after predict wrote.
-    std::fs::write(case.join("m.csv"), "this,is\nnot,a log\n").unwrap();
+    // Measurements of another propeller (250 times the thrust): they read, compare warns, and
+    // the diagnose stage refuses the pair after predict and compare wrote.
+    std::fs::write(
+        case.join("m.csv"),
+        "rpm,thrust_N,torque_Nm\n5000,100,1\n6000,150,1.5\n7000,200,2\n",
+    )
+    .unwrap();
     std::fs::write(
         case.join("case.toml"),
         "name = \"x\"\n[geometry]\nprop = \"cam6x3.qprop\"\n[sweep]\nrpm = \"5000\"\nj = \"0:0.5:0.1\"\n[measured]\nfiles = [\"m.csv\"]\n",

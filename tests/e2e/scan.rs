@@ -434,6 +434,7 @@ fn scanned_sections_of_noisy_clouds_run_end_to_end() {
             &[
                 "run",
                 case.to_str().unwrap(),
+                "--inputs-anywhere",
                 "-o",
                 out.to_str().unwrap(),
                 "--cache",

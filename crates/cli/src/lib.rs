@@ -251,7 +251,6 @@ mod settings_flags;
 mod tests {
     use std::path::{Path, PathBuf};
 
-    use clap::Parser;
     use propbet_pipeline::spec::StageSpec;
 
     use super::*;

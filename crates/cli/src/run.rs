@@ -31,6 +31,10 @@ pub struct RunArgs {
     /// again for the diagnosis), as the stages' own commands do; by default a summary per stage.
     #[arg(long)]
     pub verbose: bool,
+    /// Read files the case names outside its folder (by default every file a case names lies
+    /// in it, links followed).
+    #[arg(long)]
+    pub inputs_anywhere: bool,
 }
 
 /// The shipped default case: `props/apcsf_10x4.7` under the current directory or beside the
@@ -91,7 +95,7 @@ fn case_and_out(a: &RunArgs) -> Result<(PathBuf, PathBuf)> {
 }
 
 /// The case's files exist and none lies where the run writes; the output is not the case.
-fn check_paths(plan: &RunPlan, dir: &Path, out: &Path) -> Result<()> {
+fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Result<()> {
     if let (Ok(o), Ok(d)) = (out.canonicalize(), dir.canonicalize()) {
         if o == d || d.starts_with(&o) {
             bail!(
@@ -126,6 +130,24 @@ fn check_paths(plan: &RunPlan, dir: &Path, out: &Path) -> Result<()> {
             dir.join("case.toml").display()
         )
     })?;
+    // A case reads its own files: one outside its folder is named, never read (its contents
+    // are not echoed in an error), unless the run allows it.
+    let outside = plan.outside_inputs();
+    if !anywhere && !outside.is_empty() {
+        let list: Vec<String> = outside.iter().map(|f| f.display().to_string()).collect();
+        bail!(
+            "{}: names files outside the case's folder: {} (a case reads its own files: copy them in, or give \
+             --inputs-anywhere); nothing was run",
+            dir.join("case.toml").display(),
+            list.join(", ")
+        );
+    }
+    // The measurements are read now, before any stage: a case none of whose files reads stops
+    // here, not after its polars and predictions.
+    if let Some((c, _)) = &plan.compare {
+        propbet_pipeline::stages::load_batch(&c.measured)
+            .with_context(|| format!("{}: [measured] files; nothing was run", dir.join("case.toml").display()))?;
+    }
     Ok(())
 }
 
@@ -156,7 +178,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let t_all = Instant::now();
     let (dir, out) = case_and_out(a)?;
     let plan = plan(&dir, &out, &a.xfoil)?;
-    check_paths(&plan, &dir, &out)?;
+    check_paths(&plan, &dir, &out, a.inputs_anywhere)?;
     for w in &plan.warnings {
         eprintln!("propbet: warning: {w}");
     }

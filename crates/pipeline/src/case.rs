@@ -385,6 +385,19 @@ impl RunPlan {
         v
     }
 
+    /// The files the case names that lie outside its folder, links followed (`/etc/passwd`,
+    /// `../../x`, a link to a system file): a case reads its own files unless its run says
+    /// otherwise (`run --inputs-anywhere`).
+    pub fn outside_inputs(&self) -> Vec<PathBuf> {
+        let Ok(root) = self.dir.canonicalize() else {
+            return Vec::new();
+        };
+        self.inputs()
+            .into_iter()
+            .filter(|f| f.canonicalize().is_ok_and(|c| !c.starts_with(&root)))
+            .collect()
+    }
+
     /// The files the case names that do not exist (a NACA name instead of an airfoil file is
     /// not a file): checked before the first stage runs, so a copied case whose relative paths
     /// no longer resolve fails at once, with nothing written.

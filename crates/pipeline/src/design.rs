@@ -177,6 +177,16 @@ pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
     )))
 }
 
+/// A section of the [`LIBRARY`] by name (`e63`, `Clark-Y`), with what reading its coordinates
+/// notes, as the file's own would be read; None for a name it does not hold.
+pub fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
+    let k = key(name);
+    LIBRARY
+        .iter()
+        .find(|(n, _)| *n == k)
+        .map(|(n, text)| crate::stages::parse_airfoil(text, Path::new(&format!("{n}.dat"))))
+}
+
 /// Whether `name` is an airfoil propbet knows without a file: APC12, a NACA 4-digit name or a
 /// name of the [`LIBRARY`].
 pub fn is_known_name(name: &str) -> bool {

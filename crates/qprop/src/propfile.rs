@@ -303,7 +303,16 @@ pub fn parse_prop(text: &str) -> Result<(PropFile, Vec<Warning>), ParsePropError
     let name = propbet_units::printable(name);
 
     const L2: &str = "Nblades [R]";
-    let (l, v) = lines.numbers(L2)?;
+    // A file whose first numbers are not numbers is not a prop file: said without quoting it
+    // (a file of another kind, `/etc/passwd` say, is never echoed).
+    let (l, v) = lines.numbers(L2).map_err(|e| match e {
+        ParsePropError::NotANumber { line, .. } => ParsePropError::Invalid {
+            line,
+            message: "not a QPROP prop file: the first line after its name must be the blade count (and R), in numbers"
+                .into(),
+        },
+        e => e,
+    })?;
     need(l, &v, 1, L2)?;
     let radius_line = l;
     let blades = v[0];

@@ -36,7 +36,11 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
             foil.normalise();
             (foil, Vec::new())
         }
-        None => read_airfoil(Path::new(name))?,
+        // A file of that name first, then propbet's built-in sections (`e63`).
+        None => match crate::design::library_airfoil(name).filter(|_| !Path::new(name).is_file()) {
+            Some(read) => read?,
+            None => read_airfoil(Path::new(name))?,
+        },
     };
     if let Some(t) = thickness {
         foil = foil

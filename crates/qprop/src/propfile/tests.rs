@@ -217,3 +217,15 @@ proptest! {
         if fits { prop_assert_eq!(&f, &g1); }
     }
 }
+
+/// A file of another kind is named as such, its contents never quoted.
+#[test]
+fn a_file_of_another_kind_is_not_echoed() {
+    let e = parse_prop("root:x:0:0:root:/root:/bin/bash\nsecret:x:1:1\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("line 2: not a QPROP prop file") && !e.contains("secret"),
+        "{e}"
+    );
+}
