@@ -255,7 +255,7 @@ fn report_has_every_part(out: &Path, o: &Output) {
     // The stages' problems are summarised once at the top: the polars stage's
     // fallbacks and the standard air the UIUC files leave to assume, as the terminal says.
     assert!(html.contains(
-        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, free transition) of the e63.dat section"
+        "What this run did: geometry scanned from apcsf_10x4.7.stl; XFOIL polars (Ncrit 5, free transition) of the e63 section"
     ));
     // The base model's settings are named with it.
     assert!(html.contains("used as tables in alpha and Re; rotational augmentation snel, section drag times 1.25;"));
