@@ -435,6 +435,30 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
     r.args
         .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
     rows.push(r);
+    // A 4 GB file under the weights' name (sparse: nothing is written), refused unread.
+    let huge_dir = tempfile::tempdir().unwrap();
+    let huge: &'static Path = Box::leak(huge_dir.path().to_path_buf().into_boxed_path());
+    std::fs::copy(
+        shipped.join("scaled_input_distribution.npz"),
+        huge.join("scaled_input_distribution.npz"),
+    )
+    .unwrap();
+    std::fs::File::create(huge.join("nn-xlarge.npz"))
+        .unwrap()
+        .set_len(4 << 30)
+        .unwrap();
+    let mut r = with(
+        row(
+            "polars",
+            "a 4 GB file as NeuralFoil's weights",
+            2,
+            &["--engine", "neuralfoil"],
+        ),
+        ("PROPBET_NEURALFOIL_WEIGHTS", huge.to_str().unwrap()),
+    );
+    r.args
+        .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
+    rows.push(r);
     // validate's 0 and 1 take 25 s with the stand-in XFOIL: campaign::n18 runs it.
 
     let mut failures = Vec::new();

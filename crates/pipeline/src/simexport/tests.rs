@@ -161,3 +161,17 @@ fn a_prediction_map_keeps_every_rpm_under_its_own_label() {
         assert!((v - j * rpm / 60.0 * src.diameter).abs() < 1e-3, "{r:?}");
     }
 }
+
+/// A static-only log refused for PX4 SIH is told what measurements would do, never `--j` (which
+/// `--measured` does not take).
+#[test]
+fn the_advice_for_static_measurements_fits_measurements() {
+    let mut src = synthetic(true);
+    src.points.retain(|p| p.j == 0.0);
+    let e = px4_sih(&src).unwrap_err().to_string();
+    assert!(
+        e.contains("only static points") && e.contains("wind-tunnel files"),
+        "{e}"
+    );
+    assert!(!e.contains("give a J sweep"), "{e}");
+}
