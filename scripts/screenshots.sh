@@ -11,12 +11,12 @@ shoot() { # page, output, height
   chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,"$3" \
     --user-data-dir="$tmp/profile" --screenshot="$2" "file://$1" >/dev/null 2>&1
 }
-# Run where the README's first command writes (`run_apcsf_10x4.7` in the working folder), so
+# Run where the README's first command writes (`run_apcsp_10x7` in the working folder), so
 # that every path the pictures show is the one a new user sees.
 repo=$PWD
-(cd "$tmp" && "$repo/target/release/propbet" run "$repo/props/apcsf_10x4.7" -o run_apcsf_10x4.7 --quiet >/dev/null 2>&1) || true
+(cd "$tmp" && "$repo/target/release/propbet" run "$repo/props/apcsp_10x7" -o run_apcsp_10x7 --quiet >/dev/null 2>&1) || true
 (cd "$tmp" && "$repo/target/release/propbet" run "$repo/props/photofoil_8x4.5" -o run_photofoil_8x4.5 --quiet >/dev/null 2>&1) || true
-shoot "$tmp/run_apcsf_10x4.7/report.html" docs/guide/img/report_top.png 900
-shoot "$tmp/run_apcsf_10x4.7/compare/report.html" docs/guide/img/compare_top.png 1300
+shoot "$tmp/run_apcsp_10x7/report.html" docs/guide/img/report_top.png 900
+shoot "$tmp/run_apcsp_10x7/compare/report.html" docs/guide/img/compare_top.png 1300
 shoot "$tmp/run_photofoil_8x4.5/diagnose/report.html" docs/guide/img/diagnose_top.png 1300
 ls -l docs/guide/img

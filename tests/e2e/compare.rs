@@ -234,7 +234,7 @@ fn uiuc_static_and_sweeps_give_a_report() {
     // the static curve in CT and CP, and said in the caption.
     let shaded = html.matches("<polygon opacity=\"0.15\"").count();
     assert!(shaded >= 2 * 3 + 2, "{shaded} shaded bands");
-    assert!(html.contains("shaded: the prediction's uncertainty band (every blade angle ±1°"));
+    assert!(html.contains("shaded: the prediction's uncertainty band (every blade angle ±0.5°"));
     assert!(!html.contains("http://") || html.contains("xmlns=\"http://www.w3.org/2000/svg\""));
     assert!(
         !html.contains("https://") && !html.contains("<script"),

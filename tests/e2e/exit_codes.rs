@@ -119,15 +119,15 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
         row("run", "no case.toml", 2, &["/tmp", "-o", "out"]),
         row(
             "run",
-            "the default case with NeuralFoil's polars: its notes (standard air, the QPROP fit's fallbacks) are no problem",
+            "the default case (APC's design file) with NeuralFoil's polars: its notes (standard air, the QPROP fit's fallbacks) are no problem",
             0,
             &["--engine", "neuralfoil", "-o", "out", "--quiet"],
         ),
         row(
             "run",
-            "a case of APC's design file (PE0) with NeuralFoil's polars",
+            "the scanned case (an STL) with NeuralFoil's polars",
             0,
-            &[&p("props/apcsp_10x7"), "--engine", "neuralfoil", "-o", "out", "--quiet"],
+            &[&p("props/apcsf_10x4.7"), "--engine", "neuralfoil", "-o", "out", "--quiet"],
         ),
         row(
             "scan",

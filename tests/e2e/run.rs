@@ -10,11 +10,12 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 #[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
-fn default_case_from_scan_to_report() {
-    // No case argument, from a directory outside the repository: the shipped default case is
-    // found beside the executable. A private cache keeps the run cold.
+fn the_scanned_case_from_scan_to_report() {
+    // The shipped scan (the APC 10x4.7 Slow Flyer's STL), from a directory outside the
+    // repository. A private cache keeps the run cold.
     let dir = tempfile::tempdir().unwrap();
-    let o = run(&["run", "-o", "out", "--cache", "cache", "--quiet"], dir.path());
+    let case = repo().join("props/apcsf_10x4.7").display().to_string();
+    let o = run(&["run", &case, "-o", "out", "--cache", "cache", "--quiet"], dir.path());
     let out = dir.path().join("out");
     // Exit 1 exactly when a stage reported a problem (real XFOIL faults at some Reynolds
     // numbers of this blade are usual), and the terminal says so.
@@ -62,7 +63,7 @@ fn default_case_from_scan_to_report() {
     export_command_runs(&html, dir.path(), &out);
     outputs_geometry_and_polars(&out);
     prediction_against_the_measurements(&out);
-    diagnosis_of_the_default_case(&out);
+    diagnosis_of_the_scanned_case(&out);
     report_has_every_part(&out, &o);
 }
 
@@ -149,7 +150,7 @@ fn prediction_against_the_measurements(out: &Path) {
     let e_ct = median(stat.iter().map(|r| num(r, ctp) / num(r, ct) - 1.0).collect());
     let e_cp = median(stat.iter().map(|r| num(r, cpp) / num(r, cp) - 1.0).collect());
     eprintln!(
-        "default case, static: median CT error {:.1} %, CP error {:.1} %",
+        "scanned case, static: median CT error {:.1} %, CP error {:.1} %",
         100.0 * e_ct,
         100.0 * e_cp
     );
@@ -165,7 +166,7 @@ fn prediction_against_the_measurements(out: &Path) {
     let hi = stat.iter().max_by(|a, b| num(a, rpm).total_cmp(&num(b, rpm))).unwrap();
     let (rise_m, rise_p) = (num(hi, ct) / num(lo, ct) - 1.0, num(hi, ctp) / num(lo, ctp) - 1.0);
     eprintln!(
-        "default case, static CT rise: measured {:.1} %, predicted {:.1} %",
+        "scanned case, static CT rise: measured {:.1} %, predicted {:.1} %",
         100.0 * rise_m,
         100.0 * rise_p
     );
@@ -177,7 +178,7 @@ fn prediction_against_the_measurements(out: &Path) {
 
 /// The diagnosis: the ladder's held-out error falls, the signatures name their candidates, each
 /// step takes its trend.
-fn diagnosis_of_the_default_case(out: &Path) {
+fn diagnosis_of_the_scanned_case(out: &Path) {
     // The diagnosis: the ladder's held-out error falls.
     let d: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("diagnose/diagnosis.json")).unwrap()).unwrap();
@@ -187,7 +188,7 @@ fn diagnosis_of_the_default_case(out: &Path) {
         .iter()
         .map(|r| r["kfold_rms"].as_f64().unwrap())
         .collect();
-    eprintln!("default case, ladder held-out RMS: {ladder:.4?}");
+    eprintln!("scanned case, ladder held-out RMS: {ladder:.4?}");
     // The report names the static test's RPM trend at fixed J with its size (the measured
     // static CT grows faster with RPM than the model's: -7.7 % from 2377 to 6528 rpm), beside
     // the J sweeps' own (+2.0 %: with free transition the model follows the forward-flight
@@ -516,7 +517,7 @@ fn a_case_s_user_effects_are_candidates_of_its_diagnosis() {
 }
 
 #[test]
-fn the_default_case_on_neuralfoil_needs_no_xfoil_and_says_who_made_the_polars() {
+fn the_scanned_case_on_neuralfoil_needs_no_xfoil_and_says_who_made_the_polars() {
     let dir = tempfile::tempdir().unwrap();
     let case = repo().join("props/apcsf_10x4.7");
     let o = run(
@@ -569,7 +570,7 @@ fn the_tours_commands_under_a_terminal() {
     let cam = p("props/cam6x3/cam6x3.qprop");
     let commands = [
         format!("{exe} run --engine neuralfoil -o nf"),
-        format!("{exe} run {} --engine neuralfoil -o apc", p("props/apcsp_10x7")),
+        format!("{exe} run {} --engine neuralfoil -o sf", p("props/apcsf_10x4.7")),
         format!(
             "{exe} predict --prop {} --rpm 5000 --j 0:0.8:0.1 --engine neuralfoil --out pe0.csv",
             p("props/apcsp_10x7/10x7-PERF.PE0")
@@ -611,7 +612,7 @@ fn the_tours_commands_under_a_terminal() {
 }
 
 /// The report's first screen (1400 x 900 in headless Chromium) holds the verdict and one figure,
-/// measured against predicted: on the default case and on the PE0 case.
+/// measured against predicted: on the scanned case and on the default (PE0) case.
 #[test]
 #[ignore = "slow: headless Chromium (scripts/test.sh runs it)"]
 fn the_reports_first_screen_holds_the_verdict_and_a_figure() {

@@ -370,21 +370,29 @@ fn a_pe0_case_reproduces_validates_row() {
     ] {
         let v = row(prop);
         let out = dir.path().join(format!("run_{prop}"));
-        let o = run(
-            &[
-                "run",
-                case_dir.to_str().unwrap(),
-                "--cache",
-                "cache",
-                "--quiet",
-                "-o",
-                out.to_str().unwrap(),
-            ],
-            dir.path(),
-        );
+        // The 10x7 is the default case: `propbet run` with no case finds it beside the
+        // executable, from a directory outside the repository.
+        let default = case_dir == repo().join("props/apcsp_10x7");
+        let case = case_dir.to_str().unwrap();
+        let mut args = vec!["run", "--cache", "cache", "--quiet", "-o", out.to_str().unwrap()];
+        if !default {
+            args.insert(1, case);
+        }
+        let o = run(&args, dir.path());
         assert_eq!(o.status.code(), Some(0), "{prop}: {}", stderr(&o));
         let s: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        if default {
+            default_case_is_typical(&s);
+            // Before the measurements, what to expect of an APC Sport prop: the shipped
+            // families table, in summary.json and on the report's first screen.
+            let expected = s["expected"].as_str().unwrap();
+            assert!(expected.contains("APC Sport props"), "{expected}");
+            let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+            let verdict =
+                &html[html.find("id=\"verdict\"").unwrap()..html.find("How close the prediction is").unwrap()];
+            assert!(verdict.contains("Expected accuracy: on the"), "{verdict}");
+        }
         let acc = &s["accuracy"];
         assert_eq!(
             acc["points"].as_u64().unwrap(),
@@ -402,6 +410,28 @@ fn a_pe0_case_reproduces_validates_row() {
             num(&v, "points")
         );
     }
+}
+
+/// The default case shows what the default model does on a typical propeller: its forward
+/// flight's thrust (the headline's row, below 85 % of the zero-thrust J) within 15 % of UIUC's
+/// on average, signed and unsigned, where the scanned 10x4.7 SF's is −45 %.
+fn default_case_is_typical(summary: &serde_json::Value) {
+    let forward = summary["headline"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|r| r["points"].as_str().unwrap().starts_with("forward flight"))
+        .expect("a forward-flight row");
+    let t = &forward["errors"]["thrust"];
+    let (signed, unsigned) = (t["mean_error"].as_f64().unwrap(), t["mean_abs_error"].as_f64().unwrap());
+    eprintln!(
+        "default case, forward flight: thrust mean error {:+.1} %, mean |error| {:.1} % over {} points",
+        100.0 * signed,
+        100.0 * unsigned,
+        forward["count"]
+    );
+    assert!(forward["count"].as_u64().unwrap() > 50, "{forward}");
+    assert!(signed.abs() < 0.15 && unsigned < 0.15, "{forward}");
 }
 
 /// A case of UIUC's measured 9x4.7 SF table with the sections of its PE0 file (`prop` and `pe0`),

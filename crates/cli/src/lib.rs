@@ -62,7 +62,7 @@ pub enum Command {
     /// The main job: a case directory (case.toml) from scan to report — scan, polars (XFOIL or
     /// NeuralFoil), sweeps, comparison with the measurements, diagnosis, one HTML report.
     #[command(after_help = concat!(
-        "Example:\n  propbet run props/apcsf_10x4.7 -o run_apc\n\n",
+        "Example:\n  propbet run props/apcsp_10x7 -o run_apc\n\n",
         "Exit status: 0 done; 1 done, with problems it reports; 2 error (the output folder keeps INCOMPLETE.txt)."
     ))]
     Run(Box<run::RunArgs>),

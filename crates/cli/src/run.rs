@@ -19,7 +19,8 @@ use crate::polar::{Bar, XfoilProcess};
 /// Arguments of `propbet run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// Case directory holding `case.toml` (default: the shipped `props/apcsf_10x4.7`).
+    /// Case directory holding `case.toml` (default: the shipped `props/apcsp_10x7`, APC's 10x7 Sport
+    /// from its design file against UIUC's measurements).
     pub case: Option<PathBuf>,
     /// Output directory (default: `run_<case directory name>` in the current directory).
     #[arg(long, short)]
@@ -37,10 +38,10 @@ pub struct RunArgs {
     pub inputs_anywhere: bool,
 }
 
-/// The shipped default case: `props/apcsf_10x4.7` under the current directory or beside the
+/// The shipped default case: `props/apcsp_10x7` under the current directory or beside the
 /// executable's repository (`target/release/propbet` → `../../props`).
 fn default_case() -> Result<PathBuf> {
-    let rel = Path::new("props").join("apcsf_10x4.7");
+    let rel = Path::new("props").join("apcsp_10x7");
     let mut tried = vec![rel.clone()];
     if rel.join("case.toml").is_file() {
         return Ok(rel);

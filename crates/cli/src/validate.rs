@@ -16,6 +16,7 @@ use propbet_pipeline::validate::{select_props, validate_all, GeometrySource, Row
 
 use crate::output::{write_atomic, Num};
 use crate::polar::{Bar, XfoilProcess};
+use propbet_pipeline::compare::ComparedPoint;
 
 /// Arguments of `propbet validate`.
 #[derive(Debug, Args)]
@@ -135,6 +136,8 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let (md, csv) = table(&validation.rows, &validation.skipped, &model)?;
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
+    let families = propbet_pipeline::expected::to_csv(&propbet_pipeline::expected::summarise(&validation.rows));
+    write_atomic(&a.out.join("families.csv"), &[families.as_bytes()], &[])?;
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     lock.finish()?;
@@ -182,7 +185,65 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             StageSpec::Scan(_) | StageSpec::Predict(_) => {}
         }
     }
-    Ok(())
+    write_band_sources(&dir.join("compare/band_sources.csv"), v)
+}
+
+/// The band's makings at every compared point (`compare/band_sources.csv`, in `points.csv`'s
+/// order): the point, whether validate scores it, the measured and predicted CT and CP, and CT and
+/// CP at each source's two ends, so that another band can be made from the same solves.
+fn write_band_sources(path: &Path, v: &Validated) -> Result<()> {
+    let points = &v.compared.0.points;
+    let scored =
+        propbet_pipeline::compare::metrics::in_window(points, propbet_pipeline::compare::metrics::VALIDATION_J_WINDOW);
+    let mut header: Vec<String> = [
+        "file",
+        "line_first",
+        "rpm",
+        "j",
+        "scored",
+        "ct",
+        "ct_pred",
+        "cp",
+        "cp_pred",
+    ]
+    .map(String::from)
+    .to_vec();
+    for (name, _) in &v.band_sources {
+        let slug = name.replace([' ', '\''], "_");
+        for q in ["ct_lo", "ct_hi", "cp_lo", "cp_hi"] {
+            header.push(format!("{slug}_{q}"));
+        }
+    }
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record(&header)?;
+    let num = |x: Option<f64>| {
+        x.filter(|v| v.is_finite())
+            .map(|v| format!("{v:.7}"))
+            .unwrap_or_default()
+    };
+    for (i, p) in points.iter().enumerate() {
+        let mut r = vec![
+            p.file.to_string(),
+            p.lines.0.to_string(),
+            format!("{:.1}", p.rpm),
+            format!("{:.5}", p.j),
+            u8::from(scored[i]).to_string(),
+            num(p.measured.ct),
+            num(p.predicted.ct),
+            num(p.measured.cp),
+            num(p.predicted.cp),
+        ];
+        for (_, ends) in &v.band_sources {
+            let qs: [fn(&ComparedPoint) -> Option<f64>; 2] = [|p| p.predicted.ct, |p| p.predicted.cp];
+            for q in qs {
+                for end in ends {
+                    r.push(num(end.get(i).and_then(q)));
+                }
+            }
+        }
+        csv.write_record(&r)?;
+    }
+    write_atomic(path, &[csv.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?], &[])
 }
 
 /// A row of validation.csv.

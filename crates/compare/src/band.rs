@@ -27,15 +27,17 @@ impl Bounds {
 }
 
 /// The band around each of `base` from `variants`: one pair of value lists per source (its low
-/// and its high end, each as long as `base`). A NaN variant value (a point a source's solve
+/// and its high end, each as long as `base`), each source's moves times its weight (`weights`,
+/// in the sources' order; 1 where it ends). A NaN variant value (a point a source's solve
 /// cannot give) leaves that source out of the point's band.
-pub fn combine(base: &[f64], variants: &[[Vec<f64>; 2]]) -> Vec<Bounds> {
+pub fn combine(base: &[f64], variants: &[[Vec<f64>; 2]], weights: &[f64]) -> Vec<Bounds> {
     base.iter()
         .enumerate()
         .map(|(i, &b)| {
             let (mut up, mut down) = (0.0f64, 0.0f64);
-            for [lo, hi] in variants {
-                let d = [lo[i] - b, hi[i] - b];
+            for (k, [lo, hi]) in variants.iter().enumerate() {
+                let w = weights.get(k).copied().unwrap_or(1.0);
+                let d = [w * (lo[i] - b), w * (hi[i] - b)];
                 let u = d.iter().filter(|x| x.is_finite()).fold(0.0f64, |a, &x| a.max(x));
                 let w = d.iter().filter(|x| x.is_finite()).fold(0.0f64, |a, &x| a.max(-x));
                 up += u * u;
@@ -51,10 +53,12 @@ pub fn combine(base: &[f64], variants: &[[Vec<f64>; 2]]) -> Vec<Bounds> {
 
 /// The bands of CT, CP and efficiency of each of `base`'s rows from the same rows solved at
 /// each source's two ends (`variants`: one pair per source, each as long as `base`), the three
-/// quantities read from a row by `values` (None where unknown).
+/// quantities read from a row by `values` (None where unknown), each source weighted by
+/// `weights` ([`combine`]).
 pub fn of_rows<R, V: AsRef<[R]>>(
     base: &[R],
     variants: &[[V; 2]],
+    weights: &[f64],
     values: [fn(&R) -> Option<f64>; 3],
 ) -> Vec<PointBand> {
     let [ct, cp, eta] = values.map(|f| {
@@ -63,7 +67,7 @@ pub fn of_rows<R, V: AsRef<[R]>>(
             .iter()
             .map(|[a, b]| [read(a.as_ref()), read(b.as_ref())])
             .collect();
-        combine(&read(base), &v)
+        combine(&read(base), &v, weights)
     });
     (0..base.len())
         .map(|i| PointBand {
@@ -77,10 +81,11 @@ pub fn of_rows<R, V: AsRef<[R]>>(
 /// The bands of CT, CP and efficiency at compared points, from the same points predicted at
 /// each source's two ends (`variants`: one pair of comparisons per source, in the points'
 /// order).
-pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]]) -> Vec<PointBand> {
+pub fn of_points(base: &[ComparedPoint], variants: &[[Vec<ComparedPoint>; 2]], weights: &[f64]) -> Vec<PointBand> {
     of_rows(
         base,
         variants,
+        weights,
         [|p| p.predicted.ct, |p| p.predicted.cp, |p| p.predicted.eta],
     )
 }
@@ -99,15 +104,16 @@ pub struct BandCurves {
 
 /// The band along `base`'s curves from the same curves solved at each source's two ends (the
 /// same x grid: the curves' grid comes from the compared points, not from the model).
-pub fn of_curves(base: &crate::curves::Curves, variants: &[[crate::curves::Curves; 2]]) -> BandCurves {
+pub fn of_curves(base: &crate::curves::Curves, variants: &[[crate::curves::Curves; 2]], weights: &[f64]) -> BandCurves {
     use crate::curves::{Curve, Curves};
     let along = |c: &Curve, pick: &dyn Fn(&Curves) -> Option<&Curve>| -> BandCurve {
-        let v: Vec<[&Curve; 2]> = variants
+        let (v, w): (Vec<[&Curve; 2]>, Vec<f64>) = variants
             .iter()
-            .filter_map(|[a, b]| Some([pick(a)?, pick(b)?]))
-            .filter(|[a, b]| a.len() == c.len() && b.len() == c.len())
-            .collect();
-        let bands = of_rows(c, &v, [|(_, q)| q.ct, |(_, q)| q.cp, |(_, q)| q.eta]);
+            .enumerate()
+            .filter_map(|(k, [a, b])| Some(([pick(a)?, pick(b)?], weights.get(k).copied().unwrap_or(1.0))))
+            .filter(|([a, b], _)| a.len() == c.len() && b.len() == c.len())
+            .unzip();
+        let bands = of_rows(c, &v, &w, [|(_, q)| q.ct, |(_, q)| q.cp, |(_, q)| q.eta]);
         c.iter().map(|(x, _)| *x).zip(bands).collect()
     };
     BandCurves {
@@ -213,12 +219,15 @@ mod tests {
             [vec![11.0], vec![10.5]],
             [vec![f64::NAN], vec![8.0]],
         ];
-        let b = combine(&base, &v)[0];
+        let b = combine(&base, &v, &[])[0];
         assert!((b.hi - (10.0 + (16.0f64 + 1.0).sqrt())).abs() < 1e-12, "{b:?}");
         assert!((b.lo - (10.0 - (9.0f64 + 4.0).sqrt())).abs() < 1e-12, "{b:?}");
         assert!(b.contains(10.0) && !b.contains(14.2) && b.contains(b.lo));
         assert!((b.relative_half_width(10.0) - 0.5 * (b.hi - b.lo) / 10.0).abs() < 1e-15);
-        assert_eq!(combine(&base, &[])[0], Bounds { lo: 10.0, hi: 10.0 });
+        assert_eq!(combine(&base, &[], &[])[0], Bounds { lo: 10.0, hi: 10.0 });
+        // A weight multiplies its source's moves: source 1 at twice its ends.
+        let w = combine(&base, &v[..1], &[2.0])[0];
+        assert!((w.hi - 18.0).abs() < 1e-12 && (w.lo - 4.0).abs() < 1e-12, "{w:?}");
     }
 
     #[test]

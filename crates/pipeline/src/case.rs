@@ -353,6 +353,10 @@ pub struct RunPlan {
     /// What the case file says that still works but should be written otherwise (printed
     /// before the run).
     pub warnings: Vec<String>,
+    /// How close a prediction of this kind of blade has come on propbet's validation, before
+    /// any measurement ([`crate::expected::sentence`] of the blade's file: its APC family, or
+    /// all the props for a scan or a table of no named family).
+    pub expected: Option<String>,
 }
 
 impl RunPlan {

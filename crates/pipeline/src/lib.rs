@@ -21,6 +21,7 @@ pub mod band;
 pub mod case;
 pub mod design;
 mod error;
+pub mod expected;
 pub mod export;
 pub mod model;
 pub mod run;

@@ -116,6 +116,9 @@ pub struct Validated {
     pub stages: Vec<StageRecord>,
     /// The table's row.
     pub row: Row,
+    /// The uncertainty band's sources by name, each with the compared points predicted at its
+    /// two ends (the band's makings, [`crate::band::BandSpec::at_compared_by_source`]).
+    pub band_sources: Vec<(&'static str, [Vec<propbet_compare::ComparedPoint>; 2])>,
 }
 
 impl Validated {
@@ -397,8 +400,10 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let bands =
-        crate::band::BandSpec::for_model(&model).at_compared(&model, compared.air, &compared.sets, &compared.points)?;
+    let band = crate::band::BandSpec::for_model(&model);
+    let ends = band.at_compared_by_source(&model, compared.air, &compared.sets)?;
+    let bands = propbet_compare::band::of_points(&compared.points, &ends, &band.weights());
+    let band_sources = band.names(&model).into_iter().zip(ends).collect();
     let per3 = per3_file.as_ref().map(|f| crate::stages::read_per3(f)).transpose()?;
     let row = Row {
         prop: prop.to_string(),
@@ -446,6 +451,7 @@ pub fn validate_prop(
         calibrated: (cal.compared, cal.model),
         stages: records,
         row,
+        band_sources,
     })
 }
 

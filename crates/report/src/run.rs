@@ -21,7 +21,7 @@ pub fn page(
 ) -> Result<String, PlotError> {
     let mut h = String::with_capacity(4_000_000);
     let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
-    lead_html(&mut h, run, lead, reference)?;
+    lead_html(&mut h, plan, run, lead, reference)?;
     if !plan.description.is_empty() {
         let _ = writeln!(h, "<p class=\"note\">{}</p>", esc(&plan.description));
     }
@@ -50,6 +50,9 @@ pub fn page(
 
     // Prediction.
     h.push_str("<section id=\"prediction\"><h2>Prediction</h2>\n");
+    if let Some(e) = plan.expected.as_ref().filter(|_| run.compared.is_none()) {
+        let _ = writeln!(h, "<p>{}</p>", esc(e));
+    }
     h.push_str(&propbet_plot::svg_inline(&sweep_figure(&run.sweep))?);
     h.push_str("</section>\n");
 
@@ -427,6 +430,8 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         "notes": problems.iter().filter(|p| run.stages.iter().any(|s| s.clean && s.spec.name() == p["stage"])).collect::<Vec<_>>(),
         "headline": headline,
         "accuracy": run.compared.as_ref().map(|c| crate::compare::accuracy_json(&c.points)),
+        // How close a prediction of this kind of blade came on propbet's validation.
+        "expected": plan.expected,
         // Where the calibrated model (the prediction with the diagnosis's effects) is worse
         // than the prediction (the report's first screen says it too).
         "calibrated_worse": match (&run.compared, &run.calibrated) {

@@ -314,6 +314,13 @@ impl Case {
             predict,
             compare,
             warnings,
+            expected: crate::expected::sentence(
+                g.pe0
+                    .as_deref()
+                    .or(g.prop.as_deref())
+                    .and_then(|p| Path::new(p).file_name()?.to_str()),
+                &crate::expected::shipped(),
+            ),
         })
     }
 }

@@ -19,14 +19,14 @@ pub struct GeometryAccuracy {
 }
 
 impl GeometryAccuracy {
-    /// The largest blade angle the line may hold [deg]: the band adds it to its own ±1° in
+    /// The largest blade angle the line may hold [deg]: the band adds it to its own ±0.5° in
     /// root-sum-square and moves every blade angle by the sum, within the ±3° a pitch offset
     /// may take (`pitch-offset`'s bounds); a geometry known worse than this is to be measured
     /// again, not banded.
     pub const MAX_ANGLE_DEG: f64 = 2.5;
-    /// The largest chord fraction the line may hold: with the band's own ±3 % in
+    /// The largest chord fraction the line may hold: with the band's own ±6 % in
     /// root-sum-square, within the ±15 % a chord scale may take (`chord-scale`'s bounds).
-    pub const MAX_CHORD: f64 = 0.14;
+    pub const MAX_CHORD: f64 = 0.13;
 
     /// The comment line (no newline), in the key=value form [`parse`] reads.
     pub fn line(&self) -> String {

@@ -12,6 +12,7 @@ use crate::page::esc;
 /// measured against predicted (`lead`, with the band).
 pub(super) fn lead_html(
     h: &mut String,
+    plan: &propbet_pipeline::case::RunPlan,
     run: &RunOutcome,
     lead: Option<&Figure>,
     reference: Option<&serde_json::Value>,
@@ -26,6 +27,9 @@ pub(super) fn lead_html(
             100.0 * ct,
             100.0 * cp
         );
+    }
+    if let Some(e) = &plan.expected {
+        let _ = writeln!(h, "<p class=\"note\">{}</p>", esc(e));
     }
     for r in crate::answer::headline_rows(&c.metrics, None) {
         let errs: Vec<String> = r

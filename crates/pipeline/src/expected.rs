@@ -1,0 +1,317 @@
+//! How close a prediction of this kind of blade has come, before any measurement: `propbet
+//! validate`'s numbers on the shared UIUC props by APC family (E, SF, SP, FF) and over all,
+//! written by validate (`families.csv`) and shipped with propbet (`data/validation_families.csv`,
+//! copied by `scripts/validation-page.sh` from the same run as the book's validation table).
+
+use propbet_compare::metrics::quantile;
+
+use crate::validate::{family, Row};
+
+/// Validate's numbers over one family of props (or all).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expected {
+    /// `E`, `SF`, `SP`, `FF`, or `all`.
+    pub family: String,
+    /// Props in it.
+    pub props: usize,
+    /// Median over its props of each prop's CT median error.
+    pub ct_median: f64,
+    /// The same for CP.
+    pub cp_median: f64,
+    /// The 90th percentile over its props of a prop's larger median (CT or CP).
+    pub p90: f64,
+    /// Its props whose CT or CP median is above 15 %.
+    pub above_15: usize,
+    /// Median over its props of the share of measured CT inside the uncertainty band.
+    pub band_ct_inside: f64,
+    /// The same for CP.
+    pub band_cp_inside: f64,
+    /// Median over its props of the band's median relative half-width of CT.
+    pub band_ct_half_width: f64,
+}
+
+/// The columns of `families.csv`, in [`Expected`]'s order.
+pub const COLUMNS: [&str; 9] = [
+    "family",
+    "props",
+    "ct_median",
+    "cp_median",
+    "p90_larger_median",
+    "props_above_15",
+    "band_ct_inside",
+    "band_cp_inside",
+    "band_ct_half_width",
+];
+
+/// A family's name in words.
+pub fn family_words(family: &str) -> &'static str {
+    match family {
+        "E" => "APC Electric",
+        "SF" => "APC Slow Flyer",
+        "SP" => "APC Sport",
+        "FF" => "APC Free Flight",
+        _ => "APC",
+    }
+}
+
+/// The families' numbers (those with two or more props) and `all`, over the rows of APC's
+/// sections (a row whose section was assumed is left out, as from validate's medians).
+pub fn summarise(rows: &[Row]) -> Vec<Expected> {
+    let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
+    let mut families: Vec<String> = apc.iter().map(|r| family(&r.prop)).collect();
+    families.sort();
+    families.dedup();
+    let mut out: Vec<Expected> = families
+        .into_iter()
+        .filter_map(|f| {
+            let members: Vec<&Row> = apc.iter().copied().filter(|r| family(&r.prop) == f).collect();
+            (members.len() >= 2).then(|| over(f, &members))
+        })
+        .collect();
+    if !apc.is_empty() {
+        out.push(over("all".into(), &apc));
+    }
+    out
+}
+
+fn over(family: String, rows: &[&Row]) -> Expected {
+    let med = |f: &dyn Fn(&Row) -> f64| quantile(rows.iter().map(|r| f(r)).filter(|x| x.is_finite()).collect(), 0.5);
+    let larger: Vec<f64> = rows
+        .iter()
+        .map(|r| r.ct.before.median.max(r.cp.before.median))
+        .collect();
+    let band = |k: usize, f: &dyn Fn(&propbet_compare::band::Coverage) -> f64| {
+        med(&|r: &Row| r.band[k].as_ref().map_or(f64::NAN, f))
+    };
+    Expected {
+        family,
+        props: rows.len(),
+        ct_median: med(&|r| r.ct.before.median),
+        cp_median: med(&|r| r.cp.before.median),
+        p90: quantile(larger.clone(), 0.9),
+        above_15: larger.iter().filter(|x| **x > 0.15).count(),
+        band_ct_inside: band(0, &|c| c.inside),
+        band_cp_inside: band(1, &|c| c.inside),
+        band_ct_half_width: band(0, &|c| c.half_width),
+    }
+}
+
+/// `families.csv`'s text.
+pub fn to_csv(e: &[Expected]) -> String {
+    let mut s = COLUMNS.join(",") + "\n";
+    for x in e {
+        s += &format!(
+            "{},{},{:.6},{:.6},{:.6},{},{:.6},{:.6},{:.6}\n",
+            x.family,
+            x.props,
+            x.ct_median,
+            x.cp_median,
+            x.p90,
+            x.above_15,
+            x.band_ct_inside,
+            x.band_cp_inside,
+            x.band_ct_half_width
+        );
+    }
+    s
+}
+
+/// Reads `families.csv`'s text.
+pub fn from_csv(text: &str) -> Result<Vec<Expected>, String> {
+    let mut lines = text.lines();
+    if lines.next().map(|h| h.split(',').collect::<Vec<_>>()) != Some(COLUMNS.to_vec()) {
+        return Err(format!("not a families table: its header is not {}", COLUMNS.join(",")));
+    }
+    lines
+        .enumerate()
+        .map(|(i, l)| {
+            let c: Vec<&str> = l.split(',').collect();
+            let bad = || format!("line {}: {l:?}", i + 2);
+            if c.len() != COLUMNS.len() {
+                return Err(bad());
+            }
+            let f = |k: usize| c[k].parse::<f64>().map_err(|_| bad());
+            let n = |k: usize| c[k].parse::<usize>().map_err(|_| bad());
+            Ok(Expected {
+                family: c[0].to_string(),
+                props: n(1)?,
+                ct_median: f(2)?,
+                cp_median: f(3)?,
+                p90: f(4)?,
+                above_15: n(5)?,
+                band_ct_inside: f(6)?,
+                band_cp_inside: f(7)?,
+                band_ct_half_width: f(8)?,
+            })
+        })
+        .collect()
+}
+
+/// The numbers shipped with propbet: validate on the 35 shared APC props with the default model.
+pub fn shipped() -> Vec<Expected> {
+    from_csv(include_str!("../data/validation_families.csv")).expect("the shipped families table reads")
+}
+
+/// The APC family a file name says, if any: a UIUC name (`apcsf_10x4.7_geom.txt` → `SF`) or an
+/// APC design or performance file (`10x47SF-PERF.PE0` → `SF`, `10x7-PERF.PE0` → `SP`,
+/// `PER3_11x7E.dat` → `E`). Sizes APC gives other letters (MR, C, W, ...) name no family
+/// validated here.
+pub fn family_of_file(name: &str) -> Option<&'static str> {
+    let lower = name.to_ascii_lowercase();
+    for (prefix, f) in [("apcsf_", "SF"), ("apce_", "E"), ("apcsp_", "SP"), ("apcff_", "FF")] {
+        if lower.starts_with(prefix) {
+            return Some(f);
+        }
+    }
+    let stem = lower
+        .strip_suffix("-perf.pe0")
+        .or_else(|| lower.strip_prefix("per3_").and_then(|s| s.strip_suffix(".dat")))?;
+    let (size, kind) = stem.split_at(stem.trim_end_matches(|c: char| c.is_ascii_alphabetic()).len());
+    if !size.contains('x') || !size.starts_with(|c: char| c.is_ascii_digit()) {
+        return None;
+    }
+    match kind {
+        "" => Some("SP"),
+        "e" => Some("E"),
+        "sf" => Some("SF"),
+        _ => None,
+    }
+}
+
+/// What to expect of a prediction of the prop whose file is `name` (None: a scan, a table),
+/// in one sentence, from `table` (the shipped one: [`shipped`]).
+pub fn sentence(name: Option<&str>, table: &[Expected]) -> Option<String> {
+    let all = table.iter().find(|e| e.family == "all")?;
+    let fam = name
+        .and_then(family_of_file)
+        .and_then(|f| table.iter().find(|e| e.family == f));
+    let pct = |x: f64| format!("{:.1} %", 100.0 * x);
+    let worst = table
+        .iter()
+        .filter(|e| e.family != "all")
+        .max_by(|a, b| a.ct_median.max(a.cp_median).total_cmp(&b.ct_median.max(b.cp_median)));
+    let band = |e: &Expected| {
+        format!(
+            "its uncertainty band held {} of the measured CT (±{}) and {} of the CP",
+            pct(e.band_ct_inside),
+            pct(e.band_ct_half_width),
+            pct(e.band_cp_inside)
+        )
+    };
+    Some(match fam {
+        Some(e) => format!(
+            "Expected accuracy: on the {} {} props propbet is validated on (UIUC's wind tunnel), the default \
+             model's median error was {} in CT and {} in CP ({} of them above 15 %; over all {} APC props {} / {}); \
+             {}.",
+            e.props,
+            family_words(&e.family),
+            pct(e.ct_median),
+            pct(e.cp_median),
+            e.above_15,
+            all.props,
+            pct(all.ct_median),
+            pct(all.cp_median),
+            band(e)
+        ),
+        None => format!(
+            "Expected accuracy: on the {} APC props propbet is validated on (UIUC's wind tunnel), the default \
+             model's median error was {} in CT and {} in CP, {} of them above 15 %{}; {}.",
+            all.props,
+            pct(all.ct_median),
+            pct(all.cp_median),
+            all.above_15,
+            worst
+                .map(|w| format!(
+                    " (the worst family, {}: {} / {})",
+                    family_words(&w.family),
+                    pct(w.ct_median),
+                    pct(w.cp_median)
+                ))
+                .unwrap_or_default(),
+            band(all)
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn file_names_say_their_family() {
+        for (name, f) in [
+            ("apcsf_10x4.7_geom.txt", Some("SF")),
+            ("APCE_11x7_static.txt", Some("E")),
+            ("10x47SF-PERF.PE0", Some("SF")),
+            ("10x7-PERF.PE0", Some("SP")),
+            ("18x12E-PERF.PE0", Some("E")),
+            ("PER3_11x7E.dat", Some("E")),
+            ("5x45MR-PERF.PE0", None),
+            ("apcsf_10x4.7.stl", Some("SF")),
+            ("blade.stl", None),
+            ("x-PERF.PE0", None),
+        ] {
+            assert_eq!(family_of_file(name), f, "{name}");
+        }
+    }
+
+    #[test]
+    fn the_shipped_table_reads_and_names_every_family() {
+        let t = shipped();
+        let fams: Vec<&str> = t.iter().map(|e| e.family.as_str()).collect();
+        assert_eq!(fams, ["E", "SF", "SP", "all"]);
+        let all = t.last().unwrap();
+        assert_eq!(
+            all.props,
+            t.iter().filter(|e| e.family != "all").map(|e| e.props).sum::<usize>() + 1
+        );
+        for e in &t {
+            assert!(e.ct_median > 0.0 && e.ct_median < 0.5 && e.band_ct_inside > 0.0 && e.band_ct_inside <= 1.0);
+        }
+        // Round trip.
+        assert_eq!(from_csv(&to_csv(&t)).unwrap(), t);
+        assert!(from_csv("family,props\nE,3\n").unwrap_err().contains("header"));
+        assert!(from_csv(&format!("{}\nE,x,1,1,1,1,1,1,1\n", COLUMNS.join(",")))
+            .unwrap_err()
+            .contains("line 2"));
+    }
+
+    /// The shipped table and the book's validation table come from one validate run
+    /// (`scripts/validation-page.sh`): each family's and all props' medians are the table's.
+    #[test]
+    fn the_shipped_table_is_the_books_validation_table() {
+        let page =
+            std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/validation-table.md")).unwrap();
+        for e in shipped() {
+            let label = match e.family.as_str() {
+                "all" => "**all (median over props)**".to_string(),
+                f => format!("**{f} (median of {})**", e.props),
+            };
+            let row = page
+                .lines()
+                .find(|l| l.starts_with(&format!("| {label} |")))
+                .unwrap_or_else(|| panic!("{label} not in the validation table"));
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            // | label | | points | CT median | CT p90 | CP median | ...
+            let pct = |x: f64| format!("{:.1} %", 100.0 * x);
+            assert_eq!(
+                (cells[4], cells[6]),
+                (pct(e.ct_median).as_str(), pct(e.cp_median).as_str()),
+                "{row}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_sentence_names_the_family_or_all() {
+        let t = shipped();
+        let sp = sentence(Some("10x7-PERF.PE0"), &t).unwrap();
+        assert!(
+            sp.contains("APC Sport props") && sp.contains("uncertainty band held"),
+            "{sp}"
+        );
+        let scan = sentence(None, &t).unwrap();
+        assert!(scan.contains("the worst family, APC Slow Flyer"), "{scan}");
+        assert!(sentence(None, &[]).is_none());
+    }
+}
