@@ -11,11 +11,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 #[test]
 #[ignore = "slow: real XFOIL (scripts/test.sh runs it)"]
 fn the_scanned_case_from_scan_to_report() {
-    // The shipped scan (the APC 10x4.7 Slow Flyer's STL), from a directory outside the
-    // repository. A private cache keeps the run cold.
-    let dir = tempfile::tempdir().unwrap();
-    let case = repo().join("props/apcsf_10x4.7").display().to_string();
-    let o = run(&["run", &case, "-o", "out", "--cache", "cache", "--quiet"], dir.path());
+    // The shipped scan (the APC 10x4.7 SF's STL) from outside the repository, cache cold.
+    let (dir, case) = (tempfile::tempdir().unwrap(), repo().join("props/apcsf_10x4.7"));
+    let args = ["run", case.to_str().unwrap(), "-o", "out", "--cache", "cache"];
+    let o = run(&[&args[..], &["--quiet"]].concat(), dir.path());
     let out = dir.path().join("out");
     // Exit 1 exactly when a stage reported a problem (real XFOIL faults at some Reynolds
     // numbers of this blade are usual), and the terminal says so.

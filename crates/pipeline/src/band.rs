@@ -188,6 +188,19 @@ impl BandSpec {
         Ok(propbet_compare::band::of_points(base, &variants, &self.weights()))
     }
 
+    /// The band at a comparison's points, and its sources by name with the points predicted at
+    /// their two ends (validate's `band_sources.csv`).
+    #[allow(clippy::type_complexity)]
+    pub fn with_sources(
+        &self,
+        model: &Model,
+        compared: &crate::stages::Compared,
+    ) -> Result<(Vec<PointBand>, Vec<(&'static str, [Vec<ComparedPoint>; 2])>)> {
+        let ends = self.at_compared_by_source(model, compared.air, &compared.sets)?;
+        let bands = propbet_compare::band::of_points(&compared.points, &ends, &self.weights());
+        Ok((bands, self.names(model).into_iter().zip(ends).collect()))
+    }
+
     /// The compared points predicted at each source's two ends, in [`BandSpec::names`]' order.
     pub fn at_compared_by_source(
         &self,

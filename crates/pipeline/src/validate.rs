@@ -400,10 +400,7 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let band = crate::band::BandSpec::for_model(&model);
-    let ends = band.at_compared_by_source(&model, compared.air, &compared.sets)?;
-    let bands = propbet_compare::band::of_points(&compared.points, &ends, &band.weights());
-    let band_sources = band.names(&model).into_iter().zip(ends).collect();
+    let (bands, band_sources) = crate::band::BandSpec::for_model(&model).with_sources(&model, &compared)?;
     let per3 = per3_file.as_ref().map(|f| crate::stages::read_per3(f)).transpose()?;
     let row = Row {
         prop: prop.to_string(),
