@@ -17,9 +17,12 @@ fold's props; the folds are validate's families dealt round-robin (cv_default.py
 """
 
 import csv
+import itertools
 import math
 import os
 import sys
+
+import numpy as np
 
 from cv_default import family, folds, median, pct
 
@@ -77,26 +80,10 @@ def load(default_dir, alternatives):
     return props
 
 
-def coverage(points, sources, k, q):
-    """Share inside and median relative half-width of one prop's band of q."""
-    inside, widths = 0, []
-    for p in points:
-        m, c, moves = p[q]
-        down = k * math.sqrt(sum(moves[s][0] ** 2 for s in sources if s in moves))
-        up = k * math.sqrt(sum(moves[s][1] ** 2 for s in sources if s in moves))
-        inside += c - down <= m <= c + up
-        widths.append(0.5 * (up + down) / abs(c))
-    return inside / len(points), median(widths)
-
-
-def summary(props, names, sources, k):
-    cov = {q: [coverage(props[p], sources, k, q) for p in names] for q in ("ct", "cp")}
-    return {q: (median(c for c, _ in v), median(w for _, w in v)) for q, v in cov.items()}
-
-
-def choose_k(props, names, sources):
+def choose_k(arr, names, n):
+    """The smallest k on GRID whose band holds TARGET of CT and of CP (median over `names`)."""
     for k in GRID:
-        s = summary(props, names, sources, k)
+        s = cover_w(arr, names, np.full(n, k * k))
         if s["ct"][0] >= TARGET and s["cp"][0] >= TARGET:
             return k
     return GRID[-1]
@@ -105,7 +92,6 @@ def choose_k(props, names, sources):
 def arrays(props, names, sources):
     """Per prop and quantity: measured, predicted, and the sources' down and up moves as arrays
     (points x sources)."""
-    import numpy as np
     out = {}
     for p in names:
         out[p] = {}
@@ -122,7 +108,6 @@ def arrays(props, names, sources):
 def cover_w(arr, names, w2):
     """Median over props of the share inside and of the median half-width, per quantity, with
     each source's range times sqrt(w2)."""
-    import numpy as np
     res = {}
     for q in ("ct", "cp"):
         ins, wid = [], []
@@ -147,8 +132,6 @@ PHYSICAL = {"blade_angle": [0.5, 1.0, 1.5], "chord": [1.0, 5 / 3], "section_drag
 def choose_w(arr, names, n, grid=None):
     """The per-source scales (each from SCALES, or `grid`'s per source) whose band is narrowest
     (CT's and CP's median half-widths summed) with both coverages at TARGET or more."""
-    import itertools
-    import numpy as np
     best = None
     for ks in itertools.product(*(grid or [SCALES] * n)):
         w2 = np.array(ks) ** 2
@@ -161,7 +144,6 @@ def choose_w(arr, names, n, grid=None):
 
 
 def per_source(props, names, sources, label, physical=False):
-    import numpy as np
     arr = arrays(props, names, sources)
     grid = None
     if physical:
@@ -197,14 +179,15 @@ def main(args):
     print("|---|---|---|---|---|---|---|")
     held_all = {}
     for label, sources in constructions:
-        s1 = summary(props, names, sources, 1.0)
+        arr, n = arrays(props, names, sources), len(sources)
+        s1 = cover_w(arr, names, np.ones(n))
         ks, held = [], {}
         for test in folds(names):
             train = [p for p in names if p not in test]
-            k = choose_k(props, train, sources)
+            k = choose_k(arr, train, n)
             ks.append(k)
             for p in test:
-                held[p] = {q: coverage(props[p], sources, k, q) for q in ("ct", "cp")}
+                held[p] = cover_w(arr, [p], np.full(n, k * k))
         held_all[label] = held
         h = {q: (median(held[p][q][0] for p in names), median(held[p][q][1] for p in names)) for q in ("ct", "cp")}
         low = sum(held[p]["ct"][0] < 0.5 for p in names)

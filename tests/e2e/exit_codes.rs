@@ -413,52 +413,36 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
             "p.qprop",
         ],
     ));
-    // NeuralFoil's weights of another size under this size's name (a renamed file).
-    let weights_dir = tempfile::tempdir().unwrap();
-    let weights: &'static Path = Box::leak(weights_dir.path().to_path_buf().into_boxed_path());
+    // A weights folder with the shipped input distribution and `make` writing its
+    // nn-xlarge.npz, as a polars row that asks for NeuralFoil's weights from it (exit 2).
     let shipped = repo().join("crates/neuralfoil/weights");
-    std::fs::copy(
-        shipped.join("scaled_input_distribution.npz"),
-        weights.join("scaled_input_distribution.npz"),
-    )
-    .unwrap();
-    std::fs::copy(shipped.join("nn-xxsmall.npz"), weights.join("nn-xlarge.npz")).unwrap();
-    let mut r = with(
-        row(
-            "polars",
-            "NeuralFoil weights renamed to another size",
-            2,
-            &["--engine", "neuralfoil"],
-        ),
-        ("PROPBET_NEURALFOIL_WEIGHTS", weights.to_str().unwrap()),
-    );
-    r.args
-        .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
-    rows.push(r);
-    // A 4 GB file under the weights' name (sparse: nothing is written), refused unread.
-    let huge_dir = tempfile::tempdir().unwrap();
-    let huge: &'static Path = Box::leak(huge_dir.path().to_path_buf().into_boxed_path());
-    std::fs::copy(
-        shipped.join("scaled_input_distribution.npz"),
-        huge.join("scaled_input_distribution.npz"),
-    )
-    .unwrap();
-    std::fs::File::create(huge.join("nn-xlarge.npz"))
-        .unwrap()
-        .set_len(4 << 30)
+    let mut weights_dirs = Vec::new(); // removed at the end of the test
+    let mut weights_row = |what: &'static str, make: &dyn Fn(&Path)| {
+        let guard = tempfile::tempdir().unwrap();
+        let dir: &'static Path = Box::leak(guard.path().to_path_buf().into_boxed_path());
+        weights_dirs.push(guard);
+        std::fs::copy(
+            shipped.join("scaled_input_distribution.npz"),
+            dir.join("scaled_input_distribution.npz"),
+        )
         .unwrap();
-    let mut r = with(
-        row(
-            "polars",
-            "a 4 GB file as NeuralFoil's weights",
-            2,
-            &["--engine", "neuralfoil"],
-        ),
-        ("PROPBET_NEURALFOIL_WEIGHTS", huge.to_str().unwrap()),
-    );
-    r.args
-        .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
-    rows.push(r);
+        make(&dir.join("nn-xlarge.npz"));
+        let mut r = with(
+            row("polars", what, 2, &["--engine", "neuralfoil"]),
+            ("PROPBET_NEURALFOIL_WEIGHTS", dir.to_str().unwrap()),
+        );
+        r.args
+            .extend(polars_args("0.5").into_iter().filter(|a| a != "--xfoil" && a != &fake));
+        rows.push(r);
+    };
+    // NeuralFoil's weights of another size under this size's name (a renamed file).
+    weights_row("NeuralFoil weights renamed to another size", &|f| {
+        std::fs::copy(shipped.join("nn-xxsmall.npz"), f).unwrap();
+    });
+    // A 4 GB file under the weights' name (sparse: nothing is written), refused unread.
+    weights_row("a 4 GB file as NeuralFoil's weights", &|f| {
+        std::fs::File::create(f).unwrap().set_len(4 << 30).unwrap();
+    });
     // validate's 0 and 1 take 25 s with the stand-in XFOIL: campaign::n18 runs it.
 
     let mut failures = Vec::new();

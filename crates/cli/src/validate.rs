@@ -216,6 +216,7 @@ fn write_band_sources(path: &Path, v: &Validated) -> Result<()> {
     }
     let mut csv = csv::Writer::from_writer(Vec::new());
     csv.write_record(&header)?;
+    const QS: [fn(&ComparedPoint) -> Option<f64>; 2] = [|p| p.predicted.ct, |p| p.predicted.cp];
     let num = |x: Option<f64>| {
         x.filter(|v| v.is_finite())
             .map(|v| format!("{v:.7}"))
@@ -234,8 +235,7 @@ fn write_band_sources(path: &Path, v: &Validated) -> Result<()> {
             num(p.predicted.cp),
         ];
         for (_, ends) in &v.band_sources {
-            let qs: [fn(&ComparedPoint) -> Option<f64>; 2] = [|p| p.predicted.ct, |p| p.predicted.cp];
-            for q in qs {
+            for q in QS {
                 for end in ends {
                     r.push(num(end.get(i).and_then(q)));
                 }

@@ -176,18 +176,6 @@ impl BandSpec {
         n
     }
 
-    /// The band at compared points (`base`: the model's own comparison of `sets`).
-    pub fn at_compared(
-        &self,
-        model: &Model,
-        air: AirChoice,
-        sets: &[MeasuredSet],
-        base: &[ComparedPoint],
-    ) -> Result<Vec<PointBand>> {
-        let variants = self.at_compared_by_source(model, air, sets)?;
-        Ok(propbet_compare::band::of_points(base, &variants, &self.weights()))
-    }
-
     /// The band at a comparison's points, and its sources by name with the points predicted at
     /// their two ends (validate's `band_sources.csv`).
     #[allow(clippy::type_complexity)]

@@ -5,7 +5,7 @@
 
 use propbet_compare::metrics::quantile;
 
-use crate::validate::{family, Row};
+use crate::validate::{family, family_groups, Row};
 
 /// Validate's numbers over one family of props (or all).
 #[derive(Debug, Clone, PartialEq)]
@@ -57,17 +57,8 @@ pub fn family_words(family: &str) -> &'static str {
 /// The families' numbers (those with two or more props) and `all`, over the rows of APC's
 /// sections (a row whose section was assumed is left out, as from validate's medians).
 pub fn summarise(rows: &[Row]) -> Vec<Expected> {
+    let mut out: Vec<Expected> = family_groups(rows).into_iter().map(|(f, m)| over(f, &m)).collect();
     let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
-    let mut families: Vec<String> = apc.iter().map(|r| family(&r.prop)).collect();
-    families.sort();
-    families.dedup();
-    let mut out: Vec<Expected> = families
-        .into_iter()
-        .filter_map(|f| {
-            let members: Vec<&Row> = apc.iter().copied().filter(|r| family(&r.prop) == f).collect();
-            (members.len() >= 2).then(|| over(f, &members))
-        })
-        .collect();
     if !apc.is_empty() {
         out.push(over("all".into(), &apc));
     }
@@ -158,8 +149,8 @@ pub fn shipped() -> Vec<Expected> {
 /// validated here.
 pub fn family_of_file(name: &str) -> Option<&'static str> {
     let lower = name.to_ascii_lowercase();
-    for (prefix, f) in [("apcsf_", "SF"), ("apce_", "E"), ("apcsp_", "SP"), ("apcff_", "FF")] {
-        if lower.starts_with(prefix) {
+    if lower.contains('_') {
+        if let Some(f) = ["E", "SF", "SP", "FF"].into_iter().find(|f| *f == family(&lower)) {
             return Some(f);
         }
     }

@@ -32,7 +32,7 @@ use files::measured_files;
 pub use files::{cover, find_apc_file, uiuc_name, uiuc_props};
 use held_out::held_out;
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
-pub use row::{family, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
+pub use row::{family, family_groups, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 
 /// Where validate reads and what it asks.
 #[derive(Debug, Clone)]

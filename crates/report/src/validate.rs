@@ -5,7 +5,7 @@
 use std::fmt::Write as _;
 
 use propbet_compare::metrics::{quantile, REGIMES};
-use propbet_pipeline::validate::{family, Row};
+use propbet_pipeline::validate::{family, family_groups, Row};
 
 use crate::page::{esc, page};
 
@@ -164,17 +164,11 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
     // The medians are over props predicted with their maker's sections; those whose section
     // was assumed get a median of their own.
     let apc_rows: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
-    let mut families: Vec<String> = apc_rows.iter().map(|r| family(&r.prop)).collect();
-    families.sort();
-    families.dedup();
-    for f in families {
-        let members: Vec<&Row> = apc_rows.iter().copied().filter(|r| family(&r.prop) == f).collect();
-        if members.len() >= 2 {
-            out.push((
-                median_row(format!("{f} (median of {})", members.len()), &members, apc),
-                true,
-            ));
-        }
+    for (f, members) in family_groups(rows) {
+        out.push((
+            median_row(format!("{f} (median of {})", members.len()), &members, apc),
+            true,
+        ));
     }
     let assumed: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_some()).collect();
     if assumed.len() >= 2 {

@@ -193,6 +193,23 @@ pub fn family(prop: &str) -> String {
     }
 }
 
+/// The rows of APC's sections (a row whose section was assumed left out, as from validate's
+/// medians) grouped by [`family`], in name order, the families of two or more props only.
+pub fn family_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {
+    let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
+    let mut families: Vec<String> = apc.iter().map(|r| family(&r.prop)).collect();
+    families.sort();
+    families.dedup();
+    families
+        .into_iter()
+        .map(|f| {
+            let members: Vec<&Row> = apc.iter().copied().filter(|r| family(&r.prop) == f).collect();
+            (f, members)
+        })
+        .filter(|(_, members)| members.len() >= 2)
+        .collect()
+}
+
 /// Scores APC's PER3 prediction on the compared points: each point's predicted CT and CP
 /// replaced by PER3's at its RPM and J (points outside PER3's range left out), then the same
 /// window and errors as propbet's.
