@@ -31,6 +31,7 @@ mod compare;
 mod diagnose;
 mod engine;
 mod export;
+mod hidden;
 mod output;
 mod polar;
 mod predict;
@@ -125,6 +126,15 @@ pub enum Command {
         "Exit status: 0 done; 1 done, with problems it reports; 2 error."
     ))]
     Validate(Box<validate::ValidateArgs>),
+    /// Hidden effects in real measurements: known effects (thrust and torque tares, an RPM
+    /// scale, the air's density) added to validate's measured files at several sizes, and how
+    /// often the diagnosis finds each with its size.
+    #[command(after_help = concat!(
+        "Example:\n  propbet hidden --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",
+        "    --only apce_10x5,apcsp_10x7 --sizes 0.05 -o hidden\n\n",
+        "Exit status: 0 done; 1 done, with props it could not diagnose; 2 error."
+    ))]
+    Hidden(Box<hidden::HiddenArgs>),
     /// Flight-simulator files from a prediction or from measurements: Gazebo's motor model,
     /// PX4 SIH's thruster parameters, a JSBSim propeller, a CT/CP map (CSV, JSON).
     #[command(after_help = concat!(
@@ -219,6 +229,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
     match command {
         Command::Run(a) => run::run(&a),
         Command::Validate(a) => validate::run(&a),
+        Command::Hidden(a) => hidden::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
         Command::Export(a) => export::run(&a),

@@ -79,8 +79,9 @@ pub struct ValidateArgs {
     pub user_effects: Option<PathBuf>,
 }
 
-/// Runs `propbet validate`.
-pub fn run(a: &ValidateArgs) -> Result<bool> {
+/// The spec of `a`, its props and the generic section, checked before any prop; the output
+/// folder is refused where it holds an input.
+pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Option<Sections>)> {
     let props = select_props(&a.uiuc, a.only.as_deref())?;
     let spec = ValidateSpec {
         uiuc: a.uiuc.clone(),
@@ -113,6 +114,12 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
         .chain(a.user_effects.as_deref())
         .collect();
     crate::output::refuse_inputs_inside(&a.out, &inputs)?;
+    Ok((spec, props, generic))
+}
+
+/// Runs `propbet validate`.
+pub fn run(a: &ValidateArgs) -> Result<bool> {
+    let (spec, props, generic) = spec(a)?;
     let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
     let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec().engine);
     let validation = validate_all(

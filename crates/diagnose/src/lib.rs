@@ -13,6 +13,7 @@
 
 pub mod discover;
 pub mod fit;
+pub mod inject;
 pub mod provenance;
 
 pub mod signature;

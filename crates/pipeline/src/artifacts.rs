@@ -47,6 +47,7 @@ pub mod effects {
 /// The diagnosis ([`propbet_diagnose`]).
 pub mod diagnose {
     pub use propbet_diagnose::discover::Diagnosis;
+    pub use propbet_diagnose::inject;
 }
 
 /// Scans ([`propbet_geometry`]) and the vectors their options are given in.

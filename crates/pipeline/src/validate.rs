@@ -23,6 +23,7 @@ mod all;
 mod blade;
 mod files;
 mod held_out;
+mod hidden;
 mod row;
 
 pub use all::{sections_for, select_props, validate_all, PropSections, Validation};
@@ -31,6 +32,7 @@ use blade::{blade, Blade};
 use files::measured_files;
 pub use files::{cover, find_apc_file, uiuc_name, uiuc_props};
 use held_out::held_out;
+pub use hidden::hidden_prop;
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
 pub use row::{family, family_groups, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 
@@ -331,26 +333,40 @@ fn calibrate(
     })
 }
 
-/// Validates one prop with its `sections`.
-pub fn validate_prop(
+/// One prop as validate predicts it, before any comparison: its blade, the files measured, the
+/// polars and the model.
+struct Prepared {
+    dir: PathBuf,
+    blade: Blade,
+    geometry: LoadedProp,
+    input: PolarsInput,
+    measured: MeasuredSpec,
+    left_out: Vec<(String, String)>,
+    records: Vec<StageRecord>,
+    polars: Polars,
+    model_spec: ModelSpec,
+    model: Model,
+}
+
+/// The blade of `prop` with its `sections`, its measured files, its polars (over the operating
+/// points the files cover) and the model.
+fn prepare(
     spec: &ValidateSpec,
     prop: &str,
     sections: &Sections,
     progress: &propbet_polar::Progress<'_>,
-) -> Result<Validated> {
+) -> Result<Prepared> {
     let dir = spec.out.join(prop);
-    let Blade {
-        big_r,
-        table,
-        pe0,
-        assumed,
-        uiuc_geometry,
-        geometry_used,
-        rows,
-        airfoils,
-    } = blade(spec, prop, sections)?;
-    let (geometry, input) =
-        geometry_and_sections(prop, &dir, geometry_used, assumed.as_deref(), big_r, rows, &airfoils)?;
+    let blade = blade(spec, prop, sections)?;
+    let (geometry, input) = geometry_and_sections(
+        prop,
+        &dir,
+        blade.geometry_used,
+        blade.assumed.as_deref(),
+        blade.big_r,
+        blade.rows.clone(),
+        &blade.airfoils,
+    )?;
     let mut records = Vec::new();
     let files::MeasuredFiles {
         files: measured,
@@ -366,7 +382,6 @@ pub fn validate_prop(
         || stages::polars(&polars_spec, &input, &engine, progress),
         Polars::clean,
     )?;
-
     let model_spec = ModelSpec {
         polars: spec.tables.then(|| dir.join("polars.json")),
         rotation: spec.rotation,
@@ -375,6 +390,48 @@ pub fn validate_prop(
         ..ModelSpec::prop(dir.join("prop.qprop"))
     };
     let model = Model::from_parts(&model_spec, polars.prop.clone(), Some(&polars.blade), false)?;
+    Ok(Prepared {
+        dir,
+        blade,
+        geometry,
+        input,
+        measured,
+        left_out,
+        records,
+        polars,
+        model_spec,
+        model,
+    })
+}
+
+/// Validates one prop with its `sections`.
+pub fn validate_prop(
+    spec: &ValidateSpec,
+    prop: &str,
+    sections: &Sections,
+    progress: &propbet_polar::Progress<'_>,
+) -> Result<Validated> {
+    let Prepared {
+        dir,
+        blade:
+            Blade {
+                big_r,
+                table,
+                pe0,
+                assumed,
+                uiuc_geometry,
+                airfoils,
+                ..
+            },
+        geometry,
+        input,
+        measured,
+        left_out,
+        mut records,
+        polars,
+        model_spec,
+        model,
+    } = prepare(spec, prop, sections, progress)?;
     // APC's own prediction of the prop, drawn beside propbet's in its comparison.
     let per3_file = spec
         .per3

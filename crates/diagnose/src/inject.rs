@@ -1,0 +1,238 @@
+//! Known effects added to real measurements, and whether the diagnosis finds them: the test of
+//! the diagnosis on top of a model's own error.
+//!
+//! Each effect is added to the measured points as propbet's own effect defines it (the
+//! `effects` crate's built-ins), its size the relative change it makes to the static loads:
+//!
+//! | effect | measured point becomes | parameter injected at size `s` |
+//! |---|---|---|
+//! | `thrust-tare` | T − k ½ρ(V + Δv)² πR², Δv = √(V² + 2T/(ρπR²)) − V of the measured T | k = s (static: s T) |
+//! | `torque-tare` | Q + q0 | q0 = s × the measured static torque at the lowest RPM |
+//! | `rpm-scale` | logged Ω = true Ω / f, J = V/(nD) of the logged n | f = √(1 + s) (loads f² against the logged RPM) |
+//! | `density` | assumed ρ = true ρ / r (measured loads kept) | r = 1 + s |
+//!
+//! An injected effect is *found* when the ladder on the injected points holds it and the rise
+//! of its parameter over its clean value (the same stack refitted to the clean points) is the
+//! injected value within the two fits' 95 % intervals ([`score`]).
+
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+use crate::discover::Diagnosis;
+use crate::fit::{fit, FittedParam};
+use crate::{Data, DiagnoseError, Model, Observation};
+
+/// The effects that can be injected, by their built-in ids.
+pub const INJECTABLE: [&str; 4] = ["thrust-tare", "torque-tare", "rpm-scale", "density"];
+
+/// One known effect of a given size.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Injection {
+    /// The built-in effect's id (one of [`INJECTABLE`]).
+    pub effect: String,
+    /// Relative change of the static loads (0.05: 5 %).
+    pub size: f64,
+}
+
+/// Lowest J of a static point.
+const STATIC_J: f64 = 0.02;
+
+impl Injection {
+    /// An injection of `effect` (one of [`INJECTABLE`]) at `size`.
+    pub fn new(effect: &str, size: f64) -> Result<Self, String> {
+        if !INJECTABLE.contains(&effect) {
+            return Err(format!(
+                "`{effect}` cannot be injected: one of {}",
+                INJECTABLE.join(", ")
+            ));
+        }
+        if !size.is_finite() || size <= -0.5 || size == 0.0 || size > 1.0 {
+            return Err(format!(
+                "injected size {size}: a relative change of the loads, not zero, above -0.5 and at most 1"
+            ));
+        }
+        Ok(Self {
+            effect: effect.to_string(),
+            size,
+        })
+    }
+
+    /// The effect's parameter this injection sets on `data`: k, q0 [N m], the RPM factor or
+    /// the density ratio; None for a torque tare on data without a torque.
+    pub fn value(&self, data: &Data) -> Option<f64> {
+        let s = self.size;
+        match self.effect.as_str() {
+            "thrust-tare" => Some(s),
+            "torque-tare" => static_torque(data).map(|q| s * q),
+            "rpm-scale" => Some((1.0 + s).sqrt()),
+            "density" => Some(1.0 + s),
+            _ => None,
+        }
+    }
+
+    /// The parameter's name in the effect (as its fit reports it).
+    pub fn param(&self) -> &'static str {
+        match self.effect.as_str() {
+            "thrust-tare" => "k",
+            "torque-tare" => "q0",
+            "rpm-scale" => "factor",
+            _ => "ratio",
+        }
+    }
+
+    /// The parameter's value that changes nothing.
+    pub fn neutral(&self) -> f64 {
+        match self.effect.as_str() {
+            "thrust-tare" | "torque-tare" => 0.0,
+            _ => 1.0,
+        }
+    }
+
+    /// `data` of a propeller of `diameter` [m] with the effect added to every measured point
+    /// (None where it cannot be: a torque tare without a measured torque).
+    pub fn apply(&self, data: &Data, diameter: f64) -> Option<Data> {
+        let value = self.value(data)?;
+        let mut out = data.clone();
+        for o in &mut out.obs {
+            self.apply_to(o, value, diameter);
+        }
+        Some(out)
+    }
+
+    fn apply_to(&self, o: &mut Observation, value: f64, diameter: f64) {
+        match self.effect.as_str() {
+            "thrust-tare" => {
+                let area = PI * 0.25 * diameter * diameter;
+                let rho = o.fluid.rho;
+                let vs = (o.v * o.v + 2.0 * o.thrust.max(0.0) / (rho * area)).sqrt();
+                o.thrust -= value * 0.5 * rho * vs * vs * area;
+            }
+            "torque-tare" => o.torque = o.torque.map(|q| q + value),
+            "rpm-scale" => {
+                o.omega /= value;
+                o.j *= value;
+                o.mach_tip /= value;
+            }
+            "density" => o.fluid.rho /= value,
+            _ => {}
+        }
+    }
+}
+
+/// The measured static torque at the lowest RPM (the mean of the static points in that RPM
+/// group); without static points, the torque of the lowest-J point of the lowest RPM group.
+pub fn static_torque(data: &Data) -> Option<f64> {
+    let with_q: Vec<&Observation> = data.obs.iter().filter(|o| o.torque.is_some()).collect();
+    let statics: Vec<&&Observation> = with_q.iter().filter(|o| o.j < STATIC_J).collect();
+    if !statics.is_empty() {
+        let low = statics.iter().map(|o| o.omega).fold(f64::INFINITY, f64::min);
+        let near: Vec<f64> = statics
+            .iter()
+            .filter(|o| o.omega < 1.05 * low)
+            .filter_map(|o| o.torque)
+            .collect();
+        return Some(near.iter().sum::<f64>() / near.len() as f64);
+    }
+    let low = with_q.iter().map(|o| o.omega).fold(f64::INFINITY, f64::min);
+    with_q
+        .iter()
+        .filter(|o| o.omega < 1.05 * low)
+        .min_by(|a, b| a.j.total_cmp(&b.j))
+        .and_then(|o| o.torque)
+}
+
+/// Whether an injected effect was found, and with what size.
+#[derive(Debug, Clone, Serialize)]
+pub struct Finding {
+    /// The injection.
+    pub injection: Injection,
+    /// The parameter's injected value (k, q0 [N m], factor, ratio).
+    pub injected: f64,
+    /// Its clean value: the injected ladder refitted to the clean points (the clean ladder's value, or
+    /// its neutral one, where the injected ladder does not hold it).
+    pub clean: f64,
+    /// Its value in the injected ladder (None: the ladder does not hold it).
+    pub fitted: Option<f64>,
+    /// Half-width of the 95 % interval of the rise (the two fits' intervals combined).
+    pub ci95: Option<f64>,
+    /// The ladder holds the effect and its rise over the clean value is the injected change
+    /// within `ci95`.
+    pub found: bool,
+    /// The clean ladder, as `--effect` arguments.
+    pub clean_ladder: String,
+    /// The injected ladder.
+    pub ladder: String,
+    /// In words, when not found: what the ladder answered instead.
+    pub note: String,
+}
+
+/// The value of `param` of `effect` in a fit's parameters, with its 95 % half-width.
+fn value_of(params: &[FittedParam], effect: &str, param: &str) -> Option<(f64, Option<f64>)> {
+    params
+        .iter()
+        .find(|p| p.effect == effect && p.name == param)
+        .map(|p| (p.value, p.ci95))
+}
+
+/// Scores an injection: `clean` is the diagnosis of `data` (the measurements), `injected` that
+/// of the same measurements with the effect added (`injected_value` its parameter). The clean
+/// value of the parameter is the injected ladder's stack refitted to the clean measurements
+/// (from the injected fit's values): the rise is then the effect's alone, whatever the other
+/// effects of the stack take from the model's own error.
+pub fn score(
+    model: &Model,
+    data: &Data,
+    injection: &Injection,
+    injected_value: f64,
+    clean: &Diagnosis,
+    injected: &Diagnosis,
+) -> Result<Finding, DiagnoseError> {
+    let (effect, param) = (injection.effect.as_str(), injection.param());
+    let neutral = injection.neutral();
+    let after = injected.ladder.last().and_then(|r| value_of(&r.params, effect, param));
+    let before = match after {
+        Some(_) => {
+            let stack = &injected.final_stack;
+            let effects: Vec<_> = stack.active.iter().map(|a| a.effect.clone()).collect();
+            let start: Vec<f64> = stack.active.iter().flat_map(|a| a.values.clone()).collect();
+            let refit = fit(model, data, &effects, &start)?;
+            value_of(&refit.params(), effect, param)
+        }
+        None => clean.ladder.last().and_then(|r| value_of(&r.params, effect, param)),
+    };
+    // The clean value, and the injected one on the effect's own scale: a tare adds, a scale
+    // multiplies.
+    let clean_value = before.map_or(neutral, |b| b.0);
+    let expected = match effect {
+        "thrust-tare" | "torque-tare" => clean_value + injected_value,
+        _ => clean_value * injected_value,
+    };
+    let ci95 = after.and_then(|a| {
+        let ci_b = before.map_or(Some(0.0), |b| b.1)?;
+        Some((a.1? * a.1? + ci_b * ci_b).sqrt())
+    });
+    // A parameter whose interval the data cannot set is held to 10 % of the injected change.
+    let tolerance = ci95.unwrap_or(0.1 * (expected - clean_value).abs());
+    let found = after.is_some_and(|a| (a.0 - expected).abs() <= tolerance.max(1e-12));
+    let ladder = injected.final_effects().join(" + ");
+    let note = match after {
+        _ if found => String::new(),
+        None => format!(
+            "not in the ladder ({})",
+            if ladder.is_empty() { "nothing found" } else { &ladder }
+        ),
+        Some((v, _)) => format!("{param} {v:.4} where {expected:.4} ± {tolerance:.4} was injected"),
+    };
+    Ok(Finding {
+        injection: injection.clone(),
+        injected: injected_value,
+        clean: clean_value,
+        fitted: after.map(|a| a.0),
+        ci95,
+        found,
+        clean_ladder: clean.final_effects().join(" + "),
+        ladder,
+        note,
+    })
+}
