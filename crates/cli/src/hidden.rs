@@ -76,6 +76,7 @@ fn csv(rows: &[(String, Finding)]) -> Result<Vec<u8>> {
         "fitted",
         "ci95",
         "found",
+        "tied",
         "clean_ladder",
         "ladder",
         "note",
@@ -92,6 +93,7 @@ fn csv(rows: &[(String, Finding)]) -> Result<Vec<u8>> {
             &num(f.fitted),
             &num(f.ci95),
             if f.found { "yes" } else { "no" },
+            if f.tied { "yes" } else { "no" },
             &f.clean_ladder,
             &f.ladder,
             &f.note,
@@ -112,9 +114,11 @@ fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
     let mut md = String::from(
         "# Hidden effects in real measurements\n\n\
          Each effect added to the measured points at a size (its relative change of the static loads), \
-         diagnosed beside the clean measurements: found when the ladder holds it and its rise over the \
-         clean ladder's value is the injected one within the 95 % interval.\n\n\
-         | effect | size | found | missed |\n|---|---|---|---|\n",
+         diagnosed beside the clean measurements: found when the ladder holds it and the rise of its \
+         parameter over the same ladder refitted to the clean points is the injected one within the \
+         95 % interval; tied when the diagnosis names it beside its one answer as explaining the data as \
+         well.\n\n\
+         | effect | size | found | tied | missed |\n|---|---|---|---|---|\n",
     );
     for (effect, size) in &keys {
         let of: Vec<&(String, Finding)> = rows
@@ -122,9 +126,14 @@ fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
             .filter(|(_, f)| &f.injection.effect == effect && f.injection.size == *size)
             .collect();
         let found = of.iter().filter(|(_, f)| f.found).count();
-        let missed: Vec<&str> = of.iter().filter(|(_, f)| !f.found).map(|(p, _)| p.as_str()).collect();
+        let tied = of.iter().filter(|(_, f)| f.tied).count();
+        let missed: Vec<&str> = of
+            .iter()
+            .filter(|(_, f)| !f.found && !f.tied)
+            .map(|(p, _)| p.as_str())
+            .collect();
         md.push_str(&format!(
-            "| {effect} | {:+.0} % | {found} of {} | {} |\n",
+            "| {effect} | {:+.0} % | {found} of {} | {tied} | {} |\n",
             100.0 * size,
             of.len(),
             missed.join(", ")
@@ -142,7 +151,13 @@ fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
                 "{v:.4} ± {}",
                 f.ci95.map_or("?".into(), |c| format!("{c:.4}"))
             )),
-            if f.found { "yes" } else { "no" },
+            if f.found {
+                "yes"
+            } else if f.tied {
+                "tied"
+            } else {
+                "no"
+            },
             if f.ladder.is_empty() { "none" } else { &f.ladder },
         ));
     }

@@ -89,9 +89,13 @@ pub struct Scored {
     pub rms: f64,
     /// k-fold held-out RMS.
     pub kfold_rms: f64,
+    /// The k-fold errors of all rows, of the thrust rows and of the torque rows.
+    #[serde(skip)]
+    pub(super) kfold_by_load: Option<HeldRms>,
     /// Leave-one-RPM-out held-out RMS (None with fewer than three RPM groups).
     pub loro_rms: Option<f64>,
-    /// Relative fall of the k-fold error from the current stack's.
+    /// Relative fall of the k-fold error from the current stack's (of its load's rows alone
+    /// for an effect on thrust alone or on torque alone).
     pub gain: f64,
     /// F statistic against the current stack.
     pub f: f64,
@@ -531,6 +535,7 @@ pub fn diagnose(
     };
     let baseline = Evaluated {
         kfold: rms(&r0),
+        kfold_by_load: HeldRms::of(&kinds(data, &r0)),
         loro: f.loro.as_ref().map(|_| rms(&r0)),
         fit: base_fit,
     };

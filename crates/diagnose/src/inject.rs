@@ -159,6 +159,9 @@ pub struct Finding {
     /// The ladder holds the effect and its rise over the clean value is the injected change
     /// within `ci95`.
     pub found: bool,
+    /// Not found, but named beside the ladder's one effect as explaining the data as well (a
+    /// tie the diagnosis tells as a tie, [`Diagnosis::alike`]).
+    pub tied: bool,
     /// The clean ladder, as `--effect` arguments.
     pub clean_ladder: String,
     /// The injected ladder.
@@ -231,8 +234,96 @@ pub fn score(
         fitted: after.map(|a| a.0),
         ci95,
         found,
+        tied: !found && injected.alike.iter().any(|a| a == effect),
         clean_ladder: clean.final_effects().join(" + "),
         ladder,
         note,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points of a 0.25 m propeller: (rpm, V [m/s], thrust [N], torque [N m]).
+    fn data(points: &[(f64, f64, f64, f64)]) -> Data {
+        let obs = points
+            .iter()
+            .enumerate()
+            .map(|(index, &(rpm, v, thrust, torque))| Observation {
+                index,
+                file: 0,
+                label: format!("line {index}"),
+                omega: propbet_units::rpm_to_omega(rpm),
+                v,
+                j: v / (rpm / 60.0 * 0.25),
+                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
+                thrust,
+                torque: Some(torque),
+                rpm_group: rpm as i64,
+                rpm_name: format!("{rpm} rpm"),
+                mach_tip: 0.2,
+            })
+            .collect();
+        Data {
+            obs,
+            thrust_floor: 0.1,
+            torque_floor: 0.001,
+        }
+    }
+
+    #[test]
+    fn each_effect_changes_the_measured_points_as_its_definition_says() {
+        let d = data(&[(4000.0, 0.0, 4.0, 0.05), (6000.0, 0.0, 9.0, 0.11), (6000.0, 10.0, 5.0, 0.08)]);
+        let tare = Injection::new("thrust-tare", 0.05).unwrap().apply(&d, 0.25).unwrap();
+        // Static: the slipstream's dynamic pressure over the disc is T / A, the tare k T.
+        assert!((tare.obs[0].thrust - 0.95 * 4.0).abs() < 1e-12);
+        assert!((tare.obs[1].thrust - 0.95 * 9.0).abs() < 1e-12);
+        // In forward flight the slipstream's q is above T / A: more than k T.
+        assert!(tare.obs[2].thrust < 0.95 * 5.0);
+        assert_eq!(tare.obs[2].torque, Some(0.08), "a thrust tare leaves the torque");
+
+        // The torque tare: 5 % of the static torque at the lowest RPM, at every point.
+        let q = Injection::new("torque-tare", 0.05).unwrap();
+        assert!((q.value(&d).unwrap() - 0.05 * 0.05).abs() < 1e-15);
+        let t = q.apply(&d, 0.25).unwrap();
+        for (a, b) in t.obs.iter().zip(&d.obs) {
+            assert!((a.torque.unwrap() - b.torque.unwrap() - 0.0025).abs() < 1e-15);
+            assert_eq!(a.thrust, b.thrust);
+        }
+
+        // The RPM scale: the loads at the true RPM, the logged one lower by f; J higher by f.
+        let r = Injection::new("rpm-scale", 0.05).unwrap();
+        let f = r.value(&d).unwrap();
+        assert!((f * f - 1.05).abs() < 1e-12);
+        let s = r.apply(&d, 0.25).unwrap();
+        assert!((s.obs[2].omega * f - d.obs[2].omega).abs() < 1e-9);
+        assert!((s.obs[2].j / f - d.obs[2].j).abs() < 1e-12);
+        assert_eq!(s.obs[2].thrust, d.obs[2].thrust);
+
+        // The density: the air assumed lighter by r, the measured loads kept.
+        let rho = Injection::new("density", 0.05).unwrap().apply(&d, 0.25).unwrap();
+        assert!((rho.obs[0].fluid.rho * 1.05 - d.obs[0].fluid.rho).abs() < 1e-12);
+        assert_eq!(rho.obs[0].thrust, d.obs[0].thrust);
+    }
+
+    #[test]
+    fn the_static_torque_is_that_of_the_lowest_rpm_or_the_lowest_j_without_static_points() {
+        let d = data(&[(6000.0, 0.0, 9.0, 0.11), (4000.0, 0.0, 4.0, 0.05), (4010.0, 0.0, 4.1, 0.052)]);
+        assert!((static_torque(&d).unwrap() - 0.051).abs() < 1e-12);
+        let sweep = data(&[(5000.0, 8.0, 3.0, 0.06), (5000.0, 4.0, 4.0, 0.07), (7000.0, 4.0, 8.0, 0.12)]);
+        assert_eq!(static_torque(&sweep), Some(0.07));
+        let mut none = sweep.clone();
+        none.obs.iter_mut().for_each(|o| o.torque = None);
+        assert_eq!(Injection::new("torque-tare", 0.05).unwrap().apply(&none, 0.25).map(|_| ()), None);
+    }
+
+    #[test]
+    fn unknown_effects_and_sizes_that_change_nothing_are_refused() {
+        assert!(Injection::new("pitch-offset", 0.05).unwrap_err().contains("cannot be injected"));
+        assert!(Injection::new("density", 0.0).is_err());
+        assert!(Injection::new("density", f64::NAN).is_err());
+        assert!(Injection::new("density", -0.6).is_err());
+        assert!(Injection::new("density", -0.05).is_ok());
+    }
 }

@@ -37,6 +37,64 @@ pub(super) fn folds_of(groups: &[i64], k: usize, seed: u64) -> Folds {
     Folds { kfold, loro }
 }
 
+/// Held-out RMS errors: of all residual rows, and of the thrust rows and the torque rows alone
+/// (what an effect on one of the two loads is judged on).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct HeldRms {
+    pub(super) all: f64,
+    /// Thrust rows, torque rows.
+    pub(super) by_load: [f64; 2],
+}
+
+impl HeldRms {
+    /// The RMS errors of residual rows of kinds `torque`.
+    pub(super) fn of(rows: &[(bool, f64)]) -> Self {
+        let pick = |t: bool| -> Vec<f64> { rows.iter().filter(|r| r.0 == t).map(|r| r.1).collect() };
+        let all: Vec<f64> = rows.iter().map(|r| r.1).collect();
+        Self {
+            all: rms(&all),
+            by_load: [rms(&pick(false)), rms(&pick(true))],
+        }
+    }
+
+    /// The held-out error an effect is judged on: of its load's rows alone (`load`: Some(true)
+    /// for an effect on torque alone), else of all rows.
+    pub(super) fn on(&self, load: Option<bool>) -> f64 {
+        load.map_or(self.all, |t| self.by_load[usize::from(t)])
+    }
+}
+
+/// The rows of `data` as (is torque, residual) pairs, `residuals` in [`Data::rows`]' order.
+pub(super) fn kinds(data: &Data, residuals: &[f64]) -> Vec<(bool, f64)> {
+    data.rows().iter().zip(residuals).map(|(r, x)| (r.torque, *x)).collect()
+}
+
+/// The load an effect of the last `k_new` parameters of `fit` acts on alone: Some(true) when
+/// its parameters move no thrust row (a torque tare), Some(false) when they move no torque row
+/// (a thrust tare), None when they move both.
+pub(super) fn load_of(data: &Data, fit: &FitOutcome, k_new: usize) -> Option<bool> {
+    let rows = data.rows();
+    let k = fit.jacobian.ncols();
+    if k_new == 0 || k < k_new || fit.jacobian.nrows() != rows.len() {
+        return None;
+    }
+    let mut most = [0.0f64; 2];
+    for (i, r) in rows.iter().enumerate() {
+        for c in k - k_new..k {
+            let m = &mut most[usize::from(r.torque)];
+            *m = m.max(fit.jacobian[(i, c)].abs());
+        }
+    }
+    let tiny = 1e-9 * most[0].max(most[1]);
+    if most[0] <= tiny && most[1] > tiny {
+        Some(true)
+    } else if most[1] <= tiny && most[0] > tiny && rows.iter().any(|r| r.torque) {
+        Some(false)
+    } else {
+        None
+    }
+}
+
 /// Held-out RMS over `folds`: one Gauss-Newton refit per fold on the other points' rows, then
 /// the held-out points solved at the refitted parameters.
 pub(super) fn held_out(
@@ -45,7 +103,7 @@ pub(super) fn held_out(
     effects: &[Arc<dyn Effect>],
     f: &FitOutcome,
     folds: &[Vec<usize>],
-) -> Result<f64, DiagnoseError> {
+) -> Result<HeldRms, DiagnoseError> {
     let rows = data.rows();
     let k = f.p.len();
     let (lo, hi, scale) = bounds(effects);
@@ -60,7 +118,7 @@ pub(super) fn held_out(
                 rows.iter()
                     .zip(&f.residuals)
                     .filter(|(r, _)| out[r.point])
-                    .map(|(_, x)| *x),
+                    .map(|(r, x)| (r.torque, *x)),
             );
             continue;
         }
@@ -76,9 +134,13 @@ pub(super) fn held_out(
         let p: Vec<f64> = (0..k)
             .map(|c| (f.p[c] + dx[c] * scale[c]).clamp(lo[c], hi[c]))
             .collect();
-        held.extend(model.residuals(data, &stack_at(effects, &p), fold)?);
+        let r = model.residuals(data, &stack_at(effects, &p), fold)?;
+        let kinds = fold
+            .iter()
+            .flat_map(|&i| std::iter::once(false).chain(data.obs[i].torque.map(|_| true)));
+        held.extend(kinds.zip(r));
     }
-    Ok(rms(&held))
+    Ok(HeldRms::of(&held))
 }
 
 pub(super) fn score(rows: usize, heldout_rms: f64, k: usize) -> f64 {
@@ -97,6 +159,8 @@ pub(super) fn all_starts(e: &Arc<dyn Effect>) -> Vec<Vec<f64>> {
 pub(super) struct Evaluated {
     pub(super) fit: FitOutcome,
     pub(super) kfold: f64,
+    /// The k-fold errors of the thrust rows and of the torque rows.
+    pub(super) kfold_by_load: HeldRms,
     pub(super) loro: Option<f64>,
 }
 
@@ -176,12 +240,13 @@ pub(super) fn evaluate(
     let fitted = fit(model, data, &effects, &start)?;
     let kfold = held_out(model, data, &effects, &fitted, &f.kfold)?;
     let loro = match &f.loro {
-        Some(g) => Some(held_out(model, data, &effects, &fitted, g)?),
+        Some(g) => Some(held_out(model, data, &effects, &fitted, g)?.all),
         None => None,
     };
     Ok(Evaluated {
         fit: fitted,
-        kfold,
+        kfold: kfold.all,
+        kfold_by_load: kfold,
         loro,
     })
 }
@@ -208,6 +273,24 @@ pub(super) fn f_test(reduced_sse: f64, full: &FitOutcome, k: usize) -> (f64, f64
     (fstat, p)
 }
 
+/// [`f_test`] on the rows of one load (`load`, [`load_of`]); on all rows for None.
+pub(super) fn f_test_on(data: &Data, reduced: &FitOutcome, full: &FitOutcome, k: usize, load: Option<bool>) -> (f64, f64) {
+    let Some(t) = load else {
+        return f_test(reduced.sse, full, k);
+    };
+    let sse = |f: &FitOutcome| -> (f64, usize) {
+        let on: Vec<f64> = kinds(data, &f.residuals).into_iter().filter(|r| r.0 == t).map(|r| r.1).collect();
+        (on.iter().map(|x| x * x).sum(), on.len())
+    };
+    let ((s0, _), (s1, n)) = (sse(reduced), sse(full));
+    let on_load = FitOutcome {
+        residuals: vec![0.0; n],
+        sse: s1,
+        ..full.clone()
+    };
+    f_test(s0, &on_load, k)
+}
+
 pub(super) fn try_candidate(
     model: &Model,
     data: &Data,
@@ -228,6 +311,7 @@ pub(super) fn try_candidate(
         params: Vec::new(),
         rms: f64::NAN,
         kfold_rms: f64::NAN,
+        kfold_by_load: None,
         loro_rms: None,
         gain: 0.0,
         f: 0.0,
@@ -251,19 +335,24 @@ pub(super) fn try_candidate(
         });
     }
     let ev = evaluate(model, data, effects, &current.fit.stack, f)?;
-    let (fstat, p_value) = f_test(current.fit.sse, &ev.fit, k_new);
-    let gain = if current.kfold > 0.0 {
-        1.0 - ev.kfold / current.kfold
+    // An effect on one load alone is judged on that load's rows: the other load's error, which
+    // it cannot change, would dilute its gain, its F statistic and its size.
+    let load = load_of(data, &ev.fit, k_new);
+    let (fstat, p_value) = f_test_on(data, &current.fit, &ev.fit, k_new, load);
+    let before = current.kfold_by_load.on(load);
+    let gain = if before > 0.0 {
+        1.0 - ev.kfold_by_load.on(load) / before
     } else {
         0.0
     };
-    let note = refusal(&current.fit, &ev.fit, rep);
+    let note = refusal(data, &current.fit, &ev.fit, rep, load);
     let significant = p_value < p_max && gain >= MIN_GAIN && note.is_none();
     Ok(Scored {
         note,
         params: ev.fit.params(),
         rms: rms(&ev.fit.residuals),
         kfold_rms: ev.kfold,
+        kfold_by_load: Some(ev.kfold_by_load),
         loro_rms: ev.loro,
         gain,
         f: fstat,
@@ -322,16 +411,22 @@ pub(super) fn neutral_note(own: &[FittedParam]) -> String {
 /// Why the effect `next` adds on top of `prev` cannot be an answer, if it cannot: its fit
 /// ends on a bound, it changes the loads less than [`REPEATABILITY_FACTOR`] times the measured
 /// repeatability, or its interval holds its neutral value. One set of tests for a candidate of
-/// the ranking and for a rung of the rebuilt ladder.
-pub(super) fn refusal(prev: &FitOutcome, next: &FitOutcome, rep: Option<&Repeatability>) -> Option<String> {
+/// the ranking and for a rung of the rebuilt ladder; `load` as in [`load_of`].
+pub(super) fn refusal(
+    data: &Data,
+    prev: &FitOutcome,
+    next: &FitOutcome,
+    rep: Option<&Repeatability>,
+    load: Option<bool>,
+) -> Option<String> {
     let params = next.params();
     let beyond: Vec<FittedParam> = params.iter().filter(|p| p.at_bound).cloned().collect();
     if !beyond.is_empty() {
         return Some(bound_note(&beyond));
     }
-    let size = (rms(&prev.residuals).powi(2) - rms(&next.residuals).powi(2))
-        .max(0.0)
-        .sqrt();
+    // The size on the effect's own load's rows (all rows for an effect on both).
+    let on = |f: &FitOutcome| HeldRms::of(&kinds(data, &f.residuals)).on(load);
+    let size = (on(prev).powi(2) - on(next).powi(2)).max(0.0).sqrt();
     if let Some(r) = rep.filter(|r| size < REPEATABILITY_FACTOR * r.sd) {
         return Some(weak_note(size, r));
     }

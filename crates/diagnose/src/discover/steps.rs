@@ -31,6 +31,7 @@ pub(super) fn forward(
             id,
             fit: Some(fit),
             kfold_rms,
+            kfold_by_load: Some(kfold_by_load),
             loro_rms,
             p_value,
             ..
@@ -43,6 +44,7 @@ pub(super) fn forward(
         current = Evaluated {
             fit,
             kfold: kfold_rms,
+            kfold_by_load,
             loro: loro_rms,
         };
     }
@@ -83,7 +85,8 @@ pub(super) fn rebuild_ladder(
         }
         let mut refusals: Vec<Option<String>> = tried
             .iter()
-            .map(|ev| refusal(&cur.fit, &ev.fit, repeatability))
+            .zip(&set)
+            .map(|(ev, e)| refusal(data, &cur.fit, &ev.fit, repeatability, load_of(data, &ev.fit, e.params().len())))
             .collect();
         let options: Vec<(f64, bool)> = tried
             .iter()
@@ -100,7 +103,8 @@ pub(super) fn rebuild_ladder(
             dropped.push((gone.id().to_string(), why));
             break;
         }
-        let (_, p) = f_test(cur.fit.sse, &ev.fit, gone.params().len());
+        let load = load_of(data, &ev.fit, gone.params().len());
+        let (_, p) = f_test_on(data, &cur.fit, &ev.fit, gone.params().len(), load);
         ladder.push(ev.rung(data, Some(p)));
         cur = ev;
     }
