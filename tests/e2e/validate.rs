@@ -494,3 +494,68 @@ fn uiuc_table_with_pe0_case(dir: &Path, uiuc: &Path, pe0: &Path) -> PathBuf {
     .unwrap();
     case
 }
+
+#[test]
+fn hidden_effects_injected_into_real_measurements_are_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    let data = repo().join("tests/data/validate");
+    let (uiuc, pe0) = (data.join("uiuc"), data.join("pe0"));
+    let airfoils = repo().join("props/airfoils");
+    let hidden = |extra: &[&str]| {
+        let mut args = vec![
+            "hidden",
+            "--uiuc",
+            uiuc.to_str().unwrap(),
+            "--pe0",
+            pe0.to_str().unwrap(),
+            "--airfoils",
+            airfoils.to_str().unwrap(),
+            "--only",
+            "apcsf_9x4.7",
+            "--engine",
+            "neuralfoil",
+            "--quiet",
+        ];
+        args.extend_from_slice(extra);
+        run(&args, dir.path())
+    };
+    let o = hidden(&["--sizes", "0.1", "-o", "h"]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let (header, rows) = read_csv(&dir.path().join("h/hidden.csv"));
+    let effects: Vec<&str> = rows.iter().map(|r| r[col(&header, "effect")].as_str()).collect();
+    assert_eq!(effects, ["thrust-tare", "torque-tare", "rpm-scale", "density"]);
+    let value = |r: &[String], c: &str| r[col(&header, c)].parse::<f64>().unwrap();
+    for r in &rows {
+        let found = r[col(&header, "found")] == "yes";
+        // Found means: in the ladder, its rise over the clean refit the injected value within
+        // the interval; the file says all three.
+        if found {
+            let rise = value(r, "fitted") - value(r, "clean");
+            let expected = match r[col(&header, "effect")].as_str() {
+                "thrust-tare" | "torque-tare" => value(r, "injected"),
+                _ => value(r, "clean") * (value(r, "injected") - 1.0),
+            };
+            assert!((rise - expected).abs() <= value(r, "ci95") + 1e-9, "{r:?}");
+            assert!(r[col(&header, "ladder")].contains(&r[col(&header, "effect")]), "{r:?}");
+        }
+    }
+    // An RPM scale of 10 % in the loads, on a file read as an electrical RPM's, is found.
+    let rpm = rows.iter().find(|r| r[col(&header, "effect")] == "rpm-scale").unwrap();
+    assert_eq!(rpm[col(&header, "found")], "yes", "{rpm:?}");
+    assert!((value(rpm, "injected") - 1.1f64.sqrt()).abs() < 1e-6);
+    let md = std::fs::read_to_string(dir.path().join("h/hidden.md")).unwrap();
+    assert!(md.contains("| rpm-scale | +10 % | 1 of 1 |"), "{md}");
+
+    // What cannot be injected, and sizes that change nothing, are refused before any prop.
+    let o = hidden(&["--inject", "pitch-offset", "-o", "h2"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("`pitch-offset` cannot be injected"),
+        "{}",
+        stderr(&o)
+    );
+    let o = hidden(&["--sizes", "0", "-o", "h3"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("injected size 0"), "{}", stderr(&o));
+    assert!(!dir.path().join("h2").exists() && !dir.path().join("h3").exists());
+}

@@ -17,10 +17,19 @@ pub struct HiddenArgs {
     #[command(flatten)]
     pub validate: ValidateArgs,
     /// The effects added to the measurements, each at every size.
-    #[arg(long, value_delimiter = ',', default_value = "thrust-tare,torque-tare,rpm-scale,density")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "thrust-tare,torque-tare,rpm-scale,density"
+    )]
     pub inject: Vec<String>,
     /// Sizes: each effect's relative change of the static loads (0.05: 5 %).
-    #[arg(long, value_delimiter = ',', default_value = "0.03,0.05,0.1", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.03,0.05,0.1",
+        allow_negative_numbers = true
+    )]
     pub sizes: Vec<f64>,
 }
 

@@ -172,10 +172,11 @@ pub struct Finding {
 
 /// The value of `param` of `effect` in a fit's parameters, with its 95 % half-width.
 fn value_of(params: &[FittedParam], effect: &str, param: &str) -> Option<(f64, Option<f64>)> {
-    params
-        .iter()
-        .find(|p| p.effect == effect && p.name == param)
-        .map(|p| (p.value, p.ci95))
+    find(params, effect, param).map(|p| (p.value, p.ci95))
+}
+
+fn find<'a>(params: &'a [FittedParam], effect: &str, param: &str) -> Option<&'a FittedParam> {
+    params.iter().find(|p| p.effect == effect && p.name == param)
 }
 
 /// Scores an injection: `clean` is the diagnosis of `data` (the measurements), `injected` that
@@ -194,13 +195,16 @@ pub fn score(
     let (effect, param) = (injection.effect.as_str(), injection.param());
     let neutral = injection.neutral();
     let after = injected.ladder.last().and_then(|r| value_of(&r.params, effect, param));
+    // Whether the clean refit's value sits on a physical bound: the rise is then not measured.
+    let mut clean_on_bound = false;
     let before = match after {
         Some(_) => {
             let stack = &injected.final_stack;
             let effects: Vec<_> = stack.active.iter().map(|a| a.effect.clone()).collect();
             let start: Vec<f64> = stack.active.iter().flat_map(|a| a.values.clone()).collect();
-            let refit = fit(model, data, &effects, &start)?;
-            value_of(&refit.params(), effect, param)
+            let params = fit(model, data, &effects, &start)?.params();
+            clean_on_bound = find(&params, effect, param).is_some_and(|p| p.at_bound);
+            value_of(&params, effect, param)
         }
         None => clean.ladder.last().and_then(|r| value_of(&r.params, effect, param)),
     };
@@ -217,7 +221,7 @@ pub fn score(
     });
     // A parameter whose interval the data cannot set is held to 10 % of the injected change.
     let tolerance = ci95.unwrap_or(0.1 * (expected - clean_value).abs());
-    let found = after.is_some_and(|a| (a.0 - expected).abs() <= tolerance.max(1e-12));
+    let found = !clean_on_bound && after.is_some_and(|a| (a.0 - expected).abs() <= tolerance.max(1e-12));
     let ladder = injected.final_effects().join(" + ");
     let note = match after {
         _ if found => String::new(),
@@ -225,6 +229,9 @@ pub fn score(
             "not in the ladder ({})",
             if ladder.is_empty() { "nothing found" } else { &ladder }
         ),
+        Some(_) if clean_on_bound => {
+            format!("its clean value {clean_value:.4} is on a physical bound: no rise to measure")
+        }
         Some((v, _)) => format!("{param} {v:.4} where {expected:.4} ± {tolerance:.4} was injected"),
     };
     Ok(Finding {
@@ -274,7 +281,11 @@ mod tests {
 
     #[test]
     fn each_effect_changes_the_measured_points_as_its_definition_says() {
-        let d = data(&[(4000.0, 0.0, 4.0, 0.05), (6000.0, 0.0, 9.0, 0.11), (6000.0, 10.0, 5.0, 0.08)]);
+        let d = data(&[
+            (4000.0, 0.0, 4.0, 0.05),
+            (6000.0, 0.0, 9.0, 0.11),
+            (6000.0, 10.0, 5.0, 0.08),
+        ]);
         let tare = Injection::new("thrust-tare", 0.05).unwrap().apply(&d, 0.25).unwrap();
         // Static: the slipstream's dynamic pressure over the disc is T / A, the tare k T.
         assert!((tare.obs[0].thrust - 0.95 * 4.0).abs() < 1e-12);
@@ -309,18 +320,34 @@ mod tests {
 
     #[test]
     fn the_static_torque_is_that_of_the_lowest_rpm_or_the_lowest_j_without_static_points() {
-        let d = data(&[(6000.0, 0.0, 9.0, 0.11), (4000.0, 0.0, 4.0, 0.05), (4010.0, 0.0, 4.1, 0.052)]);
+        let d = data(&[
+            (6000.0, 0.0, 9.0, 0.11),
+            (4000.0, 0.0, 4.0, 0.05),
+            (4010.0, 0.0, 4.1, 0.052),
+        ]);
         assert!((static_torque(&d).unwrap() - 0.051).abs() < 1e-12);
-        let sweep = data(&[(5000.0, 8.0, 3.0, 0.06), (5000.0, 4.0, 4.0, 0.07), (7000.0, 4.0, 8.0, 0.12)]);
+        let sweep = data(&[
+            (5000.0, 8.0, 3.0, 0.06),
+            (5000.0, 4.0, 4.0, 0.07),
+            (7000.0, 4.0, 8.0, 0.12),
+        ]);
         assert_eq!(static_torque(&sweep), Some(0.07));
         let mut none = sweep.clone();
         none.obs.iter_mut().for_each(|o| o.torque = None);
-        assert_eq!(Injection::new("torque-tare", 0.05).unwrap().apply(&none, 0.25).map(|_| ()), None);
+        assert_eq!(
+            Injection::new("torque-tare", 0.05)
+                .unwrap()
+                .apply(&none, 0.25)
+                .map(|_| ()),
+            None
+        );
     }
 
     #[test]
     fn unknown_effects_and_sizes_that_change_nothing_are_refused() {
-        assert!(Injection::new("pitch-offset", 0.05).unwrap_err().contains("cannot be injected"));
+        assert!(Injection::new("pitch-offset", 0.05)
+            .unwrap_err()
+            .contains("cannot be injected"));
         assert!(Injection::new("density", 0.0).is_err());
         assert!(Injection::new("density", f64::NAN).is_err());
         assert!(Injection::new("density", -0.6).is_err());

@@ -274,12 +274,22 @@ pub(super) fn f_test(reduced_sse: f64, full: &FitOutcome, k: usize) -> (f64, f64
 }
 
 /// [`f_test`] on the rows of one load (`load`, [`load_of`]); on all rows for None.
-pub(super) fn f_test_on(data: &Data, reduced: &FitOutcome, full: &FitOutcome, k: usize, load: Option<bool>) -> (f64, f64) {
+pub(super) fn f_test_on(
+    data: &Data,
+    reduced: &FitOutcome,
+    full: &FitOutcome,
+    k: usize,
+    load: Option<bool>,
+) -> (f64, f64) {
     let Some(t) = load else {
         return f_test(reduced.sse, full, k);
     };
     let sse = |f: &FitOutcome| -> (f64, usize) {
-        let on: Vec<f64> = kinds(data, &f.residuals).into_iter().filter(|r| r.0 == t).map(|r| r.1).collect();
+        let on: Vec<f64> = kinds(data, &f.residuals)
+            .into_iter()
+            .filter(|r| r.0 == t)
+            .map(|r| r.1)
+            .collect();
         (on.iter().map(|x| x * x).sum(), on.len())
     };
     let ((s0, _), (s1, n)) = (sse(reduced), sse(full));

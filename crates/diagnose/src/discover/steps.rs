@@ -86,7 +86,15 @@ pub(super) fn rebuild_ladder(
         let mut refusals: Vec<Option<String>> = tried
             .iter()
             .zip(&set)
-            .map(|(ev, e)| refusal(data, &cur.fit, &ev.fit, repeatability, load_of(data, &ev.fit, e.params().len())))
+            .map(|(ev, e)| {
+                refusal(
+                    data,
+                    &cur.fit,
+                    &ev.fit,
+                    repeatability,
+                    load_of(data, &ev.fit, e.params().len()),
+                )
+            })
             .collect();
         let options: Vec<(f64, bool)> = tried
             .iter()

@@ -273,7 +273,10 @@ pub fn diagnose_sets(
 }
 
 /// The candidate effects `spec` names, less those already in the model's baseline.
-pub(crate) fn candidates(model: &Model, spec: &DiagnoseSpec) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
+pub(crate) fn candidates(
+    model: &Model,
+    spec: &DiagnoseSpec,
+) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
     crate::settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
