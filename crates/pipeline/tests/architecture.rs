@@ -1,0 +1,58 @@
+//! ARCHITECTURE.md held to what it promises: a map under 1,500 words whose every named test exists.
+
+use std::path::{Path, PathBuf};
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// Every Rust file of the workspace, tests included, with its text.
+fn every_rust_file() -> Vec<String> {
+    let mut out = Vec::new();
+    let mut stack = vec![
+        workspace().join("crates"),
+        workspace().join("tests"),
+        workspace().join("xfoil_runner"),
+    ];
+    while let Some(d) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else { continue };
+        for e in entries {
+            let p = e.unwrap().path();
+            if p.is_dir() && p.file_name().is_some_and(|n| n != "target") {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.push(std::fs::read_to_string(&p).unwrap());
+            }
+        }
+    }
+    out
+}
+
+/// ARCHITECTURE.md stays a map a person reads in ten minutes, and every test it names as the
+/// holder of an invariant exists (a `snake_case_name` in backticks with at least three
+/// underscores is a test's name there).
+#[test]
+fn the_architecture_is_short_and_names_tests_that_exist() {
+    let text = std::fs::read_to_string(workspace().join("ARCHITECTURE.md")).unwrap();
+    let words = text.split_whitespace().count();
+    assert!(words < 1500, "ARCHITECTURE.md has {words} words: at most 1,500");
+    let code = every_rust_file().join("\n");
+    let mut named = 0;
+    for quoted in text.split('`').skip(1).step_by(2) {
+        let is_test = quoted.matches('_').count() >= 3
+            && quoted
+                .chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+        if is_test {
+            named += 1;
+            assert!(
+                code.contains(&format!("fn {quoted}(")),
+                "ARCHITECTURE.md names `{quoted}`, which no test is called"
+            );
+        }
+    }
+    assert!(
+        named >= 15,
+        "only {named} tests named: each invariant names the test that holds it"
+    );
+}
