@@ -68,7 +68,7 @@ pub fn run(a: &HiddenArgs) -> Result<bool> {
     write_atomic(&spec.out.join("hidden.csv"), &[csv(&rows)?], &[])?;
     write_atomic(&spec.out.join("hidden.md"), &[md.as_bytes()], &[])?;
     lock.finish()?;
-    print!("{md}");
+    crate::output::print_page(&md);
     Ok(skipped.is_empty())
 }
 

@@ -567,3 +567,14 @@ mod tests {
         }
     }
 }
+
+/// A Markdown page on the terminal: its tables as they are (data), its sentences wrapped.
+pub(crate) fn print_page(md: &str) {
+    for line in md.lines() {
+        if line.starts_with('|') {
+            println!("{line}");
+        } else {
+            println!("{}", wrapped(line, "", ""));
+        }
+    }
+}

@@ -148,14 +148,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     lock.finish()?;
-    // The page on the terminal: its tables as they are (data), its sentences wrapped.
-    for line in md.lines() {
-        if line.starts_with('|') {
-            println!("{line}");
-        } else {
-            println!("{}", crate::output::wrapped(line, "", ""));
-        }
-    }
+    crate::output::print_page(&md);
     Ok(validation.clean)
 }
 
