@@ -458,6 +458,17 @@ pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
     textwrap::fill(text, opts)
 }
 
+/// A Markdown page on the terminal: its tables as they are (data), its sentences wrapped.
+pub(crate) fn print_page(md: &str) {
+    for line in md.lines() {
+        if line.starts_with('|') {
+            println!("{line}");
+        } else {
+            println!("{}", wrapped(line, "", ""));
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -564,17 +575,6 @@ mod tests {
             let s = String::from_utf8(s).unwrap();
             let back: f64 = s.parse().unwrap();
             proptest::prop_assert!((back - v).abs() <= 5.000001e-7 * v.abs(), "{} -> {}", v, s);
-        }
-    }
-}
-
-/// A Markdown page on the terminal: its tables as they are (data), its sentences wrapped.
-pub(crate) fn print_page(md: &str) {
-    for line in md.lines() {
-        if line.starts_with('|') {
-            println!("{line}");
-        } else {
-            println!("{}", wrapped(line, "", ""));
         }
     }
 }
