@@ -288,6 +288,23 @@ fn a_batch_goes_on_past_a_bad_file() {
     assert_eq!(points(dir.path()).len(), 6);
     let html = std::fs::read_to_string(dir.path().join("out/report.html")).unwrap();
     assert!(html.contains("<b>refused</b>"), "the batch table names it");
+    // The batch table, in the page and in Markdown: the files read first with their counts,
+    // the refused one after them with why.
+    let row = |f: &str| {
+        html.lines()
+            .find(|l| l.starts_with(&format!("<tr><td><code>{f}")))
+            .unwrap_or("")
+    };
+    assert!(
+        row(&files[0].display().to_string())
+            .ends_with("<td>RcBenchmark</td><td>120</td><td>3</td><td>0 / 30</td><td>read</td></tr>"),
+        "{}",
+        row(&files[0].display().to_string())
+    );
+    let md = std::fs::read_to_string(dir.path().join("out/summary.md")).unwrap();
+    let bad_row = format!("| `{}` | | | 0 | | refused: ", files[1].display());
+    assert!(md.contains(&bad_row), "{md}");
+    assert!(md.find("good1.csv` | RcBenchmark | 120 | 3 |").unwrap() < md.find(&bad_row).unwrap());
 }
 
 /// Class 7 and 8: a log whose thrust does not rise with RPM is read, warned about with its

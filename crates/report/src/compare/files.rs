@@ -22,68 +22,100 @@ fn dropped_split(s: &MeasuredSet) -> String {
     format!("{} / {}", s.faults(), s.dropped.len() - s.faults())
 }
 
-/// The batch table: one row per file (rows, points, dropped, verdict), the refused ones with
-/// why; empty for a single file read.
-fn batch_table_html(files: &[FileEntry], refused: &[Refused]) -> String {
-    if files.len() + refused.len() < 2 && refused.is_empty() {
-        return String::new();
+/// One row of the batch table: a file read, with its format, rows, points, dropped rows and
+/// verdict, or a file refused, with why.
+enum BatchRow<'a> {
+    Read {
+        path: &'a str,
+        cells: [String; 4],
+        verdict: String,
+    },
+    Refused {
+        path: &'a str,
+        reason: &'a str,
+    },
+}
+
+/// The batch table's rows: one per file, the refused ones last; None for a single file read.
+fn batch_rows<'a>(files: &'a [FileEntry], refused: &'a [Refused]) -> Option<Vec<BatchRow<'a>>> {
+    if files.len() < 2 && refused.is_empty() {
+        return None;
     }
+    let read = files.iter().map(|f| {
+        let s = f.set;
+        BatchRow::Read {
+            path: &f.path,
+            cells: [
+                format!("{:?}", s.format),
+                s.rows.to_string(),
+                s.points.len().to_string(),
+                dropped_split(s),
+            ],
+            verdict: verdict(s),
+        }
+    });
+    let refused = refused.iter().map(|r| BatchRow::Refused {
+        path: &r.file,
+        reason: &r.reason,
+    });
+    Some(read.chain(refused).collect())
+}
+
+/// The batch table ([`batch_rows`]) in HTML.
+fn batch_table_html(files: &[FileEntry], refused: &[Refused]) -> String {
+    let Some(rows) = batch_rows(files, refused) else {
+        return String::new();
+    };
     let mut h = String::from(
         "<table><tr><th>file</th><th>format</th><th>rows</th><th>points</th><th>dropped: faults / expected</th><th>verdict</th></tr>\n",
     );
-    for f in files {
-        let s = f.set;
-        let _ = writeln!(
-            h,
-            "<tr><td><code>{}</code></td><td>{:?}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            esc(&f.path),
-            s.format,
-            s.rows,
-            s.points.len(),
-            dropped_split(s),
-            esc(&verdict(s))
-        );
-    }
-    for r in refused {
-        let _ = writeln!(
-            h,
-            "<tr><td><code>{}</code></td><td></td><td></td><td>0</td><td></td><td><b>refused</b>: {}</td></tr>",
-            esc(&r.file),
-            esc(&r.reason)
-        );
+    for row in rows {
+        let _ = match row {
+            BatchRow::Read { path, cells, verdict } => writeln!(
+                h,
+                "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                esc(path),
+                cells[0],
+                cells[1],
+                cells[2],
+                cells[3],
+                esc(&verdict)
+            ),
+            BatchRow::Refused { path, reason } => writeln!(
+                h,
+                "<tr><td><code>{}</code></td><td></td><td></td><td>0</td><td></td><td><b>refused</b>: {}</td></tr>",
+                esc(path),
+                esc(reason)
+            ),
+        };
     }
     h.push_str("</table>\n");
     h
 }
 
-/// The batch table in Markdown (see [`batch_table_html`]).
+/// The batch table ([`batch_rows`]) in Markdown.
 fn batch_table_md(files: &[FileEntry], refused: &[Refused]) -> String {
-    if files.len() + refused.len() < 2 && refused.is_empty() {
+    let Some(rows) = batch_rows(files, refused) else {
         return String::new();
-    }
+    };
     let mut md = String::from(
         "| file | format | rows | points | dropped: faults / expected | verdict |\n|---|---|---|---|---|---|\n",
     );
-    for f in files {
-        let s = f.set;
-        let _ = writeln!(
-            md,
-            "| `{}` | {:?} | {} | {} | {} | {} |",
-            f.path,
-            s.format,
-            s.rows,
-            s.points.len(),
-            dropped_split(s),
-            verdict(s).replace('|', "\\|")
-        );
-    }
-    for r in refused {
-        let _ = writeln!(
-            md,
-            "| `{}` | | | 0 | | refused: {} |",
-            r.file,
-            r.reason.replace('|', "\\|")
-        );
+    for row in rows {
+        let _ = match row {
+            BatchRow::Read { path, cells, verdict } => writeln!(
+                md,
+                "| `{path}` | {} | {} | {} | {} | {} |",
+                cells[0],
+                cells[1],
+                cells[2],
+                cells[3],
+                verdict.replace('|', "\\|")
+            ),
+            BatchRow::Refused { path, reason } => {
+                writeln!(md, "| `{path}` | | | 0 | | refused: {} |", reason.replace('|', "\\|"))
+            }
+        };
     }
     md.push('\n');
     md
