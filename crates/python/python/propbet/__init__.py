@@ -21,6 +21,7 @@ is renamed: ``flags`` is ``point_flags`` (``sweep.point_flags``).
 
 from __future__ import annotations
 
+import functools
 import io
 import json
 import logging
@@ -129,11 +130,17 @@ def _switch(where: str, name: str, value: Any) -> bool:
     return value
 
 
-def _check_options(where: str, options: Mapping[str, Any], command: str = "predict", exclude: set = frozenset(), extra: Mapping[str, str] = {}) -> None:
+@functools.lru_cache(maxsize=None)
+def _flags_of(command: str) -> tuple:
+    """The flags ``command`` takes, with their kinds (the binary's own list, read once)."""
+    return tuple(_native.flags(command))
+
+
+def _check_options(where: str, options: Mapping[str, Any], command: Optional[str] = "predict", exclude: set = frozenset(), extra: Mapping[str, str] = {}) -> None:
     """Keyword arguments checked at the call against the flags ``command`` takes (the binary's
-    own list): an unknown name is a TypeError, a value of the wrong kind a TypeError or a
-    ValueError, each naming the keyword."""
-    known = {k: kind for k, kind in _native.flags(command) if k not in exclude}
+    own list; None: ``extra`` alone): an unknown name is a TypeError, a value of the wrong kind
+    a TypeError or a ValueError, each naming the keyword."""
+    known = {k: kind for k, kind in (_flags_of(command) if command else ()) if k not in exclude}
     known.update(extra)
     for key, value in options.items():
         kind = known.get(key)
@@ -508,7 +515,7 @@ class Prop:
                 raise InputError("j and v: give rpm with them")
         else:
             points = _sweep(rpm, j, v)
-        _check_options("predict", {"effects": effects}, extra={"effects": "many"}, exclude=set(n for n, _ in _native.flags("predict")))
+        _check_options("predict", {"effects": effects}, command=None, extra={"effects": "many"})
         _switch("predict", "band", band)
         _switch("predict", "stations", stations)
         effect = [effects] if isinstance(effects, str) else list(effects)
