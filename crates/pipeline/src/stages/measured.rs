@@ -254,9 +254,7 @@ pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Re
     // The command line's own mistakes are named before any file is read.
     let candidates = candidates(model, spec)?;
     let batch = load_batch(&spec.measured)?;
-    let (names, refused) = (batch.names.clone(), batch.refused.clone());
-    let d = diagnose_read(model, spec, candidates, batch.air, batch.sets, signatures)?;
-    Ok(Diagnosed { names, refused, ..d })
+    diagnose_read(model, spec, candidates, batch, signatures)
 }
 
 /// [`diagnose_with`] of measurements already read (validate's held-out halves); `spec`'s
@@ -269,7 +267,14 @@ pub fn diagnose_sets(
     signatures: bool,
 ) -> Result<Diagnosed> {
     let candidates = candidates(model, spec)?;
-    diagnose_read(model, spec, candidates, air, sets, signatures)
+    let names = (0..sets.len()).map(|k| format!("file {}", k + 1)).collect();
+    let batch = Batch {
+        air,
+        sets,
+        names,
+        refused: Vec::new(),
+    };
+    diagnose_read(model, spec, candidates, batch, signatures)
 }
 
 /// The candidate effects `spec` names, less those already in the model's baseline.
@@ -289,13 +294,17 @@ pub(crate) fn candidates(
     Ok(candidates)
 }
 
-/// The diagnosis of measurements read, over `candidates`.
+/// The diagnosis of a batch of measurements read, over `candidates`.
 fn diagnose_read(
     model: &Model,
     spec: &DiagnoseSpec,
     mut candidates: Vec<std::sync::Arc<dyn propbet_effects::Effect>>,
-    air: AirChoice,
-    sets: Vec<MeasuredSet>,
+    Batch {
+        air,
+        sets,
+        names,
+        refused,
+    }: Batch,
     signatures: bool,
 ) -> Result<Diagnosed> {
     // The files' provenance bounds some candidates (an optical RPM, a lab's own air).
@@ -318,8 +327,8 @@ fn diagnose_read(
     };
     let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
     Ok(Diagnosed {
-        names: (0..sets.len()).map(|k| format!("file {}", k + 1)).collect(),
-        refused: Vec::new(),
+        names,
+        refused,
         sets,
         air,
         data,
