@@ -19,7 +19,7 @@ use propbet_effects::{Effect, Stack};
 
 use super::{ladder_spec, prepare, Prepared, Sections, ValidateSpec};
 use crate::stages;
-use crate::{Error, Result};
+use crate::Result;
 
 /// Whether an injection's ladders run with the files' provenance bounds (the tares) or as a
 /// stand log that allows the effect (the RPM scale, the density).
@@ -49,7 +49,7 @@ pub fn hidden_prop(
     let mut narrow = wide.clone();
     Provenance::of(&batch.sets).narrow(&mut narrow);
     let points = propbet_compare::compare(&stages::setup(&model, batch.air, Stack::baseline()), &batch.sets)?;
-    let data = Data::from_points(&points, VALIDATION_J_WINDOW).map_err(|e| Error::Nothing(format!("{prop}: {e}")))?;
+    let data = Data::from_points(&points, VALIDATION_J_WINDOW)?;
     let dmodel = propbet_diagnose::Model {
         rotor: &model.rotor,
         opts: model.opts,
@@ -63,7 +63,7 @@ pub fn hidden_prop(
         ..Options::default()
     };
     let run = |data: &Data, candidates: &[Arc<dyn Effect>]| -> Result<Diagnosis> {
-        diagnose(&dmodel, data, candidates, &opts).map_err(|e| Error::Nothing(format!("{prop}: {e}")))
+        Ok(diagnose(&dmodel, data, candidates, &opts)?)
     };
     let mut clean: [Option<Diagnosis>; 2] = [None, None];
     let mut out = Vec::new();
@@ -78,10 +78,14 @@ pub fn hidden_prop(
             *slot = Some(run(&data, candidates)?);
         }
         let found = run(&injected, candidates)?;
-        out.push(
-            score(&dmodel, &data, inj, value, slot.as_ref().expect("set above"), &found)
-                .map_err(|e| Error::Nothing(format!("{prop}: {e}")))?,
-        );
+        out.push(score(
+            &dmodel,
+            &data,
+            inj,
+            value,
+            slot.as_ref().expect("set above"),
+            &found,
+        )?);
     }
     Ok(out)
 }
