@@ -94,7 +94,7 @@ fn csv(rows: &[(String, Finding)]) -> Result<Vec<u8>> {
     for (prop, f) in rows {
         w.write_record([
             prop.as_str(),
-            &f.injection.effect,
+            f.injection.effect.id(),
             &format!("{}", f.injection.size),
             f.injection.param(),
             &num(Some(f.injected)),
@@ -113,9 +113,9 @@ fn csv(rows: &[(String, Finding)]) -> Result<Vec<u8>> {
 
 /// How often each effect was found at each size, then each prop's answers.
 fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
-    let mut keys: Vec<(String, f64)> = Vec::new();
+    let mut keys: Vec<(&str, f64)> = Vec::new();
     for (_, f) in rows {
-        let key = (f.injection.effect.clone(), f.injection.size);
+        let key = (f.injection.effect.id(), f.injection.size);
         if !keys.contains(&key) {
             keys.push(key);
         }
@@ -132,7 +132,7 @@ fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
     for (effect, size) in &keys {
         let of: Vec<&(String, Finding)> = rows
             .iter()
-            .filter(|(_, f)| &f.injection.effect == effect && f.injection.size == *size)
+            .filter(|(_, f)| f.injection.effect.id() == *effect && f.injection.size == *size)
             .collect();
         let found = of.iter().filter(|(_, f)| f.found).count();
         let tied = of.iter().filter(|(_, f)| f.tied).count();
@@ -152,7 +152,7 @@ fn summary(rows: &[(String, Finding)], skipped: &[(String, String)]) -> String {
     for (prop, f) in rows {
         md.push_str(&format!(
             "| {prop} | {} | {:+.0} % | {:.4} | {:.4} | {} | {} | {} |\n",
-            f.injection.effect,
+            f.injection.effect.id(),
             100.0 * f.injection.size,
             f.injected,
             f.clean,

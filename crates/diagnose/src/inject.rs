@@ -19,18 +19,60 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
+use propbet_effects::{builtin, Param};
+
 use crate::discover::Diagnosis;
 use crate::fit::{fit, FittedParam};
 use crate::{Data, DiagnoseError, Model, Observation};
 
-/// The effects that can be injected, by their built-in ids.
-pub const INJECTABLE: [&str; 4] = ["thrust-tare", "torque-tare", "rpm-scale", "density"];
+/// An effect that can be injected: a built-in of the same id.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Injected {
+    /// `thrust-tare`.
+    ThrustTare,
+    /// `torque-tare`.
+    TorqueTare,
+    /// `rpm-scale`.
+    RpmScale,
+    /// `density`.
+    Density,
+}
+
+/// Every effect that can be injected.
+pub const INJECTABLE: [Injected; 4] = [
+    Injected::ThrustTare,
+    Injected::TorqueTare,
+    Injected::RpmScale,
+    Injected::Density,
+];
+
+impl Injected {
+    /// The built-in effect's id.
+    pub fn id(self) -> &'static str {
+        match self {
+            Self::ThrustTare => "thrust-tare",
+            Self::TorqueTare => "torque-tare",
+            Self::RpmScale => "rpm-scale",
+            Self::Density => "density",
+        }
+    }
+
+    /// The built-in effect's parameter the injection sets (its first: k, q0, factor, ratio).
+    fn param(self) -> &'static Param {
+        let effect = builtin::all()
+            .iter()
+            .find(|e| e.id() == self.id())
+            .expect("every injectable effect is a built-in");
+        &effect.params()[0]
+    }
+}
 
 /// One known effect of a given size.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Injection {
-    /// The built-in effect's id (one of [`INJECTABLE`]).
-    pub effect: String,
+    /// The effect.
+    pub effect: Injected,
     /// Relative change of the static loads (0.05: 5 %).
     pub size: f64,
 }
@@ -39,83 +81,79 @@ pub struct Injection {
 const STATIC_J: f64 = 0.02;
 
 impl Injection {
-    /// An injection of `effect` (one of [`INJECTABLE`]) at `size`.
-    pub fn new(effect: &str, size: f64) -> Result<Self, String> {
-        if !INJECTABLE.contains(&effect) {
-            return Err(format!(
-                "`{effect}` cannot be injected: one of {}",
-                INJECTABLE.join(", ")
-            ));
-        }
+    /// An injection of the built-in effect `id` (one of [`INJECTABLE`]) at `size`.
+    pub fn new(id: &str, size: f64) -> Result<Self, String> {
+        let Some(effect) = INJECTABLE.into_iter().find(|e| e.id() == id) else {
+            let ids: Vec<&str> = INJECTABLE.iter().map(|e| e.id()).collect();
+            return Err(format!("`{id}` cannot be injected: one of {}", ids.join(", ")));
+        };
         if !size.is_finite() || size <= -0.5 || size == 0.0 || size > 1.0 {
             return Err(format!(
                 "injected size {size}: a relative change of the loads, not zero, above -0.5 and at most 1"
             ));
         }
-        Ok(Self {
-            effect: effect.to_string(),
-            size,
-        })
+        Ok(Self { effect, size })
     }
 
     /// The effect's parameter this injection sets on `data`: k, q0 [N m], the RPM factor or
     /// the density ratio; None for a torque tare on data without a torque.
     pub fn value(&self, data: &Data) -> Option<f64> {
         let s = self.size;
-        match self.effect.as_str() {
-            "thrust-tare" => Some(s),
-            "torque-tare" => static_torque(data).map(|q| s * q),
-            "rpm-scale" => Some((1.0 + s).sqrt()),
-            "density" => Some(1.0 + s),
-            _ => None,
+        match self.effect {
+            Injected::ThrustTare => Some(s),
+            Injected::TorqueTare => static_torque(data).map(|q| s * q),
+            Injected::RpmScale => Some((1.0 + s).sqrt()),
+            Injected::Density => Some(1.0 + s),
         }
     }
 
     /// The parameter's name in the effect (as its fit reports it).
     pub fn param(&self) -> &'static str {
-        match self.effect.as_str() {
-            "thrust-tare" => "k",
-            "torque-tare" => "q0",
-            "rpm-scale" => "factor",
-            _ => "ratio",
-        }
+        &self.effect.param().name
     }
 
     /// The parameter's value that changes nothing.
     pub fn neutral(&self) -> f64 {
-        match self.effect.as_str() {
-            "thrust-tare" | "torque-tare" => 0.0,
-            _ => 1.0,
+        self.effect.param().neutral.unwrap_or_default()
+    }
+
+    /// The parameter's value expected with the injection on top of `clean`: a tare (neutral 0)
+    /// adds, a scale (neutral 1) multiplies.
+    fn expected(&self, clean: f64, injected: f64) -> f64 {
+        if self.neutral() == 0.0 {
+            clean + injected
+        } else {
+            clean * injected
         }
     }
 
-    /// `data` of a propeller of `diameter` [m] with the effect added to every measured point
-    /// (None where it cannot be: a torque tare without a measured torque).
-    pub fn apply(&self, data: &Data, diameter: f64) -> Option<Data> {
+    /// The parameter's value ([`Injection::value`]) and `data` of a propeller of `diameter` [m]
+    /// with the effect added to every measured point; None where it cannot be added (a torque
+    /// tare without a measured torque).
+    pub fn apply(&self, data: &Data, diameter: f64) -> Option<(f64, Data)> {
         let value = self.value(data)?;
         let mut out = data.clone();
         for o in &mut out.obs {
             self.apply_to(o, value, diameter);
         }
-        Some(out)
+        Some((value, out))
     }
 
     fn apply_to(&self, o: &mut Observation, value: f64, diameter: f64) {
-        match self.effect.as_str() {
-            "thrust-tare" => {
+        match self.effect {
+            Injected::ThrustTare => {
                 let area = PI * 0.25 * diameter * diameter;
                 let rho = o.fluid.rho;
                 let vs = (o.v * o.v + 2.0 * o.thrust.max(0.0) / (rho * area)).sqrt();
                 o.thrust -= value * 0.5 * rho * vs * vs * area;
             }
-            "torque-tare" => o.torque = o.torque.map(|q| q + value),
-            "rpm-scale" => {
+            Injected::TorqueTare => o.torque = o.torque.map(|q| q + value),
+            Injected::RpmScale => {
                 o.omega /= value;
                 o.j *= value;
                 o.mach_tip /= value;
             }
-            "density" => o.fluid.rho /= value,
-            _ => {}
+            Injected::Density => o.fluid.rho /= value,
         }
     }
 }
@@ -192,7 +230,7 @@ pub fn score(
     clean: &Diagnosis,
     injected: &Diagnosis,
 ) -> Result<Finding, DiagnoseError> {
-    let (effect, param) = (injection.effect.as_str(), injection.param());
+    let (effect, param) = (injection.effect.id(), injection.param());
     let neutral = injection.neutral();
     let after = injected.ladder.last().and_then(|r| value_of(&r.params, effect, param));
     // Whether the clean refit's value sits on a physical bound: the rise is then not measured.
@@ -208,13 +246,9 @@ pub fn score(
         }
         None => clean.ladder.last().and_then(|r| value_of(&r.params, effect, param)),
     };
-    // The clean value, and the injected one on the effect's own scale: a tare adds, a scale
-    // multiplies.
+    // The clean value, and the injected one on top of it.
     let clean_value = before.map_or(neutral, |b| b.0);
-    let expected = match effect {
-        "thrust-tare" | "torque-tare" => clean_value + injected_value,
-        _ => clean_value * injected_value,
-    };
+    let expected = injection.expected(clean_value, injected_value);
     let ci95 = after.and_then(|a| {
         let ci_b = before.map_or(Some(0.0), |b| b.1)?;
         Some((a.1? * a.1? + ci_b * ci_b).sqrt())
@@ -286,7 +320,7 @@ mod tests {
             (6000.0, 0.0, 9.0, 0.11),
             (6000.0, 10.0, 5.0, 0.08),
         ]);
-        let tare = Injection::new("thrust-tare", 0.05).unwrap().apply(&d, 0.25).unwrap();
+        let tare = Injection::new("thrust-tare", 0.05).unwrap().apply(&d, 0.25).unwrap().1;
         // Static: the slipstream's dynamic pressure over the disc is T / A, the tare k T.
         assert!((tare.obs[0].thrust - 0.95 * 4.0).abs() < 1e-12);
         assert!((tare.obs[1].thrust - 0.95 * 9.0).abs() < 1e-12);
@@ -297,7 +331,7 @@ mod tests {
         // The torque tare: 5 % of the static torque at the lowest RPM, at every point.
         let q = Injection::new("torque-tare", 0.05).unwrap();
         assert!((q.value(&d).unwrap() - 0.05 * 0.05).abs() < 1e-15);
-        let t = q.apply(&d, 0.25).unwrap();
+        let t = q.apply(&d, 0.25).unwrap().1;
         for (a, b) in t.obs.iter().zip(&d.obs) {
             assert!((a.torque.unwrap() - b.torque.unwrap() - 0.0025).abs() < 1e-15);
             assert_eq!(a.thrust, b.thrust);
@@ -307,13 +341,13 @@ mod tests {
         let r = Injection::new("rpm-scale", 0.05).unwrap();
         let f = r.value(&d).unwrap();
         assert!((f * f - 1.05).abs() < 1e-12);
-        let s = r.apply(&d, 0.25).unwrap();
+        let s = r.apply(&d, 0.25).unwrap().1;
         assert!((s.obs[2].omega * f - d.obs[2].omega).abs() < 1e-9);
         assert!((s.obs[2].j / f - d.obs[2].j).abs() < 1e-12);
         assert_eq!(s.obs[2].thrust, d.obs[2].thrust);
 
         // The density: the air assumed lighter by r, the measured loads kept.
-        let rho = Injection::new("density", 0.05).unwrap().apply(&d, 0.25).unwrap();
+        let rho = Injection::new("density", 0.05).unwrap().apply(&d, 0.25).unwrap().1;
         assert!((rho.obs[0].fluid.rho * 1.05 - d.obs[0].fluid.rho).abs() < 1e-12);
         assert_eq!(rho.obs[0].thrust, d.obs[0].thrust);
     }
@@ -334,13 +368,10 @@ mod tests {
         assert_eq!(static_torque(&sweep), Some(0.07));
         let mut none = sweep.clone();
         none.obs.iter_mut().for_each(|o| o.torque = None);
-        assert_eq!(
-            Injection::new("torque-tare", 0.05)
-                .unwrap()
-                .apply(&none, 0.25)
-                .map(|_| ()),
-            None
-        );
+        assert!(Injection::new("torque-tare", 0.05)
+            .unwrap()
+            .apply(&none, 0.25)
+            .is_none());
     }
 
     #[test]
@@ -352,5 +383,14 @@ mod tests {
         assert!(Injection::new("density", f64::NAN).is_err());
         assert!(Injection::new("density", -0.6).is_err());
         assert!(Injection::new("density", -0.05).is_ok());
+        // The parameter and its neutral value are the built-in effect's own.
+        let names: Vec<(&str, f64)> = INJECTABLE
+            .iter()
+            .map(|&e| {
+                let i = Injection { effect: e, size: 0.05 };
+                (i.param(), i.neutral())
+            })
+            .collect();
+        assert_eq!(names, [("k", 0.0), ("q0", 0.0), ("factor", 1.0), ("ratio", 1.0)]);
     }
 }

@@ -253,9 +253,12 @@ pub(super) fn evaluate(
 
 /// p value of the nested F test of `full` against `reduced` (which lacks `k` parameters).
 pub(super) fn f_test(reduced_sse: f64, full: &FitOutcome, k: usize) -> (f64, f64) {
-    let rows = full.residuals.len();
-    let dof = rows.saturating_sub(full.p.len()).max(1);
-    let s1 = full.sse;
+    f_test_rows(reduced_sse, full.sse, full.residuals.len(), full.p.len(), k)
+}
+
+/// [`f_test`] of sums of squares over `rows` residual rows, the full model fitting `params`.
+fn f_test_rows(reduced_sse: f64, s1: f64, rows: usize, params: usize, k: usize) -> (f64, f64) {
+    let dof = rows.saturating_sub(params).max(1);
     let fstat = if s1 > 0.0 {
         ((reduced_sse - s1) / k.max(1) as f64) / (s1 / dof as f64)
     } else if reduced_sse > 0.0 {
@@ -293,12 +296,7 @@ pub(super) fn f_test_on(
         (on.iter().map(|x| x * x).sum(), on.len())
     };
     let ((s0, _), (s1, n)) = (sse(reduced), sse(full));
-    let on_load = FitOutcome {
-        residuals: vec![0.0; n],
-        sse: s1,
-        ..full.clone()
-    };
-    f_test(s0, &on_load, k)
+    f_test_rows(s0, s1, n, full.p.len(), k)
 }
 
 pub(super) fn try_candidate(

@@ -294,6 +294,34 @@ pub(crate) fn candidates(
     Ok(candidates)
 }
 
+/// What a diagnosis of `sets` runs on: their scored points (inside `spec`'s window) as residual
+/// rows, the model as the diagnosis takes it (its own effects stay under the candidates), and
+/// `spec`'s options.
+pub(crate) fn diagnosis_inputs<'m>(
+    model: &'m Model,
+    spec: &DiagnoseSpec,
+    air: AirChoice,
+    sets: &[MeasuredSet],
+    signatures: bool,
+) -> Result<(Data, propbet_diagnose::Model<'m>, Options)> {
+    let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), sets)?;
+    crate::settings::WINDOW.check(spec.window)?;
+    let data = Data::from_points(&points, spec.window)?;
+    let dmodel = propbet_diagnose::Model {
+        rotor: &model.rotor,
+        opts: model.opts,
+        diameter: model.diameter,
+        fixed: model.effects.clone(),
+    };
+    let opts = Options {
+        folds: spec.folds,
+        max_steps: spec.max_steps,
+        signatures,
+        ..Options::default()
+    };
+    Ok((data, dmodel, opts))
+}
+
 /// The diagnosis of a batch of measurements read, over `candidates`.
 fn diagnose_read(
     model: &Model,
@@ -309,22 +337,7 @@ fn diagnose_read(
 ) -> Result<Diagnosed> {
     // The files' provenance bounds some candidates (an optical RPM, a lab's own air).
     Provenance::of(&sets).narrow(&mut candidates);
-    let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), &sets)?;
-    crate::settings::WINDOW.check(spec.window)?;
-    let data = Data::from_points(&points, spec.window)?;
-    // The model's own effects stay in the model, under the candidates.
-    let dmodel = propbet_diagnose::Model {
-        rotor: &model.rotor,
-        opts: model.opts,
-        diameter: model.diameter,
-        fixed: model.effects.clone(),
-    };
-    let opts = Options {
-        folds: spec.folds,
-        max_steps: spec.max_steps,
-        signatures,
-        ..Options::default()
-    };
+    let (data, dmodel, opts) = diagnosis_inputs(model, spec, air, &sets, signatures)?;
     let diagnosis = discover(&dmodel, &data, &candidates, &opts)?;
     Ok(Diagnosed {
         names,

@@ -10,12 +10,11 @@
 
 use std::sync::Arc;
 
-use propbet_compare::metrics::VALIDATION_J_WINDOW;
-use propbet_diagnose::discover::{diagnose, Diagnosis, Options};
-use propbet_diagnose::inject::{score, Finding, Injection};
+use propbet_diagnose::discover::{diagnose, Diagnosis};
+use propbet_diagnose::inject::{score, Finding, Injected, Injection};
 use propbet_diagnose::provenance::Provenance;
 use propbet_diagnose::Data;
-use propbet_effects::{Effect, Stack};
+use propbet_effects::Effect;
 
 use super::{ladder_spec, prepare, Prepared, Sections, ValidateSpec};
 use crate::stages;
@@ -23,8 +22,8 @@ use crate::Result;
 
 /// Whether an injection's ladders run with the files' provenance bounds (the tares) or as a
 /// stand log that allows the effect (the RPM scale, the density).
-fn with_provenance(effect: &str) -> bool {
-    !matches!(effect, "rpm-scale" | "density")
+fn with_provenance(effect: Injected) -> bool {
+    !matches!(effect, Injected::RpmScale | Injected::Density)
 }
 
 /// Each injection on `prop`'s measured files (validate's blade, polars and model), scored
@@ -48,28 +47,15 @@ pub fn hidden_prop(
     let wide = stages::candidates(&model, &dspec)?;
     let mut narrow = wide.clone();
     Provenance::of(&batch.sets).narrow(&mut narrow);
-    let points = propbet_compare::compare(&stages::setup(&model, batch.air, Stack::baseline()), &batch.sets)?;
-    let data = Data::from_points(&points, VALIDATION_J_WINDOW)?;
-    let dmodel = propbet_diagnose::Model {
-        rotor: &model.rotor,
-        opts: model.opts,
-        diameter: model.diameter,
-        fixed: model.effects.clone(),
-    };
-    let opts = Options {
-        folds: dspec.folds,
-        max_steps: dspec.max_steps,
-        signatures: false,
-        ..Options::default()
-    };
+    let (data, dmodel, opts) = stages::diagnosis_inputs(&model, &dspec, batch.air, &batch.sets, false)?;
     let run = |data: &Data, candidates: &[Arc<dyn Effect>]| -> Result<Diagnosis> {
         Ok(diagnose(&dmodel, data, candidates, &opts)?)
     };
     let mut clean: [Option<Diagnosis>; 2] = [None, None];
     let mut out = Vec::new();
     for inj in injections {
-        let provenance = with_provenance(&inj.effect);
-        let (Some(value), Some(injected)) = (inj.value(&data), inj.apply(&data, model.diameter)) else {
+        let provenance = with_provenance(inj.effect);
+        let Some((value, injected)) = inj.apply(&data, model.diameter) else {
             continue;
         };
         let candidates = if provenance { &narrow } else { &wide };
