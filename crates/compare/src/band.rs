@@ -199,7 +199,7 @@ pub fn coverage(points: &[&ComparedPoint], bands: &[&PointBand]) -> [Option<Cove
         (n > 0).then(|| Coverage {
             n,
             inside: inside as f64 / n as f64,
-            half_width: crate::metrics::quantile(widths, 0.5),
+            half_width: propbet_units::stats::median(widths),
         })
     };
     [one(|q| q.ct, |b| b.ct), one(|q| q.cp, |b| b.cp)]

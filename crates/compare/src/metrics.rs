@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use crate::{ComparedPoint, QUANTITIES};
 use propbet_measure::MeasuredSet;
+use propbet_units::stats::median;
 
 /// Errors of one quantity over a set of points; error = predicted - measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -412,7 +413,7 @@ pub const REGIMES: [&str; 3] = ["static", "forward, J < J0/2", "forward, J0/2 to
 /// a pitch error grows towards zero thrust, a hover-efficiency error sits in the static points.
 pub fn regime_errors(points: &[ComparedPoint], window: f64) -> [RegimeError; 3] {
     let j0s: Vec<f64> = zero_thrust_js(points).into_iter().filter_map(|(_, j0)| j0).collect();
-    let j0 = quantile(j0s, 0.5);
+    let j0 = median(j0s);
     let mut err: [(Vec<f64>, Vec<f64>); 3] = Default::default();
     for (p, inside) in points.iter().zip(in_window(points, window)) {
         if !inside {
@@ -439,8 +440,8 @@ pub fn regime_errors(points: &[ComparedPoint], window: f64) -> [RegimeError; 3] 
     }
     err.map(|(ct, cp)| RegimeError {
         points: ct.len(),
-        ct: quantile(ct, 0.5),
-        cp: quantile(cp, 0.5),
+        ct: median(ct),
+        cp: median(cp),
     })
 }
 
@@ -510,7 +511,7 @@ pub fn figure_of_merit(ct: f64, cp: f64) -> f64 {
 }
 
 /// The median over the static points (V = 0) of the predicted figure of merit over the
-/// measured one, minus 1 (the median as validate's, [`quantile`]): how far the model's hover
+/// measured one, minus 1 (the median of [`propbet_units::stats`]): how far the model's hover
 /// efficiency is off, whatever the split between thrust and power. NaN without a static point with positive CT and CP on both sides.
 pub fn static_figure_of_merit_error(points: &[ComparedPoint]) -> f64 {
     let ratios: Vec<f64> = points
@@ -524,16 +525,7 @@ pub fn static_figure_of_merit_error(points: &[ComparedPoint]) -> f64 {
         })
         .filter(|r| r.is_finite())
         .collect();
-    quantile(ratios, 0.5)
-}
-
-/// The `q`-quantile of `v` (the sample nearest to rank q (n − 1)); NaN for no samples.
-pub fn quantile(mut v: Vec<f64>, q: f64) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[((v.len() - 1) as f64 * q).round() as usize]
+    median(ratios)
 }
 
 /// Where [`twist_gap`] is averaged: r/R from 0.6 to 0.9 (where most of the thrust is made).

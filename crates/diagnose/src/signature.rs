@@ -10,6 +10,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::Data;
+use propbet_units::stats::median;
 
 /// Errors below this RMS are called "within" it.
 pub const QUIET: f64 = 0.02;
@@ -219,9 +220,7 @@ fn j_halves(pts: &[(f64, f64, i64, f64)], jm: f64) -> Option<(f64, f64)> {
 
 /// The median J of `pts` (non-empty), where [`j_halves`] splits them.
 fn median_j(pts: &[(f64, f64, i64, f64)]) -> f64 {
-    let mut js: Vec<f64> = pts.iter().map(|p| p.0).collect();
-    js.sort_by(f64::total_cmp);
-    js[js.len() / 2]
+    median(pts.iter().map(|p| p.0).collect())
 }
 
 /// The rows of one quantity (thrust, or torque) of `data` as (J, rpm, group, value), the
@@ -323,17 +322,6 @@ fn rpm_slopes(pts: &[(f64, f64, i64, f64)]) -> BTreeMap<i64, (f64, f64, f64)> {
         }
     }
     out
-}
-
-/// The median of a non-empty list.
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
 }
 
 impl RpmTrend {

@@ -5,6 +5,8 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use propbet_units::stats::median;
+
 use crate::set::{DropReason, Dropped, Loads, LoggedAir, MeasuredPoint, Speed, Value};
 use crate::table::Sample;
 
@@ -34,24 +36,11 @@ impl Default for ReduceOptions {
     }
 }
 
-fn median(xs: &mut [f64]) -> f64 {
-    xs.sort_by(f64::total_cmp);
-    let n = xs.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    if n % 2 == 1 {
-        xs[n / 2]
-    } else {
-        0.5 * (xs[n / 2 - 1] + xs[n / 2])
-    }
-}
-
 /// The median absolute deviation of `xs` from `center`, scaled to a normal distribution's
 /// standard deviation (1.4826): a scatter that a few outliers do not move.
 fn sigma_mad(xs: impl Iterator<Item = f64>, center: f64) -> f64 {
-    let mut dev: Vec<f64> = xs.map(|x| (x - center).abs()).collect();
-    1.4826 * median(&mut dev)
+    let dev: Vec<f64> = xs.map(|x| (x - center).abs()).collect();
+    1.4826 * median(dev)
 }
 
 /// Row checks that do not depend on the reduction: not spinning, negative RPM, duplicate and
@@ -59,12 +48,12 @@ fn sigma_mad(xs: impl Iterator<Item = f64>, center: f64) -> f64 {
 fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
     let mut kept: Vec<Sample> = Vec::with_capacity(samples.len());
     // A stray row jumps above both neighbours by much more than the sampling interval.
-    let mut dts: Vec<f64> = samples
+    let dts: Vec<f64> = samples
         .windows(2)
         .filter_map(|w| Some(w[1].time? - w[0].time?))
         .filter(|d| *d > 0.0)
         .collect();
-    let spike = (10.0 * median(&mut dts)).max(1.0);
+    let spike = (10.0 * median(dts)).max(1.0);
     // A log that writes each sensor on its own row stamps several rows alike: then a repeated
     // time stamp is how it writes, not a fault.
     let repeats = samples
@@ -132,12 +121,12 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
 /// the sign of the trend against RPM squared (thrust grows with it). +1 when neither tells.
 fn pull_sign(samples: &[Sample], pick: impl Fn(&Sample) -> Option<f64>) -> f64 {
     let top = samples.iter().map(|s| s.omega).fold(0.0, f64::max);
-    let mut high: Vec<f64> = samples
+    let high: Vec<f64> = samples
         .iter()
         .filter(|s| s.omega >= 0.9 * top)
         .filter_map(&pick)
         .collect();
-    let m = median(&mut high);
+    let m = median(high);
     if m.is_finite() && m != 0.0 {
         return m.signum();
     }
@@ -339,15 +328,15 @@ fn point(label: String, s: &[Sample], transient: usize, opts: &ReduceOptions, av
 /// settle tolerance of the median RPM of the step's second half; then samples whose RPM is
 /// far from the step's median (sensor dropouts) are removed. Returns (steady, dropped count).
 fn steady_part(s: &[Sample], opts: &ReduceOptions) -> (Vec<Sample>, usize, usize) {
-    let mut tail: Vec<f64> = s[s.len() / 2..].iter().map(|x| x.omega).collect();
-    let target = median(&mut tail);
+    let tail: Vec<f64> = s[s.len() / 2..].iter().map(|x| x.omega).collect();
+    let target = median(tail);
     let start = s
         .iter()
         .position(|x| (x.omega - target).abs() <= opts.settle_tolerance * target)
         .unwrap_or(s.len() / 2);
     let settled = &s[start..];
-    let mut om: Vec<f64> = settled.iter().map(|x| x.omega).collect();
-    let med = median(&mut om);
+    let om: Vec<f64> = settled.iter().map(|x| x.omega).collect();
+    let med = median(om);
     let mad = sigma_mad(settled.iter().map(|x| x.omega), med);
     let limit = (5.0 * mad).max(0.05 * med);
     let steady: Vec<Sample> = settled
@@ -397,7 +386,7 @@ fn densest(readings: &[f64], width: f64) -> Option<(f64, usize)> {
             best = (i, j + 1);
         }
     }
-    (best.1 > best.0).then(|| (median(&mut x[best.0..best.1]), best.1 - best.0))
+    (best.1 > best.0).then(|| (median(x[best.0..best.1].to_vec()), best.1 - best.0))
 }
 
 /// A reading this far (relative) below its step's steady RPM, while the thrust holds steady, is
@@ -415,12 +404,12 @@ fn fill_dropouts(
     dropped: &mut Vec<Dropped>,
     notes: &mut Vec<String>,
 ) -> Vec<Sample> {
-    let mut ratios: Vec<f64> = samples
+    let ratios: Vec<f64> = samples
         .iter()
         .filter_map(|s| s.omega_other.filter(|o| *o > 0.0 && s.omega > 0.0).map(|o| s.omega / o))
         .collect();
     if ratios.len() >= 3 {
-        let ratio = median(&mut ratios);
+        let ratio = median(ratios.to_vec());
         let mut filled = 0;
         for s in samples.iter_mut() {
             if let Some(o) = s.omega_other.filter(|o| *o > 0.0 && s.omega == 0.0) {
@@ -451,8 +440,8 @@ fn fill_dropouts(
             continue;
         }
         let near = |w: f64| (w - steady).abs() <= opts.unsteady_rpm * steady;
-        let mut thrusts: Vec<f64> = step.iter().filter(|s| near(s.omega)).map(|s| s.thrust).collect();
-        let t = median(&mut thrusts);
+        let thrusts: Vec<f64> = step.iter().filter(|s| near(s.omega)).map(|s| s.thrust).collect();
+        let t = median(thrusts);
         let band = (4.0 * sigma_mad(step.iter().map(|s| s.thrust), t)).max(DROPOUT * t.abs());
         // A dropout reads low (missed pulses) after the step has settled; a high reading or
         // one before the step first reaches its steady RPM is the motor getting there.
@@ -583,8 +572,8 @@ fn steps(groups: &[&[Sample]], opts: &ReduceOptions, notes: &mut Vec<String>) ->
             short += 1;
             continue;
         }
-        let mut escs: Vec<f64> = g.iter().filter_map(|x| x.esc).collect();
-        let esc = median(&mut escs);
+        let escs: Vec<f64> = g.iter().filter_map(|x| x.esc).collect();
+        let esc = median(escs);
         let mut p = point(
             format!("ESC {} µs", (esc * 10.0).round() / 10.0),
             &steady,

@@ -5,11 +5,7 @@
 use std::time::Instant;
 
 use propbet_neuralfoil::{cst, Condition, Network, DEFAULT_SIZE};
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
+use propbet_units::stats::median;
 
 fn main() {
     let path = std::env::args().nth(1).expect("an airfoil .dat file");

@@ -3,7 +3,7 @@
 //! written by validate (`families.csv`) and shipped with propbet (`data/validation_families.csv`,
 //! copied by `scripts/validation-page.sh` from the same run as the book's validation table).
 
-use propbet_compare::metrics::quantile;
+use propbet_units::stats::quantile;
 
 use crate::validate::{family, family_groups, Row};
 

@@ -311,9 +311,7 @@ pub fn qprop_export(
         }
         // Each point's next weight: times 1 + (its difference / the median difference)^2.
         let e: Vec<f64> = dt.iter().zip(&dq).map(|(t, q)| t.max(*q)).collect();
-        let mut sorted = e.clone();
-        sorted.sort_by(f64::total_cmp);
-        let med = sorted[sorted.len() / 2].max(1e-4);
+        let med = propbet_units::stats::median(e.clone()).max(1e-4);
         let mut k = 0;
         for (w, &c) in weight.iter_mut().zip(&counted) {
             if c {

@@ -119,7 +119,7 @@ pub fn scan_accuracy(g: &Geometry) -> GeometryAccuracy {
         } else {
             // Rounded (0.0001° and 0.01 % of chord are far below what the band resolves), so
             // that the prop file's line reads plainly.
-            (propbet_compare::metrics::quantile(v, 0.5).min(max) * 1e4).round() / 1e4
+            (propbet_units::stats::median(v).min(max) * 1e4).round() / 1e4
         }
     };
     GeometryAccuracy {

@@ -6,10 +6,11 @@
 use std::fmt::Write as _;
 
 use propbet_compare::curves::Curves;
-use propbet_compare::metrics::{figure_of_merit, quantile, Metric, Metrics};
+use propbet_compare::metrics::{figure_of_merit, Metric, Metrics};
 use propbet_compare::ComparedPoint;
 use propbet_measure::MeasuredSet;
 use propbet_plot::{Figure, Mark, Panel, Series};
+use propbet_units::stats::median;
 
 use crate::page::{esc, sig};
 
@@ -66,8 +67,8 @@ pub fn hover(points: &[ComparedPoint]) -> Option<Hover> {
     Some(Hover {
         points: pairs.len(),
         fm: (
-            quantile(pairs.iter().map(|p| p.1 .0).collect(), 0.5),
-            quantile(pairs.iter().map(|p| p.2 .0).collect(), 0.5),
+            median(pairs.iter().map(|p| p.1 .0).collect()),
+            median(pairs.iter().map(|p| p.2 .0).collect()),
         ),
         g_per_w: (top.1 .1, top.2 .1),
         at_thrust: top.0,

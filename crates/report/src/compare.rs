@@ -128,10 +128,11 @@ pub fn headline_json(m: &Metrics) -> serde_json::Value {
 /// and CP over the points below 85 % of each sweep's zero-thrust J (the same points and numbers
 /// as a validation row's "before" columns), with the points counted.
 pub fn accuracy(points: &[ComparedPoint]) -> (f64, f64, usize) {
-    use propbet_compare::metrics::{quantile, window_errors, VALIDATION_J_WINDOW};
+    use propbet_compare::metrics::{window_errors, VALIDATION_J_WINDOW};
+    use propbet_units::stats::median;
     let (ct, cp) = window_errors(points, VALIDATION_J_WINDOW);
     let n = ct.len();
-    (quantile(ct, 0.5), quantile(cp, 0.5), n)
+    (median(ct), median(cp), n)
 }
 
 /// [`accuracy`] as JSON (null where no point has the quantity).

@@ -4,8 +4,9 @@
 
 use std::fmt::Write as _;
 
-use propbet_compare::metrics::{quantile, REGIMES};
+use propbet_compare::metrics::REGIMES;
 use propbet_pipeline::validate::{family, family_groups, Row};
+use propbet_units::stats::median;
 
 use crate::page::{esc, page};
 
@@ -133,7 +134,7 @@ fn median_row(label: String, rows: &[&Row], apc: bool) -> Vec<String> {
     let cols: Vec<Vec<f64>> = rows.iter().map(|r| numbers(r, apc)).collect();
     for k in 0..cols.first().map_or(0, Vec::len) {
         let col: Vec<f64> = cols.iter().map(|c| c[k]).filter(|x| x.is_finite()).collect();
-        v.push(pct(quantile(col, 0.5)));
+        v.push(pct(median(col)));
     }
     // The signed columns (figure of merit, twist), the ladders and the reasons have no median.
     v.extend([
@@ -332,7 +333,7 @@ pub fn headline(rows: &[Row]) -> Option<String> {
     }
     let med = |f: &dyn Fn(&Row) -> Option<f64>| {
         let v: Vec<f64> = apc.iter().filter_map(|r| f(r)).filter(|x| x.is_finite()).collect();
-        (!v.is_empty()).then(|| quantile(v, 0.5))
+        (!v.is_empty()).then(|| median(v))
     };
     let p = |x: Option<f64>| x.map_or("–".to_string(), pct);
     let mut s = format!(

@@ -6,6 +6,8 @@
 //! Also how a piece of a user's file is quoted in a message ([`excerpt`]): every parser uses it.
 #![deny(missing_docs)]
 
+pub mod stats;
+
 use std::f64::consts::PI;
 
 /// Angular rate [rad/s] of `rpm` revolutions per minute.

@@ -1,9 +1,7 @@
 //! One row of the validation table: the errors before and after calibration, APC's own
 //! prediction scored on the same points, and the signatures of the data.
 
-use propbet_compare::metrics::{
-    in_window, quantile, window_errors, Regimes, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW,
-};
+use propbet_compare::metrics::{in_window, window_errors, Regimes, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW};
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
 use propbet_qprop::apc::Pe0;
@@ -146,8 +144,8 @@ pub(super) fn ladder_text(effects: &[String]) -> String {
 /// The median and 90th percentile of errors: the table's two numbers per quantity.
 pub(super) fn median_p90(v: &[f64]) -> Spread {
     Spread {
-        median: quantile(v.to_vec(), 0.5),
-        p90: quantile(v.to_vec(), 0.9),
+        median: propbet_units::stats::median(v.to_vec()),
+        p90: propbet_units::stats::quantile(v.to_vec(), 0.9),
     }
 }
 

@@ -112,7 +112,7 @@ fn tables_have_a_row_per_prop_family_medians_and_the_median_over_props() {
     let md = markdown(&rows, &skipped, "tables");
     assert!(md.contains("| apce_a | E | 10 | 10.0 % | 20.0 % |"), "{md}");
     assert!(md.contains("| 10.0 % | +13.1 % | -1.2° | none | none / none |"), "{md}");
-    assert!(md.contains("| **E (median of 2)** |  | 20 | 30.0 % |"), "{md}");
+    assert!(md.contains("| **E (median of 2)** |  | 20 | 20.0 % |"), "{md}");
     assert!(!md.contains("SF (median"), "a family of one has no median row: {md}");
     assert!(
         md.contains("| **all (median over props)** |  | 30 | 20.0 % | 40.0 % |"),
@@ -219,11 +219,11 @@ fn assumed_sections_have_their_own_median() {
         "{md}"
     );
     assert!(md.contains("Props without APC's sections"), "{md}");
-    // The median over props is the APC props' (10 and 30 %: 30 %, the upper), the assumed
-    // ones' (50 and 70 %) apart.
-    assert!(md.contains("| **all (median over props)** |  | 20 | 30.0 % |"), "{md}");
+    // The median over props is the APC props' (10 and 30 %: 20 %, their mean), the assumed
+    // ones' (50 and 70 %: 60 %) apart.
+    assert!(md.contains("| **all (median over props)** |  | 20 | 20.0 % |"), "{md}");
     assert!(
-        md.contains("| **sections assumed (median of 2)** |  | 20 | 70.0 % |"),
+        md.contains("| **sections assumed (median of 2)** |  | 20 | 60.0 % |"),
         "{md}"
     );
     assert!(!markdown(&rows[..2], &[], "tables").contains("Props without APC's sections"));
@@ -246,9 +246,10 @@ fn apc_columns_when_per3_is_given() {
         md.contains("| apcsf_c | SF | 10 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | – | – | – | – |"),
         "{md}"
     );
-    // The median over props of APC's columns uses the props that have them.
+    // The median over props of APC's columns uses the props that have them (10 and 20 %:
+    // 15 %).
     assert!(
-        md.contains("| **all (median over props)** |  | 20 | 20.0 % | 40.0 % | 20.0 % | 20.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"),
+        md.contains("| **all (median over props)** |  | 20 | 15.0 % | 30.0 % | 15.0 % | 15.0 % | 8.0 % | 20.0 % | 6.0 % | 10.0 % |"),
         "{md}"
     );
 }
