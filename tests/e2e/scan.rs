@@ -251,10 +251,11 @@ fn shared_synthetic_cloud_with_box_against_its_truth() {
     assert!(dir.path().join("out/plots/colour_histogram.svg").is_file());
     // The prop file carries the scan's own accuracy from its residuals: the median station's
     // spread of blade angle between the blades, and twice its CST fit's RMS over the chord.
-    // The median station: the one nearest rank (n - 1) / 2.
+    // The median: the middle station, or the mean of the two middle ones.
     let median = |mut v: Vec<f64>| {
         v.sort_by(f64::total_cmp);
-        v[((v.len() - 1) as f64 * 0.5).round() as usize]
+        let n = v.len();
+        0.5 * (v[(n - 1) / 2] + v[n / 2])
     };
     let spread = median(rows.iter().map(|r| num(&r[col(&h, "blade_spread_deg")])).collect());
     let fit = median(
