@@ -1,13 +1,13 @@
 //! `propbet export`: a prediction or measurements as flight-simulator files (Gazebo, PX4 SIH,
-//! JSBSim) and a plain map; the work is `propbet_pipeline::simexport`'s.
+//! JSBSim) and a plain map; the work is `propbet_simexport`'s.
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_pipeline::simexport::{self, ExportFrom, ExportSpec, Said, Target};
 use propbet_pipeline::spec::{drag_factor_or_default, MeasuredSpec, ModelSpec, PredictSpec, Rotation, TableFormat};
 use propbet_pipeline::values::{parse_atmosphere, parse_length_unit};
+use propbet_simexport::{self as simexport, ExportFrom, ExportSpec, Said, Target};
 
 use crate::compare::RpmSourceArg;
 use crate::output;

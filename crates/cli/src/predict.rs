@@ -686,6 +686,6 @@ fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '
 
 /// The operating points a blade file's polars cover for a comparison: the measured range.
 pub fn cover(measured: &propbet_pipeline::spec::MeasuredSpec) -> Result<(Vec<f64>, SweepAxis)> {
-    let (omegas, js) = propbet_pipeline::validate::cover(measured)?;
+    let (omegas, js) = propbet_pipeline::stages::cover(measured)?;
     Ok((omegas, SweepAxis::J(js)))
 }

@@ -12,7 +12,7 @@ use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{Rotation, StageSpec};
-use propbet_pipeline::validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
+use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
 use crate::output::{write_atomic, Num};
 use crate::polar::{Bar, XfoilProcess};
@@ -70,7 +70,7 @@ pub struct ValidateArgs {
     /// of `--airfoils` (or a NACA 4-digit name) at every station of UIUC's blade, `NAME` (as
     /// drawn) or `NAME:T/C`; `none` lists such props as not validated. Their rows are marked
     /// and kept out of the median over props (docs/studies/other-makers.md).
-    #[arg(long, value_name = "NAME[:T/C]|none", default_value = propbet_pipeline::validate::DEFAULT_GENERIC_SECTION)]
+    #[arg(long, value_name = "NAME[:T/C]|none", default_value = propbet_validate::DEFAULT_GENERIC_SECTION)]
     pub generic_section: String,
     /// TOML file of user-defined effects (docs/effects.md): candidates of every prop's ladders
     /// (all files and each held-out half) beside the built-ins, to measure a new effect on
@@ -143,7 +143,7 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let (md, csv) = table(&validation.rows, &validation.skipped, &model)?;
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
-    let families = propbet_pipeline::expected::to_csv(&propbet_pipeline::expected::summarise(&validation.rows));
+    let families = propbet_pipeline::expected::to_csv(&propbet_validate::summarise(&validation.rows));
     write_atomic(&a.out.join("families.csv"), &[families.as_bytes()], &[])?;
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;

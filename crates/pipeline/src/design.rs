@@ -232,7 +232,7 @@ fn first_dat(dir: &Path, k: &str) -> Result<Option<PathBuf>> {
 }
 
 /// The first (by name) file of `dir` whose name passes `wanted`.
-pub(crate) fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<PathBuf>> {
+pub fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<PathBuf>> {
     let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|reason| Error::Read {
             path: dir.to_path_buf(),

@@ -3,10 +3,6 @@
 //! written by validate (`families.csv`) and shipped with propbet (`data/validation_families.csv`,
 //! copied by `scripts/validation-page.sh` from the same run as the book's validation table).
 
-use propbet_units::stats::quantile;
-
-use crate::validate::{family, family_groups, Row};
-
 /// Validate's numbers over one family of props (or all).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Expected {
@@ -51,39 +47,6 @@ pub fn family_words(family: &str) -> &'static str {
         "SP" => "APC Sport",
         "FF" => "APC Free Flight",
         _ => "APC",
-    }
-}
-
-/// The families' numbers (those with two or more props) and `all`, over the rows of APC's
-/// sections (a row whose section was assumed is left out, as from validate's medians).
-pub fn summarise(rows: &[Row]) -> Vec<Expected> {
-    let mut out: Vec<Expected> = family_groups(rows).into_iter().map(|(f, m)| over(f, &m)).collect();
-    let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
-    if !apc.is_empty() {
-        out.push(over("all".into(), &apc));
-    }
-    out
-}
-
-fn over(family: String, rows: &[&Row]) -> Expected {
-    let med = |f: &dyn Fn(&Row) -> f64| quantile(rows.iter().map(|r| f(r)).filter(|x| x.is_finite()).collect(), 0.5);
-    let larger: Vec<f64> = rows
-        .iter()
-        .map(|r| r.ct.before.median.max(r.cp.before.median))
-        .collect();
-    let band = |k: usize, f: &dyn Fn(&propbet_compare::band::Coverage) -> f64| {
-        med(&|r: &Row| r.band[k].as_ref().map_or(f64::NAN, f))
-    };
-    Expected {
-        family,
-        props: rows.len(),
-        ct_median: med(&|r| r.ct.before.median),
-        cp_median: med(&|r| r.cp.before.median),
-        p90: quantile(larger.clone(), 0.9),
-        above_15: larger.iter().filter(|x| **x > 0.15).count(),
-        band_ct_inside: band(0, &|c| c.inside),
-        band_cp_inside: band(1, &|c| c.inside),
-        band_ct_half_width: band(0, &|c| c.half_width),
     }
 }
 
@@ -141,6 +104,19 @@ pub fn from_csv(text: &str) -> Result<Vec<Expected>, String> {
 /// The numbers shipped with propbet: validate on the 35 shared APC props with the default model.
 pub fn shipped() -> Vec<Expected> {
     from_csv(include_str!("../data/validation_families.csv")).expect("the shipped families table reads")
+}
+
+/// The UIUC family of a prop name, as APC names the line: `apce_10x5` → `E`, `apcsf` → `SF`,
+/// `apcsp` → `SP`, `apcff` → `FF`; other makers: their prefix.
+pub fn family(prop: &str) -> String {
+    let prefix = prop.split('_').next().unwrap_or(prop);
+    match prefix {
+        "apce" => "E".into(),
+        "apcsf" => "SF".into(),
+        "apcsp" => "SP".into(),
+        "apcff" => "FF".into(),
+        other => other.to_string(),
+    }
 }
 
 /// The APC family a file name says, if any: a UIUC name (`apcsf_10x4.7_geom.txt` → `SF`) or an

@@ -75,7 +75,7 @@ pub struct Fidelity {
 
 impl Fidelity {
     /// The relative thrust and torque differences `dt` and `dq`, summed up.
-    pub(crate) fn of(dt: &[f64], dq: &[f64]) -> Fidelity {
+    pub fn of(dt: &[f64], dq: &[f64]) -> Fidelity {
         Fidelity {
             points: dt.len(),
             thrust: Differences::of(dt),

@@ -5,7 +5,6 @@
 //! * [`case`]: case files (`case.toml`) and the plan of stages they ask for.
 //! * [`stages`]: scan, polars, predict, compare, diagnose as functions returning artifacts.
 //! * [`run`]: a case's plan run in memory ([`run::run_case`]).
-//! * [`validate`]: one UIUC propeller predicted and scored ([`validate::validate_prop`]).
 //! * [`model`]: a prop file turned into the model a stage solves; the air.
 //! * [`settings`]: every setting a user gives, declared once (flag, case key, default, range,
 //!   help).
@@ -26,10 +25,8 @@ pub mod export;
 pub mod model;
 pub mod run;
 pub mod settings;
-pub mod simexport;
 pub mod spec;
 pub mod stages;
-pub mod validate;
 pub mod values;
 
 pub use artifacts::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, polar, qprop, units, xfoil};

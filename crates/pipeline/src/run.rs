@@ -98,7 +98,7 @@ impl RunOutcome {
 
 /// Runs one stage without events: its command, time and whether it ran clean (`clean` of its
 /// result) go into `records`.
-pub(crate) fn timed<T>(
+pub fn timed<T>(
     records: &mut Vec<StageRecord>,
     spec: StageSpec,
     run: impl FnOnce() -> Result<T>,

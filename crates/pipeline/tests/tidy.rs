@@ -190,7 +190,7 @@ fn no_file_level_import_cycle_in_any_crate() {
 }
 
 /// The data flow, bottom up: a crate may depend only on crates of a lower rank.
-const RANKS: [(&str, u32); 17] = [
+const RANKS: [(&str, u32); 19] = [
     ("propbet-units", 0),
     ("propbet-plot", 0),
     ("xfoil-runner", 1),
@@ -205,9 +205,11 @@ const RANKS: [(&str, u32); 17] = [
     ("propbet-compare", 3),
     ("propbet-diagnose", 4),
     ("propbet-pipeline", 5),
-    ("propbet-report", 6),
-    ("propbet-cli", 7),
-    ("propbet-python", 8),
+    ("propbet-validate", 6),
+    ("propbet-simexport", 6),
+    ("propbet-report", 7),
+    ("propbet-cli", 8),
+    ("propbet-python", 9),
 ];
 
 /// A crate's manifest: its package name and the names of its `[dependencies]`.
@@ -250,7 +252,16 @@ fn the_binary_depends_on_the_pipeline_the_report_and_the_figures_only() {
         .iter()
         .filter(|d| RANKS.iter().any(|r| r.0 == d.as_str()) || d.as_str() == "nalgebra")
         .collect();
-    assert_eq!(ours, ["propbet-pipeline", "propbet-plot", "propbet-report"]);
+    assert_eq!(
+        ours,
+        [
+            "propbet-pipeline",
+            "propbet-validate",
+            "propbet-simexport",
+            "propbet-plot",
+            "propbet-report"
+        ]
+    );
 }
 
 /// Errors are typed in every library crate (`thiserror`); `anyhow` is the binary's alone.

@@ -5,8 +5,9 @@
 use std::fmt::Write as _;
 
 use propbet_compare::metrics::REGIMES;
-use propbet_pipeline::validate::{family, family_groups, Row};
+use propbet_pipeline::expected::family;
 use propbet_units::stats::median;
+use propbet_validate::{family_groups, Row};
 
 use crate::page::{esc, page};
 

@@ -2,10 +2,10 @@
 //! reduced to coefficients; and the exports of a spec, each made before any is written.
 
 use super::{blade_ixx, export, gazebo, Exported, Point, Source, Target, IXX_ASSUMED};
-use crate::model::Model;
-use crate::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
-use crate::values::{list_text, rpm_list_text, rpm_text};
-use crate::{conflict, out_of_range, Error, Result};
+use propbet_pipeline::model::Model;
+use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
+use propbet_pipeline::values::{list_text, rpm_list_text, rpm_text};
+use propbet_pipeline::{conflict, out_of_range, Error, Result};
 
 /// Where the exported points come from.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,13 +54,13 @@ pub enum Said {
 /// polars computed over `points` (the export's operating points).
 fn load(
     spec: &ModelSpec,
-    points: impl FnOnce() -> Result<(Vec<f64>, crate::spec::SweepAxis)>,
+    points: impl FnOnce() -> Result<(Vec<f64>, propbet_pipeline::spec::SweepAxis)>,
     say: &dyn Fn(Said),
 ) -> Result<Model> {
     if spec.design.is_some() {
         let (omegas, axis) = points()?;
-        let (model, _) = crate::stages::design_model(spec, omegas, axis, false, &|_, _| {})?
-            .ok_or_else(|| crate::Error::Nothing("no design blade".into()))?;
+        let (model, _) = propbet_pipeline::stages::design_model(spec, omegas, axis, false, &|_, _| {})?
+            .ok_or_else(|| propbet_pipeline::Error::Nothing("no design blade".into()))?;
         return Ok(model);
     }
     let model = Model::load(spec, false)?;
@@ -116,8 +116,8 @@ fn rpms_text(omegas: &[f64]) -> String {
 fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
     let model = load(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), say)?;
     let (fluid, fluid_source) = spec.air.fluid()?;
-    let ops = crate::stages::operating_points(spec, model.rotor.tip_radius)?;
-    let results = crate::stages::sweep(&model, &fluid, &ops)?;
+    let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+    let results = propbet_pipeline::stages::sweep(&model, &fluid, &ops)?;
     let unconverged = results.iter().filter(|p| p.not_converged > 0).count();
     if unconverged > 0 {
         say(Said::LeftOut(format!(
@@ -188,7 +188,7 @@ fn measured(
         .map(|s| {
             load(
                 s,
-                || crate::validate::cover(measured).map(|(o, j)| (o, crate::spec::SweepAxis::J(j))),
+                || propbet_pipeline::stages::cover(measured).map(|(o, j)| (o, propbet_pipeline::spec::SweepAxis::J(j))),
                 say,
             )
         })
@@ -201,7 +201,7 @@ fn measured(
         ),
     };
     // Every file, read once; one that does not read stops the export.
-    let batch = crate::stages::load_batch(measured)?;
+    let batch = propbet_pipeline::stages::load_batch(measured)?;
     if let Some(r) = batch.refused.first() {
         return Err(Error::input(std::path::Path::new(&r.file), r.reason.clone()));
     }

@@ -7,8 +7,8 @@ use std::path::Path;
 use propbet_qprop::apc::{pe0_name, pe0_unknown};
 
 use super::{find_apc_file, uiuc_props, validate_prop, Row, Sections, ValidateSpec, Validated};
-use crate::spec::XfoilSpec;
-use crate::{nothing, Result};
+use propbet_pipeline::spec::XfoilSpec;
+use propbet_pipeline::{nothing, Result};
 
 /// The props of the UIUC directory `uiuc` to validate: all of them, or those whose name
 /// contains one of `only`'s comma-separated keys.
@@ -69,10 +69,10 @@ impl ValidateSpec {
             trip: self.trip,
             alphas_deg: Vec::new(),
             panels: None,
-            iter: xfoil_runner::DEFAULT_MAX_ITER,
+            iter: propbet_pipeline::xfoil::DEFAULT_MAX_ITER,
         }
         .check()?;
-        crate::model::effect_registry(self.user_effects.as_deref())?;
+        propbet_pipeline::model::effect_registry(self.user_effects.as_deref())?;
         Ok(())
     }
 
@@ -93,7 +93,7 @@ impl ValidateSpec {
             .xfoil
             .neuralfoil_size
             .as_deref()
-            .unwrap_or(crate::settings::NEURALFOIL_SIZE.default);
+            .unwrap_or(propbet_pipeline::settings::NEURALFOIL_SIZE.default);
         match self.xfoil.engine {
             propbet_polar::Engine::Xfoil => {}
             propbet_polar::Engine::NeuralFoil => {
@@ -111,7 +111,7 @@ impl ValidateSpec {
         if !self.ncrit_effect.is_empty() {
             text.push_str(&format!(
                 ", transition effect from tables at Ncrit {}",
-                crate::spec::ncrit_effect_text(&self.ncrit_effect)
+                propbet_pipeline::spec::ncrit_effect_text(&self.ncrit_effect)
             ));
         }
         text

@@ -4,10 +4,10 @@
 use std::path::{Path, PathBuf};
 
 use super::ValidateSpec;
-use crate::design::first_file;
-use crate::spec::MeasuredSpec;
-use crate::stages;
-use crate::{Error, Result};
+use propbet_pipeline::design::first_file;
+use propbet_pipeline::spec::MeasuredSpec;
+use propbet_pipeline::stages;
+use propbet_pipeline::{Error, Result};
 
 /// The UIUC name of a file of a UIUC directory: `<family>_<D>x<P>` from `<family>_<D>x<P>_*.txt`
 /// (`apcsf_10x4.7_static_kt0835.txt` → `apcsf_10x4.7`); None for a file that is not one.
@@ -47,32 +47,6 @@ pub fn find_apc_file(dir: &Path, name: &str) -> Option<PathBuf> {
     let key = |s: &str| s.to_ascii_uppercase().replace('.', "");
     let want = key(name);
     first_file(dir, |n| key(n) == want).ok().flatten()
-}
-
-/// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
-/// out to 100 rpm) with J from 0 to the largest measured, in steps of 0.05.
-pub fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
-    // The files that read (a refused one is the comparison's to report).
-    let sets = stages::load_batch(measured)?.sets;
-    let points = sets.iter().flat_map(|s| &s.points);
-    let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
-    for p in points {
-        lo = lo.min(p.rpm());
-        hi = hi.max(p.rpm());
-        if let propbet_measure::Speed::AdvanceRatio(j) = p.speed {
-            j_max = j_max.max(j);
-        }
-    }
-    if !(lo.is_finite() && hi > 0.0) {
-        return Err(Error::Nothing("no measured point to cover".into()));
-    }
-    let (lo, hi) = ((lo / 100.0).floor().max(1.0) * 100.0, (hi / 100.0).ceil() * 100.0);
-    let rpms = vec![lo, (0.5 * (lo + hi) / 100.0).round() * 100.0, hi];
-    let mut rpms: Vec<f64> = rpms.into_iter().map(propbet_bemt::units::rpm_to_omega).collect();
-    rpms.dedup();
-    let steps = (j_max / 0.05).ceil() as usize;
-    let js = (0..=steps).map(|k| 0.05 * k as f64).collect();
-    Ok((rpms, js))
 }
 
 /// A prop's measured files, and those that do not read.

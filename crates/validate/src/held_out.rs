@@ -10,10 +10,10 @@ use propbet_effects::{parse_spec, Active, Stack};
 use propbet_measure::MeasuredSet;
 
 use super::row::{ladder_text, median_p90};
-use crate::model::Model;
-use crate::spec::DiagnoseSpec;
-use crate::stages;
-use crate::{Error, Result};
+use propbet_pipeline::model::Model;
+use propbet_pipeline::spec::DiagnoseSpec;
+use propbet_pipeline::stages;
+use propbet_pipeline::{Error, Result};
 
 /// One half's held-out CT and CP errors and its rung in words.
 type HeldOutHalf = (Vec<f64>, Vec<f64>, String);

@@ -11,16 +11,17 @@ use propbet_compare::metrics::{
 };
 use propbet_qprop::{PropFile, PropRow};
 
-use crate::model::{as_written, LoadedProp, Model};
-use crate::run::{timed, StageRecord};
-use crate::spec::{
+use propbet_pipeline::model::{as_written, LoadedProp, Model};
+use propbet_pipeline::run::{timed, StageRecord};
+use propbet_pipeline::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilProcessSpec, XfoilSpec,
 };
-use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
-use crate::{Error, Result};
+use propbet_pipeline::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
+use propbet_pipeline::{Error, Result};
 
 mod all;
 mod blade;
+mod families;
 mod files;
 mod held_out;
 mod hidden;
@@ -29,12 +30,13 @@ mod row;
 pub use all::{sections_for, select_props, validate_all, PropSections, Validation};
 pub use blade::pe0_table;
 use blade::{blade, Blade};
+pub use families::summarise;
 use files::measured_files;
-pub use files::{cover, find_apc_file, uiuc_name, uiuc_props};
+pub use files::{find_apc_file, uiuc_name, uiuc_props};
 use held_out::held_out;
 pub use hidden::hidden_prop;
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
-pub use row::{family, family_groups, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
+pub use row::{family_groups, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
 
 /// Where validate reads and what it asks.
 #[derive(Debug, Clone)]
@@ -57,7 +59,7 @@ pub struct ValidateSpec {
     /// ladders (empty: none).
     pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation of the section lift.
-    pub rotation: crate::spec::Rotation,
+    pub rotation: propbet_pipeline::spec::Rotation,
     /// Drag multiplier of the section model.
     pub drag_factor: f64,
     /// Forced transition x/c of the polars (None: free).
@@ -119,7 +121,7 @@ pub struct Validated {
     /// The table's row.
     pub row: Row,
     /// The uncertainty band's sources by name, each with the compared points predicted at its
-    /// two ends (the band's makings, [`crate::band::BandSpec::at_compared_by_source`]).
+    /// two ends (the band's makings, [`propbet_pipeline::band::BandSpec::at_compared_by_source`]).
     pub band_sources: Vec<(&'static str, [Vec<propbet_compare::ComparedPoint>; 2])>,
 }
 
@@ -240,15 +242,15 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
         sections_from: None,
         airfoils: None,
         omegas,
-        axis: crate::spec::SweepAxis::J(js),
+        axis: propbet_pipeline::spec::SweepAxis::J(js),
         air: AirSpec::default(),
         xfoil: XfoilSpec {
             process: spec.xfoil.clone(),
             ncrit: spec.ncrit,
             trip: spec.trip,
-            alphas_deg: crate::values::parse_list("", crate::settings::ALPHA.default)?,
+            alphas_deg: propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default)?,
             panels: None,
-            iter: xfoil_runner::DEFAULT_MAX_ITER,
+            iter: propbet_pipeline::xfoil::DEFAULT_MAX_ITER,
         },
         ncrit_effect: spec.ncrit_effect.clone(),
         out_prop: dir.join("prop.qprop"),
@@ -281,8 +283,8 @@ fn ladder_spec(model_spec: &ModelSpec, measured: &MeasuredSpec, dir: &Path) -> D
         model: model_spec.clone(),
         measured: measured.clone(),
         effects: vec!["all".into()],
-        folds: crate::settings::FOLDS.default,
-        max_steps: crate::settings::MAX_STEPS.default,
+        folds: propbet_pipeline::settings::FOLDS.default,
+        max_steps: propbet_pipeline::settings::MAX_STEPS.default,
         window: VALIDATION_J_WINDOW,
         out: dir.join("diagnose"),
     }
@@ -373,7 +375,7 @@ fn prepare(
         left_out,
     } = measured_files(spec, prop)?;
     let measured = MeasuredSpec::files(measured);
-    let (omegas, js) = cover(&measured)?;
+    let (omegas, js) = propbet_pipeline::stages::cover(&measured)?;
     let polars_spec = polars_spec(spec, &dir, omegas, js)?;
     let engine = stages::polar_engine(&spec.xfoil)?;
     let polars = timed(
@@ -457,8 +459,11 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let (bands, band_sources) = crate::band::BandSpec::for_model(&model).with_sources(&model, &compared)?;
-    let per3 = per3_file.as_ref().map(|f| crate::stages::read_per3(f)).transpose()?;
+    let (bands, band_sources) = propbet_pipeline::band::BandSpec::for_model(&model).with_sources(&model, &compared)?;
+    let per3 = per3_file
+        .as_ref()
+        .map(|f| propbet_pipeline::stages::read_per3(f))
+        .transpose()?;
     let row = Row {
         prop: prop.to_string(),
         points: ct0.len(),

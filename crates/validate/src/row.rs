@@ -4,6 +4,7 @@
 use propbet_compare::metrics::{in_window, window_errors, Regimes, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW};
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
+use propbet_pipeline::expected::family;
 use propbet_qprop::apc::Pe0;
 
 /// The station solves beyond their polars' Reynolds-number range over `points`, and all their
@@ -176,19 +177,6 @@ pub struct Per3Score {
     pub ct: Spread,
     /// CP's errors.
     pub cp: Spread,
-}
-
-/// The UIUC family of a prop name, as APC names the line: `apce_10x5` → `E`, `apcsf` → `SF`,
-/// `apcsp` → `SP`, `apcff` → `FF`; other makers: their prefix.
-pub fn family(prop: &str) -> String {
-    let prefix = prop.split('_').next().unwrap_or(prop);
-    match prefix {
-        "apce" => "E".into(),
-        "apcsf" => "SF".into(),
-        "apcsp" => "SP".into(),
-        "apcff" => "FF".into(),
-        other => other.to_string(),
-    }
 }
 
 /// The rows of APC's sections (a row whose section was assumed left out, as from validate's

@@ -106,6 +106,32 @@ pub fn load_batch(spec: &MeasuredSpec) -> Result<Batch> {
     Ok(batch)
 }
 
+/// The operating points a prop's polars cover: its measured RPM range (three speeds, rounded
+/// out to 100 rpm) with J from 0 to the largest measured, in steps of 0.05.
+pub fn cover(measured: &MeasuredSpec) -> Result<(Vec<f64>, Vec<f64>)> {
+    // The files that read (a refused one is the comparison's to report).
+    let sets = load_batch(measured)?.sets;
+    let points = sets.iter().flat_map(|s| &s.points);
+    let (mut lo, mut hi, mut j_max) = (f64::INFINITY, 0.0f64, 0.0f64);
+    for p in points {
+        lo = lo.min(p.rpm());
+        hi = hi.max(p.rpm());
+        if let propbet_measure::Speed::AdvanceRatio(j) = p.speed {
+            j_max = j_max.max(j);
+        }
+    }
+    if !(lo.is_finite() && hi > 0.0) {
+        return Err(Error::Nothing("no measured point to cover".into()));
+    }
+    let (lo, hi) = ((lo / 100.0).floor().max(1.0) * 100.0, (hi / 100.0).ceil() * 100.0);
+    let rpms = vec![lo, (0.5 * (lo + hi) / 100.0).round() * 100.0, hi];
+    let mut rpms: Vec<f64> = rpms.into_iter().map(propbet_bemt::units::rpm_to_omega).collect();
+    rpms.dedup();
+    let steps = (j_max / 0.05).ceil() as usize;
+    let js = (0..=steps).map(|k| 0.05 * k as f64).collect();
+    Ok((rpms, js))
+}
+
 /// Reads the measured files of a spec, every one of them: the air choice and the measured sets
 /// (a file that cannot be read is the error).
 pub fn load_measured(spec: &MeasuredSpec) -> Result<(AirChoice, Vec<MeasuredSet>)> {
@@ -278,10 +304,7 @@ pub fn diagnose_sets(
 }
 
 /// The candidate effects `spec` names, less those already in the model's baseline.
-pub(crate) fn candidates(
-    model: &Model,
-    spec: &DiagnoseSpec,
-) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
+pub fn candidates(model: &Model, spec: &DiagnoseSpec) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
     crate::settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
@@ -297,7 +320,7 @@ pub(crate) fn candidates(
 /// What a diagnosis of `sets` runs on: their scored points (inside `spec`'s window) as residual
 /// rows, the model as the diagnosis takes it (its own effects stay under the candidates), and
 /// `spec`'s options.
-pub(crate) fn diagnosis_inputs<'m>(
+pub fn diagnosis_inputs<'m>(
     model: &'m Model,
     spec: &DiagnoseSpec,
     air: AirChoice,

@@ -3,7 +3,7 @@
 use super::*;
 use propbet_compare::metrics::{RegimeError, Regimes, StaticRise, ZeroThrustShift};
 use propbet_diagnose::signature::RpmTrend;
-use propbet_pipeline::validate::{BeforeAfter, Per3Score, Spread};
+use propbet_validate::{BeforeAfter, Per3Score, Spread};
 
 fn row(p: &str, x: f64, apc: bool) -> Row {
     Row {
