@@ -70,7 +70,7 @@ impl BandSpec {
     /// is known (a scan's own accuracy: `propbet_qprop::GeometryAccuracy`), that added to the
     /// blade angle's and the chord's in root-sum-square: independent errors, the scan's
     /// measurement of its mesh on top of how far any blade's numbers stand from the propeller.
-    pub fn for_file(file: &propbet_qprop::PropFile) -> Self {
+    pub(crate) fn for_file(file: &propbet_qprop::PropFile) -> Self {
         let stated = Self::default();
         match file.accuracy {
             None => stated,

@@ -125,7 +125,7 @@ impl SectionPlan {
 
 /// propbet's airfoil library: the coordinates of `props/airfoils` (UIUC's coordinate database;
 /// provenance in its PROVENANCE.md), built in so that APC's sections need no file.
-pub const LIBRARY: [(&str, &str); 6] = [
+pub(crate) const LIBRARY: [(&str, &str); 6] = [
     ("e63", include_str!("../../../props/airfoils/e63.dat")),
     ("clarky", include_str!("../../../props/airfoils/clarky.dat")),
     ("sd7037", include_str!("../../../props/airfoils/sd7037.dat")),
@@ -179,7 +179,7 @@ pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
 
 /// A section of the [`LIBRARY`] by name (`e63`, `Clark-Y`), with what reading its coordinates
 /// notes, as the file's own would be read; None for a name it does not hold.
-pub fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
+pub(crate) fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
     let k = key(name);
     LIBRARY
         .iter()
@@ -189,7 +189,7 @@ pub fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
 
 /// Whether `name` is an airfoil propbet knows without a file: APC12, a NACA 4-digit name or a
 /// name of the [`LIBRARY`].
-pub fn is_known_name(name: &str) -> bool {
+pub(crate) fn is_known_name(name: &str) -> bool {
     let k = key(name);
     k == "apc12" || naca4_from_name(&k).is_some() || LIBRARY.iter().any(|(n, _)| *n == k)
 }
@@ -197,7 +197,7 @@ pub fn is_known_name(name: &str) -> bool {
 /// A section text (`--airfoil`, a case's `airfoil`) with each name that is a file of `dir`
 /// written as that file's path (a case's files are relative to it), the others as they are;
 /// and the files it names (each a file of `dir`, or neither a known name nor found there).
-pub fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
+pub(crate) fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
     let mut files = Vec::new();
     let mut resolve = |name: &str| -> String {
         let n = name.trim();
@@ -249,7 +249,7 @@ pub fn first_file(dir: &Path, wanted: impl Fn(&str) -> bool) -> Result<Option<Pa
 
 /// UIUC's stations (r/R 0.15 to 1 in steps of 0.05, as its geometry files give them), in
 /// hundredths: the stations at which a PE0 blade is predicted.
-pub const UIUC_STATIONS: (u32, u32, u32) = (15, 5, 18);
+pub(crate) const UIUC_STATIONS: (u32, u32, u32) = (15, 5, 18);
 
 /// APC's design blade (PE0 chord and twist) at UIUC's stations, as a UIUC geometry table: the
 /// stations from one step inboard of APC's first (whose chord and twist are held there) to
@@ -270,7 +270,7 @@ pub fn pe0_table(pe0: &Pe0, big_r: f64) -> Vec<propbet_measure::uiuc::GeometryRo
 
 /// The diameter a PE0 file's first line names (`10x4.7SF`, `4.2x4`: inches before the `x`)
 /// [m].
-pub fn pe0_diameter(text: &str) -> Option<f64> {
+pub(crate) fn pe0_diameter(text: &str) -> Option<f64> {
     propbet_qprop::apc::diameter_before_x(text.lines().next()?.split_whitespace().next()?)
 }
 
@@ -493,7 +493,7 @@ fn stations_of(
 
 /// The sections of a plan at each station: an airfoil, or two blended, scaled to the station's
 /// thickness ratio where the table gives one.
-pub fn plan_sections(
+pub(crate) fn plan_sections(
     plan: &SectionPlan,
     radii: &[f64],
     big_r: f64,

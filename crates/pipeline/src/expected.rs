@@ -27,7 +27,7 @@ pub struct Expected {
 }
 
 /// The columns of `families.csv`, in [`Expected`]'s order.
-pub const COLUMNS: [&str; 9] = [
+pub(crate) const COLUMNS: [&str; 9] = [
     "family",
     "props",
     "ct_median",
@@ -40,7 +40,7 @@ pub const COLUMNS: [&str; 9] = [
 ];
 
 /// A family's name in words.
-pub fn family_words(family: &str) -> &'static str {
+pub(crate) fn family_words(family: &str) -> &'static str {
     match family {
         "E" => "APC Electric",
         "SF" => "APC Slow Flyer",
@@ -71,7 +71,7 @@ pub fn to_csv(e: &[Expected]) -> String {
 }
 
 /// Reads `families.csv`'s text.
-pub fn from_csv(text: &str) -> Result<Vec<Expected>, String> {
+pub(crate) fn from_csv(text: &str) -> Result<Vec<Expected>, String> {
     let mut lines = text.lines();
     if lines.next().map(|h| h.split(',').collect::<Vec<_>>()) != Some(COLUMNS.to_vec()) {
         return Err(format!("not a families table: its header is not {}", COLUMNS.join(",")));

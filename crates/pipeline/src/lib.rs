@@ -30,4 +30,5 @@ pub mod stages;
 pub mod values;
 
 pub use artifacts::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, polar, qprop, units, xfoil};
-pub use error::{read_bytes, read_text, Error, Result, INPUT_LIMIT};
+pub(crate) use error::read_bytes;
+pub use error::{read_text, Error, Result};

@@ -23,7 +23,7 @@ pub struct LoadedProp {
 
 /// Reads a prop file, naming the file in every error; `units` [m per unit] replaces its Rfac
 /// and Cfac.
-pub fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
+pub(crate) fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
     let text = crate::error::read_titled_text(path).map_err(|e| match e {
         Error::Input { path, message } => Error::input(path, format!("{message} (is it a QPROP prop file?)")),
         e => e,
@@ -32,7 +32,7 @@ pub fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
 }
 
 /// A prop file's text, read as [`load_prop`] reads the file `path`.
-pub fn prop_from_text(text: &str, path: &Path, units: Option<f64>) -> Result<LoadedProp> {
+pub(crate) fn prop_from_text(text: &str, path: &Path, units: Option<f64>) -> Result<LoadedProp> {
     let (mut file, warnings) = parse_prop(text).map_err(|e| Error::input(path, e))?;
     let mut warnings: Vec<String> = warnings
         .into_iter()

@@ -96,7 +96,7 @@ impl<T> Setting<T> {
     }
 
     /// What a number may be, in words (empty for a choice or a text).
-    pub fn allowed_meaning(&self) -> &'static str {
+    pub(crate) fn allowed_meaning(&self) -> &'static str {
         match self.allowed {
             Allowed::Between { meaning, .. } => meaning,
             _ => "",
@@ -219,7 +219,7 @@ pub const TRIP: Setting<f64> = Setting {
 };
 
 /// A trip as `--trip` takes it: `free` or the chord fraction (`values::parse_trip` reads it back).
-pub fn trip_text(trip: Option<f64>) -> String {
+pub(crate) fn trip_text(trip: Option<f64>) -> String {
     trip.map_or_else(|| "free".to_string(), |x| format!("{x}"))
 }
 

@@ -54,7 +54,7 @@ pub fn read_geometry_table(path: &Path) -> Result<Vec<GeometryRow>> {
 }
 
 /// The most stations a scan cuts.
-pub const MAX_STATIONS: usize = 200;
+pub(crate) const MAX_STATIONS: usize = 200;
 
 /// Runs the scan stage.
 pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
@@ -141,7 +141,7 @@ pub fn scan_accuracy(g: &Geometry) -> GeometryAccuracy {
 /// The scan's prop file: radii and chords in metres, β in degrees; CL0 from thin-airfoil theory
 /// on the fitted camber, the rest [`propbet_qprop::GENERIC`] until `propbet polars` (XFOIL at
 /// each station's Re) replaces them; its accuracy ([`scan_accuracy`]) on a comment line.
-pub fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
+pub(crate) fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
     let generic = propbet_qprop::GENERIC;
     let rows = g
         .stations
@@ -208,7 +208,7 @@ pub fn station_airfoils(name: &str, g: &Geometry) -> (Vec<(usize, String)>, Vec<
 
 /// Most operating points one sweep may hold (RPM values times J or V values): about 200 MB of
 /// results, 50 times the largest sweep of the benchmarks.
-pub const MAX_POINTS: usize = 1_000_000;
+pub(crate) const MAX_POINTS: usize = 1_000_000;
 
 /// The operating points of a predict spec, for a rotor of tip radius `tip_radius` [m].
 pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
@@ -276,7 +276,7 @@ pub fn solve(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<
 }
 
 /// Solves `points` with the model's rotor and `effects` instead of the model's, in order.
-pub fn solve_with(
+pub(crate) fn solve_with(
     model: &Model,
     effects: &Stack,
     fluid: &Fluid,
@@ -306,7 +306,7 @@ pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<
 }
 
 /// [`sweep`] with `effects` instead of the model's.
-pub fn sweep_with(
+pub(crate) fn sweep_with(
     model: &Model,
     effects: &Stack,
     fluid: &Fluid,

@@ -156,7 +156,7 @@ impl PredictSpec {
 }
 
 /// One argument quoted for a POSIX shell where it needs it.
-pub fn shell_word(a: &str) -> String {
+pub(crate) fn shell_word(a: &str) -> String {
     if a.is_empty() || a.contains(|c: char| c.is_whitespace() || "'\"$`\\*?;&|<>()#".contains(c)) {
         format!("'{}'", a.replace('\'', "'\\''"))
     } else {

@@ -103,7 +103,7 @@ fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
 impl ScanSettings {
     /// The settings a list of `propbet scan` flags gives (`--flag value`, `--flag=value`,
     /// `--planar`): how a case's deprecated `scan_args` are read.
-    pub fn from_flags(args: &[String]) -> Result<ScanSettings> {
+    pub(crate) fn from_flags(args: &[String]) -> Result<ScanSettings> {
         let mut table = toml::Table::new();
         let mut it = args.iter();
         while let Some(a) = it.next() {
@@ -141,7 +141,7 @@ impl ScanSettings {
 
     /// The keys a case's `[geometry]` would hold for these settings (for the deprecation
     /// warning of `scan_args`: what to write instead).
-    pub fn as_keys(&self) -> String {
+    pub(crate) fn as_keys(&self) -> String {
         let mut out = Vec::new();
         let mut text = |k: &str, v: &Option<String>| {
             if let Some(v) = v {

@@ -276,7 +276,7 @@ pub fn diagnose(model: &Model, spec: &DiagnoseSpec) -> Result<Diagnosed> {
 
 /// [`diagnose`], with the residuals' signatures before and after the ladder or without them
 /// (`signatures`: what validate's held-out halves, which want the ladder alone, skip).
-pub fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Result<Diagnosed> {
+pub(crate) fn diagnose_with(model: &Model, spec: &DiagnoseSpec, signatures: bool) -> Result<Diagnosed> {
     // The command line's own mistakes are named before any file is read.
     let candidates = candidates(model, spec)?;
     let batch = load_batch(&spec.measured)?;

@@ -9,7 +9,7 @@ use crate::export::Differences;
 // polars
 
 /// An airfoil file, parsed and normalised, with what was repaired in it.
-pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
+pub(crate) fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
     let text = crate::error::read_titled_text(path)?;
     parse_airfoil(&text, path)
 }
@@ -205,7 +205,7 @@ fn reread(geometry: &Path, texts: Vec<String>) -> Result<Vec<Airfoil>> {
 
 /// The spec's airfoil, loaded (and scaled) with its repair notes: None only when the stations
 /// have their own sections; an error when neither is given.
-pub fn spec_airfoil(spec: &PolarsSpec) -> Result<(Option<Airfoil>, Vec<String>)> {
+pub(crate) fn spec_airfoil(spec: &PolarsSpec) -> Result<(Option<Airfoil>, Vec<String>)> {
     match (&spec.airfoil, &spec.station_airfoils) {
         (Some(a), _) => load_airfoil(a, spec.thickness).map(|(f, n)| (Some(f), n)),
         (None, None) => {
@@ -379,7 +379,7 @@ impl Polars {
     /// only the exported QPROP file's (its fallbacks are notes about that file, its fidelity
     /// measured), and an XFOIL fault that the tables interpolate across is a note; a problem is
     /// a station without a polar, which the tables cannot cover.
-    pub fn clean_for(&self, tables: bool) -> bool {
+    pub(crate) fn clean_for(&self, tables: bool) -> bool {
         if !tables {
             return self.clean();
         }
