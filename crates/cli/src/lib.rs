@@ -38,6 +38,7 @@ mod predict;
 mod prop;
 mod run;
 mod scan;
+mod sweep_csv;
 mod synth;
 mod validate;
 

@@ -526,7 +526,7 @@ pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) ->
 
 /// A row of the sweep table.
 #[derive(serde::Serialize)]
-struct SweepRow {
+pub(crate) struct SweepRow {
     rpm: Num,
     v_m_s: Num,
     j: Num,
@@ -592,10 +592,10 @@ fn with_band<'a>(
 }
 
 fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
-    csv_rows(results.iter().map(|p| sweep_row(p, rho, air, tip_radius)), header)
+    Ok(crate::sweep_csv::rows(results, header, rho, air, tip_radius))
 }
 
-fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -> SweepRow {
+pub(crate) fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -> SweepRow {
     SweepRow {
         rpm: p.rpm.into(),
         v_m_s: p.v.into(),
