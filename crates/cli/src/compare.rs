@@ -10,7 +10,7 @@ use propbet_pipeline::compare::ComparedPoint;
 use propbet_pipeline::measure::{MeasuredSet, Refused, RpmSource};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
-use propbet_pipeline::stages::{self, Compared};
+use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_pipeline::values::parse_atmosphere;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
@@ -226,7 +226,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
-    let other = Reference::load(&spec, model.diameter)?;
+    let other = reference(&spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;
     let (_, reference, _) = write(&spec, &model, &c, other.as_ref())?;
     print(&spec, &c, reference.as_ref());
@@ -313,72 +313,13 @@ pub fn write(
     Ok((rep.body, reference, lead))
 }
 
-/// Another code's prediction a comparison names (`--per3` or `--qprop-output`), read once.
-pub struct Reference {
-    /// What it is, for legends and the headline.
-    name: String,
-    table: ReferenceTable,
-}
-
-enum ReferenceTable {
-    Apc(propbet_pipeline::qprop::apc::Per3),
-    Qprop(propbet_pipeline::compare::curves::PerformanceTable),
-}
-
-impl Reference {
-    /// The reference `spec` names, if any (`diameter` [m]: the model's, which turns a QPROP
-    /// output's thrust and torque into coefficients); an error names a file that cannot be read.
-    pub fn load(spec: &CompareSpec, diameter: f64) -> Result<Option<Reference>> {
-        let file_name = |p: &std::path::Path| {
-            p.file_name()
-                .map_or(String::new(), |n| n.to_string_lossy().into_owned())
-        };
-        Ok(match (&spec.per3, &spec.qprop_output) {
-            (Some(p), _) => Some(Reference {
-                name: format!("APC's prediction ({})", file_name(p)),
-                table: ReferenceTable::Apc({
-                    let per3 = stages::read_per3(p)?;
-                    if let Some(first) = per3.skipped.first() {
-                        eprintln!(
-                            "propbet: warning: {}: {} rows of its tables left out (not finite, or beyond any propeller's CT, CP or J), first {first}",
-                            p.display(),
-                            per3.skipped.len()
-                        );
-                    }
-                    per3
-                }),
-            }),
-            (None, Some(p)) => Some(Reference {
-                name: format!("QPROP's prediction ({})", file_name(p)),
-                table: ReferenceTable::Qprop(qprop_table(&stages::read_qprop_output(p)?, diameter)),
-            }),
-            (None, None) => None,
-        })
+/// The reference `spec` names ([`Reference::load`]), its reading's warning on the terminal.
+pub fn reference(spec: &CompareSpec, diameter: f64) -> Result<Option<Reference>> {
+    let r = Reference::load(spec, diameter)?;
+    if let Some(w) = r.as_ref().and_then(|r| r.warning.as_ref()) {
+        eprintln!("propbet: warning: {w}");
     }
-
-    /// (CT, CP) at `rpm` and `j`; None where it has no value.
-    fn at(&self, rpm: f64, j: f64) -> Option<(f64, f64)> {
-        match &self.table {
-            ReferenceTable::Apc(p) => p.at(rpm, j),
-            ReferenceTable::Qprop(q) => q.at(rpm, j),
-        }
-    }
-}
-
-/// A QPROP output's summary rows as (rpm, J, CT, CP) in propbet's coefficients: from its
-/// printed thrust and torque, the output's density and the model's diameter `d` (so that the
-/// radius QPROP's own coefficients use does not matter).
-fn qprop_table(
-    out: &propbet_pipeline::qprop::output::QpropOutput,
-    d: f64,
-) -> propbet_pipeline::compare::curves::PerformanceTable {
-    propbet_pipeline::compare::curves::PerformanceTable::new(out.summary.iter().map(|r| {
-        let (v, rpm, thrust, torque) = (r[0].value, r[1].value, r[3].value, r[4].value);
-        let omega = propbet_pipeline::units::rpm_to_omega(rpm);
-        let n = propbet_pipeline::units::rpm_to_rev_per_s(rpm);
-        let q = propbet_pipeline::compare::Quantities::from_forces(thrust, Some(torque), omega, v, out.rho, d);
-        [rpm, v / (n * d), q.ct.unwrap_or(f64::NAN), q.cp.unwrap_or(f64::NAN)]
-    }))
+    Ok(r)
 }
 
 /// A short summary on the terminal; `reference`: another code's name and headline (from

@@ -345,7 +345,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             });
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
-            let other = crate::compare::Reference::load(spec, model.diameter)?;
+            let other = crate::compare::reference(spec, model.diameter)?;
             let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref())?;
             w.lead = lead;
             if verbose {

@@ -174,7 +174,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             }
             StageSpec::Compare(s) => {
                 let (c, model) = compared.next().expect("two comparisons");
-                let other = crate::compare::Reference::load(s, model.diameter)?;
+                let other = crate::compare::reference(s, model.diameter)?;
                 let (_, reference, _) = crate::compare::write(s, model, c, other.as_ref())?;
                 crate::compare::print(s, c, reference.as_ref());
             }

@@ -321,11 +321,13 @@ pub(crate) fn sweep_with(
 
 mod measured;
 mod polar;
+mod reference;
 mod section;
 mod synth;
 
 pub use measured::*;
 pub use polar::*;
+pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};
 
