@@ -12,6 +12,7 @@ use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_pipeline::values::parse_atmosphere;
+use propbet_report::answer::ReferenceScore;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};
@@ -242,7 +243,7 @@ pub fn write(
     model: &Model,
     c: &Compared,
     other: Option<&Reference>,
-) -> Result<(String, Option<serde_json::Value>, Option<propbet_plot::Figure>)> {
+) -> Result<(String, Option<ReferenceScore>, Option<propbet_plot::Figure>)> {
     let setup = stages::setup(model, c.air, model.effects.clone());
     let curves = propbet_pipeline::compare::curves::curves(&setup, &c.points)?;
     let band = propbet_pipeline::band::BandSpec::for_model(model).along_curves(model, c.air, &c.points, &curves)?;
@@ -298,8 +299,8 @@ pub fn write(
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
     let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems(), &c.warnings());
-    if let (Some(r), serde_json::Value::Object(o)) = (rep.json.get("reference"), &mut summary) {
-        o.insert("reference".into(), r.clone());
+    if let (Some(r), serde_json::Value::Object(o)) = (&rep.reference, &mut summary) {
+        o.insert("reference".into(), r.json());
     }
     let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');
@@ -308,9 +309,8 @@ pub fn write(
     write_atomic(&out.join("points.csv"), &[points_csv(&c.names, &c.points)?], &inputs)?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;
-    let reference = rep.json.get("reference").cloned();
     let lead = report::lead_figure(&rep.figures);
-    Ok((rep.body, reference, lead))
+    Ok((rep.body, rep.reference, lead))
 }
 
 /// The reference `spec` names ([`Reference::load`]), its reading's warning on the terminal.
@@ -324,7 +324,7 @@ pub fn reference(spec: &CompareSpec, diameter: f64) -> Result<Option<Reference>>
 
 /// A short summary on the terminal; `reference`: another code's name and headline (from
 /// [`write`]), printed under propbet's.
-pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Value>) {
+pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&ReferenceScore>) {
     print_measured(&c.names, &c.sets, &c.refused);
     let m = &c.metrics;
     // The headline: the scored window, static and forward flight apart (as the report).
@@ -348,12 +348,8 @@ pub fn print(spec: &CompareSpec, c: &Compared, reference: Option<&serde_json::Va
             }
         }
         let theirs = reference.and_then(|r| {
-            let g = r["headline"]
-                .as_array()?
-                .iter()
-                .find(|h| h["points"] == g.name.as_str())?;
-            let e = |q: &str| g["errors"][q]["mean_error"].as_f64();
-            Some((r["name"].as_str()?.to_string(), e("thrust")?, e("torque")))
+            let e = |q: &str| r.mean_error(&g.name, q);
+            Some((r.name.clone(), e("thrust")?, e("torque")))
         });
         if let Some((name, t, q)) = theirs {
             let torque = q.map_or(String::new(), |q| format!(", torque {:+.1} %", 100.0 * q));

@@ -188,7 +188,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
     let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec().engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
-    let mut reference: Option<serde_json::Value> = None;
+    let mut reference: Option<propbet_report::answer::ReferenceScore> = None;
     let mut lead: Option<propbet_plot::Figure> = None;
     let mut write_err: Option<anyhow::Error> = None;
     let verbose = a.verbose;
@@ -275,7 +275,7 @@ struct Written {
     /// The compare or diagnose page's body, for the run's report.
     page: Option<String>,
     /// Another code's prediction scored beside propbet's (compare's reference headline).
-    reference: Option<serde_json::Value>,
+    reference: Option<propbet_report::answer::ReferenceScore>,
     /// The figure the run's report leads with (compare's).
     lead: Option<propbet_plot::Figure>,
     /// The stage's short status: its first line, then a few details (empty with `--verbose`,

@@ -138,7 +138,7 @@ pub fn hover_figure(curves: &Curves, points: &[ComparedPoint]) -> Option<Figure>
 
 /// The headline table: per group (static, forward flight) propbet's mean thrust and torque
 /// errors with the worst point, the reference's beside them; then the hover metrics.
-pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points: &[ComparedPoint]) -> String {
+pub fn headline_html(m: &Metrics, reference: Option<&ReferenceScore>, points: &[ComparedPoint]) -> String {
     let rows = headline_rows(m, reference);
     let mut h = String::new();
     if rows.is_empty() {
@@ -147,7 +147,7 @@ pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points:
         );
         return h;
     }
-    let theirs = reference.map(reference_name);
+    let theirs = reference.map(ReferenceScore::short_name);
     h.push_str("<table class=\"headline\"><tr><th class=\"text\">points</th><th>n</th>");
     for q in ["thrust", "torque"] {
         let _ = write!(h, "<th>{q}, propbet</th>");
@@ -200,9 +200,65 @@ pub fn headline_html(m: &Metrics, reference: Option<&serde_json::Value>, points:
     h
 }
 
+/// Another code's prediction scored on the same points, window and measure as propbet's: what
+/// the headline, the terminal and `summary.json` say beside propbet's numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReferenceScore {
+    /// What it is ("APC's prediction (PER3_10x7.dat)").
+    pub name: String,
+    /// Its scores.
+    pub metrics: Metrics,
+}
+
+impl ReferenceScore {
+    /// Its mean relative error of `quantity` (thrust, torque) over the headline group named
+    /// `group`; None where it has none (or not a finite one).
+    pub fn mean_error(&self, group: &str, quantity: &str) -> Option<f64> {
+        let g = self.metrics.headline.iter().find(|g| g.name == group)?;
+        Some(g.metrics.get(quantity)?.mean_rel).filter(|x| x.is_finite())
+    }
+
+    /// Its short name ("APC's prediction" of "APC's prediction (PER3_10x47SF.dat)").
+    pub fn short_name(&self) -> &str {
+        self.name.split(" (").next().unwrap_or(&self.name)
+    }
+
+    /// As `metrics.json` and `summary.json` hold it: its name and [`headline_json`].
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({"name": self.name, "headline": headline_json(&self.metrics)})
+    }
+}
+
+/// The headline as JSON (`summary.json` of `propbet compare` and `propbet run`): per group of
+/// points (static, forward flight), the scored points' count and, per quantity, the mean and
+/// mean absolute relative error and the worst point.
+pub fn headline_json(m: &Metrics) -> serde_json::Value {
+    use serde_json::json;
+    let groups: Vec<_> = m
+        .headline
+        .iter()
+        .map(|g| {
+            let q: serde_json::Map<String, serde_json::Value> = ["thrust", "torque"]
+                .iter()
+                .filter_map(|q| {
+                    g.metrics.get(*q).map(|m| {
+                        (
+                            (*q).to_string(),
+                            json!({"n": m.n, "mean_error": m.mean_rel, "mean_abs_error": m.mean_abs_rel,
+                                   "worst_error": m.max_rel, "worst_at": m.max_rel_at}),
+                        )
+                    })
+                })
+                .collect();
+            json!({"points": g.name, "count": g.points, "errors": q})
+        })
+        .collect();
+    json!(groups)
+}
+
 /// The headline groups with another code's beside them: per group (static, forward flight) its
 /// name, scored points, and per quantity (thrust, torque) propbet's mean relative error and the
-/// other code's on the same points (from its `headline_json`), where there is one.
+/// other code's on the same points, where there is one.
 pub struct HeadlineRow {
     /// "static", "forward flight, below 85 % of the zero-thrust J".
     pub name: String,
@@ -212,44 +268,28 @@ pub struct HeadlineRow {
     pub errors: Vec<(&'static str, Metric, Option<f64>)>,
 }
 
-/// The rows of [`HeadlineRow`] from the metrics and an optional reference JSON
-/// (`{"name": ..., "headline": headline_json(..)}`).
-pub fn headline_rows(m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<HeadlineRow> {
+/// The rows of [`HeadlineRow`] from the metrics and another code's scores, if any.
+pub fn headline_rows(m: &Metrics, reference: Option<&ReferenceScore>) -> Vec<HeadlineRow> {
     m.headline
         .iter()
-        .map(|g| {
-            let theirs = reference.and_then(|r| {
-                r["headline"]
-                    .as_array()?
-                    .iter()
-                    .find(|h| h["points"] == g.name.as_str())
-                    .cloned()
-            });
-            HeadlineRow {
-                name: g.name.clone(),
-                points: g.points,
-                errors: ["thrust", "torque"]
-                    .into_iter()
-                    .filter_map(|q| {
-                        let x = g.metrics.get(q)?.clone();
-                        let other = theirs.as_ref().and_then(|t| t["errors"][q]["mean_error"].as_f64());
-                        Some((q, x, other))
-                    })
-                    .collect(),
-            }
+        .map(|g| HeadlineRow {
+            name: g.name.clone(),
+            points: g.points,
+            errors: ["thrust", "torque"]
+                .into_iter()
+                .filter_map(|q| {
+                    let x = g.metrics.get(q)?.clone();
+                    let other = reference.and_then(|r| r.mean_error(&g.name, q));
+                    Some((q, x, other))
+                })
+                .collect(),
         })
         .collect()
 }
 
-/// The reference's short name ("APC's prediction" of "APC's prediction (PER3_10x47SF.dat)").
-pub fn reference_name(reference: &serde_json::Value) -> String {
-    let name = reference["name"].as_str().unwrap_or("the reference");
-    name.split(" (").next().unwrap_or(name).to_string()
-}
-
 /// The comparison in a few short lines (the terminal of `propbet run`): the files read and rows
 /// dropped, then per headline group the mean thrust and torque error, another code's beside.
-pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::Value>) -> Vec<String> {
+pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&ReferenceScore>) -> Vec<String> {
     let rows: usize = sets.iter().map(|s| s.rows).sum();
     let points: usize = sets.iter().map(|s| s.points.len()).sum();
     let faults: usize = sets.iter().map(MeasuredSet::faults).sum();
@@ -278,7 +318,7 @@ pub fn brief(sets: &[MeasuredSet], m: &Metrics, reference: Option<&serde_json::V
             r.points,
             ours.join(", "),
             match (reference, theirs.is_empty()) {
-                (Some(rf), false) => format!("; {}: {}", reference_name(rf), theirs.join(", ")),
+                (Some(rf), false) => format!("; {}: {}", rf.short_name(), theirs.join(", ")),
                 _ => String::new(),
             }
         ));

@@ -78,6 +78,8 @@ pub struct Report {
     pub markdown: String,
     /// Everything, as JSON.
     pub json: serde_json::Value,
+    /// The other code's scores, when the input named one.
+    pub reference: Option<ReferenceScore>,
     /// Figures by file stem ("coefficients", "static", "residuals").
     pub figures: Vec<(String, Figure)>,
 }
@@ -95,34 +97,7 @@ fn label(q: &str) -> (&'static str, &'static str) {
     LABELS.iter().find(|l| l.0 == q).map_or(("?", ""), |l| (l.1, l.2))
 }
 
-use crate::answer::pct;
-
-/// The headline as JSON (`summary.json` of `propbet compare` and `propbet run`): per group of
-/// points (static, forward flight), the scored points' count and, per quantity, the mean and
-/// mean absolute relative error and the worst point.
-pub fn headline_json(m: &Metrics) -> serde_json::Value {
-    use serde_json::json;
-    let groups: Vec<_> = m
-        .headline
-        .iter()
-        .map(|g| {
-            let q: serde_json::Map<String, serde_json::Value> = ["thrust", "torque"]
-                .iter()
-                .filter_map(|q| {
-                    g.metrics.get(*q).map(|m| {
-                        (
-                            (*q).to_string(),
-                            json!({"n": m.n, "mean_error": m.mean_rel, "mean_abs_error": m.mean_abs_rel,
-                                   "worst_error": m.max_rel, "worst_at": m.max_rel_at}),
-                        )
-                    })
-                })
-                .collect();
-            json!({"points": g.name, "count": g.points, "errors": q})
-        })
-        .collect();
-    json!(groups)
-}
+use crate::answer::{headline_json, pct, ReferenceScore};
 
 /// The accuracy as `propbet validate` measures it: the median |predicted / measured − 1| of CT
 /// and CP over the points below 85 % of each sweep's zero-thrust J (the same points and numbers
@@ -517,15 +492,16 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     // The headline: the scored window (validate's and diagnose's), static and forward flight
     // apart, per quantity, with the worst point named and the other code's error beside it;
     // then the hover metrics where there are static points.
-    let reference_json = reference
-        .as_ref()
-        .map(|r| serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}));
+    let reference_score = reference.as_ref().map(|r| ReferenceScore {
+        name: r.name.to_string(),
+        metrics: r.metrics.clone(),
+    });
     // Measurements of another propeller make every number below meaningless: said first.
     let mismatch = propbet_compare::plausible::of_points(pts).map(|m| m.message());
     if let Some(w) = &mismatch {
         let _ = writeln!(h, "<p class=\"warn\"><strong>{}</strong></p>", esc(w));
     }
-    h.push_str(&crate::answer::headline_html(m, reference_json.as_ref(), pts));
+    h.push_str(&crate::answer::headline_html(m, reference_score.as_ref(), pts));
     if m.outside_window > 0 {
         let _ = writeln!(
             h,
@@ -594,6 +570,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         body: h,
         markdown: crate::md_safe(&md),
         json,
+        reference: reference_score,
         figures,
     })
 }

@@ -16,7 +16,7 @@ pub fn page(
     plan: &RunPlan,
     run: &RunOutcome,
     pages: &[(&'static str, String)],
-    reference: Option<&serde_json::Value>,
+    reference: Option<&crate::answer::ReferenceScore>,
     lead: Option<&Figure>,
 ) -> Result<String, PlotError> {
     let mut h = String::with_capacity(4_000_000);
@@ -64,7 +64,7 @@ pub fn page(
 }
 
 /// The answer first: how close the prediction is and what is missing.
-fn answer_html(h: &mut String, run: &RunOutcome, reference: Option<&serde_json::Value>) {
+fn answer_html(h: &mut String, run: &RunOutcome, reference: Option<&crate::answer::ReferenceScore>) {
     if let Some(c) = &run.compared {
         h.push_str("<section id=\"answer\"><h2>How close the prediction is</h2>\n");
         h.push_str(&crate::answer::headline_html(&c.metrics, reference, &c.points));
@@ -406,7 +406,7 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
     let headline = run
         .compared
         .as_ref()
-        .map_or(json!([]), |c| crate::compare::headline_json(&c.metrics));
+        .map_or(json!([]), |c| crate::answer::headline_json(&c.metrics));
     let diagnosis = run
         .diagnosed
         .as_ref()

@@ -15,7 +15,7 @@ pub(super) fn lead_html(
     plan: &propbet_pipeline::case::RunPlan,
     run: &RunOutcome,
     lead: Option<&Figure>,
-    reference: Option<&serde_json::Value>,
+    reference: Option<&crate::answer::ReferenceScore>,
 ) -> Result<(), PlotError> {
     let Some(c) = &run.compared else { return Ok(()) };
     h.push_str("<div id=\"verdict\" style=\"display:flex;gap:1.5em;align-items:flex-start;flex-wrap:wrap\">\n<div style=\"flex:1 1 360px;font-size:1.05em\">\n");
@@ -65,7 +65,7 @@ pub(super) fn lead_html(
             h,
             "<figure style=\"flex:0 1 900px;margin:0\">{}<figcaption class=\"note\">Dots: measured, one colour per speed; lines: propbet's prediction; shaded: its uncertainty band{}.</figcaption></figure>",
             propbet_plot::svg_inline(f)?,
-            reference.map_or(String::new(), |r| format!("; dashed: {}", esc(&crate::answer::reference_name(r))))
+            reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.short_name())))
         );
     }
     h.push_str("</div>\n");
