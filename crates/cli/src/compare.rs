@@ -244,9 +244,7 @@ pub fn write(
     c: &Compared,
     other: Option<&Reference>,
 ) -> Result<(String, Option<ReferenceScore>, Option<propbet_plot::Figure>)> {
-    let setup = stages::setup(model, c.air, model.effects.clone());
-    let curves = propbet_pipeline::compare::curves::curves(&setup, &c.points)?;
-    let band = propbet_pipeline::band::BandSpec::for_model(model).along_curves(model, c.air, &c.points, &curves)?;
+    let (curves, band) = c.curves(model)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(

@@ -179,6 +179,18 @@ pub struct Compared {
 }
 
 impl Compared {
+    /// The model's curves through the measured points (`propbet_compare::curves`) and the
+    /// uncertainty band along them: what the comparison's figures draw.
+    pub fn curves(
+        &self,
+        model: &Model,
+    ) -> Result<(propbet_compare::curves::Curves, propbet_compare::band::BandCurves)> {
+        let setup = setup(model, self.air, model.effects.clone());
+        let curves = propbet_compare::curves::curves(&setup, &self.points)?;
+        let band = crate::band::BandSpec::for_model(model).along_curves(model, self.air, &self.points, &curves)?;
+        Ok((curves, band))
+    }
+
     /// Measurements that cannot be of this propeller (a warning, exit 1).
     pub fn mismatch(&self) -> Option<propbet_compare::plausible::Mismatch> {
         propbet_compare::plausible::of_points(&self.points)
