@@ -50,8 +50,9 @@ def folds(props):
 
 
 def median(values):
-    """validate's median (`propbet_compare::metrics::quantile` at 0.5: the value at the rounded
-    middle rank), so that the numbers here are the table's."""
+    """validate's median when this study was run (the value at the rounded middle rank), so
+    that the numbers here are that day's table's; propbet's median is now the mean of the two
+    middle values for an even count (`propbet_units::stats::median`)."""
     v = sorted(values)
     return v[int((len(v) - 1) * 0.5 + 0.5)]
 
