@@ -564,7 +564,7 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         &top,
     );
 
-    let json = json(input, reference.as_ref(), &trends)?;
+    let json = json(input, reference_score.as_ref(), &trends)?;
     Ok(Report {
         html: page(&format!("propbet: {}", input.prop), "", &h),
         body: h,

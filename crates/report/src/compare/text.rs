@@ -70,7 +70,7 @@ pub(super) fn markdown(
 /// trends, every point.
 pub(super) fn json(
     input: &ReportInput,
-    reference: Option<&Scored>,
+    reference: Option<&ReferenceScore>,
     trends: &[String],
 ) -> Result<serde_json::Value, PlotError> {
     let (pts, m) = (input.points, input.metrics);
@@ -94,10 +94,7 @@ pub(super) fn json(
     .map_err(|e| PlotError::from_message(format!("JSON: {e}")))?;
     Ok(match (reference, json) {
         (Some(r), serde_json::Value::Object(mut o)) => {
-            o.insert(
-                "reference".into(),
-                serde_json::json!({"name": r.name, "headline": headline_json(&r.metrics)}),
-            );
+            o.insert("reference".into(), r.json());
             serde_json::Value::Object(o)
         }
         (_, j) => j,
