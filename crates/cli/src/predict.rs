@@ -616,8 +616,7 @@ pub(crate) fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -
         not_converged: p.not_converged,
         flags: propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
         rho_kg_m3: rho.into(),
-        // No comma in the cell: the table stays splittable on commas.
-        air: air.replace(',', ";"),
+        air: crate::sweep_csv::air_cell(air),
     }
 }
 

@@ -10,6 +10,12 @@ use crate::output::push_num;
 pub const HEADER: &str = "rpm,v_m_s,j,thrust_n,torque_nm,power_w,ct,cp,cq,eta,ct_qprop,cp_qprop,adv_qprop,dv_m_s,\
 cl_avg,cd_avg,not_converged,flags,rho_kg_m3,air";
 
+/// Where the air came from as the sweep table's `air` cell: no comma in it, so that the table
+/// stays splittable on commas.
+pub fn air_cell(air: &str) -> String {
+    air.replace(',', ";")
+}
+
 /// Appends `text` as one CSV field, quoted (its quotes doubled) where it holds a comma, a quote
 /// or a line break, as the csv crate's necessary quoting does.
 fn push_field(out: &mut Vec<u8>, text: &str) {
@@ -28,7 +34,7 @@ fn push_field(out: &mut Vec<u8>, text: &str) {
 }
 
 /// The rows of `results` (with the header line first when `header`): the air's density `rho`,
-/// where the air came from (`air`, its commas made semicolons) and the tip radius for the
+/// where the air came from (`air`, as [`air_cell`] writes it) and the tip radius for the
 /// flags of [`propbet_pipeline::bemt::check::implausible`].
 pub fn rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Vec<u8> {
     let mut out = Vec::with_capacity(results.len() * 256 + HEADER.len() + 1);
@@ -40,7 +46,7 @@ pub fn rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radi
     let mut tail = vec![b','];
     push_num(&mut tail, Some(rho));
     tail.push(b',');
-    push_field(&mut tail, &air.replace(',', ";"));
+    push_field(&mut tail, &air_cell(air));
     tail.push(b'\n');
     for p in results {
         let numbers = [

@@ -62,10 +62,9 @@ pub struct ReferenceInput<'a> {
 }
 
 /// A reference's curves and scores, as the figures and the headline use them.
-struct Scored<'a> {
-    name: &'a str,
+struct Scored {
+    score: ReferenceScore,
     curves: Curves,
-    metrics: Metrics,
 }
 
 /// The report in its three forms, and its figures.
@@ -292,7 +291,7 @@ pub fn speed_trends(points: &[ComparedPoint]) -> Vec<String> {
 }
 
 /// The other prediction, scored on the same points, window and measure as propbet's.
-fn scored_reference<'b>(input: &'b ReportInput) -> Option<Scored<'b>> {
+fn scored_reference(input: &ReportInput) -> Option<Scored> {
     let pts = input.points;
     input.reference.as_ref().map(|r| {
         let stat: Vec<f64> = pts.iter().filter(|p| p.is_static()).map(|p| p.air.fluid.rho).collect();
@@ -302,13 +301,15 @@ fn scored_reference<'b>(input: &'b ReportInput) -> Option<Scored<'b>> {
             stat.iter().sum::<f64>() / stat.len() as f64
         };
         Scored {
-            name: &r.name,
+            score: ReferenceScore {
+                name: r.name.clone(),
+                metrics: propbet_compare::metrics::metrics(&propbet_compare::curves::with_reference(
+                    pts,
+                    r.at,
+                    input.diameter,
+                )),
+            },
             curves: propbet_compare::curves::reference_curves(input.curves, r.at, input.diameter, rho),
-            metrics: propbet_compare::metrics::metrics(&propbet_compare::curves::with_reference(
-                pts,
-                r.at,
-                input.diameter,
-            )),
         }
     })
 }
@@ -452,7 +453,7 @@ fn figures_html(
             "coefficients" => format!(
                 "<figcaption>Dots: measured, one colour per sweep (legend); solid lines: propbet's prediction at the sweep's mean speed, in its colour{}{}.</figcaption>",
                 band.map_or(String::new(), |b| format!("; {}", esc(&band_caption(b)))),
-                reference.map_or(String::new(), |r| format!("; dashed: {}", esc(r.name)))
+                reference.map_or(String::new(), |r| format!("; dashed: {}", esc(&r.score.name)))
             ),
             "static" => band.map_or(String::new(), |b| format!("<figcaption>{}.</figcaption>", esc(&band_caption(b)))),
             _ => String::new(),
@@ -492,16 +493,16 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     // The headline: the scored window (validate's and diagnose's), static and forward flight
     // apart, per quantity, with the worst point named and the other code's error beside it;
     // then the hover metrics where there are static points.
-    let reference_score = reference.as_ref().map(|r| ReferenceScore {
-        name: r.name.to_string(),
-        metrics: r.metrics.clone(),
-    });
     // Measurements of another propeller make every number below meaningless: said first.
     let mismatch = propbet_compare::plausible::of_points(pts).map(|m| m.message());
     if let Some(w) = &mismatch {
         let _ = writeln!(h, "<p class=\"warn\"><strong>{}</strong></p>", esc(w));
     }
-    h.push_str(&crate::answer::headline_html(m, reference_score.as_ref(), pts));
+    h.push_str(&crate::answer::headline_html(
+        m,
+        reference.as_ref().map(|r| &r.score),
+        pts,
+    ));
     if m.outside_window > 0 {
         let _ = writeln!(
             h,
@@ -564,13 +565,13 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         &top,
     );
 
-    let json = json(input, reference_score.as_ref(), &trends)?;
+    let json = json(input, reference.as_ref().map(|r| &r.score), &trends)?;
     Ok(Report {
         html: page(&format!("propbet: {}", input.prop), "", &h),
         body: h,
         markdown: crate::md_safe(&md),
         json,
-        reference: reference_score,
+        reference: reference.map(|r| r.score),
         figures,
     })
 }

@@ -151,7 +151,7 @@ pub(super) fn static_figure(
                     .chain(reference.and_then(|r| {
                         let c = r.curves.statics.as_ref()?;
                         Some(Series::new(
-                            r.name,
+                            &r.score.name,
                             c.iter().filter_map(|(x, c)| c.get(q).map(|v| (*x, v))).collect(),
                             Mark::Dashed,
                             Some(2),

@@ -41,8 +41,8 @@ pub(super) fn markdown(
         md_table(&mut md, g);
     }
     if let Some(r) = reference {
-        let _ = writeln!(md, "## {}, on the same points\n", r.name);
-        for g in &r.metrics.headline {
+        let _ = writeln!(md, "## {}, on the same points\n", r.score.name);
+        for g in &r.score.metrics.headline {
             md_table(&mut md, g);
         }
     }
