@@ -231,6 +231,7 @@ mod compare;
 mod diagnose;
 mod docs;
 mod exit_codes;
+mod motor;
 mod neuralfoil;
 mod polars;
 mod qprop_real;

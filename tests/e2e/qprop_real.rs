@@ -9,13 +9,13 @@ use std::sync::OnceLock;
 
 use super::{col, read_csv, repo, run, stderr};
 
-fn qprop_source() -> PathBuf {
+pub(super) fn qprop_source() -> PathBuf {
     repo().join("../shared/reference/qprop")
 }
 
 /// QPROP 1.22 built once per test binary (BUILD.md's one gfortran line) in a temporary folder
 /// that lives as long as the process.
-fn qprop() -> &'static Path {
+pub(super) fn qprop() -> &'static Path {
     static EXE: OnceLock<PathBuf> = OnceLock::new();
     EXE.get_or_init(|| {
         let dir = Box::leak(Box::new(tempfile::tempdir().unwrap()));
@@ -272,56 +272,4 @@ fn every_uiuc_geometry_exports_to_a_file_real_qprop_reads() {
 fn the_default_case_export_through_real_qprop_gives_the_reported_fidelity() {
     let cache = tempfile::tempdir().unwrap();
     exported_file_through_real_qprop("apcsf_10x4.7", &["--cache", cache.path().to_str().unwrap()], None);
-}
-
-#[test]
-fn a_volts_run_with_drelas_motor_is_propbets_propeller_at_qprops_rpm() {
-    // propbet has no motor model yet: QPROP's (Drela's brushed Speed-400, s400-6v-dd) sets the
-    // RPM from the battery voltage, and at each of its operating points propbet's propeller
-    // must give QPROP's thrust and torque, and that torque must be what the motor delivers at
-    // QPROP's current: (I - Io) / Kv, Kv in rad/s per volt.
-    let runs = qprop_source().join("runs");
-    let work = tempfile::tempdir().unwrap();
-    for f in ["cam6x3", "s400-6v-dd"] {
-        std::fs::copy(runs.join(f), work.path().join(f)).unwrap();
-    }
-    std::fs::write(work.path().join("qcon.def"), "1.225\n1.78e-5\n340.0\n").unwrap();
-    let o = Command::new(qprop())
-        .args(["cam6x3", "s400-6v-dd", "0,12/4", "0", "6,9,1"])
-        .current_dir(work.path())
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&o.stdout);
-    let rows: Vec<Vec<f64>> = text
-        .lines()
-        .filter(|l| !l.trim_start().starts_with('#'))
-        .map(|l| {
-            l.split_whitespace()
-                .filter_map(|w| w.parse().ok())
-                .collect::<Vec<f64>>()
-        })
-        .filter(|r| r.len() >= 10)
-        .collect();
-    assert_eq!(rows.len(), 16, "4 speeds x 4 voltages: {text}");
-    let (io, kv) = (0.77, 2760.0 * std::f64::consts::PI / 30.0);
-    let prop = runs.join("cam6x3").display().to_string();
-    for r in &rows {
-        let (v, rpm, t, q, volts, amps) = (r[0], r[1], r[3], r[4], r[6], r[7]);
-        let (tp, qp) = propbet_qprop_compat_point(&prop, v, rpm, work.path());
-        // QPROP prints the RPM to 4 digits: thrust and torque go as its square.
-        let tol = 2.0 * PRINTED;
-        assert!(
-            (tp / t - 1.0).abs() < tol,
-            "{volts} V, V {v}: QPROP T {t} at {rpm} rpm, propbet {tp}"
-        );
-        assert!(
-            (qp / q - 1.0).abs() < tol,
-            "{volts} V, V {v}: QPROP Q {q} at {rpm} rpm, propbet {qp}"
-        );
-        let q_motor = (amps - io) / kv;
-        assert!(
-            (qp / q_motor - 1.0).abs() < tol,
-            "{volts} V, V {v}: motor {q_motor} N m, propbet {qp}"
-        );
-    }
 }

@@ -179,7 +179,7 @@ impl ExportArgs {
                 bail!("give --prop with --rpm (a prediction) or --measured (measurements)");
             };
             let sweep = SweepArgs {
-                rpm: self.rpm.clone().unwrap_or_default(),
+                rpm: self.rpm.clone(),
                 j: self.j.clone(),
                 v: self.v.clone(),
             };

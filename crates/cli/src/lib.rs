@@ -32,8 +32,10 @@ mod diagnose;
 mod engine;
 mod export;
 mod hidden;
+mod motor_flags;
 mod output;
 mod polar;
+mod powered;
 mod predict;
 mod prop;
 mod run;
@@ -88,7 +90,8 @@ pub enum Command {
         "Exit status: 0 done; 1 done, with XFOIL faults it reports; 2 error."
     ))]
     Polar(Box<polar::PolarArgs>),
-    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V).
+    /// Predict thrust, torque, power and coefficients of a QPROP prop file over RPM x J (or V),
+    /// or on a motor (`--motor`) at voltages, currents or thrusts: RPM, current and g/W too.
     #[command(after_help = concat!(
         "Example:\n  propbet predict --prop props/cam6x3/cam6x3.qprop --rpm 4000,6000 --j 0:0.6:0.05\n\n",
         "Exit status: 0 done; 1 done, with unconverged points it reports; 2 error."
@@ -231,6 +234,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Run(a) => run::run(&a),
         Command::Validate(a) => validate::run(&a),
         Command::Hidden(a) => hidden::run(&a),
+        Command::Predict(a) if a.motor.motor.is_some() => powered::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Prop(a) => prop::run(&a),
         Command::Export(a) => export::run(&a),

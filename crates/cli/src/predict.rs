@@ -35,6 +35,9 @@ pub struct PredictArgs {
     /// The operating points.
     #[command(flatten)]
     pub points: SweepArgs,
+    /// The motor (optional).
+    #[command(flatten)]
+    pub motor: crate::motor_flags::MotorArgs,
     /// Air properties.
     #[command(flatten)]
     pub air: FluidArgs,
@@ -308,7 +311,7 @@ impl PredictArgs {
 pub struct SweepArgs {
     /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
     #[arg(long, allow_hyphen_values = true)]
-    pub rpm: String,
+    pub rpm: Option<String>,
     /// Advance ratios J = V/(nD), same syntax.
     #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
     pub j: Option<String>,
@@ -320,7 +323,10 @@ pub struct SweepArgs {
 impl SweepArgs {
     /// Rotation speeds [rad/s] and the second axis (neither `--j` nor `--v`: static).
     pub fn spec(&self) -> Result<(Vec<f64>, SweepAxis)> {
-        let omegas = parse_list("--rpm", &self.rpm)?.into_iter().map(rpm_to_omega).collect();
+        let Some(rpm) = &self.rpm else {
+            anyhow::bail!("--rpm: give the rotation speeds (or a --motor with --volts, --amps or --thrust)");
+        };
+        let omegas = parse_list("--rpm", rpm)?.into_iter().map(rpm_to_omega).collect();
         let axis = match (&self.j, &self.v) {
             (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
             (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),

@@ -12,6 +12,11 @@ pub mod qprop {
     pub use propbet_qprop::{apc, output, write_prop, RadiusReading};
 }
 
+/// The motor ([`propbet_motor`]): its files and the operating point's drivers.
+pub mod motor {
+    pub use propbet_motor::{write_motor, Drive, Motor, MotorFile, Powered};
+}
+
 /// The air ([`propbet_atmosphere`]).
 pub mod atmosphere {
     pub use propbet_atmosphere::AirState;

@@ -29,6 +29,8 @@ pub mod spec;
 pub mod stages;
 pub mod values;
 
-pub use artifacts::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, polar, qprop, units, xfoil};
+pub use artifacts::{
+    atmosphere, bemt, compare, diagnose, effects, geometry, measure, motor, polar, qprop, units, xfoil,
+};
 pub(crate) use error::read_bytes;
 pub use error::{read_text, Error, Result};

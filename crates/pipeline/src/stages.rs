@@ -321,12 +321,14 @@ pub(crate) fn sweep_with(
 
 mod measured;
 mod polar;
+mod powered;
 mod reference;
 mod section;
 mod synth;
 
 pub use measured::*;
 pub use polar::*;
+pub use powered::{omega_ceiling, powered, read_motor, PoweredPoint};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};

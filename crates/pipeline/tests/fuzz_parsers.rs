@@ -237,6 +237,25 @@ fn prop_files() {
 }
 
 #[test]
+fn motor_files() {
+    let seeds = [
+        file("props/motors/s400-6v-dd.motor"),
+        file("../shared/reference/qprop/runs/s280-6v-dd"),
+    ];
+    fuzz("motor", &seeds, |b| {
+        if let Ok(f) = propbet_motor::parse_motor(&text(b)) {
+            // A motor that reads turns at 12 V or says it cannot, and its torque is a number.
+            let m = f.motor;
+            return match m.free_speed(12.0) {
+                Some(w) => w.is_finite() && m.at(0.5 * w, 12.0).torque.is_finite(),
+                None => true,
+            };
+        }
+        true
+    });
+}
+
+#[test]
 fn airfoils() {
     let seeds = [file("props/airfoils/e63.dat"), file("props/airfoils/clarky.dat")];
     fuzz("airfoil", &seeds, |b| {

@@ -190,7 +190,7 @@ fn no_file_level_import_cycle_in_any_crate() {
 }
 
 /// The data flow, bottom up: a crate may depend only on crates of a lower rank.
-const RANKS: [(&str, u32); 19] = [
+const RANKS: [(&str, u32); 20] = [
     ("propbet-units", 0),
     ("propbet-plot", 0),
     ("xfoil-runner", 1),
@@ -198,6 +198,7 @@ const RANKS: [(&str, u32); 19] = [
     ("propbet-geometry", 1),
     ("propbet-bemt", 1),
     ("propbet-measure", 1),
+    ("propbet-motor", 1),
     ("propbet-qprop", 2),
     ("propbet-atmosphere", 2),
     ("propbet-effects", 2),

@@ -10,6 +10,9 @@ pub mod stats;
 
 use std::f64::consts::PI;
 
+/// Standard gravity [m/s^2] (CGPM 1901): one gram-force is 9.80665e-3 N.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
+
 /// Angular rate [rad/s] of `rpm` revolutions per minute.
 pub const fn rpm_to_omega(rpm: f64) -> f64 {
     rpm * PI / 30.0

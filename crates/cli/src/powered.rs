@@ -1,0 +1,199 @@
+//! `propbet predict --motor`: the propeller on a QPROP motor, at a voltage, a current, a
+//! thrust or an RPM, one row per (driver, airspeed) point with QPROP's electrical columns.
+
+use anyhow::{bail, Result};
+use propbet_pipeline::bemt::PointResult;
+use propbet_pipeline::motor::{Drive, Motor, Powered};
+use propbet_pipeline::spec::SweepAxis;
+use propbet_pipeline::stages::PoweredPoint;
+use propbet_pipeline::units::omega_to_rpm;
+use propbet_pipeline::values::parse_list;
+
+use crate::output::{csv_rows, emit, Num};
+use crate::predict::{Format, PredictArgs};
+
+/// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
+/// speed at the highest voltage given (12 V, a 3-cell battery, where none is).
+fn polar_omegas(motor: &Motor, drives: &[Drive]) -> Vec<f64> {
+    let volts = drives
+        .iter()
+        .filter_map(|d| match d {
+            Drive::Volts(v) => Some(*v),
+            _ => None,
+        })
+        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))))
+        .unwrap_or(12.0);
+    let top = motor.free_speed(volts).unwrap_or(motor.kv() * volts);
+    let mut omegas: Vec<f64> = (1..=8).map(|k| top * k as f64 / 8.0).collect();
+    omegas.extend(drives.iter().filter_map(|d| match d {
+        Drive::Omega(w) => Some(*w),
+        _ => None,
+    }));
+    omegas
+}
+
+/// Runs `propbet predict --motor`; returns whether every point has its operating point and
+/// every station converged.
+pub fn run(args: &PredictArgs) -> Result<bool> {
+    let Some(path) = &args.motor.motor else {
+        bail!("--motor: no motor file");
+    };
+    if args.band || args.stations.is_some() {
+        bail!("--motor: --band and --out-stations are not available with a motor yet; predict at --rpm for them");
+    }
+    let file = propbet_pipeline::stages::read_motor(path)?;
+    let drives = args.motor.drives(args.points.rpm.as_deref())?;
+    let speeds = match (&args.points.j, &args.points.v) {
+        (Some(_), _) => bail!("--j: with --motor the RPM is not known before the solve; give airspeeds with --v"),
+        (None, Some(v)) => parse_list("--v", v)?,
+        (None, None) => vec![0.0],
+    };
+    let spec = args.model.spec()?;
+    let model = crate::predict::load_model_at(
+        &spec,
+        || Ok((polar_omegas(&file.motor, &drives), SweepAxis::V(speeds.clone()))),
+        false,
+    )?;
+    let (fluid, source) = args.air.spec()?.fluid()?;
+    let points = propbet_pipeline::stages::powered(&model, &fluid, &file.motor, &drives, &speeds)?;
+    let rows = points
+        .iter()
+        .map(|p| row(p, fluid.rho, &source, model.rotor.tip_radius));
+    let body = match args.format {
+        Format::Csv => csv_rows(rows, true)?,
+        Format::Json => {
+            let mut j = serde_json::to_vec_pretty(&rows.collect::<Vec<_>>())?;
+            j.push(b'\n');
+            j
+        }
+    };
+    let mut inputs = spec.inputs();
+    inputs.push(path.as_path());
+    emit(args.out.as_deref(), &[body], &inputs)?;
+    let unsolved: Vec<&PoweredPoint> = points.iter().filter(|p| p.outcome.is_err()).collect();
+    for p in unsolved.iter().take(5) {
+        if let Err(why) = &p.outcome {
+            eprintln!("propbet: warning: V {} m/s: {why}", p.v);
+        }
+    }
+    if unsolved.len() > 5 {
+        eprintln!(
+            "propbet: warning: {} more points without an operating point",
+            unsolved.len() - 5
+        );
+    }
+    let failed: usize = points
+        .iter()
+        .filter_map(|p| p.outcome.as_ref().ok())
+        .map(|(_, r)| r.not_converged)
+        .sum();
+    if failed > 0 {
+        eprintln!("propbet: {failed} station solutions did not converge (column not_converged)");
+    }
+    if let Some(out) = &args.out {
+        eprintln!(
+            "propbet predict: {} operating points on {} ({}) -> {}",
+            points.len(),
+            file.name,
+            path.display(),
+            out.display()
+        );
+    }
+    Ok(unsolved.is_empty() && failed == 0)
+}
+
+/// A row of the powered table: QPROP's columns (propbet's names and SI units) and g/W.
+#[derive(serde::Serialize)]
+struct PoweredRow {
+    v_m_s: Num,
+    rpm: Num,
+    volts: Num,
+    amps: Num,
+    thrust_n: Num,
+    torque_nm: Num,
+    shaft_power_w: Num,
+    electrical_power_w: Num,
+    eta_motor: Num,
+    eta_prop: Num,
+    eta_total: Num,
+    g_per_w: Num,
+    j: Num,
+    ct: Num,
+    cp: Num,
+    adv_qprop: Num,
+    ct_qprop: Num,
+    cp_qprop: Num,
+    dv_m_s: Num,
+    cl_avg: Num,
+    cd_avg: Num,
+    not_converged: Option<usize>,
+    flags: String,
+    /// Why the point has no operating point (empty where it has one).
+    no_solution: String,
+    rho_kg_m3: Num,
+    air: String,
+}
+
+fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
+    let none = Num(None);
+    let (solved, r): (Option<&Powered>, Option<&PointResult>) = match &p.outcome {
+        Ok((s, r)) => (Some(s), Some(r)),
+        Err(_) => (None, None),
+    };
+    let given = |d: fn(&Drive) -> Option<f64>| Num(d(&p.drive));
+    let or = |a: Option<f64>, b: Num| a.map_or(b, Num::from);
+    PoweredRow {
+        v_m_s: p.v.into(),
+        rpm: or(
+            solved.map(|s| omega_to_rpm(s.omega)),
+            given(|d| match d {
+                Drive::Omega(w) => Some(omega_to_rpm(*w)),
+                _ => None,
+            }),
+        ),
+        volts: or(
+            solved.map(|s| s.volts),
+            given(|d| match d {
+                Drive::Volts(v) => Some(*v),
+                _ => None,
+            }),
+        ),
+        amps: or(
+            solved.map(|s| s.amps),
+            given(|d| match d {
+                Drive::Amps(a) => Some(*a),
+                _ => None,
+            }),
+        ),
+        thrust_n: or(
+            solved.map(|s| s.loads.thrust),
+            given(|d| match d {
+                Drive::Thrust(t) => Some(*t),
+                _ => None,
+            }),
+        ),
+        torque_nm: solved.map(|s| s.loads.torque).into(),
+        shaft_power_w: solved.map(Powered::shaft_power).into(),
+        electrical_power_w: solved.map(Powered::electrical_power).into(),
+        eta_motor: solved.map(Powered::motor_efficiency).into(),
+        eta_prop: r.map(|r| r.eta).into(),
+        eta_total: solved.zip(r).map(|(s, r)| s.motor_efficiency() * r.eta).into(),
+        g_per_w: solved.map(Powered::grams_per_watt).into(),
+        j: r.and_then(|r| r.j).into(),
+        ct: r.and_then(|r| r.ct).into(),
+        cp: r.and_then(|r| r.cp).into(),
+        adv_qprop: r.and_then(|r| r.adv_qprop).into(),
+        ct_qprop: r.and_then(|r| r.ct_qprop).into(),
+        cp_qprop: r.and_then(|r| r.cp_qprop).into(),
+        dv_m_s: r.map(|r| r.dv).into(),
+        cl_avg: r.map(|r| r.cl_avg).into(),
+        cd_avg: r.map(|r| r.cd_avg).into(),
+        not_converged: r.map(|r| r.not_converged),
+        flags: r
+            .map(|r| propbet_pipeline::bemt::check::implausible(r, rho, tip_radius).join("; "))
+            .unwrap_or_default(),
+        no_solution: p.outcome.as_ref().err().cloned().unwrap_or_default(),
+        rho_kg_m3: if r.is_some() { rho.into() } else { none },
+        air: crate::sweep_csv::air_cell(air),
+    }
+}

@@ -1,0 +1,315 @@
+//! propbet's motor against the real QPROP 1.22 (built in the tests, `qprop_real::qprop`):
+//! every motor file of Drela's runs folder on a prop of his that suits it, over voltages and
+//! airspeeds, and the other drivers (RPM, current, thrust) on a type 1 and the type 2 motor;
+//! every printed column of QPROP's to its printed digits. And what a bad motor file or an
+//! impossible operating point gets.
+
+use std::path::Path;
+use std::process::Command;
+
+use propbet_pipeline::qprop::output::{parse_output, Printed, SUMMARY_COLUMNS};
+
+use super::qprop_real::{qprop, qprop_source};
+use super::{col, read_csv, run, stderr};
+
+/// QPROP's summary rows for `args` (prop and motor copied into `dir`).
+fn qprop_rows(dir: &Path, args: &[&str]) -> Vec<[Printed; 19]> {
+    let o = Command::new(qprop()).args(args).current_dir(dir).output().unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    parse_output(&text)
+        .unwrap_or_else(|e| panic!("QPROP {args:?}: {e}\n{text}"))
+        .summary
+}
+
+/// propbet's rows for the same run, as QPROP's 19 columns.
+fn propbet_rows(dir: &Path, prop: &str, motor: &str, flags: &[&str]) -> Vec<[f64; 19]> {
+    let out = dir.join("powered.csv");
+    let mut args = vec![
+        "predict",
+        "--prop",
+        prop,
+        "--qprop-compat",
+        "--motor",
+        motor,
+        "-o",
+        "powered.csv",
+    ];
+    args.extend_from_slice(flags);
+    let o = run(&args, dir);
+    assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+    let (h, rows) = read_csv(&out);
+    let num = |r: &Vec<String>, name: &str| -> f64 {
+        r[col(&h, name)]
+            .parse()
+            .unwrap_or_else(|_| panic!("{name}: '{}'", r[col(&h, name)]))
+    };
+    rows.iter()
+        .map(|r| {
+            let (v, t) = (num(r, "v_m_s"), num(r, "thrust_n"));
+            [
+                v,
+                num(r, "rpm"),
+                0.0,
+                t,
+                num(r, "torque_nm"),
+                num(r, "shaft_power_w"),
+                num(r, "volts"),
+                num(r, "amps"),
+                num(r, "eta_motor"),
+                num(r, "eta_prop"),
+                num(r, "adv_qprop"),
+                num(r, "ct_qprop"),
+                num(r, "cp_qprop"),
+                num(r, "dv_m_s"),
+                num(r, "eta_total"),
+                num(r, "electrical_power_w"),
+                t * v,
+                num(r, "cl_avg"),
+                num(r, "cd_avg"),
+            ]
+        })
+        .collect()
+}
+
+/// One motor on one prop: QPROP's arguments after the two file names, and propbet's flags for
+/// the same points.
+struct Case {
+    motor: &'static str,
+    prop: &'static str,
+    qprop: &'static [&'static str],
+    propbet: &'static [&'static str],
+}
+
+/// A column of QPROP's print that propbet's value does not round to.
+struct Mismatch {
+    column: &'static str,
+    qprop: [Printed; 19],
+    propbet: [f64; 19],
+    words: String,
+}
+
+/// Compares every printed column; returns the mismatches.
+fn compare(case: &Case) -> Vec<Mismatch> {
+    let work = tempfile::tempdir().unwrap();
+    let runs = qprop_source().join("runs");
+    for f in [case.motor, case.prop] {
+        std::fs::copy(runs.join(f), work.path().join(f)).unwrap();
+    }
+    std::fs::write(work.path().join("qcon.def"), "1.225\n1.78e-5\n340.0\n").unwrap();
+    let mut args = vec![case.prop, case.motor];
+    args.extend_from_slice(case.qprop);
+    let q = qprop_rows(work.path(), &args);
+    let p = propbet_rows(work.path(), case.prop, case.motor, case.propbet);
+    assert_eq!(q.len(), p.len(), "{} on {}: row counts", case.motor, case.prop);
+    assert!(!q.is_empty());
+    let mut wrong = Vec::new();
+    for (qr, pr) in q.iter().zip(&p) {
+        for (k, (printed, ours)) in qr.iter().zip(pr).enumerate() {
+            if !printed.matches(*ours, 1.0) {
+                wrong.push(Mismatch {
+                    column: SUMMARY_COLUMNS[k],
+                    qprop: *qr,
+                    propbet: *pr,
+                    words: format!(
+                        "{} on {} {:?} at V {} rpm {}: {} QPROP {} propbet {ours}",
+                        case.motor,
+                        case.prop,
+                        case.propbet,
+                        qr[0].value,
+                        qr[1].value,
+                        SUMMARY_COLUMNS[k],
+                        printed.value
+                    ),
+                });
+            }
+        }
+    }
+    wrong
+}
+
+fn words(wrong: &[Mismatch]) -> String {
+    wrong.iter().map(|m| m.words.as_str()).collect::<Vec<_>>().join("\n")
+}
+
+#[test]
+fn every_motor_of_drelas_runs_meets_its_prop_as_qprop_does() {
+    // QPROP's argument order: V, RPM, Volt (dBeta, Thrust, Torque, Amps, Pele after it).
+    let cases = [
+        // QPROP's own example (COMMANDS.txt).
+        ("s400-6v-dd", "cam6x3", "6,9,1", "6:9:1"),
+        ("s400-7v-dd", "cam6x3", "6,9,1", "6:9:1"),
+        ("s300-7v-dd", "cam6x3", "5,8,1", "5:8:1"),
+        ("s280-6v-dd", "cam6x3", "4,7,1", "4:7:1"),
+        ("s300-7v-5.3", "apc8x6", "6,9,1", "6:9:1"),
+        ("s400-6v-4.0", "apc14x10e", "6,9,1", "6:9:1"),
+        ("s600-8v-dd", "apc7x4", "6,9,1", "6:9:1"),
+        ("s600-10.0", "apc16x10e", "8,11,1", "8:11:1"),
+        ("pot30w10v", "cam6x4", "8,11,1", "8:11:1"),
+        ("axi2204-54", "apc8x3.8", "7,12,1", "7:12:1"),
+        ("axi4130-16", "apc14x10e", "12,18,2", "12:18:2"),
+        ("axi4130-20", "apc16x10e", "14,20,2", "14:20:2"),
+        ("axi5320-28", "apc18x10e", "18,24,2", "18:24:2"),
+    ];
+    let mut wrong = Vec::new();
+    for (motor, prop, volts_q, volts_p) in cases {
+        let qprop = ["0,12/4", "0", volts_q];
+        let propbet = ["--volts", volts_p, "--v", "0:12/4"];
+        let case = Case {
+            motor,
+            prop,
+            qprop: Box::leak(Box::new(qprop)),
+            propbet: Box::leak(Box::new(propbet)),
+        };
+        wrong.extend(compare(&case));
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} columns off QPROP's print:\n{}",
+        wrong.len(),
+        words(&wrong)
+    );
+}
+
+/// The current's columns.
+const ELECTRIC: [&str; 4] = ["Amps", "effmot", "eff", "Pelec"];
+
+#[test]
+fn the_rpm_current_and_thrust_drivers_are_qprops() {
+    let mut wrong = Vec::new();
+    for motor in ["s400-6v-dd", "s280-6v-dd"] {
+        let type_2 = motor == "s280-6v-dd";
+        // At a speed: QPROP's VOLTM gives the voltage and current.
+        let at_rpm = compare(&Case {
+            motor,
+            prop: "cam6x3",
+            qprop: &["0,10/3", "9000,15000,3000"],
+            propbet: &["--rpm", "9000:15000:3000", "--v", "0:10/3"],
+        });
+        for m in at_rpm {
+            // QPROP 1.22's VOLTM returns its first guess of the current, Q Kv + Io0, never
+            // updated by its Newton steps: right for type 1, short of type 2's Io1 w + Io2 w^2
+            // and Kq. QPROP's print is that guess; propbet's is the model's current.
+            let kv = 3800.0 * std::f64::consts::PI * (1.0 / 30.0);
+            let guess = m.qprop[4].value * kv + 0.160;
+            let print = 0.5 * m.qprop[4].unit * kv + m.qprop[7].unit;
+            let defect = type_2 && ELECTRIC.contains(&m.column) && (m.qprop[7].value - guess).abs() <= print;
+            if !defect {
+                wrong.push(m);
+            }
+        }
+        // QPROP stops its Newton steps at a current or a thrust when the speed has converged;
+        // type 2's torque is not linear in the voltage, whose last step is then left out (2e-4
+        // of it): the voltage and what follows from it agree to 5e-4.
+        let lagging = |m: &Mismatch| {
+            let k = SUMMARY_COLUMNS.iter().position(|c| *c == m.column).unwrap();
+            let close = (m.propbet[k] / m.qprop[k].value - 1.0).abs() < 5e-4;
+            type_2 && (m.column == "Volts" || ELECTRIC.contains(&m.column)) && close
+        };
+        // At a current: QPROP's Amps driver (the 7th value after the files).
+        let at_amps = compare(&Case {
+            motor,
+            prop: "cam6x3",
+            qprop: &["0,10/3", "0", "0", "0", "0", "0", "4,8,2"],
+            propbet: &["--amps", "4:8:2", "--v", "0:10/3"],
+        });
+        wrong.extend(at_amps.into_iter().filter(|m| !lagging(m)));
+        // At a thrust: hover (the 5th value; QPROP 1.22 resets the thrust sweep to one point
+        // when no torque argument follows it, so a 0 torque is given).
+        let at_thrust = compare(&Case {
+            motor,
+            prop: "cam6x3",
+            qprop: &["0", "0", "0", "0", "1.0,2.0,0.5", "0"],
+            propbet: &["--thrust", "1:2:0.5"],
+        });
+        wrong.extend(at_thrust.into_iter().filter(|m| !lagging(m)));
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} columns off QPROP's print:\n{}",
+        wrong.len(),
+        words(&wrong)
+    );
+}
+
+#[test]
+fn a_bad_motor_file_is_refused_by_line_and_value_and_an_impossible_point_is_listed() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = super::cam6x3().display().to_string();
+    for (text, line, words) in [
+        ("Speed-400\n 3\n 0.31\n 0.77\n 2760\n", "line 2", "motor type 3"),
+        ("Speed-400\n 1\n -0.31 ! R\n 0.77\n 2760\n", "line 3", "R = -0.31"),
+        ("Speed-400\n 1\n 0.31\n 0.77\n 0 ! Kv\n", "line 5", "Kv = 0"),
+        ("Speed-400\n 1\n 0.31\n 0.77\n", "line 4", "at least 3"),
+        (
+            "Speed-400\n 1\n 0.31\n fast\n 2760\n",
+            "line 4",
+            "'fast' is not a number",
+        ),
+    ] {
+        let motor = dir.path().join("m.motor");
+        std::fs::write(&motor, text).unwrap();
+        let o = run(
+            &[
+                "predict",
+                "--prop",
+                &prop,
+                "--motor",
+                motor.to_str().unwrap(),
+                "--volts",
+                "6",
+            ],
+            dir.path(),
+        );
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{e}");
+        assert!(
+            e.contains("m.motor: ") && e.contains(line) && e.contains(words),
+            "{text:?}: {e}"
+        );
+    }
+    // 0.1 V cannot carry the Speed-400's no-load current through its winding; 6 V can. The
+    // first point is listed without a solution, the second solved, exit 1.
+    let motor = super::repo().join("props/motors/s400-6v-dd.motor");
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            &prop,
+            "--motor",
+            motor.to_str().unwrap(),
+            "--volts",
+            "0.1,6",
+            "-o",
+            "p.csv",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("0.1 V cannot carry its no-load current"),
+        "{}",
+        stderr(&o)
+    );
+    let (h, rows) = read_csv(&dir.path().join("p.csv"));
+    assert_eq!(rows.len(), 2);
+    assert!(rows[0][col(&h, "rpm")].is_empty() && rows[0][col(&h, "no_solution")].contains("does not turn"));
+    assert_eq!(rows[0][col(&h, "volts")], "0.1");
+    let rpm: f64 = rows[1][col(&h, "rpm")].parse().unwrap();
+    assert!((11_000.0..11_200.0).contains(&rpm), "{rpm}");
+    assert!(rows[1][col(&h, "no_solution")].is_empty());
+    // A thrust this propeller cannot give below a tip speed of Mach 1.5.
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            &prop,
+            "--motor",
+            motor.to_str().unwrap(),
+            "--thrust",
+            "500",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("does not reach 500 N"), "{}", stderr(&o));
+}
