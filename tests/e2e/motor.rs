@@ -313,3 +313,69 @@ fn a_bad_motor_file_is_refused_by_line_and_value_and_an_impossible_point_is_list
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("does not reach 500 N"), "{}", stderr(&o));
 }
+
+#[test]
+fn on_a_battery_the_throttle_hover_and_endurance_are_consistent() {
+    let dir = tempfile::tempdir().unwrap();
+    let prop = super::cam6x3().display().to_string();
+    let motor = super::repo()
+        .join("props/motors/axi2204-54.motor")
+        .display()
+        .to_string();
+    let base = ["predict", "--prop", prop.as_str(), "--motor", motor.as_str()];
+    let csv = |flags: &[&str], name: &str| {
+        let mut args = base.to_vec();
+        args.extend_from_slice(flags);
+        args.extend_from_slice(&["-o", name]);
+        let o = run(&args, dir.path());
+        assert_eq!(o.status.code(), Some(0), "{flags:?}: {}", stderr(&o));
+        let (h, rows) = read_csv(&dir.path().join(name));
+        move |r: usize, c: &str| -> f64 { rows[r][col(&h, c)].parse().unwrap() }
+    };
+    // Full throttle on 3S: the motor sees the pack's 11.1 V less the pack's and the ESC's drop.
+    let full = csv(&["--battery", "3S,2200mAh", "--throttle", "1"], "full.csv");
+    let (amps, volts) = (full(0, "amps"), full(0, "volts"));
+    assert!(
+        (volts - (11.1 - amps * (3.0 * 0.005 + 0.005))).abs() < 1e-4,
+        "{volts} V at {amps} A"
+    );
+    assert!((full(0, "battery_amps") - amps).abs() < 1e-6);
+    // The same motor voltage without the battery gives the same point.
+    let same = csv(&["--volts", &format!("{volts}")], "same.csv");
+    assert!((same(0, "rpm") / full(0, "rpm") - 1.0).abs() < 1e-5);
+    // Hover at half the full-throttle thrust: a throttle below 1, a battery current of the
+    // throttle times the motor's, and the endurance of 80 % of 2.2 Ah at that current.
+    let half = full(0, "thrust_n") / 2.0;
+    let hover = csv(
+        &["--battery", "3S,2200mAh", "--thrust", &format!("{half}")],
+        "hover.csv",
+    );
+    let t = hover(0, "throttle");
+    assert!(t > 0.3 && t < 1.0, "throttle {t}");
+    assert!((hover(0, "battery_amps") - t * hover(0, "amps")).abs() < 1e-5);
+    let minutes = 2.2 * 0.8 * 60.0 / hover(0, "battery_amps");
+    assert!((hover(0, "endurance_min") / minutes - 1.0).abs() < 1e-5);
+    // At that throttle the battery drives the motor back to the same thrust.
+    let back = csv(&["--battery", "3S,2200mAh", "--throttle", &format!("{t}")], "back.csv");
+    assert!((back(0, "thrust_n") / half - 1.0).abs() < 1e-5);
+    // A thrust beyond full throttle is listed, with what it would need; a battery at its
+    // cutoff and a throttle above 1 are refused.
+    let mut args = base.to_vec();
+    args.extend_from_slice(&["--battery", "3S", "--thrust", "30"]);
+    let o = run(&args, dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("% throttle"), "{}", stderr(&o));
+    for (flags, words) in [
+        (
+            &["--battery", "3S,V=3.2", "--throttle", "1"][..],
+            "at or below its cutoff",
+        ),
+        (&["--battery", "3S", "--throttle", "1.5"][..], "--throttle 1.5"),
+    ] {
+        let mut args = base.to_vec();
+        args.extend_from_slice(flags);
+        let o = run(&args, dir.path());
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(stderr(&o).contains(words), "{}", stderr(&o));
+    }
+}

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_pipeline::motor::Drive;
+use propbet_pipeline::motor::{Battery, Drive, Supply};
 use propbet_pipeline::units::rpm_to_omega;
 use propbet_pipeline::values::parse_list;
 
@@ -26,11 +26,31 @@ pub struct MotorArgs {
     /// Thrusts [N] (hover: the weight carried by this propeller), with --motor.
     #[arg(long, requires = "motor", conflicts_with_all = ["volts", "amps", "rpm"])]
     pub thrust: Option<String>,
+    /// The battery, with --motor: `3S` (cells in series), then any of `2200mAh`, `R=5mOhm`
+    /// (per cell), `V=3.7` (open-circuit volts per cell), `cutoff=3.3`, `usable=80%`, separated
+    /// by commas (LiPo defaults: 3.7 V, 5 mOhm, cutoff 3.3 V, 80 % usable). Adds the throttle,
+    /// the battery's current, voltage and power, and minutes of flight to every point.
+    #[arg(long, requires = "motor", value_name = "SPEC")]
+    pub battery: Option<String>,
+    /// The ESC's resistance in the motor's current path [ohm], with --battery.
+    #[arg(long, requires = "battery", default_value_t = 0.005, value_name = "OHMS")]
+    pub esc_ohms: f64,
+    /// Throttles (0 to 1, list or range syntax), with --battery: the battery through the ESC
+    /// drives the motor.
+    #[arg(long, requires = "battery", conflicts_with_all = ["volts", "amps", "thrust", "rpm"])]
+    pub throttle: Option<String>,
 }
 
 impl MotorArgs {
     /// The drivers the flags give (`rpm` the sweep's --rpm).
-    pub fn drives(&self, rpm: Option<&str>) -> Result<Vec<Drive>> {
+    pub fn drives(&self, rpm: Option<&str>, supply: Option<&Supply>) -> Result<Vec<Drive>> {
+        if let (Some(t), Some(s)) = (&self.throttle, supply) {
+            let list = parse_list("--throttle", t)?;
+            if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
+                bail!("--throttle {bad}: a throttle is between 0 and 1");
+            }
+            return Ok(list.into_iter().map(|t| s.drive(t)).collect());
+        }
         Ok(match (&self.volts, &self.amps, &self.thrust, rpm) {
             (Some(v), ..) => parse_list("--volts", v)?.into_iter().map(Drive::Volts).collect(),
             (_, Some(a), ..) => parse_list("--amps", a)?.into_iter().map(Drive::Amps).collect(),
@@ -39,7 +59,22 @@ impl MotorArgs {
                 .into_iter()
                 .map(|r| Drive::Omega(rpm_to_omega(r)))
                 .collect(),
-            _ => bail!("--motor: give --volts, --amps, --thrust or --rpm (what sets the operating point)"),
+            _ => bail!("--motor: give --volts, --amps, --thrust, --rpm or --throttle (what sets the operating point)"),
         })
+    }
+
+    /// The battery and ESC the flags give.
+    pub fn supply(&self) -> Result<Option<Supply>> {
+        let Some(spec) = &self.battery else {
+            return Ok(None);
+        };
+        let battery = Battery::parse(spec).map_err(|e| anyhow::anyhow!("--battery '{spec}': {e}"))?;
+        if !(self.esc_ohms >= 0.0 && self.esc_ohms < 10.0) {
+            bail!("--esc-ohms {}: a resistance from 0 to 10 ohm", self.esc_ohms);
+        }
+        Ok(Some(Supply {
+            battery,
+            esc_ohms: self.esc_ohms,
+        }))
     }
 }

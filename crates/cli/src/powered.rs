@@ -6,7 +6,7 @@ use propbet_pipeline::bemt::PointResult;
 use propbet_pipeline::motor::{Drive, Motor, Powered};
 use propbet_pipeline::spec::SweepAxis;
 use propbet_pipeline::stages::PoweredPoint;
-use propbet_pipeline::units::omega_to_rpm;
+use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
 use propbet_pipeline::values::parse_list;
 
 use crate::output::{csv_rows, emit, Num};
@@ -42,7 +42,8 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         bail!("--motor: --band and --out-stations are not available with a motor yet; predict at --rpm for them");
     }
     let file = propbet_pipeline::stages::read_motor(path)?;
-    let drives = args.motor.drives(args.points.rpm.as_deref())?;
+    let supply = args.motor.supply()?;
+    let drives = args.motor.drives(args.points.rpm.as_deref(), supply.as_ref())?;
     let speeds = match (&args.points.j, &args.points.v) {
         (Some(_), _) => bail!("--j: with --motor the RPM is not known before the solve; give airspeeds with --v"),
         (None, Some(v)) => parse_list("--v", v)?,
@@ -55,26 +56,26 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         false,
     )?;
     let (fluid, source) = args.air.spec()?.fluid()?;
-    let points = propbet_pipeline::stages::powered(&model, &fluid, &file.motor, &drives, &speeds)?;
+    let points = propbet_pipeline::stages::powered(&model, &fluid, &file.motor, supply.as_ref(), &drives, &speeds)?;
     let rows = points
         .iter()
         .map(|p| row(p, fluid.rho, &source, model.rotor.tip_radius));
-    let body = match args.format {
-        Format::Csv => csv_rows(rows, true)?,
-        Format::Json => {
-            let mut j = serde_json::to_vec_pretty(&rows.collect::<Vec<_>>())?;
-            j.push(b'\n');
-            j
-        }
+    let body = match (args.format, supply.is_some()) {
+        (Format::Csv, false) => csv_rows(rows, true)?,
+        (Format::Csv, true) => csv_rows(rows.zip(points.iter().map(battery_columns)), true)?,
+        (Format::Json, false) => json_records(&crate::columns::table(rows)?)?,
+        (Format::Json, true) => json_records(&crate::columns::table(rows.zip(points.iter().map(battery_columns)))?)?,
     };
     let mut inputs = spec.inputs();
     inputs.push(path.as_path());
     emit(args.out.as_deref(), &[body], &inputs)?;
-    let unsolved: Vec<&PoweredPoint> = points.iter().filter(|p| p.outcome.is_err()).collect();
-    for p in unsolved.iter().take(5) {
-        if let Err(why) = &p.outcome {
-            eprintln!("propbet: warning: V {} m/s: {why}", p.v);
-        }
+    let why = |p: &PoweredPoint| match (&p.outcome, &p.supply) {
+        (Err(why), _) | (Ok(_), Some(Err(why))) => Some(why.clone()),
+        _ => None,
+    };
+    let unsolved: Vec<(&PoweredPoint, String)> = points.iter().filter_map(|p| why(p).map(|w| (p, w))).collect();
+    for (p, why) in unsolved.iter().take(5) {
+        eprintln!("propbet: warning: V {} m/s: {why}", p.v);
     }
     if unsolved.len() > 5 {
         eprintln!(
@@ -192,8 +193,62 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
         flags: r
             .map(|r| propbet_pipeline::bemt::check::implausible(r, rho, tip_radius).join("; "))
             .unwrap_or_default(),
-        no_solution: p.outcome.as_ref().err().cloned().unwrap_or_default(),
+        no_solution: match (&p.outcome, &p.supply) {
+            (Err(why), _) | (Ok(_), Some(Err(why))) => why.clone(),
+            _ => String::new(),
+        },
         rho_kg_m3: if r.is_some() { rho.into() } else { none },
         air: crate::sweep_csv::air_cell(air),
     }
+}
+
+/// The battery's columns of a row (with --battery): empty where the battery cannot give the
+/// point.
+#[derive(serde::Serialize)]
+struct BatteryColumns {
+    throttle: Num,
+    battery_volts: Num,
+    battery_amps: Num,
+    battery_power_w: Num,
+    endurance_min: Num,
+}
+
+fn battery_columns(p: &PoweredPoint) -> BatteryColumns {
+    let s = p.supply.as_ref().and_then(|s| s.as_ref().ok());
+    BatteryColumns {
+        throttle: s.map(|s| s.throttle).into(),
+        battery_volts: s.map(|s| s.battery_volts).into(),
+        battery_amps: s.map(|s| s.battery_amps).into(),
+        battery_power_w: s.map(|s| s.battery_power).into(),
+        endurance_min: s.and_then(|s| s.endurance).map(seconds_to_minutes).into(),
+    }
+}
+
+/// A table as a JSON array of records: numbers as numbers, an empty cell as null.
+fn json_records(t: &crate::columns::Table) -> Result<Vec<u8>> {
+    use crate::columns::Column;
+    use serde_json::Value;
+    let rows = t.columns.first().map_or(0, |c| match c {
+        Column::Num(v) => v.len(),
+        Column::Int(v) => v.len(),
+        Column::Bool(v) => v.len(),
+        Column::Text(v) => v.len(),
+    });
+    let records: Vec<Value> = (0..rows)
+        .map(|i| {
+            let fields = t.names.iter().zip(&t.columns).map(|(name, c)| {
+                let v = match c {
+                    Column::Num(v) => serde_json::Number::from_f64(v[i]).map_or(Value::Null, Value::Number),
+                    Column::Int(v) => v[i].into(),
+                    Column::Bool(v) => v[i].into(),
+                    Column::Text(v) => v[i].clone().into(),
+                };
+                (name.clone(), v)
+            });
+            Value::Object(fields.collect())
+        })
+        .collect();
+    let mut j = serde_json::to_vec_pretty(&records)?;
+    j.push(b'\n');
+    Ok(j)
 }

@@ -9,6 +9,8 @@
 //! - [`operate`]: the operating point of a motor on a propeller driven by a voltage, a
 //!   current, a thrust or a speed, solved on a bracket so that a point either has its answer
 //!   or says there is none.
+//! - [`power`]: the battery and the ESC as simple stated models, so that a point can be asked
+//!   at a throttle, and a hover point says its throttle and the battery's endurance.
 //!
 //! The crate reads no file and knows no propeller: a propeller is a function from rotation
 //! rate to thrust and torque, which the pipeline builds from its solver.
@@ -17,7 +19,9 @@
 pub mod file;
 pub mod model;
 pub mod operate;
+pub mod power;
 
 pub use file::{parse_motor, write_motor, MotorFile, ParseMotorError};
 pub use model::{Motor, MotorError, MotorKind};
 pub use operate::{operate, Drive, OperateError, Powered, PropLoads};
+pub use power::{Battery, PowerError, Supply, SupplyPoint};

@@ -35,6 +35,16 @@ pub enum Drive {
     Thrust(f64),
     /// Rotation rate [rad/s].
     Omega(f64),
+    /// A throttle on a battery and ESC ([`crate::power::Supply::drive`]): the motor on a
+    /// source of `volts` behind `ohms`.
+    Throttle {
+        /// Throttle [0, 1].
+        throttle: f64,
+        /// The source's open-circuit voltage [V].
+        volts: f64,
+        /// Its series resistance [ohm].
+        ohms: f64,
+    },
 }
 
 impl Drive {
@@ -45,6 +55,7 @@ impl Drive {
             Drive::Amps(a) => format!("{a} A"),
             Drive::Thrust(t) => format!("{t} N of thrust"),
             Drive::Omega(w) => format!("{:.0} rpm", propbet_units::omega_to_rpm(*w)),
+            Drive::Throttle { throttle, .. } => format!("{:.0} % throttle", 100.0 * throttle),
         }
     }
 }
@@ -138,6 +149,22 @@ pub fn operate<E>(
             }
             let loads = prop(w).map_err(OperateError::Prop)?;
             Ok(finish(w, loads, motor.volts_for(w, loads.torque)))
+        }
+        Drive::Throttle { volts, ohms, .. } => {
+            // The source's resistance in series with the winding; the motor's terminals see
+            // the source's voltage less its drop.
+            let behind = Motor {
+                r0: motor.r0 + ohms,
+                ..*motor
+            };
+            let p = operate(&behind, Drive::Volts(volts), omega_max, prop).map_err(|e| match e {
+                OperateError::NoSolution { why, .. } => none(why),
+                e => e,
+            })?;
+            Ok(Powered {
+                volts: volts - p.amps * ohms,
+                ..p
+            })
         }
         Drive::Volts(v) => {
             let free = motor.free_speed(v).ok_or_else(|| {
@@ -315,6 +342,23 @@ mod tests {
             assert!((back.omega - w).abs() < 1e-8 * w, "{drive:?}: {}", back.omega);
             assert!((back.volts - 6.0).abs() < 1e-8, "{drive:?}: {} V", back.volts);
         }
+    }
+
+    #[test]
+    fn a_throttle_is_the_motor_behind_its_source() {
+        let m = Motor::dc1(0.31, 0.77, 2760.0).unwrap();
+        let mut p = quadratic(1.6e-6, 1.6e-8);
+        let drive = Drive::Throttle {
+            throttle: 0.8,
+            volts: 8.0,
+            ohms: 0.05,
+        };
+        let at = operate(&m, drive, 5000.0, &mut p).unwrap();
+        // The motor's terminals see 8 V less the drop, and there the torques meet.
+        assert!((at.volts - (8.0 - 0.05 * at.amps)).abs() < 1e-12);
+        let own = m.at(at.omega, at.volts);
+        assert!((own.torque - at.loads.torque).abs() < 1e-9 * at.loads.torque.abs());
+        assert!((own.amps - at.amps).abs() < 1e-9);
     }
 
     #[test]

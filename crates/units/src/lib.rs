@@ -33,6 +33,11 @@ pub fn cq_of_cp(cp: f64) -> f64 {
     cp / (2.0 * PI)
 }
 
+/// Minutes of `seconds` (a battery's endurance as people state it).
+pub fn seconds_to_minutes(seconds: f64) -> f64 {
+    seconds / 60.0
+}
+
 /// Revolutions per second [1/s] of `rpm` revolutions per minute.
 pub fn rpm_to_rev_per_s(rpm: f64) -> f64 {
     rpm / 60.0

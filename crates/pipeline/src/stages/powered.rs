@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use propbet_bemt::{Fluid, OperatingPoint, PointResult};
-use propbet_motor::{operate, Drive, MotorFile, OperateError, Powered, PropLoads};
+use propbet_motor::{operate, Drive, MotorFile, OperateError, Powered, PropLoads, Supply, SupplyPoint};
 use rayon::prelude::*;
 
 use crate::model::Model;
@@ -28,6 +28,8 @@ pub struct PoweredPoint {
     /// The motor's side and the propeller's full result, or why the motor and the propeller
     /// have no common operating point.
     pub outcome: std::result::Result<(Powered, PointResult), String>,
+    /// With a battery and ESC: what they do at the point, or why they cannot give it.
+    pub supply: Option<std::result::Result<SupplyPoint, String>>,
 }
 
 /// The fastest a propeller is searched at: a tip speed of 1.5 times the speed of sound.
@@ -35,11 +37,13 @@ pub fn omega_ceiling(model: &Model, fluid: &Fluid) -> f64 {
     (1.5 * fluid.a / model.rotor.tip_radius).min(propbet_units::operating::OMEGA_MAX)
 }
 
-/// Every driver at every airspeed (the driver outer), on `motor`, in parallel.
+/// Every driver at every airspeed (the driver outer), on `motor` (and `supply`, the battery
+/// and ESC, when given), in parallel.
 pub fn powered(
     model: &Model,
     fluid: &Fluid,
     motor: &propbet_motor::Motor,
+    supply: Option<&Supply>,
     drives: &[Drive],
     speeds: &[f64],
 ) -> Result<Vec<PoweredPoint>> {
@@ -70,7 +74,16 @@ pub fn powered(
                 Err(OperateError::Prop(e)) => return Err(e),
                 Err(e @ OperateError::NoSolution { .. }) => Err(e.to_string()),
             };
-            Ok(PoweredPoint { drive, v, outcome })
+            let supply = match (&outcome, supply) {
+                (Ok((p, _)), Some(s)) => Some(s.at(p.volts, p.amps)),
+                _ => None,
+            };
+            Ok(PoweredPoint {
+                drive,
+                v,
+                outcome,
+                supply,
+            })
         })
         .collect()
 }
