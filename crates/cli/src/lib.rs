@@ -32,6 +32,7 @@ mod diagnose;
 mod engine;
 mod export;
 mod hidden;
+mod motor_fit;
 mod motor_flags;
 mod output;
 mod polar;
@@ -97,6 +98,12 @@ pub enum Command {
         "Exit status: 0 done; 1 done, with unconverged points it reports; 2 error."
     ))]
     Predict(Box<predict::PredictArgs>),
+    /// The motor: fit R, Io and Kv to a stand log's electrical columns (`propbet motor fit`).
+    #[command(subcommand, after_help = concat!(
+        "Example:\n  propbet motor fit --measured ../shared/data/thrust_stand/series1585_newton_steps.csv -o fitted.motor\n\n",
+        "Exit status: 0 done; 2 error."
+    ))]
+    Motor(motor_fit::MotorCommand),
     /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
     /// plots and an HTML report.
     #[command(after_help = concat!(
@@ -236,6 +243,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Hidden(a) => hidden::run(&a),
         Command::Predict(a) if a.motor.motor.is_some() => powered::run(&a),
         Command::Predict(a) => predict::run(&a),
+        Command::Motor(c) => motor_fit::run(&c),
         Command::Prop(a) => prop::run(&a),
         Command::Export(a) => export::run(&a),
         Command::Polar(a) => polar::run_polar(&a),

@@ -32,7 +32,7 @@ enum Entry {
     Full { column: String, unit: Option<String> },
 }
 
-const KEYS: [(&str, Quantity); 9] = [
+const KEYS: [(&str, Quantity); 11] = [
     ("time", Quantity::Time),
     ("esc", Quantity::Esc),
     ("rpm", Quantity::Rotation),
@@ -42,10 +42,12 @@ const KEYS: [(&str, Quantity); 9] = [
     ("temperature", Quantity::Temperature),
     ("pressure", Quantity::Pressure),
     ("humidity", Quantity::Humidity),
+    ("voltage", Quantity::Voltage),
+    ("current", Quantity::Current),
 ];
 
 /// Header names that mean a quantity, longest first within each.
-const ALIASES: [(Quantity, &[&str]); 9] = [
+const ALIASES: [(Quantity, &[&str]); 11] = [
     (Quantity::Time, &["time", "t"]),
     (Quantity::Esc, &["esc_signal", "throttle", "esc"]),
     (Quantity::Rotation, &["rotation_speed", "speed_rpm", "rpm", "omega"]),
@@ -69,6 +71,8 @@ const ALIASES: [(Quantity, &[&str]); 9] = [
     ),
     (Quantity::Pressure, &["air_pressure", "pressure", "baro", "p"]),
     (Quantity::Humidity, &["relative_humidity", "humidity", "rh"]),
+    (Quantity::Voltage, &["voltage", "volts"]),
+    (Quantity::Current, &["current", "amps"]),
 ];
 
 fn slot(cols: &mut Columns, q: Quantity) -> &mut Option<Column> {
@@ -82,6 +86,8 @@ fn slot(cols: &mut Columns, q: Quantity) -> &mut Option<Column> {
         Quantity::Temperature => &mut cols.temperature,
         Quantity::Pressure => &mut cols.pressure,
         Quantity::Humidity => &mut cols.humidity,
+        Quantity::Voltage => &mut cols.voltage,
+        Quantity::Current => &mut cols.current,
     }
 }
 

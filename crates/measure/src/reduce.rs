@@ -259,6 +259,18 @@ fn mean_of(xs: impl Iterator<Item = Option<f64>>) -> Option<f64> {
     (n > 0).then(|| sum / n as f64)
 }
 
+/// The supply's voltage and current of a point whose every sample logged them.
+fn electric(s: &[Sample], averaged: bool) -> Option<crate::set::Electric> {
+    let volts: Option<Vec<f64>> = s.iter().map(|x| x.volts).collect();
+    let amps: Option<Vec<f64>> = s.iter().map(|x| x.amps).collect();
+    let value = |xs: Vec<f64>| if averaged { Value::single(xs[0]) } else { Value::of(&xs) };
+    Some(crate::set::Electric {
+        volts: value(volts?),
+        amps: value(amps?),
+        esc: mean_of(s.iter().map(|x| x.esc)),
+    })
+}
+
 /// One point from samples (already steady).
 fn point(label: String, s: &[Sample], transient: usize, opts: &ReduceOptions, averaged: bool) -> MeasuredPoint {
     let col = |f: &dyn Fn(&Sample) -> f64| -> Value {
@@ -321,6 +333,7 @@ fn point(label: String, s: &[Sample], transient: usize, opts: &ReduceOptions, av
         transient,
         nominal_omega: None,
         flags,
+        electric: electric(s, averaged),
     }
 }
 

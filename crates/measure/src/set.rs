@@ -120,6 +120,19 @@ pub struct MeasuredPoint {
     pub nominal_omega: Option<f64>,
     /// Reasons not to trust the point (unsteady RPM, ...); flagged points are reported, not scored.
     pub flags: Vec<String>,
+    /// The supply's voltage and current, when logged.
+    pub electric: Option<Electric>,
+}
+
+/// What a thrust stand's power meter logged at a point: the supply side of the ESC.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Electric {
+    /// Voltage [V].
+    pub volts: Value,
+    /// Current [A].
+    pub amps: Value,
+    /// The ESC command [µs] (mean), when logged.
+    pub esc: Option<f64>,
 }
 
 impl MeasuredPoint {

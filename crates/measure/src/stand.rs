@@ -349,6 +349,8 @@ fn read_series(table: &CsvTable, s: &Series, format: Format, opts: &ReadOptions)
         })?,
         pressure: s.column(Quantity::Pressure, |n| n.contains("pressure") || n.contains("baro"))?,
         humidity: s.column(Quantity::Humidity, |n| n.contains("humidity"))?,
+        voltage: s.column(Quantity::Voltage, |n| n == "voltage")?,
+        current: s.column(Quantity::Current, |n| n == "current")?,
         rotation: None,
         rotation_other: None,
     };

@@ -254,6 +254,10 @@ pub struct Columns {
     pub pressure: Option<Column>,
     /// Relative humidity.
     pub humidity: Option<Column>,
+    /// The supply's voltage.
+    pub voltage: Option<Column>,
+    /// The supply's current.
+    pub current: Option<Column>,
 }
 
 /// One row in SI.
@@ -281,6 +285,10 @@ pub struct Sample {
     pub pressure: Option<f64>,
     /// Relative humidity [0..1].
     pub humidity: Option<f64>,
+    /// The supply's voltage [V].
+    pub volts: Option<f64>,
+    /// The supply's current [A].
+    pub amps: Option<f64>,
     /// Which of the row's readings are its own, not a sparse log's latest earlier value.
     pub fresh: Fresh,
 }
@@ -327,6 +335,8 @@ fn fill_sparse(table: &CsvTable, cols: &Columns) -> Filled {
         &cols.temperature,
         &cols.pressure,
         &cols.humidity,
+        &cols.voltage,
+        &cols.current,
     ]
     .into_iter()
     .flatten()
@@ -498,6 +508,8 @@ pub fn samples(
                 temperature: optional(row, &cols.temperature),
                 pressure: optional(row, &cols.pressure),
                 humidity: optional(row, &cols.humidity),
+                volts: optional(row, &cols.voltage),
+                amps: optional(row, &cols.current),
                 fresh: filled.as_ref().map_or(Fresh::ALL, |f| f.fresh[k]),
             }),
             Err((reason, detail)) => dropped.push(Dropped {

@@ -97,6 +97,7 @@ fn row(line: usize, l: &str, cols: &[String], file_rpm: Option<f64>) -> Result<M
         transient: 0,
         nominal_omega: file_rpm.map(propbet_units::rpm_to_omega),
         flags: Vec::new(),
+        electric: None,
     })
 }
 

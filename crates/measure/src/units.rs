@@ -29,6 +29,10 @@ pub enum Quantity {
     Pressure,
     /// Relative humidity [0..1].
     Humidity,
+    /// The supply's voltage [V] (a thrust stand's power meter, upstream of the ESC).
+    Voltage,
+    /// The supply's current [A].
+    Current,
 }
 
 impl Quantity {
@@ -44,6 +48,8 @@ impl Quantity {
             Quantity::Temperature => "temperature",
             Quantity::Pressure => "pressure",
             Quantity::Humidity => "humidity",
+            Quantity::Voltage => "voltage",
+            Quantity::Current => "current",
         }
     }
 
@@ -59,6 +65,8 @@ impl Quantity {
             Quantity::Temperature => "°C, K, °F",
             Quantity::Pressure => "Pa, hPa, mbar, kPa, bar, inHg, mmHg, psi",
             Quantity::Humidity => "%, fraction",
+            Quantity::Voltage => "V, mV",
+            Quantity::Current => "A, mA",
         }
     }
 
@@ -74,6 +82,8 @@ impl Quantity {
             Quantity::Temperature => "C",
             Quantity::Pressure => "Pa",
             Quantity::Humidity => "%",
+            Quantity::Voltage => "V",
+            Quantity::Current => "A",
         }
     }
 }
@@ -186,6 +196,16 @@ pub fn conversion(q: Quantity, unit: &str) -> Option<Conversion> {
         Quantity::Humidity => match u {
             "%" | "pct" | "percent" | "rh" | "%rh" => Conversion::mul(0.01),
             "fraction" | "" | "1" => Conversion::mul(1.0),
+            _ => return None,
+        },
+        Quantity::Voltage => match u {
+            "v" => Conversion::mul(1.0),
+            "mv" => Conversion::mul(1e-3),
+            _ => return None,
+        },
+        Quantity::Current => match u {
+            "a" => Conversion::mul(1.0),
+            "ma" => Conversion::mul(1e-3),
             _ => return None,
         },
     };

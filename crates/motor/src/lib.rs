@@ -9,6 +9,7 @@
 //! - [`operate`]: the operating point of a motor on a propeller driven by a voltage, a
 //!   current, a thrust or a speed, solved on a bracket so that a point either has its answer
 //!   or says there is none.
+//! - [`fit`]: R, Io and Kv fitted to a thrust stand's speed, torque, voltage and current.
 //! - [`power`]: the battery and the ESC as simple stated models, so that a point can be asked
 //!   at a throttle, and a hover point says its throttle and the battery's endurance.
 //!
@@ -17,11 +18,13 @@
 #![deny(missing_docs)]
 
 pub mod file;
+pub mod fit;
 pub mod model;
 pub mod operate;
 pub mod power;
 
 pub use file::{parse_motor, write_motor, MotorFile, ParseMotorError};
+pub use fit::{fit_motor, held_out_amps, FitError, FitPoint, MotorFit};
 pub use model::{Motor, MotorError, MotorKind};
 pub use operate::{operate, Drive, OperateError, Powered, PropLoads};
 pub use power::{Battery, PowerError, Supply, SupplyPoint};

@@ -14,6 +14,7 @@ pub mod qprop {
 
 /// The motor ([`propbet_motor`]): its files and the operating point's drivers.
 pub mod motor {
+    pub use propbet_motor::fit::KvSource;
     pub use propbet_motor::{write_motor, Battery, Drive, Motor, MotorFile, Powered, Supply, SupplyPoint};
 }
 

@@ -15,6 +15,8 @@ fn sample(line: usize, t: f64, esc: f64, rpm: f64, thrust: f64) -> Sample {
         temperature: None,
         pressure: None,
         humidity: None,
+        volts: None,
+        amps: None,
         fresh: crate::table::Fresh::ALL,
     }
 }

@@ -87,3 +87,145 @@ pub fn powered(
         })
         .collect()
 }
+
+/// A motor fitted to stand logs, and how well it predicts each step's current when that step
+/// is left out of the fit.
+#[derive(Debug, Clone)]
+pub struct FittedMotor {
+    /// The fit.
+    pub fit: propbet_motor::MotorFit,
+    /// Each fitted point: (its set's name and step label, the point, the current predicted
+    /// with its own step left out).
+    pub points: Vec<(String, propbet_motor::FitPoint, Option<f64>)>,
+    /// The median |predicted / measured - 1| of the held-out currents.
+    pub held_out_median: Option<f64>,
+    /// What was assumed or left out, in words.
+    pub notes: Vec<String>,
+    /// Where the model misses, in words: the held-out current error's trend over speed when it
+    /// is significant (none where it is not).
+    pub misses: Option<String>,
+}
+
+/// Fits a type 1 motor to the steps of the measured files that log speed, torque, voltage
+/// and current (`kv_rpm` the maker's Kv when given), each step also predicted with itself
+/// left out.
+pub fn fit_motor(spec: &crate::spec::MeasuredSpec, kv_rpm: Option<f64>) -> Result<FittedMotor> {
+    use propbet_measure::Loads;
+    let batch = crate::stages::load_batch(spec)?;
+    if let Some(r) = batch.refused.first() {
+        return Err(Error::input(Path::new(&r.file), r.reason.clone()));
+    }
+    let mut points = Vec::new();
+    let mut names = Vec::new();
+    let mut notes = Vec::new();
+    let mut without = 0;
+    for (set, name) in batch.sets.iter().zip(&batch.names) {
+        for p in &set.points {
+            let torque = match &p.loads {
+                Loads::Forces { torque: Some(q), .. } => q.mean,
+                _ => f64::NAN,
+            };
+            match &p.electric {
+                Some(e) if torque.is_finite() && e.volts.mean > 0.0 && e.amps.mean > 0.0 && p.flags.is_empty() => {
+                    points.push(propbet_motor::FitPoint {
+                        omega: p.omega.mean,
+                        torque,
+                        volts: e.volts.mean,
+                        amps: e.amps.mean,
+                        esc: e.esc,
+                    });
+                    names.push(format!("{name}: {}", p.label));
+                }
+                _ => without += 1,
+            }
+        }
+    }
+    if without > 0 {
+        notes.push(format!(
+            "{without} steps without torque, voltage or current (or flagged: unsteady, windmilling) left out"
+        ));
+    }
+    let fit = propbet_motor::fit_motor(&points, kv_rpm).map_err(|e| {
+        let hint = match e {
+            propbet_motor::FitError::Unphysical(_) => {
+                " (an RPM column that is the motor's electrical speed needs --poles; a log of a varying \
+                 throttle rather than held steps gives few steady points)"
+            }
+            _ => "",
+        };
+        Error::Nothing(format!("{e}{hint}"))
+    })?;
+    if let propbet_motor::fit::KvSource::EscDuty(n) = fit.kv_source {
+        notes.push(format!(
+            "Kv from the voltage the motor sees at {n} steps of half throttle and above, the ESC's duty read as \
+             (command - 1000 µs) / 1000 µs (a linear ESC calibrated to 1000-2000 µs); give the maker's Kv \
+             (--kv) where the ESC is not"
+        ));
+    }
+    notes.push(
+        "the ESC taken as lossless: its losses are in R, and Io holds the motor's and the ESC's no-load draw".into(),
+    );
+    let step: Vec<usize> = (0..points.len()).collect();
+    let held = propbet_motor::held_out_amps(&points, &step);
+    let errors: Vec<f64> = points
+        .iter()
+        .zip(&held)
+        .filter_map(|(p, h)| h.map(|h| (h / p.amps - 1.0).abs()))
+        .collect();
+    let held_out_median = (!errors.is_empty()).then(|| propbet_units::stats::median(errors));
+    let misses = speed_trend(&points, &held);
+    Ok(FittedMotor {
+        misses,
+        fit,
+        points: names
+            .into_iter()
+            .zip(points)
+            .zip(held)
+            .map(|((n, p), h)| (n, p, h))
+            .collect(),
+        held_out_median,
+        notes,
+    })
+}
+
+/// The held-out current error's straight-line trend over speed, in words, when it exceeds
+/// twice its standard error and 3 % over the steps' range: what type 1's constant Io misses.
+fn speed_trend(points: &[propbet_motor::FitPoint], held: &[Option<f64>]) -> Option<String> {
+    let xy: Vec<(f64, f64)> = points
+        .iter()
+        .zip(held)
+        .filter_map(|(p, h)| h.map(|h| (p.omega, h / p.amps - 1.0)))
+        .collect();
+    if xy.len() < 4 {
+        return None;
+    }
+    let n = xy.len() as f64;
+    let (mx, my) = (
+        xy.iter().map(|p| p.0).sum::<f64>() / n,
+        xy.iter().map(|p| p.1).sum::<f64>() / n,
+    );
+    let sxx: f64 = xy.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    if sxx <= 0.0 {
+        return None;
+    }
+    let slope = xy.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / sxx;
+    let ss: f64 = xy.iter().map(|p| (p.1 - my - slope * (p.0 - mx)).powi(2)).sum();
+    let se = (ss / (n - 2.0) / sxx).sqrt();
+    let (lo, hi) = xy
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
+    let change = slope * (hi - lo);
+    (slope.abs() > 2.0 * se && change.abs() > 0.03).then(|| {
+        format!(
+            "the predicted current drifts {:+.1} % from the slowest step to the fastest: {}",
+            100.0 * change,
+            if change < 0.0 {
+                "the motor draws more than R and a constant Io allow as it speeds up: no-load losses rising \
+                 with speed (bearings, iron; QPROP type 2's Io1, Io2) or the ESC's timing"
+            } else {
+                "the motor draws less at speed than at low speed: a resistance falling with load, or heating \
+                 during the slow steps (R rises with temperature)"
+            }
+        )
+    })
+}

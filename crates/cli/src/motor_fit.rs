@@ -1,0 +1,118 @@
+//! `propbet motor fit`: a QPROP motor file (type 1: R, Io, Kv) fitted to thrust-stand logs
+//! that carry speed, torque, voltage and current, with the fit's numbers in its comments.
+
+use std::path::PathBuf;
+
+use anyhow::Result;
+use clap::{Args, Subcommand};
+use propbet_pipeline::motor::{write_motor, MotorFile};
+
+use crate::compare::MeasuredArgs;
+use crate::output::emit;
+
+/// `propbet motor`'s subcommands.
+#[derive(Debug, Subcommand)]
+pub enum MotorCommand {
+    /// Fit R, Io and Kv to stand logs' speed, torque, voltage and current; write a QPROP motor
+    /// file.
+    Fit(FitArgs),
+}
+
+/// Arguments of `propbet motor fit`.
+#[derive(Debug, Args)]
+pub struct FitArgs {
+    /// The logs.
+    #[command(flatten)]
+    pub measured: MeasuredArgs,
+    /// The maker's Kv [rpm/V]: R and Io are fitted for it (without it Kv is found from the
+    /// ESC command's duty).
+    #[arg(long)]
+    pub kv: Option<f64>,
+    /// The motor's name in the file (default: the first log's name).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// The motor file to write (default: standard output).
+    #[arg(long, short)]
+    pub out: Option<PathBuf>,
+}
+
+/// Runs `propbet motor ...`.
+pub fn run(command: &MotorCommand) -> Result<bool> {
+    match command {
+        MotorCommand::Fit(a) => fit(a),
+    }
+}
+
+fn fit(args: &FitArgs) -> Result<bool> {
+    if let Some(kv) = args.kv {
+        if !(kv > 0.0 && kv.is_finite()) {
+            anyhow::bail!("--kv {kv}: Kv is a positive number of rpm per volt");
+        }
+    }
+    let spec = args.measured.spec()?;
+    let f = propbet_pipeline::stages::fit_motor(&spec, args.kv)?;
+    let m = &f.fit;
+    let name = args.name.clone().unwrap_or_else(|| {
+        let first = spec
+            .files
+            .first()
+            .and_then(|p| p.file_stem())
+            .map(|s| s.to_string_lossy().into_owned());
+        format!("{} (fitted)", first.unwrap_or_else(|| "motor".into()))
+    });
+    let kv_words = match m.kv_source {
+        propbet_pipeline::motor::KvSource::Given => "given".to_string(),
+        propbet_pipeline::motor::KvSource::EscDuty(n) => format!("from the ESC duty at {n} steps"),
+    };
+    let held = f
+        .held_out_median
+        .map_or("n/a".to_string(), |h| format!("{:.1} %", 100.0 * h));
+    let lines = [
+        format!(
+            "R  = {:.4} ± {:.4} ohm, Io = {:.3} ± {:.3} A, Kv = {:.0} ± {:.0} rpm/V ({kv_words}); 95 % intervals",
+            m.r.value, m.r.plus_minus, m.io.value, m.io.plus_minus, m.kv_rpm.value, m.kv_rpm.plus_minus
+        ),
+        format!(
+            "supply current over {} steps: RMS error {:.1} %; each step left out of the fit and predicted: median {held}",
+            m.points,
+            100.0 * m.rms_current
+        ),
+    ];
+    let mut comments = vec![format!(
+        "fitted by propbet {} (propbet motor fit) from {}",
+        env!("CARGO_PKG_VERSION"),
+        spec.files
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    )];
+    comments.extend(lines.iter().cloned());
+    comments.extend(f.notes.iter().cloned());
+    comments.extend(f.misses.iter().map(|m| format!("where it misses: {m}")));
+    let file = MotorFile {
+        name,
+        motor: m.motor,
+        params: vec![m.motor.r0, m.motor.io0, m.motor.kv_rpm],
+        labels: Vec::new(),
+    };
+    let text = write_motor(&file, &comments);
+    let inputs: Vec<&std::path::Path> = spec.files.iter().map(PathBuf::as_path).collect();
+    emit(args.out.as_deref(), &[text.as_bytes()], &inputs)?;
+    for l in &lines {
+        eprintln!("propbet motor fit: {l}");
+    }
+    for n in &f.notes {
+        eprintln!("{}", crate::output::wrapped(&format!("propbet: note: {n}"), "", "  "));
+    }
+    if let Some(w) = &f.misses {
+        eprintln!(
+            "{}",
+            crate::output::wrapped(&format!("propbet: where the motor model misses: {w}"), "", "  ")
+        );
+    }
+    if let Some(out) = &args.out {
+        eprintln!("propbet motor fit: -> {}", out.display());
+    }
+    Ok(true)
+}
