@@ -446,3 +446,55 @@ fn a_motor_fitted_to_real_stand_logs_predicts_their_held_out_currents() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--poles"), "{}", stderr(&o));
 }
+
+#[test]
+fn compare_with_a_motor_scores_the_logs_current_and_electrical_power() {
+    let dir = tempfile::tempdir().unwrap();
+    let log = super::repo().join("props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv");
+    let prop = super::repo().join("props/photofoil_8x4.5/QProp_8x4_5.txt");
+    let (_, _) = fitted(
+        "photofoil/StepsTestV2_2022-01-18_153833.csv",
+        &["--kv", "1000"],
+        dir.path(),
+    );
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            prop.to_str().unwrap(),
+            "--measured",
+            log.to_str().unwrap(),
+            "--motor",
+            "fitted.motor",
+            "-o",
+            "cmp",
+        ],
+        dir.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(
+        out.contains("Supply current on") && out.contains("electrical power"),
+        "{out}"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("cmp/summary.json")).unwrap()).unwrap();
+    let e = &summary["electric"];
+    assert_eq!(e["points"], 11, "{e}");
+    // The motor fitted to this log gives its current back from the measured torque; from the
+    // predicted torque the current is off as the torque is.
+    let alone = e["motor_only_current_median_abs_error"].as_f64().unwrap();
+    assert!(alone < 0.05, "{e}");
+    let current = e["current_median_error"].as_f64().unwrap();
+    assert!(
+        current.abs() < 0.5 && e["electrical_power_median_error"].as_f64().is_some(),
+        "{e}"
+    );
+    let html = std::fs::read_to_string(dir.path().join("cmp/report.html")).unwrap();
+    assert!(html.contains("Electrical: current and power") && html.contains("fig-electric"));
+    let (h, rows) = read_csv(&dir.path().join("cmp/electric.csv"));
+    assert_eq!(rows.len(), 11);
+    assert!(rows
+        .iter()
+        .all(|r| r[col(&h, "amps_predicted")].parse::<f64>().unwrap() > 0.0));
+}

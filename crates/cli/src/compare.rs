@@ -55,6 +55,10 @@ pub struct CompareArgs {
     /// diameter and the output's density).
     #[arg(long, value_name = "FILE", conflicts_with = "per3")]
     pub qprop_output: Option<PathBuf>,
+    /// A QPROP motor file (`propbet motor fit` writes one): the log's supply current and
+    /// electrical power scored against what this motor draws for the predicted torque.
+    #[arg(long, value_name = "FILE")]
+    pub motor: Option<PathBuf>,
     /// Output directory (created if missing).
     #[arg(long, short)]
     pub out: PathBuf,
@@ -134,6 +138,7 @@ impl CompareArgs {
             measured: self.data.spec()?,
             per3: self.per3.clone(),
             qprop_output: self.qprop_output.clone(),
+            motor: self.motor.clone(),
             out: self.out.clone(),
         })
     }
@@ -224,13 +229,29 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
+    inputs.extend(spec.motor.as_deref());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
     let other = reference(&spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;
-    let (_, reference, _) = write(&spec, &model, &c, other.as_ref())?;
+    let electric = match &spec.motor {
+        Some(m) => {
+            let e = stages::electric(&c, m)?;
+            if e.is_none() {
+                eprintln!(
+                    "propbet: warning: --motor: no compared point logged the supply's voltage and current; nothing electrical to score"
+                );
+            }
+            e
+        }
+        None => None,
+    };
+    let (_, reference, _) = write(&spec, &model, &c, other.as_ref(), electric.as_ref())?;
     print(&spec, &c, reference.as_ref());
+    if let Some(e) = &electric {
+        println!("{}", crate::output::wrapped(&report::electric_sentence(e), "", "  "));
+    }
     Ok(c.clean())
 }
 
@@ -243,6 +264,7 @@ pub fn write(
     model: &Model,
     c: &Compared,
     other: Option<&Reference>,
+    electric: Option<&propbet_pipeline::compare::electric::Electric>,
 ) -> Result<(String, Option<ReferenceScore>, Option<propbet_plot::Figure>)> {
     let (curves, band) = c.curves(model)?;
     let mut prop_notes = model.loaded.warnings.clone();
@@ -278,12 +300,14 @@ pub fn write(
         diameter: model.diameter,
         curves: &curves,
         command: propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command(),
+        electric,
     })?;
     let out = &spec.out;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
+    inputs.extend(spec.motor.as_deref());
     let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
     let lock = crate::output::claim_folder(out, &command)?;
     let plots = out.join("plots");
@@ -299,6 +323,20 @@ pub fn write(
     let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems(), &c.warnings());
     if let (Some(r), serde_json::Value::Object(o)) = (&rep.reference, &mut summary) {
         o.insert("reference".into(), r.json());
+    }
+    if let (Some(e), serde_json::Value::Object(o)) = (electric, &mut summary) {
+        o.insert(
+            "electric".into(),
+            serde_json::json!({
+                "motor": e.motor,
+                "points": e.points.len(),
+                "current_median_error": e.current_median,
+                "current_median_abs_error": e.current_median_abs,
+                "motor_only_current_median_abs_error": e.motor_only_median_abs,
+                "electrical_power_median_error": e.power_median,
+            }),
+        );
+        write_atomic(&out.join("electric.csv"), &[csv_rows(&e.points, true)?], &inputs)?;
     }
     let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');

@@ -346,7 +346,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::reference(spec, model.diameter)?;
-            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref())?;
+            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), None)?;
             w.lead = lead;
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());

@@ -175,7 +175,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             StageSpec::Compare(s) => {
                 let (c, model) = compared.next().expect("two comparisons");
                 let other = crate::compare::reference(s, model.diameter)?;
-                let (_, reference, _) = crate::compare::write(s, model, c, other.as_ref())?;
+                let (_, reference, _) = crate::compare::write(s, model, c, other.as_ref(), None)?;
                 crate::compare::print(s, c, reference.as_ref());
             }
             StageSpec::Diagnose(s) => {

@@ -5,6 +5,7 @@
 
 pub mod band;
 pub mod curves;
+pub mod electric;
 pub mod metrics;
 pub mod plausible;
 

@@ -435,6 +435,8 @@ pub struct CompareSpec {
     pub per3: Option<PathBuf>,
     /// A QPROP output (its printed sweep) drawn and scored beside propbet's.
     pub qprop_output: Option<PathBuf>,
+    /// A QPROP motor file: the log's current and electrical power scored against it.
+    pub motor: Option<PathBuf>,
     /// Output directory.
     pub out: PathBuf,
 }

@@ -328,7 +328,7 @@ mod synth;
 
 pub use measured::*;
 pub use polar::*;
-pub use powered::{fit_motor, omega_ceiling, powered, read_motor, FittedMotor, PoweredPoint};
+pub use powered::{electric, fit_motor, omega_ceiling, powered, read_motor, FittedMotor, PoweredPoint};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};

@@ -51,6 +51,8 @@ pub struct ReportInput<'a> {
     pub command: String,
     /// Another prediction drawn and scored beside propbet's (APC's own, `--per3`).
     pub reference: Option<ReferenceInput<'a>>,
+    /// The log's electrical columns against a motor (`--motor`).
+    pub electric: Option<&'a propbet_compare::electric::Electric>,
 }
 
 /// Another prediction for the report: its name and its (CT, CP) at (rpm, J).
@@ -514,6 +516,12 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
         let _ = writeln!(h, "<p class=\"warn\">{}</p>", esc(w));
     }
     let _ = writeln!(h, "<p class=\"note\">command: <code>{}</code></p>", esc(&input.command));
+    let mut figures = figures;
+    if let Some(e) = input.electric {
+        let fig = electric::figure(e);
+        electric::html(&mut h, e, &fig)?;
+        figures.push(("electric".to_string(), fig));
+    }
     let trends = speed_trends(pts);
     if !trends.is_empty() {
         h.push_str("<h2>With speed</h2>\n<ul>");
@@ -576,10 +584,12 @@ pub fn build(input: &ReportInput) -> Result<Report, PlotError> {
     })
 }
 
+mod electric;
 mod figures;
 mod files;
 mod text;
 
+pub use electric::sentence as electric_sentence;
 use figures::{coefficient_figure, residual_figure, static_figure};
 pub use files::{dropped_ranges, measured_files_html, measured_files_md};
 use text::{json, markdown};

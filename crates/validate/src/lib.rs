@@ -320,6 +320,7 @@ fn calibrate(
         CompareSpec {
             per3: None,
             qprop_output: None,
+            motor: None,
             model: cal_spec,
             measured: measured.clone(),
             out: dir.join("calibrated"),
@@ -443,6 +444,7 @@ pub fn validate_prop(
         CompareSpec {
             per3: per3_file.clone(),
             qprop_output: None,
+            motor: None,
             model: model_spec.clone(),
             measured: measured.clone(),
             out: dir.join("compare"),

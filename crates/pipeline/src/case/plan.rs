@@ -218,6 +218,7 @@ impl Case {
                         measured: measured.clone(),
                         per3: m.per3.as_deref().map(f),
                         qprop_output: None,
+                        motor: None,
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {

@@ -101,6 +101,9 @@ impl StageSpec {
                 if let Some(p) = &s.qprop_output {
                     push(&mut v, "--qprop-output", path(p));
                 }
+                if let Some(p) = &s.motor {
+                    push(&mut v, "--motor", path(p));
+                }
                 push(&mut v, "--out", path(&s.out));
             }
             StageSpec::Diagnose(s) => {

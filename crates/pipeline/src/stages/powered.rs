@@ -229,3 +229,15 @@ fn speed_trend(points: &[propbet_motor::FitPoint], held: &[Option<f64>]) -> Opti
         )
     })
 }
+
+/// The comparison's electrical columns against the motor file at `motor` (None where no
+/// compared point logged the supply's voltage and current).
+pub fn electric(c: &crate::stages::Compared, motor: &Path) -> Result<Option<propbet_compare::electric::Electric>> {
+    let file = read_motor(motor)?;
+    Ok(propbet_compare::electric::score(
+        &c.points,
+        &c.sets,
+        &file.motor,
+        &file.name,
+    ))
+}
