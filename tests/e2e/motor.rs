@@ -498,3 +498,89 @@ fn compare_with_a_motor_scores_the_logs_current_and_electrical_power() {
         .iter()
         .all(|r| r[col(&h, "amps_predicted")].parse::<f64>().unwrap() > 0.0));
 }
+
+#[test]
+fn props_side_by_side_answer_which_prop_for_a_motor() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |rel: &str| super::repo().join("props").join(rel).display().to_string();
+    let (a, b, c, motor) = (
+        p("cam6x3/cam6x3.qprop"),
+        p("photofoil_8x4.5/QProp_8x4_5.txt"),
+        p("apcsf_10x4.7/apcsf_10x4.7.qprop"),
+        p("motors/axi2204-54.motor"),
+    );
+    let args = [
+        "compare-props",
+        &a,
+        &b,
+        &c,
+        "--motor",
+        &motor,
+        "--battery",
+        "3S,2200mAh",
+        "--hover",
+        "2",
+        "-o",
+        "side",
+    ];
+    let o = run(&args, dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout).to_string();
+    // The three questions: full-throttle thrust, amps at hover, the most grams per watt.
+    assert!(
+        out.contains("Most grams per watt at hover") && out.contains("Most static thrust at full throttle"),
+        "{out}"
+    );
+    let html = std::fs::read_to_string(dir.path().join("side/report.html")).unwrap();
+    assert!(html.contains("Most grams per watt at hover") && html.contains("fig-props"));
+    let (h, rows) = read_csv(&dir.path().join("side/props.csv"));
+    assert_eq!(rows.len(), 3);
+    let g: Vec<f64> = rows
+        .iter()
+        .map(|r| r[col(&h, "hover_g_per_w")].parse().unwrap())
+        .collect();
+    assert!(g.windows(2).all(|w| w[0] >= w[1]), "ranked by g/W: {g:?}");
+    assert!(out.contains(&rows[0][col(&h, "prop")]));
+    // Each row is what `predict` says for that prop on that motor and battery.
+    for r in &rows {
+        let prop = [&a, &b, &c]
+            .into_iter()
+            .find(|x| x.ends_with(&r[col(&h, "prop")]))
+            .unwrap();
+        let o = run(
+            &[
+                "predict",
+                "--prop",
+                prop,
+                "--motor",
+                &motor,
+                "--battery",
+                "3S,2200mAh",
+                "--thrust",
+                "2",
+                "-o",
+                "h.csv",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let (ph, prow) = read_csv(&dir.path().join("h.csv"));
+        let amps: f64 = prow[0][col(&ph, "battery_amps")].parse().unwrap();
+        let side: f64 = r[col(&h, "hover_battery_amps")].parse().unwrap();
+        assert!(
+            (amps / side - 1.0).abs() < 1e-6,
+            "{}: {amps} A, side by side {side} A",
+            r[1]
+        );
+    }
+    // A hover no prop of these can give is listed per prop (exit 1); a hover of 0 is refused.
+    let mut high = args;
+    high[9] = "40";
+    let o = run(&high, dir.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("Cannot hover"));
+    high[9] = "0";
+    let o = run(&high, dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--hover 0"), "{}", stderr(&o));
+}

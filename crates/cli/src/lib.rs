@@ -28,6 +28,7 @@ macro_rules! println {
 pub mod api;
 pub mod columns;
 mod compare;
+mod compare_props;
 mod diagnose;
 mod engine;
 mod export;
@@ -104,6 +105,14 @@ pub enum Command {
         "Exit status: 0 done; 2 error."
     ))]
     Motor(motor_fit::MotorCommand),
+    /// Propellers side by side on one motor and battery: hover g/W, current and endurance,
+    /// full-throttle thrust and current, efficiency over airspeed; ranked.
+    #[command(after_help = concat!(
+        "Example:\n  propbet compare-props props/cam6x3/cam6x3.qprop props/photofoil_8x4.5/QProp_8x4_5.txt \\\n",
+        "    --motor props/motors/axi2204-54.motor --battery 3S,2200mAh --hover 2 -o side\n\n",
+        "Exit status: 0 done; 1 done, some propeller cannot hover at that thrust; 2 error."
+    ))]
+    CompareProps(Box<compare_props::ComparePropsArgs>),
     /// Compare measured data (thrust stand, wind tunnel, CSV) with the prediction: metrics,
     /// plots and an HTML report.
     #[command(after_help = concat!(
@@ -244,6 +253,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Predict(a) if a.motor.motor.is_some() => powered::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Motor(c) => motor_fit::run(&c),
+        Command::CompareProps(a) => compare_props::run(&a),
         Command::Prop(a) => prop::run(&a),
         Command::Export(a) => export::run(&a),
         Command::Polar(a) => polar::run_polar(&a),

@@ -324,6 +324,7 @@ mod polar;
 mod powered;
 mod reference;
 mod section;
+mod side;
 mod synth;
 
 pub use measured::*;
@@ -331,6 +332,7 @@ pub use polar::*;
 pub use powered::{electric, fit_motor, omega_ceiling, powered, read_motor, FittedMotor, PoweredPoint};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
+pub use side::{side_by_side, SidePoint, SideProp};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod page;
 pub mod polar;
+pub mod props;
 pub mod run;
 pub mod scan;
 pub mod validate;

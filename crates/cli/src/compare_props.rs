@@ -1,0 +1,184 @@
+//! `propbet compare-props`: propellers side by side on one motor and battery, ranked by
+//! grams per watt at hover; the page, a CSV and the ranked table on the terminal.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use propbet_pipeline::spec::{ModelSpec, Rotation, SweepAxis};
+use propbet_pipeline::stages::SideProp;
+use propbet_pipeline::values::parse_list;
+
+use crate::output::{csv_rows, write_atomic, write_figure, Num};
+use crate::predict::{BladeArgs, FluidArgs};
+
+/// Arguments of `propbet compare-props`.
+#[derive(Debug, Args)]
+pub struct ComparePropsArgs {
+    /// The propellers (QPROP prop files, APC's PE0 files, UIUC tables, blade tables), each
+    /// read with propbet's default model.
+    #[arg(required = true, num_args = 1..)]
+    pub props: Vec<PathBuf>,
+    /// The sections of blade files without coefficients.
+    #[command(flatten)]
+    pub blade: BladeArgs,
+    /// The QPROP motor file.
+    #[arg(long, value_name = "FILE")]
+    pub motor: PathBuf,
+    /// The battery (as `predict --battery`: `3S,2200mAh,R=5mOhm`).
+    #[arg(long, value_name = "SPEC")]
+    pub battery: String,
+    /// The ESC's resistance [ohm].
+    #[arg(long, default_value_t = 0.005, value_name = "OHMS")]
+    pub esc_ohms: f64,
+    /// The thrust of one propeller at hover [N] (the craft's weight over its propellers).
+    #[arg(long, value_name = "N")]
+    pub hover: f64,
+    /// Airspeeds of the full-throttle curves [m/s] (list or range syntax; default 0:20/11).
+    #[arg(long, allow_hyphen_values = true)]
+    pub v: Option<String>,
+    /// Air properties.
+    #[command(flatten)]
+    pub air: FluidArgs,
+    /// Output directory (report.html, props.csv, plots/).
+    #[arg(long, short)]
+    pub out: PathBuf,
+}
+
+/// The default model of a propeller file.
+fn model_spec(prop: &std::path::Path, blade: &BladeArgs) -> Result<ModelSpec> {
+    let design = crate::predict::design_spec(prop, blade)?;
+    let tables = design.is_some();
+    Ok(ModelSpec {
+        design,
+        rotation: Rotation::or_default(None, tables),
+        drag_factor: propbet_pipeline::spec::drag_factor_or_default(None, tables),
+        ..ModelSpec::prop(prop.to_path_buf())
+    })
+}
+
+/// A row of props.csv.
+#[derive(serde::Serialize)]
+struct Row {
+    rank: usize,
+    prop: String,
+    diameter_m: Num,
+    hover_thrust_n: Num,
+    hover_g_per_w: Num,
+    hover_throttle: Num,
+    hover_battery_amps: Num,
+    hover_motor_amps: Num,
+    hover_rpm: Num,
+    hover_endurance_min: Num,
+    full_thrust_n: Num,
+    full_battery_amps: Num,
+    full_rpm: Num,
+    no_hover: String,
+}
+
+fn row(k: usize, p: &SideProp, hover: f64) -> Row {
+    let h = p.hover.as_ref().ok();
+    let f = p.full.first().and_then(|(_, r)| r.as_ref().ok());
+    use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
+    Row {
+        rank: k + 1,
+        prop: p.name.clone(),
+        diameter_m: p.diameter.into(),
+        hover_thrust_n: hover.into(),
+        hover_g_per_w: p.hover_g_per_w().into(),
+        hover_throttle: h.map(|x| x.2.throttle).into(),
+        hover_battery_amps: h.map(|x| x.2.battery_amps).into(),
+        hover_motor_amps: h.map(|x| x.0.amps).into(),
+        hover_rpm: h.map(|x| omega_to_rpm(x.0.omega)).into(),
+        hover_endurance_min: h.and_then(|x| x.2.endurance).map(seconds_to_minutes).into(),
+        full_thrust_n: f.map(|x| x.0.loads.thrust).into(),
+        full_battery_amps: f.map(|x| x.2.battery_amps).into(),
+        full_rpm: f.map(|x| omega_to_rpm(x.0.omega)).into(),
+        no_hover: p.hover.as_ref().err().cloned().unwrap_or_default(),
+    }
+}
+
+/// Runs `propbet compare-props`.
+pub fn run(args: &ComparePropsArgs) -> Result<bool> {
+    if !(args.hover > 0.0 && args.hover.is_finite()) {
+        anyhow::bail!(
+            "--hover {}: the thrust of one propeller at hover, in newtons, above 0",
+            args.hover
+        );
+    }
+    let flags = crate::motor_flags::MotorArgs {
+        motor: Some(args.motor.clone()),
+        volts: None,
+        amps: None,
+        thrust: None,
+        battery: Some(args.battery.clone()),
+        esc_ohms: args.esc_ohms,
+        throttle: None,
+    };
+    let supply = flags.supply()?.context("--battery")?;
+    let file = propbet_pipeline::stages::read_motor(&args.motor)?;
+    let speeds = match &args.v {
+        Some(v) => parse_list("--v", v)?,
+        None => (0..=10).map(|k| 2.0 * k as f64).collect(),
+    };
+    let top = file.motor.free_speed(supply.source(1.0).0).unwrap_or(file.motor.kv());
+    let omegas: Vec<f64> = (1..=8).map(|k| top * k as f64 / 8.0).collect();
+    let mut models = Vec::new();
+    let mut inputs: Vec<PathBuf> = vec![args.motor.clone()];
+    for prop in &args.props {
+        let spec = model_spec(prop, &args.blade)?;
+        let model = crate::predict::load_model_at(&spec, || Ok((omegas.clone(), SweepAxis::V(speeds.clone()))), false)?;
+        let name = prop
+            .file_name()
+            .map_or_else(|| prop.display().to_string(), |n| n.to_string_lossy().into());
+        inputs.push(prop.clone());
+        models.push((name, model));
+    }
+    let (fluid, _) = args.air.spec()?.fluid()?;
+    let props = propbet_pipeline::stages::side_by_side(&models, &fluid, &file.motor, &supply, args.hover, &speeds)?;
+    let command = std::iter::once("propbet".to_string())
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ");
+    let setup = propbet_report::props::Setup {
+        motor: &file.name,
+        battery: &args.battery,
+        hover_thrust: args.hover,
+        command: &command,
+    };
+    let fig = propbet_report::props::figure(&props);
+    let html = propbet_report::props::html(&props, &setup, &fig)?;
+    let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
+    crate::output::refuse_inputs_inside(&args.out, &inputs)?;
+    let plots = args.out.join("plots");
+    std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
+    for ext in ["svg", "png"] {
+        write_figure(&plots.join(format!("props.{ext}")), &fig, &inputs)?;
+    }
+    let rows = props.iter().enumerate().map(|(k, p)| row(k, p, args.hover));
+    write_atomic(&args.out.join("props.csv"), &[csv_rows(rows, true)?], &inputs)?;
+    write_atomic(&args.out.join("report.html"), &[html.as_bytes()], &inputs)?;
+    for a in propbet_report::props::answer(&props, &setup) {
+        println!("{}", crate::output::wrapped(&a, "", "  "));
+    }
+    println!(
+        "{:>4}  {:<28} {:>9} {:>9} {:>10} {:>8}",
+        "rank", "propeller", "hover g/W", "hover A", "full T [N]", "full A"
+    );
+    for (k, p) in props.iter().enumerate() {
+        let h = p.hover.as_ref().ok();
+        let f = p.full.first().and_then(|(_, r)| r.as_ref().ok());
+        let cell = |x: Option<f64>, d: usize| x.map_or("–".to_string(), |x| format!("{x:.d$}"));
+        println!(
+            "{:>4}  {:<28} {:>9} {:>9} {:>10} {:>8}",
+            k + 1,
+            p.name,
+            cell(p.hover_g_per_w(), 2),
+            cell(h.map(|x| x.2.battery_amps), 1),
+            cell(f.map(|x| x.0.loads.thrust), 2),
+            cell(f.map(|x| x.2.battery_amps), 1)
+        );
+    }
+    println!("report: {}", args.out.join("report.html").display());
+    Ok(props.iter().all(|p| p.hover.is_ok()))
+}
