@@ -256,6 +256,13 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "--temp=293.15K --pressure 100000 --humidity 50",
     ),
     ("atmosphere", "rho", "rho = 1.2", "predict", "--rho=1.2"),
+    (
+        "motor",
+        "file",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"",
+        "compare",
+        "--motor",
+    ),
 ];
 
 /// The case every key is set in: the default case's scan, polars, sweep and measurements.
@@ -283,6 +290,9 @@ fn with(base: &str, section: &str, key: &str, line: &str) -> String {
     }
     if section.is_empty() {
         out.insert(0, line.to_string());
+    } else if !base.contains(&format!("#{section}")) {
+        // A section the base case has not (one whose keys are all required).
+        out.push(format!("\n[{section}]\n{line}"));
     }
     out.join("\n") + "\n"
 }
@@ -300,10 +310,11 @@ fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
         (&case, "SweepSection", "sweep"),
         (&case, "MeasuredSection", "measured"),
         (&case, "AtmosphereSection", "atmosphere"),
+        (&case, "MotorSection", "motor"),
     ];
     // Fields that are not keys: the sections themselves at the top level, and [geometry]'s
     // `settings` (whose keys are listed from their own struct).
-    let sections_names = ["geometry", "polars", "sweep", "measured", "atmosphere"];
+    let sections_names = ["geometry", "polars", "sweep", "measured", "atmosphere", "motor"];
     let mut out = Vec::new();
     for (text, name, section) in sections {
         let start = text.find(&format!("pub struct {name} {{")).unwrap();

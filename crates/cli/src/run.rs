@@ -346,7 +346,14 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
         }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::reference(spec, model.diameter)?;
-            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), None)?;
+            let electric = match &spec.motor {
+                Some(m) => propbet_pipeline::stages::electric(c, m)?,
+                None => None,
+            };
+            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), electric.as_ref())?;
+            if let Some(e) = &electric {
+                w.brief.push(propbet_report::compare::electric_sentence(e));
+            }
             w.lead = lead;
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());

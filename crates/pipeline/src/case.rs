@@ -31,6 +31,17 @@ pub struct Case {
     /// Air of the measurements and sweeps.
     #[serde(default)]
     pub atmosphere: AtmosphereSection,
+    /// The motor of the measurements (its current and electrical power scored against the
+    /// log's).
+    pub motor: Option<MotorSection>,
+}
+
+/// `[motor]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MotorSection {
+    /// A QPROP motor file relative to the case directory.
+    pub file: String,
 }
 
 /// `[geometry]`: a scan or a prop file, and the scan's settings.
@@ -385,6 +396,7 @@ impl RunPlan {
         if let Some((c, _)) = &self.compare {
             v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
             v.extend(c.per3.clone());
+            v.extend(c.motor.clone());
         }
         v
     }

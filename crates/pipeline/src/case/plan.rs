@@ -218,7 +218,7 @@ impl Case {
                         measured: measured.clone(),
                         per3: m.per3.as_deref().map(f),
                         qprop_output: None,
-                        motor: None,
+                        motor: self.motor.as_ref().map(|m| f(&m.file)),
                         out: out.join("compare"),
                     },
                     DiagnoseSpec {
