@@ -13,14 +13,16 @@ use crate::output::{csv_rows, emit, Num};
 use crate::predict::{Format, PredictArgs};
 
 /// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
-/// speed at the highest voltage given (12 V, a 3-cell battery, where none is).
-fn polar_omegas(motor: &Motor, drives: &[Drive]) -> Vec<f64> {
+/// speed at the highest voltage given or the battery's (12 V, a 3-cell battery, where none
+/// is).
+fn polar_omegas(motor: &Motor, drives: &[Drive], battery_volts: Option<f64>) -> Vec<f64> {
     let volts = drives
         .iter()
         .filter_map(|d| match d {
-            Drive::Volts(v) => Some(*v),
+            Drive::Volts(v) | Drive::Throttle { volts: v, .. } => Some(*v),
             _ => None,
         })
+        .chain(battery_volts)
         .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))))
         .unwrap_or(12.0);
     let top = motor.free_speed(volts).unwrap_or(motor.kv() * volts);
@@ -52,7 +54,13 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     let spec = args.model.spec()?;
     let model = crate::predict::load_model_at(
         &spec,
-        || Ok((polar_omegas(&file.motor, &drives), SweepAxis::V(speeds.clone()))),
+        || {
+            let battery = supply.as_ref().map(|s| s.source(1.0).0);
+            Ok((
+                polar_omegas(&file.motor, &drives, battery),
+                SweepAxis::V(speeds.clone()),
+            ))
+        },
         false,
     )?;
     let (fluid, source) = args.air.spec()?.fluid()?;
