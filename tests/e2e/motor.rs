@@ -540,6 +540,18 @@ fn props_side_by_side_answer_which_prop_for_a_motor() {
         .map(|r| r[col(&h, "hover_g_per_w")].parse().unwrap())
         .collect();
     assert!(g.windows(2).all(|w| w[0] >= w[1]), "ranked by g/W: {g:?}");
+    // Each g/W inside its band, and the answer says whether the first two are told apart.
+    for (r, g) in rows.iter().zip(&g) {
+        let (lo, hi): (f64, f64) = (
+            r[col(&h, "hover_g_per_w_lo")].parse().unwrap(),
+            r[col(&h, "hover_g_per_w_hi")].parse().unwrap(),
+        );
+        assert!(lo < *g && *g < hi, "{}: {lo} {g} {hi}", r[1]);
+    }
+    assert!(
+        out.contains("not told apart") || out.contains("beyond the predictions' uncertainty bands"),
+        "{out}"
+    );
     assert!(out.contains(&rows[0][col(&h, "prop")]));
     // Each row is what `predict` says for that prop on that motor and battery.
     for r in &rows {

@@ -60,6 +60,21 @@ pub fn answer(props: &[SideProp], s: &Setup) -> Vec<String> {
             a
         ));
     }
+    if let [a, b, ..] = props {
+        if let (Some(x), Some(y)) = (a.hover_band, b.hover_band) {
+            out.push(if x.0 <= y.1 {
+                format!(
+                    "Within the predictions' uncertainty bands, {} ({:.2}-{:.2} g/W) and {} ({:.2}-{:.2} g/W) are not told apart at hover.",
+                    a.name, x.0, x.1, b.name, y.0, y.1
+                )
+            } else {
+                format!(
+                    "{} is ahead of {} at hover beyond the predictions' uncertainty bands ({:.2}-{:.2} against {:.2}-{:.2} g/W).",
+                    a.name, b.name, x.0, x.1, y.0, y.1
+                )
+            });
+        }
+    }
     let cannot: Vec<String> = props
         .iter()
         .filter_map(|p| p.hover.as_ref().err().map(|why| format!("{}: {why}", p.name)))
@@ -139,18 +154,19 @@ pub fn html(props: &[SideProp], s: &Setup, fig: &Figure) -> Result<String, PlotE
     for a in answer(props, s) {
         let _ = writeln!(h, "<p><strong>{}</strong></p>", esc(&a));
     }
-    h.push_str("<table><tr><th>rank</th><th>propeller</th><th>D [m]</th><th>hover g/W</th><th>hover throttle</th><th>hover battery A</th><th>hover motor A</th><th>endurance [min]</th><th>full-throttle thrust [N]</th><th>full-throttle battery A</th><th>full-throttle rpm</th></tr>\n");
+    h.push_str("<table><tr><th>rank</th><th>propeller</th><th>D [m]</th><th>hover g/W</th><th>band</th><th>hover throttle</th><th>hover battery A</th><th>hover motor A</th><th>endurance [min]</th><th>full-throttle thrust [N]</th><th>full-throttle battery A</th><th>full-throttle rpm</th></tr>\n");
     for (k, p) in props.iter().enumerate() {
         let hover = p.hover.as_ref().ok();
         let full = p.full.first().and_then(|(_, r)| r.as_ref().ok());
         let opt = |x: Option<f64>| x.map_or("–".to_string(), sig);
         let _ = writeln!(
             h,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             k + 1,
             esc(&p.name),
             sig(p.diameter),
             opt(p.hover_g_per_w()),
+            p.hover_band.map_or("–".to_string(), |(lo, hi)| format!("{lo:.2}-{hi:.2}")),
             opt(hover.map(|x| x.2.throttle)),
             opt(hover.map(|x| x.2.battery_amps)),
             opt(hover.map(|x| x.0.amps)),
@@ -168,7 +184,7 @@ pub fn html(props: &[SideProp], s: &Setup, fig: &Figure) -> Result<String, PlotE
     );
     let _ = writeln!(
         h,
-        "<p class=\"note\">Each propeller's prediction (its model as `propbet predict` makes it) on QPROP's motor model and a battery of cells behind their resistance through an ESC taken as an ideal switch with a resistance (docs: commands, `--battery`). Hover: static, at the thrust given. Ranked by g/W at hover (thrust over the battery's power). command: <code>{}</code></p>",
+        "<p class=\"note\">Each propeller's prediction (its model as `propbet predict` makes it) on QPROP's motor model and a battery of cells behind their resistance through an ESC taken as an ideal switch with a resistance (docs: commands, `--battery`). Hover: static, at the thrust given. Ranked by g/W at hover (thrust over the battery's power). The band: the g/W at hover at the ends of each prediction's uncertainty band (its CT and CP, as `predict --band` gives them; at a fixed thrust the power goes as CP/CT^1.5, the motor's efficiency held, the corners taken apart). command: <code>{}</code></p>",
         esc(s.command)
     );
     Ok(page("propbet: propellers side by side", "", &h))

@@ -24,6 +24,8 @@ pub struct SideProp {
     pub hover: SidePoint,
     /// At full throttle, at each airspeed (the first static).
     pub full: Vec<(f64, SidePoint)>,
+    /// The g/W at hover at the ends of the prediction's uncertainty band (low, high).
+    pub hover_band: Option<(f64, f64)>,
 }
 
 impl SideProp {
@@ -32,6 +34,23 @@ impl SideProp {
         let (p, _, s) = self.hover.as_ref().ok()?;
         (s.battery_power > 0.0).then(|| p.loads.thrust / propbet_units::STANDARD_GRAVITY * 1000.0 / s.battery_power)
     }
+}
+
+/// The hover g/W at the band's ends. At a fixed thrust the shaft power goes as CP / CT^1.5
+/// (n = sqrt(T / (CT rho D^4)), P = CP rho n^3 D^5); the motor's efficiency is held, and the
+/// corners taken apart (low CT with high CP, high CT with low CP): a conservative range.
+fn hover_band(model: &Model, fluid: &Fluid, prop: &SideProp) -> Result<Option<(f64, f64)>> {
+    let (Ok((m, r, _)), Some(gpw)) = (&prop.hover, prop.hover_g_per_w()) else {
+        return Ok(None);
+    };
+    let point = propbet_bemt::OperatingPoint { v: 0.0, omega: m.omega };
+    let band = crate::band::BandSpec::for_model(model).at_points(model, fluid, &[point], std::slice::from_ref(r))?;
+    let (Some(b), Some(ct), Some(cp)) = (band.first(), r.ct, r.cp) else {
+        return Ok(None);
+    };
+    let merit = |ct_end: f64, cp_end: f64| (ct_end / ct).powf(1.5) * (cp / cp_end);
+    let ends = (gpw * merit(b.ct.lo, b.cp.hi), gpw * merit(b.ct.hi, b.cp.lo));
+    Ok((ends.0.is_finite() && ends.1.is_finite() && ends.0 > 0.0).then_some(ends))
 }
 
 fn side_point(p: &PoweredPoint) -> SidePoint {
@@ -64,12 +83,15 @@ pub fn side_by_side(
             &[0.0],
         )?;
         let full = powered(model, fluid, motor, Some(supply), &[supply.drive(1.0)], speeds)?;
-        out.push(SideProp {
+        let mut prop = SideProp {
             name: name.clone(),
             diameter: model.diameter,
             hover: side_point(&hover[0]),
             full: full.iter().map(|p| (p.v, side_point(p))).collect(),
-        });
+            hover_band: None,
+        };
+        prop.hover_band = hover_band(model, fluid, &prop)?;
+        out.push(prop);
     }
     out.sort_by(|a, b| match (a.hover_g_per_w(), b.hover_g_per_w()) {
         (Some(x), Some(y)) => y.total_cmp(&x),
