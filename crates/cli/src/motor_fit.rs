@@ -96,6 +96,16 @@ fn fit(args: &FitArgs) -> Result<bool> {
         params: vec![m.motor.r0, m.motor.io0, m.motor.kv_rpm],
         labels: Vec::new(),
     };
+    // Comment lines a person reads in an editor or a terminal: at most 100 characters.
+    let comments: Vec<String> = comments
+        .iter()
+        .flat_map(|c| {
+            textwrap::wrap(c, 98)
+                .into_iter()
+                .map(|l| l.into_owned())
+                .collect::<Vec<_>>()
+        })
+        .collect();
     let text = write_motor(&file, &comments);
     let inputs: Vec<&std::path::Path> = spec.files.iter().map(PathBuf::as_path).collect();
     emit(args.out.as_deref(), &[text.as_bytes()], &inputs)?;

@@ -121,7 +121,7 @@ pub fn normalise_unit(unit: &str) -> String {
 
 /// The conversion of `unit` for `q`, or `None` when the unit is not one propbet knows.
 pub fn conversion(q: Quantity, unit: &str) -> Option<Conversion> {
-    const G0: f64 = 9.80665;
+    const G0: f64 = propbet_units::STANDARD_GRAVITY;
     const LBF: f64 = 4.448_221_615_260_5;
     const INCH: f64 = 0.0254;
     let u = normalise_unit(unit);

@@ -11,11 +11,9 @@ use propbet_compare::ComparedPoint;
 use propbet_measure::MeasuredSet;
 use propbet_plot::{Figure, Mark, Panel, Series};
 use propbet_units::stats::median;
+use propbet_units::STANDARD_GRAVITY as G0;
 
 use crate::page::{esc, sig};
-
-/// Standard gravity [m/s²], for thrust in grams.
-const G0: f64 = 9.80665;
 
 /// A signed relative error in percent ("+1.2 %"), a dash where it is not finite.
 pub fn pct(x: f64) -> String {
