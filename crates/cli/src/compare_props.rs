@@ -110,23 +110,13 @@ pub fn run(args: &ComparePropsArgs) -> Result<bool> {
             args.hover
         );
     }
-    let flags = crate::motor_flags::MotorArgs {
-        motor: Some(args.motor.clone()),
-        volts: None,
-        amps: None,
-        thrust: None,
-        battery: Some(args.battery.clone()),
-        esc_ohms: args.esc_ohms,
-        throttle: None,
-    };
-    let supply = flags.supply()?.context("--battery")?;
+    let supply = crate::motor_flags::supply(&args.battery, args.esc_ohms)?;
     let file = propbet_pipeline::stages::read_motor(&args.motor)?;
     let speeds = match &args.v {
         Some(v) => parse_list("--v", v)?,
         None => (0..=10).map(|k| 2.0 * k as f64).collect(),
     };
-    let top = file.motor.free_speed(supply.source(1.0).0).unwrap_or(file.motor.kv());
-    let omegas: Vec<f64> = (1..=8).map(|k| top * k as f64 / 8.0).collect();
+    let omegas = crate::powered::polar_omegas(&file.motor, &[], Some(supply.source(1.0).0));
     let mut models = Vec::new();
     let mut inputs: Vec<PathBuf> = vec![args.motor.clone()];
     for prop in &args.props {

@@ -65,16 +65,15 @@ impl MotorArgs {
 
     /// The battery and ESC the flags give.
     pub fn supply(&self) -> Result<Option<Supply>> {
-        let Some(spec) = &self.battery else {
-            return Ok(None);
-        };
-        let battery = Battery::parse(spec).map_err(|e| anyhow::anyhow!("--battery '{spec}': {e}"))?;
-        if !(self.esc_ohms >= 0.0 && self.esc_ohms < 10.0) {
-            bail!("--esc-ohms {}: a resistance from 0 to 10 ohm", self.esc_ohms);
-        }
-        Ok(Some(Supply {
-            battery,
-            esc_ohms: self.esc_ohms,
-        }))
+        self.battery.as_deref().map(|b| supply(b, self.esc_ohms)).transpose()
     }
+}
+
+/// The battery and ESC of `--battery SPEC` and `--esc-ohms`.
+pub fn supply(spec: &str, esc_ohms: f64) -> Result<Supply> {
+    let battery = Battery::parse(spec).map_err(|e| anyhow::anyhow!("--battery '{spec}': {e}"))?;
+    if !(0.0..10.0).contains(&esc_ohms) {
+        bail!("--esc-ohms {esc_ohms}: a resistance from 0 to 10 ohm");
+    }
+    Ok(Supply { battery, esc_ohms })
 }

@@ -15,7 +15,7 @@ use crate::predict::{Format, PredictArgs};
 /// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
 /// speed at the highest voltage given or the battery's (12 V, a 3-cell battery, where none
 /// is).
-fn polar_omegas(motor: &Motor, drives: &[Drive], battery_volts: Option<f64>) -> Vec<f64> {
+pub(crate) fn polar_omegas(motor: &Motor, drives: &[Drive], battery_volts: Option<f64>) -> Vec<f64> {
     let volts = drives
         .iter()
         .filter_map(|d| match d {
@@ -77,11 +77,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     let mut inputs = spec.inputs();
     inputs.push(path.as_path());
     emit(args.out.as_deref(), &[body], &inputs)?;
-    let why = |p: &PoweredPoint| match (&p.outcome, &p.supply) {
-        (Err(why), _) | (Ok(_), Some(Err(why))) => Some(why.clone()),
-        _ => None,
-    };
-    let unsolved: Vec<(&PoweredPoint, String)> = points.iter().filter_map(|p| why(p).map(|w| (p, w))).collect();
+    let unsolved: Vec<(&PoweredPoint, &str)> = points.iter().filter_map(|p| p.problem().map(|w| (p, w))).collect();
     for (p, why) in unsolved.iter().take(5) {
         eprintln!("propbet: warning: V {} m/s: {why}", p.v);
     }
@@ -149,38 +145,21 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
         Ok((s, r)) => (Some(s), Some(r)),
         Err(_) => (None, None),
     };
-    let given = |d: fn(&Drive) -> Option<f64>| Num(d(&p.drive));
-    let or = |a: Option<f64>, b: Num| a.map_or(b, Num::from);
+    // A point without a solution keeps its driver's value in the driver's own column.
+    let (mut rpm, mut volts, mut amps, mut thrust) = (None, None, None, None);
+    match p.drive {
+        Drive::Omega(w) => rpm = Some(omega_to_rpm(w)),
+        Drive::Volts(v) => volts = Some(v),
+        Drive::Amps(a) => amps = Some(a),
+        Drive::Thrust(t) => thrust = Some(t),
+        Drive::Throttle { .. } => {}
+    }
     PoweredRow {
         v_m_s: p.v.into(),
-        rpm: or(
-            solved.map(|s| omega_to_rpm(s.omega)),
-            given(|d| match d {
-                Drive::Omega(w) => Some(omega_to_rpm(*w)),
-                _ => None,
-            }),
-        ),
-        volts: or(
-            solved.map(|s| s.volts),
-            given(|d| match d {
-                Drive::Volts(v) => Some(*v),
-                _ => None,
-            }),
-        ),
-        amps: or(
-            solved.map(|s| s.amps),
-            given(|d| match d {
-                Drive::Amps(a) => Some(*a),
-                _ => None,
-            }),
-        ),
-        thrust_n: or(
-            solved.map(|s| s.loads.thrust),
-            given(|d| match d {
-                Drive::Thrust(t) => Some(*t),
-                _ => None,
-            }),
-        ),
+        rpm: solved.map(|s| omega_to_rpm(s.omega)).or(rpm).into(),
+        volts: solved.map(|s| s.volts).or(volts).into(),
+        amps: solved.map(|s| s.amps).or(amps).into(),
+        thrust_n: solved.map(|s| s.loads.thrust).or(thrust).into(),
         torque_nm: solved.map(|s| s.loads.torque).into(),
         shaft_power_w: solved.map(Powered::shaft_power).into(),
         electrical_power_w: solved.map(Powered::electrical_power).into(),
@@ -201,10 +180,7 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
         flags: r
             .map(|r| propbet_pipeline::bemt::check::implausible(r, rho, tip_radius).join("; "))
             .unwrap_or_default(),
-        no_solution: match (&p.outcome, &p.supply) {
-            (Err(why), _) | (Ok(_), Some(Err(why))) => why.clone(),
-            _ => String::new(),
-        },
+        no_solution: p.problem().unwrap_or_default().to_string(),
         rho_kg_m3: if r.is_some() { rho.into() } else { none },
         air: crate::sweep_csv::air_cell(air),
     }

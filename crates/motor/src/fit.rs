@@ -260,6 +260,21 @@ mod tests {
         assert!((t975(100_000) - 1.960).abs() < 0.001);
     }
 
+    /// `m` at `volts` on a propeller of Q = c w^2: its speed and its torque and current there.
+    fn on_quadratic_prop(m: &Motor, volts: f64, c: f64) -> (f64, crate::model::MotorPoint) {
+        let (mut lo, mut hi) = (0.0, m.free_speed(volts).unwrap());
+        for _ in 0..200 {
+            let w = 0.5 * (lo + hi);
+            if c * w * w < m.at(w, volts).torque {
+                lo = w;
+            } else {
+                hi = w;
+            }
+        }
+        let w = 0.5 * (lo + hi);
+        (w, m.at(w, volts))
+    }
+
     /// A generated step log of `m` on a propeller Q = c w^2 (a 7 A load at full throttle) at 12 V through an ideal ESC,
     /// five samples per step, each reading with `noise` relative Gaussian noise.
     fn generated(m: &Motor, noise: f64, seed: u64) -> Vec<FitPoint> {
@@ -275,18 +290,7 @@ mod tests {
         let mut out = Vec::new();
         for k in 3..=10 {
             let d = k as f64 / 10.0;
-            let c = 2e-8;
-            let (mut lo, mut hi) = (0.0, m.free_speed(d * vb).unwrap());
-            for _ in 0..200 {
-                let w = 0.5 * (lo + hi);
-                if c * w * w < m.at(w, d * vb).torque {
-                    lo = w;
-                } else {
-                    hi = w;
-                }
-            }
-            let w = 0.5 * (lo + hi);
-            let at = m.at(w, d * vb);
+            let (w, at) = on_quadratic_prop(m, d * vb, 2e-8);
             for _ in 0..5 {
                 out.push(FitPoint {
                     omega: w * (1.0 + noise * gauss()),
@@ -331,20 +335,7 @@ mod tests {
         let points: Vec<FitPoint> = (5..=10)
             .map(|k| {
                 let d = k as f64 / 10.0;
-                // A propeller of Q = c w^2 on the motor at duty d.
-                let c = 2e-9;
-                let mut lo = 0.0;
-                let mut hi = m.free_speed(d * vb).unwrap();
-                for _ in 0..200 {
-                    let w = 0.5 * (lo + hi);
-                    if c * w * w < m.at(w, d * vb).torque {
-                        lo = w;
-                    } else {
-                        hi = w;
-                    }
-                }
-                let w = 0.5 * (lo + hi);
-                let at = m.at(w, d * vb);
+                let (w, at) = on_quadratic_prop(&m, d * vb, 2e-9);
                 FitPoint {
                     omega: w,
                     torque: at.torque,

@@ -256,19 +256,16 @@ fn crossing_up<E>(
     let mut f = |w: f64| prop(w).map(|l| residual(w, &l)).map_err(OperateError::Prop);
     let ratio: f64 = 1.25;
     let mut lo = ceiling * 1e-4;
-    let mut f_lo = f(lo)?;
-    if f_lo >= 0.0 {
+    if f(lo)? >= 0.0 {
         return Ok(None);
     }
     while lo < ceiling {
         let hi = (lo * ratio).min(ceiling);
-        let f_hi = f(hi)?;
-        if f_hi >= 0.0 {
+        if f(hi)? >= 0.0 {
             return close(lo, hi, &mut f).map(Some);
         }
-        (lo, f_lo) = (hi, f_hi);
+        lo = hi;
     }
-    let _ = f_lo;
     Ok(None)
 }
 

@@ -78,6 +78,26 @@ pub struct Panel {
     pub equal_aspect: bool,
 }
 
+impl Panel {
+    /// A chart of `series`: no zero line, the y axis fitted to the data, free aspect.
+    pub fn new(
+        title: impl Into<String>,
+        x_label: impl Into<String>,
+        y_label: impl Into<String>,
+        series: Vec<Series>,
+    ) -> Self {
+        Self {
+            title: title.into(),
+            x_label: x_label.into(),
+            y_label: y_label.into(),
+            series,
+            zero_line: false,
+            y_clip: None,
+            equal_aspect: false,
+        }
+    }
+}
+
 /// The useful band of a relative-error axis [%]: beyond it a point says only "far off", and
 /// a ±600 % axis would hide the band where the model is judged.
 pub const ERROR_AXIS: (f64, f64) = (-100.0, 100.0);

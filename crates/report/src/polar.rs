@@ -40,23 +40,7 @@ pub fn panels(name: &str, polars: &[Polar], fits: &[QpropFit]) -> Vec<Panel> {
         ));
     }
     vec![
-        Panel {
-            title: format!("{name}: lift"),
-            x_label: "angle of attack [deg]".into(),
-            y_label: "cl".into(),
-            series: lift,
-            zero_line: false,
-            y_clip: None,
-            equal_aspect: false,
-        },
-        Panel {
-            title: format!("{name}: drag polar"),
-            x_label: "cd".into(),
-            y_label: "cl".into(),
-            series: drag,
-            zero_line: false,
-            y_clip: None,
-            equal_aspect: false,
-        },
+        Panel::new(format!("{name}: lift"), "angle of attack [deg]", "cl", lift),
+        Panel::new(format!("{name}: drag polar"), "cd", "cl", drag),
     ]
 }

@@ -107,15 +107,7 @@ pub fn figure(props: &[SideProp]) -> Figure {
             })
             .collect::<Vec<_>>()
     };
-    let panel = |title: &str, y: &str, series: Vec<Series>| Panel {
-        title: title.into(),
-        x_label: "airspeed [m/s]".into(),
-        y_label: y.into(),
-        series,
-        zero_line: false,
-        y_clip: None,
-        equal_aspect: false,
-    };
+    let panel = |title: &str, y: &str, series: Vec<Series>| Panel::new(title, "airspeed [m/s]", y, series);
     Figure {
         panels: vec![
             panel("thrust at full throttle", "thrust [N]", line(&|x| x.0.loads.thrust)),

@@ -145,15 +145,7 @@ pub fn distributions_figure(g: &Geometry, reference: Option<&[GeometryRow]>) -> 
             Some(1),
         ));
     }
-    let panel = |title: &str, y: &str, series: Vec<Series>| Panel {
-        title: title.into(),
-        x_label: "r/R".into(),
-        y_label: y.into(),
-        series,
-        zero_line: false,
-        y_clip: None,
-        equal_aspect: false,
-    };
+    let panel = |title: &str, y: &str, series: Vec<Series>| Panel::new(title, "r/R", y, series);
     Figure {
         panels: vec![
             panel("Chord", "c/R", chord),

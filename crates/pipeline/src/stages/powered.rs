@@ -32,6 +32,17 @@ pub struct PoweredPoint {
     pub supply: Option<std::result::Result<SupplyPoint, String>>,
 }
 
+impl PoweredPoint {
+    /// Why the point has no answer: no common operating point of motor and propeller, or a
+    /// battery that cannot give it.
+    pub fn problem(&self) -> Option<&str> {
+        match (&self.outcome, &self.supply) {
+            (Err(why), _) | (Ok(_), Some(Err(why))) => Some(why),
+            _ => None,
+        }
+    }
+}
+
 /// The fastest a propeller is searched at: a tip speed of 1.5 times the speed of sound.
 pub fn omega_ceiling(model: &Model, fluid: &Fluid) -> f64 {
     (1.5 * fluid.a / model.rotor.tip_radius).min(propbet_units::operating::OMEGA_MAX)

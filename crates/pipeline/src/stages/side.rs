@@ -54,10 +54,12 @@ fn hover_band(model: &Model, fluid: &Fluid, prop: &SideProp) -> Result<Option<(f
 }
 
 fn side_point(p: &PoweredPoint) -> SidePoint {
+    if let Some(why) = p.problem() {
+        return Err(why.to_string());
+    }
     match (&p.outcome, &p.supply) {
         (Ok((m, r)), Some(Ok(s))) => Ok((*m, r.clone(), *s)),
-        (Err(why), _) | (Ok(_), Some(Err(why))) => Err(why.clone()),
-        (Ok(_), None) => Err("no battery".into()),
+        _ => Err("no battery".into()),
     }
 }
 

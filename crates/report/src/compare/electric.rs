@@ -29,15 +29,7 @@ pub(super) fn figure(e: &Electric) -> Figure {
                     Some(2),
                 ));
             }
-            Panel {
-                title: title.into(),
-                x_label: "RPM".into(),
-                y_label: y.into(),
-                series: s,
-                zero_line: false,
-                y_clip: None,
-                equal_aspect: false,
-            }
+            Panel::new(title, "RPM", y, s)
         };
     Figure {
         panels: vec![
