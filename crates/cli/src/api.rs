@@ -1,36 +1,24 @@
 //! The commands' results in memory, for a program that runs propbet in its own process (the
-//! Python package): the same command lines, the same tables as the files the commands write,
-//! returned instead of written.
+//! Python package): typed specs in ([`propbet_api`]'s requests make them), the same tables as
+//! the files the commands write out, returned instead of written. No command line is built or
+//! read here.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use clap::Parser;
 use propbet_pipeline::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
-use propbet_pipeline::spec::StageSpec;
+use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, StageSpec};
 
-use crate::compare::MeasuredArgs;
 use crate::output::{csv_rows, Num};
-use crate::Command;
 
-/// The command line `argv` (without the program's name) parsed as `propbet`'s.
-fn parse(argv: &[String]) -> Result<Command> {
-    let cli = crate::parse_args(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
-        .map_err(crate::clap_error)?;
-    Ok(cli.command)
-}
-
-/// `propbet predict` with these flags (after `predict`), its tables as columns
-/// ([`crate::predict::columns`]): the sweep's, the per-station table's when `stations`, and
-/// the count of station solutions that did not converge and of the points they are at.
+/// `propbet predict`'s tables as columns ([`crate::predict::columns`]): the sweep's, the
+/// per-station table's when `stations`, and the count of station solutions that did not
+/// converge and of the points they are at.
 pub fn predict(
-    argv: &[String],
+    spec: &PredictSpec,
     stations: bool,
 ) -> Result<(crate::columns::Table, Option<crate::columns::Table>, (usize, usize))> {
-    let Command::Predict(a) = parse(argv)? else {
-        bail!("not a predict command: {}", argv.join(" "))
-    };
-    crate::predict::columns(&a.spec()?, stations)
+    crate::predict::columns(spec, stations)
 }
 
 /// A number as propbet's tables write it (7 significant digits; empty when it is not finite).
@@ -40,37 +28,54 @@ pub fn format_number(v: f64) -> String {
     String::from_utf8(b).unwrap_or_default()
 }
 
-/// The stages `propbet run` would run for a case directory, writing under `out`: each as its
-/// command line (without the program's name), in order.
-pub fn case_stages(dir: &Path, out: &Path) -> Result<Vec<Vec<String>>> {
-    let argv = [
-        "run".to_string(),
-        dir.display().to_string(),
-        "-o".into(),
-        out.display().to_string(),
-    ];
-    let Command::Run(a) = parse(&argv)? else {
-        bail!("not a run command")
-    };
-    let plan = crate::run::plan(dir, out, &a.xfoil)?;
-    Ok(plan.stages().iter().map(StageSpec::argv).collect())
+/// The prediction of a case directory, as `propbet run` makes it into `out`: its scan and
+/// polars stages run (their files written under `out`, as the run writes them), and its
+/// prediction's spec returned (the model those stages made, the case's sweep and air), with the
+/// polars stage's blade and sections (geometry, airfoil, station airfoils) where it has one.
+#[allow(clippy::type_complexity)]
+pub fn case_prediction(
+    dir: &Path,
+    out: &Path,
+    xfoil: &propbet_api::ProcessRequest,
+) -> Result<(PredictSpec, Option<(PathBuf, Option<String>, Option<PathBuf>)>)> {
+    let case = propbet_pipeline::case::read_case(dir)?;
+    let plan = case.plan(dir, out, &xfoil.spec()?)?;
+    for w in &plan.warnings {
+        eprintln!("propbet: warning: {w}");
+    }
+    let mut sections = None;
+    for stage in plan.stages() {
+        match &stage {
+            // Their problems are on the terminal, as each command prints them.
+            StageSpec::Scan(spec) => {
+                crate::scan::run_spec(spec)?;
+            }
+            StageSpec::Polars(spec) => {
+                for p in std::iter::once(spec.out_prop.as_path()).chain(spec.out_polars.as_deref()) {
+                    if let Some(d) = p.parent() {
+                        std::fs::create_dir_all(d)
+                            .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", d.display()))?;
+                    }
+                }
+                sections = Some((
+                    spec.geometry.clone(),
+                    spec.airfoil.clone(),
+                    spec.station_airfoils.clone(),
+                ));
+                crate::polar::run_polars_spec(spec)?;
+            }
+            StageSpec::Predict(spec) => return Ok((spec.clone(), sections)),
+            _ => {}
+        }
+    }
+    bail!("{}: the case has no prediction stage", dir.display())
 }
 
-/// Measured files read with the measurement flags of `compare` (`--measured FILE...`,
-/// `--poles`, `--rpm-source`, `--atmosphere`, `--rho`, `--columns`): a table of the points
-/// (CSV, one row per point, every file's in order) and one of the rows dropped (CSV).
-pub fn measurements(argv: &[String]) -> Result<(Vec<u8>, Vec<u8>)> {
-    #[derive(Parser)]
-    #[command(name = "read_measurements")]
-    struct Flags {
-        #[command(flatten)]
-        data: MeasuredArgs,
-    }
-    let flags = Flags::try_parse_from(std::iter::once("read_measurements".to_string()).chain(argv.iter().cloned()))
-        .map_err(crate::clap_error)?;
-    let spec = flags.data.spec()?;
+/// Measured files read as `compare` reads them: a table of the points (CSV, one row per
+/// point, every file's in order) and one of the rows dropped (CSV).
+pub fn measurements(spec: &MeasuredSpec) -> Result<(Vec<u8>, Vec<u8>)> {
     // As `compare` reads them: each file on its own, a refused one in the dropped table.
-    let batch = propbet_pipeline::stages::load_batch(&spec)?;
+    let batch = propbet_pipeline::stages::load_batch(spec)?;
     Ok((
         points_csv(&batch.names, &batch.sets)?,
         dropped_csv(&batch.names, &batch.sets, &batch.refused)?,
@@ -184,14 +189,11 @@ fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> R
     csv_rows(rows.chain(refused), true)
 }
 
-/// A prop file's rows as `propbet prop FILE [--units U] [--qprop-compat]` reads them (flags
-/// after `prop`), in SI: radius, chord, blade angle and the ten QPROP section coefficients of
-/// each row (a row's own, or the file's global ones), as a table (CSV).
-pub fn stations(argv: &[String]) -> Result<Vec<u8>> {
-    let Command::Prop(a) = parse(argv)? else {
-        bail!("not a prop command: {}", argv.join(" "))
-    };
-    let model = crate::prop::load(&a)?;
+/// A blade file's rows as `propbet prop` reads them (the spec's file, units and reading), in
+/// SI: radius, chord, blade angle and the ten QPROP section coefficients of each row (a row's
+/// own, or the file's global ones), as a table (CSV).
+pub fn stations(spec: &ModelSpec) -> Result<Vec<u8>> {
+    let model = crate::prop::load_spec(spec)?;
     let file = &model.loaded.file;
     let blade = file.to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
     let rows = (0..blade.r.len()).map(|i| {
@@ -235,34 +237,62 @@ struct StationRow {
     re_exp: Num,
 }
 
-/// The flags a command takes, each as (name as a keyword: `drag_factor`, kind): `switch` (a
-/// flag alone), `number` (one number), `numbers` (one or more, repeated or listed), `text` (one
-/// value of any kind). What the Python package checks keyword arguments against at the call.
-pub fn flags_of(command: &str) -> Result<Vec<(String, &'static str)>> {
-    let cli = crate::command();
-    let Some(sub) = cli.get_subcommands().find(|c| c.get_name() == command) else {
-        bail!("no command '{command}'");
-    };
-    Ok(sub
-        .get_arguments()
-        .filter_map(|a| {
-            let long = a.get_long()?;
-            let parsed = a.get_value_parser().type_id();
-            let number = [
-                std::any::TypeId::of::<f64>(),
-                std::any::TypeId::of::<u32>(),
-                std::any::TypeId::of::<usize>(),
-            ]
-            .into_iter()
-            .any(|t| parsed == t);
-            let kind = match a.get_action() {
-                clap::ArgAction::SetTrue | clap::ArgAction::SetFalse => "switch",
-                clap::ArgAction::Append => "many",
-                _ if a.get_num_args().is_some_and(|n| n.max_values() > 1) => "many",
-                _ if number => "number",
-                _ => "text",
-            };
-            Some((long.replace('-', "_"), kind))
-        })
-        .collect())
+/// `propbet predict --motor` in memory: the powered table's columns, and each point without
+/// an operating point with the reason.
+pub fn powered(
+    spec: &ModelSpec,
+    motor: &propbet_pipeline::motor::Motor,
+    supply: Option<&propbet_pipeline::motor::Supply>,
+    drives: &[propbet_pipeline::motor::Drive],
+    speeds: &[f64],
+    air: &propbet_pipeline::spec::AirSpec,
+) -> Result<(crate::columns::Table, Vec<String>)> {
+    let run = crate::powered::solve(spec, motor, supply, drives, speeds, air)?;
+    let problems = run
+        .points
+        .iter()
+        .filter_map(|p| p.problem().map(|w| format!("V {} m/s: {w}", p.v)))
+        .collect();
+    Ok((run.table()?, problems))
+}
+
+/// `propbet motor fit` in memory: the fit, the motor file's text, and the fitted steps.
+pub fn fit_motor(
+    spec: &MeasuredSpec,
+    kv: Option<f64>,
+    name: Option<String>,
+) -> Result<(crate::motor_fit::Fitted, crate::columns::Table)> {
+    let f = crate::motor_fit::fitted(spec, kv, name)?;
+    let steps = crate::motor_fit::steps(&f.fit)?;
+    Ok((f, steps))
+}
+
+/// `propbet compare-props` in memory (airspeeds [m/s] of the full-throttle curves, None:
+/// the command's): props.csv's columns and the answer's sentences.
+pub fn compare_props(
+    models: &[(String, ModelSpec)],
+    motor: &propbet_pipeline::motor::MotorFile,
+    battery: &str,
+    esc_ohms: f64,
+    hover: f64,
+    speeds: Option<Vec<f64>>,
+    air: &propbet_pipeline::spec::AirSpec,
+) -> Result<(crate::columns::Table, Vec<String>)> {
+    let supply = propbet_api::supply(battery, esc_ohms)?;
+    let speeds = speeds.unwrap_or_else(crate::compare_props::default_speeds);
+    let props = crate::compare_props::side(models, &motor.motor, &supply, hover, &speeds, air)?;
+    Ok((
+        crate::compare_props::table(&props, hover)?,
+        crate::compare_props::answer(&props, &motor.name, battery, hover),
+    ))
+}
+
+/// `propbet compare` of a spec: its files written; false when it reported problems.
+pub fn compare(spec: &propbet_pipeline::spec::CompareSpec) -> Result<bool> {
+    crate::compare::run_spec(spec)
+}
+
+/// `propbet diagnose` of a spec: its files written; false when it reported problems.
+pub fn diagnose(spec: &propbet_pipeline::spec::DiagnoseSpec) -> Result<bool> {
+    crate::diagnose::run_spec(spec)
 }

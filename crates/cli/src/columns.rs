@@ -96,6 +96,15 @@ impl Row<'_> {
         match (column, value) {
             (Column::Num(c), Value::Num(v)) => c.push(v),
             (Column::Int(c), Value::Int(v)) => c.push(v),
+            // A count left empty (an `Option` that is None) in some rows: a column of numbers,
+            // NaN where it is empty, as pandas makes it of the CSV.
+            (Column::Num(c), Value::Int(v)) => c.push(v as f64),
+            (column @ Column::Int(_), Value::Num(v)) if v.is_nan() => {
+                let Column::Int(counts) = &*column else { unreachable!() };
+                let mut numbers: Vec<f64> = counts.iter().map(|&x| x as f64).collect();
+                numbers.push(v);
+                *column = Column::Num(numbers);
+            }
             (Column::Bool(c), Value::Bool(v)) => c.push(v),
             (Column::Text(c), Value::Text(v)) => c.push(v),
             _ => return Err(Error(format!("field {name}: another type than in the first row"))),
@@ -358,6 +367,31 @@ mod tests {
         assert_eq!(t.columns[3], Column::Bool(vec![true, true]));
         let Column::Num(y) = &t.columns[4] else { panic!() };
         assert!(y[0].is_nan() && y[1].is_nan());
+    }
+
+    /// A count some rows leave empty (a point without a solution has no count of unconverged
+    /// stations) is a column of numbers, NaN where it is empty, whichever row comes first.
+    #[test]
+    fn a_count_left_empty_in_some_rows_is_a_column_of_numbers() {
+        #[derive(serde::Serialize)]
+        struct C {
+            n: Option<usize>,
+        }
+        for (rows, want) in [
+            ([Some(2), None, Some(0)], [2.0, f64::NAN, 0.0]),
+            ([None, Some(3), None], [f64::NAN, 3.0, f64::NAN]),
+        ] {
+            let t = table(rows.map(|n| C { n })).unwrap();
+            let Column::Num(got) = &t.columns[0] else {
+                panic!("{:?}", t.columns[0])
+            };
+            assert!(
+                got.iter().zip(want).all(|(a, b)| a == &b || (a.is_nan() && b.is_nan())),
+                "{got:?}"
+            );
+        }
+        let t = table([Some(1), Some(2)].map(|n| C { n })).unwrap();
+        assert_eq!(t.columns[0], Column::Int(vec![1, 2]));
     }
 
     #[test]

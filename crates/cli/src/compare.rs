@@ -7,11 +7,10 @@ use std::path::PathBuf;
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
 use propbet_pipeline::compare::ComparedPoint;
-use propbet_pipeline::measure::{MeasuredSet, Refused, RpmSource};
+use propbet_pipeline::measure::{MeasuredSet, Refused};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared, Reference};
-use propbet_pipeline::values::parse_atmosphere;
 use propbet_report::answer::ReferenceScore;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
@@ -28,11 +27,11 @@ pub enum RpmSourceArg {
 }
 
 impl RpmSourceArg {
-    /// The reader's choice.
-    pub fn source(self) -> RpmSource {
+    /// The name the request takes.
+    pub fn name(self) -> &'static str {
         match self {
-            RpmSourceArg::Optical => RpmSource::Optical,
-            RpmSourceArg::Electrical => RpmSource::Electrical,
+            RpmSourceArg::Optical => "optical",
+            RpmSourceArg::Electrical => "electrical",
         }
     }
 }
@@ -86,14 +85,19 @@ pub struct MeasuredArgs {
 impl MeasuredArgs {
     /// The measurements' spec (flags in SI).
     pub fn spec(&self) -> Result<MeasuredSpec> {
-        Ok(MeasuredSpec {
+        Ok(self.request().spec()?)
+    }
+
+    /// What the flags ask for.
+    pub fn request(&self) -> propbet_api::MeasuredRequest {
+        propbet_api::MeasuredRequest {
             files: self.measured.clone(),
             poles: self.poles,
-            rpm_source: self.rpm_source.map(RpmSourceArg::source),
-            atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+            rpm_source: self.rpm_source.map(|s| s.name().to_string()),
+            atmosphere: self.atmosphere.clone(),
             rho: self.rho,
             columns: self.columns.clone(),
-        })
+        }
     }
 }
 
@@ -224,7 +228,11 @@ fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
 /// Runs `propbet compare`; returns false when rows were dropped as faulty, the solver did not
 /// converge somewhere or the measurements cannot be of this propeller (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
-    let spec = args.spec()?;
+    run_spec(&args.spec()?)
+}
+
+/// Runs a compare stage of `spec`: its files written, its answer printed.
+pub fn run_spec(spec: &CompareSpec) -> Result<bool> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
@@ -233,7 +241,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
-    let other = reference(&spec, model.diameter)?;
+    let other = reference(spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;
     let electric = match &spec.motor {
         Some(m) => {
@@ -247,8 +255,8 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
         }
         None => None,
     };
-    let (_, reference, _) = write(&spec, &model, &c, other.as_ref(), electric.as_ref())?;
-    print(&spec, &c, reference.as_ref());
+    let (_, reference, _) = write(spec, &model, &c, other.as_ref(), electric.as_ref())?;
+    print(spec, &c, reference.as_ref());
     if let Some(e) = &electric {
         println!("{}", crate::output::wrapped(&report::electric_sentence(e), "", "  "));
     }

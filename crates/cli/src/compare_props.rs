@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
-use propbet_pipeline::spec::{ModelSpec, Rotation, SweepAxis};
+use propbet_pipeline::spec::{ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
 use propbet_pipeline::values::parse_list;
 
@@ -47,14 +47,7 @@ pub struct ComparePropsArgs {
 
 /// The default model of a propeller file.
 fn model_spec(prop: &std::path::Path, blade: &BladeArgs) -> Result<ModelSpec> {
-    let design = crate::predict::design_spec(prop, blade)?;
-    let tables = design.is_some();
-    Ok(ModelSpec {
-        design,
-        rotation: Rotation::or_default(None, tables),
-        drag_factor: propbet_pipeline::spec::drag_factor_or_default(None, tables),
-        ..ModelSpec::prop(prop.to_path_buf())
-    })
+    Ok(blade.request(prop).spec()?)
 }
 
 /// A row of props.csv.
@@ -102,34 +95,79 @@ fn row(k: usize, p: &SideProp, hover: f64) -> Row {
     }
 }
 
+/// The full-throttle curves' airspeeds without `--v` [m/s]: 0 to 20 in 2.
+pub fn default_speeds() -> Vec<f64> {
+    (0..=10).map(|k| 2.0 * k as f64).collect()
+}
+
+/// The hover thrust [N] checked.
+fn check_hover(hover: f64) -> Result<()> {
+    if !(hover > 0.0 && hover.is_finite()) {
+        anyhow::bail!("--hover {hover}: the thrust of one propeller at hover, in newtons, above 0");
+    }
+    Ok(())
+}
+
+/// Propellers side by side, each (its name, its model) on the motor through the supply:
+/// ranked by g/W at `hover` thrust [N], with full throttle over the airspeeds [m/s].
+pub fn side(
+    models: &[(String, ModelSpec)],
+    motor: &propbet_pipeline::motor::Motor,
+    supply: &propbet_pipeline::motor::Supply,
+    hover: f64,
+    speeds: &[f64],
+    air: &propbet_pipeline::spec::AirSpec,
+) -> Result<Vec<SideProp>> {
+    check_hover(hover)?;
+    let omegas = crate::powered::polar_omegas(motor, &[], Some(supply.source(1.0).0));
+    let mut loaded = Vec::new();
+    for (name, spec) in models {
+        let model = crate::predict::load_model_at(spec, || Ok((omegas.clone(), SweepAxis::V(speeds.to_vec()))), false)?;
+        loaded.push((name.clone(), model));
+    }
+    let (fluid, _) = air.fluid()?;
+    Ok(propbet_pipeline::stages::side_by_side(
+        &loaded, &fluid, motor, supply, hover, speeds,
+    )?)
+}
+
+/// The ranked table's columns (props.csv's).
+pub fn table(props: &[SideProp], hover: f64) -> Result<crate::columns::Table> {
+    Ok(crate::columns::table(
+        props.iter().enumerate().map(|(k, p)| row(k, p, hover)),
+    )?)
+}
+
+/// The answer's sentences.
+pub fn answer(props: &[SideProp], motor: &str, battery: &str, hover: f64) -> Vec<String> {
+    let setup = propbet_report::props::Setup {
+        motor,
+        battery,
+        hover_thrust: hover,
+        command: "",
+    };
+    propbet_report::props::answer(props, &setup)
+}
+
 /// Runs `propbet compare-props`.
 pub fn run(args: &ComparePropsArgs) -> Result<bool> {
-    if !(args.hover > 0.0 && args.hover.is_finite()) {
-        anyhow::bail!(
-            "--hover {}: the thrust of one propeller at hover, in newtons, above 0",
-            args.hover
-        );
-    }
-    let supply = crate::motor_flags::supply(&args.battery, args.esc_ohms)?;
+    check_hover(args.hover)?;
+    let supply = propbet_api::supply(&args.battery, args.esc_ohms)?;
     let file = propbet_pipeline::stages::read_motor(&args.motor)?;
     let speeds = match &args.v {
         Some(v) => parse_list("--v", v)?,
-        None => (0..=10).map(|k| 2.0 * k as f64).collect(),
+        None => default_speeds(),
     };
-    let omegas = crate::powered::polar_omegas(&file.motor, &[], Some(supply.source(1.0).0));
     let mut models = Vec::new();
     let mut inputs: Vec<PathBuf> = vec![args.motor.clone()];
     for prop in &args.props {
-        let spec = model_spec(prop, &args.blade)?;
-        let model = crate::predict::load_model_at(&spec, || Ok((omegas.clone(), SweepAxis::V(speeds.clone()))), false)?;
         let name = prop
             .file_name()
             .map_or_else(|| prop.display().to_string(), |n| n.to_string_lossy().into());
         inputs.push(prop.clone());
-        models.push((name, model));
+        models.push((name, model_spec(prop, &args.blade)?));
     }
-    let (fluid, _) = args.air.spec()?.fluid()?;
-    let props = propbet_pipeline::stages::side_by_side(&models, &fluid, &file.motor, &supply, args.hover, &speeds)?;
+    let props = side(&models, &file.motor, &supply, args.hover, &speeds, &args.air.spec()?)?;
     let command = std::iter::once("propbet".to_string())
         .chain(std::env::args().skip(1))
         .collect::<Vec<_>>()

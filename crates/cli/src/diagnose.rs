@@ -40,29 +40,31 @@ pub struct DiagnoseArgs {
 impl DiagnoseArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<DiagnoseSpec> {
-        Ok(DiagnoseSpec {
-            model: self.model.spec()?,
-            measured: self.data.spec()?,
-            effects: self.effects.split(',').map(|s| s.trim().to_string()).collect(),
-            folds: self.folds,
-            max_steps: self.max_steps,
-            window: self.window,
-            out: self.out.clone(),
-        })
+        let request = propbet_api::DiagnoseRequest {
+            effects: Some(self.effects.split(',').map(str::to_string).collect()),
+            folds: Some(self.folds),
+            max_steps: Some(self.max_steps),
+            window: Some(self.window),
+        };
+        Ok(request.spec(self.model.spec()?, self.data.spec()?, self.out.clone())?)
     }
 }
 
 /// Runs `propbet diagnose`; returns false (exit 1, as `compare`) when measured rows were
 /// dropped as faulty: the diagnosis ran on the rest, the report lists them.
 pub fn run(args: &DiagnoseArgs) -> Result<bool> {
-    let spec = args.spec()?;
+    run_spec(&args.spec()?)
+}
+
+/// Runs a diagnose stage of `spec`: its files written, its answer printed.
+pub fn run_spec(spec: &DiagnoseSpec) -> Result<bool> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
-    let d = stages::diagnose(&model, &spec)?;
-    write(&spec, &d)?;
-    print(&spec, &d);
+    let d = stages::diagnose(&model, spec)?;
+    write(spec, &d)?;
+    print(spec, &d);
     let warned = warn_faulty_rows(&d.names, &d.sets);
     Ok(warned == 0 && d.refused.is_empty())
 }

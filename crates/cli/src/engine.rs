@@ -44,17 +44,22 @@ pub struct XfoilProcess {
 }
 
 impl XfoilProcess {
-    /// The same settings as a spec.
-    pub fn spec(&self) -> XfoilProcessSpec {
-        XfoilProcessSpec {
+    /// What the flags ask for.
+    pub fn request(&self) -> propbet_api::ProcessRequest {
+        propbet_api::ProcessRequest {
+            engine: Some(self.engine.clone()),
+            neuralfoil_size: self.neuralfoil_size.clone(),
             xfoil: self.xfoil.clone(),
             cache: self.cache.clone(),
             no_cache: self.no_cache,
             quiet: self.quiet,
             budget: self.xfoil_budget,
-            engine: propbet_pipeline::polar::Engine::parse(&self.engine).unwrap_or_default(),
-            neuralfoil_size: self.neuralfoil_size.clone(),
         }
+    }
+
+    /// The same settings as a spec.
+    pub fn spec(&self) -> anyhow::Result<XfoilProcessSpec> {
+        Ok(self.request().spec()?)
     }
 }
 

@@ -5,8 +5,7 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
 use clap::Args;
-use propbet_pipeline::spec::{drag_factor_or_default, MeasuredSpec, ModelSpec, PredictSpec, Rotation, TableFormat};
-use propbet_pipeline::values::{parse_atmosphere, parse_length_unit};
+use propbet_pipeline::spec::{ModelSpec, PredictSpec, TableFormat};
 use propbet_simexport::{self as simexport, ExportFrom, ExportSpec, Said, Target};
 
 use crate::compare::RpmSourceArg;
@@ -144,21 +143,19 @@ fn parse_range(text: &str) -> Result<(f64, f64)> {
 
 impl ExportArgs {
     fn model_spec(&self, prop: &Path) -> Result<ModelSpec> {
-        let mut spec = ModelSpec::prop(prop.to_path_buf());
-        spec.units = self.units.as_deref().map(parse_length_unit).transpose()?;
-        spec.dbeta = self.dbeta.to_radians();
-        spec.qprop_compat = self.qprop_compat;
-        spec.no_tip_loss = self.no_tip_loss;
-        spec.effects = self.effect.clone();
-        spec.user_effects = self.user_effects.clone();
-        spec.polars = self.polars.clone();
-        spec.design = crate::predict::design_spec(prop, &self.blade)?;
-        spec.rotation = Rotation::or_default(
-            self.rotation.as_deref().map(Rotation::parse).transpose()?,
-            spec.tabulated(),
-        );
-        spec.drag_factor = drag_factor_or_default(self.drag_factor, spec.tabulated());
-        Ok(spec)
+        let request = propbet_api::ModelRequest {
+            units: self.units.clone(),
+            dbeta_deg: self.dbeta,
+            qprop_compat: self.qprop_compat,
+            no_tip_loss: self.no_tip_loss,
+            effects: self.effect.clone(),
+            user_effects: self.user_effects.clone(),
+            polars: self.polars.clone(),
+            rotation: self.rotation.clone(),
+            drag_factor: self.drag_factor,
+            ..self.blade.request(prop)
+        };
+        Ok(request.spec()?)
     }
 
     fn inputs(&self) -> Vec<&Path> {
@@ -196,14 +193,15 @@ impl ExportArgs {
             })
         } else {
             ExportFrom::Measured {
-                measured: MeasuredSpec {
+                measured: propbet_api::MeasuredRequest {
                     files: self.measured.clone(),
                     poles: self.poles,
-                    rpm_source: self.rpm_source.map(RpmSourceArg::source),
-                    atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+                    rpm_source: self.rpm_source.map(|s| s.name().to_string()),
+                    atmosphere: self.atmosphere.clone(),
                     rho: self.air.rho,
                     columns: self.columns.clone(),
-                },
+                }
+                .spec()?,
                 model: self.prop.as_deref().map(|p| self.model_spec(p)).transpose()?,
                 diameter: self.diameter.as_deref().map(parse_diameter).transpose()?,
                 blades: self.blades,

@@ -43,16 +43,29 @@ pub fn run(command: &MotorCommand) -> Result<bool> {
     }
 }
 
-fn fit(args: &FitArgs) -> Result<bool> {
-    if let Some(kv) = args.kv {
+/// A motor fitted to stand logs, with what the file's comments and the terminal say of it.
+pub struct Fitted {
+    /// The fit: the constants with their intervals, the held-out errors, the notes.
+    pub fit: propbet_pipeline::stages::FittedMotor,
+    /// The motor as a file.
+    pub file: MotorFile,
+    /// The QPROP motor file, its comments included.
+    pub text: String,
+    /// The constants and the current's errors, in two sentences.
+    pub lines: [String; 2],
+}
+
+/// Fits a type 1 motor to the logs of `spec` (`kv` [rpm/V] the maker's, or None: from the ESC
+/// command's duty); `name` the motor's (None: the first log's name).
+pub fn fitted(spec: &propbet_pipeline::spec::MeasuredSpec, kv: Option<f64>, name: Option<String>) -> Result<Fitted> {
+    if let Some(kv) = kv {
         if !(kv > 0.0 && kv.is_finite()) {
             anyhow::bail!("--kv {kv}: Kv is a positive number of rpm per volt");
         }
     }
-    let spec = args.measured.spec()?;
-    let f = propbet_pipeline::stages::fit_motor(&spec, args.kv)?;
+    let f = propbet_pipeline::stages::fit_motor(spec, kv)?;
     let m = &f.fit;
-    let name = args.name.clone().unwrap_or_else(|| {
+    let name = name.unwrap_or_else(|| {
         let first = spec
             .files
             .first()
@@ -107,6 +120,19 @@ fn fit(args: &FitArgs) -> Result<bool> {
         })
         .collect();
     let text = write_motor(&file, &comments);
+    Ok(Fitted {
+        fit: f,
+        file,
+        text,
+        lines,
+    })
+}
+
+fn fit(args: &FitArgs) -> Result<bool> {
+    let spec = args.measured.spec()?;
+    let Fitted {
+        fit: f, text, lines, ..
+    } = fitted(&spec, args.kv, args.name.clone())?;
     let inputs: Vec<&std::path::Path> = spec.files.iter().map(PathBuf::as_path).collect();
     emit(args.out.as_deref(), &[text.as_bytes()], &inputs)?;
     for l in &lines {
@@ -125,4 +151,31 @@ fn fit(args: &FitArgs) -> Result<bool> {
         eprintln!("propbet motor fit: -> {}", out.display());
     }
     Ok(true)
+}
+
+/// A fitted step as a row.
+#[derive(serde::Serialize)]
+struct StepRow<'a> {
+    step: &'a str,
+    rpm: crate::output::Num,
+    torque_nm: crate::output::Num,
+    volts: crate::output::Num,
+    amps: crate::output::Num,
+    esc_us: crate::output::Num,
+    amps_held_out: crate::output::Num,
+}
+
+/// The fitted steps: speed, torque, voltage, current, ESC command and the current predicted
+/// with the step left out.
+pub fn steps(f: &propbet_pipeline::stages::FittedMotor) -> Result<crate::columns::Table> {
+    let rows = f.points.iter().map(|(step, p, held)| StepRow {
+        step,
+        rpm: propbet_pipeline::units::omega_to_rpm(p.omega).into(),
+        torque_nm: p.torque.into(),
+        volts: p.volts.into(),
+        amps: p.amps.into(),
+        esc_us: p.esc.into(),
+        amps_held_out: (*held).into(),
+    });
+    Ok(crate::columns::table(rows)?)
 }

@@ -3,11 +3,10 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
-use propbet_pipeline::motor::{Battery, Drive, Supply};
-use propbet_pipeline::units::rpm_to_omega;
-use propbet_pipeline::values::parse_list;
+use propbet_api::{DriveRequest, Values};
+use propbet_pipeline::motor::{Drive, Supply};
 
 /// The motor that turns the propeller, and what sets its operating point.
 #[derive(Debug, Args)]
@@ -44,36 +43,23 @@ pub struct MotorArgs {
 impl MotorArgs {
     /// The drivers the flags give (`rpm` the sweep's --rpm).
     pub fn drives(&self, rpm: Option<&str>, supply: Option<&Supply>) -> Result<Vec<Drive>> {
-        if let (Some(t), Some(s)) = (&self.throttle, supply) {
-            let list = parse_list("--throttle", t)?;
-            if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
-                bail!("--throttle {bad}: a throttle is between 0 and 1");
-            }
-            return Ok(list.into_iter().map(|t| s.drive(t)).collect());
-        }
-        Ok(match (&self.volts, &self.amps, &self.thrust, rpm) {
-            (Some(v), ..) => parse_list("--volts", v)?.into_iter().map(Drive::Volts).collect(),
-            (_, Some(a), ..) => parse_list("--amps", a)?.into_iter().map(Drive::Amps).collect(),
-            (_, _, Some(t), _) => parse_list("--thrust", t)?.into_iter().map(Drive::Thrust).collect(),
-            (_, _, _, Some(r)) => parse_list("--rpm", r)?
-                .into_iter()
-                .map(|r| Drive::Omega(rpm_to_omega(r)))
-                .collect(),
-            _ => bail!("--motor: give --volts, --amps, --thrust, --rpm or --throttle (what sets the operating point)"),
-        })
+        let text = |t: &Option<String>| t.clone().map(Values::Text);
+        let request = DriveRequest {
+            volts: text(&self.volts),
+            amps: text(&self.amps),
+            thrust: text(&self.thrust),
+            rpm: rpm.map(|r| Values::Text(r.to_string())),
+            throttle: if supply.is_some() { text(&self.throttle) } else { None },
+        };
+        Ok(request.drives(supply)?)
     }
 
     /// The battery and ESC the flags give.
     pub fn supply(&self) -> Result<Option<Supply>> {
-        self.battery.as_deref().map(|b| supply(b, self.esc_ohms)).transpose()
+        Ok(self
+            .battery
+            .as_deref()
+            .map(|b| propbet_api::supply(b, self.esc_ohms))
+            .transpose()?)
     }
-}
-
-/// The battery and ESC of `--battery SPEC` and `--esc-ohms`.
-pub fn supply(spec: &str, esc_ohms: f64) -> Result<Supply> {
-    let battery = Battery::parse(spec).map_err(|e| anyhow::anyhow!("--battery '{spec}': {e}"))?;
-    if !(0.0..10.0).contains(&esc_ohms) {
-        bail!("--esc-ohms {esc_ohms}: a resistance from 0 to 10 ohm");
-    }
-    Ok(Supply { battery, esc_ohms })
 }

@@ -45,7 +45,7 @@ impl XfoilArgs {
         a.sort_by(f64::total_cmp);
         a.dedup();
         let spec = XfoilSpec {
-            process: self.process.spec(),
+            process: self.process.spec()?,
             ncrit: self.ncrit.unwrap_or(default_ncrit),
             trip: match &self.trip {
                 None => default_trip,
@@ -319,20 +319,24 @@ impl PolarsArgs {
 /// Runs `propbet polars`; false when a station has no fit (its coefficients are kept from the
 /// geometry file, and it is reported).
 pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
-    let spec = args.spec()?;
+    run_polars_spec(&args.spec()?)
+}
+
+/// Runs a polars stage: its files written, every station's fit printed.
+pub fn run_polars_spec(spec: &PolarsSpec) -> Result<bool> {
     let outputs: Vec<&Path> = std::iter::once(spec.out_prop.as_path())
         .chain(spec.out_polars.as_deref())
         .collect();
-    crate::output::refuse_outputs_over_inputs(&outputs, &polars_inputs(&spec))?;
-    let input = stages::polars_input(&spec)?;
+    crate::output::refuse_outputs_over_inputs(&outputs, &polars_inputs(spec))?;
+    let input = stages::polars_input(spec)?;
     for w in &input.geometry.warnings {
         eprintln!("propbet: warning: {w}");
     }
     let engine = stages::polar_engine(&spec.xfoil.process)?;
     let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
-    let p = stages::polars(&spec, &input, &engine, &|d, t| bar.tick(d, t))?;
-    print_polars(&spec, &input, &p);
-    write_polars(&spec, &p)?;
+    let p = stages::polars(spec, &input, &engine, &|d, t| bar.tick(d, t))?;
+    print_polars(spec, &input, &p);
+    write_polars(spec, &p)?;
     Ok(p.clean())
 }
 

@@ -3,8 +3,8 @@
 
 use anyhow::{bail, Result};
 use propbet_pipeline::bemt::PointResult;
-use propbet_pipeline::motor::{Drive, Motor, Powered};
-use propbet_pipeline::spec::SweepAxis;
+use propbet_pipeline::motor::{Drive, Motor, Powered, Supply};
+use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis};
 use propbet_pipeline::stages::PoweredPoint;
 use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
 use propbet_pipeline::values::parse_list;
@@ -34,6 +34,69 @@ pub(crate) fn polar_omegas(motor: &Motor, drives: &[Drive], battery_volts: Optio
     omegas
 }
 
+/// A powered prediction: the points, and what their rows say of the air and the propeller.
+pub struct PoweredRun {
+    /// The points, one per driver value and airspeed.
+    pub points: Vec<PoweredPoint>,
+    rho: f64,
+    air: String,
+    tip_radius: f64,
+    battery: bool,
+}
+
+/// The model of `spec` on `motor` (with `supply`'s battery and ESC) at each driver value and
+/// airspeed [m/s]; a blade file's polars computed over the speeds the motor can reach.
+pub fn solve(
+    spec: &ModelSpec,
+    motor: &Motor,
+    supply: Option<&Supply>,
+    drives: &[Drive],
+    speeds: &[f64],
+    air: &AirSpec,
+) -> Result<PoweredRun> {
+    let model = crate::predict::load_model_at(
+        spec,
+        || {
+            let battery = supply.map(|s| s.source(1.0).0);
+            Ok((polar_omegas(motor, drives, battery), SweepAxis::V(speeds.to_vec())))
+        },
+        false,
+    )?;
+    let (fluid, air) = air.fluid()?;
+    let points = propbet_pipeline::stages::powered(&model, &fluid, motor, supply, drives, speeds)?;
+    Ok(PoweredRun {
+        points,
+        rho: fluid.rho,
+        air,
+        tip_radius: model.rotor.tip_radius,
+        battery: supply.is_some(),
+    })
+}
+
+impl PoweredRun {
+    fn rows(&self) -> impl Iterator<Item = PoweredRow> + '_ {
+        self.points.iter().map(|p| row(p, self.rho, &self.air, self.tip_radius))
+    }
+
+    /// The table's columns (the battery's with a battery).
+    pub fn table(&self) -> Result<crate::columns::Table> {
+        Ok(if self.battery {
+            crate::columns::table(self.rows().zip(self.points.iter().map(battery_columns)))?
+        } else {
+            crate::columns::table(self.rows())?
+        })
+    }
+
+    /// The table as CSV.
+    fn csv(&self) -> Result<Vec<u8>> {
+        if self.battery {
+            csv_rows(self.rows().zip(self.points.iter().map(battery_columns)), true)
+        } else {
+            csv_rows(self.rows(), true)
+        }
+    }
+}
+
 /// Runs `propbet predict --motor`; returns whether every point has its operating point and
 /// every station converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
@@ -52,27 +115,11 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         (None, None) => vec![0.0],
     };
     let spec = args.model.spec()?;
-    let model = crate::predict::load_model_at(
-        &spec,
-        || {
-            let battery = supply.as_ref().map(|s| s.source(1.0).0);
-            Ok((
-                polar_omegas(&file.motor, &drives, battery),
-                SweepAxis::V(speeds.clone()),
-            ))
-        },
-        false,
-    )?;
-    let (fluid, source) = args.air.spec()?.fluid()?;
-    let points = propbet_pipeline::stages::powered(&model, &fluid, &file.motor, supply.as_ref(), &drives, &speeds)?;
-    let rows = points
-        .iter()
-        .map(|p| row(p, fluid.rho, &source, model.rotor.tip_radius));
-    let body = match (args.format, supply.is_some()) {
-        (Format::Csv, false) => csv_rows(rows, true)?,
-        (Format::Csv, true) => csv_rows(rows.zip(points.iter().map(battery_columns)), true)?,
-        (Format::Json, false) => json_records(&crate::columns::table(rows)?)?,
-        (Format::Json, true) => json_records(&crate::columns::table(rows.zip(points.iter().map(battery_columns)))?)?,
+    let run = solve(&spec, &file.motor, supply.as_ref(), &drives, &speeds, &args.air.spec()?)?;
+    let points = &run.points;
+    let body = match args.format {
+        Format::Csv => run.csv()?,
+        Format::Json => json_records(&run.table()?)?,
     };
     let mut inputs = spec.inputs();
     inputs.push(path.as_path());

@@ -4,14 +4,12 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_pipeline::atmosphere::AirState;
+use propbet_api::{AirRequest, ModelRequest, SweepRequest, Values};
 use propbet_pipeline::band::BandSpec;
 use propbet_pipeline::bemt::{Fluid, PointResult};
 use propbet_pipeline::compare::band::PointBand;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, Rotation, SweepAxis, TableFormat};
-use propbet_pipeline::units::rpm_to_omega;
-use propbet_pipeline::values::{parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature};
+use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
 use serde::Serialize;
 
 use crate::columns::Table;
@@ -124,51 +122,40 @@ pub struct BladeArgs {
     pub process: crate::engine::XfoilProcess,
 }
 
-/// The design spec of the blade file `prop`: Some for a blade file without coefficients,
-/// None for a QPROP prop file (where the sections' flags are refused).
-pub fn design_spec(prop: &std::path::Path, b: &BladeArgs) -> Result<Option<propbet_pipeline::spec::DesignSpec>> {
-    use propbet_pipeline::design::{format_of_file, BladeFormat};
-    if format_of_file(prop) == BladeFormat::Qprop {
-        if b.airfoil.is_some() || b.design.sections_from.is_some() {
-            anyhow::bail!(
-                "--airfoil / --sections-from: {} is a QPROP prop file, whose coefficients are its sections",
-                prop.display()
-            );
-        }
-        return Ok(None);
-    }
-    Ok(Some(propbet_pipeline::spec::DesignSpec {
-        airfoil: b.airfoil.clone(),
-        sections_from: b.design.sections_from.clone(),
-        airfoils: b.design.airfoils.clone(),
-        process: b.process.spec(),
-    }))
-}
-
 impl ModelArgs {
-    /// The blade file's design spec: Some for a blade file without coefficients, None for a
-    /// QPROP prop file (where the sections' flags are refused).
-    fn design(&self) -> Result<Option<propbet_pipeline::spec::DesignSpec>> {
-        design_spec(&self.prop, &self.blade)
+    /// What the flags ask for.
+    pub fn request(&self) -> Result<ModelRequest> {
+        Ok(ModelRequest {
+            prop: self.prop.clone(),
+            dbeta_deg: self.dbeta,
+            units: self.units.clone(),
+            qprop_compat: self.qprop_compat,
+            no_tip_loss: self.no_tip_loss,
+            polars: self.polars.clone(),
+            rotation: self.rotation.clone(),
+            drag_factor: self.drag_factor,
+            effects: self.effect.clone(),
+            user_effects: self.user_effects.clone(),
+            ..self.blade.request(&self.prop)
+        })
     }
 
     /// The model's spec (flags in SI).
     pub fn spec(&self) -> Result<ModelSpec> {
-        let design = self.design()?;
-        let tables = self.polars.is_some() || design.is_some();
-        Ok(ModelSpec {
-            design,
-            prop: self.prop.clone(),
-            dbeta: self.dbeta.to_radians(),
-            units: self.units.as_deref().map(parse_length_unit).transpose()?,
-            qprop_compat: self.qprop_compat,
-            no_tip_loss: self.no_tip_loss,
-            polars: self.polars.clone(),
-            rotation: Rotation::or_default(self.rotation.as_deref().map(Rotation::parse).transpose()?, tables),
-            drag_factor: propbet_pipeline::spec::drag_factor_or_default(self.drag_factor, tables),
-            effects: self.effect.clone(),
-            user_effects: self.user_effects.clone(),
-        })
+        Ok(self.request()?.spec()?)
+    }
+}
+
+impl BladeArgs {
+    /// The default model of `prop` with these sections.
+    pub fn request(&self, prop: &std::path::Path) -> ModelRequest {
+        ModelRequest {
+            airfoil: self.airfoil.clone(),
+            sections_from: self.design.sections_from.clone(),
+            airfoils: self.design.airfoils.clone(),
+            process: self.process.request(),
+            ..ModelRequest::file(prop)
+        }
     }
 }
 
@@ -250,21 +237,21 @@ pub struct FluidArgs {
 }
 
 impl FluidArgs {
-    /// The air's spec (flags in SI).
-    pub fn spec(&self) -> Result<AirSpec> {
-        let state = match (&self.temp, &self.pressure) {
-            (Some(t), Some(p)) => {
-                let rh = self.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
-                Some(AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh)?)
-            }
-            _ => None,
-        };
-        Ok(AirSpec {
+    /// What the flags ask for.
+    pub fn request(&self) -> AirRequest {
+        AirRequest {
             rho: self.rho,
             mu: self.mu,
             a: self.a,
-            state,
-        })
+            temp: self.temp.clone(),
+            pressure: self.pressure.clone(),
+            humidity: self.humidity.clone(),
+        }
+    }
+
+    /// The air's spec (flags in SI).
+    pub fn spec(&self) -> Result<AirSpec> {
+        Ok(self.request().spec()?)
     }
 }
 
@@ -321,18 +308,19 @@ pub struct SweepArgs {
 }
 
 impl SweepArgs {
+    /// What the flags ask for.
+    pub fn request(&self) -> SweepRequest {
+        let text = |t: &Option<String>| t.clone().map(Values::Text);
+        SweepRequest {
+            rpm: text(&self.rpm),
+            j: text(&self.j),
+            v: text(&self.v),
+        }
+    }
+
     /// Rotation speeds [rad/s] and the second axis (neither `--j` nor `--v`: static).
     pub fn spec(&self) -> Result<(Vec<f64>, SweepAxis)> {
-        let Some(rpm) = &self.rpm else {
-            anyhow::bail!("--rpm: give the rotation speeds (or a --motor with --volts, --amps or --thrust)");
-        };
-        let omegas = parse_list("--rpm", rpm)?.into_iter().map(rpm_to_omega).collect();
-        let axis = match (&self.j, &self.v) {
-            (Some(j), _) => SweepAxis::J(parse_list("--j", j)?),
-            (None, Some(v)) => SweepAxis::V(parse_list("--v", v)?),
-            (None, None) => SweepAxis::V(vec![0.0]),
-        };
-        Ok((omegas, axis))
+        Ok(self.request().spec()?)
     }
 }
 

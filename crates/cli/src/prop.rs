@@ -47,12 +47,21 @@ impl PropArgs {
 /// or a blade table as its stations with QPROP's generic coefficients (the polars of
 /// `predict` replace them).
 pub fn load(args: &PropArgs) -> Result<propbet_pipeline::model::Model> {
-    let spec = args.model_spec()?;
+    load_spec(&args.model_spec()?)
+}
+
+/// The blade file's model as `prop` shows it, of a model's spec (its file, units and reading).
+pub fn load_spec(spec: &ModelSpec) -> Result<propbet_pipeline::model::Model> {
+    let spec = ModelSpec {
+        units: spec.units,
+        qprop_compat: spec.qprop_compat,
+        ..ModelSpec::prop(spec.prop.clone())
+    };
     let opts = propbet_pipeline::design::DesignOptions {
         units: spec.units,
         ..Default::default()
     };
-    match propbet_pipeline::design::read_design(&args.file, &opts)? {
+    match propbet_pipeline::design::read_design(&spec.prop, &opts)? {
         Some(d) => Ok(propbet_pipeline::model::Model::from_loaded(
             &ModelSpec { units: None, ..spec },
             d.geometry,

@@ -68,7 +68,7 @@ fn default_case() -> Result<PathBuf> {
 /// The plan of a case directory, writing under `out`.
 pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcess) -> Result<RunPlan> {
     let case = read_case(dir)?;
-    Ok(case.plan(dir, out, &xfoil.spec())?)
+    Ok(case.plan(dir, out, &xfoil.spec()?)?)
 }
 
 /// The case directory (the default case without one) and the output directory (`run_<case>`
@@ -186,7 +186,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
-    let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec().engine);
+    let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec()?.engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<propbet_report::answer::ReferenceScore> = None;
     let mut lead: Option<propbet_plot::Figure> = None;

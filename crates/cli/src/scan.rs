@@ -164,13 +164,17 @@ fn interp(table: &[GeometryRow], x: f64, k: usize) -> Option<f64> {
 
 /// Runs `propbet scan`.
 pub fn run(a: &ScanArgs) -> Result<bool> {
-    let spec = a.spec()?;
+    run_spec(&a.spec()?)
+}
+
+/// Runs a scan stage: its files written, its summary printed.
+pub fn run_spec(spec: &ScanSpec) -> Result<bool> {
     let inputs: Vec<&Path> = std::iter::once(spec.input.as_path())
         .chain(spec.reference.as_deref())
         .collect();
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
-    let s = stages::scan(&spec)?;
-    write(&spec, &s)?;
+    let s = stages::scan(spec)?;
+    write(spec, &s)?;
     print_summary(&s);
     println!("wrote {}", spec.out.display());
     Ok(s.clean())

@@ -88,7 +88,7 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
         pe0: a.pe0.clone(),
         airfoils: a.airfoils.clone(),
         out: a.out.clone(),
-        xfoil: a.xfoil.spec(),
+        xfoil: a.xfoil.spec()?,
         tables: a.section_model == "tables",
         ncrit: a.ncrit,
         ncrit_effect: propbet_pipeline::spec::check_ncrit_effect(&a.ncrit_effect, a.ncrit)?,
@@ -121,7 +121,7 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
 pub fn run(a: &ValidateArgs) -> Result<bool> {
     let (spec, props, generic) = spec(a)?;
     let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
-    let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec().engine);
+    let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec()?.engine);
     let validation = validate_all(
         &spec,
         &props,

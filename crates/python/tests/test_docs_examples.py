@@ -34,3 +34,9 @@ def test_the_readmes_python_example_runs(repo, tmp_path):
     (tmp_path / "readme.py").write_text(block)
     out = run(tmp_path / "readme.py", cwd=repo)
     assert "torque-tare" in out
+
+
+def test_the_motor_example_answers_the_three_questions(repo):
+    out = run("docs/python/motor.py", cwd=repo)
+    assert "hover at 1.5 N:" in out and "held-out current error" in out
+    assert "apcsf_10x4.7.qprop" in out and "Most grams per watt at hover" in out

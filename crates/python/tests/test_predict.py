@@ -86,13 +86,15 @@ def test_polars_with_neuralfoil_give_a_tabulated_model(cli, tmp_path):
 
 def test_the_gil_is_released_while_propbet_computes():
     """While a 100,000-point sweep runs in another thread, this one keeps running Python."""
-    argv = ["predict", "--prop", CAM, "--rpm", "2000:9000/500", "--j", "0:0.6/200"]
+    model = propbet._native.Model(CAM)
     ticks = 0
     done = threading.Event()
 
     def sweep():
-        propbet._native.predict(argv, False)
-        done.set()
+        try:
+            propbet._native.predict(model, "2000:9000/500", "0:0.6/200")
+        finally:
+            done.set()
 
     worker = threading.Thread(target=sweep)
     started = time.perf_counter()
@@ -106,15 +108,6 @@ def test_the_gil_is_released_while_propbet_computes():
     # Held, the GIL would leave this loop a handful of turns before the call; released, it turns
     # every few microseconds for the whole sweep.
     assert ticks > 100, f"{ticks} turns in {elapsed:.3f} s: the GIL was held"
-
-
-def test_a_stage_command_line_splits_into_flags_and_values():
-    """from_case reads the case's stage command lines: a switch it does not know is still a
-    flag alone when another flag follows, and a negative number is a value."""
-    argv = ["--geometry", "g.qprop", "--no-cache", "--airfoil", "e63.dat", "--dbeta", "-1.5", "--rpm=4000", "--band"]
-    assert list(propbet._pairs(argv)) == [
-        ["--geometry", "g.qprop"], ["--no-cache"], ["--airfoil", "e63.dat"], ["--dbeta", "-1.5"], ["--rpm=4000"], ["--band"],
-    ]
 
 
 def test_the_propeller_you_own_from_apcs_design_file(cli, tmp_path, same_as_file):

@@ -40,10 +40,15 @@ import numpy as np
 import pandas as pd
 
 from . import _native
-from ._native import InputError, InternalError
+from ._native import Battery, InputError, InternalError, Motor
 
 __all__ = [
     "Prop",
+    "Motor",
+    "Battery",
+    "FittedMotor",
+    "fit_motor",
+    "compare_props",
     "Comparison",
     "Diagnosis",
     "RunResult",
@@ -117,58 +122,6 @@ def _text(name: str, value: Any) -> str:
         else:
             raise InputError(f"{name}[{i}] = {v!r}: not a number")
     return ",".join(parts)
-
-
-# predict's flags that are not the model's: the sweep, the air, the outputs.
-_NOT_MODEL = {"rpm", "j", "v", "rho", "mu", "a", "temp", "pressure", "humidity", "out", "format", "out_stations", "band"}
-
-
-def _switch(where: str, name: str, value: Any) -> bool:
-    """A True/False keyword, checked: ``band="yes"`` is a TypeError, not True."""
-    if not isinstance(value, bool):
-        raise TypeError(f"{where}(): {name} = {value!r}: True or False")
-    return value
-
-
-@functools.lru_cache(maxsize=None)
-def _flags_of(command: str) -> tuple:
-    """The flags ``command`` takes, with their kinds (the binary's own list, read once)."""
-    return tuple(_native.flags(command))
-
-
-def _check_options(where: str, options: Mapping[str, Any], command: Optional[str] = "predict", exclude: set = frozenset(), extra: Mapping[str, str] = {}) -> None:
-    """Keyword arguments checked at the call against the flags ``command`` takes (the binary's
-    own list; None: ``extra`` alone): an unknown name is a TypeError, a value of the wrong kind
-    a TypeError or a ValueError, each naming the keyword."""
-    known = {k: kind for k, kind in (_flags_of(command) if command else ()) if k not in exclude}
-    known.update(extra)
-    for key, value in options.items():
-        kind = known.get(key)
-        if kind is None:
-            raise TypeError(f"{where}() got an unexpected keyword argument '{key}' (it takes: {', '.join(sorted(known))})")
-        if value is None:
-            continue
-        if kind == "switch":
-            _switch(where, key, value)
-        elif kind == "number":
-            if isinstance(value, bool) or not isinstance(value, (numbers.Real, str)):
-                raise TypeError(f"{where}(): {key} = {value!r}: a number")
-            if isinstance(value, str):
-                try:
-                    float(value)
-                except ValueError:
-                    raise ValueError(f"{where}(): {key} = {value!r}: not a number") from None
-        elif kind == "many":
-            items = [value] if isinstance(value, (str, os.PathLike)) else value
-            try:
-                items = list(items)
-            except TypeError:
-                raise TypeError(f"{where}(): {key} = {value!r}: a text or a list of them") from None
-            for v in items:
-                if isinstance(v, bool) or not isinstance(v, (str, os.PathLike, numbers.Real)):
-                    raise TypeError(f"{where}(): {key} holds {v!r}: a text or a list of them")
-        elif isinstance(value, bool) or not isinstance(value, (str, os.PathLike, numbers.Real)):
-            raise TypeError(f"{where}(): {key} = {value!r}: a text, path or number")
 
 
 def _flags(options: Mapping[str, Any]) -> list[str]:
@@ -298,20 +251,6 @@ def execute(*argv: Any) -> bool:
     return _relayed(lambda: _native.execute(args))
 
 
-def _air(air: Optional[Mapping[str, Any]]) -> list[str]:
-    """The air as flags: ``{"rho": 1.2}``, or ``{"temp": "20C", "pressure": "1013hPa",
-    "humidity": 40}``, and ``mu``, ``a``."""
-    if air is None:
-        return []
-    if not isinstance(air, Mapping):
-        raise InputError(f"air = {air!r}: a dict such as {{'temp': '20C', 'pressure': '101325'}} or {{'rho': 1.2}}")
-    known = {"rho", "mu", "a", "temp", "pressure", "humidity"}
-    unknown = sorted(set(air) - known)
-    if unknown:
-        raise InputError(f"air: unknown key {unknown[0]!r}; the keys are {', '.join(sorted(known))}")
-    return _flags(air)
-
-
 def _sweep(rpm: Any, j: Any, v: Any) -> list[str]:
     if rpm is None:
         raise InputError("rpm: the rotation speeds are needed (a number, a list or 'start:stop:step')")
@@ -321,62 +260,48 @@ def _sweep(rpm: Any, j: Any, v: Any) -> list[str]:
 
 
 class Prop:
-    """A propeller model: a QPROP prop file, the tabulated polars that replace its section
-    coefficients (after :meth:`polars`), and the model flags every prediction uses.
+    """A propeller model: a blade file, how it is read, and (after :meth:`polars`) the
+    tabulated polars that replace its section coefficients.
 
-    Made by :meth:`from_qprop`, :meth:`from_scan` or :meth:`from_case`.
+    Made by :meth:`from_qprop`, :meth:`from_file`, :meth:`from_scan` or :meth:`from_case`.
     """
 
     def __init__(
         self,
-        path: PathLike,
+        model: Any,
         *,
-        polars: Optional[PathLike] = None,
-        model_flags: Sequence[str] = (),
         geometry: Optional[PathLike] = None,
         sections: Sequence[str] = (),
         folder: Optional[PathLike] = None,
-        sweep: Sequence[str] = (),
-        air_flags: Sequence[str] = (),
     ) -> None:
-        self.path = Path(path)
-        """The prop file the predictions read."""
-        self.polars_file = Path(polars) if polars is not None else None
+        self.model = model
+        """The typed model (``propbet._native.Model``) every prediction uses."""
+        self.path = Path(model.prop)
+        """The blade file the predictions read."""
+        self.polars_file = Path(model.polars) if model.polars is not None else None
         """The tabulated polars (JSON) that replace the file's coefficients, if any."""
         self.geometry = Path(geometry) if geometry is not None else self.path
         """The blade geometry :meth:`polars` computes polars for."""
         self.folder = Path(folder) if folder is not None else None
         """The folder the scan, polars or case stages wrote, if any."""
-        self._model_flags = list(model_flags)
         self._sections = list(sections)
-        self._sweep = list(sweep)
-        self._air = list(air_flags)
         self._scratch: Any = None
 
     def __repr__(self) -> str:
         polars = f", polars={str(self.polars_file)!r}" if self.polars_file else ""
         return f"Prop({str(self.path)!r}{polars})"
 
-    def model_args(self) -> list[str]:
-        """The model's flags as ``predict``, ``compare`` and ``diagnose`` take them."""
-        argv = ["--prop", str(self.path)]
-        if self.polars_file is not None:
-            argv += ["--polars", str(self.polars_file)]
-        return argv + self._model_flags
-
     @classmethod
     def from_qprop(cls, path: PathLike, **options: Any) -> "Prop":
-        """A QPROP prop file as it is. ``options`` are the model flags of ``propbet predict``:
-        ``units="in"``, ``qprop_compat=True``, ``no_tip_loss=True``, ``dbeta=1.5`` [deg],
-        ``rotation="snel"``, ``drag_factor=1.1``, ``effects=["pitch-offset:deg=1"]``,
-        ``user_effects=path``, ``polars=path`` (tables from :meth:`polars`)."""
-        _check_options("from_qprop", options, exclude=_NOT_MODEL | {"effect", "prop"}, extra={"effects": "many"})
-        options = dict(options)
+        """A QPROP prop file as it is. ``options`` are the model's settings (as ``propbet
+        predict``'s flags): ``units="in"``, ``qprop_compat=True``, ``no_tip_loss=True``,
+        ``dbeta=1.5`` [deg], ``rotation="snel"``, ``drag_factor=1.1``,
+        ``effects=["pitch-offset:deg=1"]``, ``user_effects=path``, ``polars=path`` (tables from
+        :meth:`polars`). A misspelt or mistyped keyword is a TypeError naming it."""
         effects = options.pop("effects", None)
         if effects is not None:
-            options["effect"] = [effects] if isinstance(effects, str) else list(effects)
-        polars = options.pop("polars", None)
-        prop = cls(path, polars=polars, model_flags=_flags(options))
+            options["effects"] = [effects] if isinstance(effects, str) else effects
+        prop = cls(_native.Model(path, **options))
         prop.stations  # read once: a bad file fails here, naming itself
         return prop
 
@@ -404,7 +329,7 @@ class Prop:
             warnings.warn(f"propbet scan: some stations could not be measured or fitted (see {folder})")
         airfoils = folder / "airfoils"
         sections = ["--station-airfoils", str(airfoils)] if airfoils.is_dir() else []
-        prop = cls(folder / "prop.qprop", sections=sections, folder=folder)
+        prop = cls(_native.Model(folder / "prop.qprop"), sections=sections, folder=folder)
         prop._scratch = scratch
         return prop
 
@@ -412,34 +337,18 @@ class Prop:
     def from_case(cls, case: PathLike, out: Optional[PathLike] = None) -> "Prop":
         """The model of a case directory (``case.toml``): its scan and polars stages run as
         ``propbet run`` runs them, into ``out`` (a new temporary folder without it); the
-        prediction's model flags, air and sweep are the case's (``predict()`` without
-        ``rpm`` sweeps the case's operating points)."""
+        prediction's model, air and sweep are the case's (``predict()`` without ``rpm``
+        sweeps the case's operating points)."""
         folder, scratch = _folder(out, "case")
-        stages = _native.case_stages(os.fspath(case), str(folder))
-        geometry, sections, predict = None, [], None
-        for argv in stages:
-            if argv[0] == "scan":
-                execute(*argv)
-            elif argv[0] == "polars":
-                # `propbet run` makes each stage's folder; the command alone writes into one.
-                for flag in ("--out-prop", "--out-polars"):
-                    target = _value(argv, flag)
-                    if target is not None:
-                        Path(target).parent.mkdir(parents=True, exist_ok=True)
-                execute(*argv)
-                geometry, sections = _polars_inputs(argv)
-            elif argv[0] == "predict":
-                predict = argv
-        if predict is None:
-            raise InternalError(f"{case}: the case has no prediction stage")
-        model, sweep, air = _split_predict(predict[1:])
-        prop = _value(model, "--prop")
-        polars = _value(model, "--polars")
-        rest = _without(model, {"--prop", "--polars"})
-        made = cls(
-            prop, polars=polars, model_flags=rest, geometry=geometry, sections=sections,
-            folder=folder, sweep=sweep, air_flags=air,
-        )
+        model, polars = _relayed(lambda: _native.case_model(os.fspath(case), str(folder)))
+        geometry, sections = None, []
+        if polars is not None:
+            geometry, airfoil, station_airfoils = polars
+            if airfoil is not None:
+                sections += ["--airfoil", airfoil]
+            if station_airfoils is not None:
+                sections += ["--station-airfoils", str(station_airfoils)]
+        made = cls(model, geometry=geometry, sections=sections, folder=folder)
         made._scratch = scratch
         return made
 
@@ -447,9 +356,7 @@ class Prop:
     def stations(self) -> pd.DataFrame:
         """The prop file's rows in SI: ``r_m``, ``r_over_tip``, ``chord_m``, ``beta_deg`` and
         the ten QPROP section coefficients of each row."""
-        argv = ["prop", str(self.path)]
-        argv += [x for p in _pairs(self._model_flags) if _flag_name(p[0]) in {"--units", "--qprop-compat"} for x in p]
-        return _csv(_relayed(lambda: _native.stations(argv)))
+        return _csv(_relayed(lambda: _native.stations(self.model)))
 
     def polars(
         self,
@@ -482,9 +389,8 @@ class Prop:
         if not execute(*argv):
             warnings.warn(f"propbet polars: some stations were not fitted or XFOIL faulted ({folder})")
         made = Prop(
-            folder / "prop.qprop", polars=folder / "polars.json", model_flags=self._model_flags,
-            geometry=self.geometry, sections=self._sections, folder=folder, sweep=self._sweep,
-            air_flags=self._air,
+            self.model.with_tables(folder / "prop.qprop", folder / "polars.json"),
+            geometry=self.geometry, sections=self._sections, folder=folder,
         )
         # The temporary folder lives as long as the props that read from it.
         made._scratch = (scratch, getattr(self, "_scratch", None))
@@ -500,6 +406,12 @@ class Prop:
         effects: Iterable[str] = (),
         band: bool = False,
         stations: bool = False,
+        motor: Optional["Motor"] = None,
+        volts: Any = None,
+        amps: Any = None,
+        thrust: Any = None,
+        throttle: Any = None,
+        battery: Optional["Battery"] = None,
     ) -> Any:
         """Performance over every RPM with every J (or V, or static without either): a
         DataFrame with the columns of ``propbet predict``'s CSV and its numbers (7 significant
@@ -508,22 +420,29 @@ class Prop:
         ``ct_lo`` ... ``eta_hi`` with ``band=True``. ``air`` as a dict (``{"rho": 1.2}``,
         ``{"temp": "20C", "pressure": "1013hPa"}``), ``effects`` added to the model
         (``"pitch-offset:deg=1.2"``). With ``stations=True``, a pair: the sweep and the
-        per-station table."""
-        if rpm is None and self._sweep:
-            points = list(self._sweep)
-            if j is not None or v is not None:
-                raise InputError("j and v: give rpm with them")
-        else:
-            points = _sweep(rpm, j, v)
-        _check_options("predict", {"effects": effects}, command=None, extra={"effects": "many"})
-        _switch("predict", "band", band)
-        _switch("predict", "stations", stations)
-        effect = [effects] if isinstance(effects, str) else list(effects)
-        argv = [
-            "predict", *self.model_args(), *_flags({"effect": effect or None}), *points,
-            *(_air(air) if air is not None else self._air), *(["--band"] if band else []),
-        ]
-        table, per_station, failed, at_points = _relayed(lambda: _native.predict(argv, stations))
+        per-station table.
+
+        With a ``motor`` (:class:`Motor`) the propeller turns where the motor's torque meets
+        its own, at each of ``volts``, ``amps``, ``thrust`` [N] (hover), ``rpm`` or, with a
+        ``battery`` (:class:`Battery`), ``throttle`` (0 to 1), and each airspeed ``v``: the
+        columns of ``propbet predict --motor`` (``rpm``, ``volts``, ``amps``, ``thrust_n``,
+        ``shaft_power_w``, ``electrical_power_w``, ``eta_motor``, ``eta_total``, ``g_per_w``,
+        ...; with a battery ``throttle``, ``battery_amps``, ``endurance_min``, ...); a point
+        without an operating point says why in ``no_solution``."""
+        if motor is not None:
+            if band or stations or j is not None or effects:
+                raise InputError("motor: band, stations, j and effects are not available with a motor; predict at rpm= for them")
+            table, problems = _relayed(lambda: _native.powered(
+                self.model, motor, volts=volts, amps=amps, thrust=thrust, rpm=rpm, throttle=throttle,
+                battery=battery, v=v, air=air))
+            for p in problems:
+                warnings.warn(p, PropbetWarning, stacklevel=2)
+            return _frame(table)
+        if any(x is not None for x in (volts, amps, thrust, throttle, battery)):
+            raise InputError("volts, amps, thrust, throttle, battery: give a motor= with them")
+        effects = [effects] if isinstance(effects, str) else list(effects)
+        table, per_station, failed, at_points = _relayed(lambda: _native.predict(
+            self.model, rpm, j, v, air=air, effects=effects, band=band, stations=stations))
         sweep = _frame(table)
         sweep.attrs["not_converged"] = failed
         if failed:
@@ -533,65 +452,8 @@ class Prop:
         return (sweep, _frame(per_station)) if stations else sweep
 
 
-def _value(argv: Sequence[str], flag: str) -> Optional[str]:
-    for i, a in enumerate(argv):
-        if a == flag and i + 1 < len(argv):
-            return argv[i + 1]
-        if a.startswith(flag + "="):
-            return a[len(flag) + 1 :]
-    return None
-
-
-# predict's switches (flags without a value).
-_SWITCHES = {"--band", "--qprop-compat", "--no-tip-loss"}
-
-
-def _pairs(argv: Sequence[str]) -> Iterator[list[str]]:
-    """A command line's flags, each with its value: a flag alone when it is a known switch,
-    holds its value (``--rpm=4000``), or the next word is another flag (a value never starts
-    with ``--``: a negative number has one dash)."""
-    i = 0
-    while i < len(argv):
-        a = argv[i]
-        alone = a in _SWITCHES or "=" in a or not a.startswith("-") or i + 1 == len(argv)
-        if alone or argv[i + 1].startswith("--"):
-            yield [a]
-            i += 1
-        else:
-            yield [a, argv[i + 1]]
-            i += 2
-
-
-def _flag_name(a: str) -> str:
-    return a.split("=", 1)[0]
-
-
-def _without(argv: Sequence[str], flags: set) -> list[str]:
-    return [x for p in _pairs(argv) if _flag_name(p[0]) not in flags for x in p]
-
-
-def _split_predict(argv: Sequence[str]) -> tuple:
-    """A predict command line's model flags, its sweep and its air."""
-    sweep_flags = {"--rpm", "--j", "--v"}
-    air_flags = {"--rho", "--mu", "--a", "--temp", "--pressure", "--humidity"}
-    output = {"--out", "-o", "--format", "--out-stations", "--band"}
-    model, sweep, air = [], [], []
-    for p in _pairs(argv):
-        name = _flag_name(p[0])
-        if name in sweep_flags:
-            sweep += p
-        elif name in air_flags:
-            air += p
-        elif name not in output:
-            model += p
-    return model, sweep, air
-
-
-def _polars_inputs(argv: Sequence[str]) -> tuple:
-    """A polars command line's geometry and sections."""
-    geometry = _value(argv, "--geometry")
-    sections = [x for p in _pairs(argv) if _flag_name(p[0]) in {"--airfoil", "--station-airfoils"} for x in p]
-    return geometry, sections
+def _files(paths: Union[PathLike, Sequence[PathLike]]) -> list:
+    return [os.fspath(paths)] if isinstance(paths, (str, os.PathLike)) else [os.fspath(p) for p in paths]
 
 
 def read_measurements(paths: Union[PathLike, Sequence[PathLike]], **options: Any) -> pd.DataFrame:
@@ -603,8 +465,7 @@ def read_measurements(paths: Union[PathLike, Sequence[PathLike]], **options: Any
     ``rpm_source``, ``atmosphere``, ``rho``, ``columns``. The rows not used are in
     ``.attrs["dropped"]`` (file, line, reason, detail); a file that cannot be read is one row
     there with reason ``file_refused`` and no line, as ``compare`` goes on without it."""
-    argv = _flags({"measured": paths, **options})
-    points, dropped = _relayed(lambda: _native.read_measurements(argv))
+    points, dropped = _relayed(lambda: _native.read_measurements(_files(paths), **options))
     table = _csv(points)
     table.attrs["dropped"] = _csv(dropped)
     return table
@@ -629,10 +490,6 @@ class Comparison:
         return iter((self.metrics, self.points))
 
 
-def _measured_args(measured: Any, options: Mapping[str, Any]) -> list[str]:
-    return _flags({"measured": measured, **options})
-
-
 def _prop(prop: Union[Prop, PathLike]) -> Prop:
     return prop if isinstance(prop, Prop) else Prop.from_qprop(prop)
 
@@ -643,12 +500,13 @@ def compare(
     out: Optional[PathLike] = None,
     **options: Any,
 ) -> Comparison:
-    """Measurements against the prediction (``propbet compare``): ``options`` are its flags
-    (``per3=path``, ``poles=14``, ``atmosphere="20C,101325,40%"``, ``columns=path``, ...).
+    """Measurements against the prediction (``propbet compare``): ``options`` are its
+    settings (``per3=path``, ``qprop_output=path``, ``motor=path``, ``poles=14``,
+    ``rpm_source="optical"``, ``atmosphere="20C,101325,40%"``, ``rho``, ``columns=path``).
     Files in ``out`` (a new temporary folder without it)."""
     prop = _prop(prop)
     folder, scratch = _folder(out, "compare")
-    ok = execute("compare", *prop.model_args(), *_measured_args(measured, options), "--out", str(folder))
+    ok = _relayed(lambda: _native.compare(prop.model, _files(measured), str(folder), **options))
     return Comparison(
         metrics=_read_json(folder / "metrics.json"),
         points=_read_csv(folder / "points.csv"),
@@ -684,18 +542,17 @@ def diagnose(
     out: Optional[PathLike] = None,
     **options: Any,
 ) -> Diagnosis:
-    """Which physical effect is missing (``propbet diagnose``): ``options`` are its flags
-    (``effects="all"`` or a list of ids, ``folds``, ``max_steps``, ``window``, the measurement
-    flags). Files in ``out`` (a new temporary folder without it)."""
+    """Which physical effect is missing (``propbet diagnose``): ``options`` are its settings
+    (``effects="all"`` or a list of ids, ``folds``, ``max_steps``, ``window``, and
+    :func:`compare`'s measurement settings). Files in ``out`` (a new temporary folder without
+    it)."""
     prop = _prop(prop)
     folder, scratch = _folder(out, "diagnose")
     options = dict(options)
     candidates = options.pop("effects", None)
-    if candidates is not None and not isinstance(candidates, str):
-        candidates = ",".join(candidates)
-    argv = ["diagnose", *prop.model_args(), *_measured_args(measured, options)]
-    argv += _flags({"effects": candidates}) + ["--out", str(folder)]
-    ok = execute(*argv)
+    if isinstance(candidates, str):
+        candidates = candidates.split(",")
+    ok = _relayed(lambda: _native.diagnose(prop.model, _files(measured), str(folder), effects=candidates, **options))
     doc = _read_json(folder / "diagnosis.json") or {}
     summary = _read_json(folder / "summary.json") or {}
     found = summary.get("diagnosis", {})
@@ -791,3 +648,63 @@ def validate(
         ok=ok,
         _scratch=scratch,
     )
+
+
+@dataclass
+class FittedMotor:
+    """A motor fitted to stand logs (:func:`fit_motor`): the ``motor`` (:class:`Motor`), its
+    QPROP motor file's ``text`` (the fit's numbers in its comments), ``r``, ``io`` and ``kv``
+    each as (value, 95 % half-width) [ohm, A, rpm/V], ``kv_from`` ("given" or "esc_duty"), the
+    supply current's ``rms_current`` error and ``held_out_median`` (each step predicted with
+    itself left out), ``notes`` and ``misses`` in words, and the fitted ``steps``
+    (DataFrame: ``rpm``, ``torque_nm``, ``volts``, ``amps``, ``esc_us``, ``amps_held_out``)."""
+
+    motor: Motor
+    text: str
+    r: tuple
+    io: tuple
+    kv: tuple
+    kv_from: str
+    rms_current: float
+    held_out_median: Optional[float]
+    notes: list
+    misses: Optional[str]
+    steps: pd.DataFrame
+
+
+def fit_motor(measured: Union[PathLike, Sequence[PathLike]], *, kv: Optional[float] = None, name: Optional[str] = None, **options: Any) -> FittedMotor:
+    """R, Io and Kv of a type 1 motor fitted to stand logs that carry speed, torque, voltage
+    and current (``propbet motor fit``): ``kv`` the maker's Kv [rpm/V] (without it, found
+    from the ESC command's duty), ``name`` the motor's; ``options`` the measurement settings
+    of :func:`compare` (``poles``, ``rpm_source``, ...)."""
+    motor, text, summary, steps = _relayed(lambda: _native.fit_motor(_files(measured), kv=kv, name=name, **options))
+    return FittedMotor(
+        motor=motor, text=text, r=summary["r"], io=summary["io"], kv=summary["kv"],
+        kv_from=summary["kv_from"], rms_current=summary["rms_current"],
+        held_out_median=summary["held_out_median"], notes=summary["notes"], misses=summary["misses"],
+        steps=_frame(steps),
+    )
+
+
+def compare_props(
+    props: Sequence[Union[Prop, PathLike]],
+    motor: Motor,
+    battery: Battery,
+    hover: float,
+    *,
+    v: Any = None,
+    air: Optional[Mapping[str, Any]] = None,
+) -> pd.DataFrame:
+    """Propellers side by side on one motor and battery (``propbet compare-props``): ranked by
+    grams per watt at ``hover`` thrust [N] (one propeller's share of the weight), with hover
+    throttle, current, RPM and endurance and full-throttle thrust and current (static; ``v``
+    the full-throttle curves' airspeeds), each g/W with its range over the prediction's band:
+    props.csv's columns. ``.attrs["answer"]`` holds the answer's sentences."""
+    named = []
+    for p in props:
+        prop = _prop(p)
+        named.append((prop.path.name, prop.model))
+    table, answer = _relayed(lambda: _native.compare_props(named, motor, battery, hover, v=v, air=air))
+    frame = _frame(table)
+    frame.attrs["answer"] = answer
+    return frame

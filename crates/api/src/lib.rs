@@ -1,0 +1,31 @@
+//! propbet's typed API: what a user asks for, in the words and units a user gives it, made
+//! into the stages' specs here and only here, where every default and every check on a value
+//! is applied once. The command line's argument parser fills these requests from its flags
+//! and the Python package from its keyword arguments; neither builds or reads a command line
+//! to reach the other.
+//!
+//! - [`ModelRequest`]: a propeller file and how to read it ([`ModelSpec`]);
+//! - [`SweepRequest`]: rotation speeds with advance ratios or airspeeds;
+//! - [`AirRequest`]: the air, as densities or as temperature, pressure and humidity;
+//! - [`MeasuredRequest`]: measured files and how to read them ([`MeasuredSpec`]);
+//! - [`DriveRequest`] and [`supply`]: what sets a motor's operating point, and the battery.
+//!
+//! Values come as numbers ([`Values::Numbers`]) or as the text a flag takes
+//! ([`Values::Text`]: `4000:8000:1000`), and are named in every error by the name the caller
+//! used.
+
+mod motor;
+mod request;
+
+pub use motor::{motor, motor_text, read_motor};
+pub use propbet_pipeline::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
+
+pub use request::{
+    supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, ProcessRequest, SweepRequest,
+    Values,
+};
+
+pub use propbet_pipeline::spec::{
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat,
+};
+pub use propbet_pipeline::{Error, Result};

@@ -1,0 +1,410 @@
+//! The requests and the one place each becomes a spec.
+
+use std::path::PathBuf;
+
+use propbet_pipeline::motor::{Battery, Drive, Supply};
+use propbet_pipeline::settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
+use propbet_pipeline::spec::{
+    drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, SweepAxis, XfoilProcessSpec,
+};
+use propbet_pipeline::values::{
+    parse_atmosphere, parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature,
+};
+use propbet_pipeline::{Error, Result};
+
+use propbet_pipeline::atmosphere::AirState;
+use propbet_pipeline::measure::RpmSource;
+use propbet_pipeline::units::rpm_to_omega;
+
+/// Numbers as a caller gives them: a list (Python's lists and arrays) or the text a flag
+/// takes (`4000,5000`, `start:stop:step`, `start:stop/N`).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Values {
+    /// The numbers themselves.
+    Numbers(Vec<f64>),
+    /// A list or a range as the command line writes it.
+    Text(String),
+}
+
+impl Values {
+    /// The numbers, each finite; `name` is the caller's name of the value (`rpm`): an error
+    /// says `rpm[2] = nan` of a list and `--rpm '1,,2'` of a text.
+    pub fn numbers(&self, name: &str) -> Result<Vec<f64>> {
+        match self {
+            Values::Text(t) => parse_list(&format!("--{name}"), t),
+            Values::Numbers(v) if v.is_empty() => Err(Error::Nothing(format!("{name}: an empty list"))),
+            Values::Numbers(v) => match v.iter().position(|x| !x.is_finite()) {
+                None => Ok(v.clone()),
+                Some(i) => {
+                    let x = v[i];
+                    let text = if x.is_nan() {
+                        "nan"
+                    } else if x > 0.0 {
+                        "inf"
+                    } else {
+                        "-inf"
+                    };
+                    let at = if v.len() == 1 {
+                        name.to_string()
+                    } else {
+                        format!("{name}[{i}]")
+                    };
+                    Err(Error::Range(format!("{at} = {text}: not a finite number")))
+                }
+            },
+        }
+    }
+}
+
+/// The polar engine, XFOIL's executable and the polar cache, as asked.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ProcessRequest {
+    /// `xfoil`, `neuralfoil` or `auto` (None: [`ENGINE`]'s default).
+    pub engine: Option<String>,
+    /// NeuralFoil's network size (None: [`NEURALFOIL_SIZE`]'s default).
+    pub neuralfoil_size: Option<String>,
+    /// XFOIL executable (None: `xfoil` on PATH).
+    pub xfoil: Option<PathBuf>,
+    /// Polar cache directory (None: the default one).
+    pub cache: Option<PathBuf>,
+    /// Compute every polar afresh and store nothing.
+    pub no_cache: bool,
+    /// No progress bar.
+    pub quiet: bool,
+    /// Total XFOIL time [s].
+    pub budget: Option<f64>,
+}
+
+impl ProcessRequest {
+    /// The spec: the engine's and the network's names checked.
+    pub fn spec(&self) -> Result<XfoilProcessSpec> {
+        let engine = ENGINE.choose(self.engine.as_deref().unwrap_or(ENGINE.default))?;
+        if let Some(size) = &self.neuralfoil_size {
+            NEURALFOIL_SIZE.choose(size)?;
+        }
+        if self.cache.is_some() && self.no_cache {
+            return Err(Error::Conflict("cache and no_cache: give one of them".into()));
+        }
+        Ok(XfoilProcessSpec {
+            xfoil: self.xfoil.clone(),
+            cache: self.cache.clone(),
+            no_cache: self.no_cache,
+            quiet: self.quiet,
+            budget: self.budget,
+            engine: propbet_pipeline::polar::Engine::parse(engine).unwrap_or_default(),
+            neuralfoil_size: self.neuralfoil_size.clone(),
+        })
+    }
+}
+
+/// A propeller file and how to read it: every field but the file is optional, and [`spec`]
+/// gives each the default that depends on the file (a blade file without coefficients has
+/// its polars computed, and rotation and drag factor follow tables' defaults).
+///
+/// [`spec`]: ModelRequest::spec
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ModelRequest {
+    /// QPROP prop file, APC's PE0, a UIUC geometry table or a blade table.
+    pub prop: PathBuf,
+    /// Collective blade-angle change [deg].
+    pub dbeta_deg: f64,
+    /// Length unit of the radii and chords (`in`, `mm`, ...), replacing the file's factors.
+    pub units: Option<String>,
+    /// Read as QPROP 1.22 does.
+    pub qprop_compat: bool,
+    /// No tip-loss factor.
+    pub no_tip_loss: bool,
+    /// Tabulated polars as the section model.
+    pub polars: Option<PathBuf>,
+    /// Rotational augmentation (`off`, `snel`; None: the default for the section model).
+    pub rotation: Option<String>,
+    /// Every section's drag times this (None: the default for the section model).
+    pub drag_factor: Option<f64>,
+    /// Effects added to the model (`id:param=value,...`).
+    pub effects: Vec<String>,
+    /// TOML file of user-defined effects.
+    pub user_effects: Option<PathBuf>,
+    /// The sections of a blade file without coefficients: one airfoil, or
+    /// `E63@0.25,APC12@0.45`.
+    pub airfoil: Option<String>,
+    /// APC's design file whose sections a table takes.
+    pub sections_from: Option<PathBuf>,
+    /// Airfoil coordinates looked in before propbet's library.
+    pub airfoils: Option<PathBuf>,
+    /// How the polars of a blade file without coefficients are made.
+    pub process: ProcessRequest,
+}
+
+impl ModelRequest {
+    /// A propeller file with propbet's default model.
+    pub fn file(prop: impl Into<PathBuf>) -> Self {
+        ModelRequest {
+            prop: prop.into(),
+            ..ModelRequest::default()
+        }
+    }
+
+    /// The model's spec, in SI.
+    pub fn spec(&self) -> Result<ModelSpec> {
+        let design = self.design()?;
+        let tables = self.polars.is_some() || design.is_some();
+        let rotation = self.rotation.as_deref().map(Rotation::parse).transpose()?;
+        Ok(ModelSpec {
+            design,
+            prop: self.prop.clone(),
+            dbeta: self.dbeta_deg.to_radians(),
+            units: self.units.as_deref().map(parse_length_unit).transpose()?,
+            qprop_compat: self.qprop_compat,
+            no_tip_loss: self.no_tip_loss,
+            polars: self.polars.clone(),
+            rotation: Rotation::or_default(rotation, tables),
+            drag_factor: drag_factor_or_default(self.drag_factor, tables),
+            effects: self.effects.clone(),
+            user_effects: self.user_effects.clone(),
+        })
+    }
+
+    /// The sections of a blade file without coefficients; None for a QPROP prop file (where
+    /// the sections' settings are refused).
+    fn design(&self) -> Result<Option<DesignSpec>> {
+        use propbet_pipeline::design::{format_of_file, BladeFormat};
+        if format_of_file(&self.prop) == BladeFormat::Qprop {
+            if self.airfoil.is_some() || self.sections_from.is_some() {
+                return Err(Error::Conflict(format!(
+                    "--airfoil / --sections-from: {} is a QPROP prop file, whose coefficients are its sections",
+                    self.prop.display()
+                )));
+            }
+            return Ok(None);
+        }
+        Ok(Some(DesignSpec {
+            airfoil: self.airfoil.clone(),
+            sections_from: self.sections_from.clone(),
+            airfoils: self.airfoils.clone(),
+            process: self.process.spec()?,
+        }))
+    }
+}
+
+/// Operating points: every rotation speed with every advance ratio or airspeed.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SweepRequest {
+    /// Rotation speeds [rpm].
+    pub rpm: Option<Values>,
+    /// Advance ratios J = V/(nD) [-].
+    pub j: Option<Values>,
+    /// Airspeeds [m/s] (neither: static).
+    pub v: Option<Values>,
+}
+
+impl SweepRequest {
+    /// Rotation speeds [rad/s] and the second axis.
+    pub fn spec(&self) -> Result<(Vec<f64>, SweepAxis)> {
+        let Some(rpm) = &self.rpm else {
+            return Err(Error::Nothing(
+                "--rpm: give the rotation speeds (or a --motor with --volts, --amps or --thrust)".into(),
+            ));
+        };
+        let omegas = rpm.numbers("rpm")?.into_iter().map(rpm_to_omega).collect();
+        Ok((omegas, self.axis()?))
+    }
+
+    /// The second axis alone (static without J or V).
+    pub fn axis(&self) -> Result<SweepAxis> {
+        Ok(match (&self.j, &self.v) {
+            (Some(_), Some(_)) => {
+                return Err(Error::Conflict(
+                    "j and v: give one of them (advance ratios or airspeeds)".into(),
+                ))
+            }
+            (Some(j), None) => SweepAxis::J(j.numbers("j")?),
+            (None, Some(v)) => SweepAxis::V(v.numbers("v")?),
+            (None, None) => SweepAxis::V(vec![0.0]),
+        })
+    }
+}
+
+/// The air: density, viscosity and speed of sound (QPROP's defaults where not given), or
+/// temperature, pressure and humidity through the atmosphere model.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct AirRequest {
+    /// Density [kg/m^3].
+    pub rho: Option<f64>,
+    /// Dynamic viscosity [Pa s].
+    pub mu: Option<f64>,
+    /// Speed of sound [m/s].
+    pub a: Option<f64>,
+    /// Temperature with its unit (`20C`, `293.15K`, `68F`).
+    pub temp: Option<String>,
+    /// Pressure (Pa unless suffixed: `hPa`, `mbar`, `kPa`, `inHg`, `psi`).
+    pub pressure: Option<String>,
+    /// Relative humidity in percent.
+    pub humidity: Option<String>,
+}
+
+impl AirRequest {
+    /// The air's spec, in SI.
+    pub fn spec(&self) -> Result<AirSpec> {
+        let state = match (&self.temp, &self.pressure) {
+            (Some(t), Some(p)) => {
+                let rh = self.humidity.as_deref().map(parse_humidity).transpose()?.unwrap_or(0.0);
+                let state = AirState::new(parse_temperature(t)?, parse_pressure(p)?, rh);
+                Some(state.map_err(|e| Error::value("--temp", t, e))?)
+            }
+            (None, None) if self.humidity.is_none() => None,
+            _ => return Err(Error::Conflict(
+                "--temp, --pressure, --humidity: the air's state takes a temperature and a pressure (and a humidity)"
+                    .into(),
+            )),
+        };
+        Ok(AirSpec {
+            rho: self.rho,
+            mu: self.mu,
+            a: self.a,
+            state,
+        })
+    }
+}
+
+/// Measured files and how to read them.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct MeasuredRequest {
+    /// RCbenchmark / Tyto logs, UIUC files, generic CSV.
+    pub files: Vec<PathBuf>,
+    /// Motor poles, for logs whose RPM is the ESC's electrical speed.
+    pub poles: Option<u32>,
+    /// Which of a log's speeds to use (`optical`, `electrical`).
+    pub rpm_source: Option<String>,
+    /// The air in the room as `T,P,RH`.
+    pub atmosphere: Option<String>,
+    /// The air's density [kg/m^3].
+    pub rho: Option<f64>,
+    /// Column map (TOML) for generic CSV files.
+    pub columns: Option<PathBuf>,
+}
+
+impl MeasuredRequest {
+    /// The measurements' spec, in SI.
+    pub fn spec(&self) -> Result<MeasuredSpec> {
+        if self.files.is_empty() {
+            return Err(Error::Nothing("--measured: no measured file".into()));
+        }
+        let rpm_source = match self.rpm_source.as_deref() {
+            None => None,
+            Some("optical") => Some(RpmSource::Optical),
+            Some("electrical") => Some(RpmSource::Electrical),
+            Some(other) => return Err(Error::value("--rpm-source", other, "expected optical or electrical")),
+        };
+        Ok(MeasuredSpec {
+            files: self.files.clone(),
+            poles: self.poles,
+            rpm_source,
+            atmosphere: self.atmosphere.as_deref().map(parse_atmosphere).transpose()?,
+            rho: self.rho,
+            columns: self.columns.clone(),
+        })
+    }
+}
+
+/// What sets a motor's operating point: one of voltages, currents, thrusts, rotation speeds,
+/// or throttles (with a battery).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DriveRequest {
+    /// Terminal voltages [V].
+    pub volts: Option<Values>,
+    /// Motor currents [A].
+    pub amps: Option<Values>,
+    /// Thrusts [N] (hover).
+    pub thrust: Option<Values>,
+    /// Rotation speeds [rpm].
+    pub rpm: Option<Values>,
+    /// Throttles, 0 to 1 (with a battery).
+    pub throttle: Option<Values>,
+}
+
+impl DriveRequest {
+    /// The drivers, one per value.
+    pub fn drives(&self, supply: Option<&Supply>) -> Result<Vec<Drive>> {
+        let given = [&self.volts, &self.amps, &self.thrust, &self.rpm, &self.throttle]
+            .iter()
+            .filter(|v| v.is_some())
+            .count();
+        if given > 1 {
+            return Err(Error::Conflict(
+                "--volts, --amps, --thrust, --rpm, --throttle: give one of them (what sets the operating point)".into(),
+            ));
+        }
+        if let Some(t) = &self.throttle {
+            let Some(s) = supply else {
+                return Err(Error::Conflict("--throttle: needs a battery (--battery)".into()));
+            };
+            let list = t.numbers("throttle")?;
+            if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
+                return Err(Error::Range(format!("--throttle {bad}: a throttle is between 0 and 1")));
+            }
+            return Ok(list.into_iter().map(|t| s.drive(t)).collect());
+        }
+        Ok(match (&self.volts, &self.amps, &self.thrust, &self.rpm) {
+            (Some(v), ..) => v.numbers("volts")?.into_iter().map(Drive::Volts).collect(),
+            (_, Some(a), ..) => a.numbers("amps")?.into_iter().map(Drive::Amps).collect(),
+            (_, _, Some(t), _) => t.numbers("thrust")?.into_iter().map(Drive::Thrust).collect(),
+            (_, _, _, Some(r)) => r
+                .numbers("rpm")?
+                .into_iter()
+                .map(|r| Drive::Omega(rpm_to_omega(r)))
+                .collect(),
+            _ => {
+                return Err(Error::Nothing(
+                    "--motor: give --volts, --amps, --thrust, --rpm or --throttle (what sets the operating point)"
+                        .into(),
+                ))
+            }
+        })
+    }
+}
+
+/// The battery of `spec` (`3S,2200mAh,R=5mOhm`) through an ESC of `esc_ohms` [ohm].
+pub fn supply(spec: &str, esc_ohms: f64) -> Result<Supply> {
+    let battery = Battery::parse(spec).map_err(|e| Error::value("--battery", spec, e))?;
+    if !(0.0..10.0).contains(&esc_ohms) {
+        return Err(Error::Range(format!(
+            "--esc-ohms {esc_ohms}: a resistance from 0 to 10 ohm"
+        )));
+    }
+    Ok(Supply { battery, esc_ohms })
+}
+
+/// What `diagnose` is asked beyond the model and the measurements: every field optional, its
+/// default the setting's.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct DiagnoseRequest {
+    /// Candidate effects (`all`, or ids; None: all).
+    pub effects: Option<Vec<String>>,
+    /// Folds of the k-fold cross-validation.
+    pub folds: Option<usize>,
+    /// Most effects the ladder adds.
+    pub max_steps: Option<usize>,
+    /// Scored window, as a fraction of the zero-thrust J.
+    pub window: Option<f64>,
+}
+
+impl DiagnoseRequest {
+    /// The stage's spec, of a model and measurements, writing into `out`.
+    pub fn spec(&self, model: ModelSpec, measured: MeasuredSpec, out: PathBuf) -> Result<DiagnoseSpec> {
+        use propbet_pipeline::settings::{FOLDS, MAX_STEPS, WINDOW};
+        let effects = match &self.effects {
+            None => vec!["all".to_string()],
+            Some(e) if e.is_empty() => return Err(Error::Nothing("effects: an empty list".into())),
+            Some(e) => e.iter().map(|s| s.trim().to_string()).collect(),
+        };
+        Ok(DiagnoseSpec {
+            model,
+            measured,
+            effects,
+            folds: self.folds.unwrap_or(FOLDS.default),
+            max_steps: self.max_steps.unwrap_or(MAX_STEPS.default),
+            window: self.window.unwrap_or(WINDOW.default),
+            out,
+        })
+    }
+}
