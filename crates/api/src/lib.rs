@@ -21,11 +21,11 @@ pub use motor::{motor, motor_text, read_motor};
 pub use propbet_pipeline::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
 
 pub use request::{
-    supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, ProcessRequest, SweepRequest,
-    Values,
+    supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, PolarsRequest, ProcessRequest,
+    SectionRequest, SweepRequest, Values,
 };
 
 pub use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PredictSpec, ScanSettings, SweepAxis, TableFormat,
 };
 pub use propbet_pipeline::{Error, Result};

@@ -5,7 +5,8 @@ use std::path::PathBuf;
 use propbet_pipeline::motor::{Battery, Drive, Supply};
 use propbet_pipeline::settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
 use propbet_pipeline::spec::{
-    drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, SweepAxis, XfoilProcessSpec,
+    drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis,
+    XfoilProcessSpec, XfoilSpec,
 };
 use propbet_pipeline::values::{
     parse_atmosphere, parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature,
@@ -405,6 +406,111 @@ impl DiagnoseRequest {
             max_steps: self.max_steps.unwrap_or(MAX_STEPS.default),
             window: self.window.unwrap_or(WINDOW.default),
             out,
+        })
+    }
+}
+
+/// How XFOIL (or NeuralFoil) is asked for a section's polars: the engine and its process, the
+/// transition (Ncrit, trip), the angles, the panels and iterations; every field optional, its
+/// default the setting's.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct SectionRequest {
+    /// The engine, XFOIL's executable, the cache.
+    pub process: ProcessRequest,
+    /// Transition amplification ratio.
+    pub ncrit: Option<f64>,
+    /// Forced transition x/c on both surfaces, or `free`.
+    pub trip: Option<String>,
+    /// Angles of attack [deg].
+    pub alpha: Option<Values>,
+    /// XFOIL's panels.
+    pub panels: Option<u32>,
+    /// XFOIL's iterations.
+    pub iter: Option<u32>,
+}
+
+impl SectionRequest {
+    /// The spec; `default_ncrit` and `default_trip` where Ncrit and the trip are not given.
+    pub fn spec(&self, default_ncrit: f64, default_trip: Option<f64>) -> Result<XfoilSpec> {
+        use propbet_pipeline::settings::ALPHA;
+        let mut alphas = match &self.alpha {
+            Some(a) => a.numbers("alpha")?,
+            None => parse_list("--alpha", ALPHA.default)?,
+        };
+        alphas.sort_by(f64::total_cmp);
+        alphas.dedup();
+        let spec = XfoilSpec {
+            process: self.process.spec()?,
+            ncrit: self.ncrit.unwrap_or(default_ncrit),
+            trip: match &self.trip {
+                None => default_trip,
+                Some(t) => propbet_pipeline::values::parse_trip(t)?,
+            },
+            alphas_deg: alphas,
+            panels: self.panels,
+            iter: self.iter.unwrap_or(propbet_pipeline::xfoil::DEFAULT_MAX_ITER),
+        };
+        spec.check()?;
+        Ok(spec)
+    }
+}
+
+/// `propbet polars`: every station's polars over the operating points, written as a prop
+/// file with fitted coefficients and (optionally) the tables.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PolarsRequest {
+    /// Blade geometry: a QPROP prop file, APC's PE0, a UIUC table or a blade table.
+    pub geometry: PathBuf,
+    /// Length unit of its radii and chords.
+    pub units: Option<String>,
+    /// The section at every station (or blended along the blade).
+    pub airfoil: Option<String>,
+    /// Scale the airfoil to this thickness ratio (`0.06` or `6%`).
+    pub thickness: Option<String>,
+    /// A directory of `station_NN.dat`, one section per station.
+    pub station_airfoils: Option<PathBuf>,
+    /// APC's design file whose sections a table takes.
+    pub sections_from: Option<PathBuf>,
+    /// Airfoil coordinates looked in before propbet's library.
+    pub airfoils: Option<PathBuf>,
+    /// The operating points the polars cover.
+    pub sweep: SweepRequest,
+    /// The air.
+    pub air: AirRequest,
+    /// How the polars are made.
+    pub section: SectionRequest,
+    /// More Ncrit values to compute the same polars at.
+    pub ncrit_effect: Vec<f64>,
+    /// The prop file to write.
+    pub out_prop: PathBuf,
+    /// The tables to write (JSON).
+    pub out_polars: Option<PathBuf>,
+}
+
+impl PolarsRequest {
+    /// The stage's spec, in SI.
+    pub fn spec(&self) -> Result<PolarsSpec> {
+        use propbet_pipeline::settings::{default_trip, NCRIT};
+        let (omegas, axis) = self.sweep.spec()?;
+        Ok(PolarsSpec {
+            geometry: self.geometry.clone(),
+            units: self.units.as_deref().map(parse_length_unit).transpose()?,
+            airfoil: self.airfoil.clone(),
+            thickness: self
+                .thickness
+                .as_deref()
+                .map(propbet_pipeline::case::parse_fraction)
+                .transpose()?,
+            station_airfoils: self.station_airfoils.clone(),
+            sections_from: self.sections_from.clone(),
+            airfoils: self.airfoils.clone(),
+            omegas,
+            axis,
+            air: self.air.spec()?,
+            xfoil: self.section.spec(NCRIT.default, default_trip())?,
+            ncrit_effect: self.ncrit_effect.clone(),
+            out_prop: self.out_prop.clone(),
+            out_polars: self.out_polars.clone(),
         })
     }
 }

@@ -296,3 +296,58 @@ pub fn compare(spec: &propbet_pipeline::spec::CompareSpec) -> Result<bool> {
 pub fn diagnose(spec: &propbet_pipeline::spec::DiagnoseSpec) -> Result<bool> {
     crate::diagnose::run_spec(spec)
 }
+
+/// `propbet run` of a case directory (None: the shipped default case) into `out` (None:
+/// `run_<case>`): its files written; false when a stage reported problems.
+pub fn run(
+    case: Option<PathBuf>,
+    out: Option<PathBuf>,
+    xfoil: &propbet_api::ProcessRequest,
+    verbose: bool,
+    inputs_anywhere: bool,
+) -> Result<bool> {
+    crate::run::run_request(&crate::run::RunRequest {
+        case,
+        out,
+        xfoil: xfoil.spec()?,
+        verbose,
+        inputs_anywhere,
+    })
+}
+
+/// `propbet scan` of a scan file into `out` with these settings (a case's `[geometry]` keys):
+/// its files written; false when a station could not be measured or fitted.
+pub fn scan(
+    input: PathBuf,
+    settings: &propbet_pipeline::spec::ScanSettings,
+    reference: Option<PathBuf>,
+    name: Option<String>,
+    out: PathBuf,
+) -> Result<bool> {
+    let spec = propbet_pipeline::spec::ScanSpec {
+        input,
+        options: settings.options()?,
+        reference,
+        name,
+        out,
+    };
+    crate::scan::run_spec(&spec)
+}
+
+/// `propbet polars` of a spec: its prop file and tables written; false when a station has
+/// no fit (kept from the geometry file, and reported).
+pub fn polars(spec: &propbet_pipeline::spec::PolarsSpec) -> Result<bool> {
+    crate::polar::run_polars_spec(spec)
+}
+
+pub use crate::engine::XfoilProcess;
+pub use crate::validate::ValidateArgs;
+pub use propbet_pipeline::settings::{ENGINE, NCRIT, SECTION_MODEL};
+pub use propbet_validate::DEFAULT_GENERIC_SECTION;
+
+/// `propbet validate` of its arguments, typed: its files written; false when a prop reported
+/// problems.
+pub fn validate(args: &ValidateArgs) -> Result<bool> {
+    propbet_pipeline::settings::SECTION_MODEL.choose(&args.section_model)?;
+    crate::validate::run(args)
+}

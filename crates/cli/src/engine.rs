@@ -11,6 +11,8 @@ use propbet_pipeline::stages::Polars;
 
 /// The XFOIL executable, the polar cache and the progress bar (shared by every command that
 /// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
+// Fields without a doc comment are documented by their declared setting's help (`settings`).
+#[allow(missing_docs)]
 #[derive(Debug, Args)]
 pub struct XfoilProcess {
     /// XFOIL executable (default: `xfoil` on PATH).

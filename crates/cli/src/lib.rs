@@ -388,7 +388,12 @@ mod tests {
         };
         let mut n = 0;
         for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {
-            let plan = run::plan(&repo().join("props").join(case), Path::new("out"), &xfoil).unwrap();
+            let plan = run::plan(
+                &repo().join("props").join(case),
+                Path::new("out"),
+                &xfoil.spec().unwrap(),
+            )
+            .unwrap();
             for s in plan.stages() {
                 check(&s);
                 n += 1;

@@ -41,22 +41,19 @@ impl XfoilArgs {
     /// The spec (flags in SI); `default_ncrit` and `default_trip` when `--ncrit` and `--trip`
     /// are not given.
     pub fn spec(&self, default_ncrit: f64, default_trip: Option<f64>) -> Result<XfoilSpec> {
-        let mut a = parse_list("--alpha", &self.alpha)?;
-        a.sort_by(f64::total_cmp);
-        a.dedup();
-        let spec = XfoilSpec {
-            process: self.process.spec()?,
-            ncrit: self.ncrit.unwrap_or(default_ncrit),
-            trip: match &self.trip {
-                None => default_trip,
-                Some(t) => propbet_pipeline::values::parse_trip(t)?,
-            },
-            alphas_deg: a,
+        Ok(self.request().spec(default_ncrit, default_trip)?)
+    }
+
+    /// What the flags ask for.
+    pub fn request(&self) -> propbet_api::SectionRequest {
+        propbet_api::SectionRequest {
+            process: self.process.request(),
+            ncrit: self.ncrit,
+            trip: self.trip.clone(),
+            alpha: Some(propbet_api::Values::Text(self.alpha.clone())),
             panels: self.panels,
-            iter: self.iter,
-        };
-        spec.check()?;
-        Ok(spec)
+            iter: Some(self.iter),
+        }
     }
 }
 
@@ -289,30 +286,22 @@ pub struct PolarsArgs {
 impl PolarsArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PolarsSpec> {
-        let (omegas, axis) = self.points.spec()?;
-        Ok(PolarsSpec {
+        let request = propbet_api::PolarsRequest {
             geometry: self.geometry.clone(),
-            units: self
-                .units
-                .as_deref()
-                .map(propbet_pipeline::values::parse_length_unit)
-                .transpose()?,
+            units: self.units.clone(),
             airfoil: self.airfoil.clone(),
-            thickness: self.thickness.as_deref().map(parse_fraction).transpose()?,
+            thickness: self.thickness.clone(),
             station_airfoils: self.station_airfoils.clone(),
             sections_from: self.design.sections_from.clone(),
             airfoils: self.design.airfoils.clone(),
-            omegas,
-            axis,
-            air: self.air.spec()?,
-            xfoil: self.xfoil.spec(
-                propbet_pipeline::settings::NCRIT.default,
-                propbet_pipeline::settings::default_trip(),
-            )?,
+            sweep: self.points.request(),
+            air: self.air.request(),
+            section: self.xfoil.request(),
             ncrit_effect: self.ncrit_effect.clone(),
             out_prop: self.out_prop.clone(),
             out_polars: self.out_polars.clone(),
-        })
+        };
+        Ok(request.spec()?)
     }
 }
 

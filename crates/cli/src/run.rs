@@ -12,6 +12,7 @@ use clap::Args;
 use propbet_pipeline::case::{read_case, RunPlan};
 use propbet_pipeline::run::{run_case, Event, Finished, StageRecord};
 use propbet_pipeline::spec::StageSpec;
+use propbet_pipeline::spec::XfoilProcessSpec;
 
 use crate::output::write_atomic;
 use crate::polar::{Bar, XfoilProcess};
@@ -66,14 +67,28 @@ fn default_case() -> Result<PathBuf> {
 }
 
 /// The plan of a case directory, writing under `out`.
-pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcess) -> Result<RunPlan> {
+pub fn plan(dir: &Path, out: &Path, xfoil: &XfoilProcessSpec) -> Result<RunPlan> {
     let case = read_case(dir)?;
-    Ok(case.plan(dir, out, &xfoil.spec()?)?)
+    Ok(case.plan(dir, out, xfoil)?)
+}
+
+/// What `propbet run` is asked: its flags, typed.
+pub struct RunRequest {
+    /// Case directory (None: the shipped default case).
+    pub case: Option<PathBuf>,
+    /// Output directory (None: `run_<case directory name>`).
+    pub out: Option<PathBuf>,
+    /// XFOIL, the polar cache, the progress bars.
+    pub xfoil: XfoilProcessSpec,
+    /// Every stage's full terminal output.
+    pub verbose: bool,
+    /// Files the case names may lie outside its folder.
+    pub inputs_anywhere: bool,
 }
 
 /// The case directory (the default case without one) and the output directory (`run_<case>`
 /// without `-o`).
-fn case_and_out(a: &RunArgs) -> Result<(PathBuf, PathBuf)> {
+fn case_and_out(a: &RunRequest) -> Result<(PathBuf, PathBuf)> {
     let dir = match &a.case {
         Some(d) => d.clone(),
         None => default_case()?,
@@ -176,6 +191,17 @@ fn print_done(n: usize, total: usize, record: &StageRecord, lines: &[String], ve
 
 /// Runs `propbet run`.
 pub fn run(a: &RunArgs) -> Result<bool> {
+    run_request(&RunRequest {
+        case: a.case.clone(),
+        out: a.out.clone(),
+        xfoil: a.xfoil.spec()?,
+        verbose: a.verbose,
+        inputs_anywhere: a.inputs_anywhere,
+    })
+}
+
+/// Runs a case as `propbet run` does; false when a stage reported problems.
+pub fn run_request(a: &RunRequest) -> Result<bool> {
     let t_all = Instant::now();
     let (dir, out) = case_and_out(a)?;
     let plan = plan(&dir, &out, &a.xfoil)?;
@@ -186,7 +212,7 @@ pub fn run(a: &RunArgs) -> Result<bool> {
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
-    let bar = Bar::new(a.xfoil.quiet, a.xfoil.spec()?.engine);
+    let bar = Bar::new(a.xfoil.quiet, a.xfoil.engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<propbet_report::answer::ReferenceScore> = None;
     let mut lead: Option<propbet_plot::Figure> = None;

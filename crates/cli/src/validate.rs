@@ -19,6 +19,8 @@ use crate::polar::{Bar, XfoilProcess};
 use propbet_pipeline::compare::ComparedPoint;
 
 /// Arguments of `propbet validate`.
+// Fields without a doc comment are documented by their declared setting's help (`settings`).
+#[allow(missing_docs)]
 #[derive(Debug, Args)]
 pub struct ValidateArgs {
     /// UIUC directory: each prop's static and J-sweep files and its `<prop>_geom.txt` (without

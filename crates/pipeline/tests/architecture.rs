@@ -57,9 +57,9 @@ fn the_architecture_is_short_and_names_tests_that_exist() {
     );
 }
 
-/// The typed doors hold no command line: the api crate and the Python package's typed modules
-/// neither build nor parse argv, and the package keeps no flag list of its own (what it once
-/// split the stages' command lines with).
+/// The typed doors hold no command line: the api crate and the Python package's modules neither
+/// build nor parse argv (but for `execute`, the package's explicit door to a command line), and
+/// the package keeps no flag list and builds no flags of its own.
 #[test]
 fn the_typed_doors_hold_no_command_line() {
     let root = workspace();
@@ -91,6 +91,8 @@ fn the_typed_doors_hold_no_command_line() {
         "_check_options",
         "_native.flags",
         "case_stages",
+        "def _flags",
+        "def _sweep",
     ] {
         assert!(!package.contains(name), "the Python package holds `{name}`");
     }

@@ -9,6 +9,7 @@
 mod boundary;
 mod model;
 mod motor;
+mod polars;
 mod values;
 
 use boundary::{guarded, InputError, InternalError};
@@ -44,6 +45,10 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(model::read_measurements, m)?)?;
     m.add_function(wrap_pyfunction!(model::compare, m)?)?;
     m.add_function(wrap_pyfunction!(model::diagnose, m)?)?;
+    m.add_function(wrap_pyfunction!(model::run, m)?)?;
+    m.add_function(wrap_pyfunction!(model::scan, m)?)?;
+    m.add_function(wrap_pyfunction!(polars::polars, m)?)?;
+    m.add_function(wrap_pyfunction!(polars::validate, m)?)?;
     m.add_class::<motor::Motor>()?;
     m.add_class::<motor::Battery>()?;
     m.add_function(wrap_pyfunction!(motor::powered, m)?)?;

@@ -356,3 +356,59 @@ pub fn diagnose(
         propbet_cli::api::diagnose(&spec)
     })
 }
+
+/// ``propbet run`` of a case directory (None: the shipped default case) into ``out``: its
+/// files written; False when a stage reported problems.
+#[pyfunction]
+#[pyo3(signature = (
+    case, out, *, verbose=false, inputs_anywhere=false, engine=None, neuralfoil_size=None,
+    xfoil=None, cache=None, no_cache=false, quiet=false, xfoil_budget=None
+))]
+#[allow(clippy::too_many_arguments)]
+pub fn run(
+    py: Python<'_>,
+    case: Option<PathBuf>,
+    out: PathBuf,
+    verbose: bool,
+    inputs_anywhere: bool,
+    engine: Option<String>,
+    neuralfoil_size: Option<String>,
+    xfoil: Option<PathBuf>,
+    cache: Option<PathBuf>,
+    no_cache: bool,
+    quiet: bool,
+    xfoil_budget: Option<f64>,
+) -> PyResult<bool> {
+    let process = ProcessRequest {
+        engine,
+        neuralfoil_size,
+        xfoil,
+        cache,
+        no_cache,
+        quiet,
+        budget: xfoil_budget,
+    };
+    guarded(py, move || {
+        propbet_cli::api::run(case, Some(out), &process, verbose, inputs_anywhere)
+    })
+}
+
+/// ``propbet scan`` of a scan file into ``out``: ``settings`` the scan's settings as JSON
+/// (a case's ``[geometry]`` keys: ``units``, ``stations``, ``blade_colour``, ...); an unknown
+/// key is a TypeError naming it. False when a station could not be measured or fitted.
+#[pyfunction]
+#[pyo3(signature = (path, out, settings, *, reference=None, name=None))]
+pub fn scan(
+    py: Python<'_>,
+    path: PathBuf,
+    out: PathBuf,
+    settings: &str,
+    reference: Option<PathBuf>,
+    name: Option<String>,
+) -> PyResult<bool> {
+    let settings: propbet_api::ScanSettings = serde_json::from_str(settings)
+        .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("from_scan(): {e}")))?;
+    guarded(py, move || {
+        propbet_cli::api::scan(path, &settings, reference, name, out)
+    })
+}

@@ -244,7 +244,12 @@ pub fn fit_motor<'py>(
     summary.set_item("notes", f.fit.notes.clone())?;
     summary.set_item("misses", f.fit.misses.clone())?;
     summary.set_item("lines", f.lines.to_vec())?;
-    Ok((Motor { file: f.file }, f.text, summary, crate::boundary::columns(py, steps)?))
+    Ok((
+        Motor { file: f.file },
+        f.text,
+        summary,
+        crate::boundary::columns(py, steps)?,
+    ))
 }
 
 /// Propellers side by side on one motor and battery, ranked by g/W at ``hover`` thrust [N]:

@@ -171,6 +171,10 @@ def test_keywords_are_checked_at_the_call_with_pythons_own_exceptions():
         prop.predict(5000, band="yes")
     with pytest.raises(TypeError, match=r"rpm\[1\] = 'x': not a number"):
         prop.predict([5000, "x"])
+    with pytest.raises(TypeError, match="unknown field `stationz`"):
+        propbet.Prop.from_scan("props/apcsf_10x4.7/apcsf_10x4.7.stl", units="mm", stationz="0.3:0.9/5")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'verbos'"):
+        propbet.run("props/cam6x3", verbos=True)
     cold = prop.predict(5000, air={"temp": "-10C", "pressure": "101325Pa"})
     warm = prop.predict(5000, air={"temp": "30C", "pressure": "101325Pa"})
     assert cold.thrust_n[0] > warm.thrust_n[0]

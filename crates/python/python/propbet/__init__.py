@@ -1,10 +1,10 @@
 """propbet from Python: propeller performance from geometry, compared with measurements.
 
-The same engine as the ``propbet`` command line, run in this process: every function here is
-a command with its flags given as keyword arguments (``ncrit=7`` is ``--ncrit 7``,
-``rpm=[4000, 6000]`` is ``--rpm 4000,6000``, ``qprop_compat=True`` is ``--qprop-compat``), and
-its tables returned as pandas DataFrames with the columns and digits of the files the command
-writes. Nothing is computed twice: the numbers are the command line's.
+The same engine as the ``propbet`` command line, run in this process through propbet's typed
+API: every function here is a command with its settings given as keyword arguments (``ncrit=7``,
+``rpm=[4000, 6000]`` or ``rpm="4000:8000:1000"``, ``qprop_compat=True``), never as a command
+line, and its tables returned as pandas DataFrames with the columns and digits of the files the
+command writes. Nothing is computed twice: the numbers are the command line's.
 
     import propbet
     prop = propbet.Prop.from_qprop("props/cam6x3/cam6x3.qprop")
@@ -84,67 +84,6 @@ def column_name(name: str) -> str:
     if name in _COLUMN_NAMES:
         return _COLUMN_NAMES[name]
     return name + "_" if hasattr(pd.DataFrame, name) else name
-
-# Flags given once per value (`--effect a --effect b`); every other list is comma-joined.
-_REPEATED = {"effect"}
-# Flags that take several values after one flag (`--measured a b c`).
-_MANY = {"measured"}
-
-
-def _number(name: str, value: Any, index: Optional[int] = None) -> str:
-    where = name if index is None else f"{name}[{index}]"
-    x = float(value)
-    if math.isnan(x) or math.isinf(x):
-        raise InputError(f"{where} = {x!r}: not a finite number")
-    return repr(x) if not float(x).is_integer() else str(int(x)) if abs(x) < 1e15 else repr(x)
-
-
-def _text(name: str, value: Any) -> str:
-    """One flag's value as the command line writes it."""
-    if isinstance(value, (str, os.PathLike)):
-        return os.fspath(value)
-    if isinstance(value, bool):
-        raise InputError(f"{name} = {value!r}: a switch takes True or False alone")
-    if isinstance(value, numbers.Real):
-        return _number(name, value)
-    try:
-        items = list(value)
-    except TypeError:
-        raise InputError(f"{name} = {value!r}: not a number, a text or a list") from None
-    if not items:
-        raise InputError(f"{name}: an empty list")
-    parts = []
-    for i, v in enumerate(items):
-        if isinstance(v, numbers.Real) and not isinstance(v, bool):
-            parts.append(_number(name, v, i))
-        elif isinstance(v, (str, os.PathLike)):
-            parts.append(os.fspath(v))
-        else:
-            raise InputError(f"{name}[{i}] = {v!r}: not a number")
-    return ",".join(parts)
-
-
-def _flags(options: Mapping[str, Any]) -> list[str]:
-    """Keyword arguments as command-line flags: ``key_name=value`` is ``--key-name=value`` (so
-    that a value with a leading dash, ``-10C``, stays a value), True a switch, None and False
-    nothing."""
-    argv: list[str] = []
-    for key, value in options.items():
-        if value is None or value is False:
-            continue
-        flag = "--" + key.replace("_", "-")
-        if value is True:
-            argv.append(flag)
-        elif key in _REPEATED and not isinstance(value, (str, os.PathLike)):
-            for v in value:
-                argv.append(f"{flag}={_text(key, v)}")
-        elif key in _MANY:
-            values = [value] if isinstance(value, (str, os.PathLike)) else list(value)
-            argv += [flag, *(os.fspath(v) for v in values)]
-        else:
-            argv.append(f"{flag}={_text(key, value)}")
-    return argv
-
 
 def _csv(data: bytes) -> pd.DataFrame:
     """A table propbet wrote (CSV bytes), its numbers as written."""
@@ -251,14 +190,6 @@ def execute(*argv: Any) -> bool:
     return _relayed(lambda: _native.execute(args))
 
 
-def _sweep(rpm: Any, j: Any, v: Any) -> list[str]:
-    if rpm is None:
-        raise InputError("rpm: the rotation speeds are needed (a number, a list or 'start:stop:step')")
-    if j is not None and v is not None:
-        raise InputError("j and v: give one of them (advance ratios or axial speeds)")
-    return _flags({"rpm": rpm, "j": j, "v": v})
-
-
 class Prop:
     """A propeller model: a blade file, how it is read, and (after :meth:`polars`) the
     tabulated polars that replace its section coefficients.
@@ -271,7 +202,7 @@ class Prop:
         model: Any,
         *,
         geometry: Optional[PathLike] = None,
-        sections: Sequence[str] = (),
+        sections: Optional[Mapping[str, str]] = None,
         folder: Optional[PathLike] = None,
     ) -> None:
         self.model = model
@@ -284,7 +215,7 @@ class Prop:
         """The blade geometry :meth:`polars` computes polars for."""
         self.folder = Path(folder) if folder is not None else None
         """The folder the scan, polars or case stages wrote, if any."""
-        self._sections = list(sections)
+        self._sections = dict(sections or {})
         self._scratch: Any = None
 
     def __repr__(self) -> str:
@@ -317,18 +248,28 @@ class Prop:
         return cls.from_qprop(path, **options)
 
     @classmethod
-    def from_scan(cls, path: PathLike, out: Optional[PathLike] = None, **options: Any) -> "Prop":
+    def from_scan(
+        cls,
+        path: PathLike,
+        out: Optional[PathLike] = None,
+        *,
+        reference: Optional[PathLike] = None,
+        name: Optional[str] = None,
+        **settings: Any,
+    ) -> "Prop":
         """Blade geometry from a scan (STL mesh, PLY / COLMAP / XYZ cloud) by ``propbet scan``:
-        ``options`` are its flags (``units="mm"``, ``stations="0.2:0.96/20"``,
-        ``blade_colour=...``, ``reference=path``, ...). Written into ``out`` (a new temporary
+        ``settings`` are its settings, a case's ``[geometry]`` keys (``units="mm"``,
+        ``stations="0.2:0.96/20"``, ``blade_colour=...``, ``box=...``, ``planar=True``, ...),
+        ``reference`` a geometry table to draw beside it. Written into ``out`` (a new temporary
         folder without it); the prop is the scan's ``prop.qprop``, its sections the scan's
         airfoils."""
         folder, scratch = _folder(out, "scan")
-        ok = execute("scan", os.fspath(path), "-o", str(folder), *_flags(options))
+        text = json.dumps(settings, default=os.fspath)
+        ok = _relayed(lambda: _native.scan(os.fspath(path), str(folder), text, reference=reference, name=name))
         if not ok:
             warnings.warn(f"propbet scan: some stations could not be measured or fitted (see {folder})")
         airfoils = folder / "airfoils"
-        sections = ["--station-airfoils", str(airfoils)] if airfoils.is_dir() else []
+        sections = {"station_airfoils": str(airfoils)} if airfoils.is_dir() else {}
         prop = cls(_native.Model(folder / "prop.qprop"), sections=sections, folder=folder)
         prop._scratch = scratch
         return prop
@@ -341,13 +282,13 @@ class Prop:
         sweeps the case's operating points)."""
         folder, scratch = _folder(out, "case")
         model, polars = _relayed(lambda: _native.case_model(os.fspath(case), str(folder)))
-        geometry, sections = None, []
+        geometry, sections = None, {}
         if polars is not None:
             geometry, airfoil, station_airfoils = polars
             if airfoil is not None:
-                sections += ["--airfoil", airfoil]
+                sections["airfoil"] = airfoil
             if station_airfoils is not None:
-                sections += ["--station-airfoils", str(station_airfoils)]
+                sections["station_airfoils"] = str(station_airfoils)
         made = cls(model, geometry=geometry, sections=sections, folder=folder)
         made._scratch = scratch
         return made
@@ -373,20 +314,21 @@ class Prop:
         """Polars of every station at its Reynolds and Mach numbers over these operating points
         (``propbet polars``, with its cache): ``engine`` "xfoil", "neuralfoil" or "auto",
         ``ncrit``, ``trip``, ``airfoil`` (a file or a NACA 4-digit name; the scan's sections
-        without it), and the command's other flags. Returns the prop with the tables as its
+        without it), and the command's other settings (``alpha``, ``panels``, ``iter``,
+        ``thickness``, ``ncrit_effect``, ``air``, ``xfoil``, ``cache``, ``quiet``, ...). Returns the prop with the tables as its
         section model; files in ``out`` (a new temporary folder without it)."""
         folder, scratch = _folder(out, "polars")
-        sections = ["--airfoil", os.fspath(airfoil)] if airfoil is not None else self._sections
+        sections = {"airfoil": os.fspath(airfoil)} if airfoil is not None else self._sections
         if not sections:
             raise InputError(
                 f"{self.geometry}: no sections known for this blade: give airfoil= (a file or a NACA name)"
             )
-        argv = [
-            "polars", "--geometry", str(self.geometry), *sections, *_sweep(rpm, j, v),
-            *_flags({"engine": engine, "ncrit": ncrit, **options}),
-            "--out-prop", str(folder / "prop.qprop"), "--out-polars", str(folder / "polars.json"),
-        ]
-        if not execute(*argv):
+        if isinstance(options.get("ncrit_effect"), (int, float)):
+            options["ncrit_effect"] = [options["ncrit_effect"]]
+        ok = _relayed(lambda: _native.polars(
+            os.fspath(self.geometry), str(folder / "prop.qprop"), str(folder / "polars.json"),
+            rpm=rpm, j=j, v=v, engine=engine, ncrit=ncrit, **sections, **options))
+        if not ok:
             warnings.warn(f"propbet polars: some stations were not fitted or XFOIL faulted ({folder})")
         made = Prop(
             self.model.with_tables(folder / "prop.qprop", folder / "polars.json"),
@@ -591,11 +533,12 @@ class RunResult:
 def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **options: Any) -> RunResult:
     """The main job on a case directory (``propbet run``; the shipped default case without
     one): scan, polars, sweeps, comparison, diagnosis and one report, in ``out`` (a new
-    temporary folder without it). ``options``: ``verbose``, ``xfoil``, ``cache``, ...
+    temporary folder without it). ``options``: ``verbose``, ``inputs_anywhere``, ``engine``,
+    ``xfoil``, ``cache``, ``no_cache``, ``quiet``, ``xfoil_budget``, ``neuralfoil_size``.
     """
     folder, scratch = _folder(out, "run")
-    argv = ["run"] + ([os.fspath(case)] if case is not None else []) + ["-o", str(folder)] + _flags(options)
-    ok = execute(*argv)
+    case = os.fspath(case) if case is not None else None
+    ok = _relayed(lambda: _native.run(case, str(folder), **options))
     return RunResult(
         summary=_read_json(folder / "summary.json"),
         sweep=_read_csv(folder / "predict" / "sweep.csv"),
@@ -628,17 +571,18 @@ def validate(
     out: Optional[PathLike] = None,
     **options: Any,
 ) -> Validation:
-    """Validation on UIUC's measurements (``propbet validate``): ``options`` are its flags
+    """Validation on UIUC's measurements (``propbet validate``): ``options`` are its settings
     (``per3=path``, ``only="apce_9x6"`` or a list, ``engine="neuralfoil"``, ``quiet=True``,
-    ``trip``, ``ncrit``, ...). Files in ``out`` (a new temporary folder without it)."""
+    ``trip``, ``ncrit``, ``section_model``, ``geometry``, ``generic_section``, ...). Files in ``out`` (a new temporary folder without it)."""
     folder, scratch = _folder(out, "validate")
     options = dict(options)
     only = options.pop("only", None)
     if only is not None and not isinstance(only, str):
         only = ",".join(only)
-    argv = ["validate", "--uiuc", os.fspath(uiuc), "--pe0", os.fspath(pe0), "--airfoils", os.fspath(airfoils)]
-    argv += _flags({"only": only, **options}) + ["-o", str(folder)]
-    ok = execute(*argv)
+    if isinstance(options.get("ncrit_effect"), (int, float)):
+        options["ncrit_effect"] = [options["ncrit_effect"]]
+    ok = _relayed(lambda: _native.validate(
+        os.fspath(uiuc), os.fspath(pe0), os.fspath(airfoils), str(folder), only=only, **options))
     md = folder / "validation.md"
     return Validation(
         table=_read_csv(folder / "validation.csv"),
