@@ -596,3 +596,57 @@ fn props_side_by_side_answer_which_prop_for_a_motor() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--hover 0"), "{}", stderr(&o));
 }
+
+/// `predict --motor --band`: at each operating point found, the propeller's band as `predict
+/// --band` gives it at that RPM and airspeed; empty where there is no operating point.
+#[test]
+fn a_powered_prediction_carries_the_propellers_band_at_each_operating_point() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |rel: &str| super::repo().join("props").join(rel).display().to_string();
+    let (prop, motor) = (p("cam6x3/cam6x3.qprop"), p("motors/axi2204-54.motor"));
+    let o = run(
+        &[
+            "predict", "--prop", &prop, "--motor", &motor, "--thrust", "1,500", "--v", "0,4", "--band", "-o", "m.csv",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o)); // 500 N has no operating point
+    let (h, rows) = read_csv(&dir.path().join("m.csv"));
+    assert_eq!(rows.len(), 4);
+    for r in &rows {
+        let cell = |name: &str| r[col(&h, name)].clone();
+        if !cell("no_solution").is_empty() {
+            assert!(cell("ct_lo").is_empty() && cell("eta_hi").is_empty(), "{r:?}");
+            continue;
+        }
+        let num = |name: &str| cell(name).parse::<f64>().unwrap();
+        assert!(num("ct_lo") < num("ct") && num("ct") < num("ct_hi"), "{r:?}");
+        assert!(num("cp_lo") < num("cp") && num("cp") < num("cp_hi"), "{r:?}");
+        // The same band as predict's at this point.
+        let o = run(
+            &[
+                "predict",
+                "--prop",
+                &prop,
+                "--rpm",
+                &cell("rpm"),
+                "--v",
+                &cell("v_m_s"),
+                "--band",
+                "-o",
+                "p.csv",
+            ],
+            dir.path(),
+        );
+        assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+        let (hp, rp) = read_csv(&dir.path().join("p.csv"));
+        for name in ["ct_lo", "ct_hi", "cp_lo", "cp_hi"] {
+            let at: f64 = rp[0][col(&hp, name)].parse().unwrap();
+            assert!(
+                (at / num(name) - 1.0).abs() < 1e-5,
+                "{name}: {at} against {}",
+                num(name)
+            );
+        }
+    }
+}

@@ -237,8 +237,8 @@ struct StationRow {
     re_exp: Num,
 }
 
-/// `propbet predict --motor` in memory: the powered table's columns, and each point without
-/// an operating point with the reason.
+/// `propbet predict --motor` in memory (with the propeller's band at each point when `band`):
+/// the powered table's columns, and each point without an operating point with the reason.
 pub fn powered(
     spec: &ModelSpec,
     motor: &propbet_pipeline::motor::Motor,
@@ -246,8 +246,9 @@ pub fn powered(
     drives: &[propbet_pipeline::motor::Drive],
     speeds: &[f64],
     air: &propbet_pipeline::spec::AirSpec,
+    band: bool,
 ) -> Result<(crate::columns::Table, Vec<String>)> {
-    let run = crate::powered::solve(spec, motor, supply, drives, speeds, air)?;
+    let run = crate::powered::solve(spec, motor, supply, drives, speeds, air, band)?;
     let problems = run
         .points
         .iter()

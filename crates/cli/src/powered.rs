@@ -2,7 +2,10 @@
 //! thrust or an RPM, one row per (driver, airspeed) point with QPROP's electrical columns.
 
 use anyhow::{bail, Result};
-use propbet_pipeline::bemt::PointResult;
+use propbet_pipeline::band::BandSpec;
+use propbet_pipeline::bemt::{Fluid, OperatingPoint, PointResult};
+use propbet_pipeline::compare::band::PointBand;
+use propbet_pipeline::model::Model;
 use propbet_pipeline::motor::{Drive, Motor, Powered, Supply};
 use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis};
 use propbet_pipeline::stages::PoweredPoint;
@@ -42,6 +45,8 @@ pub struct PoweredRun {
     air: String,
     tip_radius: f64,
     battery: bool,
+    /// The propeller's uncertainty band at each point with an operating point (`--band`).
+    band: Option<Vec<Option<PointBand>>>,
 }
 
 /// The model of `spec` on `motor` (with `supply`'s battery and ESC) at each driver value and
@@ -53,6 +58,7 @@ pub fn solve(
     drives: &[Drive],
     speeds: &[f64],
     air: &AirSpec,
+    band: bool,
 ) -> Result<PoweredRun> {
     let model = crate::predict::load_model_at(
         spec,
@@ -64,36 +70,59 @@ pub fn solve(
     )?;
     let (fluid, air) = air.fluid()?;
     let points = propbet_pipeline::stages::powered(&model, &fluid, motor, supply, drives, speeds)?;
+    let band = band.then(|| band_at(&model, &fluid, &points)).transpose()?;
     Ok(PoweredRun {
         points,
         rho: fluid.rho,
         air,
         tip_radius: model.rotor.tip_radius,
         battery: supply.is_some(),
+        band,
     })
 }
 
+/// The propeller's uncertainty band (`predict --band`'s) at each operating point found: its CT,
+/// CP and efficiency at that speed and airspeed, the motor's point held.
+fn band_at(model: &Model, fluid: &Fluid, points: &[PoweredPoint]) -> Result<Vec<Option<PointBand>>> {
+    let solved: Vec<(usize, OperatingPoint, PointResult)> = points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let (s, r) = p.outcome.as_ref().ok()?;
+            Some((i, OperatingPoint { v: p.v, omega: s.omega }, r.clone()))
+        })
+        .collect();
+    let ops: Vec<OperatingPoint> = solved.iter().map(|x| x.1).collect();
+    let base: Vec<PointResult> = solved.iter().map(|x| x.2.clone()).collect();
+    let bands = BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
+    let mut out = vec![None; points.len()];
+    for ((i, ..), b) in solved.iter().zip(bands) {
+        out[*i] = Some(b);
+    }
+    Ok(out)
+}
+
 impl PoweredRun {
-    fn rows(&self) -> impl Iterator<Item = PoweredRow> + '_ {
-        self.points.iter().map(|p| row(p, self.rho, &self.air, self.tip_radius))
+    /// Each row: QPROP's columns, then the battery's (with a battery) and the band's (with
+    /// `--band`).
+    fn rows(&self) -> impl Iterator<Item = (PoweredRow, Tail)> + '_ {
+        self.points.iter().enumerate().map(|(i, p)| {
+            let tail = Tail {
+                battery: self.battery.then(|| battery_columns(p)),
+                band: self.band.as_ref().map(|b| band_columns(b[i].as_ref())),
+            };
+            (row(p, self.rho, &self.air, self.tip_radius), tail)
+        })
     }
 
-    /// The table's columns (the battery's with a battery).
+    /// The table's columns.
     pub fn table(&self) -> Result<crate::columns::Table> {
-        Ok(if self.battery {
-            crate::columns::table(self.rows().zip(self.points.iter().map(battery_columns)))?
-        } else {
-            crate::columns::table(self.rows())?
-        })
+        Ok(crate::columns::table(self.rows())?)
     }
 
     /// The table as CSV.
     fn csv(&self) -> Result<Vec<u8>> {
-        if self.battery {
-            csv_rows(self.rows().zip(self.points.iter().map(battery_columns)), true)
-        } else {
-            csv_rows(self.rows(), true)
-        }
+        csv_rows(self.rows(), true)
     }
 }
 
@@ -103,8 +132,8 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     let Some(path) = &args.motor.motor else {
         bail!("--motor: no motor file");
     };
-    if args.band || args.stations.is_some() {
-        bail!("--motor: --band and --out-stations are not available with a motor yet; predict at --rpm for them");
+    if args.stations.is_some() {
+        bail!("--motor: --out-stations is not available with a motor yet; predict at --rpm for it");
     }
     let file = propbet_pipeline::stages::read_motor(path)?;
     let supply = args.motor.supply()?;
@@ -115,7 +144,15 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         (None, None) => vec![0.0],
     };
     let spec = args.model.spec()?;
-    let run = solve(&spec, &file.motor, supply.as_ref(), &drives, &speeds, &args.air.spec()?)?;
+    let run = solve(
+        &spec,
+        &file.motor,
+        supply.as_ref(),
+        &drives,
+        &speeds,
+        &args.air.spec()?,
+        args.band,
+    )?;
     let points = &run.points;
     let body = match args.format {
         Format::Csv => run.csv()?,
@@ -233,9 +270,49 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
     }
 }
 
+/// The columns after QPROP's: the battery's and the band's, each where asked for.
+struct Tail {
+    battery: Option<BatteryColumns>,
+    band: Option<crate::predict::BandColumns>,
+}
+
+impl serde::Serialize for Tail {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut st = s.serialize_struct("Tail", 11)?;
+        if let Some(b) = &self.battery {
+            st.serialize_field("throttle", &b.throttle)?;
+            st.serialize_field("battery_volts", &b.battery_volts)?;
+            st.serialize_field("battery_amps", &b.battery_amps)?;
+            st.serialize_field("battery_power_w", &b.battery_power_w)?;
+            st.serialize_field("endurance_min", &b.endurance_min)?;
+        }
+        if let Some(b) = &self.band {
+            st.serialize_field("ct_lo", &b.ct_lo)?;
+            st.serialize_field("ct_hi", &b.ct_hi)?;
+            st.serialize_field("cp_lo", &b.cp_lo)?;
+            st.serialize_field("cp_hi", &b.cp_hi)?;
+            st.serialize_field("eta_lo", &b.eta_lo)?;
+            st.serialize_field("eta_hi", &b.eta_hi)?;
+        }
+        st.end()
+    }
+}
+
+/// The band's columns of a row: empty where the point has no operating point.
+fn band_columns(b: Option<&PointBand>) -> crate::predict::BandColumns {
+    crate::predict::BandColumns {
+        ct_lo: b.map(|b| b.ct.lo).into(),
+        ct_hi: b.map(|b| b.ct.hi).into(),
+        cp_lo: b.map(|b| b.cp.lo).into(),
+        cp_hi: b.map(|b| b.cp.hi).into(),
+        eta_lo: b.map(|b| b.eta.lo).into(),
+        eta_hi: b.map(|b| b.eta.hi).into(),
+    }
+}
+
 /// The battery's columns of a row (with --battery): empty where the battery cannot give the
 /// point.
-#[derive(serde::Serialize)]
 struct BatteryColumns {
     throttle: Num,
     battery_volts: Num,

@@ -548,13 +548,13 @@ pub(crate) struct SweepRow {
 
 /// The band's columns of a sweep row.
 #[derive(serde::Serialize)]
-struct BandColumns {
-    ct_lo: Num,
-    ct_hi: Num,
-    cp_lo: Num,
-    cp_hi: Num,
-    eta_lo: Num,
-    eta_hi: Num,
+pub(crate) struct BandColumns {
+    pub(crate) ct_lo: Num,
+    pub(crate) ct_hi: Num,
+    pub(crate) cp_lo: Num,
+    pub(crate) cp_hi: Num,
+    pub(crate) eta_lo: Num,
+    pub(crate) eta_hi: Num,
 }
 
 /// The sweep table with the band's columns after the others (`band` in the points' order).

@@ -4,7 +4,7 @@
 
 /// The solver's results ([`propbet_bemt`]).
 pub mod bemt {
-    pub use propbet_bemt::{check, Convergence, Fluid, PointResult};
+    pub use propbet_bemt::{check, Convergence, Fluid, OperatingPoint, PointResult};
 }
 
 /// QPROP's files ([`propbet_qprop`]): the prop file writer, QPROP's output, APC's files.

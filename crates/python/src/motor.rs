@@ -158,7 +158,7 @@ impl Battery {
 #[pyfunction]
 #[pyo3(signature = (
     model, motor, *, volts=None, amps=None, thrust=None, rpm=None, throttle=None, battery=None,
-    v=None, air=None
+    v=None, air=None, band=false
 ))]
 #[allow(clippy::too_many_arguments)]
 pub fn powered<'py>(
@@ -173,6 +173,7 @@ pub fn powered<'py>(
     battery: Option<PyRef<'py, Battery>>,
     v: Option<Bound<'py, PyAny>>,
     air: Option<Bound<'py, PyDict>>,
+    band: bool,
 ) -> PyResult<(Vec<Bound<'py, PyTuple>>, Vec<String>)> {
     let drive = DriveRequest {
         volts: values("volts", volts.as_ref())?,
@@ -195,7 +196,7 @@ pub fn powered<'py>(
             propbet_api::SweepAxis::V(v) => v,
             propbet_api::SweepAxis::J(_) => unreachable!("no advance ratios asked"),
         };
-        propbet_cli::api::powered(&spec, &m, supply.as_ref(), &drives, &speeds, &air.spec()?)
+        propbet_cli::api::powered(&spec, &m, supply.as_ref(), &drives, &speeds, &air.spec()?, band)
     })?;
     Ok((columns(py, table)?, problems))
 }

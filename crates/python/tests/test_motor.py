@@ -48,6 +48,8 @@ def test_predict_on_a_motor_is_the_command_lines_table(cli, tmp_path, same_as_fi
     cli("predict", "--prop", CAM, "--motor", AXI, "--thrust", "1", "--battery", "3S,2200mAh", "-o", tmp_path / "h.csv")
     same_as_file(hover, tmp_path / "h.csv")
     assert 0 < hover.throttle[0] < 1 and hover.endurance_min[0] > 0
+    banded = prop.predict(motor=axi, volts=8, band=True)
+    assert (banded.ct_lo < banded.ct).all() and (banded.ct < banded.ct_hi).all()
     full = prop.predict(motor=axi, throttle=[0.5, 1.0], battery=battery)
     assert full.thrust_n[1] > full.thrust_n[0] and full.battery_amps[1] > full.battery_amps[0]
 

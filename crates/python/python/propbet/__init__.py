@@ -369,14 +369,15 @@ class Prop:
         ``battery`` (:class:`Battery`), ``throttle`` (0 to 1), and each airspeed ``v``: the
         columns of ``propbet predict --motor`` (``rpm``, ``volts``, ``amps``, ``thrust_n``,
         ``shaft_power_w``, ``electrical_power_w``, ``eta_motor``, ``eta_total``, ``g_per_w``,
-        ...; with a battery ``throttle``, ``battery_amps``, ``endurance_min``, ...); a point
+        ...; with a battery ``throttle``, ``battery_amps``, ``endurance_min``, ...; with
+        ``band=True`` the propeller's ``ct_lo`` ... ``eta_hi`` at each operating point); a point
         without an operating point says why in ``no_solution``."""
         if motor is not None:
-            if band or stations or j is not None or effects:
-                raise InputError("motor: band, stations, j and effects are not available with a motor; predict at rpm= for them")
+            if stations or j is not None or effects:
+                raise InputError("motor: stations, j and effects are not available with a motor; predict at rpm= for them")
             table, problems = _relayed(lambda: _native.powered(
                 self.model, motor, volts=volts, amps=amps, thrust=thrust, rpm=rpm, throttle=throttle,
-                battery=battery, v=v, air=air))
+                battery=battery, v=v, air=air, band=band))
             for p in problems:
                 warnings.warn(p, PropbetWarning, stacklevel=2)
             return _frame(table)
