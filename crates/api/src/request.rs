@@ -210,6 +210,20 @@ impl SweepRequest {
         Ok((omegas, self.axis()?))
     }
 
+    /// The airspeeds alone [m/s] (static without them), where the rotation speed is not known
+    /// before the solve (a motor's operating points): advance ratios are refused.
+    pub fn airspeeds(&self) -> Result<Vec<f64>> {
+        if self.j.is_some() {
+            return Err(Error::Conflict(
+                "--j: with --motor the RPM is not known before the solve; give airspeeds with --v".into(),
+            ));
+        }
+        match self.axis()? {
+            SweepAxis::V(v) => Ok(v),
+            SweepAxis::J(_) => Err(Error::Conflict("--j: advance ratios need a rotation speed".into())),
+        }
+    }
+
     /// The second axis alone (static without J or V).
     pub fn axis(&self) -> Result<SweepAxis> {
         Ok(match (&self.j, &self.v) {

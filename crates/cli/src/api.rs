@@ -52,10 +52,7 @@ pub fn case_prediction(
             }
             StageSpec::Polars(spec) => {
                 for p in std::iter::once(spec.out_prop.as_path()).chain(spec.out_polars.as_deref()) {
-                    if let Some(d) = p.parent() {
-                        std::fs::create_dir_all(d)
-                            .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", d.display()))?;
-                    }
+                    crate::run::create_parent(p)?;
                 }
                 sections = Some((
                     spec.geometry.clone(),
@@ -268,20 +265,19 @@ pub fn fit_motor(
     Ok((f, steps))
 }
 
-/// `propbet compare-props` in memory (airspeeds [m/s] of the full-throttle curves, None:
-/// the command's): props.csv's columns and the answer's sentences.
+/// `propbet compare-props` in memory (the battery and ESC as `battery`'s text says them;
+/// airspeeds [m/s] of the full-throttle curves, None: the command's): props.csv's columns and the answer's sentences.
 pub fn compare_props(
     models: &[(String, ModelSpec)],
     motor: &propbet_pipeline::motor::MotorFile,
+    supply: &propbet_pipeline::motor::Supply,
     battery: &str,
-    esc_ohms: f64,
     hover: f64,
     speeds: Option<Vec<f64>>,
     air: &propbet_pipeline::spec::AirSpec,
 ) -> Result<(crate::columns::Table, Vec<String>)> {
-    let supply = propbet_api::supply(battery, esc_ohms)?;
     let speeds = speeds.unwrap_or_else(crate::compare_props::default_speeds);
-    let props = crate::compare_props::side(models, &motor.motor, &supply, hover, &speeds, air)?;
+    let props = crate::compare_props::side(models, &motor.motor, supply, hover, &speeds, air)?;
     Ok((
         crate::compare_props::table(&props, hover)?,
         crate::compare_props::answer(&props, &motor.name, battery, hover),
@@ -343,7 +339,7 @@ pub fn polars(spec: &propbet_pipeline::spec::PolarsSpec) -> Result<bool> {
 
 pub use crate::engine::XfoilProcess;
 pub use crate::validate::ValidateArgs;
-pub use propbet_pipeline::settings::{ENGINE, NCRIT, SECTION_MODEL};
+pub use propbet_pipeline::settings::{NCRIT, SECTION_MODEL};
 pub use propbet_validate::DEFAULT_GENERIC_SECTION;
 
 /// `propbet validate` of its arguments, typed: its files written; false when a prop reported

@@ -65,6 +65,25 @@ impl XfoilProcess {
     }
 }
 
+impl From<&propbet_api::ProcessRequest> for XfoilProcess {
+    /// The flags a request gives (the engine's default where it names none), for a command
+    /// that takes the flags (`validate`).
+    fn from(r: &propbet_api::ProcessRequest) -> Self {
+        XfoilProcess {
+            xfoil: r.xfoil.clone(),
+            cache: r.cache.clone(),
+            no_cache: r.no_cache,
+            quiet: r.quiet,
+            xfoil_budget: r.budget,
+            engine: r
+                .engine
+                .clone()
+                .unwrap_or_else(|| propbet_pipeline::settings::ENGINE.default.to_string()),
+            neuralfoil_size: r.neuralfoil_size.clone(),
+        }
+    }
+}
+
 /// A progress bar on stderr for polar jobs, drawn only when stderr is a terminal, hidden with
 /// `quiet`: made at the first job of a batch and cleared when the batch is done (or the bar is
 /// dropped), so that no bar is ever left on the terminal; labelled with the engine that makes the

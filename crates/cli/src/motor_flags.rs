@@ -49,7 +49,7 @@ impl MotorArgs {
             amps: text(&self.amps),
             thrust: text(&self.thrust),
             rpm: rpm.map(|r| Values::Text(r.to_string())),
-            throttle: if supply.is_some() { text(&self.throttle) } else { None },
+            throttle: text(&self.throttle),
         };
         Ok(request.drives(supply)?)
     }

@@ -10,7 +10,6 @@ use propbet_pipeline::motor::{Drive, Motor, Powered, Supply};
 use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis};
 use propbet_pipeline::stages::PoweredPoint;
 use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
-use propbet_pipeline::values::parse_list;
 
 use crate::output::{csv_rows, emit, Num};
 use crate::predict::{Format, PredictArgs};
@@ -138,11 +137,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     let file = propbet_pipeline::stages::read_motor(path)?;
     let supply = args.motor.supply()?;
     let drives = args.motor.drives(args.points.rpm.as_deref(), supply.as_ref())?;
-    let speeds = match (&args.points.j, &args.points.v) {
-        (Some(_), _) => bail!("--j: with --motor the RPM is not known before the solve; give airspeeds with --v"),
-        (None, Some(v)) => parse_list("--v", v)?,
-        (None, None) => vec![0.0],
-    };
+    let speeds = args.points.request().airspeeds()?;
     let spec = args.model.spec()?;
     let run = solve(
         &spec,

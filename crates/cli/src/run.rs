@@ -289,7 +289,7 @@ pub fn run_request(a: &RunRequest) -> Result<bool> {
     Ok(outcome.clean())
 }
 
-fn create_parent(path: &Path) -> Result<()> {
+pub(crate) fn create_parent(path: &Path) -> Result<()> {
     if let Some(d) = path.parent() {
         std::fs::create_dir_all(d).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", d.display()))?;
     }

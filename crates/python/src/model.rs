@@ -13,6 +13,29 @@ use pyo3::types::{PyBytes, PyDict, PyTuple};
 use crate::boundary::{columns, guarded};
 use crate::values::values;
 
+/// The polar engine's keyword arguments (every function that may make polars takes them) as
+/// a request.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn process(
+    engine: Option<String>,
+    neuralfoil_size: Option<String>,
+    xfoil: Option<PathBuf>,
+    cache: Option<PathBuf>,
+    no_cache: bool,
+    quiet: bool,
+    budget: Option<f64>,
+) -> ProcessRequest {
+    ProcessRequest {
+        engine,
+        neuralfoil_size,
+        xfoil,
+        cache,
+        no_cache,
+        quiet,
+        budget,
+    }
+}
+
 /// A propeller model: a blade file, how it is read and what is added to it. Made with the
 /// keyword arguments of ``propbet predict``'s model (``units``, ``qprop_compat``, ``dbeta``
 /// [deg], ``rotation``, ``drag_factor``, ``effects``, ``user_effects``, ``polars``; for a blade
@@ -88,15 +111,7 @@ impl Model {
                 airfoil,
                 sections_from,
                 airfoils,
-                process: ProcessRequest {
-                    engine,
-                    neuralfoil_size,
-                    xfoil,
-                    cache,
-                    no_cache,
-                    quiet,
-                    budget: xfoil_budget,
-                },
+                process: process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget),
             },
         )
     }
@@ -254,7 +269,7 @@ pub fn read_measurements<'py>(
     rho: Option<f64>,
     columns: Option<PathBuf>,
 ) -> PyResult<(Bound<'py, PyBytes>, Bound<'py, PyBytes>)> {
-    let request = measured_request((files, poles, rpm_source, atmosphere, rho, columns));
+    let request = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     let (points, dropped) = guarded(py, move || {
         let spec = request.spec()?;
         propbet_cli::api::measurements(&spec)
@@ -263,16 +278,14 @@ pub fn read_measurements<'py>(
 }
 
 /// The measured files and how to read them, as the keyword arguments give them.
-type Measured = (
-    Vec<PathBuf>,
-    Option<u32>,
-    Option<String>,
-    Option<String>,
-    Option<f64>,
-    Option<PathBuf>,
-);
-
-fn measured_request((files, poles, rpm_source, atmosphere, rho, columns): Measured) -> MeasuredRequest {
+pub(crate) fn measured_request(
+    files: Vec<PathBuf>,
+    poles: Option<u32>,
+    rpm_source: Option<String>,
+    atmosphere: Option<String>,
+    rho: Option<f64>,
+    columns: Option<PathBuf>,
+) -> MeasuredRequest {
     MeasuredRequest {
         files,
         poles,
@@ -306,7 +319,7 @@ pub fn compare(
     columns: Option<PathBuf>,
 ) -> PyResult<bool> {
     let model = model.spec.clone();
-    let measured = measured_request((files, poles, rpm_source, atmosphere, rho, columns));
+    let measured = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     guarded(py, move || {
         let spec = propbet_api::CompareSpec {
             model,
@@ -344,7 +357,7 @@ pub fn diagnose(
     columns: Option<PathBuf>,
 ) -> PyResult<bool> {
     let model = model.spec.clone();
-    let measured = measured_request((files, poles, rpm_source, atmosphere, rho, columns));
+    let measured = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     let request = DiagnoseRequest {
         effects,
         folds,
@@ -379,15 +392,7 @@ pub fn run(
     quiet: bool,
     xfoil_budget: Option<f64>,
 ) -> PyResult<bool> {
-    let process = ProcessRequest {
-        engine,
-        neuralfoil_size,
-        xfoil,
-        cache,
-        no_cache,
-        quiet,
-        budget: xfoil_budget,
-    };
+    let process = process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget);
     guarded(py, move || {
         propbet_cli::api::run(case, Some(out), &process, verbose, inputs_anywhere)
     })

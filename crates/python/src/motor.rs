@@ -192,10 +192,7 @@ pub fn powered<'py>(
     let m = motor.file.motor;
     let (table, problems) = guarded(py, move || {
         let drives = drive.drives(supply.as_ref())?;
-        let speeds = match speeds.axis()? {
-            propbet_api::SweepAxis::V(v) => v,
-            propbet_api::SweepAxis::J(_) => unreachable!("no advance ratios asked"),
-        };
+        let speeds = speeds.airspeeds()?;
         propbet_cli::api::powered(&spec, &m, supply.as_ref(), &drives, &speeds, &air.spec()?, band)
     })?;
     Ok((columns(py, table)?, problems))
@@ -218,14 +215,7 @@ pub fn fit_motor<'py>(
     rho: Option<f64>,
     columns: Option<PathBuf>,
 ) -> PyResult<(Motor, String, Bound<'py, PyDict>, Vec<Bound<'py, PyTuple>>)> {
-    let request = propbet_api::MeasuredRequest {
-        files,
-        poles,
-        rpm_source,
-        atmosphere,
-        rho,
-        columns,
-    };
+    let request = crate::model::measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     let (f, steps) = guarded(py, move || propbet_cli::api::fit_motor(&request.spec()?, kv, name))?;
     let m = &f.fit.fit;
     let summary = PyDict::new(py);
@@ -269,10 +259,10 @@ pub fn compare_props<'py>(
     let models: Vec<(String, propbet_api::ModelSpec)> = models.into_iter().map(|(n, m)| (n, m.spec.clone())).collect();
     let speeds = values("v", v.as_ref())?;
     let air = crate::values::air(air.as_ref())?;
-    let (file, text, esc) = (motor.file.clone(), battery.text.clone(), battery.supply.esc_ohms);
+    let (file, text, supply) = (motor.file.clone(), battery.text.clone(), battery.supply);
     let (table, answer) = guarded(py, move || {
         let speeds = speeds.map(|v| v.numbers("v")).transpose()?;
-        propbet_cli::api::compare_props(&models, &file, &text, esc, hover, speeds, &air.spec()?)
+        propbet_cli::api::compare_props(&models, &file, &supply, &text, hover, speeds, &air.spec()?)
     })?;
     Ok((columns(py, table)?, answer))
 }

@@ -2,11 +2,12 @@
 
 use std::path::PathBuf;
 
-use propbet_api::{PolarsRequest, ProcessRequest, SectionRequest, SweepRequest};
+use propbet_api::{PolarsRequest, SectionRequest, SweepRequest};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::boundary::guarded;
+use crate::model::process;
 use crate::values::values;
 
 /// ``propbet polars``: every station's polars of ``geometry`` at its Reynolds and Mach numbers
@@ -64,15 +65,7 @@ pub fn polars<'py>(
         },
         air: crate::values::air(air.as_ref())?,
         section: SectionRequest {
-            process: ProcessRequest {
-                engine,
-                neuralfoil_size,
-                xfoil,
-                cache,
-                no_cache,
-                quiet,
-                budget: xfoil_budget,
-            },
+            process: process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget),
             ncrit,
             trip,
             alpha: values("alpha", alpha.as_ref())?,
@@ -121,22 +114,22 @@ pub fn validate(
     quiet: bool,
     xfoil_budget: Option<f64>,
 ) -> PyResult<bool> {
-    use propbet_cli::api::{ValidateArgs, XfoilProcess, DEFAULT_GENERIC_SECTION, ENGINE, NCRIT, SECTION_MODEL};
+    use propbet_cli::api::{ValidateArgs, XfoilProcess, DEFAULT_GENERIC_SECTION, NCRIT, SECTION_MODEL};
     let args = ValidateArgs {
         uiuc,
         pe0,
         airfoils,
         only,
         out,
-        xfoil: XfoilProcess {
+        xfoil: XfoilProcess::from(&process(
+            engine,
+            neuralfoil_size,
             xfoil,
             cache,
             no_cache,
             quiet,
             xfoil_budget,
-            engine: engine.unwrap_or_else(|| ENGINE.default.to_string()),
-            neuralfoil_size,
-        },
+        )),
         section_model: section_model.unwrap_or_else(|| SECTION_MODEL.default.to_string()),
         per3,
         ncrit: ncrit.unwrap_or(NCRIT.default),
