@@ -234,6 +234,7 @@ mod exit_codes;
 mod motor;
 mod neuralfoil;
 mod polars;
+mod powertrain;
 mod qprop_real;
 mod run;
 mod scan;

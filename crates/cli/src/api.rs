@@ -238,7 +238,7 @@ struct StationRow {
 /// the powered table's columns, and each point without an operating point with the reason.
 pub fn powered(
     spec: &ModelSpec,
-    motor: &propbet_pipeline::motor::Motor,
+    motor: &propbet_pipeline::motor::MotorFile,
     supply: Option<&propbet_pipeline::motor::Supply>,
     drives: &[propbet_pipeline::motor::Drive],
     speeds: &[f64],
@@ -247,6 +247,7 @@ pub fn powered(
 ) -> Result<(crate::columns::Table, Vec<String>)> {
     let run = crate::powered::solve(spec, motor, supply, drives, speeds, air, band)?;
     let problems = run
+        .table
         .points
         .iter()
         .filter_map(|p| p.problem().map(|w| format!("V {} m/s: {w}", p.v)))

@@ -263,6 +263,90 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "compare",
         "--motor",
     ),
+    (
+        "motor",
+        "volts",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = \"6,7\"",
+        "motor",
+        "--volts=6,7",
+    ),
+    (
+        "motor",
+        "amps",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"\namps = \"3,4\"",
+        "motor",
+        "--amps=3,4",
+    ),
+    (
+        "motor",
+        "thrust",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"\nthrust = 1.5",
+        "motor",
+        "--thrust=1.5",
+    ),
+    (
+        "motor",
+        "throttle",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"\nthrottle = \"0.5,1\"\n\n[battery]\ncells = 2",
+        "motor",
+        "--throttle=0.5,1",
+    ),
+    (
+        "motor",
+        "v",
+        "file = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7\nv = \"0,5\"",
+        "motor",
+        "--v=0,5",
+    ),
+    (
+        "battery",
+        "cells",
+        "cells = 3\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "--battery 3S,",
+    ),
+    (
+        "battery",
+        "capacity_mah",
+        "cells = 3\ncapacity_mah = 2200\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        ",2.2Ah,",
+    ),
+    (
+        "battery",
+        "cell_volts",
+        "cells = 3\ncell_volts = 3.8\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "V=3.8",
+    ),
+    (
+        "battery",
+        "cell_ohms",
+        "cells = 3\ncell_ohms = 0.004\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "R=0.004",
+    ),
+    (
+        "battery",
+        "cutoff_volts",
+        "cells = 3\ncutoff_volts = 3.2\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "cutoff=3.2",
+    ),
+    (
+        "battery",
+        "usable",
+        "cells = 3\nusable = 0.7\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "usable=0.7",
+    ),
+    (
+        "esc",
+        "ohms",
+        "ohms = 0.01\n\n[battery]\ncells = 3\n\n[motor]\nfile = \"{repo}/props/motors/s400-6v-dd.motor\"\nvolts = 7",
+        "motor",
+        "--esc-ohms 0.01",
+    ),
 ];
 
 /// The case every key is set in: the default case's scan, polars, sweep and measurements.
@@ -311,10 +395,21 @@ fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
         (&case, "MeasuredSection", "measured"),
         (&case, "AtmosphereSection", "atmosphere"),
         (&case, "MotorSection", "motor"),
+        (&case, "BatterySection", "battery"),
+        (&case, "EscSection", "esc"),
     ];
     // Fields that are not keys: the sections themselves at the top level, and [geometry]'s
     // `settings` (whose keys are listed from their own struct).
-    let sections_names = ["geometry", "polars", "sweep", "measured", "atmosphere", "motor"];
+    let sections_names = [
+        "geometry",
+        "polars",
+        "sweep",
+        "measured",
+        "atmosphere",
+        "motor",
+        "battery",
+        "esc",
+    ];
     let mut out = Vec::new();
     for (text, name, section) in sections {
         let start = text.find(&format!("pub struct {name} {{")).unwrap();

@@ -296,6 +296,7 @@ mod tests {
         Ok(Some(match command {
             Command::Scan(a) => StageSpec::Scan(a.spec()?),
             Command::Polars(a) => StageSpec::Polars(a.spec()?),
+            Command::Predict(a) if a.motor.motor.is_some() => StageSpec::Powered(a.powered_spec()?),
             Command::Predict(a) => StageSpec::Predict(a.spec()?),
             Command::Compare(a) => StageSpec::Compare(a.spec()?),
             Command::Diagnose(a) => StageSpec::Diagnose(a.spec()?),
@@ -399,7 +400,7 @@ mod tests {
                 n += 1;
             }
         }
-        assert_eq!(n, 5 + 3 + 1);
+        assert_eq!(n, 5 + 3 + 2);
     }
 
     #[test]
@@ -454,6 +455,37 @@ mod tests {
                 "c.toml",
                 "-o",
                 "o",
+            ],
+            &[
+                "predict",
+                "--prop",
+                "p.qprop",
+                "--motor",
+                "m.motor",
+                "--throttle",
+                "0.4:1:0.2",
+                "--battery",
+                "4S,1300mAh,R=3mOhm,usable=75%",
+                "--esc-ohms",
+                "0.01",
+                "--v",
+                "0:20/3",
+                "--rho",
+                "1.2",
+                "--format",
+                "json",
+                "--band",
+                "-o",
+                "o.json",
+            ],
+            &[
+                "predict",
+                "--prop",
+                "p.qprop",
+                "--motor",
+                "m.motor",
+                "--rpm",
+                "7000,9000.5",
             ],
             &[
                 "diagnose",

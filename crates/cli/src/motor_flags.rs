@@ -32,7 +32,7 @@ pub struct MotorArgs {
     #[arg(long, requires = "motor", value_name = "SPEC")]
     pub battery: Option<String>,
     /// The ESC's resistance in the motor's current path [ohm], with --battery.
-    #[arg(long, requires = "battery", default_value_t = 0.005, value_name = "OHMS")]
+    #[arg(long, requires = "battery", default_value_t = propbet_pipeline::motor::ESC_OHMS, value_name = "OHMS")]
     pub esc_ohms: f64,
     /// Throttles (0 to 1, list or range syntax), with --battery: the battery through the ESC
     /// drives the motor.

@@ -1,18 +1,17 @@
 //! `propbet predict --motor`: the propeller on a QPROP motor, at a voltage, a current, a
 //! thrust or an RPM, one row per (driver, airspeed) point with QPROP's electrical columns.
 
-use anyhow::{bail, Result};
-use propbet_pipeline::band::BandSpec;
-use propbet_pipeline::bemt::{Fluid, OperatingPoint, PointResult};
+use anyhow::Result;
+use propbet_pipeline::bemt::{Fluid, PointResult};
 use propbet_pipeline::compare::band::PointBand;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::motor::{Drive, Motor, Powered, Supply};
-use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis};
-use propbet_pipeline::stages::PoweredPoint;
+use propbet_pipeline::motor::{Drive, Motor, MotorFile, Powered, Supply};
+use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis, TableFormat};
+use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
 use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
 
 use crate::output::{csv_rows, emit, Num};
-use crate::predict::{Format, PredictArgs};
+use crate::predict::PredictArgs;
 
 /// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
 /// speed at the highest voltage given or the battery's (12 V, a 3-cell battery, where none
@@ -36,23 +35,21 @@ pub(crate) fn polar_omegas(motor: &Motor, drives: &[Drive], battery_volts: Optio
     omegas
 }
 
-/// A powered prediction: the points, and what their rows say of the air and the propeller.
+/// A powered prediction: the table, and what its rows say of the air and the propeller.
 pub struct PoweredRun {
-    /// The points, one per driver value and airspeed.
-    pub points: Vec<PoweredPoint>,
+    /// The motor, the points (one per driver value and airspeed) and their band.
+    pub table: PoweredTable,
     rho: f64,
     air: String,
     tip_radius: f64,
     battery: bool,
-    /// The propeller's uncertainty band at each point with an operating point (`--band`).
-    band: Option<Vec<Option<PointBand>>>,
 }
 
 /// The model of `spec` on `motor` (with `supply`'s battery and ESC) at each driver value and
 /// airspeed [m/s]; a blade file's polars computed over the speeds the motor can reach.
 pub fn solve(
     spec: &ModelSpec,
-    motor: &Motor,
+    motor: &MotorFile,
     supply: Option<&Supply>,
     drives: &[Drive],
     speeds: &[f64],
@@ -63,52 +60,37 @@ pub fn solve(
         spec,
         || {
             let battery = supply.map(|s| s.source(1.0).0);
-            Ok((polar_omegas(motor, drives, battery), SweepAxis::V(speeds.to_vec())))
+            Ok((
+                polar_omegas(&motor.motor, drives, battery),
+                SweepAxis::V(speeds.to_vec()),
+            ))
         },
         false,
     )?;
-    let (fluid, air) = air.fluid()?;
-    let points = propbet_pipeline::stages::powered(&model, &fluid, motor, supply, drives, speeds)?;
-    let band = band.then(|| band_at(&model, &fluid, &points)).transpose()?;
-    Ok(PoweredRun {
-        points,
-        rho: fluid.rho,
-        air,
-        tip_radius: model.rotor.tip_radius,
-        battery: supply.is_some(),
-        band,
-    })
-}
-
-/// The propeller's uncertainty band (`predict --band`'s) at each operating point found: its CT,
-/// CP and efficiency at that speed and airspeed, the motor's point held.
-fn band_at(model: &Model, fluid: &Fluid, points: &[PoweredPoint]) -> Result<Vec<Option<PointBand>>> {
-    let solved: Vec<(usize, OperatingPoint, PointResult)> = points
-        .iter()
-        .enumerate()
-        .filter_map(|(i, p)| {
-            let (s, r) = p.outcome.as_ref().ok()?;
-            Some((i, OperatingPoint { v: p.v, omega: s.omega }, r.clone()))
-        })
-        .collect();
-    let ops: Vec<OperatingPoint> = solved.iter().map(|x| x.1).collect();
-    let base: Vec<PointResult> = solved.iter().map(|x| x.2.clone()).collect();
-    let bands = BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
-    let mut out = vec![None; points.len()];
-    for ((i, ..), b) in solved.iter().zip(bands) {
-        out[*i] = Some(b);
-    }
-    Ok(out)
+    let fluid = air.fluid()?;
+    let table = propbet_pipeline::stages::powered_table(&model, &fluid.0, motor.clone(), supply, drives, speeds, band)?;
+    Ok(PoweredRun::new(table, &model, &fluid, supply.is_some()))
 }
 
 impl PoweredRun {
+    /// The rows of `table`, solved with `model` in `fluid` (and its air's words).
+    pub fn new(table: PoweredTable, model: &Model, fluid: &(Fluid, String), battery: bool) -> PoweredRun {
+        PoweredRun {
+            table,
+            rho: fluid.0.rho,
+            air: fluid.1.clone(),
+            tip_radius: model.rotor.tip_radius,
+            battery,
+        }
+    }
+
     /// Each row: QPROP's columns, then the battery's (with a battery) and the band's (with
     /// `--band`).
     fn rows(&self) -> impl Iterator<Item = (PoweredRow, Tail)> + '_ {
-        self.points.iter().enumerate().map(|(i, p)| {
+        self.table.points.iter().enumerate().map(|(i, p)| {
             let tail = Tail {
                 battery: self.battery.then(|| battery_columns(p)),
-                band: self.band.as_ref().map(|b| band_columns(b[i].as_ref())),
+                band: self.table.band.as_ref().map(|b| band_columns(b[i].as_ref())),
             };
             (row(p, self.rho, &self.air, self.tip_radius), tail)
         })
@@ -120,7 +102,7 @@ impl PoweredRun {
     }
 
     /// The table as CSV.
-    fn csv(&self) -> Result<Vec<u8>> {
+    pub fn csv(&self) -> Result<Vec<u8>> {
         csv_rows(self.rows(), true)
     }
 }
@@ -128,62 +110,72 @@ impl PoweredRun {
 /// Runs `propbet predict --motor`; returns whether every point has its operating point and
 /// every station converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let Some(path) = &args.motor.motor else {
-        bail!("--motor: no motor file");
-    };
-    if args.stations.is_some() {
-        bail!("--motor: --out-stations is not available with a motor yet; predict at --rpm for it");
-    }
-    let file = propbet_pipeline::stages::read_motor(path)?;
-    let supply = args.motor.supply()?;
-    let drives = args.motor.drives(args.points.rpm.as_deref(), supply.as_ref())?;
-    let speeds = args.points.request().airspeeds()?;
-    let spec = args.model.spec()?;
+    let spec = args.powered_spec()?;
+    let file = propbet_pipeline::stages::read_motor(&spec.motor)?;
     let run = solve(
-        &spec,
-        &file.motor,
-        supply.as_ref(),
-        &drives,
-        &speeds,
-        &args.air.spec()?,
-        args.band,
+        &spec.model,
+        &file,
+        spec.supply.as_ref(),
+        &spec.drives,
+        &spec.speeds,
+        &spec.air,
+        spec.band,
     )?;
-    let points = &run.points;
-    let body = match args.format {
-        Format::Csv => run.csv()?,
-        Format::Json => json_records(&run.table()?)?,
-    };
-    let mut inputs = spec.inputs();
-    inputs.push(path.as_path());
-    emit(args.out.as_deref(), &[body], &inputs)?;
-    let unsolved: Vec<(&PoweredPoint, &str)> = points.iter().filter_map(|p| p.problem().map(|w| (p, w))).collect();
-    for (p, why) in unsolved.iter().take(5) {
-        eprintln!("propbet: warning: V {} m/s: {why}", p.v);
+    let mut inputs = spec.model.inputs();
+    inputs.push(spec.motor.as_path());
+    emit(spec.out.as_deref(), &[run.body(spec.format)?], &inputs)?;
+    for line in run.warnings() {
+        eprintln!("propbet: {line}");
     }
-    if unsolved.len() > 5 {
-        eprintln!(
-            "propbet: warning: {} more points without an operating point",
-            unsolved.len() - 5
-        );
-    }
-    let failed: usize = points
-        .iter()
-        .filter_map(|p| p.outcome.as_ref().ok())
-        .map(|(_, r)| r.not_converged)
-        .sum();
-    if failed > 0 {
-        eprintln!("propbet: {failed} station solutions did not converge (column not_converged)");
-    }
-    if let Some(out) = &args.out {
+    if let Some(out) = &spec.out {
         eprintln!(
             "propbet predict: {} operating points on {} ({}) -> {}",
-            points.len(),
+            run.table.points.len(),
             file.name,
-            path.display(),
+            spec.motor.display(),
             out.display()
         );
     }
-    Ok(unsolved.is_empty() && failed == 0)
+    Ok(run.table.clean())
+}
+
+impl PoweredRun {
+    /// The table in `format`.
+    pub fn body(&self, format: TableFormat) -> Result<Vec<u8>> {
+        match format {
+            TableFormat::Csv => self.csv(),
+            TableFormat::Json => json_records(&self.table()?),
+        }
+    }
+
+    /// The terminal's warnings: the first points without an operating point, and the
+    /// stations that did not converge.
+    pub fn warnings(&self) -> Vec<String> {
+        let points = &self.table.points;
+        let unsolved: Vec<(&PoweredPoint, &str)> = points.iter().filter_map(|p| p.problem().map(|w| (p, w))).collect();
+        let mut out: Vec<String> = unsolved
+            .iter()
+            .take(5)
+            .map(|(p, why)| format!("warning: V {} m/s: {why}", p.v))
+            .collect();
+        if unsolved.len() > 5 {
+            out.push(format!(
+                "warning: {} more points without an operating point",
+                unsolved.len() - 5
+            ));
+        }
+        let failed: usize = points
+            .iter()
+            .filter_map(|p| p.outcome.as_ref().ok())
+            .map(|(_, r)| r.not_converged)
+            .sum();
+        if failed > 0 {
+            out.push(format!(
+                "{failed} station solutions did not converge (column not_converged)"
+            ));
+        }
+        out
+    }
 }
 
 /// A row of the powered table: QPROP's columns (propbet's names and SI units) and g/W.

@@ -293,6 +293,33 @@ impl PredictArgs {
     }
 }
 
+impl PredictArgs {
+    /// The powered stage's spec (with `--motor`).
+    pub fn powered_spec(&self) -> Result<propbet_pipeline::spec::PoweredSpec> {
+        let Some(motor) = &self.motor.motor else {
+            anyhow::bail!("--motor: no motor file");
+        };
+        if self.stations.is_some() {
+            anyhow::bail!("--motor: --out-stations is not available with a motor yet; predict at --rpm for it");
+        }
+        let supply = self.motor.supply()?;
+        Ok(propbet_pipeline::spec::PoweredSpec {
+            model: self.model.spec()?,
+            motor: motor.clone(),
+            drives: self.motor.drives(self.points.rpm.as_deref(), supply.as_ref())?,
+            supply,
+            speeds: self.points.request().airspeeds()?,
+            air: self.air.spec()?,
+            format: match self.format {
+                Format::Csv => TableFormat::Csv,
+                Format::Json => TableFormat::Json,
+            },
+            out: self.out.clone(),
+            band: self.band,
+        })
+    }
+}
+
 /// Operating points as `predict` and `polars` take them: every RPM with every J or V.
 #[derive(Debug, Args)]
 pub struct SweepArgs {

@@ -14,7 +14,7 @@ use propbet_pipeline::run::{run_case, Event, Finished, StageRecord};
 use propbet_pipeline::spec::StageSpec;
 use propbet_pipeline::spec::XfoilProcessSpec;
 
-use crate::output::write_atomic;
+use crate::output::{emit, write_atomic};
 use crate::polar::{Bar, XfoilProcess};
 
 /// Arguments of `propbet run`.
@@ -370,6 +370,22 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                 Err(e) => format!("no QPROP export: {e}"),
             });
         }
+        (StageSpec::Powered(spec), Finished::Powered(table, model, fluid)) => {
+            let run = crate::powered::PoweredRun::new((*table).clone(), model, fluid, spec.supply.is_some());
+            if let Some(o) = &spec.out {
+                create_parent(o)?;
+            }
+            let mut inputs = spec.model.inputs();
+            inputs.push(spec.motor.as_path());
+            emit(spec.out.as_deref(), &[run.body(spec.format)?], &inputs)?;
+            if verbose {
+                for line in run.warnings() {
+                    eprintln!("propbet: {line}");
+                }
+            }
+            w.brief = propbet_report::powered::brief(table, spec);
+            w.page = Some(propbet_report::powered::section(table, spec));
+        }
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::reference(spec, model.diameter)?;
             let electric = match &spec.motor {
@@ -377,9 +393,6 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                 None => None,
             };
             let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), electric.as_ref())?;
-            if let Some(e) = &electric {
-                w.brief.push(propbet_report::compare::electric_sentence(e));
-            }
             w.lead = lead;
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());
@@ -392,6 +405,9 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                     100.0 * ct,
                     100.0 * cp
                 ));
+            }
+            if let Some(e) = &electric {
+                w.brief.push(propbet_report::compare::electric_sentence(e));
             }
             w.page = Some(page);
             w.reference = reference;

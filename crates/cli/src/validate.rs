@@ -184,7 +184,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
                 crate::diagnose::write(s, &v.diagnosed)?;
                 crate::diagnose::print(s, &v.diagnosed);
             }
-            StageSpec::Scan(_) | StageSpec::Predict(_) => {}
+            StageSpec::Scan(_) | StageSpec::Predict(_) | StageSpec::Powered(_) => {}
         }
     }
     write_band_sources(&dir.join("compare/band_sources.csv"), v)

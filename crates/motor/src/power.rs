@@ -46,6 +46,10 @@ pub const LIPO: Battery = Battery {
     usable: 0.8,
 };
 
+/// The ESC's resistance where none is given [ohm]: MOSFETs and wiring of a hobby ESC of
+/// 20-40 A (its MOSFETs' on-resistance, a few mOhm, and the leads).
+pub const ESC_OHMS: f64 = 0.005;
+
 /// A battery or ESC setting that cannot be.
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{what}: {why}")]
@@ -110,6 +114,20 @@ impl Battery {
         }
         b.cells = cells.ok_or_else(|| bad(spec, "no cell count (3S for three cells in series)"))?;
         b.check().map(|_| b)
+    }
+
+    /// The spec [`Battery::parse`] reads back to this battery: every value written, in ohms,
+    /// volts and ampere-hours (`3S,2.2Ah,R=0.005,V=3.7,cutoff=3.3,usable=0.8`).
+    pub fn text(&self) -> String {
+        let capacity = if self.capacity_ah > 0.0 {
+            format!(",{}Ah", self.capacity_ah)
+        } else {
+            String::new()
+        };
+        format!(
+            "{}S{capacity},R={},V={},cutoff={},usable={}",
+            self.cells, self.cell_ohms, self.cell_volts, self.cutoff_volts, self.usable
+        )
     }
 
     /// The battery's values are a battery's.
@@ -241,6 +259,23 @@ impl Supply {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_batterys_text_reads_back_to_the_same_battery() {
+        for spec in [
+            "3S",
+            "3S,2200mAh",
+            "6S,5.2Ah,R=2.5mOhm,V=3.85,cutoff=3.4,usable=75%",
+            "1S,0.3Ah,R=0",
+        ] {
+            let b = Battery::parse(spec).unwrap();
+            assert_eq!(Battery::parse(&b.text()).unwrap(), b, "{spec} -> {}", b.text());
+        }
+        assert_eq!(
+            Battery::parse("3S,2200mAh").unwrap().text(),
+            "3S,2.2Ah,R=0.005,V=3.7,cutoff=3.3,usable=0.8"
+        );
+    }
 
     #[test]
     fn battery_specs_read_with_units_and_defaults() {

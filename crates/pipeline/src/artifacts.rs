@@ -15,6 +15,7 @@ pub mod qprop {
 /// The motor ([`propbet_motor`]): its files and the operating point's drivers.
 pub mod motor {
     pub use propbet_motor::fit::KvSource;
+    pub use propbet_motor::power::ESC_OHMS;
     pub use propbet_motor::{write_motor, Battery, Drive, Motor, MotorFile, Powered, Supply, SupplyPoint};
 }
 
@@ -64,5 +65,7 @@ pub mod geometry {
 
 /// Unit conversions ([`propbet_units`]).
 pub mod units {
-    pub use propbet_units::{omega_to_rev_per_s, omega_to_rpm, rpm_to_omega, rpm_to_rev_per_s, seconds_to_minutes};
+    pub use propbet_units::{
+        omega_to_rev_per_s, omega_to_rpm, rpm_to_omega, rpm_to_rev_per_s, seconds_to_minutes, STANDARD_GRAVITY,
+    };
 }

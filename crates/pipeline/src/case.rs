@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PredictSpec, ScanSettings, ScanSpec, StageSpec};
+use crate::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSettings, ScanSpec, StageSpec};
 use crate::values::parse_list;
 use crate::{read_text, Error, Result};
 
@@ -32,8 +32,13 @@ pub struct Case {
     #[serde(default)]
     pub atmosphere: AtmosphereSection,
     /// The motor of the measurements (its current and electrical power scored against the
-    /// log's).
+    /// log's), and of the powered table (with a driver: `volts`, `amps`, `thrust` or
+    /// `throttle`).
     pub motor: Option<MotorSection>,
+    /// The battery in front of the motor (with `[motor]`).
+    pub battery: Option<BatterySection>,
+    /// The ESC between the battery and the motor (with `[battery]`).
+    pub esc: Option<EscSection>,
 }
 
 /// `[motor]`.
@@ -42,6 +47,43 @@ pub struct Case {
 pub struct MotorSection {
     /// A QPROP motor file relative to the case directory.
     pub file: String,
+    /// Terminal voltages [V] of the powered table (`propbet predict --motor --volts`).
+    pub volts: Option<NumberOrList>,
+    /// Motor currents [A] of the powered table.
+    pub amps: Option<NumberOrList>,
+    /// Thrusts [N] of the powered table (hover: the weight this propeller carries).
+    pub thrust: Option<NumberOrList>,
+    /// Throttles (0 to 1) of the powered table, with `[battery]`.
+    pub throttle: Option<NumberOrList>,
+    /// Airspeeds [m/s] of the powered table (default: 0, static).
+    pub v: Option<NumberOrList>,
+}
+
+/// `[battery]`: cells in series, each an open-circuit voltage behind a resistance
+/// (`propbet predict --battery`; LiPo defaults for what is not given).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BatterySection {
+    /// Cells in series.
+    pub cells: u32,
+    /// Capacity [mAh] (without: no endurance).
+    pub capacity_mah: Option<f64>,
+    /// Open-circuit voltage of a cell [V].
+    pub cell_volts: Option<f64>,
+    /// Internal resistance of a cell [ohm].
+    pub cell_ohms: Option<f64>,
+    /// The lowest loaded cell voltage allowed [V].
+    pub cutoff_volts: Option<f64>,
+    /// The fraction of the capacity used (0 to 1).
+    pub usable: Option<f64>,
+}
+
+/// `[esc]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EscSection {
+    /// Resistance in the motor's current path [ohm] (`--esc-ohms`).
+    pub ohms: f64,
 }
 
 /// `[geometry]`: a scan or a prop file, and the scan's settings.
@@ -359,6 +401,8 @@ pub struct RunPlan {
     pub polars: Option<(PolarsSpec, bool)>,
     /// Sweeps.
     pub predict: PredictSpec,
+    /// The propeller on its motor (a case with `[motor]` and a driver).
+    pub powered: Option<PoweredSpec>,
     /// Comparison and diagnosis.
     pub compare: Option<(CompareSpec, DiagnoseSpec)>,
     /// What the case file says that still works but should be written otherwise (printed
@@ -398,6 +442,9 @@ impl RunPlan {
             v.extend(c.per3.clone());
             v.extend(c.motor.clone());
         }
+        if let Some(p) = &self.powered {
+            v.push(p.motor.clone());
+        }
         v
     }
 
@@ -431,6 +478,9 @@ impl RunPlan {
             v.push(StageSpec::Polars(p.clone()));
         }
         v.push(StageSpec::Predict(self.predict.clone()));
+        if let Some(p) = &self.powered {
+            v.push(StageSpec::Powered(p.clone()));
+        }
         if let Some((c, d)) = &self.compare {
             v.push(StageSpec::Compare(c.clone()));
             v.push(StageSpec::Diagnose(d.clone()));

@@ -34,6 +34,8 @@ pub enum Finished<'a> {
         &'a Model,
         &'a std::result::Result<crate::export::QpropExport, String>,
     ),
+    /// The propeller on its motor, with the model and the air of the sweeps.
+    Powered(&'a stages::PoweredTable, &'a Model, &'a (Fluid, String)),
     /// The comparison, with the model it was made with.
     Compare(&'a Compared, &'a Model),
     /// The diagnosis.
@@ -81,6 +83,8 @@ pub struct RunOutcome {
     pub sweep: Vec<PointResult>,
     /// The QPROP file fitted to carry the sweeps' prediction (or why there is none).
     pub qprop_export: std::result::Result<crate::export::QpropExport, String>,
+    /// The propeller on its motor (cases with `[motor]` and a driver).
+    pub powered: Option<stages::PoweredTable>,
     /// The comparison (cases with measurements).
     pub compared: Option<Compared>,
     /// The diagnosis (cases with measurements).
@@ -220,6 +224,15 @@ pub fn run_case(
     let qprop_export = crate::export::qprop_export(&model, &fluid.0, &points, &plan.name).map_err(|e| e.to_string());
     book.done(t, clean, Finished::Predict(&sweep, &model, &qprop_export));
 
+    // 3b. On the motor: the sweeps' model and air.
+    let mut powered = None;
+    if let Some(spec) = &plan.powered {
+        let t = book.start(StageSpec::Powered(spec.clone()));
+        let p = stages::powered_stage(&model, &fluid.0, spec).map_err(|e| stage_err("motor", e))?;
+        book.done(t, p.clean(), Finished::Powered(&p, &model, &fluid));
+        powered = Some(p);
+    }
+
     // 4-5. Comparison and diagnosis.
     let (mut compared, mut diagnosed) = (None, None);
     if let Some((cspec, dspec)) = &plan.compare {
@@ -245,6 +258,7 @@ pub fn run_case(
         fluid,
         sweep,
         qprop_export,
+        powered,
         compared,
         diagnosed,
         stages: book.records,

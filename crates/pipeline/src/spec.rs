@@ -357,6 +357,30 @@ pub struct PredictSpec {
     pub band: bool,
 }
 
+/// `propbet predict --motor`: the propeller on its motor (and battery), one row per driver
+/// value and airspeed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoweredSpec {
+    /// The model.
+    pub model: ModelSpec,
+    /// The QPROP motor file.
+    pub motor: PathBuf,
+    /// What sets each operating point, one kind for all ([`crate::motor::Drive`]).
+    pub drives: Vec<propbet_motor::Drive>,
+    /// The battery and ESC (with a battery).
+    pub supply: Option<propbet_motor::Supply>,
+    /// Airspeeds [m/s].
+    pub speeds: Vec<f64>,
+    /// Air.
+    pub air: AirSpec,
+    /// Output format.
+    pub format: TableFormat,
+    /// Output file (None: standard output).
+    pub out: Option<PathBuf>,
+    /// Also the propeller's uncertainty band at each operating point.
+    pub band: bool,
+}
+
 /// Measured files and how to read them.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeasuredSpec {

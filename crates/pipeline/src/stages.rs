@@ -329,7 +329,10 @@ mod synth;
 
 pub use measured::*;
 pub use polar::*;
-pub use powered::{electric, fit_motor, omega_ceiling, powered, read_motor, FittedMotor, PoweredPoint};
+pub use powered::{
+    electric, fit_motor, omega_ceiling, powered, powered_stage, powered_table, read_motor, FittedMotor, PoweredPoint,
+    PoweredTable,
+};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
 pub use side::{side_by_side, SidePoint, SideProp};

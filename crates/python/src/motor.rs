@@ -189,7 +189,7 @@ pub fn powered<'py>(
     let air = crate::values::air(air.as_ref())?;
     let supply = battery.map(|b| b.supply);
     let spec = model.spec.clone();
-    let m = motor.file.motor;
+    let m = motor.file.clone();
     let (table, problems) = guarded(py, move || {
         let drives = drive.drives(supply.as_ref())?;
         let speeds = speeds.airspeeds()?;

@@ -2,7 +2,8 @@
 //! ([`answer`]: how close the prediction is, what is missing), one page skeleton
 //! ([`page`]: head, font, stylesheet, escaping), the comparison ([`compare`]), the diagnosis
 //! ([`diagnose`]), the run ([`run`], holding the other two), the validation table
-//! ([`validate`]), and the figures of a scan ([`scan`]) and of polars ([`polar`]). Pages are strings; the CLI writes them.
+//! ([`validate`]), the figures of a scan ([`scan`]) and of polars ([`polar`]), and a propeller on its motor
+//! ([`powered`]) and props side by side ([`props`]). Pages are strings; the CLI writes them.
 #![deny(missing_docs)]
 
 pub mod answer;
@@ -10,6 +11,7 @@ pub mod compare;
 pub mod diagnose;
 pub mod page;
 pub mod polar;
+pub mod powered;
 pub mod props;
 pub mod run;
 pub mod scan;

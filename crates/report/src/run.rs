@@ -35,11 +35,17 @@ pub fn page(
     let _ = writeln!(
         h,
         "<nav><a href=\"#geometry\">geometry</a><a href=\"#polars\">polars</a><a href=\"#prediction\">prediction</a>{}<a href=\"#problems\">every stage note</a></nav>",
-        if pages.is_empty() {
-            String::new()
-        } else {
-            "<a href=\"#compare\">measured vs predicted</a><a href=\"#diagnose\">what is missing, in detail</a>".into()
-        }
+        pages
+            .iter()
+            .map(|(id, _)| format!(
+                "<a href=\"#{id}\">{}</a>",
+                match *id {
+                    "motor" => "on its motor",
+                    "compare" => "measured vs predicted",
+                    _ => "what is missing, in detail",
+                }
+            ))
+            .collect::<String>()
     );
     let problems = problems(run);
     stages_html(&mut h, plan, run, &problems);
@@ -269,6 +275,20 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
             _ => {}
         }
     }
+    if let (Some(spec), Some(t), Some(o)) = (
+        &plan.powered,
+        &run.powered,
+        plan.powered.as_ref().and_then(|p| p.out.as_ref()),
+    ) {
+        let brief = crate::powered::brief(t, spec);
+        let _ = write!(
+            h,
+            "<li>{}: the propeller on its motor{}, {} (<a href=\"#motor\">the table</a>)</li>",
+            link(out, o),
+            if spec.supply.is_some() { " and battery" } else { "" },
+            esc(brief.get(1).map_or("no point has an operating point", String::as_str))
+        );
+    }
     if let (Some((spec, _)), Some(p)) = (&plan.polars, &run.polars) {
         let notes: Vec<String> = p
             .blade
@@ -420,7 +440,7 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
         let text = made.map(|m| m.doubts().map_or(m.words(), |d| format!("{}; {d}", m.words())));
         json!({"engine": p.xfoil.process.engine.name(), "made": made, "text": text})
     });
-    json!({
+    let mut summary = json!({
         "format": "propbet-run-summary-1",
         "case": plan.name,
         "case_dir": plan.dir.display().to_string(),
@@ -447,7 +467,20 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
             }),
             Err(e) => json!({"error": e}),
         },
-    })
+    });
+    // A case with a motor's powered table (the key absent without one).
+    if let (Some(t), Some(o)) = (&run.powered, summary.as_object_mut()) {
+        o.insert(
+            "powered".into(),
+            json!({
+                "motor": t.motor.name,
+                "file": plan.powered.as_ref().and_then(|p| p.out.as_ref()).map(|o| o.display().to_string()),
+                "points": t.points.len(),
+                "solved": t.points.iter().filter(|p| p.problem().is_none()).count(),
+            }),
+        );
+    }
+    summary
 }
 
 /// What the run does, from its plan (not from the case's own words, which may be out of date).
@@ -508,6 +541,19 @@ pub fn what_it_does(plan: &RunPlan) -> String {
         "sweeps at {} rpm",
         rpm.iter().map(|r| format!("{r:.0}")).collect::<Vec<_>>().join(", ")
     ));
+    if let Some(p) = &plan.powered {
+        let drives: Vec<String> = p.drives.iter().map(|d| d.describe()).collect();
+        parts.push(format!(
+            "on the motor {}{} at {}",
+            name(&p.motor),
+            if p.supply.is_some() {
+                " with its battery and ESC"
+            } else {
+                ""
+            },
+            drives.join(", ")
+        ));
+    }
     if let Some((c, _)) = &plan.compare {
         parts.push(format!(
             "compared with {} measured file(s) and diagnosed",

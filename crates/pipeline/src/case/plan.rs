@@ -7,8 +7,8 @@ use propbet_measure::RpmSource;
 
 use super::{at_key, parse_fraction, Case, NumberOrList, RunPlan};
 use crate::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PredictSpec, ScanSettings, ScanSpec,
-    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSettings,
+    ScanSpec, SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
 use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
 use crate::{Error, Result};
@@ -237,6 +237,112 @@ impl Case {
         })
     }
 
+    /// The powered table's spec, where `[motor]` names a driver: the sweep's model and air on
+    /// the motor, with `[battery]` and `[esc]` in front of it.
+    fn powered_spec(&self, dir: &Path, out: &Path, model: &ModelSpec, air: &AirSpec) -> Result<Option<PoweredSpec>> {
+        use propbet_motor::{Battery, Drive, Supply};
+        let case_file = dir.join("case.toml");
+        let at = |key: &str, e: Error| at_key(&case_file, key, e);
+        let Some(m) = &self.motor else {
+            if self.battery.is_some() || self.esc.is_some() {
+                return Err(at(
+                    "[battery]",
+                    Error::Conflict("a battery or an ESC needs the motor they drive ([motor] file)".into()),
+                ));
+            }
+            return Ok(None);
+        };
+        let supply = match (&self.battery, &self.esc) {
+            (None, Some(_)) => {
+                return Err(at(
+                    "[esc]",
+                    Error::Conflict("an ESC needs the battery in front of it ([battery] cells)".into()),
+                ))
+            }
+            (None, None) => None,
+            (Some(b), esc) => {
+                let lipo = propbet_motor::power::LIPO;
+                let battery = Battery {
+                    cells: b.cells,
+                    cell_volts: b.cell_volts.unwrap_or(lipo.cell_volts),
+                    cell_ohms: b.cell_ohms.unwrap_or(lipo.cell_ohms),
+                    capacity_ah: b.capacity_mah.map_or(0.0, |c| c / 1000.0),
+                    cutoff_volts: b.cutoff_volts.unwrap_or(lipo.cutoff_volts),
+                    usable: b.usable.unwrap_or(lipo.usable),
+                };
+                battery
+                    .check()
+                    .map_err(|e| at("[battery]", Error::Range(e.to_string())))?;
+                let esc_ohms = esc.as_ref().map_or(propbet_motor::power::ESC_OHMS, |e| e.ohms);
+                if !(0.0..10.0).contains(&esc_ohms) {
+                    return Err(at(
+                        "[esc] ohms",
+                        Error::Range(format!("{esc_ohms}: a resistance from 0 to 10 ohm")),
+                    ));
+                }
+                Some(Supply { battery, esc_ohms })
+            }
+        };
+        let given: Vec<(&str, &NumberOrList)> = [
+            ("volts", &m.volts),
+            ("amps", &m.amps),
+            ("thrust", &m.thrust),
+            ("throttle", &m.throttle),
+        ]
+        .into_iter()
+        .filter_map(|(k, v)| v.as_ref().map(|v| (k, v)))
+        .collect();
+        let (key, values) = match given[..] {
+            [] => return Ok(None),
+            [(k, v)] => (k, v),
+            _ => {
+                return Err(at(
+                    "[motor]",
+                    Error::Conflict(
+                        "volts, amps, thrust, throttle: give one of them (what sets the operating point)".into(),
+                    ),
+                ))
+            }
+        };
+        let key_name = format!("[motor] {key}");
+        let list = values.values(&format!("--{key}")).map_err(|e| at(&key_name, e))?;
+        let drives: Vec<Drive> = match key {
+            "volts" => list.into_iter().map(Drive::Volts).collect(),
+            "amps" => list.into_iter().map(Drive::Amps).collect(),
+            "thrust" => list.into_iter().map(Drive::Thrust).collect(),
+            _ => {
+                let Some(s) = &supply else {
+                    return Err(at(
+                        &key_name,
+                        Error::Conflict("a throttle needs the battery ([battery] cells)".into()),
+                    ));
+                };
+                if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
+                    return Err(at(
+                        &key_name,
+                        Error::Range(format!("{bad}: a throttle is between 0 and 1")),
+                    ));
+                }
+                list.into_iter().map(|t| s.drive(t)).collect()
+            }
+        };
+        let speeds = match &m.v {
+            None => vec![0.0],
+            Some(v) => v.values("--v").map_err(|e| at("[motor] v", e))?,
+        };
+        Ok(Some(PoweredSpec {
+            model: model.clone(),
+            motor: dir.join(&m.file),
+            drives,
+            supply,
+            speeds,
+            air: air.clone(),
+            format: TableFormat::Csv,
+            out: Some(out.join("predict/powered.csv")),
+            band: true,
+        }))
+    }
+
     /// The plan of stages: each stage's spec, reading from `dir` and writing under `out`.
     pub fn plan(&self, dir: &Path, out: &Path, xfoil: &XfoilProcessSpec) -> Result<RunPlan> {
         let g = &self.geometry;
@@ -303,6 +409,7 @@ impl Case {
             stations: None,
             band: true,
         };
+        let powered = self.powered_spec(dir, out, &model, &predict.air)?;
         let compare = self.compare_specs(dir, out, model, state)?;
         Ok(RunPlan {
             name: self.name.clone(),
@@ -313,6 +420,7 @@ impl Case {
             scan,
             polars,
             predict,
+            powered,
             compare,
             warnings,
             expected: crate::expected::sentence(

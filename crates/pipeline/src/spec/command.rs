@@ -12,6 +12,8 @@ pub enum StageSpec {
     Polars(PolarsSpec),
     /// Sweeps.
     Predict(PredictSpec),
+    /// The propeller on its motor.
+    Powered(PoweredSpec),
     /// Measured against predicted.
     Compare(CompareSpec),
     /// What is missing.
@@ -25,6 +27,7 @@ impl StageSpec {
             StageSpec::Scan(_) => "scan",
             StageSpec::Polars(_) => "polars",
             StageSpec::Predict(_) => "predict",
+            StageSpec::Powered(_) => "motor",
             StageSpec::Compare(_) => "compare",
             StageSpec::Diagnose(_) => "diagnose",
         }
@@ -32,7 +35,11 @@ impl StageSpec {
 
     /// The equivalent `propbet` command line (without the program name).
     pub fn argv(&self) -> Argv {
-        let mut v = vec![self.name().to_string()];
+        let subcommand = match self {
+            StageSpec::Powered(_) => "predict",
+            _ => self.name(),
+        };
+        let mut v = vec![subcommand.to_string()];
         match self {
             StageSpec::Scan(s) => s.push_argv(&mut v),
             StageSpec::Polars(s) => {
@@ -87,6 +94,29 @@ impl StageSpec {
                 }
                 if let Some(o) = &s.stations {
                     push(&mut v, "--out-stations", path(o));
+                }
+                if s.band {
+                    v.push("--band".into());
+                }
+            }
+            StageSpec::Powered(s) => {
+                s.model.push_argv(&mut v);
+                push(&mut v, "--motor", path(&s.motor));
+                let (flag, values) = drive_list(&s.drives);
+                push_eq(&mut v, flag, values);
+                if let Some(b) = &s.supply {
+                    push(&mut v, "--battery", b.battery.text());
+                    push(&mut v, "--esc-ohms", b.esc_ohms.to_string());
+                }
+                if s.speeds != [0.0] {
+                    push_eq(&mut v, "--v", list_text(&s.speeds));
+                }
+                s.air.push_argv(&mut v);
+                if s.format == TableFormat::Json {
+                    push(&mut v, "--format", "json");
+                }
+                if let Some(o) = &s.out {
+                    push(&mut v, "--out", path(o));
                 }
                 if s.band {
                     v.push("--band".into());
@@ -155,6 +185,29 @@ impl PredictSpec {
             .chain(argv.iter().map(|a| shell_word(a)))
             .collect::<Vec<_>>()
             .join(" ")
+    }
+}
+
+/// The flag of the drivers' kind and their values (a powered spec's drivers are of one kind).
+fn drive_list(drives: &[propbet_motor::Drive]) -> (&'static str, String) {
+    use propbet_motor::Drive;
+    let flag = match drives.first() {
+        Some(Drive::Volts(_)) | None => "--volts",
+        Some(Drive::Amps(_)) => "--amps",
+        Some(Drive::Thrust(_)) => "--thrust",
+        Some(Drive::Omega(_)) => "--rpm",
+        Some(Drive::Throttle { .. }) => "--throttle",
+    };
+    let values: Vec<f64> = drives
+        .iter()
+        .map(|d| match *d {
+            Drive::Volts(x) | Drive::Amps(x) | Drive::Thrust(x) | Drive::Omega(x) => x,
+            Drive::Throttle { throttle, .. } => throttle,
+        })
+        .collect();
+    match drives.first() {
+        Some(Drive::Omega(_)) => (flag, rpm_list_text(&values)),
+        _ => (flag, list_text(&values)),
     }
 }
 

@@ -99,6 +99,82 @@ pub fn powered(
         .collect()
 }
 
+/// A powered prediction: the motor, each point, and the propeller's band at each point with
+/// an operating point (where asked for).
+#[derive(Debug, Clone)]
+pub struct PoweredTable {
+    /// The motor file read.
+    pub motor: MotorFile,
+    /// The points, one per driver value and airspeed.
+    pub points: Vec<PoweredPoint>,
+    /// The propeller's uncertainty band at each point (None where it has no operating point).
+    pub band: Option<Vec<Option<propbet_compare::band::PointBand>>>,
+}
+
+impl PoweredTable {
+    /// Every point has its operating point and every station converged.
+    pub fn clean(&self) -> bool {
+        self.points
+            .iter()
+            .all(|p| p.problem().is_none() && p.outcome.as_ref().is_ok_and(|(_, r)| r.not_converged == 0))
+    }
+}
+
+/// `model` in `fluid` on `motor` (with `supply`, the battery and ESC) at each driver and
+/// airspeed [m/s], with the propeller's band at each operating point when `band`.
+pub fn powered_table(
+    model: &Model,
+    fluid: &Fluid,
+    motor: MotorFile,
+    supply: Option<&Supply>,
+    drives: &[Drive],
+    speeds: &[f64],
+    band: bool,
+) -> Result<PoweredTable> {
+    let points = powered(model, fluid, &motor.motor, supply, drives, speeds)?;
+    let band = band.then(|| powered_band(model, fluid, &points)).transpose()?;
+    Ok(PoweredTable { motor, points, band })
+}
+
+/// The powered table a spec asks for, with `model` (loaded from `spec.model`) in `fluid`.
+pub fn powered_stage(model: &Model, fluid: &Fluid, spec: &crate::spec::PoweredSpec) -> Result<PoweredTable> {
+    let motor = read_motor(&spec.motor)?;
+    powered_table(
+        model,
+        fluid,
+        motor,
+        spec.supply.as_ref(),
+        &spec.drives,
+        &spec.speeds,
+        spec.band,
+    )
+}
+
+/// The propeller's uncertainty band (`predict --band`'s) at each operating point found: its CT,
+/// CP and efficiency at that speed and airspeed, the motor's point held.
+fn powered_band(
+    model: &Model,
+    fluid: &Fluid,
+    points: &[PoweredPoint],
+) -> Result<Vec<Option<propbet_compare::band::PointBand>>> {
+    let solved: Vec<(usize, OperatingPoint, PointResult)> = points
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let (s, r) = p.outcome.as_ref().ok()?;
+            Some((i, OperatingPoint { v: p.v, omega: s.omega }, r.clone()))
+        })
+        .collect();
+    let ops: Vec<OperatingPoint> = solved.iter().map(|x| x.1).collect();
+    let base: Vec<PointResult> = solved.iter().map(|x| x.2.clone()).collect();
+    let bands = crate::band::BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
+    let mut out = vec![None; points.len()];
+    for ((i, ..), b) in solved.iter().zip(bands) {
+        out[*i] = Some(b);
+    }
+    Ok(out)
+}
+
 /// A motor fitted to stand logs, and how well it predicts each step's current when that step
 /// is left out of the fit.
 #[derive(Debug, Clone)]
