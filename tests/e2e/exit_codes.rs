@@ -78,7 +78,7 @@ fn each_command_and_outcome_gets_the_code_its_help_gives() {
     let mut rows = vec![
         row(
             "run",
-            "the shipped sweep-only case",
+            "the shipped case without measurements (sweeps, the prop on its motor)",
             0,
             &[&p("props/cam6x3"), "-o", "out"],
         ),

@@ -117,3 +117,56 @@ fn a_battery_or_esc_without_what_it_drives_is_refused_naming_the_key() {
         assert!(!out.join("predict").exists(), "{body}: a stage ran");
     }
 }
+
+/// `predict --motor --out-stations`: each operating point's stations, at the speed the motor
+/// and the propeller agree on (their thrust, summed along the blade, the point's).
+#[test]
+fn a_powered_prediction_writes_the_stations_of_each_operating_point() {
+    let t = tempfile::tempdir().unwrap();
+    let prop = repo().join("props/cam6x3/cam6x3.qprop");
+    let motor = repo().join("props/motors/s400-6v-dd.motor");
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            prop.to_str().unwrap(),
+            "--motor",
+            motor.to_str().unwrap(),
+            "--volts",
+            "6,7",
+            "--v",
+            "0,5",
+            "-o",
+            "p.csv",
+            "--out-stations",
+            "s.csv",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let (h, points) = read_csv(&t.path().join("p.csv"));
+    let (sh, stations) = read_csv(&t.path().join("s.csv"));
+    let at = |h: &[String], name: &str| h.iter().position(|c| c == name).unwrap();
+    assert_eq!(points.len(), 4);
+    assert_eq!(stations.len() % points.len(), 0, "the same stations at every point");
+    let per = stations.len() / points.len();
+    for (i, p) in points.iter().enumerate() {
+        let rows = &stations[i * per..(i + 1) * per];
+        assert!(rows
+            .iter()
+            .all(|s| s[at(&sh, "rpm")] == p[at(&h, "rpm")] && s[at(&sh, "v_m_s")] == p[at(&h, "v_m_s")]));
+        let num = |s: &Vec<String>, c: &str| s[at(&sh, c)].parse::<f64>().unwrap();
+        let thrust: f64 = rows
+            .windows(2)
+            .map(|w| {
+                (num(&w[1], "r_m") - num(&w[0], "r_m")) * (num(&w[0], "dt_dr_n_m") + num(&w[1], "dt_dr_n_m")) / 2.0
+            })
+            .sum();
+        let table: f64 = p[at(&h, "thrust_n")].parse().unwrap();
+        // The trapezoid leaves out the hub's and the tip's last pieces: a few per cent less.
+        assert!(
+            thrust < table && thrust > 0.95 * table,
+            "point {i}: {thrust} against {table}"
+        );
+    }
+}

@@ -26,6 +26,7 @@ pub use request::{
 };
 
 pub use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PredictSpec, ScanSettings, SweepAxis, TableFormat,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSettings, SweepAxis,
+    TableFormat,
 };
 pub use propbet_pipeline::{Error, Result};

@@ -234,25 +234,26 @@ struct StationRow {
     re_exp: Num,
 }
 
-/// `propbet predict --motor` in memory (with the propeller's band at each point when `band`):
-/// the powered table's columns, and each point without an operating point with the reason.
+/// `propbet predict --motor` in memory (its format and output files aside): the powered
+/// table's columns, each point without an operating point with the reason, and with
+/// `stations` the per-station table of every operating point found. `motor` is the motor
+/// itself (`spec.motor`, its file, is not read).
 pub fn powered(
-    spec: &ModelSpec,
+    spec: &propbet_pipeline::spec::PoweredSpec,
     motor: &propbet_pipeline::motor::MotorFile,
-    supply: Option<&propbet_pipeline::motor::Supply>,
-    drives: &[propbet_pipeline::motor::Drive],
-    speeds: &[f64],
-    air: &propbet_pipeline::spec::AirSpec,
-    band: bool,
-) -> Result<(crate::columns::Table, Vec<String>)> {
-    let run = crate::powered::solve(spec, motor, supply, drives, speeds, air, band)?;
+    stations: bool,
+) -> Result<(crate::columns::Table, Vec<String>, Option<crate::columns::Table>)> {
+    let run = crate::powered::solve(spec, motor, stations)?;
     let problems = run
         .table
         .points
         .iter()
         .filter_map(|p| p.problem().map(|w| format!("V {} m/s: {w}", p.v)))
         .collect();
-    Ok((run.table()?, problems))
+    let per_station = stations
+        .then(|| crate::predict::stations_table(&run.solved()))
+        .transpose()?;
+    Ok((run.table()?, problems, per_station))
 }
 
 /// `propbet motor fit` in memory: the fit, the motor file's text, and the fitted steps.

@@ -5,8 +5,8 @@ use anyhow::Result;
 use propbet_pipeline::bemt::{Fluid, PointResult};
 use propbet_pipeline::compare::band::PointBand;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::motor::{Drive, Motor, MotorFile, Powered, Supply};
-use propbet_pipeline::spec::{AirSpec, ModelSpec, SweepAxis, TableFormat};
+use propbet_pipeline::motor::{Drive, Motor, MotorFile, Powered};
+use propbet_pipeline::spec::{PoweredSpec, SweepAxis, TableFormat};
 use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
 use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
 
@@ -45,30 +45,32 @@ pub struct PoweredRun {
     battery: bool,
 }
 
-/// The model of `spec` on `motor` (with `supply`'s battery and ESC) at each driver value and
-/// airspeed [m/s]; a blade file's polars computed over the speeds the motor can reach.
-pub fn solve(
-    spec: &ModelSpec,
-    motor: &MotorFile,
-    supply: Option<&Supply>,
-    drives: &[Drive],
-    speeds: &[f64],
-    air: &AirSpec,
-    band: bool,
-) -> Result<PoweredRun> {
+/// `spec`'s model on `motor` (the file `spec.motor` names, read, or a motor made in memory)
+/// at each driver value and airspeed, each point's stations kept when `keep_stations`; a blade
+/// file's polars computed over the speeds the motor can reach.
+pub fn solve(spec: &PoweredSpec, motor: &MotorFile, keep_stations: bool) -> Result<PoweredRun> {
+    let supply = spec.supply.as_ref();
     let model = crate::predict::load_model_at(
-        spec,
+        &spec.model,
         || {
             let battery = supply.map(|s| s.source(1.0).0);
             Ok((
-                polar_omegas(&motor.motor, drives, battery),
-                SweepAxis::V(speeds.to_vec()),
+                polar_omegas(&motor.motor, &spec.drives, battery),
+                SweepAxis::V(spec.speeds.clone()),
             ))
         },
-        false,
+        keep_stations,
     )?;
-    let fluid = air.fluid()?;
-    let table = propbet_pipeline::stages::powered_table(&model, &fluid.0, motor.clone(), supply, drives, speeds, band)?;
+    let fluid = spec.air.fluid()?;
+    let table = propbet_pipeline::stages::powered_table(
+        &model,
+        &fluid.0,
+        motor.clone(),
+        supply,
+        &spec.drives,
+        &spec.speeds,
+        spec.band,
+    )?;
     Ok(PoweredRun::new(table, &model, &fluid, supply.is_some()))
 }
 
@@ -107,39 +109,71 @@ impl PoweredRun {
     }
 }
 
+impl PredictArgs {
+    /// The powered stage's spec (with `--motor`).
+    pub fn powered_spec(&self) -> Result<propbet_pipeline::spec::PoweredSpec> {
+        let Some(motor) = &self.motor.motor else {
+            anyhow::bail!("--motor: no motor file");
+        };
+        let supply = self.motor.supply()?;
+        Ok(propbet_pipeline::spec::PoweredSpec {
+            model: self.model.spec()?,
+            motor: motor.clone(),
+            drives: self.motor.drives(self.points.rpm.as_deref(), supply.as_ref())?,
+            supply,
+            speeds: self.points.request().airspeeds()?,
+            air: self.air.spec()?,
+            format: match self.format {
+                crate::predict::Format::Csv => TableFormat::Csv,
+                crate::predict::Format::Json => TableFormat::Json,
+            },
+            out: self.out.clone(),
+            stations: self.stations.clone(),
+            band: self.band,
+        })
+    }
+}
+
 /// Runs `propbet predict --motor`; returns whether every point has its operating point and
 /// every station converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
     let spec = args.powered_spec()?;
     let file = propbet_pipeline::stages::read_motor(&spec.motor)?;
-    let run = solve(
-        &spec.model,
-        &file,
-        spec.supply.as_ref(),
-        &spec.drives,
-        &spec.speeds,
-        &spec.air,
-        spec.band,
-    )?;
+    let run = solve(&spec, &file, spec.stations.is_some())?;
     let mut inputs = spec.model.inputs();
     inputs.push(spec.motor.as_path());
     emit(spec.out.as_deref(), &[run.body(spec.format)?], &inputs)?;
+    if let Some(path) = &spec.stations {
+        crate::output::write_atomic(path, &[crate::predict::stations_csv(&run.solved())?], &inputs)?;
+    }
     for line in run.warnings() {
         eprintln!("propbet: {line}");
     }
     if let Some(out) = &spec.out {
         eprintln!(
-            "propbet predict: {} operating points on {} ({}) -> {}",
+            "propbet predict: {} operating points on {} ({}) -> {}{}",
             run.table.points.len(),
             file.name,
             spec.motor.display(),
-            out.display()
+            out.display(),
+            spec.stations
+                .as_ref()
+                .map_or(String::new(), |s| format!(", stations -> {}", s.display()))
         );
     }
     Ok(run.table.clean())
 }
 
 impl PoweredRun {
+    /// Each operating point found, in the table's order (a point without one has none).
+    pub fn solved(&self) -> Vec<PointResult> {
+        self.table
+            .points
+            .iter()
+            .filter_map(|p| p.outcome.as_ref().ok().map(|(_, r)| r.clone()))
+            .collect()
+    }
+
     /// The table in `format`.
     pub fn body(&self, format: TableFormat) -> Result<Vec<u8>> {
         match format {

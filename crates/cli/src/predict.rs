@@ -293,33 +293,6 @@ impl PredictArgs {
     }
 }
 
-impl PredictArgs {
-    /// The powered stage's spec (with `--motor`).
-    pub fn powered_spec(&self) -> Result<propbet_pipeline::spec::PoweredSpec> {
-        let Some(motor) = &self.motor.motor else {
-            anyhow::bail!("--motor: no motor file");
-        };
-        if self.stations.is_some() {
-            anyhow::bail!("--motor: --out-stations is not available with a motor yet; predict at --rpm for it");
-        }
-        let supply = self.motor.supply()?;
-        Ok(propbet_pipeline::spec::PoweredSpec {
-            model: self.model.spec()?,
-            motor: motor.clone(),
-            drives: self.motor.drives(self.points.rpm.as_deref(), supply.as_ref())?,
-            supply,
-            speeds: self.points.request().airspeeds()?,
-            air: self.air.spec()?,
-            format: match self.format {
-                Format::Csv => TableFormat::Csv,
-                Format::Json => TableFormat::Json,
-            },
-            out: self.out.clone(),
-            band: self.band,
-        })
-    }
-}
-
 /// Operating points as `predict` and `polars` take them: every RPM with every J or V.
 #[derive(Debug, Args)]
 pub struct SweepArgs {
@@ -425,9 +398,7 @@ pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Tabl
     } else {
         crate::columns::table(results.iter().map(|p| sweep_row(p, rho, &source, tip)))?
     };
-    let per_station = stations
-        .then(|| crate::columns::table(station_rows(&results)))
-        .transpose()?;
+    let per_station = stations.then(|| stations_table(&results)).transpose()?;
     let failed = results.iter().map(|p| p.not_converged).sum();
     let failed_points = results.iter().filter(|p| p.not_converged > 0).count();
     Ok((sweep, per_station, (failed, failed_points)))
@@ -666,8 +637,13 @@ struct StationRow {
     convergence: &'static str,
 }
 
-fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
+pub(crate) fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
     csv_rows(station_rows(results), true)
+}
+
+/// The per-station table of `results` as columns.
+pub(crate) fn stations_table(results: &[PointResult]) -> Result<crate::columns::Table> {
+    Ok(crate::columns::table(station_rows(results))?)
 }
 
 fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '_ {

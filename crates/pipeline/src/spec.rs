@@ -377,6 +377,8 @@ pub struct PoweredSpec {
     pub format: TableFormat,
     /// Output file (None: standard output).
     pub out: Option<PathBuf>,
+    /// Per-station table of every operating point found.
+    pub stations: Option<PathBuf>,
     /// Also the propeller's uncertainty band at each operating point.
     pub band: bool,
 }

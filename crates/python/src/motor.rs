@@ -154,13 +154,14 @@ impl Battery {
 }
 
 /// The model on a motor at each voltage, current, thrust, RPM or throttle (one of them) and
-/// airspeed: the powered table's columns and each point without an operating point.
+/// airspeed: the powered table's columns, each point without an operating point, and with
+/// `stations` the per-station table's columns of every operating point found.
 #[pyfunction]
 #[pyo3(signature = (
     model, motor, *, volts=None, amps=None, thrust=None, rpm=None, throttle=None, battery=None,
-    v=None, air=None, band=false
+    v=None, air=None, band=false, stations=false
 ))]
-#[allow(clippy::too_many_arguments)]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn powered<'py>(
     py: Python<'py>,
     model: &Model,
@@ -174,7 +175,8 @@ pub fn powered<'py>(
     v: Option<Bound<'py, PyAny>>,
     air: Option<Bound<'py, PyDict>>,
     band: bool,
-) -> PyResult<(Vec<Bound<'py, PyTuple>>, Vec<String>)> {
+    stations: bool,
+) -> PyResult<(Vec<Bound<'py, PyTuple>>, Vec<String>, Option<Vec<Bound<'py, PyTuple>>>)> {
     let drive = DriveRequest {
         volts: values("volts", volts.as_ref())?,
         amps: values("amps", amps.as_ref())?,
@@ -190,12 +192,25 @@ pub fn powered<'py>(
     let supply = battery.map(|b| b.supply);
     let spec = model.spec.clone();
     let m = motor.file.clone();
-    let (table, problems) = guarded(py, move || {
+    let (table, problems, per_station) = guarded(py, move || {
         let drives = drive.drives(supply.as_ref())?;
         let speeds = speeds.airspeeds()?;
-        propbet_cli::api::powered(&spec, &m, supply.as_ref(), &drives, &speeds, &air.spec()?, band)
+        let spec = propbet_api::PoweredSpec {
+            model: spec,
+            motor: m.name.clone().into(),
+            drives,
+            supply,
+            speeds,
+            air: air.spec()?,
+            format: propbet_api::TableFormat::Csv,
+            out: None,
+            stations: None,
+            band,
+        };
+        propbet_cli::api::powered(&spec, &m, stations)
     })?;
-    Ok((columns(py, table)?, problems))
+    let per_station = per_station.map(|t| columns(py, t)).transpose()?;
+    Ok((columns(py, table)?, problems, per_station))
 }
 
 /// A type 1 motor fitted to stand logs that carry speed, torque, voltage and current (``kv``

@@ -26,6 +26,17 @@ def test_a_motor_file_and_a_motor_of_constants():
         propbet.Motor.from_file("no_such.motor")
 
 
+def test_predict_on_a_motor_with_stations_is_the_command_lines_pair(cli, tmp_path, same_as_file):
+    prop = propbet.Prop.from_qprop(CAM)
+    axi = propbet.Motor.from_file(AXI)
+    table, stations = prop.predict(motor=axi, volts=[6, 8], v=[0, 5], stations=True)
+    cli("predict", "--prop", CAM, "--motor", AXI, "--volts", "6,8", "--v", "0,5", "-o", tmp_path / "m.csv",
+        "--out-stations", tmp_path / "s.csv")
+    same_as_file(table, tmp_path / "m.csv")
+    same_as_file(stations, tmp_path / "s.csv")
+    assert len(stations) % len(table) == 0 and set(stations.rpm) == set(table.rpm)
+
+
 def test_a_battery_and_its_bad_values():
     b = propbet.Battery("3S,2200mAh", esc_ohms=0.01)
     assert b.cells == 3 and b.capacity_mah == 2200 and b.volts == pytest.approx(11.1) and b.esc_ohms == 0.01

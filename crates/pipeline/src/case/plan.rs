@@ -336,9 +336,10 @@ impl Case {
             drives,
             supply,
             speeds,
-            air: air.clone(),
+            air: *air,
             format: TableFormat::Csv,
             out: Some(out.join("predict/powered.csv")),
+            stations: None,
             band: true,
         }))
     }

@@ -99,29 +99,7 @@ impl StageSpec {
                     v.push("--band".into());
                 }
             }
-            StageSpec::Powered(s) => {
-                s.model.push_argv(&mut v);
-                push(&mut v, "--motor", path(&s.motor));
-                let (flag, values) = drive_list(&s.drives);
-                push_eq(&mut v, flag, values);
-                if let Some(b) = &s.supply {
-                    push(&mut v, "--battery", b.battery.text());
-                    push(&mut v, "--esc-ohms", b.esc_ohms.to_string());
-                }
-                if s.speeds != [0.0] {
-                    push_eq(&mut v, "--v", list_text(&s.speeds));
-                }
-                s.air.push_argv(&mut v);
-                if s.format == TableFormat::Json {
-                    push(&mut v, "--format", "json");
-                }
-                if let Some(o) = &s.out {
-                    push(&mut v, "--out", path(o));
-                }
-                if s.band {
-                    v.push("--band".into());
-                }
-            }
+            StageSpec::Powered(s) => s.push_argv(&mut v),
             StageSpec::Compare(s) => {
                 s.model.push_argv(&mut v);
                 s.measured.push_argv(&mut v);
@@ -185,6 +163,36 @@ impl PredictSpec {
             .chain(argv.iter().map(|a| shell_word(a)))
             .collect::<Vec<_>>()
             .join(" ")
+    }
+}
+
+impl PoweredSpec {
+    /// The flags of `propbet predict --motor` that give this spec.
+    fn push_argv(&self, v: &mut Argv) {
+        self.model.push_argv(v);
+        push(v, "--motor", path(&self.motor));
+        let (flag, values) = drive_list(&self.drives);
+        push_eq(v, flag, values);
+        if let Some(b) = &self.supply {
+            push(v, "--battery", b.battery.text());
+            push(v, "--esc-ohms", b.esc_ohms.to_string());
+        }
+        if self.speeds != [0.0] {
+            push_eq(v, "--v", list_text(&self.speeds));
+        }
+        self.air.push_argv(v);
+        if self.format == TableFormat::Json {
+            push(v, "--format", "json");
+        }
+        if let Some(o) = &self.out {
+            push(v, "--out", path(o));
+        }
+        if let Some(o) = &self.stations {
+            push(v, "--out-stations", path(o));
+        }
+        if self.band {
+            v.push("--band".into());
+        }
     }
 }
 

@@ -371,16 +371,17 @@ class Prop:
         ``shaft_power_w``, ``electrical_power_w``, ``eta_motor``, ``eta_total``, ``g_per_w``,
         ...; with a battery ``throttle``, ``battery_amps``, ``endurance_min``, ...; with
         ``band=True`` the propeller's ``ct_lo`` ... ``eta_hi`` at each operating point); a point
-        without an operating point says why in ``no_solution``."""
+        without an operating point says why in ``no_solution``. With ``stations=True``, a pair:
+        the table and the per-station table of every operating point found."""
         if motor is not None:
-            if stations or j is not None or effects:
-                raise InputError("motor: stations, j and effects are not available with a motor; predict at rpm= for them")
-            table, problems = _relayed(lambda: _native.powered(
+            if j is not None or effects:
+                raise InputError("motor: j and effects are not available with a motor; give v= (airspeeds) instead of j=")
+            table, problems, per_station = _relayed(lambda: _native.powered(
                 self.model, motor, volts=volts, amps=amps, thrust=thrust, rpm=rpm, throttle=throttle,
-                battery=battery, v=v, air=air, band=band))
+                battery=battery, v=v, air=air, band=band, stations=stations))
             for p in problems:
                 warnings.warn(p, PropbetWarning, stacklevel=2)
-            return _frame(table)
+            return (_frame(table), _frame(per_station)) if stations else _frame(table)
         if any(x is not None for x in (volts, amps, thrust, throttle, battery)):
             raise InputError("volts, amps, thrust, throttle, battery: give a motor= with them")
         effects = [effects] if isinstance(effects, str) else list(effects)
