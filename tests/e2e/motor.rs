@@ -548,6 +548,16 @@ fn props_side_by_side_answer_which_prop_for_a_motor() {
         );
         assert!(lo < *g && *g < hi, "{}: {lo} {g} {hi}", r[1]);
     }
+    // Full throttle's static thrust and current inside their ranges over the band (each end's
+    // operating point found again).
+    for r in &rows {
+        for q in ["full_thrust", "full_battery_amps"] {
+            let unit = if q == "full_thrust" { "_n" } else { "" };
+            let x = |s: &str| -> f64 { r[col(&h, &format!("{q}{s}{unit}"))].parse().unwrap() };
+            let (lo, mid, hi) = (x("_lo"), x(""), x("_hi"));
+            assert!(lo < mid && mid < hi && hi < 1.5 * lo, "{} {q}: {lo} {mid} {hi}", r[1]);
+        }
+    }
     assert!(
         out.contains("not told apart") || out.contains("beyond the predictions' uncertainty bands"),
         "{out}"

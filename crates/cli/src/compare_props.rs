@@ -29,7 +29,7 @@ pub struct ComparePropsArgs {
     #[arg(long, value_name = "SPEC")]
     pub battery: String,
     /// The ESC's resistance [ohm].
-    #[arg(long, default_value_t = 0.005, value_name = "OHMS")]
+    #[arg(long, default_value_t = propbet_pipeline::motor::ESC_OHMS, value_name = "OHMS")]
     pub esc_ohms: f64,
     /// The thrust of one propeller at hover [N] (the craft's weight over its propellers).
     #[arg(long, value_name = "N")]
@@ -66,7 +66,11 @@ struct Row {
     hover_rpm: Num,
     hover_endurance_min: Num,
     full_thrust_n: Num,
+    full_thrust_lo_n: Num,
+    full_thrust_hi_n: Num,
     full_battery_amps: Num,
+    full_battery_amps_lo: Num,
+    full_battery_amps_hi: Num,
     full_rpm: Num,
     no_hover: String,
 }
@@ -74,6 +78,7 @@ struct Row {
 fn row(k: usize, p: &SideProp, hover: f64) -> Row {
     let h = p.hover.as_ref().ok();
     let f = p.full.first().and_then(|(_, r)| r.as_ref().ok());
+    let band = p.full_band.first().copied().flatten();
     use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
     Row {
         rank: k + 1,
@@ -89,7 +94,11 @@ fn row(k: usize, p: &SideProp, hover: f64) -> Row {
         hover_rpm: h.map(|x| omega_to_rpm(x.0.omega)).into(),
         hover_endurance_min: h.and_then(|x| x.2.endurance).map(seconds_to_minutes).into(),
         full_thrust_n: f.map(|x| x.0.loads.thrust).into(),
+        full_thrust_lo_n: band.map(|b| b.thrust.0).into(),
+        full_thrust_hi_n: band.map(|b| b.thrust.1).into(),
         full_battery_amps: f.map(|x| x.2.battery_amps).into(),
+        full_battery_amps_lo: band.map(|b| b.battery_amps.0).into(),
+        full_battery_amps_hi: band.map(|b| b.battery_amps.1).into(),
         full_rpm: f.map(|x| omega_to_rpm(x.0.omega)).into(),
         no_hover: p.hover.as_ref().err().cloned().unwrap_or_default(),
     }

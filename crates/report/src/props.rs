@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use propbet_pipeline::stages::SideProp;
+use propbet_pipeline::stages::{overall_efficiency, FullRange, SideProp};
 use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 
 use crate::page::{esc, page, sig};
@@ -85,47 +85,57 @@ pub fn answer(props: &[SideProp], s: &Setup) -> Vec<String> {
     out
 }
 
-/// The figure: full-throttle thrust and overall efficiency over airspeed, one line per prop.
+/// The figure: full-throttle thrust, overall efficiency and battery current over airspeed, one
+/// line per prop, each shaded over its prediction's uncertainty band.
 pub fn figure(props: &[SideProp]) -> Figure {
-    let line = |f: &dyn Fn(
-        &(
-            propbet_motor::Powered,
-            propbet_bemt::PointResult,
-            propbet_motor::SupplyPoint,
-        ),
-    ) -> f64| {
-        props
-            .iter()
-            .enumerate()
-            .map(|(k, p)| {
-                let pts = p
-                    .full
+    type Full = (propbet_motor::Powered, propbet_bemt::PointResult, propbet_motor::SupplyPoint);
+    let series = |value: &dyn Fn(f64, &Full) -> f64, range: &dyn Fn(&FullRange) -> (f64, f64)| {
+        let mut out = Vec::new();
+        for (k, p) in props.iter().enumerate() {
+            // The band first, so that the lines are drawn over it.
+            let ranged: Vec<(f64, (f64, f64))> = p
+                .full
+                .iter()
+                .zip(&p.full_band)
+                .filter_map(|((v, _), b)| b.as_ref().map(|b| (*v, range(b))))
+                .collect();
+            if ranged.len() > 1 {
+                let outline = ranged
                     .iter()
-                    .filter_map(|(v, r)| r.as_ref().ok().map(|x| (*v, f(x))))
+                    .map(|(v, r)| (*v, r.0))
+                    .chain(ranged.iter().rev().map(|(v, r)| (*v, r.1)))
                     .collect();
-                Series::new(&p.name, pts, Mark::Line, Some(k))
-            })
-            .collect::<Vec<_>>()
+                out.push(Series::new("", outline, Mark::Area, Some(k)));
+            }
+            let pts = p
+                .full
+                .iter()
+                .filter_map(|(v, r)| r.as_ref().ok().map(|x| (*v, value(*v, x))))
+                .collect();
+            out.push(Series::new(&p.name, pts, Mark::Line, Some(k)));
+        }
+        out
     };
     let panel = |title: &str, y: &str, series: Vec<Series>| Panel::new(title, "airspeed [m/s]", y, series);
     Figure {
         panels: vec![
-            panel("thrust at full throttle", "thrust [N]", line(&|x| x.0.loads.thrust)),
+            panel(
+                "thrust at full throttle",
+                "thrust [N]",
+                series(&|_, x| x.0.loads.thrust, &|b| b.thrust),
+            ),
             panel(
                 "overall efficiency at full throttle (thrust power / battery power)",
                 "efficiency [-]",
-                line(&|x| {
-                    if x.2.battery_power > 0.0 {
-                        x.1.thrust * x.1.v / x.2.battery_power
-                    } else {
-                        0.0
-                    }
-                }),
+                series(
+                    &|v, x| overall_efficiency(x.0.loads.thrust, v, x.2.battery_power),
+                    &|b| b.efficiency,
+                ),
             ),
             panel(
                 "battery current at full throttle",
                 "current [A]",
-                line(&|x| x.2.battery_amps),
+                series(&|_, x| x.2.battery_amps, &|b| b.battery_amps),
             ),
         ],
         columns: 3,
@@ -151,6 +161,11 @@ pub fn html(props: &[SideProp], s: &Setup, fig: &Figure) -> Result<String, PlotE
         let hover = p.hover.as_ref().ok();
         let full = p.full.first().and_then(|(_, r)| r.as_ref().ok());
         let opt = |x: Option<f64>| x.map_or("–".to_string(), sig);
+        let band = p.full_band.first().copied().flatten();
+        let ranged = |x: Option<f64>, r: Option<(f64, f64)>| match r {
+            Some((lo, hi)) => format!("{} ({}–{})", opt(x), sig(lo), sig(hi)),
+            None => opt(x),
+        };
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
@@ -163,8 +178,8 @@ pub fn html(props: &[SideProp], s: &Setup, fig: &Figure) -> Result<String, PlotE
             opt(hover.map(|x| x.2.battery_amps)),
             opt(hover.map(|x| x.0.amps)),
             opt(hover.and_then(|x| x.2.endurance).map(propbet_units::seconds_to_minutes)),
-            opt(full.map(|x| x.0.loads.thrust)),
-            opt(full.map(|x| x.2.battery_amps)),
+            ranged(full.map(|x| x.0.loads.thrust), band.map(|b| b.thrust)),
+            ranged(full.map(|x| x.2.battery_amps), band.map(|b| b.battery_amps)),
             opt(full.map(|x| propbet_units::omega_to_rpm(x.0.omega))),
         );
     }
@@ -176,7 +191,7 @@ pub fn html(props: &[SideProp], s: &Setup, fig: &Figure) -> Result<String, PlotE
     );
     let _ = writeln!(
         h,
-        "<p class=\"note\">Each propeller's prediction (its model as `propbet predict` makes it) on QPROP's motor model and a battery of cells behind their resistance through an ESC taken as an ideal switch with a resistance (docs: commands, `--battery`). Hover: static, at the thrust given. Ranked by g/W at hover (thrust over the battery's power). The band: the g/W at hover at the ends of each prediction's uncertainty band (its CT and CP, as `predict --band` gives them; at a fixed thrust the power goes as CP/CT^1.5, the motor's efficiency held, the corners taken apart). command: <code>{}</code></p>",
+        "<p class=\"note\">Each propeller's prediction (its model as `propbet predict` makes it) on QPROP's motor model and a battery of cells behind their resistance through an ESC taken as an ideal switch with a resistance (docs: commands, `--battery`). Hover: static, at the thrust given. Ranked by g/W at hover (thrust over the battery's power). The band: the g/W at hover at the ends of each prediction's uncertainty band (its CT and CP, as `predict --band` gives them; at a fixed thrust the power goes as CP/CT^1.5, the motor's efficiency held, the corners taken apart). At full throttle (the table's static range and the figure's shading): the propeller's thrust and torque scaled by its band's ends of CT and CP at each point (low CT with high CP, high CT with low CP) and the motor's and battery's operating point found again for each, so that a propeller taking more torque turns slower and draws more. command: <code>{}</code></p>",
         esc(s.command)
     );
     Ok(page("propbet: propellers side by side", "", &h))

@@ -26,6 +26,86 @@ pub struct SideProp {
     pub full: Vec<(f64, SidePoint)>,
     /// The g/W at hover at the ends of the prediction's uncertainty band (low, high).
     pub hover_band: Option<(f64, f64)>,
+    /// At full throttle, at each airspeed of `full`, the range of thrust, battery current and
+    /// overall efficiency over the band's ends (None where the point or an end has no
+    /// operating point).
+    pub full_band: Vec<Option<FullRange>>,
+}
+
+/// The range of a full-throttle point over the prediction's uncertainty band: the propeller's
+/// thrust and torque scaled by its band's ends of CT and CP at that point (low CT with high CP,
+/// high CT with low CP), and the motor's and battery's operating point found again for each,
+/// so that a propeller that takes more torque also turns slower and draws more current.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FullRange {
+    /// Thrust [N], lowest and highest.
+    pub thrust: (f64, f64),
+    /// Battery current [A].
+    pub battery_amps: (f64, f64),
+    /// Overall efficiency, thrust power over battery power [-].
+    pub efficiency: (f64, f64),
+}
+
+/// Thrust power over the battery's power (0 where the battery gives nothing).
+pub fn overall_efficiency(thrust: f64, v: f64, battery_power: f64) -> f64 {
+    if battery_power > 0.0 {
+        thrust * v / battery_power
+    } else {
+        0.0
+    }
+}
+
+/// The full-throttle points' ranges over the band (see [`FullRange`]).
+fn full_band(
+    model: &Model,
+    fluid: &Fluid,
+    motor: &Motor,
+    supply: &Supply,
+    full: &[PoweredPoint],
+) -> Result<Vec<Option<FullRange>>> {
+    let solved: Vec<(usize, propbet_bemt::OperatingPoint, PointResult)> = full
+        .iter()
+        .enumerate()
+        .filter_map(|(i, p)| {
+            let (m, r) = p.outcome.as_ref().ok()?;
+            Some((i, propbet_bemt::OperatingPoint { v: p.v, omega: m.omega }, r.clone()))
+        })
+        .collect();
+    let ops: Vec<_> = solved.iter().map(|x| x.1).collect();
+    let base: Vec<_> = solved.iter().map(|x| x.2.clone()).collect();
+    let bands = crate::band::BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
+    let ceiling = crate::stages::omega_ceiling(model, fluid);
+    let mut out = vec![None; full.len()];
+    for ((i, op, r), b) in solved.iter().zip(bands) {
+        let (Some(ct), Some(cp)) = (r.ct, r.cp) else { continue };
+        let mut ends = Vec::new();
+        for (kt, kq) in [(b.ct.lo / ct, b.cp.hi / cp), (b.ct.hi / ct, b.cp.lo / cp)] {
+            let mut loads = |omega: f64| -> Result<propbet_motor::PropLoads> {
+                let p = crate::stages::solve(model, fluid, &[propbet_bemt::OperatingPoint { v: op.v, omega }])?;
+                let p = p.first().ok_or_else(|| crate::Error::Nothing("the solver returned no point".into()))?;
+                Ok(propbet_motor::PropLoads {
+                    thrust: kt * p.thrust,
+                    torque: kq * p.torque,
+                })
+            };
+            let m = match propbet_motor::operate(motor, supply.drive(1.0), ceiling, &mut loads) {
+                Ok(m) => m,
+                Err(propbet_motor::OperateError::Prop(e)) => return Err(e),
+                Err(_) => break,
+            };
+            let Ok(s) = supply.at(m.volts, m.amps) else { break };
+            ends.push((m.loads.thrust, s.battery_amps, overall_efficiency(m.loads.thrust, op.v, s.battery_power)));
+        }
+        if let [a, b] = ends[..] {
+            let span = |x: f64, y: f64| (x.min(y), x.max(y));
+            out[*i] = Some(FullRange {
+                thrust: span(a.0, b.0),
+                battery_amps: span(a.1, b.1),
+                efficiency: span(a.2, b.2),
+            });
+        }
+    }
+    Ok(out)
 }
 
 impl SideProp {
@@ -91,6 +171,7 @@ pub fn side_by_side(
             hover: side_point(&hover[0]),
             full: full.iter().map(|p| (p.v, side_point(p))).collect(),
             hover_band: None,
+            full_band: full_band(model, fluid, motor, supply, &full)?,
         };
         prop.hover_band = hover_band(model, fluid, &prop)?;
         out.push(prop);
