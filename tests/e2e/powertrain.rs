@@ -170,3 +170,127 @@ fn a_powered_prediction_writes_the_stations_of_each_operating_point() {
         );
     }
 }
+
+/// A RCbenchmark step log (its columns as the Series 1585 writes them) of `motor` on a
+/// propeller of Q = 2e-8 w^2 at 12 V through an ideal ESC: 20 samples at each ESC command,
+/// each reading with 1 % noise.
+fn generated_log(motor: &propbet_pipeline::motor::Motor) -> String {
+    let header = "Time (s),ESC signal (µs),Servo 1 (µs),Servo 2 (µs),Servo 3 (µs),AccX (g),AccY (g),AccZ (g),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Electrical Speed (RPM),Motor Optical Speed (RPM),Electrical Power (W),Mechanical Power (W),Motor Efficiency (%),Propeller Mech. Efficiency (N/W),Overall Efficiency (N/W),Vibration (g),App message,";
+    let mut state: u64 = 7;
+    let mut noise = move || {
+        // A sum of four uniforms: near-Gaussian, 1 % standard deviation.
+        (0..4)
+            .map(|_| {
+                state = state
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .sum::<f64>()
+            * 0.01
+            * 3.0f64.sqrt()
+    };
+    let mut out = vec![header.to_string()];
+    let mut t = 0.0;
+    for esc in (1300..=2000).step_by(100) {
+        let d = (esc as f64 - 1000.0) / 1000.0;
+        // The speed where the motor at d 12 V turns the propeller (bisection).
+        let (mut lo, mut hi) = (0.0, motor.free_speed(12.0 * d).unwrap());
+        for _ in 0..200 {
+            let w = 0.5 * (lo + hi);
+            if 2e-8 * w * w < motor.at(w, 12.0 * d).torque {
+                lo = w;
+            } else {
+                hi = w;
+            }
+        }
+        let w = 0.5 * (lo + hi);
+        let at = motor.at(w, 12.0 * d);
+        for _ in 0..20 {
+            t += 0.1;
+            let rpm = propbet_pipeline::units::omega_to_rpm(w) * (1.0 + noise());
+            out.push(format!(
+                "{t},{esc},,,,0,0,-1,{},{},{},{},0,{rpm},,,,,,0,,",
+                at.torque * (1.0 + noise()),
+                1e-6 * w * w,
+                12.0 * (1.0 + noise()),
+                d * at.amps * (1.0 + noise()),
+            ));
+        }
+    }
+    out.join("\n") + "\n"
+}
+
+/// `motor fit --kq`: a type 2 motor whose torque constant is its own, found from a stand log
+/// of it within the stated intervals, written as a type 2 file propbet reads back.
+#[test]
+fn a_type_2_fit_finds_the_torque_constant_of_a_generated_log() {
+    let t = tempfile::tempdir().unwrap();
+    let truth =
+        propbet_pipeline::motor::Motor::from_params(2, &[0.12, 0.9, 1400.0, 1540.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
+    std::fs::write(t.path().join("log.csv"), generated_log(&truth)).unwrap();
+    let o = run(
+        &["motor", "fit", "--measured", "log.csv", "--kq", "-o", "m.motor"],
+        t.path(),
+    );
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{e}");
+    let text = std::fs::read_to_string(t.path().join("m.motor")).unwrap();
+    // The comment line: "R  = x ± y ohm, Io = x ± y A, Kv = x ± y rpm/V (...), Kq = x ± y rpm/V".
+    let value = |name: &str| -> (f64, f64) {
+        let rest = text
+            .split(&format!("{name} = "))
+            .nth(1)
+            .unwrap_or_else(|| panic!("{name}: {text}"));
+        let mut w = rest.split_whitespace();
+        let v: f64 = w.next().unwrap().parse().unwrap();
+        assert_eq!(w.next(), Some("±"));
+        let pm: f64 = w.next().unwrap().trim_end_matches(',').parse().unwrap();
+        (v, pm)
+    };
+    for (name, truth) in [("R ", 0.12), ("Io", 0.9), ("Kv", 1400.0), ("Kq", 1540.0)] {
+        let (v, pm) = value(name);
+        assert!((v - truth).abs() <= pm, "{name}: {v} ± {pm}, truth {truth}\n{text}");
+    }
+    // Kq told apart from Kv: its interval narrow, not overlapping Kv's value.
+    let (kq, kq_pm) = value("Kq");
+    assert!(kq_pm < 0.03 * kq && (kq - 1400.0).abs() > kq_pm, "{kq} ± {kq_pm}");
+    // A type 2 motor file: QPROP's eight parameters, read back by propbet.
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            super::cam6x3().to_str().unwrap(),
+            "--motor",
+            "m.motor",
+            "--volts",
+            "8",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(text.lines().any(|l| l.trim_start().starts_with('2')), "{text}");
+    // Without the ESC command, refused with the reason.
+    let no_esc: String = generated_log(&truth)
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                l.to_string()
+            } else {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c[1] = "";
+                c.join(",")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(t.path().join("no_esc.csv"), no_esc).unwrap();
+    let o = run(&["motor", "fit", "--measured", "no_esc.csv", "--kq"], t.path());
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("a fit of Kq needs the ESC command"),
+        "{}",
+        stderr(&o)
+    );
+}

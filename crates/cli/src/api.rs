@@ -256,13 +256,17 @@ pub fn powered(
     Ok((run.table()?, problems, per_station))
 }
 
-/// `propbet motor fit` in memory: the fit, the motor file's text, and the fitted steps.
+/// `propbet motor fit` in memory (`kq`: `--kq`, a type 2 motor): the fit, the motor file's
+/// text, and the fitted steps.
 pub fn fit_motor(
     spec: &MeasuredSpec,
     kv: Option<f64>,
+    kq: bool,
     name: Option<String>,
 ) -> Result<(crate::motor_fit::Fitted, crate::columns::Table)> {
-    let f = crate::motor_fit::fitted(spec, kv, name)?;
+    use propbet_pipeline::motor::FitKind;
+    let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
+    let f = crate::motor_fit::fitted(spec, kv, kind, name)?;
     let steps = crate::motor_fit::steps(&f.fit)?;
     Ok((f, steps))
 }

@@ -1,11 +1,12 @@
-//! `propbet motor fit`: a QPROP motor file (type 1: R, Io, Kv) fitted to thrust-stand logs
-//! that carry speed, torque, voltage and current, with the fit's numbers in its comments.
+//! `propbet motor fit`: a QPROP motor file (type 1: R, Io, Kv; with `--kq` type 2: R, Io, Kv,
+//! Kq) fitted to thrust-stand logs that carry speed, torque, voltage and current, with the
+//! fit's numbers in its comments.
 
 use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, Subcommand};
-use propbet_pipeline::motor::{write_motor, MotorFile};
+use propbet_pipeline::motor::{write_motor, FitKind, MotorFile};
 
 use crate::compare::MeasuredArgs;
 use crate::output::emit;
@@ -28,6 +29,11 @@ pub struct FitArgs {
     /// ESC command's duty).
     #[arg(long)]
     pub kv: Option<f64>,
+    /// Fit the torque constant Kq on its own (a QPROP type 2 motor: R, Io, Kv, Kq): Kq and Io
+    /// from the motor's current at the ESC's duty, R and Kv from the supply power. Needs the
+    /// ESC command.
+    #[arg(long)]
+    pub kq: bool,
     /// The motor's name in the file (default: the first log's name).
     #[arg(long)]
     pub name: Option<String>,
@@ -55,15 +61,20 @@ pub struct Fitted {
     pub lines: [String; 2],
 }
 
-/// Fits a type 1 motor to the logs of `spec` (`kv` [rpm/V] the maker's, or None: from the ESC
-/// command's duty); `name` the motor's (None: the first log's name).
-pub fn fitted(spec: &propbet_pipeline::spec::MeasuredSpec, kv: Option<f64>, name: Option<String>) -> Result<Fitted> {
+/// Fits a motor of `kind` to the logs of `spec` (`kv` [rpm/V] the maker's, or None: from the
+/// ESC command's duty); `name` the motor's (None: the first log's name).
+pub fn fitted(
+    spec: &propbet_pipeline::spec::MeasuredSpec,
+    kv: Option<f64>,
+    kind: FitKind,
+    name: Option<String>,
+) -> Result<Fitted> {
     if let Some(kv) = kv {
         if !(kv > 0.0 && kv.is_finite()) {
             anyhow::bail!("--kv {kv}: Kv is a positive number of rpm per volt");
         }
     }
-    let f = propbet_pipeline::stages::fit_motor(spec, kv)?;
+    let f = propbet_pipeline::stages::fit_motor(spec, kv, kind)?;
     let m = &f.fit;
     let name = name.unwrap_or_else(|| {
         let first = spec
@@ -82,8 +93,15 @@ pub fn fitted(spec: &propbet_pipeline::spec::MeasuredSpec, kv: Option<f64>, name
         .map_or("n/a".to_string(), |h| format!("{:.1} %", 100.0 * h));
     let lines = [
         format!(
-            "R  = {:.4} ± {:.4} ohm, Io = {:.3} ± {:.3} A, Kv = {:.0} ± {:.0} rpm/V ({kv_words}); 95 % intervals",
-            m.r.value, m.r.plus_minus, m.io.value, m.io.plus_minus, m.kv_rpm.value, m.kv_rpm.plus_minus
+            "R  = {:.4} ± {:.4} ohm, Io = {:.3} ± {:.3} A, Kv = {:.0} ± {:.0} rpm/V ({kv_words}){}; 95 % intervals",
+            m.r.value,
+            m.r.plus_minus,
+            m.io.value,
+            m.io.plus_minus,
+            m.kv_rpm.value,
+            m.kv_rpm.plus_minus,
+            m.kq_rpm
+                .map_or(String::new(), |k| format!(", Kq = {:.0} ± {:.0} rpm/V", k.value, k.plus_minus))
         ),
         format!(
             "supply current over {} steps: RMS error {:.1} %; each step left out of the fit and predicted: median {held}",
@@ -106,7 +124,19 @@ pub fn fitted(spec: &propbet_pipeline::spec::MeasuredSpec, kv: Option<f64>, name
     let file = MotorFile {
         name,
         motor: m.motor,
-        params: vec![m.motor.r0, m.motor.io0, m.motor.kv_rpm],
+        params: match kind {
+            FitKind::Type1 => vec![m.motor.r0, m.motor.io0, m.motor.kv_rpm],
+            FitKind::Type2 => vec![
+                m.motor.r0,
+                m.motor.io0,
+                m.motor.kv_rpm,
+                m.motor.kq_rpm,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+        },
         labels: Vec::new(),
     };
     // Comment lines a person reads in an editor or a terminal: at most 100 characters.
@@ -132,7 +162,12 @@ fn fit(args: &FitArgs) -> Result<bool> {
     let spec = args.measured.spec()?;
     let Fitted {
         fit: f, text, lines, ..
-    } = fitted(&spec, args.kv, args.name.clone())?;
+    } = fitted(
+        &spec,
+        args.kv,
+        if args.kq { FitKind::Type2 } else { FitKind::Type1 },
+        args.name.clone(),
+    )?;
     let inputs: Vec<&std::path::Path> = spec.files.iter().map(PathBuf::as_path).collect();
     emit(args.out.as_deref(), &[text.as_bytes()], &inputs)?;
     for l in &lines {

@@ -16,6 +16,7 @@ pub mod qprop {
 pub mod motor {
     pub use propbet_motor::fit::KvSource;
     pub use propbet_motor::power::ESC_OHMS;
+    pub use propbet_motor::FitKind;
     pub use propbet_motor::{write_motor, Battery, Drive, Motor, MotorFile, Powered, Supply, SupplyPoint};
 }
 

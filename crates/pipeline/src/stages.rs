@@ -335,7 +335,7 @@ pub use powered::{
 };
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
-pub use side::{overall_efficiency, FullRange, side_by_side, SidePoint, SideProp};
+pub use side::{overall_efficiency, side_by_side, FullRange, SidePoint, SideProp};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};
 
 #[cfg(test)]

@@ -213,16 +213,18 @@ pub fn powered<'py>(
     Ok((columns(py, table)?, problems, per_station))
 }
 
-/// A type 1 motor fitted to stand logs that carry speed, torque, voltage and current (``kv``
-/// the maker's, or from the ESC command's duty): the motor, its file's text, a summary
-/// (constants with their 95 % half-widths, errors, notes) and the fitted steps' columns.
+/// A type 1 motor (type 2 with ``kq``: Kq fitted on its own) fitted to stand logs that carry
+/// speed, torque, voltage and current (``kv`` the maker's, or from the ESC command's duty):
+/// the motor, its file's text, a summary (constants with their 95 % half-widths, errors,
+/// notes) and the fitted steps' columns.
 #[pyfunction]
-#[pyo3(signature = (files, *, kv=None, name=None, poles=None, rpm_source=None, atmosphere=None, rho=None, columns=None))]
+#[pyo3(signature = (files, *, kv=None, kq=false, name=None, poles=None, rpm_source=None, atmosphere=None, rho=None, columns=None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn fit_motor<'py>(
     py: Python<'py>,
     files: Vec<PathBuf>,
     kv: Option<f64>,
+    kq: bool,
     name: Option<String>,
     poles: Option<u32>,
     rpm_source: Option<String>,
@@ -231,12 +233,13 @@ pub fn fit_motor<'py>(
     columns: Option<PathBuf>,
 ) -> PyResult<(Motor, String, Bound<'py, PyDict>, Vec<Bound<'py, PyTuple>>)> {
     let request = crate::model::measured_request(files, poles, rpm_source, atmosphere, rho, columns);
-    let (f, steps) = guarded(py, move || propbet_cli::api::fit_motor(&request.spec()?, kv, name))?;
+    let (f, steps) = guarded(py, move || propbet_cli::api::fit_motor(&request.spec()?, kv, kq, name))?;
     let m = &f.fit.fit;
     let summary = PyDict::new(py);
     summary.set_item("r", (m.r.value, m.r.plus_minus))?;
     summary.set_item("io", (m.io.value, m.io.plus_minus))?;
     summary.set_item("kv", (m.kv_rpm.value, m.kv_rpm.plus_minus))?;
+    summary.set_item("kq", m.kq_rpm.map(|k| (k.value, k.plus_minus)))?;
     summary.set_item(
         "kv_from",
         match m.kv_source {

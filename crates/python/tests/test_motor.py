@@ -87,6 +87,10 @@ def test_the_fit_is_the_command_lines_file(cli, tmp_path):
     assert fitted.r[1] > 0 and fitted.held_out_median < 0.05
     assert len(fitted.steps) == 11 and fitted.steps.amps_held_out.notna().all()
     assert fitted.motor.kv == 1000 and fitted.motor.r == pytest.approx(fitted.r[0], rel=1e-9)
+    assert fitted.kq is None and fitted.motor.kind == 1
+    # A type 2 fit needs the motor's own current: this log stops below half throttle.
+    with pytest.raises(propbet.InputError, match="a fit of Kq needs the ESC command"):
+        propbet.fit_motor(LOG, kv=1000, kq=True)
 
 
 def test_props_side_by_side_are_the_command_lines_table(cli, tmp_path, same_as_file):

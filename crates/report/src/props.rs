@@ -88,7 +88,11 @@ pub fn answer(props: &[SideProp], s: &Setup) -> Vec<String> {
 /// The figure: full-throttle thrust, overall efficiency and battery current over airspeed, one
 /// line per prop, each shaded over its prediction's uncertainty band.
 pub fn figure(props: &[SideProp]) -> Figure {
-    type Full = (propbet_motor::Powered, propbet_bemt::PointResult, propbet_motor::SupplyPoint);
+    type Full = (
+        propbet_motor::Powered,
+        propbet_bemt::PointResult,
+        propbet_motor::SupplyPoint,
+    );
     let series = |value: &dyn Fn(f64, &Full) -> f64, range: &dyn Fn(&FullRange) -> (f64, f64)| {
         let mut out = Vec::new();
         for (k, p) in props.iter().enumerate() {

@@ -193,10 +193,14 @@ pub struct FittedMotor {
     pub misses: Option<String>,
 }
 
-/// Fits a type 1 motor to the steps of the measured files that log speed, torque, voltage
+/// Fits a motor of `kind` to the steps of the measured files that log speed, torque, voltage
 /// and current (`kv_rpm` the maker's Kv when given), each step also predicted with itself
 /// left out.
-pub fn fit_motor(spec: &crate::spec::MeasuredSpec, kv_rpm: Option<f64>) -> Result<FittedMotor> {
+pub fn fit_motor(
+    spec: &crate::spec::MeasuredSpec,
+    kv_rpm: Option<f64>,
+    kind: propbet_motor::FitKind,
+) -> Result<FittedMotor> {
     use propbet_measure::Loads;
     let batch = crate::stages::load_batch(spec)?;
     if let Some(r) = batch.refused.first() {
@@ -232,7 +236,7 @@ pub fn fit_motor(spec: &crate::spec::MeasuredSpec, kv_rpm: Option<f64>) -> Resul
             "{without} steps without torque, voltage or current (or flagged: unsteady, windmilling) left out"
         ));
     }
-    let fit = propbet_motor::fit_motor(&points, kv_rpm).map_err(|e| {
+    let fit = propbet_motor::fit_motor(&points, kv_rpm, kind).map_err(|e| {
         let hint = match e {
             propbet_motor::FitError::Unphysical(_) => {
                 " (an RPM column that is the motor's electrical speed needs --poles; a log of a varying \
@@ -242,18 +246,47 @@ pub fn fit_motor(spec: &crate::spec::MeasuredSpec, kv_rpm: Option<f64>) -> Resul
         };
         Error::Nothing(format!("{e}{hint}"))
     })?;
-    if let propbet_motor::fit::KvSource::EscDuty(n) = fit.kv_source {
-        notes.push(format!(
-            "Kv from the voltage the motor sees at {n} steps of half throttle and above, the ESC's duty read as \
-             (command - 1000 µs) / 1000 µs (a linear ESC calibrated to 1000-2000 µs); give the maker's Kv \
-             (--kv) where the ESC is not"
-        ));
+    const DUTY: &str = "the ESC's duty read as (command - 1000 µs) / 1000 µs (a linear ESC calibrated to \
+                        1000-2000 µs)";
+    match (kind, fit.kv_source) {
+        (propbet_motor::FitKind::Type1, propbet_motor::fit::KvSource::EscDuty(n)) => notes.push(format!(
+            "Kv from the voltage the motor sees at {n} steps of half throttle and above, {DUTY}; give the maker's \
+             Kv (--kv) where the ESC is not"
+        )),
+        (propbet_motor::FitKind::Type2, source) => {
+            notes.push(format!(
+                "Kq and Io from the motor's own current (the supply's over the duty) at the steps of half throttle \
+                 and above, {DUTY}; R {} from the supply power",
+                if source == propbet_motor::fit::KvSource::Given {
+                    "(Kv given)"
+                } else {
+                    "and Kv"
+                }
+            ));
+            if source != propbet_motor::fit::KvSource::Given {
+                notes.push(
+                    "on a propeller's load the current and the speed rise together, so R and Kv trade against each \
+                     other: their intervals are wide; the maker's Kv (--kv) makes R's narrow"
+                        .into(),
+                );
+            }
+        }
+        _ => {}
     }
     notes.push(
-        "the ESC taken as lossless: its losses are in R, and Io holds the motor's and the ESC's no-load draw".into(),
+        match kind {
+            propbet_motor::FitKind::Type1 => {
+                "the ESC taken as lossless: its losses are in R, and Io holds the motor's and the ESC's no-load draw"
+            }
+            propbet_motor::FitKind::Type2 => {
+                "the ESC taken as lossless: its losses, and the motor's that grow with its power, are in Kq above Kv, \
+             in R and in Io"
+            }
+        }
+        .into(),
     );
     let step: Vec<usize> = (0..points.len()).collect();
-    let held = propbet_motor::held_out_amps(&points, &step);
+    let held = propbet_motor::held_out_amps(&points, &step, kv_rpm, kind);
     let errors: Vec<f64> = points
         .iter()
         .zip(&held)

@@ -82,7 +82,9 @@ fn full_band(
         for (kt, kq) in [(b.ct.lo / ct, b.cp.hi / cp), (b.ct.hi / ct, b.cp.lo / cp)] {
             let mut loads = |omega: f64| -> Result<propbet_motor::PropLoads> {
                 let p = crate::stages::solve(model, fluid, &[propbet_bemt::OperatingPoint { v: op.v, omega }])?;
-                let p = p.first().ok_or_else(|| crate::Error::Nothing("the solver returned no point".into()))?;
+                let p = p
+                    .first()
+                    .ok_or_else(|| crate::Error::Nothing("the solver returned no point".into()))?;
                 Ok(propbet_motor::PropLoads {
                     thrust: kt * p.thrust,
                     torque: kq * p.torque,
@@ -94,7 +96,11 @@ fn full_band(
                 Err(_) => break,
             };
             let Ok(s) = supply.at(m.volts, m.amps) else { break };
-            ends.push((m.loads.thrust, s.battery_amps, overall_efficiency(m.loads.thrust, op.v, s.battery_power)));
+            ends.push((
+                m.loads.thrust,
+                s.battery_amps,
+                overall_efficiency(m.loads.thrust, op.v, s.battery_power),
+            ));
         }
         if let [a, b] = ends[..] {
             let span = |x: f64, y: f64| (x.min(y), x.max(y));

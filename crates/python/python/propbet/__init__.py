@@ -600,7 +600,8 @@ def validate(
 class FittedMotor:
     """A motor fitted to stand logs (:func:`fit_motor`): the ``motor`` (:class:`Motor`), its
     QPROP motor file's ``text`` (the fit's numbers in its comments), ``r``, ``io`` and ``kv``
-    each as (value, 95 % half-width) [ohm, A, rpm/V], ``kv_from`` ("given" or "esc_duty"), the
+    each as (value, 95 % half-width) [ohm, A, rpm/V], ``kq`` too for a type 2 fit (None for
+    type 1, whose Kq is Kv), ``kv_from`` ("given" or "esc_duty"), the
     supply current's ``rms_current`` error and ``held_out_median`` (each step predicted with
     itself left out), ``notes`` and ``misses`` in words, and the fitted ``steps``
     (DataFrame: ``rpm``, ``torque_nm``, ``volts``, ``amps``, ``esc_us``, ``amps_held_out``)."""
@@ -610,6 +611,7 @@ class FittedMotor:
     r: tuple
     io: tuple
     kv: tuple
+    kq: Optional[tuple]
     kv_from: str
     rms_current: float
     held_out_median: Optional[float]
@@ -618,14 +620,15 @@ class FittedMotor:
     steps: pd.DataFrame
 
 
-def fit_motor(measured: Union[PathLike, Sequence[PathLike]], *, kv: Optional[float] = None, name: Optional[str] = None, **options: Any) -> FittedMotor:
+def fit_motor(measured: Union[PathLike, Sequence[PathLike]], *, kv: Optional[float] = None, kq: bool = False, name: Optional[str] = None, **options: Any) -> FittedMotor:
     """R, Io and Kv of a type 1 motor fitted to stand logs that carry speed, torque, voltage
     and current (``propbet motor fit``): ``kv`` the maker's Kv [rpm/V] (without it, found
-    from the ESC command's duty), ``name`` the motor's; ``options`` the measurement settings
-    of :func:`compare` (``poles``, ``rpm_source``, ...)."""
-    motor, text, summary, steps = _relayed(lambda: _native.fit_motor(_files(measured), kv=kv, name=name, **options))
+    from the ESC command's duty), ``kq=True`` a type 2 motor with its torque constant Kq fitted
+    on its own (``--kq``), ``name`` the motor's; ``options`` the measurement settings of
+    :func:`compare` (``poles``, ``rpm_source``, ...)."""
+    motor, text, summary, steps = _relayed(lambda: _native.fit_motor(_files(measured), kv=kv, kq=kq, name=name, **options))
     return FittedMotor(
-        motor=motor, text=text, r=summary["r"], io=summary["io"], kv=summary["kv"],
+        motor=motor, text=text, r=summary["r"], io=summary["io"], kv=summary["kv"], kq=summary["kq"],
         kv_from=summary["kv_from"], rms_current=summary["rms_current"],
         held_out_median=summary["held_out_median"], notes=summary["notes"], misses=summary["misses"],
         steps=_frame(steps),
