@@ -294,3 +294,88 @@ fn a_type_2_fit_finds_the_torque_constant_of_a_generated_log() {
         stderr(&o)
     );
 }
+
+/// `compare --motor` on a log the chain itself made (`predict --motor` at throttles on a
+/// battery without resistance, through an ideal ESC, written as a RCbenchmark log): the speed
+/// at the log's throttle, the current and the motor's efficiency come back as logged.
+#[test]
+fn compare_with_a_motor_gives_back_the_speed_at_the_throttle_of_a_log_the_chain_made() {
+    let t = tempfile::tempdir().unwrap();
+    let prop = super::cam6x3();
+    let motor = repo().join("props/motors/s400-6v-dd.motor");
+    let (prop, motor) = (prop.to_str().unwrap(), motor.to_str().unwrap());
+    let o = run(
+        &[
+            "predict",
+            "--prop",
+            prop,
+            "--motor",
+            motor,
+            "--battery",
+            "2S,R=0",
+            "--esc-ohms",
+            "0",
+            "--throttle",
+            "0.5:1:0.1",
+            "-o",
+            "chain.csv",
+        ],
+        t.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let (h, rows) = read_csv(&t.path().join("chain.csv"));
+    let at = |r: &Vec<String>, c: &str| -> f64 { r[h.iter().position(|x| x == c).unwrap()].parse().unwrap() };
+    let mut log = vec![
+        "Time (s),ESC signal (µs),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Optical Speed (RPM)"
+            .to_string(),
+    ];
+    let mut time = 0.0;
+    for r in &rows {
+        for _ in 0..20 {
+            time += 0.1;
+            log.push(format!(
+                "{time},{},{},{},{},{},{}",
+                1000.0 + 1000.0 * at(r, "throttle"),
+                at(r, "torque_nm"),
+                at(r, "thrust_n"),
+                at(r, "battery_volts"),
+                at(r, "battery_amps"),
+                at(r, "rpm")
+            ));
+        }
+    }
+    std::fs::write(t.path().join("log.csv"), log.join("\n") + "\n").unwrap();
+    let o = run(
+        &[
+            "compare",
+            "--prop",
+            prop,
+            "--measured",
+            "log.csv",
+            "--motor",
+            motor,
+            "-o",
+            "cmp",
+        ],
+        t.path(),
+    );
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let (eh, erows) = read_csv(&t.path().join("cmp/electric.csv"));
+    assert_eq!(erows.len(), rows.len(), "{eh:?}");
+    let col = |r: &Vec<String>, c: &str| -> f64 { r[eh.iter().position(|x| x == c).unwrap()].parse().unwrap() };
+    for r in &erows {
+        let (rpm, back) = (col(r, "rpm"), col(r, "rpm_at_volts"));
+        assert!(
+            (back / rpm - 1.0).abs() < 2e-3,
+            "{rpm} rpm logged, {back} at the ESC's voltage"
+        );
+        assert!((col(r, "amps_predicted") / col(r, "amps") - 1.0).abs() < 2e-3);
+        assert!((col(r, "eta_motor_predicted") / col(r, "eta_motor") - 1.0).abs() < 2e-3);
+    }
+    let summary = std::fs::read_to_string(t.path().join("cmp/summary.json")).unwrap();
+    let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    let rpm_error = summary["electric"]["rpm_at_throttle_median_error"].as_f64().unwrap();
+    assert!(rpm_error.abs() < 2e-3, "{rpm_error}");
+    let html = std::fs::read_to_string(t.path().join("cmp/report.html")).unwrap();
+    assert!(html.contains("speed at the log's throttle"));
+}

@@ -245,7 +245,7 @@ pub fn run_spec(spec: &CompareSpec) -> Result<bool> {
     let c = stages::compare(&model, &spec.measured)?;
     let electric = match &spec.motor {
         Some(m) => {
-            let e = stages::electric(&c, m)?;
+            let e = stages::electric(&c, &model, m)?;
             if e.is_none() {
                 eprintln!(
                     "propbet: warning: --motor: no compared point logged the supply's voltage and current; nothing electrical to score"
@@ -342,6 +342,7 @@ pub fn write(
                 "current_median_abs_error": e.current_median_abs,
                 "motor_only_current_median_abs_error": e.motor_only_median_abs,
                 "electrical_power_median_error": e.power_median,
+                "rpm_at_throttle_median_error": e.rpm_median,
             }),
         );
         write_atomic(&out.join("electric.csv"), &[csv_rows(&e.points, true)?], &inputs)?;

@@ -389,7 +389,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
         (StageSpec::Compare(spec), Finished::Compare(c, model)) => {
             let other = crate::compare::reference(spec, model.diameter)?;
             let electric = match &spec.motor {
-                Some(m) => propbet_pipeline::stages::electric(c, m)?,
+                Some(m) => propbet_pipeline::stages::electric(c, model, m)?,
                 None => None,
             };
             let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), electric.as_ref())?;

@@ -351,13 +351,24 @@ fn speed_trend(points: &[propbet_motor::FitPoint], held: &[Option<f64>]) -> Opti
 }
 
 /// The comparison's electrical columns against the motor file at `motor` (None where no
-/// compared point logged the supply's voltage and current).
-pub fn electric(c: &crate::stages::Compared, motor: &Path) -> Result<Option<propbet_compare::electric::Electric>> {
+/// point logged the supply's voltage and current), the speed at the ESC's voltage with
+/// `model` (the comparison's, its effects included).
+pub fn electric(
+    c: &crate::stages::Compared,
+    model: &Model,
+    motor: &Path,
+) -> Result<Option<propbet_compare::electric::Electric>> {
     let file = read_motor(motor)?;
+    let setup = crate::stages::setup(model, c.air, model.effects.clone());
+    let loads = |p: &propbet_compare::ComparedPoint, omega: f64| {
+        let (q, _) = propbet_compare::predict(&setup, omega, p.v, &p.air.fluid).ok()?;
+        Some((q.thrust?, q.torque?))
+    };
     Ok(propbet_compare::electric::score(
         &c.points,
         &c.sets,
         &file.motor,
         &file.name,
+        &loads,
     ))
 }
