@@ -290,25 +290,28 @@ pub fn compare_props(
     ))
 }
 
-/// `propbet compare` of a spec: its files written; false when it reported problems.
-pub fn compare(spec: &propbet_pipeline::spec::CompareSpec) -> Result<bool> {
+/// `propbet compare` of a spec: its files written; whether it ran clean (false when it
+/// reported problems) and the contents of metrics.json, summary.json and points.csv.
+pub fn compare(spec: &propbet_pipeline::spec::CompareSpec) -> Result<(bool, crate::compare::Written)> {
     crate::compare::run_spec(spec)
 }
 
-/// `propbet diagnose` of a spec: its files written; false when it reported problems.
-pub fn diagnose(spec: &propbet_pipeline::spec::DiagnoseSpec) -> Result<bool> {
+/// `propbet diagnose` of a spec: its files written; whether it ran clean (false when it
+/// reported problems) and the contents of diagnosis.json and summary.json.
+pub fn diagnose(spec: &propbet_pipeline::spec::DiagnoseSpec) -> Result<(bool, crate::diagnose::Written)> {
     crate::diagnose::run_spec(spec)
 }
 
 /// `propbet run` of a case directory (None: the shipped default case) into `out` (None:
-/// `run_<case>`): its files written; false when a stage reported problems.
+/// `run_<case>`): its files written; false when a stage reported problems; and what it wrote
+/// that a caller reads as data.
 pub fn run(
     case: Option<PathBuf>,
     out: Option<PathBuf>,
     xfoil: &propbet_api::ProcessRequest,
     verbose: bool,
     inputs_anywhere: bool,
-) -> Result<bool> {
+) -> Result<(bool, crate::run::RunFiles)> {
     crate::run::run_request(&crate::run::RunRequest {
         case,
         out,

@@ -228,11 +228,12 @@ fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
 /// Runs `propbet compare`; returns false when rows were dropped as faulty, the solver did not
 /// converge somewhere or the measurements cannot be of this propeller (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
-    run_spec(&args.spec()?)
+    Ok(run_spec(&args.spec()?)?.0)
 }
 
-/// Runs a compare stage of `spec`: its files written, its answer printed.
-pub fn run_spec(spec: &CompareSpec) -> Result<bool> {
+/// Runs a compare stage of `spec`: its files written, its answer printed; whether it ran
+/// clean, and what it wrote.
+pub fn run_spec(spec: &CompareSpec) -> Result<(bool, Written)> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
@@ -255,25 +256,40 @@ pub fn run_spec(spec: &CompareSpec) -> Result<bool> {
         }
         None => None,
     };
-    let (_, reference, _) = write(spec, &model, &c, other.as_ref(), electric.as_ref())?;
-    print(spec, &c, reference.as_ref());
+    let written = write(spec, &model, &c, other.as_ref(), electric.as_ref())?;
+    print(spec, &c, written.reference.as_ref());
     if let Some(e) = &electric {
         println!("{}", crate::output::wrapped(&report::electric_sentence(e), "", "  "));
     }
-    Ok(c.clean())
+    Ok((c.clean(), written))
+}
+
+/// What the compare stage wrote, as it wrote it, and what the run's page takes from it.
+pub struct Written {
+    /// The report page's body (the run's page nests it).
+    pub body: String,
+    /// With a reference prediction, its name and headline (as `summary.json` holds them).
+    pub reference: Option<ReferenceScore>,
+    /// The figure the run's page leads with.
+    pub lead: Option<propbet_plot::Figure>,
+    /// metrics.json.
+    pub metrics: Vec<u8>,
+    /// summary.json.
+    pub summary: Vec<u8>,
+    /// points.csv.
+    pub points: Vec<u8>,
 }
 
 /// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
-/// plots) into the spec's directory, with `other`'s prediction beside propbet's; returns the
-/// report page's body (for the run's page, which nests it) and, with a reference prediction, its
-/// name and headline (as `summary.json` holds them).
+/// plots) into the spec's directory, with `other`'s prediction beside propbet's; returns them
+/// ([`Written`]).
 pub fn write(
     spec: &CompareSpec,
     model: &Model,
     c: &Compared,
     other: Option<&Reference>,
     electric: Option<&propbet_pipeline::compare::electric::Electric>,
-) -> Result<(String, Option<ReferenceScore>, Option<propbet_plot::Figure>)> {
+) -> Result<Written> {
     let (curves, band) = c.curves(model)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
@@ -327,7 +343,7 @@ pub fn write(
     }
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
-    write_atomic(&out.join("metrics.json"), &[json], &inputs)?;
+    write_atomic(&out.join("metrics.json"), &[&json], &inputs)?;
     let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems(), &c.warnings());
     if let (Some(r), serde_json::Value::Object(o)) = (&rep.reference, &mut summary) {
         o.insert("reference".into(), r.json());
@@ -349,13 +365,21 @@ pub fn write(
     }
     let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');
-    write_atomic(&out.join("summary.json"), &[summary], &inputs)?;
+    write_atomic(&out.join("summary.json"), &[&summary], &inputs)?;
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    write_atomic(&out.join("points.csv"), &[points_csv(&c.names, &c.points)?], &inputs)?;
+    let points = points_csv(&c.names, &c.points)?;
+    write_atomic(&out.join("points.csv"), &[&points], &inputs)?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;
     let lead = report::lead_figure(&rep.figures);
-    Ok((rep.body, rep.reference, lead))
+    Ok(Written {
+        body: rep.body,
+        reference: rep.reference,
+        lead,
+        metrics: json,
+        summary,
+        points,
+    })
 }
 
 /// The reference `spec` names ([`Reference::load`]), its reading's warning on the terminal.

@@ -53,26 +53,36 @@ impl DiagnoseArgs {
 /// Runs `propbet diagnose`; returns false (exit 1, as `compare`) when measured rows were
 /// dropped as faulty: the diagnosis ran on the rest, the report lists them.
 pub fn run(args: &DiagnoseArgs) -> Result<bool> {
-    run_spec(&args.spec()?)
+    Ok(run_spec(&args.spec()?)?.0)
 }
 
-/// Runs a diagnose stage of `spec`: its files written, its answer printed.
-pub fn run_spec(spec: &DiagnoseSpec) -> Result<bool> {
+/// Runs a diagnose stage of `spec`: its files written, its answer printed; whether it ran
+/// clean, and what it wrote.
+pub fn run_spec(spec: &DiagnoseSpec) -> Result<(bool, Written)> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     let d = stages::diagnose(&model, spec)?;
-    write(spec, &d)?;
+    let written = write(spec, &d)?;
     print(spec, &d);
     let warned = warn_faulty_rows(&d.names, &d.sets);
-    Ok(warned == 0 && d.refused.is_empty())
+    Ok((warned == 0 && d.refused.is_empty(), written))
+}
+
+/// What the diagnose stage wrote, as it wrote it.
+pub struct Written {
+    /// The report page's body (the run's page nests it).
+    pub body: String,
+    /// diagnosis.json.
+    pub diagnosis: Vec<u8>,
+    /// summary.json.
+    pub summary: Vec<u8>,
 }
 
 /// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,
-/// plots);
-/// returns the report page's body (for the run's page, which nests it).
-pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
+/// plots); returns them ([`Written`]).
+pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<Written> {
     let prop = spec.model.prop.display().to_string();
     let measured: Vec<String> = d.names.clone();
     let command = StageSpec::Diagnose(spec.clone()).command();
@@ -107,7 +117,7 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     };
     let mut bytes = serde_json::to_vec_pretty(&json)?;
     bytes.push(b'\n');
-    write_atomic(&spec.out.join("diagnosis.json"), &[bytes], &inputs)?;
+    write_atomic(&spec.out.join("diagnosis.json"), &[&bytes], &inputs)?;
     let faults: usize = d.sets.iter().map(|s| s.faults()).sum();
     let warnings = propbet_pipeline::stages::batch_warnings(&d.names, &d.sets, &d.refused);
     let summary = serde_json::json!({
@@ -120,11 +130,15 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<String> {
     });
     let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');
-    write_atomic(&spec.out.join("summary.json"), &[summary], &inputs)?;
+    write_atomic(&spec.out.join("summary.json"), &[&summary], &inputs)?;
     write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
     write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;
-    Ok(rep.body)
+    Ok(Written {
+        body: rep.body,
+        diagnosis: bytes,
+        summary,
+    })
 }
 
 /// The diagnosis on the terminal.

@@ -503,7 +503,7 @@ fn json_doc(
 
 /// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage), with
 /// the uncertainty band's columns when the spec asks for them.
-pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<()> {
+pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<Vec<u8>> {
     let (fluid, source) = spec.air.fluid()?;
     let body = [if spec.band {
         let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
@@ -513,7 +513,8 @@ pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) ->
         summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?
     }];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
-    Ok(())
+    let [body] = body;
+    Ok(body)
 }
 
 /// A row of the sweep table.

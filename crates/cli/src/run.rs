@@ -191,17 +191,33 @@ fn print_done(n: usize, total: usize, record: &StageRecord, lines: &[String], ve
 
 /// Runs `propbet run`.
 pub fn run(a: &RunArgs) -> Result<bool> {
-    run_request(&RunRequest {
+    Ok(run_request(&RunRequest {
         case: a.case.clone(),
         out: a.out.clone(),
         xfoil: a.xfoil.spec()?,
         verbose: a.verbose,
         inputs_anywhere: a.inputs_anywhere,
-    })
+    })?
+    .0)
 }
 
-/// Runs a case as `propbet run` does; false when a stage reported problems.
-pub fn run_request(a: &RunRequest) -> Result<bool> {
+/// What a run wrote that a caller reads as data, as it wrote it (None: the case has no such
+/// stage).
+#[derive(Debug, Default)]
+pub struct RunFiles {
+    /// summary.json.
+    pub summary: Vec<u8>,
+    /// predict/sweep.csv.
+    pub sweep: Option<Vec<u8>>,
+    /// compare/points.csv.
+    pub points: Option<Vec<u8>>,
+    /// diagnose/diagnosis.json.
+    pub diagnosis: Option<Vec<u8>>,
+}
+
+/// Runs a case as `propbet run` does; false when a stage reported problems; and what it wrote
+/// ([`RunFiles`]).
+pub fn run_request(a: &RunRequest) -> Result<(bool, RunFiles)> {
     let t_all = Instant::now();
     let (dir, out) = case_and_out(a)?;
     let plan = plan(&dir, &out, &a.xfoil)?;
@@ -217,6 +233,7 @@ pub fn run_request(a: &RunRequest) -> Result<bool> {
     let mut reference: Option<propbet_report::answer::ReferenceScore> = None;
     let mut lead: Option<propbet_plot::Figure> = None;
     let mut write_err: Option<anyhow::Error> = None;
+    let mut files = RunFiles::default();
     let verbose = a.verbose;
     let outcome = run_case(&plan, &|d, t| bar.tick(d, t), &mut |e| match e {
         Event::Start { n, total, spec } => {
@@ -239,6 +256,9 @@ pub fn run_request(a: &RunRequest) -> Result<bool> {
                             lead = w.lead;
                         }
                         lines = w.brief;
+                        files.sweep = w.sweep.or(files.sweep.take());
+                        files.points = w.points.or(files.points.take());
+                        files.diagnosis = w.diagnosis.or(files.diagnosis.take());
                     }
                     Err(e) => write_err = Some(e),
                 }
@@ -260,9 +280,10 @@ pub fn run_request(a: &RunRequest) -> Result<bool> {
     summary.push(b'\n');
     write_atomic(
         &out.join("summary.json"),
-        &[summary],
+        &[&summary],
         &[dir.join("case.toml").as_path()],
     )?;
+    files.summary = summary;
     if a.verbose {
         eprintln!("propbet [{total}/{total}] report: {:.1} s", t0.elapsed().as_secs_f64());
     }
@@ -286,7 +307,7 @@ pub fn run_request(a: &RunRequest) -> Result<bool> {
             problems.join(", ")
         );
     }
-    Ok(outcome.clean())
+    Ok((outcome.clean(), files))
 }
 
 pub(crate) fn create_parent(path: &Path) -> Result<()> {
@@ -297,6 +318,7 @@ pub(crate) fn create_parent(path: &Path) -> Result<()> {
 }
 
 /// What a stage left for the terminal and the report.
+#[derive(Default)]
 struct Written {
     /// The compare or diagnose page's body, for the run's report.
     page: Option<String>,
@@ -307,17 +329,18 @@ struct Written {
     /// The stage's short status: its first line, then a few details (empty with `--verbose`,
     /// which prints the stage's own full output instead).
     brief: Vec<String>,
+    /// The sweep's table as written (predict).
+    sweep: Option<Vec<u8>>,
+    /// points.csv as written (compare).
+    points: Option<Vec<u8>>,
+    /// diagnosis.json as written (diagnose).
+    diagnosis: Option<Vec<u8>>,
 }
 
 /// Writes a finished stage's outputs and prints its summary: with `verbose` the stage's own
 /// full output, as its command prints it; otherwise a few short lines (`Written::brief`).
 fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<Written> {
-    let mut w = Written {
-        page: None,
-        reference: None,
-        lead: None,
-        brief: Vec::new(),
-    };
+    let mut w = Written::default();
     match (&record.spec, made) {
         (StageSpec::Scan(spec), Finished::Scan(s)) => {
             crate::scan::write(spec, s)?;
@@ -343,7 +366,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if let Some(o) = &spec.out {
                 create_parent(o)?;
             }
-            crate::predict::write_sweep(spec, model, points)?;
+            w.sweep = Some(crate::predict::write_sweep(spec, model, points)?);
             if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
                 write_atomic(
                     &dir.join(propbet_pipeline::export::FILE_NAME),
@@ -392,7 +415,14 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                 Some(m) => propbet_pipeline::stages::electric(c, model, m)?,
                 None => None,
             };
-            let (page, reference, lead) = crate::compare::write(spec, model, c, other.as_ref(), electric.as_ref())?;
+            let crate::compare::Written {
+                body: page,
+                reference,
+                lead,
+                points,
+                ..
+            } = crate::compare::write(spec, model, c, other.as_ref(), electric.as_ref())?;
+            w.points = Some(points);
             w.lead = lead;
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());
@@ -413,7 +443,9 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             w.reference = reference;
         }
         (StageSpec::Diagnose(spec), Finished::Diagnose(d)) => {
-            w.page = Some(crate::diagnose::write(spec, d)?);
+            let written = crate::diagnose::write(spec, d)?;
+            w.page = Some(written.body);
+            w.diagnosis = Some(written.diagnosis);
             if verbose {
                 crate::diagnose::print(spec, d);
             }

@@ -177,7 +177,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             StageSpec::Compare(s) => {
                 let (c, model) = compared.next().expect("two comparisons");
                 let other = crate::compare::reference(s, model.diameter)?;
-                let (_, reference, _) = crate::compare::write(s, model, c, other.as_ref(), None)?;
+                let reference = crate::compare::write(s, model, c, other.as_ref(), None)?.reference;
                 crate::compare::print(s, c, reference.as_ref());
             }
             StageSpec::Diagnose(s) => {

@@ -297,15 +297,16 @@ pub(crate) fn measured_request(
 }
 
 /// ``propbet compare``: the model against the measured files, its files written into
-/// ``out``; False when it reported problems.
+/// ``out``: whether it ran clean (False when it reported problems), and metrics.json,
+/// summary.json and points.csv as it wrote them (bytes, not read back).
 #[pyfunction]
 #[pyo3(signature = (
     model, files, out, *, per3=None, qprop_output=None, motor=None, poles=None, rpm_source=None,
     atmosphere=None, rho=None, columns=None
 ))]
 #[allow(clippy::too_many_arguments)]
-pub fn compare(
-    py: Python<'_>,
+pub fn compare<'py>(
+    py: Python<'py>,
     model: &Model,
     files: Vec<PathBuf>,
     out: PathBuf,
@@ -317,10 +318,10 @@ pub fn compare(
     atmosphere: Option<String>,
     rho: Option<f64>,
     columns: Option<PathBuf>,
-) -> PyResult<bool> {
+) -> PyResult<(bool, Bytes<'py>, Bytes<'py>, Bytes<'py>)> {
     let model = model.spec.clone();
     let measured = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
-    guarded(py, move || {
+    let (ok, w) = guarded(py, move || {
         let spec = propbet_api::CompareSpec {
             model,
             measured: measured.spec()?,
@@ -330,19 +331,26 @@ pub fn compare(
             out,
         };
         propbet_cli::api::compare(&spec)
-    })
+    })?;
+    Ok((
+        ok,
+        PyBytes::new(py, &w.metrics),
+        PyBytes::new(py, &w.summary),
+        PyBytes::new(py, &w.points),
+    ))
 }
 
-/// ``propbet diagnose``: which effect is missing, its files written into ``out``; False
-/// when it reported problems.
+/// ``propbet diagnose``: which effect is missing, its files written into ``out``: whether it
+/// ran clean (False when it reported problems), and diagnosis.json and summary.json as it
+/// wrote them (bytes, not read back).
 #[pyfunction]
 #[pyo3(signature = (
     model, files, out, *, effects=None, folds=None, max_steps=None, window=None, poles=None,
     rpm_source=None, atmosphere=None, rho=None, columns=None
 ))]
 #[allow(clippy::too_many_arguments)]
-pub fn diagnose(
-    py: Python<'_>,
+pub fn diagnose<'py>(
+    py: Python<'py>,
     model: &Model,
     files: Vec<PathBuf>,
     out: PathBuf,
@@ -355,7 +363,7 @@ pub fn diagnose(
     atmosphere: Option<String>,
     rho: Option<f64>,
     columns: Option<PathBuf>,
-) -> PyResult<bool> {
+) -> PyResult<(bool, Bytes<'py>, Bytes<'py>)> {
     let model = model.spec.clone();
     let measured = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     let request = DiagnoseRequest {
@@ -364,10 +372,11 @@ pub fn diagnose(
         max_steps,
         window,
     };
-    guarded(py, move || {
+    let (ok, w) = guarded(py, move || {
         let spec = request.spec(model, measured.spec()?, out)?;
         propbet_cli::api::diagnose(&spec)
-    })
+    })?;
+    Ok((ok, PyBytes::new(py, &w.diagnosis), PyBytes::new(py, &w.summary)))
 }
 
 /// ``propbet run`` of a case directory (None: the shipped default case) into ``out``: its
@@ -378,8 +387,8 @@ pub fn diagnose(
     xfoil=None, cache=None, no_cache=false, quiet=false, xfoil_budget=None
 ))]
 #[allow(clippy::too_many_arguments)]
-pub fn run(
-    py: Python<'_>,
+pub fn run<'py>(
+    py: Python<'py>,
     case: Option<PathBuf>,
     out: PathBuf,
     verbose: bool,
@@ -391,12 +400,33 @@ pub fn run(
     no_cache: bool,
     quiet: bool,
     xfoil_budget: Option<f64>,
-) -> PyResult<bool> {
+) -> PyResult<RunOutput<'py>> {
     let process = process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget);
-    guarded(py, move || {
+    let (ok, f) = guarded(py, move || {
         propbet_cli::api::run(case, Some(out), &process, verbose, inputs_anywhere)
-    })
+    })?;
+    let bytes = |b: Option<Vec<u8>>| b.map(|b| PyBytes::new(py, &b));
+    Ok((
+        ok,
+        PyBytes::new(py, &f.summary),
+        bytes(f.sweep),
+        bytes(f.points),
+        bytes(f.diagnosis),
+    ))
 }
+
+/// A run's answer to Python: clean, then summary.json, sweep.csv, points.csv and
+/// diagnosis.json as written (None where the case has no such stage).
+type RunOutput<'py> = (
+    bool,
+    Bytes<'py>,
+    Option<Bytes<'py>>,
+    Option<Bytes<'py>>,
+    Option<Bytes<'py>>,
+);
+
+/// A file's contents as a command wrote them, for Python.
+type Bytes<'py> = Bound<'py, PyBytes>;
 
 /// ``propbet scan`` of a scan file into ``out``: ``settings`` the scan's settings as JSON
 /// (a case's ``[geometry]`` keys: ``units``, ``stations``, ``blade_colour``, ...); an unknown

@@ -450,11 +450,12 @@ def compare(
     Files in ``out`` (a new temporary folder without it)."""
     prop = _prop(prop)
     folder, scratch = _folder(out, "compare")
-    ok = _relayed(lambda: _native.compare(prop.model, _files(measured), str(folder), **options))
+    ok, metrics, summary, points = _relayed(
+        lambda: _native.compare(prop.model, _files(measured), str(folder), **options))
     return Comparison(
-        metrics=_read_json(folder / "metrics.json"),
-        points=_read_csv(folder / "points.csv"),
-        summary=_read_json(folder / "summary.json"),
+        metrics=json.loads(metrics),
+        points=_csv(points),
+        summary=json.loads(summary),
         report=folder / "report.html",
         folder=folder,
         ok=ok,
@@ -496,9 +497,10 @@ def diagnose(
     candidates = options.pop("effects", None)
     if isinstance(candidates, str):
         candidates = candidates.split(",")
-    ok = _relayed(lambda: _native.diagnose(prop.model, _files(measured), str(folder), effects=candidates, **options))
-    doc = _read_json(folder / "diagnosis.json") or {}
-    summary = _read_json(folder / "summary.json") or {}
+    ok, doc, summary = _relayed(
+        lambda: _native.diagnose(prop.model, _files(measured), str(folder), effects=candidates, **options))
+    doc = json.loads(doc)
+    summary = json.loads(summary)
     found = summary.get("diagnosis", {})
     inner = doc.get("diagnosis", {})
     return Diagnosis(
@@ -540,12 +542,12 @@ def run(case: Optional[PathLike] = None, out: Optional[PathLike] = None, **optio
     """
     folder, scratch = _folder(out, "run")
     case = os.fspath(case) if case is not None else None
-    ok = _relayed(lambda: _native.run(case, str(folder), **options))
+    ok, summary, sweep, points, diagnosis = _relayed(lambda: _native.run(case, str(folder), **options))
     return RunResult(
-        summary=_read_json(folder / "summary.json"),
-        sweep=_read_csv(folder / "predict" / "sweep.csv"),
-        points=_read_csv(folder / "compare" / "points.csv"),
-        diagnosis=_read_json(folder / "diagnose" / "diagnosis.json"),
+        summary=json.loads(summary),
+        sweep=_csv(sweep) if sweep else pd.DataFrame(),
+        points=_csv(points) if points else pd.DataFrame(),
+        diagnosis=json.loads(diagnosis) if diagnosis else None,
         report=folder / "report.html",
         folder=folder,
         ok=ok,
