@@ -48,6 +48,13 @@ pub fn omega_ceiling(model: &Model, fluid: &Fluid) -> f64 {
     (1.5 * fluid.a / model.rotor.tip_radius).min(propbet_units::operating::OMEGA_MAX)
 }
 
+/// The model's full result at one airspeed [m/s] and speed [rad/s].
+pub(crate) fn solve_at(model: &Model, fluid: &Fluid, v: f64, omega: f64) -> Result<PointResult> {
+    let mut r = crate::stages::solve(model, fluid, &[OperatingPoint { v, omega }])?;
+    r.pop()
+        .ok_or_else(|| Error::Nothing("the solver returned no point".into()))
+}
+
 /// Every driver at every airspeed (the driver outer), on `motor` (and `supply`, the battery
 /// and ESC, when given), in parallel.
 pub fn powered(
@@ -69,11 +76,7 @@ pub fn powered(
     pairs
         .par_iter()
         .map(|&(drive, v)| {
-            let at = |omega: f64| -> Result<PointResult> {
-                let mut r = crate::stages::solve(model, fluid, &[OperatingPoint { v, omega }])?;
-                r.pop()
-                    .ok_or_else(|| Error::Nothing("the solver returned no point".into()))
-            };
+            let at = |omega: f64| solve_at(model, fluid, v, omega);
             let mut loads = |omega: f64| {
                 at(omega).map(|p| PropLoads {
                     thrust: p.thrust,
@@ -152,7 +155,7 @@ pub fn powered_stage(model: &Model, fluid: &Fluid, spec: &crate::spec::PoweredSp
 
 /// The propeller's uncertainty band (`predict --band`'s) at each operating point found: its CT,
 /// CP and efficiency at that speed and airspeed, the motor's point held.
-fn powered_band(
+pub(crate) fn powered_band(
     model: &Model,
     fluid: &Fluid,
     points: &[PoweredPoint],

@@ -63,31 +63,21 @@ fn full_band(
     supply: &Supply,
     full: &[PoweredPoint],
 ) -> Result<Vec<Option<FullRange>>> {
-    let solved: Vec<(usize, propbet_bemt::OperatingPoint, PointResult)> = full
-        .iter()
-        .enumerate()
-        .filter_map(|(i, p)| {
-            let (m, r) = p.outcome.as_ref().ok()?;
-            Some((i, propbet_bemt::OperatingPoint { v: p.v, omega: m.omega }, r.clone()))
-        })
-        .collect();
-    let ops: Vec<_> = solved.iter().map(|x| x.1).collect();
-    let base: Vec<_> = solved.iter().map(|x| x.2.clone()).collect();
-    let bands = crate::band::BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
+    let bands = super::powered::powered_band(model, fluid, full)?;
     let ceiling = crate::stages::omega_ceiling(model, fluid);
     let mut out = vec![None; full.len()];
-    for ((i, op, r), b) in solved.iter().zip(bands) {
+    for (i, (p, b)) in full.iter().zip(bands).enumerate() {
+        let (Ok((_, r)), Some(b)) = (&p.outcome, b) else {
+            continue;
+        };
         let (Some(ct), Some(cp)) = (r.ct, r.cp) else { continue };
         let mut ends = Vec::new();
         for (kt, kq) in [(b.ct.lo / ct, b.cp.hi / cp), (b.ct.hi / ct, b.cp.lo / cp)] {
             let mut loads = |omega: f64| -> Result<propbet_motor::PropLoads> {
-                let p = crate::stages::solve(model, fluid, &[propbet_bemt::OperatingPoint { v: op.v, omega }])?;
-                let p = p
-                    .first()
-                    .ok_or_else(|| crate::Error::Nothing("the solver returned no point".into()))?;
+                let at = super::powered::solve_at(model, fluid, p.v, omega)?;
                 Ok(propbet_motor::PropLoads {
-                    thrust: kt * p.thrust,
-                    torque: kq * p.torque,
+                    thrust: kt * at.thrust,
+                    torque: kq * at.torque,
                 })
             };
             let m = match propbet_motor::operate(motor, supply.drive(1.0), ceiling, &mut loads) {
@@ -99,12 +89,12 @@ fn full_band(
             ends.push((
                 m.loads.thrust,
                 s.battery_amps,
-                overall_efficiency(m.loads.thrust, op.v, s.battery_power),
+                overall_efficiency(m.loads.thrust, p.v, s.battery_power),
             ));
         }
         if let [a, b] = ends[..] {
             let span = |x: f64, y: f64| (x.min(y), x.max(y));
-            out[*i] = Some(FullRange {
+            out[i] = Some(FullRange {
                 thrust: span(a.0, b.0),
                 battery_amps: span(a.1, b.1),
                 efficiency: span(a.2, b.2),
