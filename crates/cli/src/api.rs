@@ -40,9 +40,6 @@ pub fn case_prediction(
 ) -> Result<(PredictSpec, Option<(PathBuf, Option<String>, Option<PathBuf>)>)> {
     let case = propbet_pipeline::case::read_case(dir)?;
     let plan = case.plan(dir, out, &xfoil.spec()?)?;
-    for w in &plan.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
     let mut sections = None;
     for stage in plan.stages() {
         match &stage {

@@ -323,7 +323,7 @@ pub fn write(
         metrics: &c.metrics,
         diameter: model.diameter,
         curves: &curves,
-        command: propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command(),
+        command: crate::argv::command(&propbet_pipeline::spec::StageSpec::Compare(spec.clone())),
         electric,
     })?;
     let out = &spec.out;
@@ -332,7 +332,7 @@ pub fn write(
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
     inputs.extend(spec.motor.as_deref());
-    let command = propbet_pipeline::spec::StageSpec::Compare(spec.clone()).command();
+    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Compare(spec.clone()));
     let lock = crate::output::claim_folder(out, &command)?;
     let plots = out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;

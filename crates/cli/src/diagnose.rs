@@ -85,7 +85,7 @@ pub struct Written {
 pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<Written> {
     let prop = spec.model.prop.display().to_string();
     let measured: Vec<String> = d.names.clone();
-    let command = StageSpec::Diagnose(spec.clone()).command();
+    let command = crate::argv::command(&StageSpec::Diagnose(spec.clone()));
     let dg = &d.diagnosis;
     let files: Vec<FileEntry> = measured
         .iter()
@@ -95,7 +95,8 @@ pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<Written> {
             set,
         })
         .collect();
-    let rep = report::build(&d.data, dg, &prop, &files, &d.refused, &command)?;
+    let use_it = crate::argv::effect_args(dg).join(" ");
+    let rep = report::build(&d.data, dg, &prop, &files, &d.refused, &command, &use_it)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     let lock = crate::output::claim_folder(&spec.out, &command)?;

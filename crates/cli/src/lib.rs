@@ -26,6 +26,7 @@ macro_rules! println {
 }
 
 pub mod api;
+mod argv;
 pub mod columns;
 mod compare;
 mod compare_props;
@@ -351,7 +352,7 @@ mod tests {
         spec.model.polars = Some("r/polars/polars.json".into());
         spec.model.effects = vec!["pitch-offset:deg=1.2".into()];
         spec.model.dbeta = 0.01;
-        let cmd = spec.export_command(std::path::Path::new("r/export"));
+        let cmd = crate::argv::export_command(&spec, std::path::Path::new("r/export"));
         let argv: Vec<&str> = cmd.split_whitespace().collect();
         let cli = parse_args(&argv).unwrap_or_else(|e| panic!("{cmd}: {e}"));
         let Command::Export(a) = cli.command else {
@@ -365,11 +366,11 @@ mod tests {
 
     /// A spec's printed command line parses back to the same spec.
     pub(crate) fn check(spec: &StageSpec) {
-        let argv = spec.argv();
+        let argv = crate::argv::argv(spec);
         let cli = parse_args(std::iter::once("propbet".to_string()).chain(argv.iter().cloned()))
-            .unwrap_or_else(|e| panic!("{}: {e}", spec.command()));
+            .unwrap_or_else(|e| panic!("{}: {e}", crate::argv::command(spec)));
         let back = stage_spec(&cli.command).unwrap().expect("a stage");
-        assert_eq!(&back, spec, "{}", spec.command());
+        assert_eq!(&back, spec, "{}", crate::argv::command(spec));
     }
 
     pub(crate) fn repo() -> PathBuf {

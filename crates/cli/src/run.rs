@@ -10,7 +10,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use propbet_pipeline::case::{read_case, RunPlan};
-use propbet_pipeline::run::{run_case, Event, Finished, StageRecord};
+use propbet_pipeline::run::{run_case, Event, Finished, RunOutcome, StageRecord};
 use propbet_pipeline::spec::StageSpec;
 use propbet_pipeline::spec::XfoilProcessSpec;
 
@@ -222,9 +222,6 @@ pub fn run_request(a: &RunRequest) -> Result<(bool, RunFiles)> {
     let (dir, out) = case_and_out(a)?;
     let plan = plan(&dir, &out, &a.xfoil)?;
     check_paths(&plan, &dir, &out, a.inputs_anywhere)?;
-    for w in &plan.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
     let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
@@ -238,7 +235,7 @@ pub fn run_request(a: &RunRequest) -> Result<(bool, RunFiles)> {
     let outcome = run_case(&plan, &|d, t| bar.tick(d, t), &mut |e| match e {
         Event::Start { n, total, spec } => {
             if verbose {
-                eprintln!("propbet [{n}/{total}] {}: {}", spec.name(), spec.command());
+                eprintln!("propbet [{n}/{total}] {}: {}", spec.name(), crate::argv::command(spec));
             }
         }
         Event::Done { n, total, record, made } => {
@@ -273,10 +270,11 @@ pub fn run_request(a: &RunRequest) -> Result<(bool, RunFiles)> {
     // The report.
     let t0 = Instant::now();
     let total = outcome.stages.len() + 1;
-    let html = propbet_report::run::page(&plan, &outcome, &pages, reference.as_ref(), lead.as_ref())?;
+    let commands = run_commands(&plan, &outcome);
+    let html = propbet_report::run::page(&plan, &outcome, &pages, reference.as_ref(), lead.as_ref(), &commands)?;
     let report_path = out.join("report.html");
     write_atomic(&report_path, &[html.as_bytes()], &[dir.join("case.toml").as_path()])?;
-    let mut summary = serde_json::to_vec_pretty(&propbet_report::run::summary_json(&plan, &outcome))?;
+    let mut summary = serde_json::to_vec_pretty(&propbet_report::run::summary_json(&plan, &outcome, &commands))?;
     summary.push(b'\n');
     write_atomic(
         &out.join("summary.json"),
@@ -454,4 +452,26 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
         _ => unreachable!("a stage's record and artifact match"),
     }
     Ok(w)
+}
+
+/// The equivalent commands the run's page and summary show: each stage's, the export of its
+/// prediction, and the calibrated model's where the diagnosis found something (written beside
+/// the sweep, never over it).
+fn run_commands(plan: &RunPlan, outcome: &RunOutcome) -> propbet_report::run::Commands {
+    let out = &plan.out;
+    let calibrated = outcome.diagnosed.as_ref().filter(|d| d.diagnosis.found).map(|d| {
+        let mut spec = plan.predict.clone();
+        spec.out = Some(out.join("predict").join("calibrated_sweep.csv"));
+        let mut cmd = crate::argv::command(&StageSpec::Predict(spec));
+        for e in crate::argv::effect_args(&d.diagnosis) {
+            cmd.push(' ');
+            cmd.push_str(&e);
+        }
+        cmd
+    });
+    propbet_report::run::Commands {
+        stages: outcome.stages.iter().map(|s| crate::argv::command(&s.spec)).collect(),
+        export: crate::argv::export_command(&plan.predict, &out.join("export")),
+        calibrated,
+    }
 }

@@ -240,7 +240,7 @@ fn write_blades(out: &Path, g: &Geometry, inputs: &[&Path]) -> Result<()> {
 /// plots/, blades/, scan.json.
 pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let g = &sc.geometry;
-    let command = propbet_pipeline::spec::StageSpec::Scan(a.clone()).command();
+    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(a.clone()));
     let lock = crate::output::claim_folder(&a.out, &command)?;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;

@@ -100,11 +100,6 @@ pub struct GeometrySection {
     pub pe0: Option<String>,
     /// A UIUC-style table (r/R c/R beta) to set the scan against.
     pub reference: Option<String>,
-    /// Deprecated: `propbet scan` flags as a list, for example
-    /// `["--crop=-80,-200,-200,200,200,200"]`; read, with a warning naming the keys to write
-    /// instead (`crop = "-80,-200,-200,200,200,200"`).
-    #[serde(default)]
-    pub scan_args: Vec<String>,
     /// The scan's settings, each a key named as its `propbet scan` flag (`units` and
     /// `stations`, `crop`, `outliers`, `box`, ...; `units` is a prop file's unit too). Any
     /// other key is refused.
@@ -128,12 +123,9 @@ impl TryFrom<toml::Table> for GeometrySection {
         let prop = text(&mut t, "prop")?;
         let pe0 = text(&mut t, "pe0")?;
         let reference = text(&mut t, "reference")?;
-        let scan_args = match t.remove("scan_args") {
-            None => Vec::new(),
-            Some(v) => v
-                .try_into()
-                .map_err(|e: toml::de::Error| format!("[geometry] scan_args: {}", e.message()))?,
-        };
+        if t.contains_key("scan_args") {
+            return Err("[geometry] scan_args: removed in 0.2.0; write each flag of `propbet scan` as a key of [geometry] (`--outliers 8,3` as `outliers = \"8,3\"`, `--planar` as `planar = true`)".into());
+        }
         let settings = toml::Value::Table(t.clone()).try_into().map_err(|e: toml::de::Error| {
             // The key whose value is refused (serde names an unknown one, not a wrong one).
             let wrong = t.iter().find(|(k, v)| {
@@ -152,7 +144,6 @@ impl TryFrom<toml::Table> for GeometrySection {
             prop,
             pe0,
             reference,
-            scan_args,
             settings,
         })
     }
@@ -405,9 +396,6 @@ pub struct RunPlan {
     pub powered: Option<PoweredSpec>,
     /// Comparison and diagnosis.
     pub compare: Option<(CompareSpec, DiagnoseSpec)>,
-    /// What the case file says that still works but should be written otherwise (printed
-    /// before the run).
-    pub warnings: Vec<String>,
     /// How close a prediction of this kind of blade has come on propbet's validation, before
     /// any measurement ([`crate::expected::sentence`] of the blade's file: its APC family, or
     /// all the props for a scan or a table of no named family).

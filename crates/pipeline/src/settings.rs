@@ -219,7 +219,7 @@ pub const TRIP: Setting<f64> = Setting {
 };
 
 /// A trip as `--trip` takes it: `free` or the chord fraction (`values::parse_trip` reads it back).
-pub(crate) fn trip_text(trip: Option<f64>) -> String {
+pub fn trip_text(trip: Option<f64>) -> String {
     trip.map_or_else(|| "free".to_string(), |x| format!("{x}"))
 }
 

@@ -1,49 +1,14 @@
-//! Stage specs: what each stage of the data flow is asked to do, in SI and typed, as the
-//! command-line flags of the `propbet` command that does the same. Every spec prints that
-//! command line ([`StageSpec::argv`]); the CLI maps its flags back to the same spec (a test in
-//! the CLI holds this), so every stage of `propbet run` and `propbet validate` is a command a
-//! user can re-run by hand.
+//! Stage specs: what each stage of the data flow is asked to do, in SI and typed. The CLI
+//! fills them from its flags and prints each as the `propbet` command that does the same (one
+//! formatter in the CLI, tested to parse back to the same spec).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use propbet_atmosphere::AirState;
-use propbet_geometry::scan::{default_stations, ScanOptions, SectionKind};
+use propbet_geometry::scan::ScanOptions;
 use propbet_measure::RpmSource;
 
 pub use crate::settings::Rotation;
-use crate::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
-
-/// The `propbet` command line of one stage (without the program name).
-pub type Argv = Vec<String>;
-
-fn path(p: &std::path::Path) -> String {
-    p.display().to_string()
-}
-
-fn push(v: &mut Argv, flag: &str, value: impl Into<String>) {
-    v.push(flag.to_string());
-    v.push(value.into());
-}
-
-/// `--flag=value`, for values that may begin with a minus sign.
-fn push_eq(v: &mut Argv, flag: &str, value: impl AsRef<str>) {
-    v.push(format!("{flag}={}", value.as_ref()));
-}
-
-/// Degrees as text that reads back to exactly `rad`.
-fn deg_text(rad: f64) -> String {
-    scaled_text(rad, f64::to_degrees, f64::to_radians)
-}
-
-/// Millimetres as text that reads back to exactly `m` [m] (the scan's flags are in mm).
-fn mm_text(m: f64) -> String {
-    scaled_text(m, |x| x * 1000.0, |x| x / 1000.0)
-}
-
-/// Percent as text that reads back to exactly the fraction `f`.
-fn percent_text(f: f64) -> String {
-    scaled_text(f, |x| 100.0 * x, |x| x / 100.0)
-}
 
 /// The XFOIL executable, the polar cache and progress.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -62,37 +27,6 @@ pub struct XfoilProcessSpec {
     pub engine: propbet_polar::Engine,
     /// NeuralFoil's network size (None: [`crate::settings::NEURALFOIL_SIZE`]'s default).
     pub neuralfoil_size: Option<String>,
-}
-
-impl XfoilProcessSpec {
-    fn push_argv(&self, v: &mut Argv) {
-        if let Some(b) = self.budget {
-            push(v, "--xfoil-budget", format!("{b}"));
-        }
-        if let Some(x) = &self.xfoil {
-            push(v, "--xfoil", path(x));
-        }
-        if let Some(c) = &self.cache {
-            push(v, "--cache", path(c));
-        }
-        if self.no_cache {
-            v.push("--no-cache".into());
-        }
-        if self.quiet {
-            v.push("--quiet".into());
-        }
-        if self.engine != propbet_polar::Engine::default() {
-            push(v, "--engine", self.engine.name());
-        }
-        if let Some(s) = &self.neuralfoil_size {
-            push(v, "--neuralfoil-size", s.clone());
-        }
-    }
-}
-
-/// `3,9`: the values of `--ncrit-effect` as the command line takes them.
-pub fn ncrit_effect_text(v: &[f64]) -> String {
-    v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")
 }
 
 /// Checks `--ncrit-effect`'s values against the polars' own Ncrit: each an Ncrit XFOIL takes,
@@ -145,25 +79,6 @@ impl XfoilSpec {
         Ok(())
     }
 
-    fn push_argv(&self, v: &mut Argv) {
-        self.process.push_argv(v);
-        if self.ncrit != crate::settings::NCRIT.default {
-            push(v, "--ncrit", format!("{}", self.ncrit));
-        }
-        if self.trip != crate::settings::default_trip() {
-            push(v, "--trip", crate::settings::trip_text(self.trip));
-        }
-        let default = crate::values::parse_list("", crate::settings::ALPHA.default).unwrap_or_default();
-        if self.alphas_deg != default {
-            push_eq(v, "--alpha", list_text(&self.alphas_deg));
-        }
-        if let Some(p) = self.panels {
-            push(v, "--panels", p.to_string());
-        }
-        if self.iter != xfoil_runner::DEFAULT_MAX_ITER {
-            push(v, "--iter", self.iter.to_string());
-        }
-    }
 }
 
 /// Air for the solver: QPROP's defaults, given values, or a measured state.
@@ -177,23 +92,6 @@ pub struct AirSpec {
     pub a: Option<f64>,
     /// Temperature, pressure, humidity.
     pub state: Option<AirState>,
-}
-
-impl AirSpec {
-    fn push_argv(&self, v: &mut Argv) {
-        if let Some(s) = &self.state {
-            push_eq(v, "--temp", format!("{}K", s.temperature));
-            push(v, "--pressure", format!("{}", s.pressure));
-            if s.relative_humidity != 0.0 {
-                push(v, "--humidity", percent_text(s.relative_humidity));
-            }
-        }
-        for (flag, x) in [("--rho", self.rho), ("--mu", self.mu), ("--a", self.a)] {
-            if let Some(x) = x {
-                push_eq(v, flag, format!("{x}"));
-            }
-        }
-    }
 }
 
 /// The drag factor a model gets: `asked`, else [`crate::settings::DRAG_FACTOR`]'s default
@@ -273,48 +171,6 @@ impl ModelSpec {
         self.polars.is_some() || self.design.is_some()
     }
 
-    fn push_argv(&self, v: &mut Argv) {
-        push(v, "--prop", path(&self.prop));
-        if self.dbeta != 0.0 {
-            push_eq(v, "--dbeta", deg_text(self.dbeta));
-        }
-        if let Some(u) = self.units {
-            push(v, "--units", length_unit_name(u).unwrap_or("m"));
-        }
-        if self.qprop_compat {
-            v.push("--qprop-compat".into());
-        }
-        if self.no_tip_loss {
-            v.push("--no-tip-loss".into());
-        }
-        if let Some(p) = &self.polars {
-            push(v, "--polars", path(p));
-        }
-        if let Some(d) = &self.design {
-            if let Some(a) = &d.airfoil {
-                push(v, "--airfoil", a.clone());
-            }
-            if let Some(p) = &d.sections_from {
-                push(v, "--sections-from", path(p));
-            }
-            if let Some(p) = &d.airfoils {
-                push(v, "--airfoils", path(p));
-            }
-            d.process.push_argv(v);
-        }
-        if self.rotation != Rotation::or_default(None, self.tabulated()) {
-            push(v, "--rotation", self.rotation.name());
-        }
-        if self.drag_factor != drag_factor_or_default(None, self.tabulated()) {
-            push_eq(v, "--drag-factor", format!("{}", self.drag_factor));
-        }
-        for e in &self.effects {
-            push(v, "--effect", e.clone());
-        }
-        if let Some(p) = &self.user_effects {
-            push(v, "--user-effects", path(p));
-        }
-    }
 }
 
 /// What a sweep varies besides the rotation speed.
@@ -413,41 +269,6 @@ impl MeasuredSpec {
         }
     }
 
-    fn push_argv(&self, v: &mut Argv) {
-        v.push("--measured".into());
-        v.extend(self.files.iter().map(|f| path(f)));
-        if let Some(p) = self.poles {
-            push(v, "--poles", p.to_string());
-        }
-        if let Some(s) = self.rpm_source {
-            push(
-                v,
-                "--rpm-source",
-                match s {
-                    RpmSource::Optical => "optical",
-                    RpmSource::Electrical => "electrical",
-                },
-            );
-        }
-        if let Some(s) = &self.atmosphere {
-            push(
-                v,
-                "--atmosphere",
-                format!(
-                    "{}K,{},{}",
-                    s.temperature,
-                    s.pressure,
-                    percent_text(s.relative_humidity)
-                ),
-            );
-        }
-        if let Some(r) = self.rho {
-            push_eq(v, "--rho", format!("{r}"));
-        }
-        if let Some(c) = &self.columns {
-            push(v, "--columns", path(c));
-        }
-    }
 }
 
 /// `propbet compare`.
@@ -538,102 +359,39 @@ pub struct ScanSpec {
     pub out: PathBuf,
 }
 
-fn colour_text(c: &[[u8; 3]]) -> String {
-    c.iter()
-        .map(|c| format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]))
-        .collect::<Vec<_>>()
-        .join(",")
+/// One stage of the data flow.
+#[derive(Debug, Clone, PartialEq)]
+pub enum StageSpec {
+    /// Geometry from a scan.
+    Scan(ScanSpec),
+    /// XFOIL polars of every station.
+    Polars(PolarsSpec),
+    /// Sweeps.
+    Predict(PredictSpec),
+    /// The propeller on its motor.
+    Powered(PoweredSpec),
+    /// Measured against predicted.
+    Compare(CompareSpec),
+    /// What is missing.
+    Diagnose(DiagnoseSpec),
 }
 
-fn vec_text(v: &nalgebra::Vector3<f64>) -> String {
-    format!("{},{},{}", v.x, v.y, v.z)
-}
-
-impl ScanSpec {
-    fn push_argv(&self, v: &mut Argv) {
-        let o = &self.options;
-        v.push(path(&self.input));
-        push(v, "-o", path(&self.out));
-        if let Some(n) = &self.name {
-            push(v, "--name", n.clone());
-        }
-        // The scale: a named unit, or a known length [mm] of one file unit.
-        let unit = [("mm", 0.001), ("cm", 0.01), ("m", 1.0), ("in", 0.0254)]
-            .into_iter()
-            .find(|u| u.1 == o.scale);
-        match unit {
-            Some(("mm", _)) if !o.scale_given => {}
-            Some((name, _)) => push(v, "--units", name),
-            None => push_eq(v, "--known-length", format!("0,0,0,1,0,0,{}", mm_text(o.scale))),
-        }
-        if o.stations != default_stations() {
-            push(v, "--stations", list_text(&o.stations));
-        }
-        if let Some(r) = &self.reference {
-            push(v, "--reference", path(r));
-        }
-        if o.kind == SectionKind::Planar {
-            v.push("--planar".into());
-        }
-        if o.slab != ScanOptions::default().slab {
-            push(v, "--slab", mm_text(o.slab));
-        }
-        if o.slab_points != 400 {
-            push(v, "--slab-points", o.slab_points.to_string());
-        }
-        if !o.blade_colours.is_empty() {
-            push(v, "--blade-colour", colour_text(&o.blade_colours));
-        }
-        if let Some(t) = o.colour_threshold {
-            push(v, "--colour-threshold", format!("{t}"));
-        }
-        if let Some(b) = &o.reference_box {
-            let mm = mm_text;
-            push(
-                v,
-                "--box",
-                format!("{}x{}x{}", mm(b.dims[0]), mm(b.dims[1]), mm(b.dims[2])),
-            );
-            push_eq(
-                v,
-                "--box-offset",
-                format!("{},{},{}", mm(b.offset[0]), mm(b.offset[1]), mm(b.offset[2])),
-            );
-            push(v, "--box-colour", colour_text(&b.colours));
-            if !b.seeds.is_empty() {
-                push_eq(
-                    v,
-                    "--box-seeds",
-                    b.seeds.iter().map(vec_text).collect::<Vec<_>>().join(";"),
-                );
-            }
-        }
-        if let Some((lo, hi)) = &o.crop {
-            push_eq(v, "--crop", format!("{},{}", vec_text(lo), vec_text(hi)));
-        }
-        match o.outliers {
-            None => push(v, "--outliers", "off"),
-            Some((8, 2.5)) => {}
-            Some((n, s)) => push(v, "--outliers", format!("{n},{s}")),
-        }
-        if let Some(m) = &o.manual {
-            push_eq(v, "--root-point", vec_text(&m.root));
-            push_eq(v, "--tip-point", vec_text(&m.tip));
-            if let Some(c) = &m.origin {
-                push_eq(v, "--origin", vec_text(c));
-            }
-            if m.rotate != [0.0; 3] {
-                let r = m.rotate.map(deg_text);
-                push_eq(v, "--rotate", format!("{},{},{}", r[0], r[1], r[2]));
-            }
+impl StageSpec {
+    /// The stage's name (the subcommand).
+    pub fn name(&self) -> &'static str {
+        match self {
+            StageSpec::Scan(_) => "scan",
+            StageSpec::Polars(_) => "polars",
+            StageSpec::Predict(_) => "predict",
+            StageSpec::Powered(_) => "motor",
+            StageSpec::Compare(_) => "compare",
+            StageSpec::Diagnose(_) => "diagnose",
         }
     }
 }
 
-mod command;
 mod scan;
 
-pub use command::StageSpec;
 pub use scan::{
     ScanSettings, DEFAULT_BOX_COLOUR, DEFAULT_BOX_OFFSET, DEFAULT_OUTLIERS, DEFAULT_ROTATE, DEFAULT_SLAB_MM,
     DEFAULT_SLAB_POINTS,

@@ -207,7 +207,7 @@ pub fn parse_length(flag: &str, text: &str) -> Result<f64> {
 }
 
 /// The name of a length unit of [`parse_length_unit`] from its metres per unit.
-pub(crate) fn length_unit_name(metres: f64) -> Option<&'static str> {
+pub fn length_unit_name(metres: f64) -> Option<&'static str> {
     [("m", 1.0), ("cm", 0.01), ("mm", 0.001), ("in", 0.0254)]
         .into_iter()
         .find(|u| u.1 == metres)
@@ -242,7 +242,7 @@ pub fn parse_atmosphere(text: &str) -> Result<propbet_atmosphere::AirState> {
 
 /// The shortest decimal text of a value in the user's unit that converts back to exactly
 /// `si` (`from_user(text) == si`): 5000 rpm prints as `5000`, not `5000.000000000001`.
-pub(crate) fn scaled_text(si: f64, to_user: impl Fn(f64) -> f64, from_user: impl Fn(f64) -> f64) -> String {
+pub fn scaled_text(si: f64, to_user: impl Fn(f64) -> f64, from_user: impl Fn(f64) -> f64) -> String {
     let user = to_user(si);
     for digits in 1..=17 {
         let text = format!("{:.*e}", digits - 1, user);

@@ -109,3 +109,50 @@ fn the_typed_doors_hold_no_command_line() {
         );
     }
 }
+
+/// No command line is built or parsed below the binary: the CLI's argument parser and its one
+/// formatter of equivalent commands (`crates/cli/src/argv.rs`) are the only places; the Python
+/// package's `execute` is its explicit door to them; examples and benchmarks are programs of
+/// their own.
+#[test]
+fn no_command_line_is_built_or_parsed_below_the_cli() {
+    let root = workspace();
+    let mut stack = vec![root.join("crates")];
+    let mut files = 0;
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                // The binary, and the programs of examples and benchmarks, parse their own.
+                let own = ["cli", "target", "examples", "benches"];
+                if !own.iter().any(|o| p.file_name().is_some_and(|n| n == *o)) {
+                    stack.push(p);
+                }
+                continue;
+            }
+            if p.extension().is_none_or(|x| x != "rs") || p.starts_with(root.join("crates/pipeline/tests")) {
+                continue;
+            }
+            files += 1;
+            let text = std::fs::read_to_string(&p).unwrap();
+            let text = if p.ends_with("crates/python/src/lib.rs") {
+                text.split("fn execute(").next().unwrap_or_default().to_string()
+            } else {
+                text
+            };
+            for word in [
+                "argv",
+                "Argv",
+                "shell_word",
+                "from_flags",
+                "parse_args",
+                "try_parse_from",
+                "env::args",
+                "\"--effect {}\"",
+            ] {
+                assert!(!text.contains(word), "{}: `{word}`", p.display());
+            }
+        }
+    }
+    assert!(files > 100, "{files} files read");
+}

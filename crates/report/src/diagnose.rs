@@ -494,6 +494,7 @@ pub fn build(
     files: &[FileEntry],
     refused: &[Refused],
     command: &str,
+    effect_args: &str,
 ) -> Result<Report, PlotError> {
     let measured: Vec<&str> = files.iter().map(|f| f.path.as_str()).collect();
     let panels = residual_panels(data, d);
@@ -562,7 +563,7 @@ pub fn build(
     let _ = write!(
         h,
         "</ul>\n<h2>Use it</h2>\n<p>Add the effects to any prediction or comparison: <code>{}</code></p>\n",
-        esc(&effect_args(d).join(" "))
+        esc(effect_args)
     );
 
     let md = markdown(d, &verdict, files, refused);
@@ -576,15 +577,6 @@ pub fn build(
         markdown: crate::md_safe(&md),
         figures: vec![("ladder".into(), ladder), ("residuals".into(), residuals)],
     })
-}
-
-/// The final model as `--effect` arguments.
-pub fn effect_args(d: &Diagnosis) -> Vec<String> {
-    d.final_stack
-        .active
-        .iter()
-        .map(|a| format!("--effect {}", a.describe()))
-        .collect()
 }
 
 /// What the diagnosis found, as a table of its steps (effect, fitted value, physically expected

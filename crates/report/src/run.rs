@@ -10,6 +10,18 @@ use propbet_plot::{Figure, Mark, Panel, PlotError, Series};
 
 use crate::page::{esc, nest};
 
+/// The equivalent commands a run's page and summary show, as the caller prints them.
+#[derive(Debug, Clone, Default)]
+pub struct Commands {
+    /// Each stage's command, in the order of [`RunOutcome::stages`].
+    pub stages: Vec<String>,
+    /// The `propbet export` command of the run's prediction.
+    pub export: String,
+    /// The calibrated model's command (the prediction with the diagnosis's effects, written
+    /// beside the sweep), when the diagnosis found something.
+    pub calibrated: Option<String>,
+}
+
 /// The run's page: how it was made, the geometry, the polars, the sweeps, and the compare and
 /// diagnose pages' bodies (`pages`: stage name and body) one level down.
 pub fn page(
@@ -18,6 +30,7 @@ pub fn page(
     pages: &[(&'static str, String)],
     reference: Option<&crate::answer::ReferenceScore>,
     lead: Option<&Figure>,
+    commands: &Commands,
 ) -> Result<String, PlotError> {
     let mut h = String::with_capacity(4_000_000);
     let _ = writeln!(h, "<h1>{}</h1>", esc(&plan.name));
@@ -26,7 +39,7 @@ pub fn page(
         let _ = writeln!(h, "<p class=\"note\">{}</p>", esc(&plan.description));
     }
     answer_html(&mut h, run, reference);
-    h.push_str(&outputs_html(plan, run));
+    h.push_str(&outputs_html(plan, run, commands));
     let _ = writeln!(
         h,
         "<p class=\"note\">What this run did: {}.</p>",
@@ -48,7 +61,7 @@ pub fn page(
             .collect::<String>()
     );
     let problems = problems(run);
-    stages_html(&mut h, plan, run, &problems);
+    stages_html(&mut h, plan, run, &problems, commands);
 
     geometry_html(&mut h, plan, run)?;
 
@@ -91,9 +104,15 @@ fn answer_html(h: &mut String, run: &RunOutcome, reference: Option<&crate::answe
 }
 
 /// How the report was made: each stage, its time, status and equivalent command.
-fn stages_html(h: &mut String, plan: &RunPlan, run: &RunOutcome, problems: &[(&'static str, usize, String)]) {
+fn stages_html(
+    h: &mut String,
+    plan: &RunPlan,
+    run: &RunOutcome,
+    problems: &[(&'static str, usize, String)],
+    commands: &Commands,
+) {
     h.push_str("<h2>How this report was made</h2>\n<table><tr><th>stage</th><th>time [s]</th><th>status</th><th>equivalent command</th></tr>\n");
-    for s in &run.stages {
+    for (i, s) in run.stages.iter().enumerate() {
         let _ = writeln!(
             h,
             "<tr><td>{}</td><td>{:.1}</td><td>{}</td><td class=\"cmd\"><code>{}</code></td></tr>",
@@ -104,7 +123,7 @@ fn stages_html(h: &mut String, plan: &RunPlan, run: &RunOutcome, problems: &[(&'
                 (true, true) => "ok, with notes",
                 (false, _) => "problems",
             },
-            esc(&s.spec.command())
+            esc(commands.stages.get(i).map_or("", String::as_str))
         );
     }
     let _ = writeln!(
@@ -243,7 +262,7 @@ fn link(out: &std::path::Path, path: &std::path::Path) -> String {
 /// The outputs a user takes away, each with what it is: the prediction's table, the exported
 /// QPROP file (with how far its law is from the prediction's tables and the notes on its fit,
 /// which concern that file only), the calibrated model, and the stages' own pages.
-fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
+fn outputs_html(plan: &RunPlan, run: &RunOutcome, commands: &Commands) -> String {
     let out = &plan.out;
     let mut h = String::from("<section id=\"outputs\"><h2>Outputs</h2>\n<ul>");
     if let Some(o) = &plan.predict.out {
@@ -328,28 +347,18 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome) -> String {
         }
         h.push_str("</li>");
     }
-    if let (Some((_, dspec)), Some(d)) = (&plan.compare, &run.diagnosed) {
-        if d.diagnosis.found {
-            // Written beside the sweep, never over it.
-            let mut spec = plan.predict.clone();
-            spec.out = Some(out.join("predict").join("calibrated_sweep.csv"));
-            let mut cmd = propbet_pipeline::spec::StageSpec::Predict(spec).command();
-            for e in crate::diagnose::effect_args(&d.diagnosis) {
-                cmd.push(' ');
-                cmd.push_str(&e);
-            }
-            let _ = write!(
-                h,
-                "<li>the calibrated model (the prediction with the diagnosis's effects): {}; as a command: <code>{}</code></li>",
-                link(out, &dspec.out.join("diagnosis.json")),
-                esc(&cmd)
-            );
-        }
+    if let (Some((_, dspec)), Some(cmd)) = (&plan.compare, &commands.calibrated) {
+        let _ = write!(
+            h,
+            "<li>the calibrated model (the prediction with the diagnosis's effects): {}; as a command: <code>{}</code></li>",
+            link(out, &dspec.out.join("diagnosis.json")),
+            esc(cmd)
+        );
     }
     let _ = write!(
         h,
         "<li>for flight simulators (Gazebo's motor model, PX4 SIH's thruster, a JSBSim propeller) and a CT/CP map, each saying how well it reproduces this prediction: <code>{}</code></li>",
-        esc(&plan.predict.export_command(&out.join("export")))
+        esc(&commands.export)
     );
     if let Some((cspec, dspec)) = &plan.compare {
         let _ = write!(
@@ -412,12 +421,13 @@ pub fn sweep_figure(points: &[PointResult]) -> Figure {
 /// The run in a machine-readable summary (`summary.json` of `propbet run`): the stages with
 /// their commands, every problem grouped alike, the comparison's headline (the scored window,
 /// static and forward flight) and the diagnosis' answer.
-pub fn summary_json(plan: &RunPlan, run: &RunOutcome) -> serde_json::Value {
+pub fn summary_json(plan: &RunPlan, run: &RunOutcome, commands: &Commands) -> serde_json::Value {
     use serde_json::json;
     let stages: Vec<_> = run
         .stages
         .iter()
-        .map(|s| json!({"stage": s.spec.name(), "seconds": s.seconds, "clean": s.clean, "command": s.spec.command()}))
+        .zip(&commands.stages)
+        .map(|(s, command)| json!({"stage": s.spec.name(), "seconds": s.seconds, "clean": s.clean, "command": command}))
         .collect();
     let problems: Vec<_> = problems(run)
         .into_iter()

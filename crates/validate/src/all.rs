@@ -111,7 +111,11 @@ impl ValidateSpec {
         if !self.ncrit_effect.is_empty() {
             text.push_str(&format!(
                 ", transition effect from tables at Ncrit {}",
-                propbet_pipeline::spec::ncrit_effect_text(&self.ncrit_effect)
+                self.ncrit_effect
+                    .iter()
+                    .map(|x| x.to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ));
         }
         text

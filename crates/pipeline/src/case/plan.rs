@@ -15,38 +15,12 @@ use crate::{Error, Result};
 
 impl Case {
     /// The scan stage's spec, where the case has a scan: its settings from `[geometry]`'s
-    /// keys (and its deprecated `scan_args`, with a warning in `warnings`).
-    fn scan_spec(&self, dir: &Path, out: &Path, warnings: &mut Vec<String>) -> Result<Option<ScanSpec>> {
+    /// keys.
+    fn scan_spec(&self, dir: &Path, out: &Path) -> Result<Option<ScanSpec>> {
         let g = &self.geometry;
         let case_file = dir.join("case.toml");
         let at = |key: &str, e: Error| at_key(&case_file, key, e);
-        // The flags that name a file or the output have keys of their own in a case:
-        // refused here rather than read and ignored.
-        for (flag, key) in [
-            ("--reference", "`reference` in [geometry]"),
-            ("--name", "the case's `name`"),
-            ("--out", "`propbet run -o`"),
-            ("-o", "`propbet run -o`"),
-        ] {
-            if g.scan_args
-                .iter()
-                .any(|a| a == flag || a.starts_with(&format!("{flag}=")))
-            {
-                return Err(at(
-                    "[geometry] scan_args",
-                    Error::Conflict(format!("{flag} is set by {key}")),
-                ));
-            }
-        }
-        let from_args = ScanSettings::from_flags(&g.scan_args).map_err(|e| at("[geometry]", e))?;
-        if !g.scan_args.is_empty() {
-            warnings.push(format!(
-                "{}: [geometry] scan_args is deprecated; write its settings as keys of [geometry]: {}",
-                case_file.display(),
-                from_args.as_keys()
-            ));
-        }
-        let settings = from_args.over(g.settings.clone());
+        let settings = g.settings.clone();
         let Some(file) = &g.scan else {
             // A prop file takes a unit; a scan's other settings would be read and ignored.
             let scan_only = ScanSettings {
@@ -354,8 +328,7 @@ impl Case {
             (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
             _ => None,
         };
-        let mut warnings = Vec::new();
-        let scan = self.scan_spec(dir, out, &mut warnings)?;
+        let scan = self.scan_spec(dir, out)?;
         let geometry = match &g.scan {
             Some(_) => out.join("scan/prop.qprop"),
             None => f(g.prop.as_deref().or(g.pe0.as_deref()).unwrap_or_default()),
@@ -423,7 +396,6 @@ impl Case {
             predict,
             powered,
             compare,
-            warnings,
             expected: crate::expected::sentence(
                 g.pe0
                     .as_deref()

@@ -28,10 +28,6 @@ fn the_section_model_decides_what_the_stages_solve_with() {
         (c.model.polars.clone(), d.model.polars.clone()),
         (polars.clone(), polars)
     );
-    // Every stage is its own command: the tables appear as --polars in the commands.
-    assert!(StageSpec::Compare(c)
-        .command()
-        .contains("--polars out/polars/polars.json"));
 }
 
 fn scan_plan(geometry: &str) -> Result<RunPlan> {
@@ -41,23 +37,19 @@ fn scan_plan(geometry: &str) -> Result<RunPlan> {
 }
 
 #[test]
-fn the_scans_settings_are_keys_and_scan_args_is_read_with_a_warning() {
+fn the_scans_settings_are_keys_and_scan_args_is_refused() {
     let keys = scan_plan("scan = \"x.ply\"\noutliers = \"8,3\"\nplanar = true\nslab = 0.5").unwrap();
-    assert!(keys.warnings.is_empty());
     let o = &keys.scan.as_ref().unwrap().options;
     assert_eq!(
         (o.outliers, o.kind, o.slab),
         (Some((8, 3.0)), SectionKind::Planar, 0.0005)
     );
-    let args =
-        scan_plan("scan = \"x.ply\"\nscan_args = [\"--outliers\", \"8,3\", \"--planar\", \"--slab=0.5\"]").unwrap();
-    assert_eq!(args.scan, keys.scan, "the deprecated list gives the same scan");
-    assert_eq!(args.warnings.len(), 1);
+    let e = scan_plan("scan = \"x.ply\"\nscan_args = [\"--outliers\", \"8,3\"]")
+        .unwrap_err()
+        .to_string();
     assert!(
-        args.warnings[0].contains("scan_args is deprecated")
-            && args.warnings[0].contains("outliers = \"8,3\", planar = true, slab = 0.5"),
-        "{:?}",
-        args.warnings
+        e.contains("[geometry] scan_args: removed in 0.2.0") && e.contains("outliers = \"8,3\""),
+        "{e}"
     );
     // Unknown keys, wrong values and a scan's settings without a scan are refused, named.
     let e = scan_plan("scan = \"x.ply\"\nslabb = 3").unwrap_err().to_string();

@@ -101,46 +101,8 @@ fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
 }
 
 impl ScanSettings {
-    /// The settings a list of `propbet scan` flags gives (`--flag value`, `--flag=value`,
-    /// `--planar`): how a case's deprecated `scan_args` are read.
-    pub(crate) fn from_flags(args: &[String]) -> Result<ScanSettings> {
-        let mut table = toml::Table::new();
-        let mut it = args.iter();
-        while let Some(a) = it.next() {
-            let Some(flag) = a.strip_prefix("--") else {
-                return Err(Error::value("scan_args", a, "not a flag of propbet scan"));
-            };
-            let (name, inline) = match flag.split_once('=') {
-                Some((n, v)) => (n, Some(v.to_string())),
-                None => (flag, None),
-            };
-            let key = name.replace('-', "_");
-            if key == "planar" {
-                table.insert(key, toml::Value::Boolean(true));
-                continue;
-            }
-            let Some(value) = inline.or_else(|| it.next().cloned()) else {
-                return Err(Error::value("scan_args", &format!("--{name}"), "needs a value"));
-            };
-            let number = |v: &str| {
-                v.trim()
-                    .parse::<f64>()
-                    .map_err(|_| Error::value("scan_args", v, format!("--{name}: not a number")))
-            };
-            let value = match key.as_str() {
-                "slab" | "colour_threshold" => toml::Value::Float(number(&value)?),
-                "slab_points" => toml::Value::Integer(number(&value)? as i64),
-                _ => toml::Value::String(value),
-            };
-            table.insert(key, value);
-        }
-        toml::Value::Table(table)
-            .try_into()
-            .map_err(|e: toml::de::Error| Error::value("scan_args", &args.join(" "), e.message()))
-    }
-
-    /// The keys a case's `[geometry]` would hold for these settings (for the deprecation
-    /// warning of `scan_args`: what to write instead).
+    /// The keys a case's `[geometry]` holds for these settings (named where a case sets a
+    /// scan's settings without a scan).
     pub(crate) fn as_keys(&self) -> String {
         let mut out = Vec::new();
         let mut text = |k: &str, v: &Option<String>| {
@@ -175,30 +137,6 @@ impl ScanSettings {
             out.push(format!("colour_threshold = {s}"));
         }
         out.join(", ")
-    }
-
-    /// These settings over `base`: each one given here replaces base's.
-    pub fn over(self, base: ScanSettings) -> ScanSettings {
-        ScanSettings {
-            units: self.units.or(base.units),
-            stations: self.stations.or(base.stations),
-            planar: self.planar || base.planar,
-            slab: self.slab.or(base.slab),
-            slab_points: self.slab_points.or(base.slab_points),
-            blade_colour: self.blade_colour.or(base.blade_colour),
-            colour_threshold: self.colour_threshold.or(base.colour_threshold),
-            box_dims: self.box_dims.or(base.box_dims),
-            box_offset: self.box_offset.or(base.box_offset),
-            box_colour: self.box_colour.or(base.box_colour),
-            box_seeds: self.box_seeds.or(base.box_seeds),
-            crop: self.crop.or(base.crop),
-            outliers: self.outliers.or(base.outliers),
-            root_point: self.root_point.or(base.root_point),
-            tip_point: self.tip_point.or(base.tip_point),
-            origin: self.origin.or(base.origin),
-            rotate: self.rotate.or(base.rotate),
-            known_length: self.known_length.or(base.known_length),
-        }
     }
 
     /// The geometry pipeline's options (lengths in metres; the stations and the slab are

@@ -1,6 +1,7 @@
 //! Unit tests of `spec.rs`.
 
 use super::*;
+use propbet_geometry::scan::default_stations;
 
 #[test]
 fn trips_read_back_as_written() {
@@ -34,32 +35,11 @@ fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {
     assert_eq!(Rotation::Snel.coefficient(), 3.0);
     let e = Rotation::parse("snell").unwrap_err().to_string();
     assert!(e.contains("`snell`: expected off or snel"), "{e}");
-    // The equivalent command names the setting only where it is not the default.
-    let mut spec = ModelSpec::prop("p.qprop".into());
-    spec.polars = Some("polars.json".into());
-    spec.rotation = crate::settings::ROTATION.default;
-    let mut v = Vec::new();
-    spec.push_argv(&mut v);
-    assert!(!v.iter().any(|a| a == "--rotation"), "{v:?}");
-    spec.rotation = Rotation::Off;
-    let mut v = Vec::new();
-    spec.push_argv(&mut v);
-    assert!(v.windows(2).any(|w| w[0] == "--rotation" && w[1] == "off"), "{v:?}");
 }
 
 #[test]
-fn the_drag_factor_defaults_with_tables_only_and_is_named_where_not_default() {
+fn the_drag_factor_defaults_with_tables_only() {
     assert_eq!(drag_factor_or_default(None, true), crate::settings::DRAG_FACTOR.default);
     assert_eq!(drag_factor_or_default(None, false), 1.0);
     assert_eq!(drag_factor_or_default(Some(1.0), true), 1.0);
-    let mut spec = ModelSpec::prop("p.qprop".into());
-    spec.polars = Some("polars.json".into());
-    spec.drag_factor = crate::settings::DRAG_FACTOR.default;
-    let mut v = Vec::new();
-    spec.push_argv(&mut v);
-    assert!(!v.iter().any(|a| a.starts_with("--drag-factor")), "{v:?}");
-    spec.drag_factor = 1.0;
-    let mut v = Vec::new();
-    spec.push_argv(&mut v);
-    assert!(v.iter().any(|a| a == "--drag-factor=1"), "{v:?}");
 }
