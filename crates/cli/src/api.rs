@@ -344,13 +344,13 @@ pub fn polars(spec: &propbet_pipeline::spec::PolarsSpec) -> Result<bool> {
 }
 
 pub use crate::engine::XfoilProcess;
-pub use crate::validate::ValidateArgs;
+pub use crate::validate::{ValidateArgs, Written as ValidateWritten};
 pub use propbet_pipeline::settings::{NCRIT, SECTION_MODEL};
 pub use propbet_validate::DEFAULT_GENERIC_SECTION;
 
 /// `propbet validate` of its arguments, typed: its files written; false when a prop reported
-/// problems.
-pub fn validate(args: &ValidateArgs) -> Result<bool> {
+/// problems; the table as it wrote it.
+pub fn validate(args: &ValidateArgs) -> Result<(bool, ValidateWritten)> {
     propbet_pipeline::settings::SECTION_MODEL.choose(&args.section_model)?;
     crate::validate::run(args)
 }

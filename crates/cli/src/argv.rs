@@ -242,7 +242,8 @@ impl Flags for XfoilSpec {
         if self.trip != propbet_pipeline::settings::default_trip() {
             push(v, "--trip", propbet_pipeline::settings::trip_text(self.trip));
         }
-        let default = propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default).unwrap_or_default();
+        let default =
+            propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default).unwrap_or_default();
         if self.alphas_deg != default {
             push_eq(v, "--alpha", list_text(&self.alphas_deg));
         }

@@ -249,7 +249,7 @@ pub(crate) fn clap_error(e: clap::Error) -> anyhow::Error {
 fn dispatch(command: Command) -> anyhow::Result<bool> {
     match command {
         Command::Run(a) => run::run(&a),
-        Command::Validate(a) => validate::run(&a),
+        Command::Validate(a) => validate::run(&a).map(|(ok, _)| ok),
         Command::Hidden(a) => hidden::run(&a),
         Command::Predict(a) if a.motor.motor.is_some() => powered::run(&a),
         Command::Predict(a) => predict::run(&a),

@@ -119,8 +119,18 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
     Ok((spec, props, generic))
 }
 
-/// Runs `propbet validate`.
-pub fn run(a: &ValidateArgs) -> Result<bool> {
+/// What `propbet validate` wrote that a caller reads as data, as it wrote it.
+#[derive(Debug, Default)]
+pub struct Written {
+    /// validation.md.
+    pub markdown: String,
+    /// validation.csv.
+    pub csv: Vec<u8>,
+}
+
+/// Runs `propbet validate`: false when a prop reported problems; and what it wrote
+/// ([`Written`]).
+pub fn run(a: &ValidateArgs) -> Result<(bool, Written)> {
     let (spec, props, generic) = spec(a)?;
     let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
     let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec()?.engine);
@@ -144,14 +154,14 @@ pub fn run(a: &ValidateArgs) -> Result<bool> {
     let model = spec.model_text();
     let (md, csv) = table(&validation.rows, &validation.skipped, &model)?;
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
-    write_atomic(&a.out.join("validation.csv"), &[csv], &[])?;
+    write_atomic(&a.out.join("validation.csv"), &[&csv], &[])?;
     let families = propbet_pipeline::expected::to_csv(&propbet_validate::summarise(&validation.rows));
     write_atomic(&a.out.join("families.csv"), &[families.as_bytes()], &[])?;
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;
     lock.finish()?;
     crate::output::print_page(&md);
-    Ok(validation.clean)
+    Ok((validation.clean, Written { markdown: md, csv }))
 }
 
 /// One prop's outputs: its geometry and sections, polars, and each stage's directory.

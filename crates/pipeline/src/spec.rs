@@ -78,7 +78,6 @@ impl XfoilSpec {
         }
         Ok(())
     }
-
 }
 
 /// Air for the solver: QPROP's defaults, given values, or a measured state.
@@ -170,7 +169,6 @@ impl ModelSpec {
     pub fn tabulated(&self) -> bool {
         self.polars.is_some() || self.design.is_some()
     }
-
 }
 
 /// What a sweep varies besides the rotation speed.
@@ -268,7 +266,6 @@ impl MeasuredSpec {
             columns: None,
         }
     }
-
 }
 
 /// `propbet compare`.

@@ -80,7 +80,8 @@ pub fn polars<'py>(
 }
 
 /// ``propbet validate`` on UIUC's measurements, APC's design files and airfoils, into ``out``:
-/// its files written; False when a prop reported problems.
+/// its files written; (False when a prop reported problems, validation.md's text,
+/// validation.csv's bytes).
 #[pyfunction]
 #[pyo3(signature = (
     uiuc, pe0, airfoils, out, *, only=None, per3=None, section_model=None, ncrit=None,
@@ -113,7 +114,7 @@ pub fn validate(
     no_cache: bool,
     quiet: bool,
     xfoil_budget: Option<f64>,
-) -> PyResult<bool> {
+) -> PyResult<(bool, String, Bound<'_, pyo3::types::PyBytes>)> {
     use propbet_cli::api::{ValidateArgs, XfoilProcess, DEFAULT_GENERIC_SECTION, NCRIT, SECTION_MODEL};
     let args = ValidateArgs {
         uiuc,
@@ -141,5 +142,6 @@ pub fn validate(
         generic_section: generic_section.unwrap_or_else(|| DEFAULT_GENERIC_SECTION.to_string()),
         user_effects,
     };
-    guarded(py, move || propbet_cli::api::validate(&args))
+    let (ok, written) = guarded(py, move || propbet_cli::api::validate(&args))?;
+    Ok((ok, written.markdown, pyo3::types::PyBytes::new(py, &written.csv)))
 }

@@ -105,14 +105,6 @@ def _frame(columns: Sequence[tuple]) -> pd.DataFrame:
     return pd.DataFrame(data)
 
 
-def _read_csv(path: Path) -> pd.DataFrame:
-    return _csv(path.read_bytes()) if path.is_file() else pd.DataFrame()
-
-
-def _read_json(path: Path) -> Any:
-    return json.loads(path.read_text()) if path.is_file() else None
-
-
 def _folder(out: Optional[PathLike], prefix: str) -> tuple:
     """The output folder: ``out``, or a new temporary folder, removed with the object the call
     returns (which holds the second value, its owner; None for ``out``)."""
@@ -585,12 +577,11 @@ def validate(
         only = ",".join(only)
     if isinstance(options.get("ncrit_effect"), (int, float)):
         options["ncrit_effect"] = [options["ncrit_effect"]]
-    ok = _relayed(lambda: _native.validate(
+    ok, markdown, table = _relayed(lambda: _native.validate(
         os.fspath(uiuc), os.fspath(pe0), os.fspath(airfoils), str(folder), only=only, **options))
-    md = folder / "validation.md"
     return Validation(
-        table=_read_csv(folder / "validation.csv"),
-        markdown=md.read_text() if md.is_file() else "",
+        table=_csv(table),
+        markdown=markdown,
         report=folder / "validation.html",
         folder=folder,
         ok=ok,
