@@ -281,4 +281,51 @@ mod tests {
         assert!(scan.contains("the worst family, APC Slow Flyer"), "{scan}");
         assert!(sentence(None, &[]).is_none());
     }
+
+    /// The headline accuracy on the README and the validation page is the book's validation
+    /// table's (itself the shipped table's, above): every page quoting it is checked here, and a
+    /// new validate run that moves it fails until the pages say the new numbers.
+    #[test]
+    fn the_pages_quote_the_validation_tables_numbers() {
+        let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+        let read = |p: &str| {
+            std::fs::read_to_string(format!("{root}/{p}"))
+                .unwrap()
+                .replace('\n', " ")
+        };
+        let table = read("docs/validation-table.md");
+        let row = |label: &str| -> Vec<String> {
+            let at = table.find(&format!("| **{label}")).unwrap_or_else(|| panic!("{label}"));
+            let line = table[at..].split(" | **").next().unwrap_or_default();
+            line.split('|')
+                .map(|c| c.trim().trim_end_matches(" %").to_string())
+                .collect()
+        };
+        // | label | | points | CT median | CT p90 | CP median | CP p90 | APC CT | p90 | APC CP | ...
+        let all = row("all (median over props)");
+        let sf = row("SF (median of");
+        let (ct, cp, apc_ct, apc_cp) = (&all[4], &all[6], &all[8], &all[10]);
+        let readme = read("README.md");
+        let validation = read("docs/validation.md");
+        for (page, text, quote) in [
+            (
+                "README.md",
+                &readme,
+                format!("**{ct} % in CT and {cp} % in CP, against {apc_ct} % and {apc_cp} % for APC's own"),
+            ),
+            ("README.md", &readme, format!("family (median {} / {} %)", sf[4], sf[6])),
+            (
+                "docs/validation.md",
+                &validation,
+                format!("| {ct} % | {cp} % | {apc_ct} / {apc_cp} % (its 35) |"),
+            ),
+            (
+                "docs/validation.md",
+                &validation,
+                format!("| {ct} / {cp} % (APC's own code on the same points {apc_ct} / {apc_cp} %)"),
+            ),
+        ] {
+            assert!(text.contains(&quote), "{page} does not say `{quote}`");
+        }
+    }
 }
