@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use propbet_pipeline::qprop::output::{parse_output, Printed, SUMMARY_COLUMNS};
+use propbet_api::qprop::output::{parse_output, Printed, SUMMARY_COLUMNS};
 
 use super::qprop_real::{qprop, qprop_source};
 use super::{col, read_csv, run, stderr};

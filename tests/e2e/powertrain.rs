@@ -174,7 +174,7 @@ fn a_powered_prediction_writes_the_stations_of_each_operating_point() {
 /// A RCbenchmark step log (its columns as the Series 1585 writes them) of `motor` on a
 /// propeller of Q = 2e-8 w^2 at 12 V through an ideal ESC: 20 samples at each ESC command,
 /// each reading with 1 % noise.
-fn generated_log(motor: &propbet_pipeline::motor::Motor) -> String {
+fn generated_log(motor: &propbet_api::motor::Motor) -> String {
     let header = "Time (s),ESC signal (µs),Servo 1 (µs),Servo 2 (µs),Servo 3 (µs),AccX (g),AccY (g),AccZ (g),Torque (N·m),Thrust (N),Voltage (V),Current (A),Motor Electrical Speed (RPM),Motor Optical Speed (RPM),Electrical Power (W),Mechanical Power (W),Motor Efficiency (%),Propeller Mech. Efficiency (N/W),Overall Efficiency (N/W),Vibration (g),App message,";
     let mut state: u64 = 7;
     let mut noise = move || {
@@ -208,7 +208,7 @@ fn generated_log(motor: &propbet_pipeline::motor::Motor) -> String {
         let at = motor.at(w, 12.0 * d);
         for _ in 0..20 {
             t += 0.1;
-            let rpm = propbet_pipeline::units::omega_to_rpm(w) * (1.0 + noise());
+            let rpm = propbet_api::units::omega_to_rpm(w) * (1.0 + noise());
             out.push(format!(
                 "{t},{esc},,,,0,0,-1,{},{},{},{},0,{rpm},,,,,,0,,",
                 at.torque * (1.0 + noise()),
@@ -226,8 +226,7 @@ fn generated_log(motor: &propbet_pipeline::motor::Motor) -> String {
 #[test]
 fn a_type_2_fit_finds_the_torque_constant_of_a_generated_log() {
     let t = tempfile::tempdir().unwrap();
-    let truth =
-        propbet_pipeline::motor::Motor::from_params(2, &[0.12, 0.9, 1400.0, 1540.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
+    let truth = propbet_api::motor::Motor::from_params(2, &[0.12, 0.9, 1400.0, 1540.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
     std::fs::write(t.path().join("log.csv"), generated_log(&truth)).unwrap();
     let o = run(
         &["motor", "fit", "--measured", "log.csv", "--kq", "-o", "m.motor"],

@@ -10,15 +10,20 @@
 //! - [`MeasuredRequest`]: measured files and how to read them ([`MeasuredSpec`]);
 //! - [`DriveRequest`] and [`supply`]: what sets a motor's operating point, and the battery.
 //!
+//! The types these hand out, from the crates below, are in its modules [`bemt`], [`qprop`],
+//! [`motor`](types::motor), [`measure`], [`compare`], ... (the binary's one door to them).
+//!
 //! Values come as numbers ([`Values::Numbers`]) or as the text a flag takes
 //! ([`Values::Text`]: `4000:8000:1000`), and are named in every error by the name the caller
 //! used.
 
-mod motor;
+mod motor_file;
 mod request;
+mod types;
 
-pub use motor::{motor, motor_text, read_motor};
-pub use propbet_pipeline::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
+pub use motor_file::{motor, motor_text, read_motor};
+pub use types::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
+pub use types::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, motor, polar, qprop, units, xfoil};
 
 pub use request::{
     supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, PolarsRequest, ProcessRequest,

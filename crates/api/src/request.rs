@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use propbet_pipeline::motor::{Battery, Drive, Supply};
+use crate::motor::{Battery, Drive, Supply};
 use propbet_pipeline::settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
 use propbet_pipeline::spec::{
     drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis,
@@ -13,9 +13,9 @@ use propbet_pipeline::values::{
 };
 use propbet_pipeline::{Error, Result};
 
-use propbet_pipeline::atmosphere::AirState;
-use propbet_pipeline::measure::RpmSource;
-use propbet_pipeline::units::rpm_to_omega;
+use crate::atmosphere::AirState;
+use crate::measure::RpmSource;
+use crate::units::rpm_to_omega;
 
 /// Numbers as a caller gives them: a list (Python's lists and arrays) or the text a flag
 /// takes (`4000,5000`, `start:stop:step`, `start:stop/N`).
@@ -92,7 +92,7 @@ impl ProcessRequest {
             no_cache: self.no_cache,
             quiet: self.quiet,
             budget: self.budget,
-            engine: propbet_pipeline::polar::Engine::parse(engine).unwrap_or_default(),
+            engine: crate::polar::Engine::parse(engine).unwrap_or_default(),
             neuralfoil_size: self.neuralfoil_size.clone(),
         })
     }
@@ -462,7 +462,7 @@ impl SectionRequest {
             },
             alphas_deg: alphas,
             panels: self.panels,
-            iter: self.iter.unwrap_or(propbet_pipeline::xfoil::DEFAULT_MAX_ITER),
+            iter: self.iter.unwrap_or(crate::xfoil::DEFAULT_MAX_ITER),
         };
         spec.check()?;
         Ok(spec)

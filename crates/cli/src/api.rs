@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use propbet_pipeline::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
+use propbet_api::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
 use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, StageSpec};
 
 use crate::output::{csv_rows, Num};
@@ -106,7 +106,7 @@ struct PointRow<'a> {
 }
 
 fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
-    let rpm = propbet_pipeline::units::omega_to_rpm;
+    let rpm = propbet_api::units::omega_to_rpm;
     let rows = names.iter().zip(sets).flat_map(|(file, s)| {
         s.points.iter().map(move |p| {
             let (v, v_sd, j) = match p.speed {
@@ -189,7 +189,7 @@ fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> R
 pub fn stations(spec: &ModelSpec) -> Result<Vec<u8>> {
     let model = crate::prop::load_spec(spec)?;
     let file = &model.loaded.file;
-    let blade = file.to_blade(propbet_pipeline::qprop::RadiusReading::Documented);
+    let blade = file.to_blade(propbet_api::qprop::RadiusReading::Documented);
     let rows = (0..blade.r.len()).map(|i| {
         let c = &blade.coeffs[i];
         StationRow {
@@ -237,7 +237,7 @@ struct StationRow {
 /// itself (`spec.motor`, its file, is not read).
 pub fn powered(
     spec: &propbet_pipeline::spec::PoweredSpec,
-    motor: &propbet_pipeline::motor::MotorFile,
+    motor: &propbet_api::motor::MotorFile,
     stations: bool,
 ) -> Result<(crate::columns::Table, Vec<String>, Option<crate::columns::Table>)> {
     let run = crate::powered::solve(spec, motor, stations)?;
@@ -261,7 +261,7 @@ pub fn fit_motor(
     kq: bool,
     name: Option<String>,
 ) -> Result<(crate::motor_fit::Fitted, crate::columns::Table)> {
-    use propbet_pipeline::motor::FitKind;
+    use propbet_api::motor::FitKind;
     let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
     let f = crate::motor_fit::fitted(spec, kv, kind, name)?;
     let steps = crate::motor_fit::steps(&f.fit)?;
@@ -272,8 +272,8 @@ pub fn fit_motor(
 /// airspeeds [m/s] of the full-throttle curves, None: the command's): props.csv's columns and the answer's sentences.
 pub fn compare_props(
     models: &[(String, ModelSpec)],
-    motor: &propbet_pipeline::motor::MotorFile,
-    supply: &propbet_pipeline::motor::Supply,
+    motor: &propbet_api::motor::MotorFile,
+    supply: &propbet_api::motor::Supply,
     battery: &str,
     hover: f64,
     speeds: Option<Vec<f64>>,

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
-use propbet_pipeline::geometry::scan::{default_stations, ScanOptions, SectionKind};
-use propbet_pipeline::measure::RpmSource;
+use propbet_api::geometry::scan::{default_stations, ScanOptions, SectionKind};
+use propbet_api::measure::RpmSource;
 use propbet_pipeline::settings::Rotation;
 use propbet_pipeline::spec::{
     drag_factor_or_default, AirSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec, SweepAxis,
@@ -57,7 +57,7 @@ fn colour_text(c: &[[u8; 3]]) -> String {
         .join(",")
 }
 
-fn vec_text(v: &propbet_pipeline::geometry::Vector3<f64>) -> String {
+fn vec_text(v: &propbet_api::geometry::Vector3<f64>) -> String {
     format!("{},{},{}", v.x, v.y, v.z)
 }
 
@@ -154,7 +154,7 @@ pub fn argv(stage: &StageSpec) -> Argv {
             if s.max_steps != propbet_pipeline::settings::MAX_STEPS.default {
                 push(&mut v, "--max-steps", s.max_steps.to_string());
             }
-            if s.window != propbet_pipeline::compare::metrics::VALIDATION_J_WINDOW {
+            if s.window != propbet_api::compare::metrics::VALIDATION_J_WINDOW {
                 push(&mut v, "--window", s.window.to_string());
             }
             push(&mut v, "--out", path(&s.out));
@@ -177,7 +177,7 @@ fn shell_line(argv: &[String]) -> String {
 }
 
 /// The final model of a diagnosis as `--effect` arguments.
-pub fn effect_args(d: &propbet_pipeline::diagnose::Diagnosis) -> Vec<String> {
+pub fn effect_args(d: &propbet_api::diagnose::Diagnosis) -> Vec<String> {
     d.final_stack
         .active
         .iter()
@@ -224,7 +224,7 @@ impl Flags for XfoilProcessSpec {
         if self.quiet {
             v.push("--quiet".into());
         }
-        if self.engine != propbet_pipeline::polar::Engine::default() {
+        if self.engine != propbet_api::polar::Engine::default() {
             push(v, "--engine", self.engine.name());
         }
         if let Some(s) = &self.neuralfoil_size {
@@ -250,7 +250,7 @@ impl Flags for XfoilSpec {
         if let Some(p) = self.panels {
             push(v, "--panels", p.to_string());
         }
-        if self.iter != propbet_pipeline::xfoil::DEFAULT_MAX_ITER {
+        if self.iter != propbet_api::xfoil::DEFAULT_MAX_ITER {
             push(v, "--iter", self.iter.to_string());
         }
     }
@@ -467,8 +467,8 @@ impl Flags for PoweredSpec {
 }
 
 /// The flag of the drivers' kind and their values (a powered spec's drivers are of one kind).
-fn drive_list(drives: &[propbet_pipeline::motor::Drive]) -> (&'static str, String) {
-    use propbet_pipeline::motor::Drive;
+fn drive_list(drives: &[propbet_api::motor::Drive]) -> (&'static str, String) {
+    use propbet_api::motor::Drive;
     let flag = match drives.first() {
         Some(Drive::Volts(_)) | None => "--volts",
         Some(Drive::Amps(_)) => "--amps",

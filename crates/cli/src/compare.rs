@@ -6,8 +6,8 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::{Args, ValueEnum};
-use propbet_pipeline::compare::ComparedPoint;
-use propbet_pipeline::measure::{MeasuredSet, Refused};
+use propbet_api::compare::ComparedPoint;
+use propbet_api::measure::{MeasuredSet, Refused};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared, Reference};
@@ -108,7 +108,7 @@ pub fn print_measured(names: &[String], sets: &[MeasuredSet], refused: &[Refused
             "propbet: {n}: {} rows -> {} points; {}",
             s.rows,
             s.points.len(),
-            propbet_pipeline::measure::summarise_dropped(&s.dropped)
+            propbet_api::measure::summarise_dropped(&s.dropped)
         );
     }
     for r in refused {
@@ -288,7 +288,7 @@ pub fn write(
     model: &Model,
     c: &Compared,
     other: Option<&Reference>,
-    electric: Option<&propbet_pipeline::compare::electric::Electric>,
+    electric: Option<&propbet_api::compare::electric::Electric>,
 ) -> Result<Written> {
     let (curves, band) = c.curves(model)?;
     let mut prop_notes = model.loaded.warnings.clone();

@@ -29,7 +29,7 @@ pub struct ComparePropsArgs {
     #[arg(long, value_name = "SPEC")]
     pub battery: String,
     /// The ESC's resistance [ohm].
-    #[arg(long, default_value_t = propbet_pipeline::motor::ESC_OHMS, value_name = "OHMS")]
+    #[arg(long, default_value_t = propbet_api::motor::ESC_OHMS, value_name = "OHMS")]
     pub esc_ohms: f64,
     /// The thrust of one propeller at hover [N] (the craft's weight over its propellers).
     #[arg(long, value_name = "N")]
@@ -79,7 +79,7 @@ fn row(k: usize, p: &SideProp, hover: f64) -> Row {
     let h = p.hover.as_ref().ok();
     let f = p.full.first().and_then(|(_, r)| r.as_ref().ok());
     let band = p.full_band.first().copied().flatten();
-    use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
+    use propbet_api::units::{omega_to_rpm, seconds_to_minutes};
     Row {
         rank: k + 1,
         prop: p.name.clone(),
@@ -121,8 +121,8 @@ fn check_hover(hover: f64) -> Result<()> {
 /// ranked by g/W at `hover` thrust [N], with full throttle over the airspeeds [m/s].
 pub fn side(
     models: &[(String, ModelSpec)],
-    motor: &propbet_pipeline::motor::Motor,
-    supply: &propbet_pipeline::motor::Supply,
+    motor: &propbet_api::motor::Motor,
+    supply: &propbet_api::motor::Supply,
     hover: f64,
     speeds: &[f64],
     air: &propbet_pipeline::spec::AirSpec,

@@ -150,7 +150,7 @@ pub fn print(spec: &DiagnoseSpec, d: &Diagnosed) {
 }
 
 /// The diagnosis on the terminal: verdict, where the baseline fails, ranking, ladder.
-pub fn print_result(d: &propbet_pipeline::diagnose::Diagnosis) {
+pub fn print_result(d: &propbet_api::diagnose::Diagnosis) {
     println!("{}", crate::output::wrapped(&report::verdict(d), "", ""));
     println!("where the baseline fails:");
     for s in &d.before {
@@ -204,19 +204,17 @@ pub fn list(args: &EffectsArgs) -> Result<bool> {
         let hooks: Vec<String> = e.hooks().iter().map(|h| format!("{h:?}").to_lowercase()).collect();
         let _ = writeln!(out, "{} ({})", e.id(), hooks.join(", "));
         for p in e.params() {
-            let neutral = p
-                .neutral
-                .map_or("none".to_string(), propbet_pipeline::effects::fmt_value);
+            let neutral = p.neutral.map_or("none".to_string(), propbet_api::effects::fmt_value);
             let (lo, hi) = p.expected_range();
             let _ = writeln!(
                 out,
                 "    {} [{}]  neutral {neutral}, bounds [{}, {}], physically expected [{}, {}]: {}",
                 p.name,
                 p.unit,
-                propbet_pipeline::effects::fmt_value(p.lower),
-                propbet_pipeline::effects::fmt_value(p.upper),
-                propbet_pipeline::effects::fmt_value(lo),
-                propbet_pipeline::effects::fmt_value(hi),
+                propbet_api::effects::fmt_value(p.lower),
+                propbet_api::effects::fmt_value(p.upper),
+                propbet_api::effects::fmt_value(lo),
+                propbet_api::effects::fmt_value(hi),
                 p.doc
             );
         }

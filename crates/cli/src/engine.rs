@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use propbet_pipeline::polar::Makers;
+use propbet_api::polar::Makers;
 use propbet_pipeline::spec::XfoilProcessSpec;
 use propbet_pipeline::stages::Polars;
 
@@ -96,9 +96,9 @@ pub struct Bar {
 
 impl Bar {
     /// A bar for `engine`'s polars; never drawn when `quiet`.
-    pub fn new(quiet: bool, engine: propbet_pipeline::polar::Engine) -> Self {
+    pub fn new(quiet: bool, engine: propbet_api::polar::Engine) -> Self {
         let label = match engine {
-            propbet_pipeline::polar::Engine::NeuralFoil => "NeuralFoil",
+            propbet_api::polar::Engine::NeuralFoil => "NeuralFoil",
             _ => "XFOIL",
         };
         Bar {

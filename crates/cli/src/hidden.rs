@@ -3,7 +3,7 @@
 
 use anyhow::Result;
 use clap::Args;
-use propbet_pipeline::diagnose::inject::{Finding, Injection};
+use propbet_api::diagnose::inject::{Finding, Injection};
 use propbet_validate::{hidden_prop, sections_for, PropSections};
 
 use crate::output::write_atomic;

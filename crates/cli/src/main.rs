@@ -15,7 +15,7 @@ fn main() -> ExitCode {
     };
     // An interrupted propbet takes the XFOIL processes and temporary folders it started
     // with it (without a handler the default action still ends propbet).
-    let _ = propbet_pipeline::xfoil::interrupt::install();
+    let _ = propbet_api::xfoil::interrupt::install();
     match propbet_cli::run(cli) {
         Ok(true) => ExitCode::SUCCESS,
         Ok(false) => ExitCode::from(1),

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, Subcommand};
-use propbet_pipeline::motor::{write_motor, FitKind, MotorFile};
+use propbet_api::motor::{write_motor, FitKind, MotorFile};
 
 use crate::compare::MeasuredArgs;
 use crate::output::emit;
@@ -85,8 +85,8 @@ pub fn fitted(
         format!("{} (fitted)", first.unwrap_or_else(|| "motor".into()))
     });
     let kv_words = match m.kv_source {
-        propbet_pipeline::motor::KvSource::Given => "given".to_string(),
-        propbet_pipeline::motor::KvSource::EscDuty(n) => format!("from the ESC duty at {n} steps"),
+        propbet_api::motor::KvSource::Given => "given".to_string(),
+        propbet_api::motor::KvSource::EscDuty(n) => format!("from the ESC duty at {n} steps"),
     };
     let held = f
         .held_out_median
@@ -205,7 +205,7 @@ struct StepRow<'a> {
 pub fn steps(f: &propbet_pipeline::stages::FittedMotor) -> Result<crate::columns::Table> {
     let rows = f.points.iter().map(|(step, p, held)| StepRow {
         step,
-        rpm: propbet_pipeline::units::omega_to_rpm(p.omega).into(),
+        rpm: propbet_api::units::omega_to_rpm(p.omega).into(),
         torque_nm: p.torque.into(),
         volts: p.volts.into(),
         amps: p.amps.into(),

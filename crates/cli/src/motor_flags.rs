@@ -5,8 +5,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
+use propbet_api::motor::{Drive, Supply};
 use propbet_api::{DriveRequest, Values};
-use propbet_pipeline::motor::{Drive, Supply};
 
 /// The motor that turns the propeller, and what sets its operating point.
 #[derive(Debug, Args)]
@@ -32,7 +32,7 @@ pub struct MotorArgs {
     #[arg(long, requires = "motor", value_name = "SPEC")]
     pub battery: Option<String>,
     /// The ESC's resistance in the motor's current path [ohm], with --battery.
-    #[arg(long, requires = "battery", default_value_t = propbet_pipeline::motor::ESC_OHMS, value_name = "OHMS")]
+    #[arg(long, requires = "battery", default_value_t = propbet_api::motor::ESC_OHMS, value_name = "OHMS")]
     pub esc_ohms: f64,
     /// Throttles (0 to 1, list or range syntax), with --battery: the battery through the ESC
     /// drives the motor.

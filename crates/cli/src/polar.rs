@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
+use propbet_api::polar::{Airfoil, Polar, QpropFit};
+use propbet_api::qprop::write_prop;
 use propbet_pipeline::case::parse_fraction;
-use propbet_pipeline::polar::{Airfoil, Polar, QpropFit};
-use propbet_pipeline::qprop::write_prop;
 use propbet_pipeline::spec::{PolarsSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
 use propbet_pipeline::values::parse_list;
@@ -33,7 +33,7 @@ pub struct XfoilArgs {
     #[arg(long)]
     pub panels: Option<u32>,
     /// XFOIL's viscous iteration limit per angle.
-    #[arg(long, default_value_t = propbet_pipeline::xfoil::DEFAULT_MAX_ITER)]
+    #[arg(long, default_value_t = propbet_api::xfoil::DEFAULT_MAX_ITER)]
     pub iter: u32,
 }
 

@@ -2,13 +2,13 @@
 //! thrust or an RPM, one row per (driver, airspeed) point with QPROP's electrical columns.
 
 use anyhow::Result;
-use propbet_pipeline::bemt::{Fluid, PointResult};
-use propbet_pipeline::compare::band::PointBand;
+use propbet_api::bemt::{Fluid, PointResult};
+use propbet_api::compare::band::PointBand;
+use propbet_api::motor::{Drive, Motor, MotorFile, Powered};
+use propbet_api::units::{omega_to_rpm, seconds_to_minutes};
 use propbet_pipeline::model::Model;
-use propbet_pipeline::motor::{Drive, Motor, MotorFile, Powered};
 use propbet_pipeline::spec::{PoweredSpec, SweepAxis, TableFormat};
 use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
-use propbet_pipeline::units::{omega_to_rpm, seconds_to_minutes};
 
 use crate::output::{csv_rows, emit, Num};
 use crate::predict::PredictArgs;
@@ -283,7 +283,7 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
         cd_avg: r.map(|r| r.cd_avg).into(),
         not_converged: r.map(|r| r.not_converged),
         flags: r
-            .map(|r| propbet_pipeline::bemt::check::implausible(r, rho, tip_radius).join("; "))
+            .map(|r| propbet_api::bemt::check::implausible(r, rho, tip_radius).join("; "))
             .unwrap_or_default(),
         no_solution: p.problem().unwrap_or_default().to_string(),
         rho_kg_m3: if r.is_some() { rho.into() } else { none },

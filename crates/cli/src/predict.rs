@@ -4,10 +4,10 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
+use propbet_api::bemt::{Fluid, PointResult};
+use propbet_api::compare::band::PointBand;
 use propbet_api::{AirRequest, ModelRequest, SweepRequest, Values};
 use propbet_pipeline::band::BandSpec;
-use propbet_pipeline::bemt::{Fluid, PointResult};
-use propbet_pipeline::compare::band::PointBand;
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
 use serde::Serialize;
@@ -537,7 +537,7 @@ pub(crate) struct SweepRow {
     cl_avg: Num,
     cd_avg: Num,
     not_converged: usize,
-    /// What is physically implausible at the point ([`propbet_pipeline::bemt::check::implausible`]).
+    /// What is physically implausible at the point ([`propbet_api::bemt::check::implausible`]).
     flags: String,
     /// Air density used [kg/m^3].
     rho_kg_m3: Num,
@@ -607,7 +607,7 @@ pub(crate) fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -
         cl_avg: p.cl_avg.into(),
         cd_avg: p.cd_avg.into(),
         not_converged: p.not_converged,
-        flags: propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
+        flags: propbet_api::bemt::check::implausible(p, rho, tip_radius).join("; "),
         rho_kg_m3: rho.into(),
         air: crate::sweep_csv::air_cell(air),
     }
@@ -670,12 +670,12 @@ fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '
             dq_dr_n: st.dq_dr.into(),
             stalled: st.stalled,
             convergence: match st.convergence {
-                propbet_pipeline::bemt::Convergence::Newton { .. } => "newton",
-                propbet_pipeline::bemt::Convergence::Bracketed { .. } => "bracketed",
-                propbet_pipeline::bemt::Convergence::NotConverged => "not_converged",
-                propbet_pipeline::bemt::Convergence::NoFlow => "no_flow",
-                propbet_pipeline::bemt::Convergence::NoRotation => "no_rotation",
-                propbet_pipeline::bemt::Convergence::ZeroChord => "zero_chord",
+                propbet_api::bemt::Convergence::Newton { .. } => "newton",
+                propbet_api::bemt::Convergence::Bracketed { .. } => "bracketed",
+                propbet_api::bemt::Convergence::NotConverged => "not_converged",
+                propbet_api::bemt::Convergence::NoFlow => "no_flow",
+                propbet_api::bemt::Convergence::NoRotation => "no_rotation",
+                propbet_api::bemt::Convergence::ZeroChord => "zero_chord",
             },
         })
     })

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use propbet_pipeline::qprop::write_prop;
+use propbet_api::qprop::write_prop;
 
 use crate::output::emit;
 use propbet_pipeline::spec::ModelSpec;

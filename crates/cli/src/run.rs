@@ -368,7 +368,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
                 write_atomic(
                     &dir.join(propbet_pipeline::export::FILE_NAME),
-                    &[propbet_pipeline::qprop::write_prop(&x.file)],
+                    &[propbet_api::qprop::write_prop(&x.file)],
                     &spec.model.inputs(),
                 )?;
             }

@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 use clap::Args;
-use propbet_pipeline::geometry::cloud::to_ply;
-use propbet_pipeline::geometry::scan::{Aligned, Geometry};
-use propbet_pipeline::measure::uiuc::{geometry_at, GeometryRow};
-use propbet_pipeline::qprop::write_prop;
+use propbet_api::geometry::cloud::to_ply;
+use propbet_api::geometry::scan::{Aligned, Geometry};
+use propbet_api::measure::uiuc::{geometry_at, GeometryRow};
+use propbet_api::qprop::write_prop;
 use propbet_pipeline::spec::{ScanSettings, ScanSpec};
 use propbet_pipeline::stages::{self, Scanned};
 use serde_json::json;

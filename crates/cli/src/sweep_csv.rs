@@ -2,7 +2,7 @@
 //! `csv_rows` of the sweep's rows (a test holds it), for the streamed sweep, where the generic
 //! path spent as long formatting a 20,000-point table as the solver took to compute it.
 
-use propbet_pipeline::bemt::PointResult;
+use propbet_api::bemt::PointResult;
 
 use crate::output::push_num;
 
@@ -35,7 +35,7 @@ fn push_field(out: &mut Vec<u8>, text: &str) {
 
 /// The rows of `results` (with the header line first when `header`): the air's density `rho`,
 /// where the air came from (`air`, as [`air_cell`] writes it) and the tip radius for the
-/// flags of [`propbet_pipeline::bemt::check::implausible`].
+/// flags of [`propbet_api::bemt::check::implausible`].
 pub fn rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Vec<u8> {
     let mut out = Vec::with_capacity(results.len() * 256 + HEADER.len() + 1);
     if header {
@@ -75,7 +75,7 @@ pub fn rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radi
         out.push(b',');
         push_field(
             &mut out,
-            &propbet_pipeline::bemt::check::implausible(p, rho, tip_radius).join("; "),
+            &propbet_api::bemt::check::implausible(p, rho, tip_radius).join("; "),
         );
         out.extend_from_slice(&tail);
     }
@@ -91,7 +91,7 @@ mod tests {
     fn points() -> Vec<PointResult> {
         let point = |v: f64, rpm: f64, thrust: f64, j: Option<f64>, not_converged: usize| {
             serde_json::from_value(serde_json::json!({
-                "v": v, "omega": propbet_pipeline::units::rpm_to_omega(rpm), "rpm": rpm,
+                "v": v, "omega": propbet_api::units::rpm_to_omega(rpm), "rpm": rpm,
                 "thrust": thrust, "torque": 0.0123456789, "power": 12.3456789e-3 * rpm,
                 "j": j, "ct": Some(0.1234567890123), "cp": None::<f64>, "cq": Some(1.5e-7),
                 "eta": 0.0, "adv_qprop": j.map(|j| j / 3.0), "ct_qprop": Some(-2.5e-12),
@@ -121,6 +121,6 @@ mod tests {
             assert_eq!(String::from_utf8(direct).unwrap(), String::from_utf8(via_csv).unwrap());
         }
         // The implausible point carries flags: the case the quoting rule is for.
-        assert!(!propbet_pipeline::bemt::check::implausible(&pts[2], 1.2, 0.1).is_empty());
+        assert!(!propbet_api::bemt::check::implausible(&pts[2], 1.2, 0.1).is_empty());
     }
 }

@@ -16,7 +16,7 @@ use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections
 
 use crate::output::{write_atomic, Num};
 use crate::polar::{Bar, XfoilProcess};
-use propbet_pipeline::compare::ComparedPoint;
+use propbet_api::compare::ComparedPoint;
 
 /// Arguments of `propbet validate`.
 // Fields without a doc comment are documented by their declared setting's help (`settings`).
@@ -173,7 +173,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
     }
     write_atomic(
         &dir.join("geometry.qprop"),
-        &[propbet_pipeline::qprop::write_prop(&v.geometry.file)],
+        &[propbet_api::qprop::write_prop(&v.geometry.file)],
         &[],
     )?;
     // The two comparisons, in the order of their stages.
@@ -205,8 +205,7 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
 /// CP at each source's two ends, so that another band can be made from the same solves.
 fn write_band_sources(path: &Path, v: &Validated) -> Result<()> {
     let points = &v.compared.0.points;
-    let scored =
-        propbet_pipeline::compare::metrics::in_window(points, propbet_pipeline::compare::metrics::VALIDATION_J_WINDOW);
+    let scored = propbet_api::compare::metrics::in_window(points, propbet_api::compare::metrics::VALIDATION_J_WINDOW);
     let mut header: Vec<String> = [
         "file",
         "line_first",

@@ -203,7 +203,7 @@ impl BandSpec {
 
     /// The band along a comparison's model curves (`base`: the model's own,
     /// [`propbet_compare::curves::curves`] of `points`).
-    pub fn along_curves(
+    pub(crate) fn along_curves(
         &self,
         model: &Model,
         air: AirChoice,

@@ -10,12 +10,9 @@
 //!   help).
 //! * [`values`]: lists, ranges and quantities with units as users write them.
 //!
-//! * [`artifacts`]: the types of the crates below that the stages hand out, for the binary.
-//!
 //! Inputs are read here; outputs are written by the caller. Progress goes through callbacks.
 #![deny(missing_docs)]
 
-pub mod artifacts;
 pub mod band;
 pub mod case;
 pub mod design;
@@ -29,8 +26,5 @@ pub mod spec;
 pub mod stages;
 pub mod values;
 
-pub use artifacts::{
-    atmosphere, bemt, compare, diagnose, effects, geometry, measure, motor, polar, qprop, units, xfoil,
-};
 pub(crate) use error::read_bytes;
 pub use error::{read_text, Error, Result};

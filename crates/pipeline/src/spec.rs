@@ -219,7 +219,7 @@ pub struct PoweredSpec {
     pub model: ModelSpec,
     /// The QPROP motor file.
     pub motor: PathBuf,
-    /// What sets each operating point, one kind for all ([`crate::motor::Drive`]).
+    /// What sets each operating point, one kind for all ([`propbet_motor::Drive`]).
     pub drives: Vec<propbet_motor::Drive>,
     /// The battery and ESC (with a battery).
     pub supply: Option<propbet_motor::Supply>,

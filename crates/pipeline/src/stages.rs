@@ -329,13 +329,11 @@ mod synth;
 
 pub use measured::*;
 pub use polar::*;
-pub use powered::{
-    electric, fit_motor, omega_ceiling, powered, powered_stage, powered_table, read_motor, FittedMotor, PoweredPoint,
-    PoweredTable,
-};
+pub use powered::{electric, fit_motor, powered, powered_table, read_motor, FittedMotor, PoweredPoint, PoweredTable};
+pub(crate) use powered::{omega_ceiling, powered_stage};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
-pub use side::{overall_efficiency, side_by_side, FullRange, SidePoint, SideProp};
+pub use side::{overall_efficiency, side_by_side, FullRange, SideProp};
 pub use synth::{parse_noise, synth, AnswerKey, SynthFiles, SynthFormat, SynthSpec, Synthesized};
 
 #[cfg(test)]

@@ -151,3 +151,43 @@ fn no_command_line_is_built_or_parsed_below_the_cli() {
     }
     assert!(files > 100, "{files} files read");
 }
+
+/// The pipeline is a door, not a warehouse: no module re-exporting the crates below (their
+/// types are the API's, `propbet_api::{bemt, qprop, ...}`), no validation harness or simulator
+/// export (crates of their own), and its public items held to a ceiling that only goes down.
+#[test]
+fn the_pipeline_is_a_door_not_a_warehouse() {
+    let src = workspace().join("crates/pipeline/src");
+    for gone in ["artifacts.rs", "validate.rs", "simexport.rs", "validate", "simexport"] {
+        assert!(!src.join(gone).exists(), "crates/pipeline/src/{gone}");
+    }
+    let mut stack = vec![src];
+    let mut items = 0;
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") && !p.ends_with("tests.rs") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                let body = text.split("#[cfg(test)]").next().unwrap_or_default();
+                items += body
+                    .lines()
+                    .map(str::trim_start)
+                    .filter(|l| {
+                        [
+                            "fn ", "struct ", "enum ", "mod ", "use ", "type ", "const ", "trait ", "static ",
+                        ]
+                        .iter()
+                        .any(|k| l.starts_with(&format!("pub {k}")))
+                    })
+                    .count();
+            }
+        }
+    }
+    const CEILING: usize = 260;
+    assert!(
+        items <= CEILING,
+        "the pipeline has {items} pub items, more than {CEILING}"
+    );
+}

@@ -10,7 +10,7 @@ use crate::page::{esc, sig};
 
 /// Grams of thrust per newton.
 fn grams(newtons: f64) -> f64 {
-    newtons / propbet_pipeline::units::STANDARD_GRAVITY * 1000.0
+    newtons / propbet_units::STANDARD_GRAVITY * 1000.0
 }
 
 /// The terminal's lines: how many points, and the one of most thrust.
@@ -35,7 +35,7 @@ pub fn brief(t: &PoweredTable, spec: &PoweredSpec) -> Vec<String> {
             "most thrust: {} at {} m/s: {:.0} rpm, {} N ({:.0} g), {} A, {} W, {} g/W",
             p.drive.describe(),
             p.v,
-            propbet_pipeline::units::omega_to_rpm(s.omega),
+            propbet_units::omega_to_rpm(s.omega),
             sig(s.loads.thrust),
             grams(s.loads.thrust),
             sig(s.amps),
@@ -93,7 +93,7 @@ pub fn section(t: &PoweredTable, spec: &PoweredSpec) -> String {
     h
 }
 
-fn row(h: &mut String, p: &PoweredPoint, band: Option<propbet_pipeline::compare::band::PointBand>, supply: bool) {
+fn row(h: &mut String, p: &PoweredPoint, band: Option<propbet_compare::band::PointBand>, supply: bool) {
     let _ = write!(h, "<tr><td>{}</td><td>{}</td>", esc(&p.drive.describe()), sig(p.v));
     let Ok((s, r)) = &p.outcome else {
         let _ = writeln!(
@@ -114,7 +114,7 @@ fn row(h: &mut String, p: &PoweredPoint, band: Option<propbet_pipeline::compare:
     let _ = write!(
         h,
         "<td>{:.0}</td><td>{}{range}</td><td>{:.0}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>",
-        propbet_pipeline::units::omega_to_rpm(s.omega),
+        propbet_units::omega_to_rpm(s.omega),
         sig(thrust),
         grams(thrust),
         sig(s.amps),
@@ -132,7 +132,7 @@ fn row(h: &mut String, p: &PoweredPoint, band: Option<propbet_pipeline::compare:
                     100.0 * b.throttle,
                     sig(b.battery_amps),
                     b.endurance
-                        .map_or("".to_string(), |e| sig(propbet_pipeline::units::seconds_to_minutes(e)))
+                        .map_or("".to_string(), |e| sig(propbet_units::seconds_to_minutes(e)))
                 );
             }
             Some(Err(why)) => {

@@ -69,7 +69,7 @@ impl ValidateSpec {
             trip: self.trip,
             alphas_deg: Vec::new(),
             panels: None,
-            iter: propbet_pipeline::xfoil::DEFAULT_MAX_ITER,
+            iter: xfoil_runner::DEFAULT_MAX_ITER,
         }
         .check()?;
         propbet_pipeline::model::effect_registry(self.user_effects.as_deref())?;

@@ -250,7 +250,7 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
             trip: spec.trip,
             alphas_deg: propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default)?,
             panels: None,
-            iter: propbet_pipeline::xfoil::DEFAULT_MAX_ITER,
+            iter: xfoil_runner::DEFAULT_MAX_ITER,
         },
         ncrit_effect: spec.ncrit_effect.clone(),
         out_prop: dir.join("prop.qprop"),

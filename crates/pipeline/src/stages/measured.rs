@@ -385,7 +385,7 @@ fn diagnose_read(
 }
 
 /// Reads a QPROP output file (its printed sweep), naming the file in every error.
-pub fn read_qprop_output(path: &Path) -> Result<propbet_qprop::output::QpropOutput> {
+pub(crate) fn read_qprop_output(path: &Path) -> Result<propbet_qprop::output::QpropOutput> {
     let text = read_text(path)?;
     propbet_qprop::output::parse_output(&text).map_err(|e| Error::input(path, e))
 }

@@ -44,7 +44,7 @@ impl PoweredPoint {
 }
 
 /// The fastest a propeller is searched at: a tip speed of 1.5 times the speed of sound.
-pub fn omega_ceiling(model: &Model, fluid: &Fluid) -> f64 {
+pub(crate) fn omega_ceiling(model: &Model, fluid: &Fluid) -> f64 {
     (1.5 * fluid.a / model.rotor.tip_radius).min(propbet_units::operating::OMEGA_MAX)
 }
 
@@ -140,7 +140,7 @@ pub fn powered_table(
 }
 
 /// The powered table a spec asks for, with `model` (loaded from `spec.model`) in `fluid`.
-pub fn powered_stage(model: &Model, fluid: &Fluid, spec: &crate::spec::PoweredSpec) -> Result<PoweredTable> {
+pub(crate) fn powered_stage(model: &Model, fluid: &Fluid, spec: &crate::spec::PoweredSpec) -> Result<PoweredTable> {
     let motor = read_motor(&spec.motor)?;
     powered_table(
         model,

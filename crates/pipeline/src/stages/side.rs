@@ -11,7 +11,7 @@ use crate::Result;
 
 /// One propeller's operating point on the powertrain: the motor's side, the propeller's, the
 /// battery's; or why there is none.
-pub type SidePoint = std::result::Result<(Powered, PointResult, SupplyPoint), String>;
+pub(crate) type SidePoint = std::result::Result<(Powered, PointResult, SupplyPoint), String>;
 
 /// One propeller's answers.
 #[derive(Debug, Clone)]

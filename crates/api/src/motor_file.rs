@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use propbet_pipeline::motor::{write_motor, Motor, MotorFile};
+use crate::motor::{write_motor, Motor, MotorFile};
 use propbet_pipeline::{Error, Result};
 
 /// A QPROP motor file, read as QPROP 1.22 reads it.

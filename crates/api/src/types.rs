@@ -1,6 +1,6 @@
-//! The types and file formats of the crates below that the stages hand out or take, as the
-//! binary reaches them: through the pipeline, one door. Each module names the crate it comes
-//! from and holds only what the binary uses.
+//! The types and file formats of the crates below that propbet's functions hand out or take:
+//! the API's vocabulary, as the binary and the Python package reach it (through this crate,
+//! one door). Each module names the crate it comes from and holds only what its callers use.
 
 /// The solver's results ([`propbet_bemt`]).
 pub mod bemt {
