@@ -23,7 +23,9 @@ mod types;
 
 pub use motor_file::{motor, motor_text, read_motor};
 pub use types::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
-pub use types::{atmosphere, bemt, compare, diagnose, effects, geometry, measure, motor, polar, qprop, units, xfoil};
+pub use types::{
+    atmosphere, bemt, compare, diagnose, effects, geometry, measure, motor, polar, qprop, settings, units, xfoil,
+};
 
 pub use request::{
     supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, PolarsRequest, ProcessRequest,

@@ -3,15 +3,15 @@
 use std::path::PathBuf;
 
 use crate::motor::{Battery, Drive, Supply};
-use propbet_pipeline::settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
 use propbet_pipeline::spec::{
     drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis,
     XfoilProcessSpec, XfoilSpec,
 };
-use propbet_pipeline::values::{
+use propbet_pipeline::{Error, Result};
+use propbet_settings::values::{
     parse_atmosphere, parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature,
 };
-use propbet_pipeline::{Error, Result};
+use propbet_settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
 
 use crate::atmosphere::AirState;
 use crate::measure::RpmSource;
@@ -32,7 +32,7 @@ impl Values {
     /// says `rpm[2] = nan` of a list and `--rpm '1,,2'` of a text.
     pub fn numbers(&self, name: &str) -> Result<Vec<f64>> {
         match self {
-            Values::Text(t) => parse_list(&format!("--{name}"), t),
+            Values::Text(t) => Ok(parse_list(&format!("--{name}"), t)?),
             Values::Numbers(v) if v.is_empty() => Err(Error::Nothing(format!("{name}: an empty list"))),
             Values::Numbers(v) => match v.iter().position(|x| !x.is_finite()) {
                 None => Ok(v.clone()),
@@ -406,7 +406,7 @@ pub struct DiagnoseRequest {
 impl DiagnoseRequest {
     /// The stage's spec, of a model and measurements, writing into `out`.
     pub fn spec(&self, model: ModelSpec, measured: MeasuredSpec, out: PathBuf) -> Result<DiagnoseSpec> {
-        use propbet_pipeline::settings::{FOLDS, MAX_STEPS, WINDOW};
+        use propbet_settings::{FOLDS, MAX_STEPS, WINDOW};
         let effects = match &self.effects {
             None => vec!["all".to_string()],
             Some(e) if e.is_empty() => return Err(Error::Nothing("effects: an empty list".into())),
@@ -446,7 +446,7 @@ pub struct SectionRequest {
 impl SectionRequest {
     /// The spec; `default_ncrit` and `default_trip` where Ncrit and the trip are not given.
     pub fn spec(&self, default_ncrit: f64, default_trip: Option<f64>) -> Result<XfoilSpec> {
-        use propbet_pipeline::settings::ALPHA;
+        use propbet_settings::ALPHA;
         let mut alphas = match &self.alpha {
             Some(a) => a.numbers("alpha")?,
             None => parse_list("--alpha", ALPHA.default)?,
@@ -458,7 +458,7 @@ impl SectionRequest {
             ncrit: self.ncrit.unwrap_or(default_ncrit),
             trip: match &self.trip {
                 None => default_trip,
-                Some(t) => propbet_pipeline::values::parse_trip(t)?,
+                Some(t) => propbet_settings::values::parse_trip(t)?,
             },
             alphas_deg: alphas,
             panels: self.panels,
@@ -504,7 +504,7 @@ pub struct PolarsRequest {
 impl PolarsRequest {
     /// The stage's spec, in SI.
     pub fn spec(&self) -> Result<PolarsSpec> {
-        use propbet_pipeline::settings::{default_trip, NCRIT};
+        use propbet_settings::{default_trip, NCRIT};
         let (omegas, axis) = self.sweep.spec()?;
         Ok(PolarsSpec {
             geometry: self.geometry.clone(),

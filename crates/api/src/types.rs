@@ -70,3 +70,9 @@ pub mod units {
         omega_to_rev_per_s, omega_to_rpm, rpm_to_omega, rpm_to_rev_per_s, seconds_to_minutes, STANDARD_GRAVITY,
     };
 }
+
+/// The settings a user gives, each declared once, and the values as users write them
+/// ([`propbet_settings`]).
+pub mod settings {
+    pub use propbet_settings::*;
+}

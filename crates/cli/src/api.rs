@@ -345,12 +345,12 @@ pub fn polars(spec: &propbet_pipeline::spec::PolarsSpec) -> Result<bool> {
 
 pub use crate::engine::XfoilProcess;
 pub use crate::validate::{ValidateArgs, Written as ValidateWritten};
-pub use propbet_pipeline::settings::{NCRIT, SECTION_MODEL};
+pub use propbet_api::settings::{NCRIT, SECTION_MODEL};
 pub use propbet_validate::DEFAULT_GENERIC_SECTION;
 
 /// `propbet validate` of its arguments, typed: its files written; false when a prop reported
 /// problems; the table as it wrote it.
 pub fn validate(args: &ValidateArgs) -> Result<(bool, ValidateWritten)> {
-    propbet_pipeline::settings::SECTION_MODEL.choose(&args.section_model)?;
+    propbet_api::settings::SECTION_MODEL.choose(&args.section_model)?;
     crate::validate::run(args)
 }

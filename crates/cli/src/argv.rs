@@ -6,12 +6,12 @@ use std::path::Path;
 
 use propbet_api::geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_api::measure::RpmSource;
-use propbet_pipeline::settings::Rotation;
+use propbet_api::settings::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
+use propbet_api::settings::Rotation;
 use propbet_pipeline::spec::{
     drag_factor_or_default, AirSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec, SweepAxis,
     TableFormat, XfoilProcessSpec, XfoilSpec,
 };
-use propbet_pipeline::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
 
 /// The `propbet` command line of one stage (without the program name).
 pub type Argv = Vec<String>;
@@ -148,10 +148,10 @@ pub fn argv(stage: &StageSpec) -> Argv {
             if s.effects != ["all"] {
                 push(&mut v, "--effects", s.effects.join(","));
             }
-            if s.folds != propbet_pipeline::settings::FOLDS.default {
+            if s.folds != propbet_api::settings::FOLDS.default {
                 push(&mut v, "--folds", s.folds.to_string());
             }
-            if s.max_steps != propbet_pipeline::settings::MAX_STEPS.default {
+            if s.max_steps != propbet_api::settings::MAX_STEPS.default {
                 push(&mut v, "--max-steps", s.max_steps.to_string());
             }
             if s.window != propbet_api::compare::metrics::VALIDATION_J_WINDOW {
@@ -236,14 +236,14 @@ impl Flags for XfoilProcessSpec {
 impl Flags for XfoilSpec {
     fn push_argv(&self, v: &mut Argv) {
         self.process.push_argv(v);
-        if self.ncrit != propbet_pipeline::settings::NCRIT.default {
+        if self.ncrit != propbet_api::settings::NCRIT.default {
             push(v, "--ncrit", format!("{}", self.ncrit));
         }
-        if self.trip != propbet_pipeline::settings::default_trip() {
-            push(v, "--trip", propbet_pipeline::settings::trip_text(self.trip));
+        if self.trip != propbet_api::settings::default_trip() {
+            push(v, "--trip", propbet_api::settings::trip_text(self.trip));
         }
         let default =
-            propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default).unwrap_or_default();
+            propbet_api::settings::values::parse_list("", propbet_api::settings::ALPHA.default).unwrap_or_default();
         if self.alphas_deg != default {
             push_eq(v, "--alpha", list_text(&self.alphas_deg));
         }
@@ -508,8 +508,8 @@ mod tests {
     fn settings_are_named_only_where_not_the_default() {
         let mut spec = ModelSpec::prop("p.qprop".into());
         spec.polars = Some("polars.json".into());
-        spec.rotation = propbet_pipeline::settings::ROTATION.default;
-        spec.drag_factor = propbet_pipeline::settings::DRAG_FACTOR.default;
+        spec.rotation = propbet_api::settings::ROTATION.default;
+        spec.drag_factor = propbet_api::settings::DRAG_FACTOR.default;
         let mut v = Vec::new();
         spec.push_argv(&mut v);
         assert!(

@@ -69,13 +69,13 @@ pub struct MeasuredArgs {
     /// Measured files: RCbenchmark/Tyto CSV, UIUC .txt, or generic CSV.
     #[arg(long, required = true, num_args = 1..)]
     pub measured: Vec<PathBuf>,
-    #[arg(long = propbet_pipeline::settings::POLES.flag, help = propbet_pipeline::settings::POLES.help)]
+    #[arg(long = propbet_api::settings::POLES.flag, help = propbet_api::settings::POLES.help)]
     pub poles: Option<u32>,
-    #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum)]
+    #[arg(long = propbet_api::settings::RPM_SOURCE.flag, help = propbet_api::settings::RPM_SOURCE.help, value_enum)]
     pub rpm_source: Option<RpmSourceArg>,
-    #[arg(long = propbet_pipeline::settings::AIR.flag, help = propbet_pipeline::settings::AIR.help)]
+    #[arg(long = propbet_api::settings::AIR.flag, help = propbet_api::settings::AIR.help)]
     pub atmosphere: Option<String>,
-    #[arg(long = propbet_pipeline::settings::RHO.flag, help = propbet_pipeline::settings::RHO.help, allow_negative_numbers = true)]
+    #[arg(long = propbet_api::settings::RHO.flag, help = propbet_api::settings::RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Column map (TOML) for generic CSV files.
     #[arg(long)]

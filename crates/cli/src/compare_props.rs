@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::{Context, Result};
 use clap::Args;
+use propbet_api::settings::values::parse_list;
 use propbet_pipeline::spec::{ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
-use propbet_pipeline::values::parse_list;
 
 use crate::output::{csv_rows, write_atomic, write_figure, Num};
 use crate::predict::{BladeArgs, FluidArgs};

@@ -26,11 +26,11 @@ pub struct DiagnoseArgs {
     /// Candidate effects: `all` (default) or a comma-separated list of ids (user effects too).
     #[arg(long, default_value = "all")]
     pub effects: String,
-    #[arg(long = propbet_pipeline::settings::FOLDS.flag, help = propbet_pipeline::settings::FOLDS.help, default_value_t = propbet_pipeline::settings::FOLDS.default)]
+    #[arg(long = propbet_api::settings::FOLDS.flag, help = propbet_api::settings::FOLDS.help, default_value_t = propbet_api::settings::FOLDS.default)]
     pub folds: usize,
-    #[arg(long = propbet_pipeline::settings::MAX_STEPS.flag, help = propbet_pipeline::settings::MAX_STEPS.help, default_value_t = propbet_pipeline::settings::MAX_STEPS.default)]
+    #[arg(long = propbet_api::settings::MAX_STEPS.flag, help = propbet_api::settings::MAX_STEPS.help, default_value_t = propbet_api::settings::MAX_STEPS.default)]
     pub max_steps: usize,
-    #[arg(long = propbet_pipeline::settings::WINDOW.flag, help = propbet_pipeline::settings::WINDOW.help, default_value_t = propbet_pipeline::settings::WINDOW.default)]
+    #[arg(long = propbet_api::settings::WINDOW.flag, help = propbet_api::settings::WINDOW.help, default_value_t = propbet_api::settings::WINDOW.default)]
     pub window: f64,
     /// Output directory (created if missing).
     #[arg(long, short)]

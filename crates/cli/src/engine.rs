@@ -28,19 +28,19 @@ pub struct XfoilProcess {
     /// No progress bar.
     #[arg(long)]
     pub quiet: bool,
-    #[arg(long = propbet_pipeline::settings::XFOIL_BUDGET.flag, help = propbet_pipeline::settings::XFOIL_BUDGET.help, value_name = "SECONDS")]
+    #[arg(long = propbet_api::settings::XFOIL_BUDGET.flag, help = propbet_api::settings::XFOIL_BUDGET.help, value_name = "SECONDS")]
     pub xfoil_budget: Option<f64>,
     #[arg(
-        long = propbet_pipeline::settings::ENGINE.flag,
-        help = propbet_pipeline::settings::ENGINE.help,
-        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::ENGINE.names().iter().copied()),
-        default_value = propbet_pipeline::settings::ENGINE.default,
+        long = propbet_api::settings::ENGINE.flag,
+        help = propbet_api::settings::ENGINE.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_api::settings::ENGINE.names().iter().copied()),
+        default_value = propbet_api::settings::ENGINE.default,
     )]
     pub engine: String,
     #[arg(
-        long = propbet_pipeline::settings::NEURALFOIL_SIZE.flag,
-        help = propbet_pipeline::settings::NEURALFOIL_SIZE.help,
-        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::NEURALFOIL_SIZE.names().iter().copied()),
+        long = propbet_api::settings::NEURALFOIL_SIZE.flag,
+        help = propbet_api::settings::NEURALFOIL_SIZE.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_api::settings::NEURALFOIL_SIZE.names().iter().copied()),
     )]
     pub neuralfoil_size: Option<String>,
 }
@@ -78,7 +78,7 @@ impl From<&propbet_api::ProcessRequest> for XfoilProcess {
             engine: r
                 .engine
                 .clone()
-                .unwrap_or_else(|| propbet_pipeline::settings::ENGINE.default.to_string()),
+                .unwrap_or_else(|| propbet_api::settings::ENGINE.default.to_string()),
             neuralfoil_size: r.neuralfoil_size.clone(),
         }
     }

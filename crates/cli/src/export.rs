@@ -33,11 +33,11 @@ pub struct ExportArgs {
     /// table), as `predict` takes them.
     #[command(flatten)]
     pub blade: crate::predict::BladeArgs,
-    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
+    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
     pub rotation: Option<String>,
-    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
+    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
     pub drag_factor: Option<f64>,
-    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help, requires = "prop")]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help, requires = "prop")]
     pub units: Option<String>,
     /// Collective blade-angle change of the prediction [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, requires = "prop")]
@@ -74,11 +74,11 @@ pub struct ExportArgs {
     /// Measured files instead of a prediction: RCbenchmark/Tyto CSV, UIUC .txt, generic CSV.
     #[arg(long, num_args = 1..)]
     pub measured: Vec<PathBuf>,
-    #[arg(long = propbet_pipeline::settings::POLES.flag, help = propbet_pipeline::settings::POLES.help, requires = "measured")]
+    #[arg(long = propbet_api::settings::POLES.flag, help = propbet_api::settings::POLES.help, requires = "measured")]
     pub poles: Option<u32>,
-    #[arg(long = propbet_pipeline::settings::RPM_SOURCE.flag, help = propbet_pipeline::settings::RPM_SOURCE.help, value_enum, requires = "measured")]
+    #[arg(long = propbet_api::settings::RPM_SOURCE.flag, help = propbet_api::settings::RPM_SOURCE.help, value_enum, requires = "measured")]
     pub rpm_source: Option<RpmSourceArg>,
-    #[arg(long = propbet_pipeline::settings::AIR.flag, help = propbet_pipeline::settings::AIR.help, requires = "measured")]
+    #[arg(long = propbet_api::settings::AIR.flag, help = propbet_api::settings::AIR.help, requires = "measured")]
     pub atmosphere: Option<String>,
     /// Column map (TOML) for generic CSV files.
     #[arg(long, requires = "measured")]
@@ -121,7 +121,7 @@ fn targets(names: &[String]) -> Result<Vec<Target>> {
 }
 
 fn parse_diameter(text: &str) -> Result<f64> {
-    let d = propbet_pipeline::values::parse_length("--diameter", text)?;
+    let d = propbet_api::settings::values::parse_length("--diameter", text)?;
     if !(d.is_finite() && (0.01..=10.0).contains(&d)) {
         bail!("--diameter '{text}': {d} m is not a propeller's diameter (0.01 to 10 m)");
     }

@@ -7,10 +7,10 @@ use anyhow::Result;
 use clap::Args;
 use propbet_api::polar::{Airfoil, Polar, QpropFit};
 use propbet_api::qprop::write_prop;
+use propbet_api::settings::values::parse_list;
 use propbet_pipeline::case::parse_fraction;
 use propbet_pipeline::spec::{PolarsSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
-use propbet_pipeline::values::parse_list;
 use propbet_plot::Figure;
 
 pub use crate::engine::{polars_brief, Bar, DesignArgs, XfoilProcess};
@@ -23,11 +23,11 @@ pub struct XfoilArgs {
     /// Executable, cache, progress.
     #[command(flatten)]
     pub process: XfoilProcess,
-    #[arg(long = propbet_pipeline::settings::NCRIT.flag, help = propbet_pipeline::settings::NCRIT.help)]
+    #[arg(long = propbet_api::settings::NCRIT.flag, help = propbet_api::settings::NCRIT.help)]
     pub ncrit: Option<f64>,
-    #[arg(long = propbet_pipeline::settings::TRIP.flag, help = propbet_pipeline::settings::TRIP.help, value_name = "X/C|free")]
+    #[arg(long = propbet_api::settings::TRIP.flag, help = propbet_api::settings::TRIP.help, value_name = "X/C|free")]
     pub trip: Option<String>,
-    #[arg(long = propbet_pipeline::settings::ALPHA.flag, help = propbet_pipeline::settings::ALPHA.help, default_value = propbet_pipeline::settings::ALPHA.default, allow_hyphen_values = true)]
+    #[arg(long = propbet_api::settings::ALPHA.flag, help = propbet_api::settings::ALPHA.help, default_value = propbet_api::settings::ALPHA.default, allow_hyphen_values = true)]
     pub alpha: String,
     /// XFOIL panel nodes (default: XFOIL's 160 for `polar`, 120 for `polars`).
     #[arg(long)]
@@ -118,9 +118,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let spec = SectionSpec {
         res: parse_list("--re", &args.re)?,
         mach: args.mach,
-        xfoil: args
-            .xfoil
-            .spec(propbet_pipeline::settings::AIRFOIL_NCRIT.default, None)?,
+        xfoil: args.xfoil.spec(propbet_api::settings::AIRFOIL_NCRIT.default, None)?,
     };
     let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
     let section = stages::section(&spec, &foil, &|d, t| bar.tick(d, t))?;
@@ -244,7 +242,7 @@ pub struct PolarsArgs {
     /// (PE0: its blade and sections), a UIUC geometry table or a blade table (CSV).
     #[arg(long)]
     pub geometry: PathBuf,
-    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help)]
     pub units: Option<String>,
     /// The section used at every station (with --station-airfoils, at the stations without
     /// their own): a coordinate file (Selig or Lednicer), a NACA 4-digit name, APC12 or a name
@@ -273,7 +271,7 @@ pub struct PolarsArgs {
     /// XFOIL settings.
     #[command(flatten)]
     pub xfoil: XfoilArgs,
-    #[arg(long = propbet_pipeline::settings::NCRIT_EFFECT.flag, help = propbet_pipeline::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
+    #[arg(long = propbet_api::settings::NCRIT_EFFECT.flag, help = propbet_api::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
     /// QPROP prop file with the fitted per-station coefficients.
     #[arg(long)]

@@ -79,7 +79,7 @@ pub struct ModelArgs {
     /// Collective blade-angle change [deg].
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     pub dbeta: f64,
-    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help)]
     pub units: Option<String>,
     /// Reproduce QPROP 1.22 exactly: R on line 2 unscaled, REref of the first station everywhere.
     #[arg(long)]
@@ -91,9 +91,9 @@ pub struct ModelArgs {
     /// section model, instead of the prop file's QPROP coefficients.
     #[arg(long)]
     pub polars: Option<PathBuf>,
-    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel")]
+    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
-    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K")]
+    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
     /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
@@ -217,7 +217,7 @@ pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
 /// [--humidity] through the atmosphere model.
 #[derive(Debug, Args)]
 pub struct FluidArgs {
-    #[arg(long = propbet_pipeline::settings::RHO.flag, help = propbet_pipeline::settings::RHO.help, allow_negative_numbers = true)]
+    #[arg(long = propbet_api::settings::RHO.flag, help = propbet_api::settings::RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
     #[arg(long, allow_negative_numbers = true)]

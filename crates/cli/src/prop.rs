@@ -17,7 +17,7 @@ pub struct PropArgs {
     /// The blade file: a QPROP prop file, APC's design file (PE0), a UIUC geometry table or a
     /// blade table (CSV).
     pub file: PathBuf,
-    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help)]
     pub units: Option<String>,
     /// Read as QPROP 1.22 does (R on line 2 unscaled, REref of the first station).
     #[arg(long)]
@@ -35,7 +35,7 @@ impl PropArgs {
             units: self
                 .units
                 .as_deref()
-                .map(propbet_pipeline::values::parse_length_unit)
+                .map(propbet_api::settings::values::parse_length_unit)
                 .transpose()?,
             qprop_compat: self.qprop_compat,
             ..ModelSpec::prop(self.file.clone())

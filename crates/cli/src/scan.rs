@@ -23,9 +23,9 @@ pub struct ScanArgs {
     /// The scan: .stl (ASCII or binary), .ply (ASCII or binary, colours), COLMAP
     /// points3D.txt, or .xyz / .txt (XYZ or XYZRGB rows).
     pub input: PathBuf,
-    #[arg(long = propbet_pipeline::settings::UNITS.flag, help = propbet_pipeline::settings::UNITS.help)]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help)]
     pub units: Option<String>,
-    #[arg(long = propbet_pipeline::settings::STATIONS.flag, help = propbet_pipeline::settings::STATIONS.help)]
+    #[arg(long = propbet_api::settings::STATIONS.flag, help = propbet_api::settings::STATIONS.help)]
     pub stations: Option<String>,
     /// Planar sections (the plane x = r across the blade) instead of cylindrical (r = const).
     #[arg(long)]

@@ -1,11 +1,11 @@
-//! Every flag of every command that a declared setting names (`propbet_pipeline::settings`)
+//! Every flag of every command that a declared setting names (`propbet_api::settings`)
 //! takes its help, default and names from the declaration; every declared setting is some
 //! command's flag; every declared case key is a key of the case file whose line carries that
 //! flag ([`crate::case_keys`]).
 #![cfg(test)]
 
 use clap::CommandFactory;
-use propbet_pipeline::settings::{self, About};
+use propbet_api::settings::{self, About};
 
 /// Every argument of every command and subcommand, with the command's path.
 fn arguments(cmd: &clap::Command, path: &str, out: &mut Vec<(String, clap::Arg)>) {

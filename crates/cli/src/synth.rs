@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use propbet_pipeline::stages::{self, SynthSpec};
 
 use crate::output::write_atomic;
-use propbet_pipeline::values::parse_list;
+use propbet_api::settings::values::parse_list;
 
 use crate::predict::{load_model, ModelArgs};
 

@@ -10,8 +10,9 @@ use std::path::{Path, PathBuf};
 
 use anyhow::Result;
 use clap::Args;
+use propbet_api::settings::Rotation;
 use propbet_pipeline::run::StageRecord;
-use propbet_pipeline::spec::{Rotation, StageSpec};
+use propbet_pipeline::spec::StageSpec;
 use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
 use crate::output::{write_atomic, Num};
@@ -44,25 +45,25 @@ pub struct ValidateArgs {
     #[command(flatten)]
     pub xfoil: XfoilProcess,
     #[arg(
-        long = propbet_pipeline::settings::SECTION_MODEL.flag,
-        help = propbet_pipeline::settings::SECTION_MODEL.help,
-        value_parser = clap::builder::PossibleValuesParser::new(propbet_pipeline::settings::SECTION_MODEL.names().iter().copied()),
-        default_value = propbet_pipeline::settings::SECTION_MODEL.default,
+        long = propbet_api::settings::SECTION_MODEL.flag,
+        help = propbet_api::settings::SECTION_MODEL.help,
+        value_parser = clap::builder::PossibleValuesParser::new(propbet_api::settings::SECTION_MODEL.names().iter().copied()),
+        default_value = propbet_api::settings::SECTION_MODEL.default,
     )]
     pub section_model: String,
     /// APC's PER3 directory (`PER3_<D><P><type>.dat`): APC's own predictions scored on the same
     /// points beside propbet's.
     #[arg(long)]
     pub per3: Option<PathBuf>,
-    #[arg(long = propbet_pipeline::settings::NCRIT.flag, help = propbet_pipeline::settings::NCRIT.help, default_value_t = propbet_pipeline::settings::NCRIT.default)]
+    #[arg(long = propbet_api::settings::NCRIT.flag, help = propbet_api::settings::NCRIT.help, default_value_t = propbet_api::settings::NCRIT.default)]
     pub ncrit: f64,
-    #[arg(long = propbet_pipeline::settings::NCRIT_EFFECT.flag, help = propbet_pipeline::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
+    #[arg(long = propbet_api::settings::NCRIT_EFFECT.flag, help = propbet_api::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
-    #[arg(long = propbet_pipeline::settings::ROTATION.flag, help = propbet_pipeline::settings::ROTATION.help, value_name = "off|snel")]
+    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
-    #[arg(long = propbet_pipeline::settings::DRAG_FACTOR.flag, help = propbet_pipeline::settings::DRAG_FACTOR.help, value_name = "K")]
+    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
-    #[arg(long = propbet_pipeline::settings::TRIP.flag, help = propbet_pipeline::settings::TRIP.help, value_name = "X/C|free")]
+    #[arg(long = propbet_api::settings::TRIP.flag, help = propbet_api::settings::TRIP.help, value_name = "X/C|free")]
     pub trip: Option<String>,
     /// Where each station's chord and twist come from: `uiuc` (UIUC's measured geometry file) or
     /// `pe0` (APC's design chord and twist, at UIUC's stations).
@@ -100,8 +101,8 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
         ),
         drag_factor: propbet_pipeline::spec::drag_factor_or_default(a.drag_factor, a.section_model == "tables"),
         trip: match &a.trip {
-            None => propbet_pipeline::settings::default_trip(),
-            Some(t) => propbet_pipeline::values::parse_trip(t)?,
+            None => propbet_api::settings::default_trip(),
+            Some(t) => propbet_api::settings::values::parse_trip(t)?,
         },
         per3: a.per3.clone(),
         geometry: GeometrySource::parse(&a.geometry)?,

@@ -6,8 +6,8 @@ use std::path::{Path, PathBuf};
 use serde::Deserialize;
 
 use crate::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSettings, ScanSpec, StageSpec};
-use crate::values::parse_list;
 use crate::{read_text, Error, Result};
+use propbet_settings::values::parse_list;
 
 /// `case.toml`.
 #[derive(Debug, Deserialize)]
@@ -178,7 +178,7 @@ pub struct PolarSection {
     /// or a list, `"3,9"`); each doubles the XFOIL time.
     pub ncrit_effect: Option<NumberOrList>,
     /// Forced transition x/c on both surfaces, or `"free"` (default:
-    /// [`crate::settings::TRIP`]).
+    /// [`propbet_settings::TRIP`]).
     pub trip: Option<NumberOrList>,
     /// Angles of attack (`propbet polars --alpha`).
     pub alpha: Option<String>,
@@ -191,12 +191,12 @@ pub struct PolarSection {
     /// model's default; off with `model = "qprop"`).
     pub rotation: Option<String>,
     /// Which program makes the polars: `xfoil`, `neuralfoil` or `auto`
-    /// ([`crate::settings::ENGINE`]; default: the command line's).
+    /// ([`propbet_settings::ENGINE`]; default: the command line's).
     pub engine: Option<String>,
-    /// NeuralFoil's network size ([`crate::settings::NEURALFOIL_SIZE`]).
+    /// NeuralFoil's network size ([`propbet_settings::NEURALFOIL_SIZE`]).
     pub neuralfoil_size: Option<String>,
     /// Every section's drag times this (default: the tabulated model's default,
-    /// [`crate::settings::DRAG_FACTOR`]; 1 with `model = "qprop"`).
+    /// [`propbet_settings::DRAG_FACTOR`]; 1 with `model = "qprop"`).
     pub drag_factor: Option<f64>,
 }
 
@@ -214,7 +214,7 @@ impl NumberOrList {
     fn values(&self, flag: &str) -> Result<Vec<f64>> {
         match self {
             NumberOrList::Number(x) => Ok(vec![*x]),
-            NumberOrList::List(t) => parse_list(flag, t),
+            NumberOrList::List(t) => Ok(parse_list(flag, t)?),
         }
     }
 }
@@ -343,26 +343,26 @@ pub fn read_case(dir: &Path) -> Result<Case> {
                 "[polars] sections = \"design\" needs a [geometry] pe0, or a prop that is a PE0 file or a table naming its airfoils",
             ));
         }
-        crate::settings::SECTION_MODEL
+        propbet_settings::SECTION_MODEL
             .choose(&p.model)
             .map_err(|e| at_key(&path, "[polars] model", e))?;
         if let Some(e) = &p.engine {
-            crate::settings::ENGINE
+            propbet_settings::ENGINE
                 .choose(e)
                 .map_err(|e| at_key(&path, "[polars] engine", e))?;
         }
         if let Some(s) = &p.neuralfoil_size {
-            crate::settings::NEURALFOIL_SIZE
+            propbet_settings::NEURALFOIL_SIZE
                 .choose(s)
                 .map_err(|e| at_key(&path, "[polars] neuralfoil_size", e))?;
         }
         if let Some(x) = p.ncrit {
-            crate::settings::NCRIT
+            propbet_settings::NCRIT
                 .check(x)
                 .map_err(|e| at_key(&path, "[polars] ncrit", e))?;
         }
         if let Some(x) = p.drag_factor {
-            crate::settings::DRAG_FACTOR
+            propbet_settings::DRAG_FACTOR
                 .check(x)
                 .map_err(|e| at_key(&path, "[polars] drag_factor", e))?;
         }

@@ -36,7 +36,7 @@ pub enum Error {
     },
     /// A declared setting's value is outside what it allows ([`crate::settings`]).
     #[error(transparent)]
-    Setting(#[from] crate::settings::BadSetting),
+    Setting(#[from] propbet_settings::BadSetting),
     /// A number outside what its flag allows (the flag named in the text).
     #[error("{0}")]
     Range(String),
@@ -91,6 +91,16 @@ pub enum Error {
     /// The XFOIL executable could not be started.
     #[error(transparent)]
     Xfoil(#[from] xfoil_runner::XfoilError),
+}
+
+impl From<propbet_settings::Error> for Error {
+    /// The same variants as the pipeline's own ([`Error::Value`], [`Error::Setting`]).
+    fn from(e: propbet_settings::Error) -> Self {
+        match e {
+            propbet_settings::Error::Value { flag, text, problem } => Error::Value { flag, text, problem },
+            propbet_settings::Error::Setting(b) => Error::Setting(b),
+        }
+    }
 }
 
 impl Error {
@@ -237,12 +247,14 @@ mod tests {
 
     #[test]
     fn each_kind_of_mistake_has_its_variant_and_names_what_it_concerns() {
-        let e = crate::values::parse_list("--rpm", "1,,2").unwrap_err();
+        let e: Error = propbet_settings::values::parse_list("--rpm", "1,,2")
+            .unwrap_err()
+            .into();
         assert!(matches!(e, Error::Value { .. }), "{e:?}");
         assert_eq!(e.to_string(), "--rpm '1,,2': empty item");
         assert!(matches!(
-            crate::values::parse_length_unit("furlong"),
-            Err(Error::Value { .. })
+            propbet_settings::values::parse_length_unit("furlong"),
+            Err(propbet_settings::Error::Value { .. })
         ));
         let e = crate::spec::check_ncrit_effect(&[25.0], 5.0).unwrap_err();
         assert!(matches!(e, Error::Setting(_)), "{e:?}");

@@ -1,14 +1,12 @@
 //! propbet's stages as typed functions, under the `propbet` command.
 //!
-//! * [`spec`]: what each stage is asked ([`spec::StageSpec`]), in SI, printing the equivalent
-//!   `propbet` command line.
+//! * [`spec`]: what each stage is asked ([`spec::StageSpec`]), in SI.
 //! * [`case`]: case files (`case.toml`) and the plan of stages they ask for.
 //! * [`stages`]: scan, polars, predict, compare, diagnose as functions returning artifacts.
 //! * [`run`]: a case's plan run in memory ([`run::run_case`]).
 //! * [`model`]: a prop file turned into the model a stage solves; the air.
-//! * [`settings`]: every setting a user gives, declared once (flag, case key, default, range,
-//!   help).
-//! * [`values`]: lists, ranges and quantities with units as users write them.
+//!
+//! The settings a user gives and the values as written are `propbet_settings`'.
 //!
 //! Inputs are read here; outputs are written by the caller. Progress goes through callbacks.
 #![deny(missing_docs)]
@@ -21,10 +19,8 @@ pub mod expected;
 pub mod export;
 pub mod model;
 pub mod run;
-pub mod settings;
 pub mod spec;
 pub mod stages;
-pub mod values;
 
 pub(crate) use error::read_bytes;
 pub use error::{read_text, Error, Result};

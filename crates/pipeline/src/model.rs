@@ -45,7 +45,7 @@ pub(crate) fn prop_from_text(text: &str, path: &Path, units: Option<f64>) -> Res
         warnings.push(format!(
             "{}: --units {} replaces the file's Rfac = {} and Cfac = {} with {f}",
             path.display(),
-            crate::values::length_unit_name(f).unwrap_or("?"),
+            propbet_settings::values::length_unit_name(f).unwrap_or("?"),
             file.scale[0],
             file.scale[1]
         ));
@@ -151,7 +151,7 @@ impl Model {
                 .collect();
             band_sections = transition_effect(blade, &base, path, &band, |n| blade.band_models(n))?;
         }
-        crate::settings::DRAG_FACTOR.check(spec.drag_factor)?;
+        propbet_settings::DRAG_FACTOR.check(spec.drag_factor)?;
         let rotor = rotor
             .with_rotational_augmentation(spec.rotation.coefficient())
             .with_drag_factor(spec.drag_factor);

@@ -8,7 +8,7 @@ use propbet_atmosphere::AirState;
 use propbet_geometry::scan::ScanOptions;
 use propbet_measure::RpmSource;
 
-pub use crate::settings::Rotation;
+use propbet_settings::Rotation;
 
 /// The XFOIL executable, the polar cache and progress.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -21,11 +21,11 @@ pub struct XfoilProcessSpec {
     pub no_cache: bool,
     /// No progress bar.
     pub quiet: bool,
-    /// Total XFOIL time of the command [s] (None: [`crate::settings::XFOIL_BUDGET`]'s default).
+    /// Total XFOIL time of the command [s] (None: [`propbet_settings::XFOIL_BUDGET`]'s default).
     pub budget: Option<f64>,
     /// Which program makes the polars.
     pub engine: propbet_polar::Engine,
-    /// NeuralFoil's network size (None: [`crate::settings::NEURALFOIL_SIZE`]'s default).
+    /// NeuralFoil's network size (None: [`propbet_settings::NEURALFOIL_SIZE`]'s default).
     pub neuralfoil_size: Option<String>,
 }
 
@@ -33,9 +33,9 @@ pub struct XfoilProcessSpec {
 /// none equal to `ncrit`; returns them ascending.
 pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>> {
     let mut v = values.to_vec();
-    let each = crate::settings::Setting {
-        flag: crate::settings::NCRIT_EFFECT.flag,
-        ..crate::settings::NCRIT
+    let each = propbet_settings::Setting {
+        flag: propbet_settings::NCRIT_EFFECT.flag,
+        ..propbet_settings::NCRIT
     };
     for x in &v {
         each.check(*x)?;
@@ -69,9 +69,9 @@ pub struct XfoilSpec {
 impl XfoilSpec {
     /// The angles are ones XFOIL can be asked for.
     pub fn check(&self) -> crate::Result<()> {
-        crate::settings::NCRIT.check(self.ncrit)?;
+        propbet_settings::NCRIT.check(self.ncrit)?;
         if let Some(x) = self.trip {
-            crate::settings::TRIP.check(x)?;
+            propbet_settings::TRIP.check(x)?;
         }
         if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
             crate::out_of_range!("--alpha: {bad} deg is outside -90..90");
@@ -93,12 +93,12 @@ pub struct AirSpec {
     pub state: Option<AirState>,
 }
 
-/// The drag factor a model gets: `asked`, else [`crate::settings::DRAG_FACTOR`]'s default
+/// The drag factor a model gets: `asked`, else [`propbet_settings::DRAG_FACTOR`]'s default
 /// with tabulated polars
 /// and 1 with QPROP's law.
 pub fn drag_factor_or_default(asked: Option<f64>, tables: bool) -> f64 {
     asked.unwrap_or(if tables {
-        crate::settings::DRAG_FACTOR.default
+        propbet_settings::DRAG_FACTOR.default
     } else {
         1.0
     })

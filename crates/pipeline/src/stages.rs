@@ -256,7 +256,7 @@ pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<Ope
     if let Some(bad) = omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
         out_of_range!(
             "--rpm: rotation speed must not be negative, found {}",
-            crate::values::rpm_text(*bad)
+            propbet_settings::values::rpm_text(*bad)
         );
     }
     Ok(match axis {

@@ -190,7 +190,7 @@ fn no_file_level_import_cycle_in_any_crate() {
 }
 
 /// The data flow, bottom up: a crate may depend only on crates of a lower rank.
-const RANKS: [(&str, u32); 21] = [
+const RANKS: [(&str, u32); 22] = [
     ("propbet-units", 0),
     ("propbet-plot", 0),
     ("xfoil-runner", 1),
@@ -205,6 +205,7 @@ const RANKS: [(&str, u32); 21] = [
     ("propbet-polar", 2),
     ("propbet-compare", 3),
     ("propbet-diagnose", 4),
+    ("propbet-settings", 4),
     ("propbet-pipeline", 5),
     ("propbet-validate", 6),
     ("propbet-simexport", 6),

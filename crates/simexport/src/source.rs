@@ -4,8 +4,8 @@
 use super::{blade_ixx, export, gazebo, Exported, Point, Source, Target, IXX_ASSUMED};
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
-use propbet_pipeline::values::{list_text, rpm_list_text, rpm_text};
 use propbet_pipeline::{conflict, out_of_range, Error, Result};
+use propbet_settings::values::{list_text, rpm_list_text, rpm_text};
 
 /// Where the exported points come from.
 #[derive(Debug, Clone, PartialEq)]

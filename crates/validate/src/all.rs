@@ -93,7 +93,7 @@ impl ValidateSpec {
             .xfoil
             .neuralfoil_size
             .as_deref()
-            .unwrap_or(propbet_pipeline::settings::NEURALFOIL_SIZE.default);
+            .unwrap_or(propbet_settings::NEURALFOIL_SIZE.default);
         match self.xfoil.engine {
             propbet_polar::Engine::Xfoil => {}
             propbet_polar::Engine::NeuralFoil => {

@@ -59,7 +59,7 @@ pub struct ValidateSpec {
     /// ladders (empty: none).
     pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation of the section lift.
-    pub rotation: propbet_pipeline::spec::Rotation,
+    pub rotation: propbet_settings::Rotation,
     /// Drag multiplier of the section model.
     pub drag_factor: f64,
     /// Forced transition x/c of the polars (None: free).
@@ -248,7 +248,7 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
             process: spec.xfoil.clone(),
             ncrit: spec.ncrit,
             trip: spec.trip,
-            alphas_deg: propbet_pipeline::values::parse_list("", propbet_pipeline::settings::ALPHA.default)?,
+            alphas_deg: propbet_settings::values::parse_list("", propbet_settings::ALPHA.default)?,
             panels: None,
             iter: xfoil_runner::DEFAULT_MAX_ITER,
         },
@@ -283,8 +283,8 @@ fn ladder_spec(model_spec: &ModelSpec, measured: &MeasuredSpec, dir: &Path) -> D
         model: model_spec.clone(),
         measured: measured.clone(),
         effects: vec!["all".into()],
-        folds: propbet_pipeline::settings::FOLDS.default,
-        max_steps: propbet_pipeline::settings::MAX_STEPS.default,
+        folds: propbet_settings::FOLDS.default,
+        max_steps: propbet_settings::MAX_STEPS.default,
         window: VALIDATION_J_WINDOW,
         out: dir.join("diagnose"),
     }

@@ -10,8 +10,8 @@ use crate::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSettings,
     ScanSpec, SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
-use crate::values::{parse_atmosphere, parse_length_unit, parse_list};
 use crate::{Error, Result};
+use propbet_settings::values::{parse_atmosphere, parse_length_unit, parse_list};
 
 impl Case {
     /// The scan stage's spec, where the case has a scan: its settings from `[geometry]`'s
@@ -64,19 +64,21 @@ impl Case {
             None => None,
             Some(p) => {
                 let airfoil = p.airfoil.as_ref().map(|a| crate::design::resolve_in(a, dir).0);
-                let alpha = p.alpha.as_deref().unwrap_or(crate::settings::ALPHA.default);
-                let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e))?;
+                let alpha = p.alpha.as_deref().unwrap_or(propbet_settings::ALPHA.default);
+                let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e.into()))?;
                 alphas.sort_by(f64::total_cmp);
                 alphas.dedup();
                 // The operating points the polars cover: the sweep's, unless the case says.
                 let rpms = match &p.rpm {
                     Some(r) => r.values("--rpm").map_err(|e| at("[polars] rpm", e))?,
-                    None => parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?,
+                    None => parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e.into()))?,
                 };
                 let axis = match (&p.j, &p.v) {
                     (_, Some(v)) => SweepAxis::V(v.values("--v").map_err(|e| at("[polars] v", e))?),
-                    (Some(j), None) => SweepAxis::J(parse_list("--j", j).map_err(|e| at("[polars] j", e))?),
-                    (None, None) => SweepAxis::J(parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?),
+                    (Some(j), None) => SweepAxis::J(parse_list("--j", j).map_err(|e| at("[polars] j", e.into()))?),
+                    (None, None) => {
+                        SweepAxis::J(parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e.into()))?)
+                    }
                 };
                 let thickness = p
                     .thickness
@@ -115,15 +117,13 @@ impl Case {
                                 neuralfoil_size: p.neuralfoil_size.clone().or_else(|| xfoil.neuralfoil_size.clone()),
                                 ..xfoil.clone()
                             },
-                            ncrit: p.ncrit.unwrap_or(crate::settings::NCRIT.default),
+                            ncrit: p.ncrit.unwrap_or(propbet_settings::NCRIT.default),
                             trip: match &p.trip {
-                                None => crate::settings::default_trip(),
-                                Some(NumberOrList::Number(x)) => {
-                                    crate::values::parse_trip(&x.to_string()).map_err(|e| at("[polars] trip", e))?
-                                }
-                                Some(NumberOrList::List(t)) => {
-                                    crate::values::parse_trip(t).map_err(|e| at("[polars] trip", e))?
-                                }
+                                None => propbet_settings::default_trip(),
+                                Some(NumberOrList::Number(x)) => propbet_settings::values::parse_trip(&x.to_string())
+                                    .map_err(|e| at("[polars] trip", e.into()))?,
+                                Some(NumberOrList::List(t)) => propbet_settings::values::parse_trip(t)
+                                    .map_err(|e| at("[polars] trip", e.into()))?,
                             },
                             alphas_deg: alphas,
                             panels: None,
@@ -136,7 +136,7 @@ impl Case {
                                 .and_then(|v| {
                                     crate::spec::check_ncrit_effect(
                                         &v,
-                                        p.ncrit.unwrap_or(crate::settings::NCRIT.default),
+                                        p.ncrit.unwrap_or(propbet_settings::NCRIT.default),
                                     )
                                 })
                                 .map_err(|e| at("[polars] ncrit_effect", e))?,
@@ -167,7 +167,7 @@ impl Case {
             Some(m) => {
                 let rpm_source = match m.rpm_source.as_deref() {
                     None => None,
-                    Some(x) => match crate::settings::RPM_SOURCE
+                    Some(x) => match propbet_settings::RPM_SOURCE
                         .choose(x)
                         .map_err(|e| at("[measured] rpm_source", e.into()))?
                     {
@@ -199,10 +199,10 @@ impl Case {
                         model: ModelSpec { user_effects, ..model },
                         measured,
                         effects: vec!["all".into()],
-                        folds: crate::settings::FOLDS
-                            .check(m.folds.unwrap_or(crate::settings::FOLDS.default))
+                        folds: propbet_settings::FOLDS
+                            .check(m.folds.unwrap_or(propbet_settings::FOLDS.default))
                             .map_err(|e| at("[measured] folds", e.into()))?,
-                        max_steps: m.max_steps.unwrap_or(crate::settings::MAX_STEPS.default),
+                        max_steps: m.max_steps.unwrap_or(propbet_settings::MAX_STEPS.default),
                         window: propbet_compare::metrics::VALIDATION_J_WINDOW,
                         out: out.join("diagnose"),
                     },
@@ -325,7 +325,7 @@ impl Case {
         let case_file = dir.join("case.toml");
         let at = |key: &str, e: Error| at_key(&case_file, key, e);
         let units = match (&g.prop, &g.settings.units) {
-            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e))?),
+            (Some(_), Some(u)) => Some(parse_length_unit(u).map_err(|e| at("[geometry] units", e.into()))?),
             _ => None,
         };
         let scan = self.scan_spec(dir, out)?;
@@ -345,13 +345,13 @@ impl Case {
             .polars
             .as_ref()
             .and_then(|p| p.rotation.as_deref())
-            .map(crate::spec::Rotation::parse)
+            .map(propbet_settings::Rotation::parse)
             .transpose()
             .map_err(|e| at("[polars] rotation", e.into()))?;
         let model = ModelSpec {
             units: model_units,
             polars: tables.then(|| out.join("polars/polars.json")),
-            rotation: crate::spec::Rotation::or_default(rotation, tables),
+            rotation: propbet_settings::Rotation::or_default(rotation, tables),
             drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
             ..ModelSpec::prop(prop)
         };
@@ -366,9 +366,9 @@ impl Case {
             .as_deref()
             .map(parse_atmosphere)
             .transpose()
-            .map_err(|e| at("[atmosphere] air", e))?;
-        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e))?;
-        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e))?;
+            .map_err(|e| at("[atmosphere] air", e.into()))?;
+        let rpms = parse_list("--rpm", &self.sweep.rpm).map_err(|e| at("[sweep] rpm", e.into()))?;
+        let js = parse_list("--j", &self.sweep.j).map_err(|e| at("[sweep] j", e.into()))?;
         let predict = PredictSpec {
             model: model.clone(),
             omegas: rpms.into_iter().map(rpm_to_omega).collect(),

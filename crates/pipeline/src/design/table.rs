@@ -32,7 +32,7 @@ pub(super) fn table_columns(header: &str) -> std::result::Result<Columns, String
             None => Ok(None),
             Some((_, u)) => {
                 let u = u.trim_end_matches(')').trim();
-                crate::values::parse_length_unit(u)
+                propbet_settings::values::parse_length_unit(u)
                     .map(Some)
                     .map_err(|_| format!("column `{}`: unit '{u}' is not m, cm, mm or in", names[i]))
             }

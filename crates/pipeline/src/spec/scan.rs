@@ -7,8 +7,8 @@ use nalgebra::Vector3;
 use propbet_geometry::cloud::parse_colour;
 use propbet_geometry::scan::{default_stations, BoxSpec, Manual, ScanOptions, SectionKind};
 
-use crate::values::{parse_length_unit, parse_list};
 use crate::{conflict, Error, Result};
+use propbet_settings::values::{parse_length_unit, parse_list};
 
 /// Slab thickness of a cloud's sections when none is given [mm].
 pub const DEFAULT_SLAB_MM: f64 = 0.25;

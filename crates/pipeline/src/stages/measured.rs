@@ -317,7 +317,7 @@ pub fn diagnose_sets(
 
 /// The candidate effects `spec` names, less those already in the model's baseline.
 pub fn candidates(model: &Model, spec: &DiagnoseSpec) -> Result<Vec<std::sync::Arc<dyn propbet_effects::Effect>>> {
-    crate::settings::FOLDS.check(spec.folds)?;
+    propbet_settings::FOLDS.check(spec.folds)?;
     let list: Vec<String> = spec
         .effects
         .iter()
@@ -340,7 +340,7 @@ pub fn diagnosis_inputs<'m>(
     signatures: bool,
 ) -> Result<(Data, propbet_diagnose::Model<'m>, Options)> {
     let points = propbet_compare::compare(&setup(model, air, Stack::baseline()), sets)?;
-    crate::settings::WINDOW.check(spec.window)?;
+    propbet_settings::WINDOW.check(spec.window)?;
     let data = Data::from_points(&points, spec.window)?;
     let dmodel = propbet_diagnose::Model {
         rotor: &model.rotor,

@@ -53,7 +53,7 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
 /// XFOIL and the polar cache, as the spec says.
 pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
     use propbet_polar::Engine;
-    let size = crate::settings::NEURALFOIL_SIZE;
+    let size = propbet_settings::NEURALFOIL_SIZE;
     let size = size.choose(p.neuralfoil_size.as_deref().unwrap_or(size.default))?;
     let network = || propbet_neuralfoil::Network::shipped(size);
     if p.engine == Engine::NeuralFoil {
@@ -79,7 +79,7 @@ pub fn polar_engine(p: &XfoilProcessSpec) -> Result<PolarEngine> {
     if p.engine == Engine::Auto {
         engine = engine.with_neuralfoil(network()?);
     }
-    let budget = crate::settings::XFOIL_BUDGET;
+    let budget = propbet_settings::XFOIL_BUDGET;
     Ok(engine.with_budget(budget.check(p.budget.unwrap_or(budget.default))?))
 }
 
@@ -397,7 +397,10 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         nothing!("--rpm / --j / --v: no operating point for the polars to cover");
     }
     if let Some(p) = points.iter().find(|p| p.omega <= 0.0) {
-        out_of_range!("--rpm: {} must be positive", crate::values::rpm_text(p.omega));
+        out_of_range!(
+            "--rpm: {} must be positive",
+            propbet_settings::values::rpm_text(p.omega)
+        );
     }
     if let Some(p) = points.iter().find(|p| p.v < 0.0) {
         out_of_range!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
@@ -478,9 +481,9 @@ pub fn design_model(
         air: crate::spec::AirSpec::default(),
         xfoil: crate::spec::XfoilSpec {
             process: design.process.clone(),
-            ncrit: crate::settings::NCRIT.default,
-            trip: crate::settings::default_trip(),
-            alphas_deg: crate::values::parse_list("--alpha", crate::settings::ALPHA.default)?,
+            ncrit: propbet_settings::NCRIT.default,
+            trip: propbet_settings::default_trip(),
+            alphas_deg: propbet_settings::values::parse_list("--alpha", propbet_settings::ALPHA.default)?,
             panels: None,
             iter: xfoil_runner::DEFAULT_MAX_ITER,
         },

@@ -45,7 +45,7 @@ fn xfoil_has_a_total_budget_unless_one_is_given() {
         budget,
     };
     let engine = polar_engine(&spec(None)).unwrap();
-    assert_eq!(engine.budget(), Some(crate::settings::XFOIL_BUDGET.default));
+    assert_eq!(engine.budget(), Some(propbet_settings::XFOIL_BUDGET.default));
     assert_eq!(polar_engine(&spec(Some(20.0))).unwrap().budget(), Some(20.0));
     let e = polar_engine(&spec(Some(-1.0))).err().unwrap().to_string();
     assert!(e.contains("--xfoil-budget -1: a positive number"), "{e}");

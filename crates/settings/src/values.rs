@@ -162,7 +162,7 @@ pub fn parse_trip(text: &str) -> Result<Option<f64>> {
     if t == "free" {
         return Ok(None);
     }
-    let trip = crate::settings::TRIP;
+    let trip = crate::TRIP;
     match t.parse::<f64>() {
         // At the trailing edge: no forcing, free transition.
         Ok(x) if trip.check(x).is_ok() => Ok(Some(x).filter(|x| *x < 1.0)),

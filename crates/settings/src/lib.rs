@@ -3,6 +3,43 @@
 //! from here (`#[arg(long = settings::NCRIT.flag, help = settings::NCRIT.help, ...)]`), a case
 //! file's keys and `validate`'s options are checked by the same [`Setting::check`], and the
 //! binary's tests hold every command's flag and every case key to these declarations.
+//!
+//! [`values`] reads what users write (lists and ranges, quantities with units, the air) into SI.
+#![deny(missing_docs)]
+
+pub mod values;
+
+/// A value as written does not read, or a declared setting's value is outside what it allows.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A value as written does not read (a list, a unit, a quantity): `FLAG 'TEXT': PROBLEM`.
+    #[error("{flag} '{text}': {problem}")]
+    Value {
+        /// The flag or key.
+        flag: String,
+        /// The value as given.
+        text: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+    /// A declared setting's value is outside what it allows.
+    #[error(transparent)]
+    Setting(#[from] BadSetting),
+}
+
+impl Error {
+    /// A value that does not read: `FLAG 'TEXT': PROBLEM`.
+    pub fn value(flag: &str, text: &str, problem: impl std::fmt::Display) -> Self {
+        Error::Value {
+            flag: flag.to_string(),
+            text: text.to_string(),
+            problem: problem.to_string(),
+        }
+    }
+}
+
+/// The settings' result.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
 
 /// One setting.
 #[derive(Debug, Clone, Copy)]
