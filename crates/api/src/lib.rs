@@ -33,7 +33,7 @@ pub use request::{
 };
 
 pub use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSettings, SweepAxis,
-    TableFormat,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, SweepAxis, TableFormat,
 };
 pub use propbet_pipeline::{Error, Result};
+pub use propbet_settings::scan::ScanSettings;

@@ -322,7 +322,7 @@ pub fn run(
 /// its files written; false when a station could not be measured or fitted.
 pub fn scan(
     input: PathBuf,
-    settings: &propbet_pipeline::spec::ScanSettings,
+    settings: &propbet_api::settings::scan::ScanSettings,
     reference: Option<PathBuf>,
     name: Option<String>,
     out: PathBuf,

@@ -378,7 +378,7 @@ fn with(base: &str, section: &str, key: &str, line: &str) -> String {
 /// `[geometry]` keys), as (section, key): each `pub` field, renamed where serde renames it.
 fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
     let case = std::fs::read_to_string(repo.join("crates/pipeline/src/case.rs")).unwrap();
-    let scan = std::fs::read_to_string(repo.join("crates/pipeline/src/spec/scan.rs")).unwrap();
+    let scan = std::fs::read_to_string(repo.join("crates/settings/src/scan.rs")).unwrap();
     let sections = [
         (&case, "Case", ""),
         (&case, "GeometrySection", "geometry"),

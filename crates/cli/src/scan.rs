@@ -11,7 +11,8 @@ use propbet_api::geometry::cloud::to_ply;
 use propbet_api::geometry::scan::{Aligned, Geometry};
 use propbet_api::measure::uiuc::{geometry_at, GeometryRow};
 use propbet_api::qprop::write_prop;
-use propbet_pipeline::spec::{ScanSettings, ScanSpec};
+use propbet_api::settings::scan::ScanSettings;
+use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
 use serde_json::json;
 
@@ -31,11 +32,11 @@ pub struct ScanArgs {
     #[arg(long)]
     pub planar: bool,
     /// Slab thickness of a cloud's sections [mm].
-    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_SLAB_MM)]
+    #[arg(long, default_value_t = propbet_api::settings::scan::DEFAULT_SLAB_MM)]
     pub slab: f64,
     /// Widen a sparse cloud's slab (up to 4 times) until a section holds this many points per
     /// blade (0: keep the slab as given).
-    #[arg(long, default_value_t = propbet_pipeline::spec::DEFAULT_SLAB_POINTS)]
+    #[arg(long, default_value_t = propbet_api::settings::scan::DEFAULT_SLAB_POINTS)]
     pub slab_points: usize,
     /// Blade colours to keep (clouds): names (orange, black, ...), #rrggbb or r/g/b, comma-separated.
     #[arg(long)]
@@ -47,10 +48,10 @@ pub struct ScanArgs {
     #[arg(long = "box")]
     pub box_dims: Option<String>,
     /// The box centre in the propeller frame [mm]: x,y,z (the box is fixed to the hub).
-    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_BOX_OFFSET, allow_hyphen_values = true)]
+    #[arg(long, default_value = propbet_api::settings::scan::DEFAULT_BOX_OFFSET, allow_hyphen_values = true)]
     pub box_offset: String,
     /// Colours of the box faces.
-    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_BOX_COLOUR)]
+    #[arg(long, default_value = propbet_api::settings::scan::DEFAULT_BOX_COLOUR)]
     pub box_colour: String,
     /// One point on each visible box face (file units), `x,y,z;x,y,z;...`, instead of finding
     /// the faces automatically.
@@ -60,7 +61,7 @@ pub struct ScanArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub crop: Option<String>,
     /// Statistical outlier removal for clouds: neighbours,sigmas, or `off`.
-    #[arg(long, default_value = propbet_pipeline::spec::DEFAULT_OUTLIERS)]
+    #[arg(long, default_value = propbet_api::settings::scan::DEFAULT_OUTLIERS)]
     pub outliers: String,
     /// Manual alignment: a point at the root of blade 0 (file units) x,y,z.
     #[arg(long, allow_hyphen_values = true, requires = "tip_point")]
@@ -73,7 +74,7 @@ pub struct ScanArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub origin: Option<String>,
     /// Manual alignment: rotations about the frame's x, y, z [deg].
-    #[arg(long, allow_hyphen_values = true, default_value = propbet_pipeline::spec::DEFAULT_ROTATE)]
+    #[arg(long, allow_hyphen_values = true, default_value = propbet_api::settings::scan::DEFAULT_ROTATE)]
     pub rotate: String,
     /// Manual scale from a known length: `x1,y1,z1,x2,y2,z2,L` (two points in file units and
     /// their true distance in mm).

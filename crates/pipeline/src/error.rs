@@ -94,11 +94,13 @@ pub enum Error {
 }
 
 impl From<propbet_settings::Error> for Error {
-    /// The same variants as the pipeline's own ([`Error::Value`], [`Error::Setting`]).
+    /// The same variants as the pipeline's own ([`Error::Value`], [`Error::Setting`],
+    /// [`Error::Conflict`]).
     fn from(e: propbet_settings::Error) -> Self {
         match e {
             propbet_settings::Error::Value { flag, text, problem } => Error::Value { flag, text, problem },
             propbet_settings::Error::Setting(b) => Error::Setting(b),
+            propbet_settings::Error::Conflict(c) => Error::Conflict(c),
         }
     }
 }

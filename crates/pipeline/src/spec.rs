@@ -387,12 +387,5 @@ impl StageSpec {
     }
 }
 
-mod scan;
-
-pub use scan::{
-    ScanSettings, DEFAULT_BOX_COLOUR, DEFAULT_BOX_OFFSET, DEFAULT_OUTLIERS, DEFAULT_ROTATE, DEFAULT_SLAB_MM,
-    DEFAULT_SLAB_POINTS,
-};
-
 #[cfg(test)]
 mod tests;

@@ -4,9 +4,10 @@
 //! file's keys and `validate`'s options are checked by the same [`Setting::check`], and the
 //! binary's tests hold every command's flag and every case key to these declarations.
 //!
-//! [`values`] reads what users write (lists and ranges, quantities with units, the air) into SI.
+//! [`scan`] holds a scan's settings as a user writes them; [`values`] reads what users write (lists and ranges, quantities with units, the air) into SI.
 #![deny(missing_docs)]
 
+pub mod scan;
 pub mod values;
 
 /// A value as written does not read, or a declared setting's value is outside what it allows.
@@ -25,6 +26,9 @@ pub enum Error {
     /// A declared setting's value is outside what it allows.
     #[error(transparent)]
     Setting(#[from] BadSetting),
+    /// Settings that cannot go together, or a setting missing that another needs.
+    #[error("{0}")]
+    Conflict(String),
 }
 
 impl Error {

@@ -7,10 +7,11 @@ use propbet_measure::RpmSource;
 
 use super::{at_key, parse_fraction, Case, NumberOrList, RunPlan};
 use crate::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSettings,
-    ScanSpec, SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSpec,
+    SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
 use crate::{Error, Result};
+use propbet_settings::scan::ScanSettings;
 use propbet_settings::values::{parse_atmosphere, parse_length_unit, parse_list};
 
 impl Case {
@@ -40,7 +41,7 @@ impl Case {
         };
         Ok(Some(ScanSpec {
             input: dir.join(file),
-            options: settings.options().map_err(|e| at("[geometry]", e))?,
+            options: settings.options().map_err(|e| at("[geometry]", e.into()))?,
             reference: g.reference.as_deref().map(|r| dir.join(r)),
             name: Some(self.name.clone()),
             out: out.join("scan"),

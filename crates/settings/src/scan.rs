@@ -7,8 +7,8 @@ use nalgebra::Vector3;
 use propbet_geometry::cloud::parse_colour;
 use propbet_geometry::scan::{default_stations, BoxSpec, Manual, ScanOptions, SectionKind};
 
-use crate::{conflict, Error, Result};
-use propbet_settings::values::{parse_length_unit, parse_list};
+use crate::values::{parse_length_unit, parse_list};
+use crate::{Error, Result};
 
 /// Slab thickness of a cloud's sections when none is given [mm].
 pub const DEFAULT_SLAB_MM: f64 = 0.25;
@@ -103,7 +103,7 @@ fn colours(flag: &str, text: &str) -> Result<Vec<[u8; 3]>> {
 impl ScanSettings {
     /// The keys a case's `[geometry]` holds for these settings (named where a case sets a
     /// scan's settings without a scan).
-    pub(crate) fn as_keys(&self) -> String {
+    pub fn as_keys(&self) -> String {
         let mut out = Vec::new();
         let mut text = |k: &str, v: &Option<String>| {
             if let Some(v) = v {
@@ -243,7 +243,9 @@ impl ScanSettings {
                 }))
             }
             (None, None) => Ok(None),
-            _ => conflict!("--root-point and --tip-point: manual alignment needs both"),
+            _ => Err(Error::Conflict(
+                "--root-point and --tip-point: manual alignment needs both".into(),
+            )),
         }
     }
 }
