@@ -9,7 +9,7 @@ use anyhow::{bail, Result};
 use propbet_api::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
 use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, StageSpec};
 
-use crate::output::{csv_rows, Num};
+use propbet_report::table::{csv_rows, Num};
 
 /// `propbet predict`'s tables as columns ([`crate::predict::columns`]): the sweep's, the
 /// per-station table's when `stations`, and the count of station solutions that did not
@@ -17,14 +17,18 @@ use crate::output::{csv_rows, Num};
 pub fn predict(
     spec: &PredictSpec,
     stations: bool,
-) -> Result<(crate::columns::Table, Option<crate::columns::Table>, (usize, usize))> {
+) -> Result<(
+    propbet_report::table::columns::Table,
+    Option<propbet_report::table::columns::Table>,
+    (usize, usize),
+)> {
     crate::predict::columns(spec, stations)
 }
 
 /// A number as propbet's tables write it (7 significant digits; empty when it is not finite).
 pub fn format_number(v: f64) -> String {
     let mut b = Vec::new();
-    crate::output::push_num(&mut b, Some(v));
+    propbet_report::table::push_num(&mut b, Some(v));
     String::from_utf8(b).unwrap_or_default()
 }
 
@@ -145,7 +149,7 @@ fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
             }
         })
     });
-    csv_rows(rows, true)
+    Ok(csv_rows(rows, true)?)
 }
 
 /// A dropped row.
@@ -180,7 +184,7 @@ fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> R
         reason: "file_refused".into(),
         detail: &r.reason,
     });
-    csv_rows(rows.chain(refused), true)
+    Ok(csv_rows(rows.chain(refused), true)?)
 }
 
 /// A blade file's rows as `propbet prop` reads them (the spec's file, units and reading), in
@@ -209,7 +213,7 @@ pub fn stations(spec: &ModelSpec) -> Result<Vec<u8>> {
             re_exp: c.re_exp.into(),
         }
     });
-    csv_rows(rows, true)
+    Ok(csv_rows(rows, true)?)
 }
 
 /// A prop file's row in SI.
@@ -239,7 +243,11 @@ pub fn powered(
     spec: &propbet_pipeline::spec::PoweredSpec,
     motor: &propbet_api::motor::MotorFile,
     stations: bool,
-) -> Result<(crate::columns::Table, Vec<String>, Option<crate::columns::Table>)> {
+) -> Result<(
+    propbet_report::table::columns::Table,
+    Vec<String>,
+    Option<propbet_report::table::columns::Table>,
+)> {
     let run = crate::powered::solve(spec, motor, stations)?;
     let problems = run
         .table
@@ -248,7 +256,7 @@ pub fn powered(
         .filter_map(|p| p.problem().map(|w| format!("V {} m/s: {w}", p.v)))
         .collect();
     let per_station = stations
-        .then(|| crate::predict::stations_table(&run.solved()))
+        .then(|| propbet_report::table::sweep::stations_table(&run.solved()))
         .transpose()?;
     Ok((run.table()?, problems, per_station))
 }
@@ -260,7 +268,7 @@ pub fn fit_motor(
     kv: Option<f64>,
     kq: bool,
     name: Option<String>,
-) -> Result<(crate::motor_fit::Fitted, crate::columns::Table)> {
+) -> Result<(crate::motor_fit::Fitted, propbet_report::table::columns::Table)> {
     use propbet_api::motor::FitKind;
     let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
     let f = crate::motor_fit::fitted(spec, kv, kind, name)?;
@@ -278,7 +286,7 @@ pub fn compare_props(
     hover: f64,
     speeds: Option<Vec<f64>>,
     air: &propbet_pipeline::spec::AirSpec,
-) -> Result<(crate::columns::Table, Vec<String>)> {
+) -> Result<(propbet_report::table::columns::Table, Vec<String>)> {
     let speeds = speeds.unwrap_or_else(crate::compare_props::default_speeds);
     let props = crate::compare_props::side(models, &motor.motor, supply, hover, &speeds, air)?;
     Ok((

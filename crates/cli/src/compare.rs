@@ -14,8 +14,9 @@ use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_report::answer::ReferenceScore;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 
-use crate::output::{csv_rows, write_atomic, write_figure, Num};
+use crate::output::{write_atomic, write_figure};
 use crate::predict::{cover, load_model_at, ModelArgs};
+use propbet_report::table::{csv_rows, Num};
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -186,7 +187,7 @@ struct PointRow {
 }
 
 fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
-    csv_rows(
+    Ok(csv_rows(
         pts.iter().map(|p| PointRow {
             file: files[p.file].clone(),
             label: p.label.clone(),
@@ -222,7 +223,7 @@ fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
             model_flags: p.model_flags.join("; "),
         }),
         true,
-    )
+    )?)
 }
 
 /// Runs `propbet compare`; returns false when rows were dropped as faulty, the solver did not

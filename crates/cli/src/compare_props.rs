@@ -9,8 +9,9 @@ use propbet_api::settings::values::parse_list;
 use propbet_pipeline::spec::{ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
 
-use crate::output::{csv_rows, write_atomic, write_figure, Num};
+use crate::output::{write_atomic, write_figure};
 use crate::predict::{BladeArgs, FluidArgs};
+use propbet_report::table::{csv_rows, Num};
 
 /// Arguments of `propbet compare-props`.
 #[derive(Debug, Args)]
@@ -141,8 +142,8 @@ pub fn side(
 }
 
 /// The ranked table's columns (props.csv's).
-pub fn table(props: &[SideProp], hover: f64) -> Result<crate::columns::Table> {
-    Ok(crate::columns::table(
+pub fn table(props: &[SideProp], hover: f64) -> Result<propbet_report::table::columns::Table> {
+    Ok(propbet_report::table::columns::table(
         props.iter().enumerate().map(|(k, p)| row(k, p, hover)),
     )?)
 }

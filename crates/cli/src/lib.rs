@@ -27,7 +27,6 @@ macro_rules! println {
 
 pub mod api;
 mod argv;
-pub mod columns;
 mod compare;
 mod compare_props;
 mod diagnose;
@@ -43,7 +42,6 @@ mod predict;
 mod prop;
 mod run;
 mod scan;
-mod sweep_csv;
 mod synth;
 mod validate;
 

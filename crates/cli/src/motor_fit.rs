@@ -192,17 +192,17 @@ fn fit(args: &FitArgs) -> Result<bool> {
 #[derive(serde::Serialize)]
 struct StepRow<'a> {
     step: &'a str,
-    rpm: crate::output::Num,
-    torque_nm: crate::output::Num,
-    volts: crate::output::Num,
-    amps: crate::output::Num,
-    esc_us: crate::output::Num,
-    amps_held_out: crate::output::Num,
+    rpm: propbet_report::table::Num,
+    torque_nm: propbet_report::table::Num,
+    volts: propbet_report::table::Num,
+    amps: propbet_report::table::Num,
+    esc_us: propbet_report::table::Num,
+    amps_held_out: propbet_report::table::Num,
 }
 
 /// The fitted steps: speed, torque, voltage, current, ESC command and the current predicted
 /// with the step left out.
-pub fn steps(f: &propbet_pipeline::stages::FittedMotor) -> Result<crate::columns::Table> {
+pub fn steps(f: &propbet_pipeline::stages::FittedMotor) -> Result<propbet_report::table::columns::Table> {
     let rows = f.points.iter().map(|(step, p, held)| StepRow {
         step,
         rpm: propbet_api::units::omega_to_rpm(p.omega).into(),
@@ -212,5 +212,5 @@ pub fn steps(f: &propbet_pipeline::stages::FittedMotor) -> Result<crate::columns
         esc_us: p.esc.into(),
         amps_held_out: (*held).into(),
     });
-    Ok(crate::columns::table(rows)?)
+    Ok(propbet_report::table::columns::table(rows)?)
 }

@@ -10,8 +10,9 @@ use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{PoweredSpec, SweepAxis, TableFormat};
 use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
 
-use crate::output::{csv_rows, emit, Num};
+use crate::output::emit;
 use crate::predict::PredictArgs;
+use propbet_report::table::{csv_rows, Num};
 
 /// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
 /// speed at the highest voltage given or the battery's (12 V, a 3-cell battery, where none
@@ -99,13 +100,13 @@ impl PoweredRun {
     }
 
     /// The table's columns.
-    pub fn table(&self) -> Result<crate::columns::Table> {
-        Ok(crate::columns::table(self.rows())?)
+    pub fn table(&self) -> Result<propbet_report::table::columns::Table> {
+        Ok(propbet_report::table::columns::table(self.rows())?)
     }
 
     /// The table as CSV.
     pub fn csv(&self) -> Result<Vec<u8>> {
-        csv_rows(self.rows(), true)
+        Ok(csv_rows(self.rows(), true)?)
     }
 }
 
@@ -144,7 +145,11 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     inputs.push(spec.motor.as_path());
     emit(spec.out.as_deref(), &[run.body(spec.format)?], &inputs)?;
     if let Some(path) = &spec.stations {
-        crate::output::write_atomic(path, &[crate::predict::stations_csv(&run.solved())?], &inputs)?;
+        crate::output::write_atomic(
+            path,
+            &[propbet_report::table::sweep::stations_csv(&run.solved())?],
+            &inputs,
+        )?;
     }
     for line in run.warnings() {
         eprintln!("propbet: {line}");
@@ -287,14 +292,14 @@ fn row(p: &PoweredPoint, rho: f64, air: &str, tip_radius: f64) -> PoweredRow {
             .unwrap_or_default(),
         no_solution: p.problem().unwrap_or_default().to_string(),
         rho_kg_m3: if r.is_some() { rho.into() } else { none },
-        air: crate::sweep_csv::air_cell(air),
+        air: propbet_report::table::sweep::air_cell(air),
     }
 }
 
 /// The columns after QPROP's: the battery's and the band's, each where asked for.
 struct Tail {
     battery: Option<BatteryColumns>,
-    band: Option<crate::predict::BandColumns>,
+    band: Option<propbet_report::table::sweep::BandColumns>,
 }
 
 impl serde::Serialize for Tail {
@@ -321,8 +326,8 @@ impl serde::Serialize for Tail {
 }
 
 /// The band's columns of a row: empty where the point has no operating point.
-fn band_columns(b: Option<&PointBand>) -> crate::predict::BandColumns {
-    crate::predict::BandColumns {
+fn band_columns(b: Option<&PointBand>) -> propbet_report::table::sweep::BandColumns {
+    propbet_report::table::sweep::BandColumns {
         ct_lo: b.map(|b| b.ct.lo).into(),
         ct_hi: b.map(|b| b.ct.hi).into(),
         cp_lo: b.map(|b| b.cp.lo).into(),
@@ -354,8 +359,8 @@ fn battery_columns(p: &PoweredPoint) -> BatteryColumns {
 }
 
 /// A table as a JSON array of records: numbers as numbers, an empty cell as null.
-fn json_records(t: &crate::columns::Table) -> Result<Vec<u8>> {
-    use crate::columns::Column;
+fn json_records(t: &propbet_report::table::columns::Table) -> Result<Vec<u8>> {
+    use propbet_report::table::columns::Column;
     use serde_json::Value;
     let rows = t.columns.first().map_or(0, |c| match c {
         Column::Num(v) => v.len(),

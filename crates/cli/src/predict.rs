@@ -4,16 +4,15 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_api::bemt::{Fluid, PointResult};
-use propbet_api::compare::band::PointBand;
+use propbet_api::bemt::PointResult;
 use propbet_api::{AirRequest, ModelRequest, SweepRequest, Values};
 use propbet_pipeline::band::BandSpec;
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
-use serde::Serialize;
 
-use crate::columns::Table;
-use crate::output::{csv_rows, emit, Num};
+use crate::output::emit;
+use propbet_report::table::columns::Table;
+use propbet_report::table::sweep;
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -255,24 +254,6 @@ impl FluidArgs {
     }
 }
 
-#[derive(Serialize)]
-struct JsonOut<'a> {
-    prop: &'a str,
-    name: &'a str,
-    blades: f64,
-    tip_radius_m: f64,
-    fluid: Fluid,
-    fluid_source: &'a str,
-    qprop_compat: bool,
-    tip_loss: bool,
-    dbeta_deg: f64,
-    warnings: &'a [String],
-    points: &'a [PointResult],
-    /// The uncertainty band at each point (`--band`), in the points' order.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    band: Option<&'a [PointBand]>,
-}
-
 impl PredictArgs {
     /// The stage's spec (flags in SI).
     pub fn spec(&self) -> Result<PredictSpec> {
@@ -394,11 +375,11 @@ pub fn columns(spec: &PredictSpec, stations: bool) -> Result<(Table, Option<Tabl
     let (rho, tip) = (fluid.rho, model.rotor.tip_radius);
     let sweep = if spec.band {
         let band = BandSpec::for_model(&model).at_points(&model, &fluid, &points, &results)?;
-        crate::columns::table(with_band(&results, &band, rho, &source, tip))?
+        propbet_report::table::columns::table(sweep::with_band(&results, &band, rho, &source, tip))?
     } else {
-        crate::columns::table(results.iter().map(|p| sweep_row(p, rho, &source, tip)))?
+        propbet_report::table::columns::table(results.iter().map(|p| sweep::sweep_row(p, rho, &source, tip)))?
     };
-    let per_station = stations.then(|| stations_table(&results)).transpose()?;
+    let per_station = stations.then(|| sweep::stations_table(&results)).transpose()?;
     let failed = results.iter().map(|p| p.not_converged).sum();
     let failed_points = results.iter().filter(|p| p.not_converged > 0).count();
     Ok((sweep, per_station, (failed, failed_points)))
@@ -430,7 +411,7 @@ pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
                 let r = propbet_pipeline::stages::solve(&model, &fluid, c)?;
                 Ok(Chunk {
                     text: if streamed {
-                        summary_rows(&r, k == 0, fluid.rho, &fluid_source, model.rotor.tip_radius)?
+                        sweep::rows(&r, k == 0, fluid.rho, &fluid_source, model.rotor.tip_radius)
                     } else {
                         Vec::new()
                     },
@@ -457,48 +438,21 @@ pub fn tables(spec: &PredictSpec, stations: bool) -> Result<Tables> {
             .then(|| BandSpec::for_model(&model).at_points(&model, &fluid, &points, &results))
             .transpose()?;
         body = vec![match spec.format {
-            TableFormat::Csv => band_rows(
+            TableFormat::Csv => sweep::band_rows(
                 &results,
                 band.as_deref().unwrap_or(&[]),
                 fluid.rho,
                 &fluid_source,
                 model.rotor.tip_radius,
             )?,
-            TableFormat::Json => json_doc(spec, &model, &fluid, &fluid_source, &results, band.as_deref())?,
+            TableFormat::Json => sweep::json_doc(spec, &model, &fluid, &fluid_source, &results, band.as_deref())?,
         }];
     }
     Ok(Tables {
         body,
-        stations: stations.then(|| stations_csv(&results)).transpose()?,
+        stations: stations.then(|| sweep::stations_csv(&results)).transpose()?,
         failed: (failed, failed_points),
     })
-}
-
-fn json_doc(
-    spec: &PredictSpec,
-    model: &Model,
-    fluid: &Fluid,
-    source: &str,
-    results: &[PointResult],
-    band: Option<&[PointBand]>,
-) -> Result<Vec<u8>> {
-    let doc = JsonOut {
-        prop: &spec.model.prop.to_string_lossy(),
-        name: &model.loaded.file.name,
-        blades: model.rotor.blades,
-        tip_radius_m: model.rotor.tip_radius,
-        fluid: *fluid,
-        fluid_source: source,
-        qprop_compat: spec.model.qprop_compat,
-        tip_loss: model.opts.tip_loss,
-        dbeta_deg: spec.model.dbeta.to_degrees(),
-        warnings: &model.loaded.warnings,
-        points: results,
-        band,
-    };
-    let mut s = serde_json::to_vec_pretty(&doc)?;
-    s.push(b'\n');
-    Ok(s)
 }
 
 /// Writes a sweep's summary table (CSV) where the spec says (the run's predict stage), with
@@ -508,177 +462,13 @@ pub fn write_sweep(spec: &PredictSpec, model: &Model, points: &[PointResult]) ->
     let body = [if spec.band {
         let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
         let band = BandSpec::for_model(model).at_points(model, &fluid, &ops, points)?;
-        band_rows(points, &band, fluid.rho, &source, model.rotor.tip_radius)?
+        sweep::band_rows(points, &band, fluid.rho, &source, model.rotor.tip_radius)?
     } else {
-        summary_rows(points, true, fluid.rho, &source, model.rotor.tip_radius)?
+        sweep::rows(points, true, fluid.rho, &source, model.rotor.tip_radius)
     }];
     emit(spec.out.as_deref(), &body, &spec.model.inputs())?;
     let [body] = body;
     Ok(body)
-}
-
-/// A row of the sweep table.
-#[derive(serde::Serialize)]
-pub(crate) struct SweepRow {
-    rpm: Num,
-    v_m_s: Num,
-    j: Num,
-    thrust_n: Num,
-    torque_nm: Num,
-    power_w: Num,
-    ct: Num,
-    cp: Num,
-    cq: Num,
-    eta: Num,
-    ct_qprop: Num,
-    cp_qprop: Num,
-    adv_qprop: Num,
-    dv_m_s: Num,
-    cl_avg: Num,
-    cd_avg: Num,
-    not_converged: usize,
-    /// What is physically implausible at the point ([`propbet_api::bemt::check::implausible`]).
-    flags: String,
-    /// Air density used [kg/m^3].
-    rho_kg_m3: Num,
-    /// Where the air came from: given, from T, P, RH, or QPROP's defaults (assumed).
-    air: String,
-}
-
-/// The band's columns of a sweep row.
-#[derive(serde::Serialize)]
-pub(crate) struct BandColumns {
-    pub(crate) ct_lo: Num,
-    pub(crate) ct_hi: Num,
-    pub(crate) cp_lo: Num,
-    pub(crate) cp_hi: Num,
-    pub(crate) eta_lo: Num,
-    pub(crate) eta_hi: Num,
-}
-
-/// The sweep table with the band's columns after the others (`band` in the points' order).
-fn band_rows(results: &[PointResult], band: &[PointBand], rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
-    csv_rows(with_band(results, band, rho, air, tip_radius), true)
-}
-
-/// The sweep's rows with the band's columns after the others.
-fn with_band<'a>(
-    results: &'a [PointResult],
-    band: &'a [PointBand],
-    rho: f64,
-    air: &'a str,
-    tip_radius: f64,
-) -> impl Iterator<Item = (SweepRow, BandColumns)> + 'a {
-    results.iter().zip(band).map(move |(p, b)| {
-        (
-            sweep_row(p, rho, air, tip_radius),
-            BandColumns {
-                ct_lo: b.ct.lo.into(),
-                ct_hi: b.ct.hi.into(),
-                cp_lo: b.cp.lo.into(),
-                cp_hi: b.cp.hi.into(),
-                eta_lo: b.eta.lo.into(),
-                eta_hi: b.eta.hi.into(),
-            },
-        )
-    })
-}
-
-fn summary_rows(results: &[PointResult], header: bool, rho: f64, air: &str, tip_radius: f64) -> Result<Vec<u8>> {
-    Ok(crate::sweep_csv::rows(results, header, rho, air, tip_radius))
-}
-
-pub(crate) fn sweep_row(p: &PointResult, rho: f64, air: &str, tip_radius: f64) -> SweepRow {
-    SweepRow {
-        rpm: p.rpm.into(),
-        v_m_s: p.v.into(),
-        j: p.j.into(),
-        thrust_n: p.thrust.into(),
-        torque_nm: p.torque.into(),
-        power_w: p.power.into(),
-        ct: p.ct.into(),
-        cp: p.cp.into(),
-        cq: p.cq.into(),
-        eta: p.eta.into(),
-        ct_qprop: p.ct_qprop.into(),
-        cp_qprop: p.cp_qprop.into(),
-        adv_qprop: p.adv_qprop.into(),
-        dv_m_s: p.dv.into(),
-        cl_avg: p.cl_avg.into(),
-        cd_avg: p.cd_avg.into(),
-        not_converged: p.not_converged,
-        flags: propbet_api::bemt::check::implausible(p, rho, tip_radius).join("; "),
-        rho_kg_m3: rho.into(),
-        air: crate::sweep_csv::air_cell(air),
-    }
-}
-
-/// A row of the per-station table.
-#[derive(serde::Serialize)]
-struct StationRow {
-    rpm: Num,
-    v_m_s: Num,
-    r_m: Num,
-    chord_m: Num,
-    beta_deg: Num,
-    alpha_deg: Num,
-    cl: Num,
-    cd: Num,
-    re: Num,
-    mach: Num,
-    w_m_s: Num,
-    wa_m_s: Num,
-    wt_m_s: Num,
-    va_m_s: Num,
-    vt_m_s: Num,
-    f_tip: Num,
-    dt_dr_n_m: Num,
-    dq_dr_n: Num,
-    stalled: bool,
-    convergence: &'static str,
-}
-
-pub(crate) fn stations_csv(results: &[PointResult]) -> Result<Vec<u8>> {
-    csv_rows(station_rows(results), true)
-}
-
-/// The per-station table of `results` as columns.
-pub(crate) fn stations_table(results: &[PointResult]) -> Result<crate::columns::Table> {
-    Ok(crate::columns::table(station_rows(results))?)
-}
-
-fn station_rows(results: &[PointResult]) -> impl Iterator<Item = StationRow> + '_ {
-    results.iter().flat_map(|p| {
-        p.stations.iter().map(move |st| StationRow {
-            rpm: p.rpm.into(),
-            v_m_s: p.v.into(),
-            r_m: st.r.into(),
-            chord_m: st.chord.into(),
-            beta_deg: st.beta.to_degrees().into(),
-            alpha_deg: st.alpha.to_degrees().into(),
-            cl: st.cl.into(),
-            cd: st.cd.into(),
-            re: st.re.into(),
-            mach: st.mach.into(),
-            w_m_s: st.w.into(),
-            wa_m_s: st.wa.into(),
-            wt_m_s: st.wt.into(),
-            va_m_s: st.va.into(),
-            vt_m_s: st.vt.into(),
-            f_tip: st.f_tip.into(),
-            dt_dr_n_m: st.dt_dr.into(),
-            dq_dr_n: st.dq_dr.into(),
-            stalled: st.stalled,
-            convergence: match st.convergence {
-                propbet_api::bemt::Convergence::Newton { .. } => "newton",
-                propbet_api::bemt::Convergence::Bracketed { .. } => "bracketed",
-                propbet_api::bemt::Convergence::NotConverged => "not_converged",
-                propbet_api::bemt::Convergence::NoFlow => "no_flow",
-                propbet_api::bemt::Convergence::NoRotation => "no_rotation",
-                propbet_api::bemt::Convergence::ZeroChord => "zero_chord",
-            },
-        })
-    })
 }
 
 /// The operating points a blade file's polars cover for a comparison: the measured range.

@@ -16,7 +16,8 @@ use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
 use serde_json::json;
 
-use crate::output::{csv_rows, write_atomic, write_figure, Num};
+use crate::output::{write_atomic, write_figure};
+use propbet_report::table::{csv_rows, Num};
 
 /// Arguments of `propbet scan`.
 #[derive(Debug, Args)]
@@ -211,7 +212,7 @@ fn geometry_csv(g: &Geometry, reference: Option<&[GeometryRow]>) -> Result<Vec<u
             ref_beta_deg: reference(2).into(),
         }
     });
-    csv_rows(rows, true)
+    Ok(csv_rows(rows, true)?)
 }
 
 /// The cleaned surface in the propeller frame, by blade: one STL per blade and the hub's, or

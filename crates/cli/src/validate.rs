@@ -15,9 +15,10 @@ use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::StageSpec;
 use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
-use crate::output::{write_atomic, Num};
+use crate::output::write_atomic;
 use crate::polar::{Bar, XfoilProcess};
 use propbet_api::compare::ComparedPoint;
+use propbet_report::table::Num;
 
 /// Arguments of `propbet validate`.
 // Fields without a doc comment are documented by their declared setting's help (`settings`).

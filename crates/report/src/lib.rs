@@ -15,6 +15,7 @@ pub mod powered;
 pub mod props;
 pub mod run;
 pub mod scan;
+pub mod table;
 pub mod validate;
 
 /// Markdown that holds no raw HTML: every `<` written as `&lt;` (Markdown renders it as `<`),

@@ -1,9 +1,9 @@
 //! Table rows (the serde structs the CSV files are written from) gathered into typed columns,
 //! for the Python package: the same columns under the same names as the CSV, each number the
-//! one its written digits say (`output::written`), without writing and reading the text. A serde `Serializer` written
+//! one its written digits say ([`super::written`]), without writing and reading the text. A serde `Serializer` written
 //! here because the one crate that does this (serde_arrow) would bring Arrow with it.
 //!
-//! [`crate::output::Num`] writes its text to human-readable formats (CSV, JSON) and the number
+//! [`super::Num`] writes its text to human-readable formats (CSV, JSON) and the number
 //! of that text to this one, which says it is not human-readable.
 
 use serde::ser::{self, Impossible, Serialize};
@@ -324,7 +324,7 @@ impl ser::SerializeTuple for &mut Row<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::output::{csv_rows, Num};
+    use crate::table::{csv_rows, Num};
 
     #[derive(serde::Serialize)]
     struct A {
