@@ -9,7 +9,7 @@ pub mod bemt {
 
 /// QPROP's files ([`propbet_qprop`]): the prop file writer, QPROP's output, APC's files.
 pub mod qprop {
-    pub use propbet_qprop::{apc, output, write_prop, RadiusReading};
+    pub use propbet_qprop::{apc, export, output, write_prop, RadiusReading};
 }
 
 /// The motor ([`propbet_motor`]): its files and the operating point's drivers.

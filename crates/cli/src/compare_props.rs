@@ -129,7 +129,7 @@ pub fn side(
     air: &propbet_pipeline::spec::AirSpec,
 ) -> Result<Vec<SideProp>> {
     check_hover(hover)?;
-    let omegas = crate::powered::polar_omegas(motor, &[], Some(supply.source(1.0).0));
+    let omegas = propbet_pipeline::stages::polar_omegas(motor, &[], Some(supply.source(1.0).0));
     let mut loaded = Vec::new();
     for (name, spec) in models {
         let model = crate::predict::load_model_at(spec, || Ok((omegas.clone(), SweepAxis::V(speeds.to_vec()))), false)?;

@@ -367,7 +367,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             w.sweep = Some(crate::predict::write_sweep(spec, model, points)?);
             if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
                 write_atomic(
-                    &dir.join(propbet_pipeline::export::FILE_NAME),
+                    &dir.join(propbet_api::qprop::export::FILE_NAME),
                     &[propbet_api::qprop::write_prop(&x.file)],
                     &spec.model.inputs(),
                 )?;
@@ -387,12 +387,13 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                     .map_or(String::new(), |o| format!(" -> {}", o.display()))
             ));
             w.brief.push(match export {
-                Ok(x) => format!("{}: {}", propbet_pipeline::export::FILE_NAME, x.fidelity.brief()),
+                Ok(x) => format!("{}: {}", propbet_api::qprop::export::FILE_NAME, x.fidelity.brief()),
                 Err(e) => format!("no QPROP export: {e}"),
             });
         }
         (StageSpec::Powered(spec), Finished::Powered(table, model, fluid)) => {
-            let run = crate::powered::PoweredRun::new((*table).clone(), model, fluid, spec.supply.is_some());
+            let run =
+                propbet_report::table::powered::PoweredRun::new((*table).clone(), model, fluid, spec.supply.is_some());
             if let Some(o) = &spec.out {
                 create_parent(o)?;
             }

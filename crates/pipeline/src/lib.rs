@@ -16,7 +16,6 @@ pub mod case;
 pub mod design;
 mod error;
 pub mod expected;
-pub mod export;
 pub mod model;
 pub mod run;
 pub mod spec;

@@ -32,7 +32,7 @@ pub enum Finished<'a> {
     Predict(
         &'a [PointResult],
         &'a Model,
-        &'a std::result::Result<crate::export::QpropExport, String>,
+        &'a std::result::Result<propbet_qprop::export::QpropExport, String>,
     ),
     /// The propeller on its motor, with the model and the air of the sweeps.
     Powered(&'a stages::PoweredTable, &'a Model, &'a (Fluid, String)),
@@ -82,7 +82,7 @@ pub struct RunOutcome {
     /// The sweeps.
     pub sweep: Vec<PointResult>,
     /// The QPROP file fitted to carry the sweeps' prediction (or why there is none).
-    pub qprop_export: std::result::Result<crate::export::QpropExport, String>,
+    pub qprop_export: std::result::Result<propbet_qprop::export::QpropExport, String>,
     /// The propeller on its motor (cases with `[motor]` and a driver).
     pub powered: Option<stages::PoweredTable>,
     /// The comparison (cases with measurements).
@@ -221,7 +221,18 @@ pub fn run_case(
     let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
     let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
     let clean = sweep.iter().all(|p| p.not_converged == 0);
-    let qprop_export = crate::export::qprop_export(&model, &fluid.0, &points, &plan.name).map_err(|e| e.to_string());
+    let qprop_export = propbet_qprop::export::qprop_export(
+        propbet_qprop::export::Model {
+            rotor: &model.rotor,
+            opts: model.opts,
+            file: &model.loaded.file,
+        },
+        &fluid.0,
+        &points,
+        &plan.name,
+        propbet_compare::metrics::VALIDATION_J_WINDOW,
+    )
+    .map_err(|e| e.to_string());
     book.done(t, clean, Finished::Predict(&sweep, &model, &qprop_export));
 
     // 3b. On the motor: the sweeps' model and air.

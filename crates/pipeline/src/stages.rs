@@ -329,7 +329,9 @@ mod synth;
 
 pub use measured::*;
 pub use polar::*;
-pub use powered::{electric, fit_motor, powered, powered_table, read_motor, FittedMotor, PoweredPoint, PoweredTable};
+pub use powered::{
+    electric, fit_motor, polar_omegas, powered, powered_table, read_motor, FittedMotor, PoweredPoint, PoweredTable,
+};
 pub(crate) use powered::{omega_ceiling, powered_stage};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};

@@ -11,6 +11,7 @@
 
 pub mod apc;
 pub mod command;
+pub mod export;
 pub mod output;
 pub mod propfile;
 

@@ -284,7 +284,7 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome, commands: &Commands) -> String
                 let _ = write!(
                     h,
                     "<li>{}: the QPROP 1.22 prop file that carries this prediction (QPROP's law fitted at each of its stations to what the model's sections do there). {}.</li>",
-                    link(out, &dir.join(propbet_pipeline::export::FILE_NAME)),
+                    link(out, &dir.join(propbet_qprop::export::FILE_NAME)),
                     esc(&x.fidelity.sentence())
                 );
             }
@@ -472,7 +472,7 @@ pub fn summary_json(plan: &RunPlan, run: &RunOutcome, commands: &Commands) -> se
         "polars": polars,
         "qprop_export": match &run.qprop_export {
             Ok(x) => json!({
-                "file": plan.predict.out.as_ref().and_then(|o| o.parent()).map(|d| d.join(propbet_pipeline::export::FILE_NAME).display().to_string()),
+                "file": plan.predict.out.as_ref().and_then(|o| o.parent()).map(|d| d.join(propbet_qprop::export::FILE_NAME).display().to_string()),
                 "fidelity": x.fidelity,
             }),
             Err(e) => json!({"error": e}),

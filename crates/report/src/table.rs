@@ -1,9 +1,52 @@
 //! propbet's tables, whole: numbers as every table prints them ([`Num`], [`push_num`]), rows as
 //! CSV, the same rows as typed columns for Python ([`columns`]), and a prediction's tables
-//! ([`sweep`]). The binary writes the bytes these make.
+//! ([`sweep`]) and of a propeller on its motor ([`powered`]). The binary writes the bytes these
+//! make.
 
 pub mod columns;
 mod number;
+pub mod powered;
 pub mod sweep;
 
 pub use number::{csv_rows, push_num, written, Num};
+
+/// A table that could not be made: its CSV, its columns or its JSON.
+#[derive(Debug)]
+pub enum Error {
+    /// Writing CSV.
+    Csv(csv::Error),
+    /// Gathering typed columns.
+    Columns(columns::Error),
+    /// Writing JSON.
+    Json(serde_json::Error),
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Error::Csv(e) => write!(f, "writing CSV: {e}"),
+            Error::Columns(e) => write!(f, "gathering columns: {e}"),
+            Error::Json(e) => write!(f, "writing JSON: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+impl From<csv::Error> for Error {
+    fn from(e: csv::Error) -> Self {
+        Error::Csv(e)
+    }
+}
+
+impl From<columns::Error> for Error {
+    fn from(e: columns::Error) -> Self {
+        Error::Columns(e)
+    }
+}
+
+impl From<serde_json::Error> for Error {
+    fn from(e: serde_json::Error) -> Self {
+        Error::Json(e)
+    }
+}

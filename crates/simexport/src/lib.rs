@@ -86,7 +86,7 @@ impl Target {
 
 /// How well an export reproduces the points it was made from: the QPROP export's measure
 /// (thrust and torque, median and largest relative difference).
-pub use propbet_pipeline::export::Fidelity as Fit;
+pub use propbet_qprop::export::Fidelity as Fit;
 
 /// The fit of (model thrust-like, reference, model torque-like, reference) pairs.
 fn fit_of(pairs: &[(f64, f64, f64, f64)]) -> Fit {

@@ -3,7 +3,7 @@
 //! to them, and the check that an exported QPROP file keeps the model's prediction.
 
 use super::*;
-use crate::export::Differences;
+use propbet_qprop::export::Differences;
 
 // ---------------------------------------------------------------------------------------
 // polars

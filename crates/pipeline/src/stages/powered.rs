@@ -375,3 +375,30 @@ pub fn electric(
         &loads,
     ))
 }
+
+/// Rotation rates the polars of a blade file are computed over: up to the motor's no-load
+/// speed at the highest voltage given or the battery's (12 V, a 3-cell battery, where none
+/// is).
+pub fn polar_omegas(
+    motor: &propbet_motor::Motor,
+    drives: &[propbet_motor::Drive],
+    battery_volts: Option<f64>,
+) -> Vec<f64> {
+    use propbet_motor::Drive;
+    let volts = drives
+        .iter()
+        .filter_map(|d| match d {
+            Drive::Volts(v) | Drive::Throttle { volts: v, .. } => Some(*v),
+            _ => None,
+        })
+        .chain(battery_volts)
+        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))))
+        .unwrap_or(12.0);
+    let top = motor.free_speed(volts).unwrap_or(motor.kv() * volts);
+    let mut omegas: Vec<f64> = (1..=8).map(|k| top * k as f64 / 8.0).collect();
+    omegas.extend(drives.iter().filter_map(|d| match d {
+        Drive::Omega(w) => Some(*w),
+        _ => None,
+    }));
+    omegas
+}

@@ -21,11 +21,34 @@
 //! lift differently at each RPM (XFOIL's low-Re tables), that difference is what the file cannot
 //! carry (the default case: CT at J = 0 rises 3.7 % from 4000 to 6000 rpm in the tables).
 
-use propbet_bemt::{OperatingPoint, PointResult};
-use propbet_qprop::{PropFile, PropRow};
+use propbet_bemt::{OperatingPoint, PointResult, Rotor, SolverOptions};
 
-use crate::model::Model;
-use crate::{unsuited, Result};
+use crate::{PropFile, PropRow};
+
+/// The model a QPROP file is exported from: its rotor, how it is solved, and the prop file it
+/// was read from (its ends and its accuracy line).
+#[derive(Debug, Clone, Copy)]
+pub struct Model<'a> {
+    /// The rotor as the model solves it (its sections, tables or QPROP's law).
+    pub rotor: &'a Rotor,
+    /// How it is solved.
+    pub opts: SolverOptions,
+    /// The prop file the model was read from.
+    pub file: &'a PropFile,
+}
+
+/// Why a prediction cannot be exported as a QPROP file.
+#[derive(Debug, thiserror::Error)]
+pub enum ExportError {
+    /// The points cannot make the file (none solved at every station, none with thrust).
+    #[error("{0}")]
+    Unsuited(String),
+    /// The exported file does not make a rotor when read back.
+    #[error("the exported QPROP file: {0}")]
+    ReadBack(#[from] propbet_bemt::RotorError),
+}
+
+type Result<T> = std::result::Result<T, ExportError>;
 
 /// The exported file's name, beside the run's sweep.
 pub const FILE_NAME: &str = "qprop_export.qprop";
@@ -269,12 +292,15 @@ fn fit_station(seen: &[Seen], re_ref: f64) -> [f64; 10] {
 }
 
 /// The QPROP file that carries `model`'s prediction at `points` (`name` on its first line),
-/// with its fidelity. An error when the model has no point with thrust to fit.
+/// with its fidelity, fitted and checked on the points below `window` times each RPM's
+/// zero-thrust J (a comparison's scored window). An error when the model has no point with
+/// thrust to fit.
 pub fn qprop_export(
-    model: &Model,
+    model: Model<'_>,
     fluid: &propbet_bemt::Fluid,
     points: &[OperatingPoint],
     name: &str,
+    window: f64,
 ) -> Result<QpropExport> {
     let rotor = &model.rotor;
     let mut opts = model.opts;
@@ -285,7 +311,9 @@ pub fn qprop_export(
         .collect();
     let n = rotor.stations.len();
     if solved.is_empty() || n < 2 || solved.iter().any(|p| p.stations.len() != n) {
-        unsuited!("the QPROP export needs operating points the model solves at every station");
+        return Err(ExportError::Unsuited(
+            "the QPROP export needs operating points the model solves at every station".into(),
+        ));
     }
     // One REref for every row: the geometric mean of the first station's Re.
     let re_ref = (solved.iter().map(|p| p.stations[0].re.max(1.0).ln()).sum::<f64>() / solved.len() as f64)
@@ -293,9 +321,11 @@ pub fn qprop_export(
         .round();
     // The points that count, for the fit as for the check: the scored window of a comparison
     // (below 85 % of each RPM's zero-thrust J, here the prediction's own), with thrust.
-    let counted = scored_window(&solved);
+    let counted = scored_window(&solved, window);
     if !counted.iter().any(|&c| c) {
-        unsuited!("the QPROP export needs an operating point with thrust");
+        return Err(ExportError::Unsuited(
+            "the QPROP export needs an operating point with thrust".into(),
+        ));
     }
     // The fit, then refits that weigh each point by how far the last file left it (towards the
     // smallest largest difference); the file with the smallest largest difference is kept.
@@ -327,10 +357,10 @@ pub fn qprop_export(
 /// Fits and refits of [`qprop_export`].
 const REWEIGHTS: usize = 6;
 
-/// Which points a comparison would score: below [`propbet_compare::metrics::VALIDATION_J_WINDOW`]
+/// Which points a comparison would score: below `window`
 /// times each RPM's zero-thrust J (linear between the last positive and the first non-positive
 /// CT; every point of an RPM whose CT never crosses zero), with positive thrust and torque.
-fn scored_window(solved: &[PointResult]) -> Vec<bool> {
+fn scored_window(solved: &[PointResult], window: f64) -> Vec<bool> {
     let mut inside: Vec<bool> = solved.iter().map(|p| p.thrust > 0.0 && p.torque > 0.0).collect();
     let mut rpms: Vec<f64> = solved.iter().map(|p| p.rpm).collect();
     rpms.sort_by(f64::total_cmp);
@@ -346,7 +376,7 @@ fn scored_window(solved: &[PointResult]) -> Vec<bool> {
             .map(|w| j(w[0]) + ct(w[0]) / (ct(w[0]) - ct(w[1])) * (j(w[1]) - j(w[0])));
         if let Some(j0) = j0 {
             for i in idx {
-                inside[i] &= j(i) < propbet_compare::metrics::VALIDATION_J_WINDOW * j0;
+                inside[i] &= j(i) < window * j0;
             }
         }
     }
@@ -355,7 +385,7 @@ fn scored_window(solved: &[PointResult]) -> Vec<bool> {
 
 /// The exported file fitted with each point's `weight` (points outside `counted` left out).
 fn fit_file(
-    model: &Model,
+    model: Model<'_>,
     solved: &[PointResult],
     counted: &[bool],
     weight: &[f64],
@@ -404,7 +434,7 @@ fn fit_file(
                 .filter(|s| s.0.is_finite() && s.3.is_finite() && s.4.is_finite() && s.1 > 0.0)
                 .collect();
             if seen.is_empty() {
-                propbet_qprop::GENERIC.to_array()
+                crate::GENERIC.to_array()
             } else {
                 fit_station(&seen, re_ref)
             }
@@ -423,7 +453,7 @@ fn fit_file(
         coeffs: fits[k].to_vec(),
     };
     // The end rows are the blade's own first and last rows (QPROP never evaluates there).
-    let ends = model.loaded.file.to_blade(propbet_qprop::RadiusReading::Documented);
+    let ends = model.file.to_blade(crate::RadiusReading::Documented);
     let last = ends.r.len() - 1;
     let (c0, b0, c1, b1) = (ends.chord[0], ends.beta[0], ends.chord[last], ends.beta[last]);
     let mut rows = vec![row(r0, 0, c0, b0)];
@@ -432,41 +462,30 @@ fn fit_file(
     let mut file = PropFile::metric(name.to_string(), rotor.blades, rotor.tip_radius, rows);
     file.global = fits[0];
     // The geometry's own accuracy (a scan's) travels with it: the file's band is the model's.
-    file.accuracy = model.loaded.file.accuracy;
+    file.accuracy = model.file.accuracy;
     file
 }
 
 /// The file read back as QPROP 1.22 reads it and solved at the counted points: the relative
 /// thrust and torque differences from the prediction.
 fn differences(
-    model: &Model,
+    model: Model<'_>,
     file: &PropFile,
     fluid: &propbet_bemt::Fluid,
     points: &[OperatingPoint],
     solved: &[PointResult],
     counted: &[bool],
 ) -> Result<(Vec<f64>, Vec<f64>)> {
-    let blade = file.to_blade(propbet_qprop::RadiusReading::Qprop122);
-    let back = blade
-        .to_rotor(propbet_bemt::Discretization {
-            stations: 25,
-            qprop_reref_quirk: true,
-        })
-        .map_err(|e| crate::Error::about("the exported QPROP file", e))?;
+    let blade = file.to_blade(crate::RadiusReading::Qprop122);
+    let back = blade.to_rotor(propbet_bemt::Discretization {
+        stations: 25,
+        qprop_reref_quirk: true,
+    })?;
     let mut plain = model.opts;
     plain.keep_stations = false;
     let (mut dt, mut dq) = (Vec::new(), Vec::new());
     for ((p, &op), _) in solved.iter().zip(points).zip(counted).filter(|(_, c)| **c) {
         let q = propbet_bemt::solve_point(&back, fluid, op, &plain);
-        if std::env::var_os("PROPBET_EXPORT_DEBUG").is_some() {
-            eprintln!(
-                "rpm {:.0} v {:.2}: T {:+.2} % Q {:+.2} %",
-                p.rpm,
-                p.v,
-                100.0 * (q.thrust / p.thrust - 1.0),
-                100.0 * (q.torque / p.torque - 1.0)
-            );
-        }
         dt.push((q.thrust / p.thrust - 1.0).abs());
         dq.push((q.torque / p.torque - 1.0).abs());
     }
