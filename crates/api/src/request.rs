@@ -349,31 +349,26 @@ impl DriveRequest {
                 "--volts, --amps, --thrust, --rpm, --throttle: give one of them (what sets the operating point)".into(),
             ));
         }
-        if let Some(t) = &self.throttle {
-            let Some(s) = supply else {
-                return Err(Error::Conflict("--throttle: needs a battery (--battery)".into()));
-            };
-            let list = t.numbers("throttle")?;
-            if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
-                return Err(Error::Range(format!("--throttle {bad}: a throttle is between 0 and 1")));
-            }
-            return Ok(list.into_iter().map(|t| s.drive(t)).collect());
-        }
-        Ok(match (&self.volts, &self.amps, &self.thrust, &self.rpm) {
-            (Some(v), ..) => v.numbers("volts")?.into_iter().map(Drive::Volts).collect(),
-            (_, Some(a), ..) => a.numbers("amps")?.into_iter().map(Drive::Amps).collect(),
-            (_, _, Some(t), _) => t.numbers("thrust")?.into_iter().map(Drive::Thrust).collect(),
-            (_, _, _, Some(r)) => r
-                .numbers("rpm")?
-                .into_iter()
-                .map(|r| Drive::Omega(rpm_to_omega(r)))
-                .collect(),
+        use crate::motor::{DriveRule, Driver};
+        let (driver, name, values) = match (&self.volts, &self.amps, &self.thrust, &self.rpm, &self.throttle) {
+            (Some(v), ..) => (Driver::Volts, "volts", v),
+            (_, Some(a), ..) => (Driver::Amps, "amps", a),
+            (_, _, Some(t), ..) => (Driver::Thrust, "thrust", t),
+            (_, _, _, Some(r), _) => (Driver::Rpm, "rpm", r),
+            (.., Some(t)) => (Driver::Throttle, "throttle", t),
             _ => {
                 return Err(Error::Nothing(
                     "--motor: give --volts, --amps, --thrust, --rpm or --throttle (what sets the operating point)"
                         .into(),
                 ))
             }
+        };
+        if driver == Driver::Throttle && supply.is_none() {
+            return Err(Error::Conflict("--throttle: needs a battery (--battery)".into()));
+        }
+        crate::motor::drives(driver, values.numbers(name)?, supply).map_err(|rule| match rule {
+            DriveRule::ThrottleWithoutBattery => Error::Conflict("--throttle: needs a battery (--battery)".into()),
+            DriveRule::ThrottleOutside(bad) => Error::Range(format!("--throttle {bad}: a throttle is between 0 and 1")),
         })
     }
 }

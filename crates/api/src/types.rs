@@ -17,7 +17,9 @@ pub mod motor {
     pub use propbet_motor::fit::KvSource;
     pub use propbet_motor::power::ESC_OHMS;
     pub use propbet_motor::FitKind;
-    pub use propbet_motor::{write_motor, Battery, Drive, Motor, MotorFile, Powered, Supply, SupplyPoint};
+    pub use propbet_motor::{
+        drives, write_motor, Battery, Drive, DriveRule, Driver, Motor, MotorFile, Powered, Supply, SupplyPoint,
+    };
 }
 
 /// The air ([`propbet_atmosphere`]).

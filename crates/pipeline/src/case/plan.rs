@@ -215,7 +215,7 @@ impl Case {
     /// The powered table's spec, where `[motor]` names a driver: the sweep's model and air on
     /// the motor, with `[battery]` and `[esc]` in front of it.
     fn powered_spec(&self, dir: &Path, out: &Path, model: &ModelSpec, air: &AirSpec) -> Result<Option<PoweredSpec>> {
-        use propbet_motor::{Battery, Drive, Supply};
+        use propbet_motor::{Battery, DriveRule, Driver, Supply};
         let case_file = dir.join("case.toml");
         let at = |key: &str, e: Error| at_key(&case_file, key, e);
         let Some(m) = &self.motor else {
@@ -281,26 +281,23 @@ impl Case {
         };
         let key_name = format!("[motor] {key}");
         let list = values.values(&format!("--{key}")).map_err(|e| at(&key_name, e))?;
-        let drives: Vec<Drive> = match key {
-            "volts" => list.into_iter().map(Drive::Volts).collect(),
-            "amps" => list.into_iter().map(Drive::Amps).collect(),
-            "thrust" => list.into_iter().map(Drive::Thrust).collect(),
-            _ => {
-                let Some(s) = &supply else {
-                    return Err(at(
-                        &key_name,
-                        Error::Conflict("a throttle needs the battery ([battery] cells)".into()),
-                    ));
-                };
-                if let Some(bad) = list.iter().find(|t| !(0.0..=1.0).contains(*t)) {
-                    return Err(at(
-                        &key_name,
-                        Error::Range(format!("{bad}: a throttle is between 0 and 1")),
-                    ));
-                }
-                list.into_iter().map(|t| s.drive(t)).collect()
-            }
+        let driver = match key {
+            "volts" => Driver::Volts,
+            "amps" => Driver::Amps,
+            "thrust" => Driver::Thrust,
+            _ => Driver::Throttle,
         };
+        let drives = propbet_motor::drives(driver, list, supply.as_ref()).map_err(|rule| {
+            at(
+                &key_name,
+                match rule {
+                    DriveRule::ThrottleWithoutBattery => {
+                        Error::Conflict("a throttle needs the battery ([battery] cells)".into())
+                    }
+                    DriveRule::ThrottleOutside(bad) => Error::Range(format!("{bad}: a throttle is between 0 and 1")),
+                },
+            )
+        })?;
         let speeds = match &m.v {
             None => vec![0.0],
             Some(v) => v.values("--v").map_err(|e| at("[motor] v", e))?,
