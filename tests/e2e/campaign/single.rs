@@ -431,13 +431,9 @@ fn n24_a_half_written_polar_row_keeps_the_rows_before_it() {
 fn n26_scan_args_that_the_case_sets_elsewhere_are_refused() {
     let t = tempfile::tempdir().unwrap();
     let stl = path("props/apcsf_10x4.7/apcsf_10x4.7.stl");
-    for (args, says) in [
-        (
-            r#"["--reference", "/etc/passwd"]"#,
-            "--reference is set by `reference` in [geometry]",
-        ),
-        (r#"["--name", "x"]"#, "--name is set by the case's `name`"),
-    ] {
+    // The list of flags is refused whole (removed in 0.2.0), naming the keys to write instead.
+    let says = "[geometry] scan_args: removed in 0.2.0; write each flag of `propbet scan` as a key";
+    for args in [r#"["--reference", "/etc/passwd"]"#, r#"["--name", "x"]"#] {
         let case = t.path().join("case");
         std::fs::create_dir_all(&case).unwrap();
         std::fs::write(
