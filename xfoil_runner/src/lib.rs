@@ -21,8 +21,8 @@ pub mod script;
 pub use find::{find_xfoil, FindXfoilError};
 pub use output::{parse_polar_file, XfoilPoint};
 pub use run::{
-    Branches, DisplayChoice, Fault, FaultKind, SweepOutcome, SweepRequest, Xfoil, XfoilConfig, DEFAULT_MAX_ITER,
-    DEFAULT_PANELS, DISPLAY_ATTEMPTS,
+    Branches, DisplayChoice, Fault, FaultKind, SectionSettings, SweepOutcome, SweepRequest, Xfoil, XfoilConfig,
+    DEFAULT_MAX_ITER, DEFAULT_PANELS, DISPLAY_ATTEMPTS,
 };
 
 use thiserror::Error;

@@ -66,15 +66,11 @@ impl XfoilConfig {
     }
 }
 
-/// One viscous alpha sweep to run.
+/// How a section's polar is asked for, at any Reynolds and Mach number: the transition (Ncrit,
+/// a trip), the angles, and XFOIL's panels and iterations. The one carrier of these settings
+/// from a blade's polars down to XFOIL's script (NeuralFoil reads the transition from it too).
 #[derive(Debug, Clone, PartialEq)]
-pub struct SweepRequest {
-    /// Airfoil contour in Selig order (trailing edge, upper surface, leading edge, lower surface).
-    pub coordinates: Vec<[f64; 2]>,
-    /// Chord Reynolds number [-].
-    pub reynolds: f64,
-    /// Mach number [-].
-    pub mach: f64,
+pub struct SectionSettings {
     /// e^n amplification ratio (9 = average wind tunnel) [-].
     pub ncrit: f64,
     /// Forced transition at this fraction of the chord on both surfaces (XFOIL's XTR), at
@@ -88,18 +84,40 @@ pub struct SweepRequest {
     pub panels: u32,
 }
 
-impl SweepRequest {
-    /// A request with Ncrit 9, [`DEFAULT_PANELS`] and [`DEFAULT_MAX_ITER`].
-    pub fn new(coordinates: Vec<[f64; 2]>, reynolds: f64, mach: f64, alphas_deg: Vec<f64>) -> Self {
-        SweepRequest {
-            coordinates,
-            reynolds,
-            mach,
+impl SectionSettings {
+    /// Ncrit 9, free transition, [`DEFAULT_PANELS`] and [`DEFAULT_MAX_ITER`], at `alphas_deg`.
+    pub fn new(alphas_deg: Vec<f64>) -> Self {
+        SectionSettings {
             ncrit: 9.0,
             trip: None,
             alphas_deg,
             max_iter: DEFAULT_MAX_ITER,
             panels: DEFAULT_PANELS,
+        }
+    }
+}
+
+/// One viscous alpha sweep to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SweepRequest {
+    /// Airfoil contour in Selig order (trailing edge, upper surface, leading edge, lower surface).
+    pub coordinates: Vec<[f64; 2]>,
+    /// Chord Reynolds number [-].
+    pub reynolds: f64,
+    /// Mach number [-].
+    pub mach: f64,
+    /// The transition, the angles, the panels and iterations.
+    pub section: SectionSettings,
+}
+
+impl SweepRequest {
+    /// A request with [`SectionSettings::new`]'s settings.
+    pub fn new(coordinates: Vec<[f64; 2]>, reynolds: f64, mach: f64, alphas_deg: Vec<f64>) -> Self {
+        SweepRequest {
+            coordinates,
+            reynolds,
+            mach,
+            section: SectionSettings::new(alphas_deg),
         }
     }
 
@@ -112,25 +130,33 @@ impl SweepRequest {
         if !(self.mach.is_finite() && (0.0..0.9).contains(&self.mach)) {
             return bad(format!("Mach number {} must be in [0, 0.9)", show(self.mach)));
         }
-        if !(self.ncrit.is_finite() && self.ncrit > 0.0 && self.ncrit <= 20.0) {
-            return bad(format!("Ncrit {} must be in (0, 20]", show(self.ncrit)));
+        if !(self.section.ncrit.is_finite() && self.section.ncrit > 0.0 && self.section.ncrit <= 20.0) {
+            return bad(format!("Ncrit {} must be in (0, 20]", show(self.section.ncrit)));
         }
-        if let Some(x) = self.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
+        if let Some(x) = self.section.trip.filter(|x| !(x.is_finite() && *x > 0.0 && *x <= 1.0)) {
             return bad(format!("forced transition at x/c = {} must be in (0, 1]", show(x)));
         }
-        if !(1..=1000).contains(&self.max_iter) {
-            return bad(format!("iteration limit {} must be in 1..=1000", self.max_iter));
+        if !(1..=1000).contains(&self.section.max_iter) {
+            return bad(format!("iteration limit {} must be in 1..=1000", self.section.max_iter));
         }
-        if !(40..=490).contains(&self.panels) {
-            return bad(format!("panel count {} must be in 40..=490", self.panels));
+        if !(40..=490).contains(&self.section.panels) {
+            return bad(format!("panel count {} must be in 40..=490", self.section.panels));
         }
-        if self.alphas_deg.is_empty() || self.alphas_deg.len() > 2000 {
-            return bad(format!("{} angles requested; give 1 to 2000", self.alphas_deg.len()));
+        if self.section.alphas_deg.is_empty() || self.section.alphas_deg.len() > 2000 {
+            return bad(format!(
+                "{} angles requested; give 1 to 2000",
+                self.section.alphas_deg.len()
+            ));
         }
-        if let Some(a) = self.alphas_deg.iter().find(|a| !(a.is_finite() && a.abs() <= 90.0)) {
+        if let Some(a) = self
+            .section
+            .alphas_deg
+            .iter()
+            .find(|a| !(a.is_finite() && a.abs() <= 90.0))
+        {
             return bad(format!("angle of attack {a} deg is outside -90..90"));
         }
-        if self.alphas_deg.windows(2).any(|w| w[1] <= w[0]) {
+        if self.section.alphas_deg.windows(2).any(|w| w[1] <= w[0]) {
             return bad("angles of attack must be strictly ascending".into());
         }
         if self.coordinates.len() < 10 || self.coordinates.len() > 2000 {

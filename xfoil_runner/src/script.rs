@@ -38,21 +38,16 @@ impl Step {
     }
 }
 
-/// Settings of one viscous run.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Settings of one viscous run: the flow, and the section's settings (its iteration limit
+/// lowered for a retry pass).
+#[derive(Debug, Clone, PartialEq)]
 pub struct RunSettings {
     /// Chord Reynolds number [-].
     pub reynolds: f64,
     /// Mach number [-].
     pub mach: f64,
-    /// e^n transition amplification ratio [-].
-    pub ncrit: f64,
-    /// Forced transition x/c on both surfaces (None: free).
-    pub trip: Option<f64>,
-    /// Viscous Newton iteration limit per point.
-    pub max_iter: u32,
-    /// Panel nodes (XFOIL's PPAR N).
-    pub panels: u32,
+    /// Transition, panels, iterations (the angles are the run's steps).
+    pub section: crate::SectionSettings,
 }
 
 /// The script for one run: plot window made tiny (graphics must stay on, see
@@ -68,16 +63,16 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, steps: &[Step]) -
     // Writing to a String cannot fail.
     let _ = writeln!(out, "PLOP\nW 0.05\n");
     let _ = writeln!(out, "LOAD {AIRFOIL_FILE}");
-    let _ = writeln!(out, "PPAR\nN {}\n\n", s.panels);
+    let _ = writeln!(out, "PPAR\nN {}\n\n", s.section.panels);
     let _ = writeln!(out, "OPER");
     let _ = writeln!(out, "VISC {:e}", s.reynolds);
     let _ = writeln!(out, "MACH {:.6}", s.mach);
-    let _ = writeln!(out, "VPAR\nN {:.6}", s.ncrit);
-    if let Some(x) = s.trip {
+    let _ = writeln!(out, "VPAR\nN {:.6}", s.section.ncrit);
+    if let Some(x) = s.section.trip {
         let _ = writeln!(out, "XTR {x:.6} {x:.6}");
     }
     let _ = writeln!(out);
-    let _ = writeln!(out, "ITER {}", s.max_iter);
+    let _ = writeln!(out, "ITER {}", s.section.max_iter);
     if let Some(a) = warm_up_deg {
         let _ = writeln!(out, "ALFA {a:.6}");
     }
@@ -111,10 +106,11 @@ mod tests {
         let s = RunSettings {
             reynolds: 1e5,
             mach: 0.1,
-            ncrit: 9.0,
-            trip: None,
-            max_iter: 100,
-            panels: 160,
+            section: crate::SectionSettings {
+                max_iter: 100,
+                panels: 160,
+                ..crate::SectionSettings::new(Vec::new())
+            },
         };
         let text = sweep_script(&s, Some(3.0), &Step::list(&[4.0, 5.0], false, false));
         let retry = sweep_script(&s, None, &Step::list(&[4.0, 6.0], false, true));
@@ -122,7 +118,13 @@ mod tests {
         // Free transition says nothing of XTR; a trip sets both surfaces, inside VPAR.
         assert!(!text.contains("XTR"));
         let tripped = sweep_script(
-            &RunSettings { trip: Some(0.05), ..s },
+            &RunSettings {
+                section: crate::SectionSettings {
+                    trip: Some(0.05),
+                    ..s.section.clone()
+                },
+                ..s.clone()
+            },
             None,
             &Step::list(&[4.0], false, false),
         );

@@ -97,9 +97,9 @@ fn sweeps_that_end_or_start_at_zero_have_nothing_to_return_over_there() {
     let x = runner(exe);
     for range in [(-3..=0), (0..=6), (0..=0), (-1..=1)] {
         let mut r = request();
-        r.alphas_deg = range.clone().map(f64::from).collect();
+        r.section.alphas_deg = range.clone().map(f64::from).collect();
         let out = x.sweep(&r).unwrap();
-        assert_eq!(alphas(&out), r.alphas_deg, "{range:?}");
+        assert_eq!(alphas(&out), r.section.alphas_deg, "{range:?}");
         assert!(out.unconverged_deg.is_empty(), "{range:?}");
     }
 }
@@ -263,7 +263,7 @@ fn bad_requests_are_refused_before_any_process() {
     r.coordinates[7][1] = f64::NAN;
     assert!(x.sweep(&r).unwrap_err().to_string().contains("point 8"));
     let mut r = request();
-    r.alphas_deg = vec![2.0, 1.0];
+    r.section.alphas_deg = vec![2.0, 1.0];
     assert!(x.sweep(&r).unwrap_err().to_string().contains("ascending"));
 }
 

@@ -32,9 +32,9 @@ fn e63_stall_hysteresis_is_found_from_both_sides() {
     let x = xfoil();
     let alphas: Vec<f64> = (-8..=16).map(f64::from).collect();
     let mut req = SweepRequest::new(airfoil("e63.dat"), 1e5, 0.0, alphas);
-    req.ncrit = 5.0;
-    req.trip = Some(0.5);
-    req.panels = 160;
+    req.section.ncrit = 5.0;
+    req.section.trip = Some(0.5);
+    req.section.panels = 160;
     let out = x.sweep(&req).unwrap();
     let h = out
         .hysteresis

@@ -78,6 +78,18 @@ impl XfoilSpec {
         }
         Ok(())
     }
+
+    /// The settings every polar is asked with, `default_panels` where none are given (the
+    /// command's: one section's or a blade's).
+    pub(crate) fn section(&self, default_panels: u32) -> xfoil_runner::SectionSettings {
+        xfoil_runner::SectionSettings {
+            ncrit: self.ncrit,
+            trip: self.trip,
+            alphas_deg: self.alphas_deg.clone(),
+            max_iter: self.iter,
+            panels: self.panels.unwrap_or(default_panels),
+        }
+    }
 }
 
 /// Air for the solver: QPROP's defaults, given values, or a measured state.

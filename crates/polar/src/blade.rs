@@ -11,6 +11,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use xfoil_runner::SectionSettings;
+
 use crate::reduce::QpropFit;
 use crate::table::Polar;
 use crate::tabulated::TabulatedAero;
@@ -229,16 +231,8 @@ fn band_polars(foil: &crate::Airfoil, polars: &[Polar], net: &propbet_neuralfoil
 /// How XFOIL is asked for a blade's polars: transition, angles, panels, iterations.
 #[derive(Debug, Clone, PartialEq)]
 pub struct XfoilSettings {
-    /// Transition amplification ratio Ncrit [-].
-    pub ncrit: f64,
-    /// Forced transition x/c on both surfaces (None: free).
-    pub trip: Option<f64>,
-    /// Angles of attack [deg], ascending, no duplicates (XFOIL's unit).
-    pub alphas_deg: Vec<f64>,
-    /// Panel nodes.
-    pub panels: u32,
-    /// Viscous iteration limit per angle.
-    pub max_iter: u32,
+    /// Transition, angles (ascending, no duplicates), panels and iterations of every polar.
+    pub section: SectionSettings,
     /// More Ncrit values at which every rung is also computed (for the `transition` effect;
     /// no QPROP fit): [`StationPolars::other_ncrit`].
     pub ncrit_effect: Vec<f64>,
@@ -376,19 +370,16 @@ fn plan(job: &BladeJob, solved: &[Vec<propbet_bemt::StationResult>]) -> (Vec<cra
             let foil = &job.foils[i.min(job.foils.len() - 1)];
             let rungs = re_rungs(re_range[0], re_range[1]);
             // The default Ncrit's rungs first (they make the fit), then each other Ncrit's.
-            for &ncrit in std::iter::once(&job.settings.ncrit).chain(&job.settings.ncrit_effect) {
+            for &ncrit in std::iter::once(&job.settings.section.ncrit).chain(&job.settings.ncrit_effect) {
                 for &rung in &rungs {
                     jobs.push(crate::PolarJob {
-                        trip: job.settings.trip,
-                        panels: job.settings.panels,
-                        max_iter: job.settings.max_iter,
-                        ..crate::PolarJob::new(
-                            foil.clone(),
-                            rung,
-                            mach_at(rung),
+                        airfoil: foil.clone(),
+                        re: rung,
+                        mach: mach_at(rung),
+                        section: SectionSettings {
                             ncrit,
-                            job.settings.alphas_deg.clone(),
-                        )
+                            ..job.settings.section.clone()
+                        },
                     });
                 }
             }
@@ -428,10 +419,10 @@ fn station_polars(
     let mut problems = Vec::new();
     for k in range_k {
         match results[k].take() {
-            Some(Ok(p)) if jobs[k].ncrit == job.settings.ncrit => polars.push(p),
+            Some(Ok(p)) if jobs[k].section.ncrit == job.settings.section.ncrit => polars.push(p),
             Some(Ok(p)) => other_ncrit.push(p),
-            Some(Err(e)) if jobs[k].ncrit == job.settings.ncrit => problems.push(e),
-            Some(Err(e)) => problems.push(format!("at Ncrit {} (transition effect): {e}", jobs[k].ncrit)),
+            Some(Err(e)) if jobs[k].section.ncrit == job.settings.section.ncrit => problems.push(e),
+            Some(Err(e)) => problems.push(format!("at Ncrit {} (transition effect): {e}", jobs[k].section.ncrit)),
             None => {}
         }
     }

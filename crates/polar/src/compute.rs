@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use thiserror::Error;
-use xfoil_runner::{SweepRequest, Xfoil, XfoilError, DEFAULT_MAX_ITER, DEFAULT_PANELS};
+use xfoil_runner::{SectionSettings, SweepRequest, Xfoil, XfoilError};
 
 use crate::airfoil::{Airfoil, AirfoilError};
 pub use crate::engine::Engine;
@@ -33,30 +33,21 @@ pub struct PolarJob {
     pub re: f64,
     /// Mach number [-].
     pub mach: f64,
-    /// Transition amplification ratio [-].
-    pub ncrit: f64,
-    /// Forced transition x/c on both surfaces (None: free transition).
-    pub trip: Option<f64>,
-    /// Angles of attack [deg], ascending.
-    pub alphas_deg: Vec<f64>,
-    /// Panel nodes (XFOIL's default is 160).
-    pub panels: u32,
-    /// Viscous iteration limit per point.
-    pub max_iter: u32,
+    /// The transition, the angles, XFOIL's panels and iterations.
+    pub section: SectionSettings,
 }
 
 impl PolarJob {
-    /// A job with the runner's defaults ([`DEFAULT_PANELS`], [`DEFAULT_MAX_ITER`]).
+    /// A job with the runner's defaults ([`SectionSettings::new`]) at `ncrit`.
     pub fn new(airfoil: Airfoil, re: f64, mach: f64, ncrit: f64, alphas_deg: Vec<f64>) -> Self {
         PolarJob {
             airfoil,
             re,
             mach,
-            ncrit,
-            trip: None,
-            alphas_deg,
-            panels: DEFAULT_PANELS,
-            max_iter: DEFAULT_MAX_ITER,
+            section: SectionSettings {
+                ncrit,
+                ..SectionSettings::new(alphas_deg)
+            },
         }
     }
 
@@ -68,11 +59,7 @@ impl PolarJob {
             coordinates: a.points,
             reynolds: self.re,
             mach: self.mach,
-            ncrit: self.ncrit,
-            trip: self.trip,
-            alphas_deg: self.alphas_deg.clone(),
-            max_iter: self.max_iter,
-            panels: self.panels,
+            section: self.section.clone(),
         })
     }
 }
@@ -313,13 +300,13 @@ impl PolarEngine {
         }
         text.push_str(&format!(
             "re {} mach {} ncrit {} iter {} panels {}\nalpha",
-            req.reynolds, req.mach, req.ncrit, req.max_iter, req.panels
+            req.reynolds, req.mach, req.section.ncrit, req.section.max_iter, req.section.panels
         ));
         // Free transition keeps the key it always had (caches stay valid).
-        if let Some(x) = req.trip {
+        if let Some(x) = req.section.trip {
             text.push_str(&format!(" trip {x}"));
         }
-        for a in &req.alphas_deg {
+        for a in &req.section.alphas_deg {
             text.push_str(&format!(" {a}"));
         }
         h.update(text.as_bytes());
@@ -332,15 +319,15 @@ impl PolarEngine {
         let section = crate::neural::Section {
             airfoil: &job.airfoil,
             re: job.re,
-            ncrit: job.ncrit,
-            trip: job.trip,
+            ncrit: job.section.ncrit,
+            trip: job.section.trip,
         };
         let kulfan = |e: crate::neural::NeuralError| PolarError::Kulfan {
             airfoil: job.airfoil.name.clone(),
             reason: e.0,
         };
         let whole = |net: &propbet_neuralfoil::Network| {
-            crate::neural::polar(&section, &job.alphas_deg, net)
+            crate::neural::polar(&section, &job.section.alphas_deg, net)
                 .map(|p| (p, Source::NeuralFoil))
                 .map_err(kulfan)
         };
@@ -390,8 +377,8 @@ impl PolarEngine {
         let polar = Polar {
             re: job.re,
             mach: job.mach,
-            ncrit: job.ncrit,
-            trip: job.trip,
+            ncrit: job.section.ncrit,
+            trip: job.section.trip,
             points: out.points,
             unconverged_deg: out.unconverged_deg,
             hysteresis: out.hysteresis,

@@ -24,5 +24,6 @@ pub use compute::{no_progress, Engine, PolarCache, PolarEngine, PolarError, Pola
 pub use reduce::{fit_qprop, AlphaWeights, FitError, QpropFit, DEFAULT_RE_EXP};
 pub use table::{Filled, Makers, Polar, PolarPoint};
 pub use tabulated::TabulatedAero;
+pub use xfoil_runner::SectionSettings;
 pub mod blade;
 pub use blade::{BladePolars, StationPolars};

@@ -9,7 +9,7 @@ fn job() -> PolarJob {
     let foil = naca4_from_name("naca4412").unwrap().unwrap();
     let alphas: Vec<f64> = (-4..=10).map(f64::from).collect();
     let mut j = PolarJob::new(foil, 2e5, 0.1, 9.0, alphas);
-    j.trip = Some(0.5);
+    j.section.trip = Some(0.5);
     j
 }
 
@@ -18,8 +18,8 @@ fn section_of(j: &PolarJob) -> neural::Section<'_> {
     neural::Section {
         airfoil: &j.airfoil,
         re: j.re,
-        ncrit: j.ncrit,
-        trip: j.trip,
+        ncrit: j.section.ncrit,
+        trip: j.section.trip,
     }
 }
 
@@ -47,7 +47,7 @@ fn auto_fills_only_what_xfoil_left_out() {
     let net = Network::shipped(DEFAULT_SIZE).unwrap();
     let j = job();
     let section = section_of(&j);
-    let whole = neural::polar(&section, &j.alphas_deg, &net).unwrap();
+    let whole = neural::polar(&section, &j.section.alphas_deg, &net).unwrap();
     // An XFOIL polar with two angles unconverged.
     let mut xfoil = whole.clone();
     xfoil.neuralfoil.clear();
@@ -80,7 +80,7 @@ fn auto_keeps_xfoils_polar_where_neuralfoil_cannot_take_the_section() {
         }
     }
     let section = section_of(&j);
-    let err = neural::polar(&section, &j.alphas_deg, &net).unwrap_err();
+    let err = neural::polar(&section, &j.section.alphas_deg, &net).unwrap_err();
     assert!(err.0.contains("crosses itself"), "{err}");
     let xfoil = propbet_polar::Polar {
         unconverged_deg: vec![3.0],

@@ -182,7 +182,7 @@ fn the_cache_returns_the_same_polar_and_heals_corruption() {
     assert!(t.elapsed().as_millis() < 500);
     // A different Ncrit is a different polar.
     let mut other = job.clone();
-    other.ncrit = 5.0;
+    other.section.ncrit = 5.0;
     assert_eq!(e.compute(&other).unwrap().1, Source::Xfoil);
     // Corrupt every entry: detected, recomputed, replaced.
     for sub in std::fs::read_dir(dir.path()).unwrap() {

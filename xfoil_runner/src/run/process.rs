@@ -56,13 +56,10 @@ impl Xfoil {
         let settings = RunSettings {
             reynolds: req.reynolds,
             mach: req.mach,
-            ncrit: req.ncrit,
-            trip: req.trip,
-            max_iter: req.max_iter,
-            panels: req.panels,
+            section: req.section.clone(),
         };
         let airfoil = script::airfoil_file(&req.coordinates);
-        let a = &req.alphas_deg;
+        let a = &req.section.alphas_deg;
         let i0 = (0..a.len())
             .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
             .unwrap_or(0);
@@ -100,8 +97,11 @@ impl Xfoil {
             // A fresh boundary layer converges within RETRY_ITER iterations or, in practice, not
             // at all; failing angles cost the whole limit, so the retry pass caps it.
             let retry_settings = RunSettings {
-                max_iter: settings.max_iter.min(RETRY_ITER),
-                ..settings
+                section: crate::SectionSettings {
+                    max_iter: settings.section.max_iter.min(RETRY_ITER),
+                    ..settings.section.clone()
+                },
+                ..settings.clone()
             };
             self.branch(
                 &airfoil,

@@ -409,11 +409,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
     let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.ncrit)?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
-        ncrit: spec.xfoil.ncrit,
-        trip: spec.xfoil.trip,
-        alphas_deg: spec.xfoil.alphas_deg.clone(),
-        panels: spec.xfoil.panels.unwrap_or(BLADE_PANELS),
-        max_iter: spec.xfoil.iter,
+        section: spec.xfoil.section(BLADE_PANELS),
         ncrit_effect,
     };
     let job = BladeJob {

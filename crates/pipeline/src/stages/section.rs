@@ -92,10 +92,10 @@ pub fn section(spec: &SectionSpec, foil: &Airfoil, progress: &Progress) -> Resul
         .res
         .iter()
         .map(|&re| PolarJob {
-            trip: xs.trip,
-            panels: xs.panels.unwrap_or(xfoil_runner::DEFAULT_PANELS),
-            max_iter: xs.iter,
-            ..PolarJob::new(foil.clone(), re, spec.mach, xs.ncrit, xs.alphas_deg.clone())
+            airfoil: foil.clone(),
+            re,
+            mach: spec.mach,
+            section: xs.section(xfoil_runner::DEFAULT_PANELS),
         })
         .collect();
     let runs: Vec<(f64, std::result::Result<Polar, String>)> = jobs
