@@ -80,8 +80,9 @@ pub struct SectionSettings {
     pub alphas_deg: Vec<f64>,
     /// Viscous iteration limit per point (XFOIL's ITER).
     pub max_iter: u32,
-    /// Panel nodes (XFOIL's PPAR N, at most 490 in XFOIL 6.99).
-    pub panels: u32,
+    /// Panel nodes (XFOIL's PPAR N, at most 490 in XFOIL 6.99; None: the asker's default,
+    /// [`DEFAULT_PANELS`] here).
+    pub panels: Option<u32>,
 }
 
 impl SectionSettings {
@@ -92,8 +93,13 @@ impl SectionSettings {
             trip: None,
             alphas_deg,
             max_iter: DEFAULT_MAX_ITER,
-            panels: DEFAULT_PANELS,
+            panels: None,
         }
+    }
+
+    /// The panel nodes XFOIL is asked for.
+    pub fn panel_count(&self) -> u32 {
+        self.panels.unwrap_or(DEFAULT_PANELS)
     }
 }
 
@@ -139,8 +145,11 @@ impl SweepRequest {
         if !(1..=1000).contains(&self.section.max_iter) {
             return bad(format!("iteration limit {} must be in 1..=1000", self.section.max_iter));
         }
-        if !(40..=490).contains(&self.section.panels) {
-            return bad(format!("panel count {} must be in 40..=490", self.section.panels));
+        if !(40..=490).contains(&self.section.panel_count()) {
+            return bad(format!(
+                "panel count {} must be in 40..=490",
+                self.section.panel_count()
+            ));
         }
         if self.section.alphas_deg.is_empty() || self.section.alphas_deg.len() > 2000 {
             return bad(format!(

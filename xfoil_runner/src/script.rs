@@ -63,7 +63,7 @@ pub fn sweep_script(s: &RunSettings, warm_up_deg: Option<f64>, steps: &[Step]) -
     // Writing to a String cannot fail.
     let _ = writeln!(out, "PLOP\nW 0.05\n");
     let _ = writeln!(out, "LOAD {AIRFOIL_FILE}");
-    let _ = writeln!(out, "PPAR\nN {}\n\n", s.section.panels);
+    let _ = writeln!(out, "PPAR\nN {}\n\n", s.section.panel_count());
     let _ = writeln!(out, "OPER");
     let _ = writeln!(out, "VISC {:e}", s.reynolds);
     let _ = writeln!(out, "MACH {:.6}", s.mach);
@@ -108,7 +108,7 @@ mod tests {
             mach: 0.1,
             section: crate::SectionSettings {
                 max_iter: 100,
-                panels: 160,
+                panels: Some(160),
                 ..crate::SectionSettings::new(Vec::new())
             },
         };

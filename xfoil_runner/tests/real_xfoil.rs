@@ -34,7 +34,7 @@ fn e63_stall_hysteresis_is_found_from_both_sides() {
     let mut req = SweepRequest::new(airfoil("e63.dat"), 1e5, 0.0, alphas);
     req.section.ncrit = 5.0;
     req.section.trip = Some(0.5);
-    req.section.panels = 160;
+    req.section.panels = Some(160);
     let out = x.sweep(&req).unwrap();
     let h = out
         .hysteresis

@@ -450,14 +450,16 @@ impl SectionRequest {
         alphas.dedup();
         let spec = XfoilSpec {
             process: self.process.spec()?,
-            ncrit: self.ncrit.unwrap_or(default_ncrit),
-            trip: match &self.trip {
-                None => default_trip,
-                Some(t) => propbet_settings::values::parse_trip(t)?,
+            section: crate::xfoil::SectionSettings {
+                ncrit: self.ncrit.unwrap_or(default_ncrit),
+                trip: match &self.trip {
+                    None => default_trip,
+                    Some(t) => propbet_settings::values::parse_trip(t)?,
+                },
+                alphas_deg: alphas,
+                panels: self.panels,
+                max_iter: self.iter.unwrap_or(crate::xfoil::DEFAULT_MAX_ITER),
             },
-            alphas_deg: alphas,
-            panels: self.panels,
-            iter: self.iter.unwrap_or(crate::xfoil::DEFAULT_MAX_ITER),
         };
         spec.check()?;
         Ok(spec)

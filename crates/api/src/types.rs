@@ -34,7 +34,7 @@ pub mod polar {
 
 /// XFOIL's runner ([`xfoil_runner`]): its limits, and the signal handler that stops every XFOIL.
 pub mod xfoil {
-    pub use xfoil_runner::{interrupt, DEFAULT_MAX_ITER};
+    pub use xfoil_runner::{interrupt, SectionSettings, DEFAULT_MAX_ITER};
 }
 
 /// Measured data ([`propbet_measure`]).

@@ -236,22 +236,22 @@ impl Flags for XfoilProcessSpec {
 impl Flags for XfoilSpec {
     fn push_argv(&self, v: &mut Argv) {
         self.process.push_argv(v);
-        if self.ncrit != propbet_api::settings::NCRIT.default {
-            push(v, "--ncrit", format!("{}", self.ncrit));
+        if self.section.ncrit != propbet_api::settings::NCRIT.default {
+            push(v, "--ncrit", format!("{}", self.section.ncrit));
         }
-        if self.trip != propbet_api::settings::default_trip() {
-            push(v, "--trip", propbet_api::settings::trip_text(self.trip));
+        if self.section.trip != propbet_api::settings::default_trip() {
+            push(v, "--trip", propbet_api::settings::trip_text(self.section.trip));
         }
         let default =
             propbet_api::settings::values::parse_list("", propbet_api::settings::ALPHA.default).unwrap_or_default();
-        if self.alphas_deg != default {
-            push_eq(v, "--alpha", list_text(&self.alphas_deg));
+        if self.section.alphas_deg != default {
+            push_eq(v, "--alpha", list_text(&self.section.alphas_deg));
         }
-        if let Some(p) = self.panels {
+        if let Some(p) = self.section.panels {
             push(v, "--panels", p.to_string());
         }
-        if self.iter != propbet_api::xfoil::DEFAULT_MAX_ITER {
-            push(v, "--iter", self.iter.to_string());
+        if self.section.max_iter != propbet_api::xfoil::DEFAULT_MAX_ITER {
+            push(v, "--iter", self.section.max_iter.to_string());
         }
     }
 }

@@ -43,7 +43,7 @@ pub fn run(a: &HiddenArgs) -> Result<bool> {
     }
     let (spec, props, generic) = crate::validate::spec(&a.validate)?;
     let lock = crate::output::claim_folder(&spec.out, "propbet hidden")?;
-    let (quiet, engine) = (a.validate.xfoil.quiet, spec.xfoil.engine);
+    let (quiet, engine) = (a.validate.xfoil.quiet, spec.xfoil.process.engine);
     let mut rows: Vec<(String, Finding)> = Vec::new();
     let mut skipped = Vec::new();
     for (k, prop) in props.iter().enumerate() {

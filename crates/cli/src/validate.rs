@@ -11,8 +11,9 @@ use std::path::{Path, PathBuf};
 use anyhow::Result;
 use clap::Args;
 use propbet_api::settings::Rotation;
+use propbet_api::xfoil::SectionSettings;
 use propbet_pipeline::run::StageRecord;
-use propbet_pipeline::spec::StageSpec;
+use propbet_pipeline::spec::{StageSpec, XfoilSpec};
 use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
 use crate::output::write_atomic;
@@ -92,19 +93,27 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
         pe0: a.pe0.clone(),
         airfoils: a.airfoils.clone(),
         out: a.out.clone(),
-        xfoil: a.xfoil.spec()?,
+        xfoil: XfoilSpec {
+            process: a.xfoil.spec()?,
+            section: SectionSettings {
+                ncrit: a.ncrit,
+                trip: match &a.trip {
+                    None => propbet_api::settings::default_trip(),
+                    Some(t) => propbet_api::settings::values::parse_trip(t)?,
+                },
+                ..SectionSettings::new(propbet_api::settings::values::parse_list(
+                    "",
+                    propbet_api::settings::ALPHA.default,
+                )?)
+            },
+        },
         tables: a.section_model == "tables",
-        ncrit: a.ncrit,
         ncrit_effect: propbet_pipeline::spec::check_ncrit_effect(&a.ncrit_effect, a.ncrit)?,
         rotation: Rotation::or_default(
             a.rotation.as_deref().map(Rotation::parse).transpose()?,
             a.section_model == "tables",
         ),
         drag_factor: propbet_pipeline::spec::drag_factor_or_default(a.drag_factor, a.section_model == "tables"),
-        trip: match &a.trip {
-            None => propbet_api::settings::default_trip(),
-            Some(t) => propbet_api::settings::values::parse_trip(t)?,
-        },
         per3: a.per3.clone(),
         geometry: GeometrySource::parse(&a.geometry)?,
         user_effects: a.user_effects.clone(),

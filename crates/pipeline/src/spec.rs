@@ -53,27 +53,19 @@ pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>>
 pub struct XfoilSpec {
     /// Executable, cache, progress.
     pub process: XfoilProcessSpec,
-    /// Transition amplification ratio Ncrit [-].
-    pub ncrit: f64,
-    /// Forced transition at this x/c on both surfaces, at the latest (None: free transition;
-    /// `docs/studies/transition-trip.md`).
-    pub trip: Option<f64>,
-    /// Angles of attack [deg] (XFOIL's unit), ascending, no duplicates.
-    pub alphas_deg: Vec<f64>,
-    /// Panel nodes (None: the command's default).
-    pub panels: Option<u32>,
-    /// Viscous iteration limit per angle.
-    pub iter: u32,
+    /// Transition (Ncrit; a trip, `docs/studies/transition-trip.md`), angles (ascending, no
+    /// duplicates), iterations, and panels (None: the command's default).
+    pub section: xfoil_runner::SectionSettings,
 }
 
 impl XfoilSpec {
     /// The angles are ones XFOIL can be asked for.
     pub fn check(&self) -> crate::Result<()> {
-        propbet_settings::NCRIT.check(self.ncrit)?;
-        if let Some(x) = self.trip {
+        propbet_settings::NCRIT.check(self.section.ncrit)?;
+        if let Some(x) = self.section.trip {
             propbet_settings::TRIP.check(x)?;
         }
-        if let Some(bad) = self.alphas_deg.iter().find(|x| x.abs() > 90.0) {
+        if let Some(bad) = self.section.alphas_deg.iter().find(|x| x.abs() > 90.0) {
             crate::out_of_range!("--alpha: {bad} deg is outside -90..90");
         }
         Ok(())
@@ -83,11 +75,8 @@ impl XfoilSpec {
     /// command's: one section's or a blade's).
     pub(crate) fn section(&self, default_panels: u32) -> xfoil_runner::SectionSettings {
         xfoil_runner::SectionSettings {
-            ncrit: self.ncrit,
-            trip: self.trip,
-            alphas_deg: self.alphas_deg.clone(),
-            max_iter: self.iter,
-            panels: self.panels.unwrap_or(default_panels),
+            panels: Some(self.section.panels.unwrap_or(default_panels)),
+            ..self.section.clone()
         }
     }
 }

@@ -191,3 +191,61 @@ fn the_pipeline_is_a_door_not_a_warehouse() {
         "the pipeline has {items} pub items, more than {CEILING}"
     );
 }
+
+/// One XFOIL request: how a section's polar is asked for (Ncrit, trip, angles, panels,
+/// iterations) is `xfoil_runner::SectionSettings`, carried whole from the pipeline's
+/// `XfoilSpec` and validate's spec down to XFOIL's script. No other struct below the doors (the
+/// case file's keys, the API's request, the command's flags) holds these fields; the Ncrit a
+/// computed polar records, NeuralFoil's inputs at one condition, and the transition effect's
+/// fitted parameter are not requests.
+#[test]
+fn one_xfoil_request_below_the_doors() {
+    let root = workspace();
+    let below = [
+        "xfoil_runner/src",
+        "crates/polar/src",
+        "crates/neuralfoil/src",
+        "crates/pipeline/src",
+        "crates/validate/src",
+        "crates/effects/src",
+    ];
+    let not_requests = [
+        "crates/pipeline/src/case.rs",
+        "crates/polar/src/table.rs",
+        "crates/polar/src/neural.rs",
+        "crates/neuralfoil/src/lib.rs",
+        "crates/effects/src/transition.rs",
+    ];
+    let mut holders = Vec::new();
+    let mut stack: Vec<PathBuf> = below.iter().map(|d| root.join(d)).collect();
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+                continue;
+            }
+            let rel = p.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
+            if p.extension().is_none_or(|x| x != "rs") || not_requests.contains(&rel.as_str()) {
+                continue;
+            }
+            let text = std::fs::read_to_string(&p).unwrap();
+            for field in ["pub ncrit:", "pub panels:", "pub max_iter:", "pub iter:", "pub trip:"] {
+                if text.contains(field) {
+                    holders.push(format!("{rel}: `{field}`"));
+                }
+            }
+        }
+    }
+    holders.sort();
+    assert_eq!(
+        holders,
+        [
+            "xfoil_runner/src/run.rs: `pub max_iter:`",
+            "xfoil_runner/src/run.rs: `pub ncrit:`",
+            "xfoil_runner/src/run.rs: `pub panels:`",
+            "xfoil_runner/src/run.rs: `pub trip:`",
+        ],
+        "the settings a polar is asked with are SectionSettings' alone"
+    );
+}

@@ -300,7 +300,11 @@ impl PolarEngine {
         }
         text.push_str(&format!(
             "re {} mach {} ncrit {} iter {} panels {}\nalpha",
-            req.reynolds, req.mach, req.section.ncrit, req.section.max_iter, req.section.panels
+            req.reynolds,
+            req.mach,
+            req.section.ncrit,
+            req.section.max_iter,
+            req.section.panel_count()
         ));
         // Free transition keeps the key it always had (caches stay valid).
         if let Some(x) = req.section.trip {

@@ -522,8 +522,9 @@ pub fn what_it_does(plan: &RunPlan) -> String {
             parts.push(format!(
                 "{} polars (Ncrit {}, {}) of {sections}, covering {lo:.0}-{hi:.0} rpm, used as {}",
                 engine_words(p.xfoil.process.engine),
-                p.xfoil.ncrit,
+                p.xfoil.section.ncrit,
                 p.xfoil
+                    .section
                     .trip
                     .map_or("free transition".to_string(), |x| format!("transition by x/c {x}")),
                 if plan.predict.model.polars.is_some() {

@@ -7,7 +7,6 @@ use std::path::Path;
 use propbet_qprop::apc::{pe0_name, pe0_unknown};
 
 use super::{find_apc_file, uiuc_props, validate_prop, Row, Sections, ValidateSpec, Validated};
-use propbet_pipeline::spec::XfoilSpec;
 use propbet_pipeline::{nothing, Result};
 
 /// The props of the UIUC directory `uiuc` to validate: all of them, or those whose name
@@ -63,15 +62,7 @@ impl ValidateSpec {
     /// The settings are ones XFOIL and the model take (the same checks and words as the
     /// polars stage's), and the user-effects file reads: before any prop.
     pub fn check(&self) -> Result<()> {
-        XfoilSpec {
-            process: self.xfoil.clone(),
-            ncrit: self.ncrit,
-            trip: self.trip,
-            alphas_deg: Vec::new(),
-            panels: None,
-            iter: xfoil_runner::DEFAULT_MAX_ITER,
-        }
-        .check()?;
+        self.xfoil.check()?;
         propbet_pipeline::model::effect_registry(self.user_effects.as_deref())?;
         Ok(())
     }
@@ -82,19 +73,23 @@ impl ValidateSpec {
             "{}, section model {}, Ncrit {}{}, rotational augmentation {}, drag factor {}",
             self.geometry.description(),
             if self.tables { "tables" } else { "qprop" },
-            self.ncrit,
-            self.trip.map_or(", free transition".to_string(), |x| format!(
-                ", transition forced at x/c {x} at the latest"
-            )),
+            self.xfoil.section.ncrit,
+            self.xfoil
+                .section
+                .trip
+                .map_or(", free transition".to_string(), |x| format!(
+                    ", transition forced at x/c {x} at the latest"
+                )),
             self.rotation.name(),
             self.drag_factor
         );
         let size = self
             .xfoil
+            .process
             .neuralfoil_size
             .as_deref()
             .unwrap_or(propbet_settings::NEURALFOIL_SIZE.default);
-        match self.xfoil.engine {
+        match self.xfoil.process.engine {
             propbet_polar::Engine::Xfoil => {}
             propbet_polar::Engine::NeuralFoil => {
                 text.push_str(&format!(

@@ -14,7 +14,7 @@ use propbet_qprop::{PropFile, PropRow};
 use propbet_pipeline::model::{as_written, LoadedProp, Model};
 use propbet_pipeline::run::{timed, StageRecord};
 use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilProcessSpec, XfoilSpec,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilSpec,
 };
 use propbet_pipeline::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
 use propbet_pipeline::{Error, Result};
@@ -49,12 +49,11 @@ pub struct ValidateSpec {
     pub airfoils: PathBuf,
     /// Output directory (one directory per prop below it).
     pub out: PathBuf,
-    /// XFOIL executable, cache, progress.
-    pub xfoil: XfoilProcessSpec,
+    /// How the polars are asked for: XFOIL's executable, cache and progress; the transition
+    /// (Ncrit, a trip), the angles, the panels and iterations.
+    pub xfoil: XfoilSpec,
     /// Section model: the polars as tables (true) or QPROP's law fitted to them.
     pub tables: bool,
-    /// Transition amplification ratio Ncrit of the polars.
-    pub ncrit: f64,
     /// More Ncrit values of the same polars, for the `transition` effect in the calibration
     /// ladders (empty: none).
     pub ncrit_effect: Vec<f64>,
@@ -62,8 +61,6 @@ pub struct ValidateSpec {
     pub rotation: propbet_settings::Rotation,
     /// Drag multiplier of the section model.
     pub drag_factor: f64,
-    /// Forced transition x/c of the polars (None: free).
-    pub trip: Option<f64>,
     /// APC's PER3 directory: its predictions scored beside propbet's on the same points.
     pub per3: Option<PathBuf>,
     /// Where each station's chord and twist come from.
@@ -244,14 +241,7 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
         omegas,
         axis: propbet_pipeline::spec::SweepAxis::J(js),
         air: AirSpec::default(),
-        xfoil: XfoilSpec {
-            process: spec.xfoil.clone(),
-            ncrit: spec.ncrit,
-            trip: spec.trip,
-            alphas_deg: propbet_settings::values::parse_list("", propbet_settings::ALPHA.default)?,
-            panels: None,
-            iter: xfoil_runner::DEFAULT_MAX_ITER,
-        },
+        xfoil: spec.xfoil.clone(),
         ncrit_effect: spec.ncrit_effect.clone(),
         out_prop: dir.join("prop.qprop"),
         out_polars: Some(dir.join("polars.json")),
@@ -378,7 +368,7 @@ fn prepare(
     let measured = MeasuredSpec::files(measured);
     let (omegas, js) = propbet_pipeline::stages::cover(&measured)?;
     let polars_spec = polars_spec(spec, &dir, omegas, js)?;
-    let engine = stages::polar_engine(&spec.xfoil)?;
+    let engine = stages::polar_engine(&spec.xfoil.process)?;
     let polars = timed(
         &mut records,
         StageSpec::Polars(polars_spec.clone()),

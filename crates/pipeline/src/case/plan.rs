@@ -118,17 +118,19 @@ impl Case {
                                 neuralfoil_size: p.neuralfoil_size.clone().or_else(|| xfoil.neuralfoil_size.clone()),
                                 ..xfoil.clone()
                             },
-                            ncrit: p.ncrit.unwrap_or(propbet_settings::NCRIT.default),
-                            trip: match &p.trip {
-                                None => propbet_settings::default_trip(),
-                                Some(NumberOrList::Number(x)) => propbet_settings::values::parse_trip(&x.to_string())
-                                    .map_err(|e| at("[polars] trip", e.into()))?,
-                                Some(NumberOrList::List(t)) => propbet_settings::values::parse_trip(t)
-                                    .map_err(|e| at("[polars] trip", e.into()))?,
+                            section: xfoil_runner::SectionSettings {
+                                ncrit: p.ncrit.unwrap_or(propbet_settings::NCRIT.default),
+                                trip: match &p.trip {
+                                    None => propbet_settings::default_trip(),
+                                    Some(NumberOrList::Number(x)) => {
+                                        propbet_settings::values::parse_trip(&x.to_string())
+                                            .map_err(|e| at("[polars] trip", e.into()))?
+                                    }
+                                    Some(NumberOrList::List(t)) => propbet_settings::values::parse_trip(t)
+                                        .map_err(|e| at("[polars] trip", e.into()))?,
+                                },
+                                ..xfoil_runner::SectionSettings::new(alphas)
                             },
-                            alphas_deg: alphas,
-                            panels: None,
-                            iter: xfoil_runner::DEFAULT_MAX_ITER,
                         },
                         ncrit_effect: match &p.ncrit_effect {
                             None => Vec::new(),

@@ -406,7 +406,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         out_of_range!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
     }
     spec.xfoil.check()?;
-    let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.ncrit)?;
+    let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.section.ncrit)?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
         section: spec.xfoil.section(BLADE_PANELS),
@@ -477,11 +477,14 @@ pub fn design_model(
         air: crate::spec::AirSpec::default(),
         xfoil: crate::spec::XfoilSpec {
             process: design.process.clone(),
-            ncrit: propbet_settings::NCRIT.default,
-            trip: propbet_settings::default_trip(),
-            alphas_deg: propbet_settings::values::parse_list("--alpha", propbet_settings::ALPHA.default)?,
-            panels: None,
-            iter: xfoil_runner::DEFAULT_MAX_ITER,
+            section: xfoil_runner::SectionSettings {
+                ncrit: propbet_settings::NCRIT.default,
+                trip: propbet_settings::default_trip(),
+                ..xfoil_runner::SectionSettings::new(propbet_settings::values::parse_list(
+                    "--alpha",
+                    propbet_settings::ALPHA.default,
+                )?)
+            },
         },
         ncrit_effect: Vec::new(),
         out_prop: spec.prop.with_extension("polars.qprop"),
