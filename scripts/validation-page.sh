@@ -15,5 +15,5 @@ test -s "$out/validation/validation.md"
 # The table names the output folder as the documented command does (`-o validation`).
 sed "s#$out/validation/#validation/#g" "$out/validation/validation.md" > docs/validation-table.md
 # What to expect of a prop of each family before any measurement, shipped with propbet.
-cp "$out/validation/families.csv" crates/pipeline/data/validation_families.csv
+cp "$out/validation/families.csv" crates/compare/data/validation_families.csv
 echo "validation-page: docs/validation-table.md from $(grep -c '^| ' docs/validation-table.md) table rows"

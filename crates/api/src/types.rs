@@ -46,7 +46,7 @@ pub mod measure {
 
 /// The comparison ([`propbet_compare`]).
 pub mod compare {
-    pub use propbet_compare::{band, curves, electric, metrics, point_air, ComparedPoint, Quantities};
+    pub use propbet_compare::{band, curves, electric, expected, metrics, point_air, ComparedPoint, Quantities};
 }
 
 /// Effects ([`propbet_effects`]).

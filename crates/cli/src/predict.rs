@@ -350,9 +350,9 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     }
     // How close a prediction of an APC prop of this family came on propbet's validation.
     let file = spec.model.prop.file_name().and_then(|n| n.to_str());
-    if file.and_then(propbet_pipeline::expected::family_of_file).is_some() {
-        let table = propbet_pipeline::expected::shipped();
-        if let Some(e) = propbet_pipeline::expected::sentence(file, &table) {
+    if file.and_then(propbet_api::compare::expected::family_of_file).is_some() {
+        let table = propbet_api::compare::expected::shipped();
+        if let Some(e) = propbet_api::compare::expected::sentence(file, &table) {
             eprintln!("{}", crate::output::wrapped(&format!("propbet: {e}"), "", "  "));
         }
     }

@@ -166,7 +166,7 @@ pub fn run(a: &ValidateArgs) -> Result<(bool, Written)> {
     let (md, csv) = table(&validation.rows, &validation.skipped, &model)?;
     write_atomic(&a.out.join("validation.md"), &[md.as_bytes()], &[])?;
     write_atomic(&a.out.join("validation.csv"), &[&csv], &[])?;
-    let families = propbet_pipeline::expected::to_csv(&propbet_validate::summarise(&validation.rows));
+    let families = propbet_api::compare::expected::to_csv(&propbet_validate::summarise(&validation.rows));
     write_atomic(&a.out.join("families.csv"), &[families.as_bytes()], &[])?;
     let html = propbet_report::validate::html(&validation.rows, &validation.skipped, &model);
     write_atomic(&a.out.join("validation.html"), &[html.as_bytes()], &[])?;

@@ -6,6 +6,7 @@
 pub mod band;
 pub mod curves;
 pub mod electric;
+pub mod expected;
 pub mod metrics;
 pub mod plausible;
 

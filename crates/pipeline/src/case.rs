@@ -398,7 +398,7 @@ pub struct RunPlan {
     /// Comparison and diagnosis.
     pub compare: Option<(CompareSpec, DiagnoseSpec)>,
     /// How close a prediction of this kind of blade has come on propbet's validation, before
-    /// any measurement ([`crate::expected::sentence`] of the blade's file: its APC family, or
+    /// any measurement ([`propbet_compare::expected::sentence`] of the blade's file: its APC family, or
     /// all the props for a scan or a table of no named family).
     pub expected: Option<String>,
 }

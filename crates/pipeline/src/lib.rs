@@ -15,7 +15,6 @@ pub mod band;
 pub mod case;
 pub mod design;
 mod error;
-pub mod expected;
 pub mod model;
 pub mod run;
 pub mod spec;

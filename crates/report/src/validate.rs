@@ -4,8 +4,8 @@
 
 use std::fmt::Write as _;
 
+use propbet_compare::expected::family;
 use propbet_compare::metrics::REGIMES;
-use propbet_pipeline::expected::family;
 use propbet_units::stats::median;
 use propbet_validate::{family_groups, Row};
 

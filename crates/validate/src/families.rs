@@ -2,7 +2,7 @@
 //! `families.csv` that propbet ships as what to expect before any measurement
 //! ([`propbet_pipeline::expected`]).
 
-use propbet_pipeline::expected::Expected;
+use propbet_compare::expected::Expected;
 use propbet_units::stats::{median, quantile};
 
 use crate::{family_groups, Row};

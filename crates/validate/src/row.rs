@@ -1,10 +1,10 @@
 //! One row of the validation table: the errors before and after calibration, APC's own
 //! prediction scored on the same points, and the signatures of the data.
 
+use propbet_compare::expected::family;
 use propbet_compare::metrics::{in_window, window_errors, Regimes, StaticRise, ZeroThrustShift, VALIDATION_J_WINDOW};
 use propbet_compare::ComparedPoint;
 use propbet_diagnose::signature::{rpm_trend_at_fixed_j, RpmTrend};
-use propbet_pipeline::expected::family;
 use propbet_qprop::apc::Pe0;
 
 /// The station solves beyond their polars' Reynolds-number range over `points`, and all their

@@ -396,12 +396,12 @@ impl Case {
             predict,
             powered,
             compare,
-            expected: crate::expected::sentence(
+            expected: propbet_compare::expected::sentence(
                 g.pe0
                     .as_deref()
                     .or(g.prop.as_deref())
                     .and_then(|p| Path::new(p).file_name()?.to_str()),
-                &crate::expected::shipped(),
+                &propbet_compare::expected::shipped(),
             ),
         })
     }
