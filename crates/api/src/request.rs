@@ -4,8 +4,7 @@ use std::path::PathBuf;
 
 use crate::motor::{Battery, Drive, Supply};
 use propbet_pipeline::spec::{
-    drag_factor_or_default, AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis,
-    XfoilProcessSpec, XfoilSpec,
+    AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis, XfoilProcessSpec, XfoilSpec,
 };
 use propbet_pipeline::{Error, Result};
 use propbet_settings::values::{
@@ -159,7 +158,7 @@ impl ModelRequest {
             no_tip_loss: self.no_tip_loss,
             polars: self.polars.clone(),
             rotation: Rotation::or_default(rotation, tables),
-            drag_factor: drag_factor_or_default(self.drag_factor, tables),
+            drag_factor: propbet_settings::drag_factor_or_default(self.drag_factor, tables),
             effects: self.effects.clone(),
             user_effects: self.user_effects.clone(),
         })

@@ -7,10 +7,10 @@ use std::path::Path;
 use propbet_api::geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_api::measure::RpmSource;
 use propbet_api::settings::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
-use propbet_api::settings::Rotation;
+use propbet_api::settings::{drag_factor_or_default, Rotation};
 use propbet_pipeline::spec::{
-    drag_factor_or_default, AirSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec, SweepAxis,
-    TableFormat, XfoilProcessSpec, XfoilSpec,
+    AirSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec, SweepAxis, TableFormat,
+    XfoilProcessSpec, XfoilSpec,
 };
 
 /// The `propbet` command line of one stage (without the program name).

@@ -258,12 +258,12 @@ mod tests {
             propbet_settings::values::parse_length_unit("furlong"),
             Err(propbet_settings::Error::Value { .. })
         ));
-        let e = crate::spec::check_ncrit_effect(&[25.0], 5.0).unwrap_err();
+        let e: Error = propbet_settings::check_ncrit_effect(&[25.0], 5.0).unwrap_err().into();
         assert!(matches!(e, Error::Setting(_)), "{e:?}");
         assert!(e.to_string().starts_with("--ncrit-effect 25: "), "{e}");
         assert!(matches!(
-            crate::spec::check_ncrit_effect(&[5.0], 5.0),
-            Err(Error::Conflict(_))
+            propbet_settings::check_ncrit_effect(&[5.0], 5.0),
+            Err(propbet_settings::Error::Conflict(_))
         ));
         let e = Error::about("polars stage", Error::Nothing("no polar".into()));
         assert_eq!(e.to_string(), "polars stage: no polar");

@@ -29,25 +29,6 @@ pub struct XfoilProcessSpec {
     pub neuralfoil_size: Option<String>,
 }
 
-/// Checks `--ncrit-effect`'s values against the polars' own Ncrit: each an Ncrit XFOIL takes,
-/// none equal to `ncrit`; returns them ascending.
-pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> crate::Result<Vec<f64>> {
-    let mut v = values.to_vec();
-    let each = propbet_settings::Setting {
-        flag: propbet_settings::NCRIT_EFFECT.flag,
-        ..propbet_settings::NCRIT
-    };
-    for x in &v {
-        each.check(*x)?;
-    }
-    if v.contains(&ncrit) {
-        crate::conflict!("--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to");
-    }
-    v.sort_by(f64::total_cmp);
-    v.dedup();
-    Ok(v)
-}
-
 /// How XFOIL is asked: transition, angles, panels, iterations, and the process.
 #[derive(Debug, Clone, PartialEq)]
 pub struct XfoilSpec {
@@ -92,17 +73,6 @@ pub struct AirSpec {
     pub a: Option<f64>,
     /// Temperature, pressure, humidity.
     pub state: Option<AirState>,
-}
-
-/// The drag factor a model gets: `asked`, else [`propbet_settings::DRAG_FACTOR`]'s default
-/// with tabulated polars
-/// and 1 with QPROP's law.
-pub fn drag_factor_or_default(asked: Option<f64>, tables: bool) -> f64 {
-    asked.unwrap_or(if tables {
-        propbet_settings::DRAG_FACTOR.default
-    } else {
-        1.0
-    })
 }
 
 /// Where a blade file's sections come from beside the file, and how its polars are made: what a

@@ -550,6 +550,33 @@ pub fn all() -> Vec<About> {
     ]
 }
 
+/// The drag factor a model gets: `asked`, else [`DRAG_FACTOR`]'s default with tabulated polars
+/// and 1 with QPROP's law.
+pub fn drag_factor_or_default(asked: Option<f64>, tables: bool) -> f64 {
+    asked.unwrap_or(if tables { crate::DRAG_FACTOR.default } else { 1.0 })
+}
+
+/// Checks `--ncrit-effect`'s values against the polars' own Ncrit: each an Ncrit XFOIL takes,
+/// none equal to `ncrit`; returns them ascending.
+pub fn check_ncrit_effect(values: &[f64], ncrit: f64) -> Result<Vec<f64>> {
+    let mut v = values.to_vec();
+    let each = Setting {
+        flag: NCRIT_EFFECT.flag,
+        ..NCRIT
+    };
+    for x in &v {
+        each.check(*x)?;
+    }
+    if v.contains(&ncrit) {
+        return Err(Error::Conflict(format!(
+            "--ncrit-effect {ncrit}: the polars' own Ncrit; give the other values the effect may move to"
+        )));
+    }
+    v.sort_by(f64::total_cmp);
+    v.dedup();
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

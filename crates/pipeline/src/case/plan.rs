@@ -137,10 +137,10 @@ impl Case {
                             Some(n) => n
                                 .values("--ncrit-effect")
                                 .and_then(|v| {
-                                    crate::spec::check_ncrit_effect(
+                                    Ok(propbet_settings::check_ncrit_effect(
                                         &v,
                                         p.ncrit.unwrap_or(propbet_settings::NCRIT.default),
-                                    )
+                                    )?)
                                 })
                                 .map_err(|e| at("[polars] ncrit_effect", e))?,
                         },
@@ -352,7 +352,10 @@ impl Case {
             units: model_units,
             polars: tables.then(|| out.join("polars/polars.json")),
             rotation: propbet_settings::Rotation::or_default(rotation, tables),
-            drag_factor: crate::spec::drag_factor_or_default(self.polars.as_ref().and_then(|p| p.drag_factor), tables),
+            drag_factor: propbet_settings::drag_factor_or_default(
+                self.polars.as_ref().and_then(|p| p.drag_factor),
+                tables,
+            ),
             ..ModelSpec::prop(prop)
         };
         let a = &self.atmosphere;

@@ -40,9 +40,9 @@ fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {
 #[test]
 fn the_drag_factor_defaults_with_tables_only() {
     assert_eq!(
-        drag_factor_or_default(None, true),
+        propbet_settings::drag_factor_or_default(None, true),
         propbet_settings::DRAG_FACTOR.default
     );
-    assert_eq!(drag_factor_or_default(None, false), 1.0);
-    assert_eq!(drag_factor_or_default(Some(1.0), true), 1.0);
+    assert_eq!(propbet_settings::drag_factor_or_default(None, false), 1.0);
+    assert_eq!(propbet_settings::drag_factor_or_default(Some(1.0), true), 1.0);
 }

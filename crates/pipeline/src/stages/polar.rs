@@ -406,7 +406,7 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
         out_of_range!("--v / --j: {} m/s; the polars cover propeller states, V >= 0", p.v);
     }
     spec.xfoil.check()?;
-    let ncrit_effect = crate::spec::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.section.ncrit)?;
+    let ncrit_effect = propbet_settings::check_ncrit_effect(&spec.ncrit_effect, spec.xfoil.section.ncrit)?;
     let blade = input.geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
     let settings = XfoilSettings {
         section: spec.xfoil.section(BLADE_PANELS),
