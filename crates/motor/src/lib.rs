@@ -26,5 +26,5 @@ pub mod power;
 pub use file::{parse_motor, write_motor, MotorFile, ParseMotorError};
 pub use fit::{fit_motor, held_out_amps, FitError, FitKind, FitPoint, MotorFit};
 pub use model::{Motor, MotorError, MotorKind};
-pub use operate::{drives, operate, Drive, DriveRule, Driver, OperateError, Powered, PropLoads};
-pub use power::{Battery, PowerError, Supply, SupplyPoint};
+pub use operate::{operate, Drive, OperateError, Powered, PropLoads};
+pub use power::{drives, Battery, DriveRule, Driver, PowerError, Supply, SupplyPoint};

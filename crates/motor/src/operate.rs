@@ -47,56 +47,6 @@ pub enum Drive {
     },
 }
 
-/// The kind of value that sets a table of operating points: a flag of `predict --motor` and a
-/// key of a case's `[motor]`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Driver {
-    /// Terminal voltages [V].
-    Volts,
-    /// Motor currents [A].
-    Amps,
-    /// Thrusts [N].
-    Thrust,
-    /// Rotation speeds [rpm].
-    Rpm,
-    /// Throttles on the battery [0, 1].
-    Throttle,
-}
-
-/// Why values cannot set operating points (each door says it in its own words).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum DriveRule {
-    /// A throttle without the battery it opens.
-    ThrottleWithoutBattery,
-    /// A throttle outside 0-1.
-    ThrottleOutside(f64),
-}
-
-/// One driver per value of `driver`'s kind (in its unit): the one rule of the command line and
-/// the case file, where a throttle needs the battery (`supply`) and lies in 0-1.
-pub fn drives(
-    driver: Driver,
-    values: Vec<f64>,
-    supply: Option<&crate::power::Supply>,
-) -> Result<Vec<Drive>, DriveRule> {
-    Ok(match driver {
-        Driver::Volts => values.into_iter().map(Drive::Volts).collect(),
-        Driver::Amps => values.into_iter().map(Drive::Amps).collect(),
-        Driver::Thrust => values.into_iter().map(Drive::Thrust).collect(),
-        Driver::Rpm => values
-            .into_iter()
-            .map(|r| Drive::Omega(propbet_units::rpm_to_omega(r)))
-            .collect(),
-        Driver::Throttle => {
-            let s = supply.ok_or(DriveRule::ThrottleWithoutBattery)?;
-            if let Some(&bad) = values.iter().find(|t| !(0.0..=1.0).contains(*t)) {
-                return Err(DriveRule::ThrottleOutside(bad));
-            }
-            values.into_iter().map(|t| s.drive(t)).collect()
-        }
-    })
-}
-
 impl Drive {
     /// The driver's value with its unit, as a message says it.
     pub fn describe(&self) -> String {
@@ -356,34 +306,6 @@ fn close<E>(lo: f64, hi: f64, f: &mut dyn FnMut(f64) -> Result<f64, OperateError
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The one rule of both doors: each value its driver, a throttle on the battery in 0-1.
-    #[test]
-    fn values_become_drivers_and_a_throttle_needs_the_battery() {
-        let supply = crate::power::Supply {
-            battery: crate::power::Battery {
-                cells: 3,
-                ..crate::power::LIPO
-            },
-            esc_ohms: 0.005,
-        };
-        assert_eq!(
-            drives(Driver::Volts, vec![6.0, 8.0], None),
-            Ok(vec![Drive::Volts(6.0), Drive::Volts(8.0)])
-        );
-        let w = drives(Driver::Rpm, vec![6000.0], None).unwrap();
-        assert!(matches!(w[..], [Drive::Omega(x)] if (x - 6000.0 * std::f64::consts::PI / 30.0).abs() < 1e-9));
-        assert_eq!(
-            drives(Driver::Throttle, vec![0.5], None),
-            Err(DriveRule::ThrottleWithoutBattery)
-        );
-        assert_eq!(
-            drives(Driver::Throttle, vec![0.5, 1.2], Some(&supply)),
-            Err(DriveRule::ThrottleOutside(1.2))
-        );
-        let t = drives(Driver::Throttle, vec![0.0, 1.0], Some(&supply)).unwrap();
-        assert_eq!(t, vec![supply.drive(0.0), supply.drive(1.0)]);
-    }
 
     /// A propeller of constant CT and CQ: T = kt w^2, Q = kq w^2.
     fn quadratic(kt: f64, kq: f64) -> impl FnMut(f64) -> Result<PropLoads, String> {
