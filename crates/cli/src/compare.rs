@@ -16,7 +16,7 @@ use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportI
 
 use crate::output::{write_atomic, write_figure};
 use crate::predict::{cover, load_model_at, ModelArgs};
-use propbet_report::table::{csv_rows, Num};
+use propbet_report::table::csv_rows;
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -149,83 +149,6 @@ impl CompareArgs {
     }
 }
 
-/// A row of points.csv.
-#[derive(serde::Serialize)]
-struct PointRow {
-    file: String,
-    label: String,
-    line_first: usize,
-    line_last: usize,
-    samples_rpm: usize,
-    samples_thrust: Option<usize>,
-    samples_torque: Option<usize>,
-    rpm: Num,
-    rpm_sd: Num,
-    v_m_s: Num,
-    j: Num,
-    rho: Num,
-    thrust_n: Num,
-    thrust_sd: Num,
-    thrust_pred: Num,
-    torque_nm: Num,
-    torque_sd: Num,
-    torque_pred: Num,
-    power_w: Num,
-    power_pred: Num,
-    ct: Num,
-    ct_sd: Num,
-    ct_pred: Num,
-    cp: Num,
-    cp_sd: Num,
-    cp_pred: Num,
-    eta: Num,
-    eta_pred: Num,
-    re75: Num,
-    mach_tip: Num,
-    scored: u8,
-    model_flags: String,
-}
-
-fn points_csv(files: &[String], pts: &[ComparedPoint]) -> Result<Vec<u8>> {
-    Ok(csv_rows(
-        pts.iter().map(|p| PointRow {
-            file: files[p.file].clone(),
-            label: p.label.clone(),
-            line_first: p.lines.0,
-            line_last: p.lines.1,
-            samples_rpm: p.samples.rpm,
-            samples_thrust: p.samples.thrust,
-            samples_torque: p.samples.torque,
-            rpm: p.rpm.into(),
-            rpm_sd: p.rpm_sd.into(),
-            v_m_s: p.v.into(),
-            j: p.j.into(),
-            rho: p.air.fluid.rho.into(),
-            thrust_n: p.measured.thrust.into(),
-            thrust_sd: p.measured_sd.thrust.into(),
-            thrust_pred: p.predicted.thrust.into(),
-            torque_nm: p.measured.torque.into(),
-            torque_sd: p.measured_sd.torque.into(),
-            torque_pred: p.predicted.torque.into(),
-            power_w: p.measured.power.into(),
-            power_pred: p.predicted.power.into(),
-            ct: p.measured.ct.into(),
-            ct_sd: p.measured_sd.ct.into(),
-            ct_pred: p.predicted.ct.into(),
-            cp: p.measured.cp.into(),
-            cp_sd: p.measured_sd.cp.into(),
-            cp_pred: p.predicted.cp.into(),
-            eta: p.measured.eta.into(),
-            eta_pred: p.predicted.eta.into(),
-            re75: p.re75.into(),
-            mach_tip: p.mach_tip.into(),
-            scored: u8::from(p.scored()),
-            model_flags: p.model_flags.join("; "),
-        }),
-        true,
-    )?)
-}
-
 /// Runs `propbet compare`; returns false when rows were dropped as faulty, the solver did not
 /// converge somewhere or the measurements cannot be of this propeller (all reported).
 pub fn run(args: &CompareArgs) -> Result<bool> {
@@ -345,30 +268,23 @@ pub fn write(
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');
     write_atomic(&out.join("metrics.json"), &[&json], &inputs)?;
-    let mut summary = report::summary_json(&command, &c.metrics, &c.points, c.problems(), &c.warnings());
-    if let (Some(r), serde_json::Value::Object(o)) = (&rep.reference, &mut summary) {
-        o.insert("reference".into(), r.json());
-    }
-    if let (Some(e), serde_json::Value::Object(o)) = (electric, &mut summary) {
-        o.insert(
-            "electric".into(),
-            serde_json::json!({
-                "motor": e.motor,
-                "points": e.points.len(),
-                "current_median_error": e.current_median,
-                "current_median_abs_error": e.current_median_abs,
-                "motor_only_current_median_abs_error": e.motor_only_median_abs,
-                "electrical_power_median_error": e.power_median,
-                "rpm_at_throttle_median_error": e.rpm_median,
-            }),
-        );
+    let summary = report::summary_json(
+        &command,
+        &c.metrics,
+        &c.points,
+        c.problems(),
+        &c.warnings(),
+        rep.reference.as_ref(),
+        electric,
+    );
+    if let Some(e) = electric {
         write_atomic(&out.join("electric.csv"), &[csv_rows(&e.points, true)?], &inputs)?;
     }
     let mut summary = serde_json::to_vec_pretty(&summary)?;
     summary.push(b'\n');
     write_atomic(&out.join("summary.json"), &[&summary], &inputs)?;
     write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    let points = points_csv(&c.names, &c.points)?;
+    let points = propbet_report::table::points::csv(&c.names, &c.points)?;
     write_atomic(&out.join("points.csv"), &[&points], &inputs)?;
     write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
     lock.finish()?;

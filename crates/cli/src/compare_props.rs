@@ -11,7 +11,6 @@ use propbet_pipeline::stages::SideProp;
 
 use crate::output::{write_atomic, write_figure};
 use crate::predict::{BladeArgs, FluidArgs};
-use propbet_report::table::{csv_rows, Num};
 
 /// Arguments of `propbet compare-props`.
 #[derive(Debug, Args)]
@@ -49,60 +48,6 @@ pub struct ComparePropsArgs {
 /// The default model of a propeller file.
 fn model_spec(prop: &std::path::Path, blade: &BladeArgs) -> Result<ModelSpec> {
     Ok(blade.request(prop).spec()?)
-}
-
-/// A row of props.csv.
-#[derive(serde::Serialize)]
-struct Row {
-    rank: usize,
-    prop: String,
-    diameter_m: Num,
-    hover_thrust_n: Num,
-    hover_g_per_w: Num,
-    hover_g_per_w_lo: Num,
-    hover_g_per_w_hi: Num,
-    hover_throttle: Num,
-    hover_battery_amps: Num,
-    hover_motor_amps: Num,
-    hover_rpm: Num,
-    hover_endurance_min: Num,
-    full_thrust_n: Num,
-    full_thrust_lo_n: Num,
-    full_thrust_hi_n: Num,
-    full_battery_amps: Num,
-    full_battery_amps_lo: Num,
-    full_battery_amps_hi: Num,
-    full_rpm: Num,
-    no_hover: String,
-}
-
-fn row(k: usize, p: &SideProp, hover: f64) -> Row {
-    let h = p.hover.as_ref().ok();
-    let f = p.full.first().and_then(|(_, r)| r.as_ref().ok());
-    let band = p.full_band.first().copied().flatten();
-    use propbet_api::units::{omega_to_rpm, seconds_to_minutes};
-    Row {
-        rank: k + 1,
-        prop: p.name.clone(),
-        diameter_m: p.diameter.into(),
-        hover_thrust_n: hover.into(),
-        hover_g_per_w: p.hover_g_per_w().into(),
-        hover_g_per_w_lo: p.hover_band.map(|b| b.0).into(),
-        hover_g_per_w_hi: p.hover_band.map(|b| b.1).into(),
-        hover_throttle: h.map(|x| x.2.throttle).into(),
-        hover_battery_amps: h.map(|x| x.2.battery_amps).into(),
-        hover_motor_amps: h.map(|x| x.0.amps).into(),
-        hover_rpm: h.map(|x| omega_to_rpm(x.0.omega)).into(),
-        hover_endurance_min: h.and_then(|x| x.2.endurance).map(seconds_to_minutes).into(),
-        full_thrust_n: f.map(|x| x.0.loads.thrust).into(),
-        full_thrust_lo_n: band.map(|b| b.thrust.0).into(),
-        full_thrust_hi_n: band.map(|b| b.thrust.1).into(),
-        full_battery_amps: f.map(|x| x.2.battery_amps).into(),
-        full_battery_amps_lo: band.map(|b| b.battery_amps.0).into(),
-        full_battery_amps_hi: band.map(|b| b.battery_amps.1).into(),
-        full_rpm: f.map(|x| omega_to_rpm(x.0.omega)).into(),
-        no_hover: p.hover.as_ref().err().cloned().unwrap_or_default(),
-    }
 }
 
 /// The full-throttle curves' airspeeds without `--v` [m/s]: 0 to 20 in 2.
@@ -143,9 +88,7 @@ pub fn side(
 
 /// The ranked table's columns (props.csv's).
 pub fn table(props: &[SideProp], hover: f64) -> Result<propbet_report::table::columns::Table> {
-    Ok(propbet_report::table::columns::table(
-        props.iter().enumerate().map(|(k, p)| row(k, p, hover)),
-    )?)
+    Ok(propbet_report::table::props::columns(props, hover)?)
 }
 
 /// The answer's sentences.
@@ -197,8 +140,11 @@ pub fn run(args: &ComparePropsArgs) -> Result<bool> {
     for ext in ["svg", "png"] {
         write_figure(&plots.join(format!("props.{ext}")), &fig, &inputs)?;
     }
-    let rows = props.iter().enumerate().map(|(k, p)| row(k, p, args.hover));
-    write_atomic(&args.out.join("props.csv"), &[csv_rows(rows, true)?], &inputs)?;
+    write_atomic(
+        &args.out.join("props.csv"),
+        &[propbet_report::table::props::csv(&props, args.hover)?],
+        &inputs,
+    )?;
     write_atomic(&args.out.join("report.html"), &[html.as_bytes()], &inputs)?;
     for a in propbet_report::props::answer(&props, &setup) {
         println!("{}", crate::output::wrapped(&a, "", "  "));

@@ -127,16 +127,19 @@ pub fn accuracy_json(points: &[ComparedPoint]) -> serde_json::Value {
 
 /// `summary.json` of `propbet compare`: the command, the headline, the points outside the
 /// scored window, and the problems (rows dropped as faulty, station solutions that did not
-/// converge, points where the prediction is physically implausible).
+/// converge, points where the prediction is physically implausible); another code's score
+/// beside propbet's (`reference`) and the electrical comparison (`electric`) where there are.
 pub fn summary_json(
     command: &str,
     m: &Metrics,
     points: &[ComparedPoint],
     problems: (usize, usize),
     warnings: &[String],
+    reference: Option<&crate::answer::ReferenceScore>,
+    electric: Option<&propbet_compare::electric::Electric>,
 ) -> serde_json::Value {
     let implausible = points.iter().filter(|p| !p.model_flags.is_empty()).count();
-    serde_json::json!({
+    let mut summary = serde_json::json!({
         "format": "propbet-compare-summary-1",
         "command": command,
         "clean": problems == (0, 0) && implausible == 0 && warnings.is_empty(),
@@ -150,7 +153,25 @@ pub fn summary_json(
             "unconverged_stations": problems.1,
             "implausible_points": implausible,
         },
-    })
+    });
+    if let (Some(r), serde_json::Value::Object(o)) = (reference, &mut summary) {
+        o.insert("reference".into(), r.json());
+    }
+    if let (Some(e), serde_json::Value::Object(o)) = (electric, &mut summary) {
+        o.insert(
+            "electric".into(),
+            serde_json::json!({
+                "motor": e.motor,
+                "points": e.points.len(),
+                "current_median_error": e.current_median,
+                "current_median_abs_error": e.current_median_abs,
+                "motor_only_current_median_abs_error": e.motor_only_median_abs,
+                "electrical_power_median_error": e.power_median,
+                "rpm_at_throttle_median_error": e.rpm_median,
+            }),
+        );
+    }
+    summary
 }
 
 #[derive(Serialize)]

@@ -1,11 +1,13 @@
 //! propbet's tables, whole: numbers as every table prints them ([`Num`], [`push_num`]), rows as
-//! CSV, the same rows as typed columns for Python ([`columns`]), and a prediction's tables
-//! ([`sweep`]) and of a propeller on its motor ([`powered`]). The binary writes the bytes these
-//! make.
+//! CSV, the same rows as typed columns for Python ([`columns`]); a prediction's tables
+//! ([`sweep`]), a propeller's on its motor ([`powered`]), a comparison's points ([`points`]),
+//! propellers side by side ([`props`]). The binary writes the bytes these make.
 
 pub mod columns;
 mod number;
+pub mod points;
 pub mod powered;
+pub mod props;
 pub mod sweep;
 
 pub use number::{csv_rows, push_num, written, Num};
