@@ -375,7 +375,7 @@ fn with(base: &str, section: &str, key: &str, line: &str) -> String {
 }
 
 /// The keys of each section of `case.rs`'s structs (and of the scan's settings, which are
-/// `[geometry]` keys), as (section, key): each `pub` field, renamed where serde renames it.
+/// `[geometry]` keys), as (section, key): each field, renamed where serde renames it.
 fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
     let case = std::fs::read_to_string(repo.join("crates/pipeline/src/case.rs")).unwrap();
     let scan = std::fs::read_to_string(repo.join("crates/settings/src/scan.rs")).unwrap();
@@ -405,14 +405,21 @@ fn case_file_keys(repo: &Path) -> Vec<(String, String)> {
     ];
     let mut out = Vec::new();
     for (text, name, section) in sections {
-        let start = text.find(&format!("pub struct {name} {{")).unwrap();
+        let start = text
+            .find(&format!("pub struct {name} {{"))
+            .or_else(|| text.find(&format!("pub(crate) struct {name} {{")))
+            .unwrap_or_else(|| panic!("struct {name}"));
         let body = &text[start..start + text[start..].find("\n}").unwrap()];
         let mut rename = None;
         for l in body.lines().skip(1) {
             if let Some(r) = l.trim().strip_prefix("#[serde(rename = \"") {
                 rename = r.split('"').next().map(str::to_string);
             }
-            let Some(rest) = l.trim().strip_prefix("pub ") else {
+            let Some(rest) = l
+                .trim()
+                .strip_prefix("pub ")
+                .or_else(|| l.trim().strip_prefix("pub(crate) "))
+            else {
                 continue;
             };
             let field = rest.split(':').next().unwrap().to_string();

@@ -22,30 +22,30 @@ pub struct Case {
     /// Blade count, checked against the scan when given.
     pub blades: Option<usize>,
     /// The blade.
-    pub geometry: GeometrySection,
+    pub(crate) geometry: GeometrySection,
     /// XFOIL polars (without: the prop file's coefficients are used).
-    pub polars: Option<PolarSection>,
+    pub(crate) polars: Option<PolarSection>,
     /// Prediction sweeps.
-    pub sweep: SweepSection,
+    pub(crate) sweep: SweepSection,
     /// Measurements (without: no comparison, no diagnosis).
-    pub measured: Option<MeasuredSection>,
+    pub(crate) measured: Option<MeasuredSection>,
     /// Air of the measurements and sweeps.
     #[serde(default)]
-    pub atmosphere: AtmosphereSection,
+    pub(crate) atmosphere: AtmosphereSection,
     /// The motor of the measurements (its current and electrical power scored against the
     /// log's), and of the powered table (with a driver: `volts`, `amps`, `thrust` or
     /// `throttle`).
-    pub motor: Option<MotorSection>,
+    pub(crate) motor: Option<MotorSection>,
     /// The battery in front of the motor (with `[motor]`).
-    pub battery: Option<BatterySection>,
+    pub(crate) battery: Option<BatterySection>,
     /// The ESC between the battery and the motor (with `[battery]`).
-    pub esc: Option<EscSection>,
+    pub(crate) esc: Option<EscSection>,
 }
 
 /// `[motor]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct MotorSection {
+pub(crate) struct MotorSection {
     /// A QPROP motor file relative to the case directory.
     pub file: String,
     /// Terminal voltages [V] of the powered table (`propbet predict --motor --volts`).
@@ -64,7 +64,7 @@ pub struct MotorSection {
 /// (`propbet predict --battery`; LiPo defaults for what is not given).
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct BatterySection {
+pub(crate) struct BatterySection {
     /// Cells in series.
     pub cells: u32,
     /// Capacity [mAh] (without: no endurance).
@@ -82,7 +82,7 @@ pub struct BatterySection {
 /// `[esc]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct EscSection {
+pub(crate) struct EscSection {
     /// Resistance in the motor's current path [ohm] (`--esc-ohms`).
     pub ohms: f64,
 }
@@ -90,7 +90,7 @@ pub struct EscSection {
 /// `[geometry]`: a scan or a prop file, and the scan's settings.
 #[derive(Debug, Deserialize)]
 #[serde(try_from = "toml::Table")]
-pub struct GeometrySection {
+pub(crate) struct GeometrySection {
     /// A scan (STL, PLY, points3D.txt, XYZ) for `propbet scan`.
     pub scan: Option<String>,
     /// Or a blade file: a QPROP prop file, APC's design file (PE0), a UIUC geometry table or
@@ -153,7 +153,7 @@ impl TryFrom<toml::Table> for GeometrySection {
 /// `[polars]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct PolarSection {
+pub(crate) struct PolarSection {
     /// `scan`: each station's section as the scan fitted it (the airfoil where the scan gave
     /// none); `airfoil`: the airfoil at every station (or airfoils blended along the blade,
     /// `E63@0.25,APC12@0.45`); `design`: the sections the blade file names (APC's PE0, a
@@ -204,7 +204,7 @@ pub struct PolarSection {
 /// A number, or a list as the command line writes it (`"2000:7000:1000"`).
 #[derive(Debug, Deserialize)]
 #[serde(untagged)]
-pub enum NumberOrList {
+pub(crate) enum NumberOrList {
     /// `rpm = 5000`.
     Number(f64),
     /// `rpm = "2000:7000:1000"`.
@@ -227,7 +227,7 @@ fn default_model() -> String {
 /// `[sweep]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SweepSection {
+pub(crate) struct SweepSection {
     /// Rotation speeds [rpm]: a list or a range.
     pub rpm: String,
     /// Advance ratios: a list or a range.
@@ -237,7 +237,7 @@ pub struct SweepSection {
 /// `[measured]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct MeasuredSection {
+pub(crate) struct MeasuredSection {
     /// Files relative to the case directory.
     pub files: Vec<String>,
     /// Motor poles (electrical RPM of thrust-stand logs).
@@ -260,7 +260,7 @@ pub struct MeasuredSection {
 /// `[atmosphere]`.
 #[derive(Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct AtmosphereSection {
+pub(crate) struct AtmosphereSection {
     /// `T,P,RH` as `--atmosphere` takes it (overrides what the logs say).
     pub air: Option<String>,
     /// Air density [kg/m^3] (overrides everything).
