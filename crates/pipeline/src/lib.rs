@@ -5,6 +5,8 @@
 //! * [`stages`]: scan, polars, predict, compare, diagnose as functions returning artifacts.
 //! * [`run`]: a case's plan run in memory ([`run::run_case`]).
 //! * [`model`]: a prop file turned into the model a stage solves; the air.
+//! * [`design`]: blade files other than QPROP's (APC's PE0, UIUC tables, blade tables).
+//! * [`band`]: a prediction's uncertainty band, from its model.
 //!
 //! The settings a user gives and the values as written are `propbet_settings`'.
 //!
