@@ -485,8 +485,10 @@ fn at_key(case_file: &Path, key: &str, e: impl Into<Error>) -> Error {
     // writes it.
     let one_key = key.contains("] ");
     match e.into() {
-        Error::Setting(b) if one_key => Error::input(case_file, format!("{key} = {}: {}", b.value, b.meaning)),
-        Error::Value { text, problem, .. } if one_key => {
+        Error::Settings(propbet_settings::Error::Setting(b)) if one_key => {
+            Error::input(case_file, format!("{key} = {}: {}", b.value, b.meaning))
+        }
+        Error::Settings(propbet_settings::Error::Value { text, problem, .. }) if one_key => {
             Error::input(case_file, format!("{key} = '{text}': {problem}"))
         }
         e => Error::input(case_file, format!("{key}: {e}")),

@@ -24,19 +24,10 @@ pub enum Error {
         message: String,
     },
     /// A value as written does not read (a list, a unit, a quantity, a colour, a path where a
-    /// folder is wanted): `FLAG 'TEXT': PROBLEM`.
-    #[error("{flag} '{text}': {problem}")]
-    Value {
-        /// The flag or key.
-        flag: String,
-        /// The value as given.
-        text: String,
-        /// What is wrong with it.
-        problem: String,
-    },
-    /// A declared setting's value is outside what it allows ([`crate::settings`]).
+    /// folder is wanted: `FLAG 'TEXT': PROBLEM`), or a declared setting's value is outside what
+    /// it allows ([`propbet_settings::Error`]).
     #[error(transparent)]
-    Setting(#[from] propbet_settings::BadSetting),
+    Settings(#[from] propbet_settings::Error),
     /// A number outside what its flag allows (the flag named in the text).
     #[error("{0}")]
     Range(String),
@@ -93,26 +84,16 @@ pub enum Error {
     Xfoil(#[from] xfoil_runner::XfoilError),
 }
 
-impl From<propbet_settings::Error> for Error {
-    /// The same variants as the pipeline's own ([`Error::Value`], [`Error::Setting`],
-    /// [`Error::Conflict`]).
-    fn from(e: propbet_settings::Error) -> Self {
-        match e {
-            propbet_settings::Error::Value { flag, text, problem } => Error::Value { flag, text, problem },
-            propbet_settings::Error::Setting(b) => Error::Setting(b),
-            propbet_settings::Error::Conflict(c) => Error::Conflict(c),
-        }
+impl From<propbet_settings::BadSetting> for Error {
+    fn from(b: propbet_settings::BadSetting) -> Self {
+        Error::Settings(b.into())
     }
 }
 
 impl Error {
     /// A value that does not read: `FLAG 'TEXT': PROBLEM`.
     pub fn value(flag: &str, text: &str, problem: impl std::fmt::Display) -> Self {
-        Error::Value {
-            flag: flag.to_string(),
-            text: text.to_string(),
-            problem: problem.to_string(),
-        }
+        Error::Settings(propbet_settings::Error::value(flag, text, problem))
     }
 
     /// `cause`, about `what`.
@@ -252,14 +233,20 @@ mod tests {
         let e: Error = propbet_settings::values::parse_list("--rpm", "1,,2")
             .unwrap_err()
             .into();
-        assert!(matches!(e, Error::Value { .. }), "{e:?}");
+        assert!(
+            matches!(e, Error::Settings(propbet_settings::Error::Value { .. })),
+            "{e:?}"
+        );
         assert_eq!(e.to_string(), "--rpm '1,,2': empty item");
         assert!(matches!(
             propbet_settings::values::parse_length_unit("furlong"),
             Err(propbet_settings::Error::Value { .. })
         ));
         let e: Error = propbet_settings::check_ncrit_effect(&[25.0], 5.0).unwrap_err().into();
-        assert!(matches!(e, Error::Setting(_)), "{e:?}");
+        assert!(
+            matches!(e, Error::Settings(propbet_settings::Error::Setting(_))),
+            "{e:?}"
+        );
         assert!(e.to_string().starts_with("--ncrit-effect 25: "), "{e}");
         assert!(matches!(
             propbet_settings::check_ncrit_effect(&[5.0], 5.0),
