@@ -6,26 +6,32 @@ fn workspace() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// Every Rust file of the workspace, tests included, with its text.
-fn every_rust_file() -> Vec<String> {
+/// The Rust files below `dirs` (relative to the workspace), skipping folders named in `skip`.
+fn rust_files(dirs: &[&str], skip: &[&str]) -> Vec<PathBuf> {
     let mut out = Vec::new();
-    let mut stack = vec![
-        workspace().join("crates"),
-        workspace().join("tests"),
-        workspace().join("xfoil_runner"),
-    ];
+    let mut stack: Vec<PathBuf> = dirs.iter().map(|d| workspace().join(d)).collect();
     while let Some(d) = stack.pop() {
         let Ok(entries) = std::fs::read_dir(&d) else { continue };
         for e in entries {
             let p = e.unwrap().path();
-            if p.is_dir() && p.file_name().is_some_and(|n| n != "target") {
-                stack.push(p);
+            if p.is_dir() {
+                if !skip.iter().any(|s| p.file_name().is_some_and(|n| n == *s)) {
+                    stack.push(p);
+                }
             } else if p.extension().is_some_and(|x| x == "rs") {
-                out.push(std::fs::read_to_string(&p).unwrap());
+                out.push(p);
             }
         }
     }
     out
+}
+
+/// Every Rust file of the workspace, tests included, with its text.
+fn every_rust_file() -> Vec<String> {
+    rust_files(&["crates", "tests", "xfoil_runner"], &["target"])
+        .iter()
+        .map(|p| std::fs::read_to_string(p).unwrap())
+        .collect()
 }
 
 /// ARCHITECTURE.md stays a map a person reads in ten minutes, and every test it names as the
@@ -111,45 +117,32 @@ fn the_typed_doors_hold_no_command_line() {
 /// their own.
 #[test]
 fn no_command_line_is_built_or_parsed_below_the_cli() {
-    let root = workspace();
-    let mut stack = vec![root.join("crates")];
-    let mut files = 0;
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                // The binary, and the programs of examples and benchmarks, parse their own.
-                let own = ["cli", "target", "examples", "benches"];
-                if !own.iter().any(|o| p.file_name().is_some_and(|n| n == *o)) {
-                    stack.push(p);
-                }
-                continue;
-            }
-            if p.extension().is_none_or(|x| x != "rs") || p.starts_with(root.join("crates/pipeline/tests")) {
-                continue;
-            }
-            files += 1;
-            let text = std::fs::read_to_string(&p).unwrap();
-            let text = if p.ends_with("crates/python/src/lib.rs") {
-                text.split("fn execute(").next().unwrap_or_default().to_string()
-            } else {
-                text
-            };
-            for word in [
-                "argv",
-                "Argv",
-                "shell_word",
-                "from_flags",
-                "parse_args",
-                "try_parse_from",
-                "env::args",
-                "\"--effect {}\"",
-            ] {
-                assert!(!text.contains(word), "{}: `{word}`", p.display());
-            }
+    // The binary, and the programs of examples and benchmarks, parse their own.
+    let files: Vec<PathBuf> = rust_files(&["crates"], &["cli", "target", "examples", "benches"])
+        .into_iter()
+        .filter(|p| !p.starts_with(workspace().join("crates/pipeline/tests")))
+        .collect();
+    for p in &files {
+        let text = std::fs::read_to_string(p).unwrap();
+        let text = if p.ends_with("crates/python/src/lib.rs") {
+            text.split("fn execute(").next().unwrap_or_default().to_string()
+        } else {
+            text
+        };
+        for word in [
+            "argv",
+            "Argv",
+            "shell_word",
+            "from_flags",
+            "parse_args",
+            "try_parse_from",
+            "env::args",
+            "\"--effect {}\"",
+        ] {
+            assert!(!text.contains(word), "{}: `{word}`", p.display());
         }
     }
-    assert!(files > 100, "{files} files read");
+    assert!(files.len() > 100, "{} files read", files.len());
 }
 
 /// The pipeline is a door, not a warehouse: no module re-exporting the crates below (their
@@ -161,29 +154,24 @@ fn the_pipeline_is_a_door_not_a_warehouse() {
     for gone in ["artifacts.rs", "validate.rs", "simexport.rs", "validate", "simexport"] {
         assert!(!src.join(gone).exists(), "crates/pipeline/src/{gone}");
     }
-    let mut stack = vec![src];
     let mut items = 0;
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.extension().is_some_and(|x| x == "rs") && !p.ends_with("tests.rs") {
-                let text = std::fs::read_to_string(&p).unwrap();
-                let body = text.split("#[cfg(test)]").next().unwrap_or_default();
-                items += body
-                    .lines()
-                    .map(str::trim_start)
-                    .filter(|l| {
-                        [
-                            "fn ", "struct ", "enum ", "mod ", "use ", "type ", "const ", "trait ", "static ",
-                        ]
-                        .iter()
-                        .any(|k| l.starts_with(&format!("pub {k}")))
-                    })
-                    .count();
-            }
+    for p in rust_files(&["crates/pipeline/src"], &[]) {
+        if p.ends_with("tests.rs") {
+            continue;
         }
+        let text = std::fs::read_to_string(&p).unwrap();
+        let body = text.split("#[cfg(test)]").next().unwrap_or_default();
+        items += body
+            .lines()
+            .map(str::trim_start)
+            .filter(|l| {
+                [
+                    "fn ", "struct ", "enum ", "mod ", "use ", "type ", "const ", "trait ", "static ",
+                ]
+                .iter()
+                .any(|k| l.starts_with(&format!("pub {k}")))
+            })
+            .count();
     }
     const CEILING: usize = 169;
     assert!(
@@ -217,23 +205,15 @@ fn one_xfoil_request_below_the_doors() {
         "crates/effects/src/transition.rs",
     ];
     let mut holders = Vec::new();
-    let mut stack: Vec<PathBuf> = below.iter().map(|d| root.join(d)).collect();
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-                continue;
-            }
-            let rel = p.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
-            if p.extension().is_none_or(|x| x != "rs") || not_requests.contains(&rel.as_str()) {
-                continue;
-            }
-            let text = std::fs::read_to_string(&p).unwrap();
-            for field in ["pub ncrit:", "pub panels:", "pub max_iter:", "pub iter:", "pub trip:"] {
-                if text.contains(field) {
-                    holders.push(format!("{rel}: `{field}`"));
-                }
+    for p in rust_files(&below, &[]) {
+        let rel = p.strip_prefix(&root).unwrap().to_string_lossy().replace('\\', "/");
+        if not_requests.contains(&rel.as_str()) {
+            continue;
+        }
+        let text = std::fs::read_to_string(&p).unwrap();
+        for field in ["pub ncrit:", "pub panels:", "pub max_iter:", "pub iter:", "pub trip:"] {
+            if text.contains(field) {
+                holders.push(format!("{rel}: `{field}`"));
             }
         }
     }
