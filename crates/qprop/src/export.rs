@@ -64,23 +64,15 @@ pub struct Differences {
 }
 
 impl Differences {
-    /// The median (the mean of the middle two of an even count) and the largest of `v`
-    /// (zeros when it is empty).
+    /// The median ([`propbet_units::stats::median`]) and the largest of `v` (zeros when it is
+    /// empty).
     pub fn of(v: &[f64]) -> Differences {
         if v.is_empty() {
             return Differences::default();
         }
-        let mut v = v.to_vec();
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
-        let median = if n % 2 == 1 {
-            v[n / 2]
-        } else {
-            0.5 * (v[n / 2 - 1] + v[n / 2])
-        };
         Differences {
-            median,
-            largest: v[n - 1],
+            median: propbet_units::stats::median(v.to_vec()),
+            largest: v.iter().copied().max_by(f64::total_cmp).unwrap_or_default(),
         }
     }
 }
