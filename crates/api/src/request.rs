@@ -362,11 +362,13 @@ impl DriveRequest {
                 ))
             }
         };
+        let no_battery = || Error::Conflict("--throttle: needs a battery (--battery)".into());
+        // Said before the values are read, as the flags' other checks are.
         if driver == Driver::Throttle && supply.is_none() {
-            return Err(Error::Conflict("--throttle: needs a battery (--battery)".into()));
+            return Err(no_battery());
         }
         crate::motor::drives(driver, values.numbers(name)?, supply).map_err(|rule| match rule {
-            DriveRule::ThrottleWithoutBattery => Error::Conflict("--throttle: needs a battery (--battery)".into()),
+            DriveRule::ThrottleWithoutBattery => no_battery(),
             DriveRule::ThrottleOutside(bad) => Error::Range(format!("--throttle {bad}: a throttle is between 0 and 1")),
         })
     }
