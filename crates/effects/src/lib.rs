@@ -10,7 +10,7 @@
 //!
 //! Each effect has named parameters with a neutral value (where the effect does nothing, when
 //! there is one), bounds and a scale, and a physical explanation. [`builtin`] holds the
-//! thirteen built-in effects, [`transition`] the one built from polar tables at several Ncrit
+//! built-in effects (one file each), [`transition`] the one built from polar tables at several Ncrit
 //! values when the polars have them, [`user`] the effects users write as TOML formulas. A
 //! [`Stack`] is a list of effects with parameter values; [`Stack::predict`] solves one
 //! operating point with all of them applied.

@@ -496,7 +496,6 @@ const LONG_FUNCTIONS: &[(&str, &str, &str)] = &[
         "each_command_and_outcome_gets_the_code_its_help_gives",
         "data table",
     ),
-    ("crates/effects/src/builtin.rs", "make", "data table"),
     (
         "tests/e2e/diagnose/refusals.rs",
         "bad_input_gets_clear_messages",
