@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, ValueEnum};
 use propbet_api::compare::ComparedPoint;
 use propbet_api::measure::{MeasuredSet, Refused};
@@ -12,11 +12,9 @@ use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::{CompareSpec, MeasuredSpec};
 use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_report::answer::ReferenceScore;
-use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
+use propbet_report::compare as report;
 
-use crate::output::{write_atomic, write_figure};
 use crate::predict::{cover, load_model_at, ModelArgs};
-use propbet_report::table::csv_rows;
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -158,12 +156,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
 /// Runs a compare stage of `spec`: its files written, its answer printed; whether it ran
 /// clean, and what it wrote.
 pub fn run_spec(spec: &CompareSpec) -> Result<(bool, Written)> {
-    let mut inputs = spec.model.inputs();
-    inputs.extend(spec.measured.inputs());
-    inputs.extend(spec.per3.as_deref());
-    inputs.extend(spec.qprop_output.as_deref());
-    inputs.extend(spec.motor.as_deref());
-    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs(spec))?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
     let other = reference(spec, model.diameter)?;
@@ -188,13 +181,14 @@ pub fn run_spec(spec: &CompareSpec) -> Result<(bool, Written)> {
     Ok((c.clean(), written))
 }
 
-/// What the compare stage wrote, as it wrote it, and what the run's page takes from it.
+/// What `compare` wrote that a caller reads: the report's body, the reference's score, the
+/// lead figure, and the bytes of metrics.json, summary.json and points.csv.
 pub struct Written {
-    /// The report page's body (the run's page nests it).
+    /// The report's body (the run page holds it).
     pub body: String,
-    /// With a reference prediction, its name and headline (as `summary.json` holds them).
+    /// The reference's score, if one was given.
     pub reference: Option<ReferenceScore>,
-    /// The figure the run's page leads with.
+    /// The figure the run page leads with.
     pub lead: Option<propbet_plot::Figure>,
     /// metrics.json.
     pub metrics: Vec<u8>,
@@ -204,9 +198,7 @@ pub struct Written {
     pub points: Vec<u8>,
 }
 
-/// Writes the compare stage's outputs (report.html, metrics.json, summary.md, points.csv,
-/// plots) into the spec's directory, with `other`'s prediction beside propbet's; returns them
-/// ([`Written`]).
+/// Writes the comparison's outputs into `spec.out` (`propbet_api::outputs::compare`).
 pub fn write(
     spec: &CompareSpec,
     model: &Model,
@@ -214,89 +206,27 @@ pub fn write(
     other: Option<&Reference>,
     electric: Option<&propbet_api::compare::electric::Electric>,
 ) -> Result<Written> {
-    let (curves, band) = c.curves(model)?;
-    let mut prop_notes = model.loaded.warnings.clone();
-    if spec.model.qprop_compat {
-        prop_notes.push(format!(
-            "read as QPROP 1.22 does (--qprop-compat): tip-loss radius {} m",
-            model.rotor.tip_radius
-        ));
-    }
-    if !model.effects.is_empty() {
-        prop_notes.push(format!("model with effects: {}", model.effects.describe()));
-    }
-    let other_at = |rpm: f64, j: f64| other.and_then(|r| r.at(rpm, j));
-    let rep = report::build(&ReportInput {
-        reference: other.map(|r| ReferenceInput {
-            name: r.name.clone(),
-            at: &other_at,
-        }),
-        prop: spec.model.prop.display().to_string(),
-        prop_notes,
-        files: c
-            .names
-            .iter()
-            .zip(&c.sets)
-            .map(|(p, set)| FileEntry { path: p.clone(), set })
-            .collect(),
-        refused: &c.refused,
-        warnings: c.warnings(),
-        points: &c.points,
-        band: Some(&band),
-        band_sources: propbet_pipeline::band::BandSpec::sources_text(&model.loaded.file),
-        metrics: &c.metrics,
-        diameter: model.diameter,
-        curves: &curves,
-        command: crate::argv::command(&propbet_pipeline::spec::StageSpec::Compare(spec.clone())),
-        electric,
-    })?;
-    let out = &spec.out;
+    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Compare(spec.clone()));
+    let mut made = propbet_api::outputs::compare::outputs(spec, model, c, other, electric, &command)?;
+    made.files.write(&spec.out, &command, &inputs(spec))?;
+    Ok(Written {
+        body: made.body,
+        reference: made.reference,
+        lead: made.lead,
+        metrics: made.files.take("metrics.json"),
+        summary: made.files.take("summary.json"),
+        points: made.files.take("points.csv"),
+    })
+}
+
+/// The files a comparison reads (none may be overwritten).
+fn inputs(spec: &CompareSpec) -> Vec<&std::path::Path> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     inputs.extend(spec.per3.as_deref());
     inputs.extend(spec.qprop_output.as_deref());
     inputs.extend(spec.motor.as_deref());
-    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Compare(spec.clone()));
-    let lock = crate::output::claim_folder(out, &command)?;
-    let plots = out.join("plots");
-    std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
-    for (name, fig) in &rep.figures {
-        for ext in ["svg", "png"] {
-            write_figure(&plots.join(format!("{name}.{ext}")), fig, &inputs)?;
-        }
-    }
-    let mut json = serde_json::to_vec_pretty(&rep.json)?;
-    json.push(b'\n');
-    write_atomic(&out.join("metrics.json"), &[&json], &inputs)?;
-    let summary = report::summary_json(
-        &command,
-        &c.metrics,
-        &c.points,
-        c.problems(),
-        &c.warnings(),
-        rep.reference.as_ref(),
-        electric,
-    );
-    if let Some(e) = electric {
-        write_atomic(&out.join("electric.csv"), &[csv_rows(&e.points, true)?], &inputs)?;
-    }
-    let mut summary = serde_json::to_vec_pretty(&summary)?;
-    summary.push(b'\n');
-    write_atomic(&out.join("summary.json"), &[&summary], &inputs)?;
-    write_atomic(&out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    let points = propbet_report::table::points::csv(&c.names, &c.points)?;
-    write_atomic(&out.join("points.csv"), &[&points], &inputs)?;
-    write_atomic(&out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
-    lock.finish()?;
-    let lead = report::lead_figure(&rep.figures);
-    Ok(Written {
-        body: rep.body,
-        reference: rep.reference,
-        lead,
-        metrics: json,
-        summary,
-        points,
-    })
+    inputs
 }
 
 /// The reference `spec` names ([`Reference::load`]), its reading's warning on the terminal.

@@ -9,8 +9,8 @@ use propbet_api::settings::values::parse_list;
 use propbet_pipeline::spec::{ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
 
-use crate::output::{write_atomic, write_figure};
 use crate::predict::{BladeArgs, FluidArgs};
+use propbet_api::files::{write_atomic, write_figure};
 
 /// Arguments of `propbet compare-props`.
 #[derive(Debug, Args)]
@@ -134,7 +134,7 @@ pub fn run(args: &ComparePropsArgs) -> Result<bool> {
     let fig = propbet_report::props::figure(&props);
     let html = propbet_report::props::html(&props, &setup, &fig)?;
     let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
-    crate::output::refuse_inputs_inside(&args.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&args.out, &inputs)?;
     let plots = args.out.join("plots");
     std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
     for ext in ["svg", "png"] {

@@ -7,11 +7,9 @@ use anyhow::Result;
 use clap::Args;
 use propbet_pipeline::spec::{DiagnoseSpec, StageSpec};
 use propbet_pipeline::stages::{self, Diagnosed};
-use propbet_report::compare::FileEntry;
-use propbet_report::diagnose::{self as report, JsonOut};
+use propbet_report::diagnose as report;
 
 use crate::compare::{print_measured, warn_faulty_rows, MeasuredArgs};
-use crate::output::{write_atomic, write_figure};
 use crate::predict::{cover, load_model_at, ModelArgs};
 
 /// Arguments of `propbet diagnose`.
@@ -61,7 +59,7 @@ pub fn run(args: &DiagnoseArgs) -> Result<bool> {
 pub fn run_spec(spec: &DiagnoseSpec) -> Result<(bool, Written)> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
-    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs)?;
     let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
     let d = stages::diagnose(&model, spec)?;
     let written = write(spec, &d)?;
@@ -80,65 +78,18 @@ pub struct Written {
     pub summary: Vec<u8>,
 }
 
-/// Writes the diagnose stage's outputs (diagnosis.json, summary.json, summary.md, report.html,
-/// plots); returns them ([`Written`]).
+/// Writes the diagnosis's outputs into `spec.out` (`propbet_api::outputs::diagnose`).
 pub fn write(spec: &DiagnoseSpec, d: &Diagnosed) -> Result<Written> {
-    let prop = spec.model.prop.display().to_string();
-    let measured: Vec<String> = d.names.clone();
     let command = crate::argv::command(&StageSpec::Diagnose(spec.clone()));
-    let dg = &d.diagnosis;
-    let files: Vec<FileEntry> = measured
-        .iter()
-        .zip(&d.sets)
-        .map(|(path, set)| FileEntry {
-            path: path.clone(),
-            set,
-        })
-        .collect();
-    let use_it = crate::argv::effect_args(dg).join(" ");
-    let rep = report::build(&d.data, dg, &prop, &files, &d.refused, &command, &use_it)?;
+    let use_it = crate::argv::effect_args(&d.diagnosis).join(" ");
+    let mut made = propbet_api::outputs::diagnose::outputs(spec, d, &command, &use_it)?;
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
-    let lock = crate::output::claim_folder(&spec.out, &command)?;
-    let plots = spec.out.join("plots");
-    std::fs::create_dir_all(&plots)
-        .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", plots.display()))?;
-    for (name, fig) in &rep.figures {
-        for ext in ["svg", "png"] {
-            write_figure(&plots.join(format!("{name}.{ext}")), fig, &inputs)?;
-        }
-    }
-    let json = JsonOut {
-        prop: &prop,
-        measured: &measured,
-        command: &command,
-        diagnosis: dg,
-        final_params: dg.ladder.last().map(|r| r.params.clone()).unwrap_or_default(),
-        final_effects: dg.final_effects(),
-    };
-    let mut bytes = serde_json::to_vec_pretty(&json)?;
-    bytes.push(b'\n');
-    write_atomic(&spec.out.join("diagnosis.json"), &[&bytes], &inputs)?;
-    let faults: usize = d.sets.iter().map(|s| s.faults()).sum();
-    let warnings = propbet_pipeline::stages::batch_warnings(&d.names, &d.sets, &d.refused);
-    let summary = serde_json::json!({
-        "format": "propbet-diagnose-summary-1",
-        "command": command,
-        "clean": faults == 0 && warnings.is_empty(),
-        "warnings": warnings,
-        "problems": { "dropped_rows": faults },
-        "diagnosis": report::diagnosis_json(dg),
-    });
-    let mut summary = serde_json::to_vec_pretty(&summary)?;
-    summary.push(b'\n');
-    write_atomic(&spec.out.join("summary.json"), &[&summary], &inputs)?;
-    write_atomic(&spec.out.join("summary.md"), &[rep.markdown.as_bytes()], &inputs)?;
-    write_atomic(&spec.out.join("report.html"), &[rep.html.as_bytes()], &inputs)?;
-    lock.finish()?;
+    made.files.write(&spec.out, &command, &inputs)?;
     Ok(Written {
-        body: rep.body,
-        diagnosis: bytes,
-        summary,
+        body: made.body,
+        diagnosis: made.files.take("diagnosis.json"),
+        summary: made.files.take("summary.json"),
     })
 }
 

@@ -9,7 +9,6 @@ use propbet_pipeline::spec::{ModelSpec, PredictSpec, TableFormat};
 use propbet_simexport::{self as simexport, ExportFrom, ExportSpec, Said, Target};
 
 use crate::compare::RpmSourceArg;
-use crate::output;
 use crate::predict::{FluidArgs, SweepArgs};
 
 /// Arguments of `propbet export`.
@@ -221,7 +220,7 @@ impl ExportArgs {
 pub fn run(args: &ExportArgs) -> Result<bool> {
     let spec = args.spec()?;
     let inputs = args.inputs();
-    output::refuse_inputs_inside(&args.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&args.out, &inputs)?;
     let made = simexport::exports(&spec, &|said| match said {
         Said::Warning(w) => eprintln!("propbet: warning: {w}"),
         Said::LeftOut(n) => eprintln!("propbet: {n}"),
@@ -230,7 +229,7 @@ pub fn run(args: &ExportArgs) -> Result<bool> {
         .map_err(|e| anyhow::anyhow!("{}: cannot create the output folder: {e}", args.out.display()))?;
     for e in &made {
         for (name, text) in &e.files {
-            output::write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
+            propbet_api::files::write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
         }
         println!(
             "{:<8} {}: {}",

@@ -6,9 +6,9 @@ use clap::Args;
 use propbet_api::diagnose::inject::{Finding, Injection};
 use propbet_validate::{hidden_prop, sections_for, PropSections};
 
-use crate::output::write_atomic;
 use crate::polar::Bar;
 use crate::validate::ValidateArgs;
+use propbet_api::files::write_atomic;
 
 /// Arguments of `propbet hidden`.
 #[derive(Debug, Args)]
@@ -42,7 +42,7 @@ pub fn run(a: &HiddenArgs) -> Result<bool> {
         }
     }
     let (spec, props, generic) = crate::validate::spec(&a.validate)?;
-    let lock = crate::output::claim_folder(&spec.out, "propbet hidden")?;
+    let lock = propbet_api::files::claim_folder(&spec.out, "propbet hidden")?;
     let (quiet, engine) = (a.validate.xfoil.quiet, spec.xfoil.process.engine);
     let mut rows: Vec<(String, Finding)> = Vec::new();
     let mut skipped = Vec::new();

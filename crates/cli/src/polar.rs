@@ -113,7 +113,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
         .flatten()
         .map(|p| p.as_path())
         .collect();
-    crate::output::refuse_outputs_over_inputs(&outputs, &input_paths(&args.section))?;
+    propbet_api::files::refuse_outputs_over_inputs(&outputs, &input_paths(&args.section))?;
     let foil = args.section.load()?;
     let spec = SectionSpec {
         res: parse_list("--re", &args.re)?,
@@ -152,7 +152,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
     let fits = section.fitted();
     if let Some(path) = &args.fit_out {
         let json = serde_json::to_vec_pretty(&fits)?;
-        crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
+        propbet_api::files::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     if let Some(path) = &args.plot {
         let fig = Figure {
@@ -161,7 +161,7 @@ pub fn run_polar(args: &PolarArgs) -> Result<bool> {
             width: 1400,
             height: 560,
         };
-        crate::output::write_figure(path, &fig, &inputs)?;
+        propbet_api::files::write_figure(path, &fig, &inputs)?;
     }
     Ok(section.clean())
 }
@@ -314,7 +314,7 @@ pub fn run_polars_spec(spec: &PolarsSpec) -> Result<bool> {
     let outputs: Vec<&Path> = std::iter::once(spec.out_prop.as_path())
         .chain(spec.out_polars.as_deref())
         .collect();
-    crate::output::refuse_outputs_over_inputs(&outputs, &polars_inputs(spec))?;
+    propbet_api::files::refuse_outputs_over_inputs(&outputs, &polars_inputs(spec))?;
     let input = stages::polars_input(spec)?;
     for w in &input.geometry.warnings {
         eprintln!("propbet: warning: {w}");
@@ -383,10 +383,10 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
 /// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).
 pub fn write_polars(spec: &PolarsSpec, p: &Polars) -> Result<()> {
     let inputs = polars_inputs(spec);
-    crate::output::write_atomic(&spec.out_prop, &[write_prop(&p.prop.file).as_bytes()], &inputs)?;
+    propbet_api::files::write_atomic(&spec.out_prop, &[write_prop(&p.prop.file).as_bytes()], &inputs)?;
     if let Some(path) = &spec.out_polars {
         let json = serde_json::to_vec(&p.blade)?;
-        crate::output::write_atomic(path, &[json.as_slice()], &inputs)?;
+        propbet_api::files::write_atomic(path, &[json.as_slice()], &inputs)?;
     }
     Ok(())
 }

@@ -74,7 +74,7 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
     inputs.push(spec.motor.as_path());
     emit(spec.out.as_deref(), &[run.body(spec.format)?], &inputs)?;
     if let Some(path) = &spec.stations {
-        crate::output::write_atomic(
+        propbet_api::files::write_atomic(
             path,
             &[propbet_report::table::sweep::stations_csv(&run.solved())?],
             &inputs,

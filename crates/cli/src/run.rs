@@ -14,8 +14,9 @@ use propbet_pipeline::run::{run_case, Event, Finished, RunOutcome, StageRecord};
 use propbet_pipeline::spec::StageSpec;
 use propbet_pipeline::spec::XfoilProcessSpec;
 
-use crate::output::{emit, write_atomic};
+use crate::output::emit;
 use crate::polar::{Bar, XfoilProcess};
+use propbet_api::files::write_atomic;
 
 /// Arguments of `propbet run`.
 #[derive(Debug, Args)]
@@ -139,8 +140,8 @@ fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Result
     let inputs = plan.inputs();
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     // A link in the output folder is refused in its own words, not as an input of the case.
-    crate::output::refuse_links_inside(out)?;
-    crate::output::refuse_inputs_below(out, &inputs).with_context(|| {
+    propbet_api::files::refuse_links_inside(out)?;
+    propbet_api::files::refuse_inputs_below(out, &inputs).with_context(|| {
         format!(
             "{}: the case reads a file in the output directory",
             dir.join("case.toml").display()
@@ -224,7 +225,7 @@ pub fn run_request(a: &RunRequest) -> Result<(bool, RunFiles)> {
     check_paths(&plan, &dir, &out, a.inputs_anywhere)?;
     // Until the report is written the folder says it is incomplete: a run that fails or is
     // interrupted leaves INCOMPLETE.txt, naming the case; a finished run removes it.
-    let lock = crate::output::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
+    let lock = propbet_api::files::claim_folder(&out, &format!("propbet run {}", dir.display()))?;
     let bar = Bar::new(a.xfoil.quiet, a.xfoil.engine);
     let mut pages: Vec<(&'static str, String)> = Vec::new();
     let mut reference: Option<propbet_report::answer::ReferenceScore> = None;

@@ -16,7 +16,7 @@ use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
 use serde_json::json;
 
-use crate::output::{write_atomic, write_figure};
+use propbet_api::files::{write_atomic, write_figure};
 use propbet_report::table::{csv_rows, Num};
 
 /// Arguments of `propbet scan`.
@@ -174,7 +174,7 @@ pub fn run_spec(spec: &ScanSpec) -> Result<bool> {
     let inputs: Vec<&Path> = std::iter::once(spec.input.as_path())
         .chain(spec.reference.as_deref())
         .collect();
-    crate::output::refuse_inputs_inside(&spec.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs)?;
     let s = stages::scan(spec)?;
     write(spec, &s)?;
     print_summary(&s);
@@ -243,7 +243,7 @@ fn write_blades(out: &Path, g: &Geometry, inputs: &[&Path]) -> Result<()> {
 pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
     let g = &sc.geometry;
     let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(a.clone()));
-    let lock = crate::output::claim_folder(&a.out, &command)?;
+    let lock = propbet_api::files::claim_folder(&a.out, &command)?;
     std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
     let inputs: Vec<&Path> = std::iter::once(a.input.as_path())

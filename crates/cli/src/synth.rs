@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::{Args, ValueEnum};
 use propbet_pipeline::stages::{self, SynthSpec};
 
-use crate::output::write_atomic;
+use propbet_api::files::write_atomic;
 use propbet_api::settings::values::parse_list;
 
 use crate::predict::{load_model, ModelArgs};
@@ -57,8 +57,8 @@ pub fn run(args: &SynthArgs) -> Result<bool> {
     answer_path.push(".answer.json");
     let answer_path = PathBuf::from(answer_path);
     match args.format {
-        SynthFormat::Uiuc => crate::output::refuse_inputs_inside(&args.out, &mspec.inputs())?,
-        _ => crate::output::refuse_outputs_over_inputs(&[&args.out, &answer_path], &mspec.inputs())?,
+        SynthFormat::Uiuc => propbet_api::files::refuse_inputs_inside(&args.out, &mspec.inputs())?,
+        _ => propbet_api::files::refuse_outputs_over_inputs(&[&args.out, &answer_path], &mspec.inputs())?,
     }
     let m = load_model(&mspec, false)?;
     let spec = SynthSpec {

@@ -16,9 +16,9 @@ use propbet_pipeline::run::StageRecord;
 use propbet_pipeline::spec::{StageSpec, XfoilSpec};
 use propbet_validate::{select_props, validate_all, GeometrySource, Row, Sections, ValidateSpec, Validated};
 
-use crate::output::write_atomic;
 use crate::polar::{Bar, XfoilProcess};
 use propbet_api::compare::ComparedPoint;
+use propbet_api::files::write_atomic;
 use propbet_report::table::Num;
 
 /// Arguments of `propbet validate`.
@@ -126,7 +126,7 @@ pub(crate) fn spec(a: &ValidateArgs) -> Result<(ValidateSpec, Vec<String>, Optio
         .chain(a.per3.as_deref())
         .chain(a.user_effects.as_deref())
         .collect();
-    crate::output::refuse_inputs_inside(&a.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&a.out, &inputs)?;
     Ok((spec, props, generic))
 }
 
@@ -143,7 +143,7 @@ pub struct Written {
 /// ([`Written`]).
 pub fn run(a: &ValidateArgs) -> Result<(bool, Written)> {
     let (spec, props, generic) = spec(a)?;
-    let lock = crate::output::claim_folder(&a.out, "propbet validate")?;
+    let lock = propbet_api::files::claim_folder(&a.out, "propbet validate")?;
     let (quiet, engine) = (a.xfoil.quiet, a.xfoil.spec()?.engine);
     let validation = validate_all(
         &spec,

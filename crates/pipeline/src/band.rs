@@ -101,12 +101,12 @@ impl BandSpec {
 
     /// Each source's weight, in [`BandSpec::names`]' order: 1 for the effects (their range is
     /// their spec's), [`BandSpec::transition`] for the sections' transition.
-    pub fn weights(&self) -> [f64; 4] {
+    pub(crate) fn weights(&self) -> [f64; 4] {
         [1.0, 1.0, 1.0, self.transition]
     }
 
     /// Each source's name and its two ends as effect specs.
-    pub fn sources(&self) -> Vec<(&'static str, [String; 2])> {
+    pub(crate) fn sources(&self) -> Vec<(&'static str, [String; 2])> {
         let (a, c, d) = (self.angle_deg, self.chord, self.drag);
         vec![
             (
@@ -168,7 +168,7 @@ impl BandSpec {
 
     /// The sources' names in the order [`BandSpec::at_compared_by_source`] gives their ends:
     /// [`BandSpec::sources`], then the sections' transition where the model's tables carry it.
-    pub fn names(&self, model: &Model) -> Vec<&'static str> {
+    pub(crate) fn names(&self, model: &Model) -> Vec<&'static str> {
         let mut n: Vec<&'static str> = self.sources().into_iter().map(|(name, _)| name).collect();
         if model.band_sections.is_some() {
             n.push("sections' transition");
@@ -190,7 +190,7 @@ impl BandSpec {
     }
 
     /// The compared points predicted at each source's two ends, in [`BandSpec::names`]' order.
-    pub fn at_compared_by_source(
+    pub(crate) fn at_compared_by_source(
         &self,
         model: &Model,
         air: AirChoice,

@@ -31,7 +31,7 @@ pub enum BladeFormat {
 impl BladeFormat {
     /// The format of a blade file's text: PE0 by its airfoil lines, UIUC's table by its
     /// `r/R` header, a table by a comma-separated header naming a radius; QPROP otherwise.
-    pub fn of(text: &str) -> BladeFormat {
+    pub(crate) fn of(text: &str) -> BladeFormat {
         if text.lines().any(|l| l.trim_start().starts_with("AIRFOIL1:")) && text.contains("AIRFOIL SUMMARY DATA") {
             return BladeFormat::Pe0;
         }
@@ -82,7 +82,7 @@ pub struct SectionPlan {
 
 impl SectionPlan {
     /// Reads `e63` or `E63@0.25,APC12@0.45`; `what` names the flag or key in errors.
-    pub fn parse(text: &str, what: &str) -> Result<SectionPlan> {
+    pub(crate) fn parse(text: &str, what: &str) -> Result<SectionPlan> {
         let parts: Vec<&str> = text.split(',').map(str::trim).collect();
         if parts.len() == 1 && !parts[0].contains('@') {
             if parts[0].is_empty() {

@@ -3,7 +3,6 @@
 
 use std::path::Path;
 
-use propbet_atmosphere::AirState;
 use propbet_bemt::{Discretization, Fluid, Rotor, SolverOptions};
 use propbet_effects::spec::Registry;
 use propbet_effects::{parse_spec, Stack};
@@ -314,13 +313,5 @@ impl AirSpec {
             "given".to_string()
         };
         Ok((f, source))
-    }
-
-    /// Air from a temperature, pressure and humidity.
-    pub fn state(state: AirState) -> Self {
-        AirSpec {
-            state: Some(state),
-            ..AirSpec::default()
-        }
     }
 }

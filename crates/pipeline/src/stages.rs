@@ -171,7 +171,7 @@ pub(crate) fn scan_prop_file(name: &str, g: &Geometry) -> PropFile {
 /// the fit's surfaces were moved apart (a trailing edge that crossed itself, closed), and a
 /// section that is still no airfoil XFOIL can take (checked as `polars` reads it: the station
 /// gets no file and takes the airfoil or its neighbour's section).
-pub fn station_airfoils(name: &str, g: &Geometry) -> (Vec<(usize, String)>, Vec<String>) {
+pub(crate) fn station_airfoils(name: &str, g: &Geometry) -> (Vec<(usize, String)>, Vec<String>) {
     let mut notes = Vec::new();
     let mut files = Vec::new();
     for (i, s) in g.stations.iter().enumerate() {
@@ -216,7 +216,7 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
 }
 
 /// Every rotation speed with every J or V, checked, for a rotor of tip radius `tip_radius` [m].
-pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
+pub(crate) fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
     let other = match axis {
         SweepAxis::J(v) | SweepAxis::V(v) => v.len(),
     };

@@ -221,7 +221,7 @@ pub(crate) fn spec_airfoil(spec: &PolarsSpec) -> Result<(Option<Airfoil>, Vec<St
 }
 
 /// What the polars' `airfoil` says: the airfoil's name, or that the scan gave every section.
-pub fn foil_name(foil: Option<&Airfoil>) -> String {
+pub(crate) fn foil_name(foil: Option<&Airfoil>) -> String {
     foil.map_or_else(|| "the scanned sections".to_string(), |f| f.name.clone())
 }
 
