@@ -226,6 +226,7 @@ pub fn write_figure(path: &Path, fig: &propbet_plot::Figure, inputs: &[&Path]) -
 /// explicit step that puts them on disk.
 #[derive(Debug, Default)]
 pub struct Outputs {
+    dirs: Vec<PathBuf>,
     files: Vec<(PathBuf, Vec<u8>)>,
 }
 
@@ -235,10 +236,21 @@ impl Outputs {
         self.files.push((name.into(), bytes.into()));
     }
 
-    /// Adds a figure as `name.svg` and `name.png` under `dir`.
-    pub fn figure(&mut self, dir: &str, name: &str, fig: &propbet_plot::Figure) -> Result<()> {
-        self.add(format!("{dir}/{name}.svg"), propbet_plot::svg(fig)?.into_bytes());
-        self.add(format!("{dir}/{name}.png"), propbet_plot::png(fig)?);
+    /// Adds a folder `name` that is made even when no file goes into it.
+    pub fn dir(&mut self, name: impl Into<PathBuf>) {
+        self.dirs.push(name.into());
+    }
+
+    /// Adds a figure as `name.svg`.
+    pub fn svg(&mut self, name: &str, fig: &propbet_plot::Figure) -> Result<()> {
+        self.add(format!("{name}.svg"), propbet_plot::svg(fig)?.into_bytes());
+        Ok(())
+    }
+
+    /// Adds a figure as `name.svg` and `name.png`.
+    pub fn figure(&mut self, name: &str, fig: &propbet_plot::Figure) -> Result<()> {
+        self.svg(name, fig)?;
+        self.add(format!("{name}.png"), propbet_plot::png(fig)?);
         Ok(())
     }
 
@@ -264,10 +276,15 @@ impl Outputs {
     /// of `inputs` ([`write_atomic`]).
     pub fn write(&self, out: &Path, command: &str, inputs: &[&Path]) -> Result<()> {
         let lock = claim_folder(out, command)?;
+        for d in &self.dirs {
+            let dir = out.join(d);
+            std::fs::create_dir_all(&dir).with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+        }
         for (name, bytes) in &self.files {
             let path = out.join(name);
             if let Some(dir) = path.parent().filter(|d| !d.exists()) {
-                std::fs::create_dir_all(dir).with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+                std::fs::create_dir_all(dir)
+                    .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
             }
             write_atomic(&path, &[bytes], inputs)?;
         }

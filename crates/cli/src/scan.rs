@@ -5,19 +5,11 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
-use propbet_api::geometry::cloud::to_ply;
-use propbet_api::geometry::scan::{Aligned, Geometry};
-use propbet_api::measure::uiuc::{geometry_at, GeometryRow};
-use propbet_api::qprop::write_prop;
 use propbet_api::settings::scan::ScanSettings;
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::{self, Scanned};
-use serde_json::json;
-
-use propbet_api::files::{write_atomic, write_figure};
-use propbet_report::table::{csv_rows, Num};
 
 /// Arguments of `propbet scan`.
 #[derive(Debug, Args)]
@@ -129,41 +121,6 @@ impl ScanArgs {
     }
 }
 
-/// A row of geometry.csv (the reference table's columns empty without one).
-#[derive(serde::Serialize)]
-struct GeometryCsvRow {
-    r_mm: Num,
-    #[serde(rename = "r_R")]
-    r_r: Num,
-    chord_mm: Num,
-    #[serde(rename = "c_R")]
-    c_r: Num,
-    beta_deg: Num,
-    t_c: Num,
-    t_pos: Num,
-    camber: Num,
-    camber_pos: Num,
-    le_offset_mm: Num,
-    skew_deg: Num,
-    rake_mm: Num,
-    naca: String,
-    naca_t_c: Num,
-    naca_camber: Num,
-    naca_camber_pos: Num,
-    rms_naca_mm: Num,
-    rms_cst_mm: Num,
-    points: usize,
-    blade_spread_deg: Num,
-    #[serde(rename = "ref_c_R")]
-    ref_c_r: Num,
-    ref_beta_deg: Num,
-}
-
-/// Linear interpolation in a reference table at r/R `x`: column 1 c/R, 2 β [deg] (None outside).
-fn interp(table: &[GeometryRow], x: f64, k: usize) -> Option<f64> {
-    geometry_at(table, x).map(|(c, b)| if k == 1 { c } else { b.to_degrees() })
-}
-
 /// Runs `propbet scan`.
 pub fn run(a: &ScanArgs) -> Result<bool> {
     run_spec(&a.spec()?)
@@ -171,10 +128,7 @@ pub fn run(a: &ScanArgs) -> Result<bool> {
 
 /// Runs a scan stage: its files written, its summary printed.
 pub fn run_spec(spec: &ScanSpec) -> Result<bool> {
-    let inputs: Vec<&Path> = std::iter::once(spec.input.as_path())
-        .chain(spec.reference.as_deref())
-        .collect();
-    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs)?;
+    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs(spec))?;
     let s = stages::scan(spec)?;
     write(spec, &s)?;
     print_summary(&s);
@@ -182,142 +136,17 @@ pub fn run_spec(spec: &ScanSpec) -> Result<bool> {
     Ok(s.clean())
 }
 
-/// geometry.csv: one row per station, with the reference table's c/R and beta where given.
-fn geometry_csv(g: &Geometry, reference: Option<&[GeometryRow]>) -> Result<Vec<u8>> {
-    let big_r = g.tip_radius;
-    let rows = g.stations.iter().map(|s| {
-        let reference = |k| reference.and_then(|t| interp(t, s.r_r, k));
-        GeometryCsvRow {
-            r_mm: (1000.0 * s.r).into(),
-            r_r: s.r_r.into(),
-            chord_mm: (1000.0 * s.chord).into(),
-            c_r: (s.chord / big_r).into(),
-            beta_deg: s.beta.to_degrees().into(),
-            t_c: s.t_c.into(),
-            t_pos: s.t_pos.into(),
-            camber: s.camber.into(),
-            camber_pos: s.camber_pos.into(),
-            le_offset_mm: (1000.0 * s.le_offset).into(),
-            skew_deg: s.skew.to_degrees().into(),
-            rake_mm: (1000.0 * s.rake).into(),
-            naca: s.naca.designation(),
-            naca_t_c: s.naca.t_c.into(),
-            naca_camber: s.naca.camber.into(),
-            naca_camber_pos: s.naca.camber_pos.into(),
-            rms_naca_mm: (1000.0 * s.naca.rms).into(),
-            rms_cst_mm: s.cst.as_ref().map(|c| 1000.0 * c.rms).into(),
-            points: s.points,
-            blade_spread_deg: s.blade_spread.to_degrees().into(),
-            ref_c_r: reference(1).into(),
-            ref_beta_deg: reference(2).into(),
-        }
-    });
-    Ok(csv_rows(rows, true)?)
+/// The files a scan reads (none may be overwritten).
+fn inputs(spec: &ScanSpec) -> Vec<&Path> {
+    std::iter::once(spec.input.as_path())
+        .chain(spec.reference.as_deref())
+        .collect()
 }
 
-/// The cleaned surface in the propeller frame, by blade: one STL per blade and the hub's, or
-/// the labelled cloud.
-fn write_blades(out: &Path, g: &Geometry, inputs: &[&Path]) -> Result<()> {
-    std::fs::create_dir_all(out.join("blades")).with_context(|| format!("{}: cannot create", out.display()))?;
-    let lab = &g.labelled;
-    match &lab.surface {
-        Aligned::Mesh(m) => {
-            for k in 0..g.blades {
-                let part = m.subset(|i| lab.blade[i] == Some(k as u8));
-                write_atomic(&out.join(format!("blades/blade_{k}.stl")), &[part.to_stl()], inputs)?;
-            }
-            let hub = m.subset(|i| lab.blade[i].is_none());
-            if !hub.triangles.is_empty() {
-                write_atomic(&out.join("blades/hub.stl"), &[hub.to_stl()], inputs)?;
-            }
-        }
-        Aligned::Cloud(c) => {
-            write_atomic(&out.join("blades/labelled.ply"), &[to_ply(c, Some(&lab.blade))], inputs)?;
-        }
-    }
-    Ok(())
-}
-
-/// Writes the scan stage's outputs: geometry.csv, geom.txt, prop.qprop, airfoils/,
-/// plots/, blades/, scan.json.
-pub fn write(a: &ScanSpec, sc: &Scanned) -> Result<()> {
-    let g = &sc.geometry;
-    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(a.clone()));
-    let lock = propbet_api::files::claim_folder(&a.out, &command)?;
-    std::fs::create_dir_all(a.out.join("airfoils")).with_context(|| format!("{}: cannot create", a.out.display()))?;
-    std::fs::create_dir_all(a.out.join("plots")).with_context(|| format!("{}: cannot create", a.out.display()))?;
-    let inputs: Vec<&Path> = std::iter::once(a.input.as_path())
-        .chain(a.reference.as_deref())
-        .collect();
-    let reference = sc.reference.as_deref();
-    let big_r = g.tip_radius;
-    // Geometry CSV.
-    write_atomic(&a.out.join("geometry.csv"), &[geometry_csv(g, reference)?], &inputs)?;
-    // UIUC-style table.
-    let mut geom = String::from("r/R    c/R     beta\n");
-    for s in &g.stations {
-        geom.push_str(&format!(
-            "{:.4} {:.4} {:.2}\n",
-            s.r_r,
-            s.chord / big_r,
-            s.beta.to_degrees()
-        ));
-    }
-    write_atomic(&a.out.join("geom.txt"), &[geom], &inputs)?;
-    // QPROP prop file.
-    write_atomic(&a.out.join("prop.qprop"), &[write_prop(&sc.prop.file)], &inputs)?;
-    // Airfoils, Selig order.
-    for (i, t) in &sc.airfoils {
-        write_atomic(
-            &a.out.join("airfoils").join(format!("station_{i:02}.dat")),
-            &[t],
-            &inputs,
-        )?;
-    }
-    // Plots.
-    write_figure(
-        &a.out.join("plots/sections.svg"),
-        &propbet_report::scan::sections_figure(g),
-        &inputs,
-    )?;
-    write_figure(
-        &a.out.join("plots/distributions.svg"),
-        &propbet_report::scan::distributions_figure(g, reference),
-        &inputs,
-    )?;
-    if let Some(c) = &g.colour {
-        let fig = propbet_report::scan::colour_figure(c);
-        write_figure(&a.out.join("plots/colour_histogram.svg"), &fig, &inputs)?;
-    }
-    write_blades(&a.out, g, &inputs)?;
-    let lab = &g.labelled;
-    let (per_blade, hub_elements) = lab.counts(g.blades);
-    // Summary.
-    let summary = json!({
-        "labels": {
-            "elements": if matches!(lab.surface, Aligned::Mesh(_)) { "triangles" } else { "points" },
-            "per_blade": per_blade,
-            "hub": hub_elements,
-        },
-        "input": a.input.display().to_string(),
-        "blades": g.blades,
-        "tip_radius_mm": 1000.0 * g.tip_radius,
-        "hub_radius_mm": g.hub_radius.map(|h| 1000.0 * h),
-        "root_radius_mm": 1000.0 * g.root_radius,
-        "section_kind": g.kind,
-        "samples": g.samples,
-        // Millimetres per input unit, as the box's known size says.
-        "box": g.box_fit.as_ref().map(|b| json!({"scale": 1000.0 * b.scale, "rms_mm": 1000.0 * b.rms, "faces": b.faces})),
-        "notes": g.notes,
-        "stations": g.stations,
-        "failed": g.failed,
-    });
-    write_atomic(
-        &a.out.join("scan.json"),
-        &[serde_json::to_string_pretty(&summary)?],
-        &inputs,
-    )?;
-    lock.finish()
+/// Writes the scan stage's outputs into `spec.out` (`propbet_api::outputs::scan`).
+pub fn write(spec: &ScanSpec, sc: &Scanned) -> Result<()> {
+    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(spec.clone()));
+    propbet_api::outputs::scan::outputs(spec, sc)?.write(&spec.out, &command, &inputs(spec))
 }
 
 /// The scan on the terminal.

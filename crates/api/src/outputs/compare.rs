@@ -71,7 +71,7 @@ pub fn outputs(
     })?;
     let mut files = Outputs::default();
     for (name, fig) in &rep.figures {
-        files.figure("plots", name, fig)?;
+        files.figure(&format!("plots/{name}"), fig)?;
     }
     let mut json = serde_json::to_vec_pretty(&rep.json)?;
     json.push(b'\n');

@@ -34,7 +34,7 @@ pub fn outputs(spec: &DiagnoseSpec, d: &Diagnosed, command: &str, use_it: &str) 
     let rep = report::build(&d.data, dg, &prop, &entries, &d.refused, command, use_it)?;
     let mut files = Outputs::default();
     for (name, fig) in &rep.figures {
-        files.figure("plots", name, fig)?;
+        files.figure(&format!("plots/{name}"), fig)?;
     }
     let json = JsonOut {
         prop: &prop,
