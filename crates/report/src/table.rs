@@ -9,6 +9,7 @@ pub mod points;
 pub mod powered;
 pub mod props;
 pub mod sweep;
+pub mod validation;
 
 pub use number::{csv_rows, push_num, written, Num};
 
