@@ -5,4 +5,6 @@
 
 pub mod compare;
 pub mod diagnose;
+pub mod motor;
+pub mod predict;
 pub mod scan;

@@ -6,12 +6,9 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use propbet_api::measure::{DropReason, Format, Loads, MeasuredSet, Refused, Speed};
 use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, StageSpec};
 
-use propbet_report::table::{csv_rows, Num};
-
-/// `propbet predict`'s tables as columns ([`crate::predict::columns`]): the sweep's, the
+/// `propbet predict`'s tables as columns ([`propbet_api::outputs::predict::columns`]): the sweep's, the
 /// per-station table's when `stations`, and the count of station solutions that did not
 /// converge and of the points they are at.
 pub fn predict(
@@ -22,7 +19,8 @@ pub fn predict(
     Option<propbet_report::table::columns::Table>,
     (usize, usize),
 )> {
-    crate::predict::columns(spec, stations)
+    let model = crate::predict::load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), stations)?;
+    propbet_api::outputs::predict::columns(spec, &model, stations)
 }
 
 /// A number as propbet's tables write it (7 significant digits; empty when it is not finite).
@@ -75,116 +73,9 @@ pub fn measurements(spec: &MeasuredSpec) -> Result<(Vec<u8>, Vec<u8>)> {
     // As `compare` reads them: each file on its own, a refused one in the dropped table.
     let batch = propbet_pipeline::stages::load_batch(spec)?;
     Ok((
-        points_csv(&batch.names, &batch.sets)?,
-        dropped_csv(&batch.names, &batch.sets, &batch.refused)?,
+        propbet_report::table::measured::points(&batch.names, &batch.sets)?,
+        propbet_report::table::measured::dropped(&batch.names, &batch.sets, &batch.refused)?,
     ))
-}
-
-/// A measured point as a row.
-#[derive(serde::Serialize)]
-struct PointRow<'a> {
-    file: &'a str,
-    format: Format,
-    label: &'a str,
-    line_first: usize,
-    line_last: usize,
-    rpm: Num,
-    rpm_sd: Num,
-    samples: usize,
-    thrust_samples: Option<usize>,
-    torque_samples: Option<usize>,
-    v_m_s: Num,
-    v_sd: Num,
-    j: Num,
-    thrust_n: Num,
-    thrust_sd: Num,
-    torque_nm: Num,
-    torque_sd: Num,
-    ct: Num,
-    cp: Num,
-    temperature_k: Num,
-    pressure_pa: Num,
-    humidity: Num,
-    transient: usize,
-    flags: String,
-}
-
-fn points_csv(names: &[String], sets: &[MeasuredSet]) -> Result<Vec<u8>> {
-    let rpm = propbet_api::units::omega_to_rpm;
-    let rows = names.iter().zip(sets).flat_map(|(file, s)| {
-        s.points.iter().map(move |p| {
-            let (v, v_sd, j) = match p.speed {
-                Speed::Airspeed(v) => (Some(v.mean), v.sd, None),
-                Speed::AdvanceRatio(j) => (None, None, Some(j)),
-            };
-            let (thrust, torque, ct, cp) = match p.loads {
-                Loads::Forces { thrust, torque } => (Some(thrust), torque, None, None),
-                Loads::Coefficients { ct, cp } => (None, None, Some(ct), Some(cp)),
-            };
-            PointRow {
-                file,
-                format: s.format,
-                label: &p.label,
-                line_first: p.lines.0,
-                line_last: p.lines.1,
-                rpm: rpm(p.omega.mean).into(),
-                rpm_sd: p.omega.sd.map(rpm).into(),
-                samples: p.omega.n,
-                thrust_samples: thrust.map(|t| t.n),
-                torque_samples: torque.map(|t| t.n),
-                v_m_s: v.into(),
-                v_sd: v_sd.into(),
-                j: j.into(),
-                thrust_n: thrust.map(|t| t.mean).into(),
-                thrust_sd: thrust.and_then(|t| t.sd).into(),
-                torque_nm: torque.map(|t| t.mean).into(),
-                torque_sd: torque.and_then(|t| t.sd).into(),
-                ct: ct.into(),
-                cp: cp.into(),
-                temperature_k: p.air.temperature.into(),
-                pressure_pa: p.air.pressure.into(),
-                humidity: p.air.humidity.into(),
-                transient: p.transient,
-                flags: p.flags.join("; "),
-            }
-        })
-    });
-    Ok(csv_rows(rows, true)?)
-}
-
-/// A dropped row.
-#[derive(serde::Serialize)]
-struct DroppedRow<'a> {
-    file: &'a str,
-    /// Empty for a file refused whole.
-    line: Option<usize>,
-    /// A [`DropReason`] in snake case, or `file_refused`.
-    reason: String,
-    detail: &'a str,
-}
-
-fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> Result<Vec<u8>> {
-    let reason = |r: DropReason| {
-        serde_json::to_value(r)
-            .ok()
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default()
-    };
-    let rows = names.iter().zip(sets).flat_map(|(file, s)| {
-        s.dropped.iter().map(move |d| DroppedRow {
-            file,
-            line: Some(d.line),
-            reason: reason(d.reason),
-            detail: &d.detail,
-        })
-    });
-    let refused = refused.iter().map(|r| DroppedRow {
-        file: &r.file,
-        line: None,
-        reason: "file_refused".into(),
-        detail: &r.reason,
-    });
-    Ok(csv_rows(rows.chain(refused), true)?)
 }
 
 /// A blade file's rows as `propbet prop` reads them (the spec's file, units and reading), in
@@ -192,47 +83,7 @@ fn dropped_csv(names: &[String], sets: &[MeasuredSet], refused: &[Refused]) -> R
 /// own, or the file's global ones), as a table (CSV).
 pub fn stations(spec: &ModelSpec) -> Result<Vec<u8>> {
     let model = crate::prop::load_spec(spec)?;
-    let file = &model.loaded.file;
-    let blade = file.to_blade(propbet_api::qprop::RadiusReading::Documented);
-    let rows = (0..blade.r.len()).map(|i| {
-        let c = &blade.coeffs[i];
-        StationRow {
-            r_m: blade.r[i].into(),
-            r_over_tip: (blade.r[i] / blade.tip_radius).into(),
-            chord_m: blade.chord[i].into(),
-            beta_deg: blade.beta[i].to_degrees().into(),
-            cl0: c.cl0.into(),
-            cl_a_per_rad: c.cl_a.into(),
-            cl_min: c.cl_min.into(),
-            cl_max: c.cl_max.into(),
-            cd0: c.cd0.into(),
-            cd2u: c.cd2u.into(),
-            cd2l: c.cd2l.into(),
-            cl_cd0: c.clcd0.into(),
-            re_ref: c.re_ref.into(),
-            re_exp: c.re_exp.into(),
-        }
-    });
-    Ok(csv_rows(rows, true)?)
-}
-
-/// A prop file's row in SI.
-#[derive(serde::Serialize)]
-struct StationRow {
-    r_m: Num,
-    r_over_tip: Num,
-    chord_m: Num,
-    beta_deg: Num,
-    cl0: Num,
-    cl_a_per_rad: Num,
-    cl_min: Num,
-    cl_max: Num,
-    cd0: Num,
-    cd2u: Num,
-    cd2l: Num,
-    cl_cd0: Num,
-    re_ref: Num,
-    re_exp: Num,
+    Ok(propbet_report::table::stations::csv(&model.loaded.file)?)
 }
 
 /// `propbet predict --motor` in memory (its format and output files aside): the powered
@@ -268,11 +119,14 @@ pub fn fit_motor(
     kv: Option<f64>,
     kq: bool,
     name: Option<String>,
-) -> Result<(crate::motor_fit::Fitted, propbet_report::table::columns::Table)> {
+) -> Result<(
+    propbet_api::outputs::motor::Fitted,
+    propbet_report::table::columns::Table,
+)> {
     use propbet_api::motor::FitKind;
     let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
-    let f = crate::motor_fit::fitted(spec, kv, kind, name)?;
-    let steps = crate::motor_fit::steps(&f.fit)?;
+    let f = propbet_api::outputs::motor::fitted(spec, kv, kind, name)?;
+    let steps = propbet_report::table::motor::steps(&f.fit)?;
     Ok((f, steps))
 }
 

@@ -365,7 +365,9 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if let Some(o) = &spec.out {
                 create_parent(o)?;
             }
-            w.sweep = Some(crate::predict::write_sweep(spec, model, points)?);
+            let sweep = propbet_api::outputs::predict::sweep_table(spec, model, points)?;
+            emit(spec.out.as_deref(), &[&sweep], &spec.model.inputs())?;
+            w.sweep = Some(sweep);
             if let (Ok(x), Some(dir)) = (export, spec.out.as_ref().and_then(|o| o.parent())) {
                 write_atomic(
                     &dir.join(propbet_api::qprop::export::FILE_NAME),

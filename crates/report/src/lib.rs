@@ -9,6 +9,7 @@
 pub mod answer;
 pub mod compare;
 pub mod diagnose;
+pub mod hidden;
 pub mod page;
 pub mod polar;
 pub mod powered;

@@ -4,10 +4,13 @@
 //! propellers side by side ([`props`]). The binary writes the bytes these make.
 
 pub mod columns;
+pub mod measured;
+pub mod motor;
 mod number;
 pub mod points;
 pub mod powered;
 pub mod props;
+pub mod stations;
 pub mod sweep;
 pub mod validation;
 
