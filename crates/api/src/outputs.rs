@@ -7,4 +7,5 @@ pub mod compare;
 pub mod diagnose;
 pub mod motor;
 pub mod predict;
+pub mod props;
 pub mod scan;

@@ -3,14 +3,13 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::Args;
 use propbet_api::settings::values::parse_list;
 use propbet_pipeline::spec::{ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
 
 use crate::predict::{BladeArgs, FluidArgs};
-use propbet_api::files::{write_atomic, write_figure};
 
 /// Arguments of `propbet compare-props`.
 #[derive(Debug, Args)]
@@ -131,21 +130,9 @@ pub fn run(args: &ComparePropsArgs) -> Result<bool> {
         hover_thrust: args.hover,
         command: &command,
     };
-    let fig = propbet_report::props::figure(&props);
-    let html = propbet_report::props::html(&props, &setup, &fig)?;
     let inputs: Vec<&std::path::Path> = inputs.iter().map(PathBuf::as_path).collect();
     propbet_api::files::refuse_inputs_inside(&args.out, &inputs)?;
-    let plots = args.out.join("plots");
-    std::fs::create_dir_all(&plots).with_context(|| format!("{}: cannot create the directory", plots.display()))?;
-    for ext in ["svg", "png"] {
-        write_figure(&plots.join(format!("props.{ext}")), &fig, &inputs)?;
-    }
-    write_atomic(
-        &args.out.join("props.csv"),
-        &[propbet_report::table::props::csv(&props, args.hover)?],
-        &inputs,
-    )?;
-    write_atomic(&args.out.join("report.html"), &[html.as_bytes()], &inputs)?;
+    propbet_api::outputs::props::outputs(&props, &setup)?.write(&args.out, &command, &inputs)?;
     for a in propbet_report::props::answer(&props, &setup) {
         println!("{}", crate::output::wrapped(&a, "", "  "));
     }
