@@ -17,6 +17,7 @@
 //! ([`Values::Text`]: `4000:8000:1000`), and are named in every error by the name the caller
 //! used.
 
+pub mod case;
 pub mod files;
 mod motor_file;
 pub mod outputs;

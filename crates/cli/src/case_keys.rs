@@ -470,7 +470,7 @@ fn each_case_key_and_its_flag_give_the_same_spec() {
     let plan_of = |text: &str| {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("case.toml"), text).unwrap();
-        crate::run::plan(dir.path(), Path::new("out"), &xfoil.spec().unwrap())
+        propbet_api::case::plan(dir.path(), Path::new("out"), &xfoil.spec().unwrap())
     };
     let base_stages = plan_of(&base).unwrap().stages();
     let mut failures = Vec::new();

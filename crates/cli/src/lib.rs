@@ -388,7 +388,7 @@ mod tests {
         };
         let mut n = 0;
         for case in ["apcsf_10x4.7", "photofoil_8x4.5", "cam6x3"] {
-            let plan = run::plan(
+            let plan = propbet_api::case::plan(
                 &repo().join("props").join(case),
                 Path::new("out"),
                 &xfoil.spec().unwrap(),
