@@ -5,7 +5,8 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use crate::command_error::refuse;
+use crate::{CommandError, CommandResult as Result};
 use propbet_pipeline::case::{read_case, RunPlan};
 use propbet_pipeline::spec::XfoilProcessSpec;
 
@@ -26,7 +27,7 @@ fn default_case() -> Result<PathBuf> {
             tried.push(c);
         }
     }
-    bail!(
+    refuse!(
         "no case directory given and the default case is not at {}",
         tried
             .iter()
@@ -50,7 +51,7 @@ pub fn case_and_out(case: Option<&Path>, out: Option<&Path>) -> Result<(PathBuf,
         None => default_case()?,
     };
     if !dir.is_dir() {
-        bail!("{}: not a case directory", dir.display());
+        refuse!("{}: not a case directory", dir.display());
     }
     let out = match out {
         Some(o) => o.to_path_buf(),
@@ -70,7 +71,7 @@ pub fn case_and_out(case: Option<&Path>, out: Option<&Path>) -> Result<(PathBuf,
 pub fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Result<()> {
     if let (Ok(o), Ok(d)) = (out.canonicalize(), dir.canonicalize()) {
         if o == d || d.starts_with(&o) {
-            bail!(
+            refuse!(
                 "{}: the output directory would hold the case's own files",
                 out.display()
             );
@@ -80,7 +81,7 @@ pub fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Re
     let missing = plan.missing_inputs();
     if !missing.is_empty() {
         let list: Vec<String> = missing.iter().map(|f| f.display().to_string()).collect();
-        bail!(
+        refuse!(
             "{}: names {} not exist: {} (relative paths are taken from the case directory); nothing was run",
             dir.join("case.toml").display(),
             if list.len() == 1 {
@@ -96,18 +97,18 @@ pub fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Re
     let inputs: Vec<&Path> = inputs.iter().map(PathBuf::as_path).collect();
     // A link in the output folder is refused in its own words, not as an input of the case.
     crate::files::refuse_links_inside(out)?;
-    crate::files::refuse_inputs_below(out, &inputs).with_context(|| {
-        format!(
+    crate::files::refuse_inputs_below(out, &inputs).map_err(|e| {
+        e.context(format!(
             "{}: the case reads a file in the output directory",
             dir.join("case.toml").display()
-        )
+        ))
     })?;
     // A case reads its own files: one outside its folder is named, never read (its contents
     // are not echoed in an error), unless the run allows it.
     let outside = plan.outside_inputs();
     if !anywhere && !outside.is_empty() {
         let list: Vec<String> = outside.iter().map(|f| f.display().to_string()).collect();
-        bail!(
+        refuse!(
             "{}: names files outside the case's folder: {} (a case reads its own files: copy them in, or give \
              --inputs-anywhere); nothing was run",
             dir.join("case.toml").display(),
@@ -117,8 +118,12 @@ pub fn check_paths(plan: &RunPlan, dir: &Path, out: &Path, anywhere: bool) -> Re
     // The measurements are read now, before any stage: a case none of whose files reads stops
     // here, not after its polars and predictions.
     if let Some((c, _)) = &plan.compare {
-        propbet_pipeline::stages::load_batch(&c.measured)
-            .with_context(|| format!("{}: [measured] files; nothing was run", dir.join("case.toml").display()))?;
+        propbet_pipeline::stages::load_batch(&c.measured).map_err(|e| {
+            CommandError::from(e).context(format!(
+                "{}: [measured] files; nothing was run",
+                dir.join("case.toml").display()
+            ))
+        })?;
     }
     Ok(())
 }

@@ -5,7 +5,8 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use anyhow::{bail, Context, Result};
+use crate::command_error::refuse;
+use crate::{CommandError, CommandResult as Result};
 
 /// The file that marks an output folder as incomplete while a command writes it.
 pub const INCOMPLETE: &str = "INCOMPLETE.txt";
@@ -23,7 +24,8 @@ pub struct FolderLock {
 impl FolderLock {
     /// Every output is written: the marker goes (the lock goes with the guard).
     pub fn finish(self) -> Result<()> {
-        std::fs::remove_file(&self.marker).map_err(|e| anyhow::anyhow!("{}: cannot remove: {e}", self.marker.display()))
+        std::fs::remove_file(&self.marker)
+            .map_err(|e| CommandError::Message(format!("{}: cannot remove: {e}", self.marker.display())))
     }
 }
 
@@ -31,16 +33,18 @@ impl FolderLock {
 /// it; a file system without locks, some network mounts, is written unlocked) and marks it
 /// incomplete, naming `command`.
 pub fn claim_folder(dir: &Path, command: &str) -> Result<FolderLock> {
-    std::fs::create_dir_all(dir).map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", dir.display()))?;
-    let f = std::fs::File::open(dir).map_err(|e| anyhow::anyhow!("{}: cannot open: {e}", dir.display()))?;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| CommandError::Message(format!("{}: cannot create: {e}", dir.display())))?;
+    let f =
+        std::fs::File::open(dir).map_err(|e| CommandError::Message(format!("{}: cannot open: {e}", dir.display())))?;
     let file = match f.try_lock() {
         Ok(()) => Some(f),
-        Err(std::fs::TryLockError::WouldBlock) => bail!(
+        Err(std::fs::TryLockError::WouldBlock) => refuse!(
             "{}: another propbet is writing this folder; wait for it to finish or give another output folder",
             dir.display()
         ),
         Err(std::fs::TryLockError::Error(e)) if e.kind() == std::io::ErrorKind::Unsupported => None,
-        Err(std::fs::TryLockError::Error(e)) => bail!("{}: cannot lock: {e}", dir.display()),
+        Err(std::fs::TryLockError::Error(e)) => refuse!("{}: cannot lock: {e}", dir.display()),
     };
     let marker = dir.join(INCOMPLETE);
     write_atomic(
@@ -70,7 +74,7 @@ pub fn refuse_inputs_below(out: &Path, inputs: &[&Path]) -> Result<()> {
     let Ok(o) = out.canonicalize() else { return Ok(()) };
     for input in inputs {
         if input.canonicalize().is_ok_and(|i| i.starts_with(&o)) {
-            bail!(
+            refuse!(
                 "{}: this input is inside the output directory {}; choose another output directory",
                 input.display(),
                 out.display()
@@ -100,7 +104,7 @@ pub fn refuse_links_inside(out: &Path) -> Result<()> {
                 let to = std::fs::read_link(e.path())
                     .map(|t| t.display().to_string())
                     .unwrap_or_default();
-                bail!(
+                refuse!(
                     "{}: a symbolic link (to {to}) inside the output directory: propbet writes only into real \
                      folders there, so that no output lands on another file; remove the link or choose another output directory",
                     e.path().display()
@@ -124,7 +128,7 @@ pub fn refuse_outputs_over_inputs(outputs: &[&Path], inputs: &[&Path]) -> Result
             .iter()
             .any(|i| i.canonicalize().ok().as_deref() == Some(target.as_path()))
         {
-            bail!("{}: refusing to overwrite an input file", out.display());
+            refuse!("{}: refusing to overwrite an input file", out.display());
         }
     }
     Ok(())
@@ -148,18 +152,26 @@ pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path])
     {
         Some(tmp) => std::fs::rename(&tmp, path).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
-            anyhow::anyhow!("{}: cannot move the finished file into place: {e}", path.display())
+            CommandError::Message(format!(
+                "{}: cannot move the finished file into place: {e}",
+                path.display()
+            ))
         })?,
         None => {
-            let mut tmp = tempfile::NamedTempFile::new_in(dir)
-                .with_context(|| format!("{}: cannot create a file in {}", path.display(), dir.display()))?;
+            let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| {
+                CommandError::io(
+                    format!("{}: cannot create a file in {}", path.display(), dir.display()),
+                    e,
+                )
+            })?;
             {
                 let mut w = std::io::BufWriter::new(tmp.as_file_mut());
                 for c in chunks {
                     w.write_all(c.as_ref())
-                        .with_context(|| format!("{}: write failed", path.display()))?;
+                        .map_err(|e| CommandError::io(format!("{}: write failed", path.display()), e))?;
                 }
-                w.flush().with_context(|| format!("{}: write failed", path.display()))?;
+                w.flush()
+                    .map_err(|e| CommandError::io(format!("{}: write failed", path.display()), e))?;
             }
             // Temporary files are created private (0600); a result is an ordinary file.
             #[cfg(unix)]
@@ -167,8 +179,12 @@ pub fn write_atomic<B: AsRef<[u8]>>(path: &Path, chunks: &[B], inputs: &[&Path])
                 use std::os::unix::fs::PermissionsExt;
                 let _ = std::fs::set_permissions(tmp.path(), std::fs::Permissions::from_mode(0o644));
             }
-            tmp.persist(path)
-                .with_context(|| format!("{}: cannot move the finished file into place", path.display()))?;
+            tmp.persist(path).map_err(|e| {
+                CommandError::io(
+                    format!("{}: cannot move the finished file into place", path.display()),
+                    e.error,
+                )
+            })?;
         }
     }
     Ok(())
@@ -216,7 +232,7 @@ pub fn write_figure(path: &Path, fig: &propbet_plot::Figure, inputs: &[&Path]) -
     let bytes = match ext.as_deref() {
         Some("svg") => propbet_plot::svg(fig)?.into_bytes(),
         Some("png") => propbet_plot::png(fig)?,
-        _ => bail!("{}: plots are written as .svg or .png", path.display()),
+        _ => refuse!("{}: plots are written as .svg or .png", path.display()),
     };
     write_atomic(path, &[bytes], inputs)
 }
@@ -278,13 +294,14 @@ impl Outputs {
         let lock = claim_folder(out, command)?;
         for d in &self.dirs {
             let dir = out.join(d);
-            std::fs::create_dir_all(&dir).with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+            std::fs::create_dir_all(&dir)
+                .map_err(|e| CommandError::io(format!("{}: cannot create the directory", dir.display()), e))?;
         }
         for (name, bytes) in &self.files {
             let path = out.join(name);
             if let Some(dir) = path.parent().filter(|d| !d.exists()) {
                 std::fs::create_dir_all(dir)
-                    .with_context(|| format!("{}: cannot create the directory", dir.display()))?;
+                    .map_err(|e| CommandError::io(format!("{}: cannot create the directory", dir.display()), e))?;
             }
             write_atomic(&path, &[bytes], inputs)?;
         }

@@ -18,12 +18,14 @@
 //! used.
 
 pub mod case;
+mod command_error;
 pub mod files;
 mod motor_file;
 pub mod outputs;
 mod request;
 mod types;
 
+pub use command_error::{CommandError, CommandResult};
 pub use motor_file::{motor, motor_text, read_motor};
 pub use types::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
 pub use types::{

@@ -20,7 +20,7 @@ pub fn predict(
     (usize, usize),
 )> {
     let model = crate::predict::load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), stations)?;
-    propbet_api::outputs::predict::columns(spec, &model, stations)
+    Ok(propbet_api::outputs::predict::columns(spec, &model, stations)?)
 }
 
 /// A number as propbet's tables write it (7 significant digits; empty when it is not finite).

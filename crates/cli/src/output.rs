@@ -9,7 +9,7 @@ use anyhow::{Context, Result};
 /// Writes `chunks` to `path`, or to standard output when `path` is `None` or `-`.
 pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path]) -> Result<()> {
     match path {
-        Some(p) if p != Path::new("-") => propbet_api::files::write_atomic(p, chunks, inputs),
+        Some(p) if p != Path::new("-") => Ok(propbet_api::files::write_atomic(p, chunks, inputs)?),
         _ => {
             let mut out = std::io::stdout().lock();
             for c in chunks {

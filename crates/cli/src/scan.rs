@@ -146,7 +146,7 @@ fn inputs(spec: &ScanSpec) -> Vec<&Path> {
 /// Writes the scan stage's outputs into `spec.out` (`propbet_api::outputs::scan`).
 pub fn write(spec: &ScanSpec, sc: &Scanned) -> Result<()> {
     let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(spec.clone()));
-    propbet_api::outputs::scan::outputs(spec, sc)?.write(&spec.out, &command, &inputs(spec))
+    Ok(propbet_api::outputs::scan::outputs(spec, sc)?.write(&spec.out, &command, &inputs(spec))?)
 }
 
 /// The scan on the terminal.

@@ -207,9 +207,9 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated) -> Result<
             StageSpec::Scan(_) | StageSpec::Predict(_) | StageSpec::Powered(_) => {}
         }
     }
-    write_atomic(
+    Ok(write_atomic(
         &dir.join("compare/band_sources.csv"),
         &[propbet_report::table::validation::band_sources(v)?],
         &[],
-    )
+    )?)
 }

@@ -265,7 +265,14 @@ fn the_binary_parses_prints_and_writes_nothing_it_computes() {
             }
         }
     }
-    assert!(found.is_empty(), "computed or written in the binary:\n{}", found.join("\n"));
+    assert!(
+        found.is_empty(),
+        "computed or written in the binary:\n{}",
+        found.join("\n")
+    );
     const CEILING: usize = 4227;
-    assert!(lines <= CEILING, "the binary has {lines} non-test lines, more than {CEILING}");
+    assert!(
+        lines <= CEILING,
+        "the binary has {lines} non-test lines, more than {CEILING}"
+    );
 }

@@ -1,7 +1,7 @@
 //! `propbet compare`'s outputs: report.html, metrics.json, summary.json, summary.md,
 //! points.csv, electric.csv (with a motor) and the plots.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 use propbet_pipeline::model::Model;
 use propbet_pipeline::spec::CompareSpec;
 use propbet_pipeline::stages::{Compared, Reference};

@@ -1,7 +1,7 @@
 //! `propbet diagnose`'s outputs: report.html, diagnosis.json, summary.json, summary.md and the
 //! plots.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 use propbet_pipeline::spec::DiagnoseSpec;
 use propbet_pipeline::stages::Diagnosed;
 use propbet_report::compare::FileEntry;

@@ -1,7 +1,7 @@
 //! `propbet motor fit`'s motor, in memory: the fit, the QPROP motor file with the fit's
 //! numbers in its comments, and the two sentences that say it.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 
 use crate::motor::{write_motor, FitKind, MotorFile};
 
@@ -27,7 +27,7 @@ pub fn fitted(
 ) -> Result<Fitted> {
     if let Some(kv) = kv {
         if !(kv > 0.0 && kv.is_finite()) {
-            anyhow::bail!("--kv {kv}: Kv is a positive number of rpm per volt");
+            crate::command_error::refuse!("--kv {kv}: Kv is a positive number of rpm per volt");
         }
     }
     let f = propbet_pipeline::stages::fit_motor(spec, kv, kind)?;

@@ -1,7 +1,7 @@
 //! `propbet predict`'s tables, in memory: the sweep (CSV or JSON, with the band when asked)
 //! and the per-station table, solved in parallel over a loaded model.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 use propbet_bemt::PointResult;
 use propbet_pipeline::band::BandSpec;
 use propbet_pipeline::model::Model;

@@ -1,6 +1,6 @@
 //! `propbet compare-props`' outputs: report.html, props.csv and the figure.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 use propbet_pipeline::stages::SideProp;
 use propbet_report::props::Setup;
 

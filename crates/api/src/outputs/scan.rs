@@ -1,7 +1,7 @@
 //! `propbet scan`'s outputs: geometry.csv, geom.txt, prop.qprop, airfoils/, plots/, blades/
 //! and scan.json.
 
-use anyhow::Result;
+use crate::CommandResult as Result;
 use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::Scanned;
 use serde_json::json;
