@@ -362,10 +362,10 @@ fn the_invariants_grep_can_see_hold() {
                 }
             }
         }
-        // Outputs are written atomically by the CLI's writers; the polar cache and XFOIL's
+        // Outputs are written atomically by the API's writers; the polar cache and XFOIL's
         // own run folder are the only other files written.
         let writers = [
-            "crates/cli/src/output.rs",
+            "crates/api/src/files.rs",
             "crates/polar/src/compute.rs",
             "xfoil_runner/",
         ];
