@@ -1,13 +1,11 @@
 //! How polars are made, shared by every command that makes them: the engine, XFOIL and its
 //! cache (`XfoilProcess`), the progress bar, where a blade file's sections come from
-//! (`DesignArgs`), and the polars stage in a few lines for the terminal.
+//! (`DesignArgs`).
 
 use std::path::PathBuf;
 
 use clap::Args;
-use propbet_api::polar::Makers;
 use propbet_pipeline::spec::XfoilProcessSpec;
-use propbet_pipeline::stages::Polars;
 
 /// The XFOIL executable, the polar cache and the progress bar (shared by every command that
 /// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
@@ -159,48 +157,4 @@ pub struct DesignArgs {
     /// A directory of airfoil coordinates (`e63.dat`, ...) looked in before propbet's own.
     #[arg(long, value_name = "DIR")]
     pub airfoils: Option<PathBuf>,
-}
-
-/// The polars stage in two short lines (the terminal of `propbet run`): what XFOIL or
-/// NeuralFoil made and how often XFOIL failed (the tables interpolate across), and how far the
-/// exported QPROP file's law is from the tables the prediction uses; every station's detail is
-/// in the report.
-pub fn polars_brief(p: &Polars) -> Vec<String> {
-    let stations = &p.blade.stations;
-    let makers = Makers::of(stations.iter().flat_map(|s| &s.polars));
-    let unconverged: usize = stations
-        .iter()
-        .map(|s| s.polars.iter().filter(|pol| !pol.unconverged_deg.is_empty()).count())
-        .sum();
-    let faults: usize = stations
-        .iter()
-        .map(|s| s.polars.iter().map(|pol| pol.faults.len()).sum::<usize>())
-        .sum();
-    let without = stations.iter().filter(|s| s.polars.is_empty()).count();
-    let mut out = vec![format!(
-        "{} stations, {} used as tables{}",
-        stations.len(),
-        makers.words(),
-        if without > 0 {
-            format!(", {without} stations without a polar")
-        } else {
-            String::new()
-        }
-    )];
-    if let Some(d) = makers.doubts() {
-        out.push(d);
-    }
-    if unconverged + faults > 0 {
-        out.push(format!(
-            "XFOIL missed some angles in {unconverged} polars and failed {faults} times: the tables interpolate across"
-        ));
-    }
-    if let Some(e) = &p.export {
-        out.push(format!(
-            "the exported QPROP file's law differs from these tables by {:.1} % in CT, {:.1} % in CP (median)",
-            100.0 * e.ct.median,
-            100.0 * e.cp.median
-        ));
-    }
-    out
 }

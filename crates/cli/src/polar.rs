@@ -13,7 +13,7 @@ use propbet_pipeline::spec::{PolarsSpec, XfoilSpec};
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
 use propbet_plot::Figure;
 
-pub use crate::engine::{polars_brief, Bar, DesignArgs, XfoilProcess};
+pub use crate::engine::{Bar, DesignArgs, XfoilProcess};
 use crate::output::emit;
 use crate::predict::FluidArgs;
 

@@ -179,7 +179,7 @@ pub fn load_model_at(
         .prop
         .file_name()
         .map_or_else(|| spec.prop.display().to_string(), |n| n.to_string_lossy().into());
-    let brief: Vec<String> = crate::engine::polars_brief(&polars)
+    let brief: Vec<String> = propbet_report::polar::brief(&polars)
         .into_iter()
         .filter(|l| !l.starts_with("the exported QPROP file"))
         .collect();

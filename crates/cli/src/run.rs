@@ -240,7 +240,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             }
             create_parent(&spec.out_prop)?;
             crate::polar::write_polars(spec, p)?;
-            w.brief = crate::polar::polars_brief(p);
+            w.brief = propbet_report::polar::brief(p);
         }
         (StageSpec::Predict(spec), Finished::Predict(points, model, export)) => {
             if verbose {
@@ -261,24 +261,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
                     &spec.model.inputs(),
                 )?;
             }
-            let unconverged = points.iter().filter(|p| p.not_converged > 0).count();
-            w.brief.push(format!(
-                "{} operating points at {} speeds{}{}",
-                points.len(),
-                spec.omegas.len(),
-                if unconverged > 0 {
-                    format!(", {unconverged} with stations that did not converge")
-                } else {
-                    String::new()
-                },
-                spec.out
-                    .as_ref()
-                    .map_or(String::new(), |o| format!(" -> {}", o.display()))
-            ));
-            w.brief.push(match export {
-                Ok(x) => format!("{}: {}", propbet_api::qprop::export::FILE_NAME, x.fidelity.brief()),
-                Err(e) => format!("no QPROP export: {e}"),
-            });
+            w.brief = propbet_report::run::brief::predict(points, spec, export);
         }
         (StageSpec::Powered(spec), Finished::Powered(table, model, fluid)) => {
             let run =
@@ -315,18 +298,7 @@ fn write_stage(record: &StageRecord, made: &Finished, verbose: bool) -> Result<W
             if verbose {
                 crate::compare::print(spec, c, reference.as_ref());
             }
-            w.brief = propbet_report::answer::brief(&c.sets, &c.metrics, reference.as_ref());
-            let (ct, cp, n) = propbet_report::compare::accuracy(&c.points);
-            if n > 0 {
-                w.brief.push(format!(
-                    "median error CT {:.1} %, CP {:.1} % over {n} points below 85 % of the zero-thrust J (as validate scores)",
-                    100.0 * ct,
-                    100.0 * cp
-                ));
-            }
-            if let Some(e) = &electric {
-                w.brief.push(propbet_report::compare::electric_sentence(e));
-            }
+            w.brief = propbet_report::run::brief::compare(c, reference.as_ref(), electric.as_ref());
             w.page = Some(page);
             w.reference = reference;
         }

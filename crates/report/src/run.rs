@@ -687,6 +687,7 @@ fn station_problem_list(s: &propbet_polar::blade::StationPolars) -> Vec<String> 
     v
 }
 
+pub mod brief;
 mod lead;
 pub use lead::calibrated_worse;
 use lead::lead_html;
