@@ -12,7 +12,7 @@ fn page() -> String {
     let mut s = String::from(
         "# Built-in effects\n\n\
          The physical effects `propbet diagnose` tries, each acting through one hook of the model \
-         (docs/effects.md: the hooks, and how to write your own). This page is generated from the \
+         ([Effects](effects.md): the hooks, and how to write your own). This page is generated from the \
          code (`crates/effects/src/builtin/`, one file per effect) by `crates/effects/tests/docs.rs`, \
          which fails when the two differ.\n\n\
          | effect | hooks | parameters |\n|---|---|---|\n",
