@@ -1,6 +1,6 @@
 //! The error of a command below the binary: the pipeline's, or of making and writing its
-//! outputs. Each says what the user gave (a file, a folder, a value) and why; the chain of
-//! causes is kept, so `{:#}` reads "what was done: why".
+//! outputs. Each says what the user gave (a file, a folder, a value) and why, its cause in
+//! its own message ("what was done: why"), as the pipeline's errors do.
 
 /// An error of a command's run below the binary.
 #[derive(Debug, thiserror::Error)]
@@ -28,31 +28,29 @@ pub enum CommandError {
     #[error("{0}")]
     Message(String),
     /// A file operation that failed, and what it was.
-    #[error("{context}")]
+    #[error("{context}: {cause}")]
     Io {
         /// What was done, naming the file.
         context: String,
         /// The operating system's reason.
-        #[source]
-        source: std::io::Error,
+        cause: std::io::Error,
     },
     /// An error with what was being done when it happened.
-    #[error("{context}")]
+    #[error("{context}: {cause}")]
     Context {
         /// What was being done.
         context: String,
         /// The error.
-        #[source]
-        source: Box<CommandError>,
+        cause: Box<CommandError>,
     },
 }
 
 impl CommandError {
     /// A failed file operation: `context` says what was done, naming the file.
-    pub fn io(context: impl Into<String>, source: std::io::Error) -> Self {
+    pub fn io(context: impl Into<String>, cause: std::io::Error) -> Self {
         CommandError::Io {
             context: context.into(),
-            source,
+            cause,
         }
     }
 
@@ -60,7 +58,7 @@ impl CommandError {
     pub fn context(self, context: impl Into<String>) -> Self {
         CommandError::Context {
             context: context.into(),
-            source: Box::new(self),
+            cause: Box::new(self),
         }
     }
 }
