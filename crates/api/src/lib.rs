@@ -20,6 +20,7 @@
 pub mod case;
 mod command_error;
 pub mod files;
+pub mod model;
 mod motor_file;
 pub mod outputs;
 mod request;

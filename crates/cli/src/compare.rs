@@ -14,7 +14,7 @@ use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_report::answer::ReferenceScore;
 use propbet_report::compare as report;
 
-use crate::predict::{cover, load_model_at, ModelArgs};
+use crate::predict::{load_model_at, ModelArgs};
 
 /// Which RPM column of a thrust-stand log to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -157,7 +157,7 @@ pub fn run(args: &CompareArgs) -> Result<bool> {
 /// clean, and what it wrote.
 pub fn run_spec(spec: &CompareSpec) -> Result<(bool, Written)> {
     propbet_api::files::refuse_inputs_inside(&spec.out, &inputs(spec))?;
-    let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
+    let model = load_model_at(&spec.model, || propbet_api::model::cover(&spec.measured), false)?;
     // A reference that cannot be read stops the command before anything is computed.
     let other = reference(spec, model.diameter)?;
     let c = stages::compare(&model, &spec.measured)?;

@@ -10,7 +10,7 @@ use propbet_pipeline::stages::{self, Diagnosed};
 use propbet_report::diagnose as report;
 
 use crate::compare::{print_measured, warn_faulty_rows, MeasuredArgs};
-use crate::predict::{cover, load_model_at, ModelArgs};
+use crate::predict::{load_model_at, ModelArgs};
 
 /// Arguments of `propbet diagnose`.
 #[derive(Debug, Args)]
@@ -60,7 +60,7 @@ pub fn run_spec(spec: &DiagnoseSpec) -> Result<(bool, Written)> {
     let mut inputs = spec.model.inputs();
     inputs.extend(spec.measured.inputs());
     propbet_api::files::refuse_inputs_inside(&spec.out, &inputs)?;
-    let model = load_model_at(&spec.model, || cover(&spec.measured), false)?;
+    let model = load_model_at(&spec.model, || propbet_api::model::cover(&spec.measured), false)?;
     let d = stages::diagnose(&model, spec)?;
     let written = write(spec, &d)?;
     print(spec, &d);

@@ -154,54 +154,39 @@ impl BladeArgs {
     }
 }
 
-/// Reads the model a spec names, printing the prop file's warnings; a blade file without
-/// coefficients has its polars computed over `points` (the command's operating points).
+/// Reads the model a spec names, printing what a person is told of it (the prop file's
+/// warnings; a blade file's polars, computed over `points`, with a progress bar).
 pub fn load_model_at(
     spec: &ModelSpec,
-    points: impl FnOnce() -> Result<(Vec<f64>, SweepAxis)>,
+    points: impl FnOnce() -> propbet_api::CommandResult<(Vec<f64>, SweepAxis)>,
     keep_stations: bool,
 ) -> Result<Model> {
-    if spec.design.is_none() {
-        return load_model(spec, keep_stations);
+    let bar = spec
+        .design
+        .as_ref()
+        .map(|d| crate::engine::Bar::new(d.process.quiet, d.process.engine));
+    let tick = |d, t| {
+        if let Some(b) = &bar {
+            b.tick(d, t);
+        }
+    };
+    let loaded = propbet_api::model::load(spec, points, keep_stations, &tick);
+    if let Some(b) = &bar {
+        b.clear();
     }
-    let (omegas, axis) = points()?;
-    let quiet = spec.design.as_ref().is_some_and(|d| d.process.quiet);
-    let bar = crate::engine::Bar::new(
-        quiet,
-        spec.design.as_ref().map(|d| d.process.engine).unwrap_or_default(),
-    );
-    let (m, polars) =
-        propbet_pipeline::stages::design_model(spec, omegas, axis, keep_stations, &|d, t| bar.tick(d, t))?
-            .ok_or_else(|| anyhow::anyhow!("{}: not a blade file without coefficients", spec.prop.display()))?;
-    bar.clear();
-    // What the polars are, in a line (the exported file's fidelity is no question here).
-    let name = spec
-        .prop
-        .file_name()
-        .map_or_else(|| spec.prop.display().to_string(), |n| n.to_string_lossy().into());
-    let brief: Vec<String> = propbet_report::polar::brief(&polars)
-        .into_iter()
-        .filter(|l| !l.starts_with("the exported QPROP file"))
-        .collect();
-    eprintln!(
-        "{}",
-        crate::output::wrapped(&format!("propbet: polars of {name}: {}", brief.join("; ")), "", "  ")
-    );
-    if let Some(w) = &polars.cache_warning {
+    let loaded = loaded?;
+    if let Some(p) = &loaded.polars {
+        eprintln!("{}", crate::output::wrapped(&format!("propbet: {p}"), "", "  "));
+    }
+    for w in &loaded.warnings {
         eprintln!("propbet: warning: {w}");
     }
-    Ok(m)
+    Ok(loaded.model)
 }
 
-/// Reads the model a spec names, printing the prop file's warnings.
+/// Reads a QPROP prop file's model, printing its warnings.
 pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
-    if spec.design.is_some() {
-        anyhow::bail!(
-            "{}: a blade file without section coefficients; this command reads QPROP prop files only",
-            spec.prop.display()
-        );
-    }
-    let m = Model::load(spec, keep_stations)?;
+    let m = propbet_api::model::prop_file(spec, keep_stations)?;
     for w in &m.loaded.warnings {
         eprintln!("propbet: warning: {w}");
     }
@@ -345,10 +330,4 @@ pub fn run(args: &PredictArgs) -> Result<bool> {
         }
     }
     Ok(failed == 0)
-}
-
-/// The operating points a blade file's polars cover for a comparison: the measured range.
-pub fn cover(measured: &propbet_pipeline::spec::MeasuredSpec) -> Result<(Vec<f64>, SweepAxis)> {
-    let (omegas, js) = propbet_pipeline::stages::cover(measured)?;
-    Ok((omegas, SweepAxis::J(js)))
 }
