@@ -5,6 +5,7 @@
 
 pub mod compare;
 pub mod diagnose;
+pub mod measured;
 pub mod motor;
 pub mod predict;
 pub mod props;

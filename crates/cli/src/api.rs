@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Result};
-use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, StageSpec};
+use propbet_pipeline::spec::{ModelSpec, PredictSpec, StageSpec};
 
 /// `propbet predict`'s tables as columns ([`propbet_api::outputs::predict::columns`]): the sweep's, the
 /// per-station table's when `stations`, and the count of station solutions that did not
@@ -21,13 +21,6 @@ pub fn predict(
 )> {
     let model = crate::predict::load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), stations)?;
     Ok(propbet_api::outputs::predict::columns(spec, &model, stations)?)
-}
-
-/// A number as propbet's tables write it (7 significant digits; empty when it is not finite).
-pub fn format_number(v: f64) -> String {
-    let mut b = Vec::new();
-    propbet_report::table::push_num(&mut b, Some(v));
-    String::from_utf8(b).unwrap_or_default()
 }
 
 /// The prediction of a case directory, as `propbet run` makes it into `out`: its scan and
@@ -67,17 +60,6 @@ pub fn case_prediction(
     bail!("{}: the case has no prediction stage", dir.display())
 }
 
-/// Measured files read as `compare` reads them: a table of the points (CSV, one row per
-/// point, every file's in order) and one of the rows dropped (CSV).
-pub fn measurements(spec: &MeasuredSpec) -> Result<(Vec<u8>, Vec<u8>)> {
-    // As `compare` reads them: each file on its own, a refused one in the dropped table.
-    let batch = propbet_pipeline::stages::load_batch(spec)?;
-    Ok((
-        propbet_report::table::measured::points(&batch.names, &batch.sets)?,
-        propbet_report::table::measured::dropped(&batch.names, &batch.sets, &batch.refused)?,
-    ))
-}
-
 /// A blade file's rows as `propbet prop` reads them (the spec's file, units and reading), in
 /// SI: radius, chord, blade angle and the ten QPROP section coefficients of each row (a row's
 /// own, or the file's global ones), as a table (CSV).
@@ -110,24 +92,6 @@ pub fn powered(
         .then(|| propbet_report::table::sweep::stations_table(&run.solved()))
         .transpose()?;
     Ok((run.table()?, problems, per_station))
-}
-
-/// `propbet motor fit` in memory (`kq`: `--kq`, a type 2 motor): the fit, the motor file's
-/// text, and the fitted steps.
-pub fn fit_motor(
-    spec: &MeasuredSpec,
-    kv: Option<f64>,
-    kq: bool,
-    name: Option<String>,
-) -> Result<(
-    propbet_api::outputs::motor::Fitted,
-    propbet_report::table::columns::Table,
-)> {
-    use propbet_api::motor::FitKind;
-    let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
-    let f = propbet_api::outputs::motor::fitted(spec, kv, kind, name)?;
-    let steps = propbet_report::table::motor::steps(&f.fit)?;
-    Ok((f, steps))
 }
 
 /// `propbet compare-props` in memory (the battery and ESC as `battery`'s text says them;

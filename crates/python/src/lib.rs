@@ -27,7 +27,7 @@ fn execute(py: Python<'_>, argv: Vec<String>) -> PyResult<bool> {
 /// A number as propbet's tables write it (7 significant digits).
 #[pyfunction]
 fn format_number(v: f64) -> String {
-    propbet_cli::api::format_number(v)
+    propbet_report::table::text(v)
 }
 
 /// The module.

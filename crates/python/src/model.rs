@@ -272,7 +272,7 @@ pub fn read_measurements<'py>(
     let request = measured_request(files, poles, rpm_source, atmosphere, rho, columns);
     let (points, dropped) = guarded(py, move || {
         let spec = request.spec()?;
-        propbet_cli::api::measurements(&spec)
+        propbet_api::outputs::measured::tables(&spec)
     })?;
     Ok((PyBytes::new(py, &points), PyBytes::new(py, &dropped)))
 }

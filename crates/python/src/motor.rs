@@ -233,7 +233,9 @@ pub fn fit_motor<'py>(
     columns: Option<PathBuf>,
 ) -> PyResult<(Motor, String, Bound<'py, PyDict>, Vec<Bound<'py, PyTuple>>)> {
     let request = crate::model::measured_request(files, poles, rpm_source, atmosphere, rho, columns);
-    let (f, steps) = guarded(py, move || propbet_cli::api::fit_motor(&request.spec()?, kv, kq, name))?;
+    let (f, steps) = guarded(py, move || {
+        propbet_api::outputs::motor::fit(&request.spec()?, kv, kq, name)
+    })?;
     let m = &f.fit.fit;
     let summary = PyDict::new(py);
     summary.set_item("r", (m.r.value, m.r.plus_minus))?;

@@ -113,3 +113,17 @@ pub fn fitted(
         lines,
     })
 }
+
+/// `propbet motor fit` in memory (`kq`: a type 2 motor, its Kq fitted on its own): the fit,
+/// the motor file's text, and the fitted steps as a table.
+pub fn fit(
+    spec: &propbet_pipeline::spec::MeasuredSpec,
+    kv: Option<f64>,
+    kq: bool,
+    name: Option<String>,
+) -> Result<(Fitted, propbet_report::table::columns::Table)> {
+    let kind = if kq { FitKind::Type2 } else { FitKind::Type1 };
+    let f = fitted(spec, kv, kind, name)?;
+    let steps = propbet_report::table::motor::steps(&f.fit)?;
+    Ok((f, steps))
+}

@@ -189,6 +189,14 @@ pub fn push_num(buf: &mut Vec<u8>, v: Option<f64>) {
     buf.extend_from_slice(&out[..n]);
 }
 
+/// A number as propbet's tables write it, as text (7 significant digits; empty when it is not
+/// finite).
+pub fn text(v: f64) -> String {
+    let mut b = Vec::new();
+    push_num(&mut b, Some(v));
+    String::from_utf8(b).unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
