@@ -13,6 +13,11 @@
 //! The types these hand out, from the crates below, are in its modules [`bemt`], [`qprop`],
 //! [`motor`](types::motor), [`measure`], [`compare`], ... (the binary's one door to them).
 //!
+//! What the commands do with them, in memory: [`model`] reads a propeller (a blade file's
+//! polars computed), [`case`] checks a run before it starts, [`outputs`] makes each command's
+//! files and tables, and [`files`] writes them, the separate and explicit step. Errors are
+//! [`CommandError`]s.
+//!
 //! Values come as numbers ([`Values::Numbers`]) or as the text a flag takes
 //! ([`Values::Text`]: `4000:8000:1000`), and are named in every error by the name the caller
 //! used.
