@@ -25,34 +25,9 @@ pub struct ExportArgs {
     /// table or a blade table, as `predict --prop` takes it.
     #[arg(long, required_unless_present = "measured")]
     pub prop: Option<PathBuf>,
-    /// Tabulated polars for the prediction (`propbet polars --out-polars`), as `predict --polars`.
-    #[arg(long, requires = "prop")]
-    pub polars: Option<PathBuf>,
-    /// The sections of a blade file without coefficients (APC's PE0, a UIUC table, a blade
-    /// table), as `predict` takes them.
+    /// How the prop file is read and what is changed in it (as `predict` takes them).
     #[command(flatten)]
-    pub blade: crate::predict::BladeArgs,
-    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
-    pub rotation: Option<String>,
-    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
-    pub drag_factor: Option<f64>,
-    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help, requires = "prop")]
-    pub units: Option<String>,
-    /// Collective blade-angle change of the prediction [deg].
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, requires = "prop")]
-    pub dbeta: f64,
-    /// Read the prop file as QPROP 1.22 does (as `predict --qprop-compat`).
-    #[arg(long, requires = "prop")]
-    pub qprop_compat: bool,
-    /// Switch the tip-loss factor off.
-    #[arg(long, requires = "prop")]
-    pub no_tip_loss: bool,
-    /// An effect added to the prediction (as `predict --effect`; repeatable).
-    #[arg(long = "effect", value_name = "SPEC", requires = "prop")]
-    pub effect: Vec<String>,
-    /// TOML file of user-defined effects, usable by --effect.
-    #[arg(long, requires = "prop")]
-    pub user_effects: Option<PathBuf>,
+    pub model: crate::predict::ModelFlags,
     /// Rotation speeds of the prediction [rpm]: a list, `start:stop:step` or `start:stop/N`.
     #[arg(
         long,
@@ -142,27 +117,15 @@ fn parse_range(text: &str) -> Result<(f64, f64)> {
 
 impl ExportArgs {
     fn model_spec(&self, prop: &Path) -> Result<ModelSpec> {
-        let request = propbet_api::ModelRequest {
-            units: self.units.clone(),
-            dbeta_deg: self.dbeta,
-            qprop_compat: self.qprop_compat,
-            no_tip_loss: self.no_tip_loss,
-            effects: self.effect.clone(),
-            user_effects: self.user_effects.clone(),
-            polars: self.polars.clone(),
-            rotation: self.rotation.clone(),
-            drag_factor: self.drag_factor,
-            ..self.blade.request(prop)
-        };
-        Ok(request.spec()?)
+        Ok(self.model.request(prop).spec()?)
     }
 
     fn inputs(&self) -> Vec<&Path> {
         let mut v: Vec<&Path> = self.measured.iter().map(PathBuf::as_path).collect();
         v.extend(self.prop.as_deref());
-        v.extend(self.polars.as_deref());
+        v.extend(self.model.polars.as_deref());
         v.extend(self.columns.as_deref());
-        v.extend(self.user_effects.as_deref());
+        v.extend(self.model.user_effects.as_deref());
         v
     }
 }

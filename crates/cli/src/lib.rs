@@ -358,8 +358,8 @@ mod tests {
         };
         assert_eq!(a.to, ["all"]);
         assert_eq!(a.out, std::path::PathBuf::from("r/export"));
-        assert_eq!(a.effect, ["pitch-offset:deg=1.2"]);
-        assert!(a.polars.is_some() && a.j.is_some());
+        assert_eq!(a.model.effect, ["pitch-offset:deg=1.2"]);
+        assert!(a.model.polars.is_some() && a.j.is_some());
     }
 
     /// A spec's printed command line parses back to the same spec.

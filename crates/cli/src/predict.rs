@@ -68,35 +68,44 @@ pub struct ModelArgs {
     /// last three have no section coefficients: their polars are computed first (`--engine`).
     #[arg(long)]
     pub prop: PathBuf,
+    /// How to read it, and what to change in it.
+    #[command(flatten)]
+    pub flags: ModelFlags,
+}
+
+/// How a blade file is read and what is changed in it: the flags of a model beside its
+/// `--prop` (each needs one: `export` takes measurements without it).
+#[derive(Debug, Args)]
+pub struct ModelFlags {
     /// The sections of a blade file without coefficients.
     #[command(flatten)]
     pub blade: BladeArgs,
     /// Collective blade-angle change [deg].
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, requires = "prop")]
     pub dbeta: f64,
-    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help)]
+    #[arg(long = propbet_api::settings::UNITS.flag, help = propbet_api::settings::UNITS.help, requires = "prop")]
     pub units: Option<String>,
     /// Reproduce QPROP 1.22 exactly: R on line 2 unscaled, REref of the first station everywhere.
-    #[arg(long)]
+    #[arg(long, requires = "prop")]
     pub qprop_compat: bool,
     /// Switch the tip-loss factor off.
-    #[arg(long)]
+    #[arg(long, requires = "prop")]
     pub no_tip_loss: bool,
     /// Use the tabulated XFOIL polars of this file (from `propbet polars --out-polars`) as the
     /// section model, instead of the prop file's QPROP coefficients.
-    #[arg(long)]
+    #[arg(long, requires = "prop")]
     pub polars: Option<PathBuf>,
-    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel")]
+    #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel", requires = "prop")]
     pub rotation: Option<String>,
-    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K")]
+    #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K", requires = "prop")]
     pub drag_factor: Option<f64>,
     /// Add a physical effect to the model: `id` or `id:param=value[,param=value]`, for
     /// example `pitch-offset:deg=1.2` or `torque-tare:q0=0.002,q1=2e-6` (repeatable; see
     /// `propbet effects` for the list). Parameters not given take their neutral value.
-    #[arg(long = "effect", value_name = "SPEC")]
+    #[arg(long = "effect", value_name = "SPEC", requires = "prop")]
     pub effect: Vec<String>,
     /// TOML file of user-defined effects (formulas on a hook), usable by `--effect`.
-    #[arg(long)]
+    #[arg(long, requires = "prop")]
     pub user_effects: Option<PathBuf>,
 }
 
@@ -120,8 +129,19 @@ pub struct BladeArgs {
 impl ModelArgs {
     /// What the flags ask for.
     pub fn request(&self) -> Result<ModelRequest> {
-        Ok(ModelRequest {
-            prop: self.prop.clone(),
+        Ok(self.flags.request(&self.prop))
+    }
+
+    /// The model's spec (flags in SI).
+    pub fn spec(&self) -> Result<ModelSpec> {
+        Ok(self.request()?.spec()?)
+    }
+}
+
+impl ModelFlags {
+    /// What the flags ask for of the blade file `prop`.
+    pub fn request(&self, prop: &std::path::Path) -> ModelRequest {
+        ModelRequest {
             dbeta_deg: self.dbeta,
             units: self.units.clone(),
             qprop_compat: self.qprop_compat,
@@ -131,13 +151,8 @@ impl ModelArgs {
             drag_factor: self.drag_factor,
             effects: self.effect.clone(),
             user_effects: self.user_effects.clone(),
-            ..self.blade.request(&self.prop)
-        })
-    }
-
-    /// The model's spec (flags in SI).
-    pub fn spec(&self) -> Result<ModelSpec> {
-        Ok(self.request()?.spec()?)
+            ..self.blade.request(prop)
+        }
     }
 }
 
