@@ -58,8 +58,6 @@ pub fn claim_folder(dir: &Path, command: &str) -> Result<FolderLock> {
     Ok(FolderLock { _file: file, marker })
 }
 
-/// Powers of ten 1e-32 ..= 1e32 (each literal is the correctly rounded double).
-#[rustfmt::skip]
 /// Refuses, before a command computes or writes anything, an output directory `out` that holds
 /// one of the command's `inputs` (files or directories): a later write could replace it.
 /// Nothing is inside a directory that does not exist yet.
