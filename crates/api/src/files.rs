@@ -268,14 +268,6 @@ impl Outputs {
         Ok(())
     }
 
-    /// The bytes of the file `name`, if there is one.
-    pub fn get(&self, name: &str) -> Option<&[u8]> {
-        self.files
-            .iter()
-            .find(|(n, _)| n == Path::new(name))
-            .map(|(_, b)| b.as_slice())
-    }
-
     /// The bytes of the file `name` taken out (empty if there is none).
     pub fn take(&mut self, name: &str) -> Vec<u8> {
         self.files

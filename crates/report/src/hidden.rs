@@ -39,8 +39,7 @@ pub fn csv(rows: &[(String, Finding)]) -> Result<Vec<u8>, crate::table::Error> {
             &f.note,
         ])?;
     }
-    w.into_inner()
-        .map_err(|e| crate::table::Error::Csv(e.into_error().into()))
+    Ok(crate::table::bytes(w)?)
 }
 
 /// How often each effect was found at each size, then each prop's answers.

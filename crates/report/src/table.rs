@@ -14,7 +14,7 @@ pub mod stations;
 pub mod sweep;
 pub mod validation;
 
-pub use number::{csv_rows, push_num, text, written, Num};
+pub use number::{bytes, csv_rows, push_num, text, written, Num};
 
 /// A table that could not be made: its CSV, its columns or its JSON.
 #[derive(Debug)]

@@ -56,6 +56,11 @@ pub fn csv_rows<T: serde::Serialize>(rows: impl IntoIterator<Item = T>, header: 
     for r in rows {
         w.serialize(r)?;
     }
+    bytes(w)
+}
+
+/// The bytes a CSV writer over memory wrote, once it is flushed.
+pub fn bytes(w: csv::Writer<Vec<u8>>) -> Result<Vec<u8>, csv::Error> {
     w.into_inner().map_err(|e| e.into_error().into())
 }
 

@@ -3,59 +3,56 @@
 use propbet_compare::ComparedPoint;
 use propbet_validate::{Row, Validated};
 
-use super::{Error, Num};
+use super::{bytes, csv_rows, Error, Num};
 
 /// validation.csv: one row per prop.
 pub fn csv(rows: &[Row]) -> Result<Vec<u8>, Error> {
-    let mut csv = csv::Writer::from_writer(Vec::new());
-    for r in rows {
-        // Rows are structs: the header comes from the same fields as the values.
-        csv.serialize(CsvRow {
-            prop: &r.prop,
-            points: r.points,
-            ct_median: Num::from(Some(r.ct.before.median)),
-            ct_p90: Num::from(Some(r.ct.before.p90)),
-            cp_median: Num::from(Some(r.cp.before.median)),
-            cp_p90: Num::from(Some(r.cp.before.p90)),
-            ct_median_after: Num::from(Some(r.ct.after.median)),
-            ct_p90_after: Num::from(Some(r.ct.after.p90)),
-            cp_median_after: Num::from(Some(r.cp.after.median)),
-            cp_p90_after: Num::from(Some(r.cp.after.p90)),
-            implausible_points: r.implausible,
-            stations_beyond_polars: r.beyond_polars.0,
-            station_solves: r.beyond_polars.1,
-            apc_points: r.per3.as_ref().map(|p| p.points),
-            apc_ct_median: Num::from(r.per3.as_ref().map(|p| p.ct.median)),
-            apc_ct_p90: Num::from(r.per3.as_ref().map(|p| p.ct.p90)),
-            apc_cp_median: Num::from(r.per3.as_ref().map(|p| p.cp.median)),
-            apc_cp_p90: Num::from(r.per3.as_ref().map(|p| p.cp.p90)),
-            twist_gap_deg: Num::from(Some(r.twist_gap)),
-            uiuc_geometry: r.uiuc_geometry,
-            assumed_section: r.assumed_section.as_deref(),
-            files_left_out: r.left_out.len(),
-            static_fm_error: Num::from(Some(r.static_fm)),
-            static_ct_error: Num::from(Some(r.regimes.static_points.ct)),
-            static_cp_error: Num::from(Some(r.regimes.static_points.cp)),
-            low_j_ct_error: Num::from(Some(r.regimes.low_j.ct)),
-            low_j_cp_error: Num::from(Some(r.regimes.low_j.cp)),
-            high_j_ct_error: Num::from(Some(r.regimes.high_j.ct)),
-            high_j_cp_error: Num::from(Some(r.regimes.high_j.cp)),
-            static_ct_rise_measured: Num::from(r.static_rise.map(|s| s.measured)),
-            static_ct_rise_predicted: Num::from(r.static_rise.map(|s| s.predicted)),
-            forward_ct_error_rpm_change: Num::from(r.forward_rpm_trend.map(|t| t.change)),
-            zero_thrust_j_change_measured: Num::from(r.zero_thrust_shift.map(|z| z.measured_change())),
-            zero_thrust_j_change_predicted: Num::from(r.zero_thrust_shift.and_then(|z| z.predicted_change())),
-            ladder: &r.ladder,
-            held_out_ladders: r.held_out_ladders.join(" / "),
-            repeatability: Num::from(r.repeatability),
-            outlier_reason: crate::validate::outlier_reason(r).unwrap_or_default(),
-            band_ct_coverage: Num::from(r.band[0].map(|c| c.inside)),
-            band_ct_half_width: Num::from(r.band[0].map(|c| c.half_width)),
-            band_cp_coverage: Num::from(r.band[1].map(|c| c.inside)),
-            band_cp_half_width: Num::from(r.band[1].map(|c| c.half_width)),
-        })?;
-    }
-    csv.into_inner().map_err(|e| Error::Csv(e.into_error().into()))
+    // Rows are structs: the header comes from the same fields as the values.
+    let rows = rows.iter().map(|r| CsvRow {
+        prop: &r.prop,
+        points: r.points,
+        ct_median: Num::from(Some(r.ct.before.median)),
+        ct_p90: Num::from(Some(r.ct.before.p90)),
+        cp_median: Num::from(Some(r.cp.before.median)),
+        cp_p90: Num::from(Some(r.cp.before.p90)),
+        ct_median_after: Num::from(Some(r.ct.after.median)),
+        ct_p90_after: Num::from(Some(r.ct.after.p90)),
+        cp_median_after: Num::from(Some(r.cp.after.median)),
+        cp_p90_after: Num::from(Some(r.cp.after.p90)),
+        implausible_points: r.implausible,
+        stations_beyond_polars: r.beyond_polars.0,
+        station_solves: r.beyond_polars.1,
+        apc_points: r.per3.as_ref().map(|p| p.points),
+        apc_ct_median: Num::from(r.per3.as_ref().map(|p| p.ct.median)),
+        apc_ct_p90: Num::from(r.per3.as_ref().map(|p| p.ct.p90)),
+        apc_cp_median: Num::from(r.per3.as_ref().map(|p| p.cp.median)),
+        apc_cp_p90: Num::from(r.per3.as_ref().map(|p| p.cp.p90)),
+        twist_gap_deg: Num::from(Some(r.twist_gap)),
+        uiuc_geometry: r.uiuc_geometry,
+        assumed_section: r.assumed_section.as_deref(),
+        files_left_out: r.left_out.len(),
+        static_fm_error: Num::from(Some(r.static_fm)),
+        static_ct_error: Num::from(Some(r.regimes.static_points.ct)),
+        static_cp_error: Num::from(Some(r.regimes.static_points.cp)),
+        low_j_ct_error: Num::from(Some(r.regimes.low_j.ct)),
+        low_j_cp_error: Num::from(Some(r.regimes.low_j.cp)),
+        high_j_ct_error: Num::from(Some(r.regimes.high_j.ct)),
+        high_j_cp_error: Num::from(Some(r.regimes.high_j.cp)),
+        static_ct_rise_measured: Num::from(r.static_rise.map(|s| s.measured)),
+        static_ct_rise_predicted: Num::from(r.static_rise.map(|s| s.predicted)),
+        forward_ct_error_rpm_change: Num::from(r.forward_rpm_trend.map(|t| t.change)),
+        zero_thrust_j_change_measured: Num::from(r.zero_thrust_shift.map(|z| z.measured_change())),
+        zero_thrust_j_change_predicted: Num::from(r.zero_thrust_shift.and_then(|z| z.predicted_change())),
+        ladder: &r.ladder,
+        held_out_ladders: r.held_out_ladders.join(" / "),
+        repeatability: Num::from(r.repeatability),
+        outlier_reason: crate::validate::outlier_reason(r).unwrap_or_default(),
+        band_ct_coverage: Num::from(r.band[0].map(|c| c.inside)),
+        band_ct_half_width: Num::from(r.band[0].map(|c| c.half_width)),
+        band_cp_coverage: Num::from(r.band[1].map(|c| c.inside)),
+        band_cp_half_width: Num::from(r.band[1].map(|c| c.half_width)),
+    });
+    Ok(csv_rows(rows, true)?)
 }
 
 /// A row of validation.csv.
@@ -169,5 +166,5 @@ pub fn band_sources(v: &Validated) -> Result<Vec<u8>, Error> {
         }
         csv.write_record(&r)?;
     }
-    csv.into_inner().map_err(|e| Error::Csv(e.into_error().into()))
+    Ok(bytes(csv)?)
 }
