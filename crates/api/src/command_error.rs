@@ -8,6 +8,9 @@ pub enum CommandError {
     /// The pipeline's (reading inputs, a stage).
     #[error(transparent)]
     Pipeline(#[from] propbet_pipeline::Error),
+    /// A value or setting out of its range.
+    #[error(transparent)]
+    Settings(#[from] propbet_settings::Error),
     /// Drawing a figure.
     #[error(transparent)]
     Plot(#[from] propbet_plot::PlotError),
@@ -45,6 +48,12 @@ pub enum CommandError {
     },
 }
 
+impl From<propbet_settings::BadSetting> for CommandError {
+    fn from(b: propbet_settings::BadSetting) -> Self {
+        CommandError::Settings(b.into())
+    }
+}
+
 impl CommandError {
     /// A failed file operation: `context` says what was done, naming the file.
     pub fn io(context: impl Into<String>, cause: std::io::Error) -> Self {
@@ -73,3 +82,15 @@ macro_rules! refuse {
     };
 }
 pub(crate) use refuse;
+
+/// An error and its causes in one line, "error: cause: cause" (as the binary prints errors).
+pub fn with_causes(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        text.push_str(": ");
+        text.push_str(&c.to_string());
+        cause = c.source();
+    }
+    text
+}

@@ -16,7 +16,8 @@
 //! What the commands do with them, in memory: [`model`] reads a propeller (a blade file's
 //! polars computed), [`case`] checks a run before it starts, [`outputs`] makes each command's
 //! files and tables, and [`files`] writes them, the separate and explicit step. Errors are
-//! [`CommandError`]s.
+//! [`CommandError`]s. [`commands`] runs each command whole, telling a [`console::Console`]
+//! what a person is told of it.
 //!
 //! Values come as numbers ([`Values::Numbers`]) or as the text a flag takes
 //! ([`Values::Text`]: `4000:8000:1000`), and are named in every error by the name the caller
@@ -24,6 +25,8 @@
 
 pub mod case;
 mod command_error;
+pub mod commands;
+pub mod console;
 pub mod files;
 pub mod model;
 mod motor_file;
@@ -31,7 +34,7 @@ pub mod outputs;
 mod request;
 mod types;
 
-pub use command_error::{CommandError, CommandResult};
+pub use command_error::{with_causes, CommandError, CommandResult};
 pub use motor_file::{motor, motor_text, read_motor};
 pub use types::motor::{Battery, Drive, KvSource, Motor, MotorFile, Supply};
 pub use types::{
@@ -43,8 +46,11 @@ pub use request::{
     SectionRequest, SweepRequest, Values,
 };
 
+/// The sources of the uncertainty band, in words (`--band`'s help).
+pub use propbet_pipeline::band::SOURCES_TEXT as BAND_SOURCES;
 pub use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, SweepAxis, TableFormat,
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, SweepAxis,
+    TableFormat,
 };
-pub use propbet_pipeline::{Error, Result};
+pub use propbet_pipeline::{spec, Error, Result};
 pub use propbet_settings::scan::ScanSettings;

@@ -8,7 +8,7 @@ use propbet_api::geometry::scan::{default_stations, ScanOptions, SectionKind};
 use propbet_api::measure::RpmSource;
 use propbet_api::settings::values::{length_unit_name, list_text, rpm_list_text, scaled_text};
 use propbet_api::settings::{drag_factor_or_default, Rotation};
-use propbet_pipeline::spec::{
+use propbet_api::spec::{
     AirSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec, SweepAxis, TableFormat,
     XfoilProcessSpec, XfoilSpec,
 };
@@ -21,13 +21,27 @@ trait Flags {
     fn push_argv(&self, v: &mut Argv);
 }
 
-fn path(p: &std::path::Path) -> String {
+fn path(p: &Path) -> String {
     p.display().to_string()
 }
 
 fn push(v: &mut Argv, flag: &str, value: impl Into<String>) {
     v.push(flag.to_string());
     v.push(value.into());
+}
+
+/// `flag value` where there is a value.
+fn opt(v: &mut Argv, flag: &str, value: Option<impl ToString>) {
+    if let Some(x) = value {
+        push(v, flag, x.to_string());
+    }
+}
+
+/// `flag` alone where it is on.
+fn switch(v: &mut Argv, flag: &str, on: bool) {
+    if on {
+        v.push(flag.to_string());
+    }
 }
 
 /// `--flag=value`, for values that may begin with a minus sign.
@@ -61,6 +75,26 @@ fn vec_text(v: &propbet_api::geometry::Vector3<f64>) -> String {
     format!("{},{},{}", v.x, v.y, v.z)
 }
 
+/// `--rpm` and the sweep's second axis (`static_v0`: a static sweep, `--v 0`, left out).
+fn sweep(v: &mut Argv, omegas: &[f64], axis: &SweepAxis, static_v0: bool) {
+    push_eq(v, "--rpm", rpm_list_text(omegas));
+    match axis {
+        SweepAxis::V(x) if static_v0 && x == &[0.0] => {}
+        SweepAxis::J(j) => push_eq(v, "--j", list_text(j)),
+        SweepAxis::V(x) => push_eq(v, "--v", list_text(x)),
+    }
+}
+
+/// A table's format, its files and the band (predict's, with or without a motor).
+fn table(v: &mut Argv, format: TableFormat, out: Option<&Path>, stations: Option<&Path>, band: bool) {
+    if format == TableFormat::Json {
+        push(v, "--format", "json");
+    }
+    opt(v, "--out", out.map(path));
+    opt(v, "--out-stations", stations.map(path));
+    switch(v, "--band", band);
+}
+
 /// The `propbet` command line of one stage (without the program name).
 pub fn argv(stage: &StageSpec) -> Argv {
     let subcommand = match stage {
@@ -72,74 +106,34 @@ pub fn argv(stage: &StageSpec) -> Argv {
         StageSpec::Scan(s) => s.push_argv(&mut v),
         StageSpec::Polars(s) => {
             push(&mut v, "--geometry", path(&s.geometry));
-            if let Some(u) = s.units {
-                push(&mut v, "--units", length_unit_name(u).unwrap_or("m"));
-            }
-            if let Some(a) = &s.airfoil {
-                push(&mut v, "--airfoil", a.clone());
-            }
-            if let Some(t) = s.thickness {
-                push(&mut v, "--thickness", format!("{t}"));
-            }
-            if let Some(d) = &s.station_airfoils {
-                push(&mut v, "--station-airfoils", path(d));
-            }
-            if let Some(d) = &s.sections_from {
-                push(&mut v, "--sections-from", path(d));
-            }
-            if let Some(d) = &s.airfoils {
-                push(&mut v, "--airfoils", path(d));
-            }
-            push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
-            match &s.axis {
-                SweepAxis::V(x) if x == &[0.0] => {}
-                SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
-                SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
-            }
+            opt(&mut v, "--units", s.units.map(|u| length_unit_name(u).unwrap_or("m")));
+            opt(&mut v, "--airfoil", s.airfoil.as_ref());
+            opt(&mut v, "--thickness", s.thickness);
+            opt(&mut v, "--station-airfoils", s.station_airfoils.as_deref().map(path));
+            opt(&mut v, "--sections-from", s.sections_from.as_deref().map(path));
+            opt(&mut v, "--airfoils", s.airfoils.as_deref().map(path));
+            sweep(&mut v, &s.omegas, &s.axis, true);
             s.air.push_argv(&mut v);
             s.xfoil.push_argv(&mut v);
             if !s.ncrit_effect.is_empty() {
                 push_eq(&mut v, "--ncrit-effect", ncrit_effect_text(&s.ncrit_effect));
             }
             push(&mut v, "--out-prop", path(&s.out_prop));
-            if let Some(p) = &s.out_polars {
-                push(&mut v, "--out-polars", path(p));
-            }
+            opt(&mut v, "--out-polars", s.out_polars.as_deref().map(path));
         }
         StageSpec::Predict(s) => {
             s.model.push_argv(&mut v);
-            push_eq(&mut v, "--rpm", rpm_list_text(&s.omegas));
-            match &s.axis {
-                SweepAxis::J(j) => push_eq(&mut v, "--j", list_text(j)),
-                SweepAxis::V(x) => push_eq(&mut v, "--v", list_text(x)),
-            }
+            sweep(&mut v, &s.omegas, &s.axis, false);
             s.air.push_argv(&mut v);
-            if s.format == TableFormat::Json {
-                push(&mut v, "--format", "json");
-            }
-            if let Some(o) = &s.out {
-                push(&mut v, "--out", path(o));
-            }
-            if let Some(o) = &s.stations {
-                push(&mut v, "--out-stations", path(o));
-            }
-            if s.band {
-                v.push("--band".into());
-            }
+            table(&mut v, s.format, s.out.as_deref(), s.stations.as_deref(), s.band);
         }
         StageSpec::Powered(s) => s.push_argv(&mut v),
         StageSpec::Compare(s) => {
             s.model.push_argv(&mut v);
             s.measured.push_argv(&mut v);
-            if let Some(p) = &s.per3 {
-                push(&mut v, "--per3", path(p));
-            }
-            if let Some(p) = &s.qprop_output {
-                push(&mut v, "--qprop-output", path(p));
-            }
-            if let Some(p) = &s.motor {
-                push(&mut v, "--motor", path(p));
-            }
+            opt(&mut v, "--per3", s.per3.as_deref().map(path));
+            opt(&mut v, "--qprop-output", s.qprop_output.as_deref().map(path));
+            opt(&mut v, "--motor", s.motor.as_deref().map(path));
             push(&mut v, "--out", path(&s.out));
         }
         StageSpec::Diagnose(s) => {
@@ -148,15 +142,15 @@ pub fn argv(stage: &StageSpec) -> Argv {
             if s.effects != ["all"] {
                 push(&mut v, "--effects", s.effects.join(","));
             }
-            if s.folds != propbet_api::settings::FOLDS.default {
-                push(&mut v, "--folds", s.folds.to_string());
-            }
-            if s.max_steps != propbet_api::settings::MAX_STEPS.default {
-                push(&mut v, "--max-steps", s.max_steps.to_string());
-            }
-            if s.window != propbet_api::compare::metrics::VALIDATION_J_WINDOW {
-                push(&mut v, "--window", s.window.to_string());
-            }
+            let not = |x: usize, default: usize| (x != default).then_some(x);
+            opt(&mut v, "--folds", not(s.folds, propbet_api::settings::FOLDS.default));
+            opt(
+                &mut v,
+                "--max-steps",
+                not(s.max_steps, propbet_api::settings::MAX_STEPS.default),
+            );
+            let window = propbet_api::compare::metrics::VALIDATION_J_WINDOW;
+            opt(&mut v, "--window", (s.window != window).then_some(s.window));
             push(&mut v, "--out", path(&s.out));
         }
     }
@@ -209,50 +203,38 @@ pub fn export_command(spec: &PredictSpec, out: &Path) -> String {
 
 impl Flags for XfoilProcessSpec {
     fn push_argv(&self, v: &mut Argv) {
-        if let Some(b) = self.budget {
-            push(v, "--xfoil-budget", format!("{b}"));
-        }
-        if let Some(x) = &self.xfoil {
-            push(v, "--xfoil", path(x));
-        }
-        if let Some(c) = &self.cache {
-            push(v, "--cache", path(c));
-        }
-        if self.no_cache {
-            v.push("--no-cache".into());
-        }
-        if self.quiet {
-            v.push("--quiet".into());
-        }
+        opt(v, "--xfoil-budget", self.budget);
+        opt(v, "--xfoil", self.xfoil.as_deref().map(path));
+        opt(v, "--cache", self.cache.as_deref().map(path));
+        switch(v, "--no-cache", self.no_cache);
+        switch(v, "--quiet", self.quiet);
         if self.engine != propbet_api::polar::Engine::default() {
             push(v, "--engine", self.engine.name());
         }
-        if let Some(s) = &self.neuralfoil_size {
-            push(v, "--neuralfoil-size", s.clone());
-        }
+        opt(v, "--neuralfoil-size", self.neuralfoil_size.as_ref());
     }
 }
 
 impl Flags for XfoilSpec {
     fn push_argv(&self, v: &mut Argv) {
         self.process.push_argv(v);
-        if self.section.ncrit != propbet_api::settings::NCRIT.default {
-            push(v, "--ncrit", format!("{}", self.section.ncrit));
-        }
-        if self.section.trip != propbet_api::settings::default_trip() {
-            push(v, "--trip", propbet_api::settings::trip_text(self.section.trip));
+        let s = &self.section;
+        opt(
+            v,
+            "--ncrit",
+            (s.ncrit != propbet_api::settings::NCRIT.default).then_some(s.ncrit),
+        );
+        if s.trip != propbet_api::settings::default_trip() {
+            push(v, "--trip", propbet_api::settings::trip_text(s.trip));
         }
         let default =
             propbet_api::settings::values::parse_list("", propbet_api::settings::ALPHA.default).unwrap_or_default();
-        if self.section.alphas_deg != default {
-            push_eq(v, "--alpha", list_text(&self.section.alphas_deg));
+        if s.alphas_deg != default {
+            push_eq(v, "--alpha", list_text(&s.alphas_deg));
         }
-        if let Some(p) = self.section.panels {
-            push(v, "--panels", p.to_string());
-        }
-        if self.section.max_iter != propbet_api::xfoil::DEFAULT_MAX_ITER {
-            push(v, "--iter", self.section.max_iter.to_string());
-        }
+        opt(v, "--panels", s.panels);
+        let default_iter = propbet_api::xfoil::DEFAULT_MAX_ITER;
+        opt(v, "--iter", (s.max_iter != default_iter).then_some(s.max_iter));
     }
 }
 
@@ -279,28 +261,14 @@ impl Flags for ModelSpec {
         if self.dbeta != 0.0 {
             push_eq(v, "--dbeta", deg_text(self.dbeta));
         }
-        if let Some(u) = self.units {
-            push(v, "--units", length_unit_name(u).unwrap_or("m"));
-        }
-        if self.qprop_compat {
-            v.push("--qprop-compat".into());
-        }
-        if self.no_tip_loss {
-            v.push("--no-tip-loss".into());
-        }
-        if let Some(p) = &self.polars {
-            push(v, "--polars", path(p));
-        }
+        opt(v, "--units", self.units.map(|u| length_unit_name(u).unwrap_or("m")));
+        switch(v, "--qprop-compat", self.qprop_compat);
+        switch(v, "--no-tip-loss", self.no_tip_loss);
+        opt(v, "--polars", self.polars.as_deref().map(path));
         if let Some(d) = &self.design {
-            if let Some(a) = &d.airfoil {
-                push(v, "--airfoil", a.clone());
-            }
-            if let Some(p) = &d.sections_from {
-                push(v, "--sections-from", path(p));
-            }
-            if let Some(p) = &d.airfoils {
-                push(v, "--airfoils", path(p));
-            }
+            opt(v, "--airfoil", d.airfoil.as_ref());
+            opt(v, "--sections-from", d.sections_from.as_deref().map(path));
+            opt(v, "--airfoils", d.airfoils.as_deref().map(path));
             d.process.push_argv(v);
         }
         if self.rotation != Rotation::or_default(None, self.tabulated()) {
@@ -312,9 +280,7 @@ impl Flags for ModelSpec {
         for e in &self.effects {
             push(v, "--effect", e.clone());
         }
-        if let Some(p) = &self.user_effects {
-            push(v, "--user-effects", path(p));
-        }
+        opt(v, "--user-effects", self.user_effects.as_deref().map(path));
     }
 }
 
@@ -322,37 +288,25 @@ impl Flags for MeasuredSpec {
     fn push_argv(&self, v: &mut Argv) {
         v.push("--measured".into());
         v.extend(self.files.iter().map(|f| path(f)));
-        if let Some(p) = self.poles {
-            push(v, "--poles", p.to_string());
-        }
-        if let Some(s) = self.rpm_source {
-            push(
-                v,
-                "--rpm-source",
-                match s {
-                    RpmSource::Optical => "optical",
-                    RpmSource::Electrical => "electrical",
-                },
-            );
-        }
-        if let Some(s) = &self.atmosphere {
-            push(
-                v,
-                "--atmosphere",
-                format!(
-                    "{}K,{},{}",
-                    s.temperature,
-                    s.pressure,
-                    percent_text(s.relative_humidity)
-                ),
-            );
-        }
+        opt(v, "--poles", self.poles);
+        let source = self.rpm_source.map(|s| match s {
+            RpmSource::Optical => "optical",
+            RpmSource::Electrical => "electrical",
+        });
+        opt(v, "--rpm-source", source);
+        let air = self.atmosphere.as_ref().map(|s| {
+            format!(
+                "{}K,{},{}",
+                s.temperature,
+                s.pressure,
+                percent_text(s.relative_humidity)
+            )
+        });
+        opt(v, "--atmosphere", air);
         if let Some(r) = self.rho {
             push_eq(v, "--rho", format!("{r}"));
         }
-        if let Some(c) = &self.columns {
-            push(v, "--columns", path(c));
-        }
+        opt(v, "--columns", self.columns.as_deref().map(path));
     }
 }
 
@@ -361,9 +315,7 @@ impl Flags for ScanSpec {
         let o = &self.options;
         v.push(path(&self.input));
         push(v, "-o", path(&self.out));
-        if let Some(n) = &self.name {
-            push(v, "--name", n.clone());
-        }
+        opt(v, "--name", self.name.as_ref());
         // The scale: a named unit, or a known length [mm] of one file unit.
         let unit = [("mm", 0.001), ("cm", 0.01), ("m", 1.0), ("in", 0.0254)]
             .into_iter()
@@ -376,24 +328,18 @@ impl Flags for ScanSpec {
         if o.stations != default_stations() {
             push(v, "--stations", list_text(&o.stations));
         }
-        if let Some(r) = &self.reference {
-            push(v, "--reference", path(r));
-        }
-        if o.kind == SectionKind::Planar {
-            v.push("--planar".into());
-        }
-        if o.slab != ScanOptions::default().slab {
-            push(v, "--slab", mm_text(o.slab));
-        }
-        if o.slab_points != 400 {
-            push(v, "--slab-points", o.slab_points.to_string());
-        }
+        opt(v, "--reference", self.reference.as_deref().map(path));
+        switch(v, "--planar", o.kind == SectionKind::Planar);
+        opt(
+            v,
+            "--slab",
+            (o.slab != ScanOptions::default().slab).then(|| mm_text(o.slab)),
+        );
+        opt(v, "--slab-points", (o.slab_points != 400).then_some(o.slab_points));
         if !o.blade_colours.is_empty() {
             push(v, "--blade-colour", colour_text(&o.blade_colours));
         }
-        if let Some(t) = o.colour_threshold {
-            push(v, "--colour-threshold", format!("{t}"));
-        }
+        opt(v, "--colour-threshold", o.colour_threshold);
         if let Some(b) = &o.reference_box {
             let mm = mm_text;
             push(
@@ -451,18 +397,7 @@ impl Flags for PoweredSpec {
             push_eq(v, "--v", list_text(&self.speeds));
         }
         self.air.push_argv(v);
-        if self.format == TableFormat::Json {
-            push(v, "--format", "json");
-        }
-        if let Some(o) = &self.out {
-            push(v, "--out", path(o));
-        }
-        if let Some(o) = &self.stations {
-            push(v, "--out-stations", path(o));
-        }
-        if self.band {
-            v.push("--band".into());
-        }
+        table(v, self.format, self.out.as_deref(), self.stations.as_deref(), self.band);
     }
 }
 

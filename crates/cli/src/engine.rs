@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use propbet_pipeline::spec::XfoilProcessSpec;
+use propbet_api::spec::XfoilProcessSpec;
 
 /// The XFOIL executable, the polar cache and the progress bar (shared by every command that
 /// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
@@ -60,25 +60,6 @@ impl XfoilProcess {
     /// The same settings as a spec.
     pub fn spec(&self) -> anyhow::Result<XfoilProcessSpec> {
         Ok(self.request().spec()?)
-    }
-}
-
-impl From<&propbet_api::ProcessRequest> for XfoilProcess {
-    /// The flags a request gives (the engine's default where it names none), for a command
-    /// that takes the flags (`validate`).
-    fn from(r: &propbet_api::ProcessRequest) -> Self {
-        XfoilProcess {
-            xfoil: r.xfoil.clone(),
-            cache: r.cache.clone(),
-            no_cache: r.no_cache,
-            quiet: r.quiet,
-            xfoil_budget: r.budget,
-            engine: r
-                .engine
-                .clone()
-                .unwrap_or_else(|| propbet_api::settings::ENGINE.default.to_string()),
-            neuralfoil_size: r.neuralfoil_size.clone(),
-        }
     }
 }
 

@@ -1,12 +1,10 @@
 //! `propbet export`: a prediction or measurements as flight-simulator files (Gazebo, PX4 SIH,
 //! JSBSim) and a plain map; the work is `propbet_simexport`'s.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
-use propbet_pipeline::spec::{ModelSpec, PredictSpec, TableFormat};
-use propbet_simexport::{self as simexport, ExportFrom, ExportSpec, Said, Target};
 
 use crate::compare::RpmSourceArg;
 use crate::predict::{FluidArgs, SweepArgs};
@@ -76,131 +74,44 @@ pub struct ExportArgs {
     pub name: Option<String>,
 }
 
-fn targets(names: &[String]) -> Result<Vec<Target>> {
-    let mut out = Vec::new();
-    for n in names {
-        let n = n.trim();
-        if n == "all" {
-            out.extend(Target::ALL);
-            continue;
-        }
-        match Target::ALL.iter().find(|t| t.name() == n) {
-            Some(t) => out.push(*t),
-            None => bail!("--to '{n}': unknown export (use gazebo, px4-sih, jsbsim, map or all)"),
-        }
-    }
-    out.sort_by_key(|t| Target::ALL.iter().position(|a| a == t));
-    out.dedup();
-    Ok(out)
-}
-
-fn parse_diameter(text: &str) -> Result<f64> {
-    let d = propbet_api::settings::values::parse_length("--diameter", text)?;
-    if !(d.is_finite() && (0.01..=10.0).contains(&d)) {
-        bail!("--diameter '{text}': {d} m is not a propeller's diameter (0.01 to 10 m)");
-    }
-    Ok(d)
-}
-
-fn parse_range(text: &str) -> Result<(f64, f64)> {
-    let bad = || anyhow::anyhow!("--rpm-range '{text}': LO:HI in rpm, like 3000:6000");
-    let (a, b) = text.split_once(':').ok_or_else(bad)?;
-    let (lo, hi): (f64, f64) = (
-        a.trim().parse().map_err(|_| bad())?,
-        b.trim().parse().map_err(|_| bad())?,
-    );
-    if !(lo.is_finite() && hi.is_finite() && lo >= 0.0 && hi >= lo) {
-        return Err(bad());
-    }
-    Ok((lo, hi))
-}
-
 impl ExportArgs {
-    fn model_spec(&self, prop: &Path) -> Result<ModelSpec> {
-        Ok(self.model.request(prop).spec()?)
-    }
-
-    fn inputs(&self) -> Vec<&Path> {
-        let mut v: Vec<&Path> = self.measured.iter().map(PathBuf::as_path).collect();
-        v.extend(self.prop.as_deref());
-        v.extend(self.model.polars.as_deref());
-        v.extend(self.columns.as_deref());
-        v.extend(self.model.user_effects.as_deref());
-        v
-    }
-}
-
-impl ExportArgs {
-    /// The stage's spec (flags in SI).
-    pub fn spec(&self) -> Result<ExportSpec> {
-        let from = if self.measured.is_empty() {
-            let Some(prop) = &self.prop else {
-                bail!("give --prop with --rpm (a prediction) or --measured (measurements)");
-            };
-            let sweep = SweepArgs {
-                rpm: self.rpm.clone(),
-                j: self.j.clone(),
-                v: self.v.clone(),
-            };
-            let (omegas, axis) = sweep.spec()?;
-            ExportFrom::Prediction(PredictSpec {
-                model: self.model_spec(prop)?,
-                omegas,
-                axis,
-                air: self.air.spec()?,
-                format: TableFormat::Csv,
-                out: None,
-                stations: None,
-                band: false,
-            })
-        } else {
-            ExportFrom::Measured {
-                measured: propbet_api::MeasuredRequest {
-                    files: self.measured.clone(),
-                    poles: self.poles,
-                    rpm_source: self.rpm_source.map(|s| s.name().to_string()),
-                    atmosphere: self.atmosphere.clone(),
-                    rho: self.air.rho,
-                    columns: self.columns.clone(),
-                }
-                .spec()?,
-                model: self.prop.as_deref().map(|p| self.model_spec(p)).transpose()?,
-                diameter: self.diameter.as_deref().map(parse_diameter).transpose()?,
-                blades: self.blades,
-            }
+    /// What the flags ask for.
+    pub fn request(&self) -> propbet_api::commands::export::ExportRequest {
+        let sweep = SweepArgs {
+            rpm: self.rpm.clone(),
+            j: self.j.clone(),
+            v: self.v.clone(),
         };
-        Ok(ExportSpec {
-            from,
-            targets: targets(&self.to)?,
-            rpm_range: self.rpm_range.as_deref().map(parse_range).transpose()?,
+        propbet_api::commands::export::ExportRequest {
+            to: self.to.clone(),
+            model: self.prop.as_deref().map(|p| self.model.request(p)),
+            sweep: sweep.request(),
+            air: self.air.request(),
+            measured: propbet_api::MeasuredRequest {
+                files: self.measured.clone(),
+                poles: self.poles,
+                rpm_source: self.rpm_source.map(|s| s.name().to_string()),
+                atmosphere: self.atmosphere.clone(),
+                rho: self.air.rho,
+                columns: self.columns.clone(),
+            },
+            diameter: self.diameter.clone(),
+            blades: self.blades,
             ixx: self.ixx,
+            rpm_range: self.rpm_range.clone(),
             name: self.name.clone(),
-        })
+        }
     }
 }
 
 /// Runs `propbet export`.
 pub fn run(args: &ExportArgs) -> Result<bool> {
-    let spec = args.spec()?;
-    let inputs = args.inputs();
-    propbet_api::files::refuse_inputs_inside(&args.out, &inputs)?;
-    let made = simexport::exports(&spec, &|said| match said {
-        Said::Warning(w) => eprintln!("propbet: warning: {w}"),
-        Said::LeftOut(n) => eprintln!("propbet: {n}"),
-    })?;
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| anyhow::anyhow!("{}: cannot create the output folder: {e}", args.out.display()))?;
-    for e in &made {
-        for (name, text) in &e.files {
-            propbet_api::files::write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
-        }
-        println!(
-            "{:<8} {}: {}",
-            e.target.name(),
-            e.files.iter().map(|f| f.0.as_str()).collect::<Vec<_>>().join(", "),
-            e.values
-        );
-        println!("         against the points it came from: {}", e.fit.against());
-    }
-    Ok(true)
+    let request = args.request();
+    let term = crate::output::Terminal::default();
+    Ok(propbet_api::commands::export::export(
+        &request.spec()?,
+        &args.out,
+        &request.inputs(),
+        &term,
+    )?)
 }

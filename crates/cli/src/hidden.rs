@@ -3,12 +3,9 @@
 
 use anyhow::Result;
 use clap::Args;
-use propbet_api::diagnose::inject::{Finding, Injection};
-use propbet_validate::{hidden_prop, sections_for, PropSections};
+use propbet_api::diagnose::inject::Injection;
 
-use crate::polar::Bar;
 use crate::validate::ValidateArgs;
-use propbet_api::files::write_atomic;
 
 /// Arguments of `propbet hidden`.
 #[derive(Debug, Args)]
@@ -41,37 +38,13 @@ pub fn run(a: &HiddenArgs) -> Result<bool> {
             injections.push(Injection::new(e.trim(), s).map_err(|why| anyhow::anyhow!("--inject/--sizes: {why}"))?);
         }
     }
-    let (spec, props, generic) = crate::validate::spec(&a.validate)?;
-    let lock = propbet_api::files::claim_folder(&spec.out, "propbet hidden")?;
-    let (quiet, engine) = (a.validate.xfoil.quiet, spec.xfoil.process.engine);
-    let mut rows: Vec<(String, Finding)> = Vec::new();
-    let mut skipped = Vec::new();
-    for (k, prop) in props.iter().enumerate() {
-        let sections = match sections_for(&spec, prop, generic.as_ref()) {
-            PropSections::Use(s) => s,
-            PropSections::NotValidated(why) => {
-                skipped.push((prop.clone(), why));
-                continue;
-            }
-        };
-        eprintln!("propbet hidden [{}/{}] {prop}", k + 1, props.len());
-        let bar = Bar::new(quiet, engine);
-        match hidden_prop(&spec, prop, &sections, &injections, &move |d, t| bar.tick(d, t)) {
-            Ok(found) => rows.extend(found.into_iter().map(|f| (prop.clone(), f))),
-            Err(e) => skipped.push((prop.clone(), format!("{e:#}"))),
-        }
-    }
-    if rows.is_empty() {
-        anyhow::bail!("no prop could be diagnosed: {skipped:?}");
-    }
-    let md = propbet_report::hidden::markdown(&rows, &skipped);
-    write_atomic(
-        &spec.out.join("hidden.csv"),
-        &[propbet_report::hidden::csv(&rows)?],
-        &[],
-    )?;
-    write_atomic(&spec.out.join("hidden.md"), &[md.as_bytes()], &[])?;
-    lock.finish()?;
-    crate::output::print_page(&md);
-    Ok(skipped.is_empty())
+    let (spec, props, generic) = crate::validate::request(&a.validate).spec()?;
+    let term = crate::output::Terminal::default();
+    Ok(propbet_api::commands::validate::hidden(
+        &spec,
+        &props,
+        generic.as_ref(),
+        &injections,
+        &term,
+    )?)
 }

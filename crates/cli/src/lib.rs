@@ -25,7 +25,6 @@ macro_rules! println {
     }};
 }
 
-pub mod api;
 mod argv;
 mod compare;
 mod compare_props;
@@ -44,6 +43,8 @@ mod run;
 mod scan;
 mod synth;
 mod validate;
+
+pub use output::Terminal;
 
 /// Propeller performance from geometry, and why it disagrees with the thrust stand.
 #[derive(Debug, Parser)]
@@ -249,7 +250,6 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Run(a) => run::run(&a),
         Command::Validate(a) => validate::run(&a).map(|(ok, _)| ok),
         Command::Hidden(a) => hidden::run(&a),
-        Command::Predict(a) if a.motor.motor.is_some() => powered::run(&a),
         Command::Predict(a) => predict::run(&a),
         Command::Motor(c) => motor_fit::run(&c),
         Command::CompareProps(a) => compare_props::run(&a),
@@ -284,14 +284,14 @@ mod settings_flags;
 mod tests {
     use std::path::{Path, PathBuf};
 
-    use propbet_pipeline::spec::StageSpec;
+    use propbet_api::spec::StageSpec;
 
     use super::*;
 
     /// The stage spec a stage's command line means (the commands `propbet run` and `propbet
     /// validate` print for their stages).
-    pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_pipeline::spec::StageSpec>> {
-        use propbet_pipeline::spec::StageSpec;
+    pub(crate) fn stage_spec(command: &Command) -> anyhow::Result<Option<propbet_api::spec::StageSpec>> {
+        use propbet_api::spec::StageSpec;
         Ok(Some(match command {
             Command::Scan(a) => StageSpec::Scan(a.spec()?),
             Command::Polars(a) => StageSpec::Polars(a.spec()?),
@@ -337,12 +337,12 @@ mod tests {
     /// The export command a report prints for a prediction parses as `propbet export`.
     #[test]
     fn a_predictions_export_command_parses() {
-        let mut spec = propbet_pipeline::spec::PredictSpec {
-            model: propbet_pipeline::spec::ModelSpec::prop("r/polars/prop.qprop".into()),
+        let mut spec = propbet_api::spec::PredictSpec {
+            model: propbet_api::spec::ModelSpec::prop("r/polars/prop.qprop".into()),
             omegas: vec![400.0, 600.0],
-            axis: propbet_pipeline::spec::SweepAxis::J(vec![0.0, 0.3]),
+            axis: propbet_api::spec::SweepAxis::J(vec![0.0, 0.3]),
             air: Default::default(),
-            format: propbet_pipeline::spec::TableFormat::Json,
+            format: propbet_api::spec::TableFormat::Json,
             out: Some("r/predict/sweep.csv".into()),
             stations: None,
             band: true,

@@ -9,7 +9,6 @@ use clap::{Args, Subcommand};
 use propbet_api::motor::FitKind;
 
 use crate::compare::MeasuredArgs;
-use crate::output::emit;
 
 /// `propbet motor`'s subcommands.
 #[derive(Debug, Subcommand)]
@@ -50,31 +49,14 @@ pub fn run(command: &MotorCommand) -> Result<bool> {
 }
 
 fn fit(args: &FitArgs) -> Result<bool> {
-    let spec = args.measured.spec()?;
-    let propbet_api::outputs::motor::Fitted {
-        fit: f, text, lines, ..
-    } = propbet_api::outputs::motor::fitted(
-        &spec,
+    let kind = if args.kq { FitKind::Type2 } else { FitKind::Type1 };
+    let term = crate::output::Terminal::default();
+    Ok(propbet_api::commands::motor::fit(
+        &args.measured.spec()?,
         args.kv,
-        if args.kq { FitKind::Type2 } else { FitKind::Type1 },
+        kind,
         args.name.clone(),
-    )?;
-    let inputs: Vec<&std::path::Path> = spec.files.iter().map(PathBuf::as_path).collect();
-    emit(args.out.as_deref(), &[text.as_bytes()], &inputs)?;
-    for l in &lines {
-        eprintln!("propbet motor fit: {l}");
-    }
-    for n in &f.notes {
-        eprintln!("{}", crate::output::wrapped(&format!("propbet: note: {n}"), "", "  "));
-    }
-    if let Some(w) = &f.misses {
-        eprintln!(
-            "{}",
-            crate::output::wrapped(&format!("propbet: where the motor model misses: {w}"), "", "  ")
-        );
-    }
-    if let Some(out) = &args.out {
-        eprintln!("propbet motor fit: -> {}", out.display());
-    }
-    Ok(true)
+        args.out.as_deref(),
+        &term,
+    )?)
 }

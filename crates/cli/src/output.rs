@@ -1,28 +1,63 @@
-//! The terminal: sentences wrapped for a person, Markdown pages printed, and a table sent to
-//! standard output or to its file.
+//! The terminal: the console the commands below the binary tell (standard output, standard
+//! error, the progress bar of polars, the equivalent command lines), its long sentences
+//! wrapped for a person.
 
 use std::io::Write;
-use std::path::Path;
 
-use anyhow::{Context, Result};
+use propbet_api::diagnose::Diagnosis;
+use propbet_api::spec::{PredictSpec, StageSpec, XfoilProcessSpec};
 
-/// Writes `chunks` to `path`, or to standard output when `path` is `None` or `-`.
-pub fn emit<B: AsRef<[u8]>>(path: Option<&Path>, chunks: &[B], inputs: &[&Path]) -> Result<()> {
-    match path {
-        Some(p) if p != Path::new("-") => Ok(propbet_api::files::write_atomic(p, chunks, inputs)?),
-        _ => {
-            let mut out = std::io::stdout().lock();
-            for c in chunks {
-                out.write_all(c.as_ref()).context("writing to standard output")?;
-            }
-            out.flush().context("writing to standard output")
-        }
+use crate::engine::Bar;
+
+/// The terminal as a command's [`Console`](propbet_api::console::Console): lines printed,
+/// tables written to standard output, one progress bar for a batch of polars.
+#[derive(Default)]
+pub struct Terminal {
+    bar: std::sync::Mutex<Option<Bar>>,
+}
+
+impl propbet_api::console::Console for Terminal {
+    fn out(&self, text: &str) {
+        println!("{text}");
+    }
+
+    fn err(&self, text: &str) {
+        eprintln!("{text}");
+    }
+
+    fn data(&self, bytes: &[u8]) -> std::io::Result<()> {
+        let mut out = std::io::stdout().lock();
+        out.write_all(bytes)?;
+        out.flush()
+    }
+
+    fn progress(&self, process: &XfoilProcessSpec, done: usize, total: usize) {
+        let mut slot = self.bar.lock().unwrap_or_else(|e| e.into_inner());
+        slot.get_or_insert_with(|| Bar::new(process.quiet, process.engine))
+            .tick(done, total);
+    }
+
+    fn progress_done(&self) {
+        self.bar.lock().unwrap_or_else(|e| e.into_inner()).take();
+    }
+
+    fn command(&self, stage: &StageSpec) -> String {
+        crate::argv::command(stage)
+    }
+
+    fn export_command(&self, spec: &PredictSpec, out: &std::path::Path) -> String {
+        crate::argv::export_command(spec, out)
+    }
+
+    fn effect_args(&self, diagnosis: &Diagnosis) -> Vec<String> {
+        crate::argv::effect_args(diagnosis)
     }
 }
 
 /// `text` as the terminal gets it: each line longer than 160 characters wrapped at
-/// [`TERM_WIDTH`] (its continuation indented by two spaces more than it), unless it is a table
-/// row (CSV, or Markdown's `|`), which is data, or an error or a warning, which is read whole.
+/// [`TERM_WIDTH`](propbet_api::console::TERM_WIDTH) (its continuation indented by two spaces
+/// more than it), unless it is a table row (CSV, or Markdown's `|`), which is data, or an
+/// error or a warning, which is read whole.
 pub fn for_terminal(text: &str) -> String {
     if text.lines().all(|l| l.chars().count() <= 160) {
         return text.to_string();
@@ -36,34 +71,9 @@ pub fn for_terminal(text: &str) -> String {
                 return l.to_string();
             }
             let indent: String = l.chars().take_while(|c| *c == ' ').collect();
-            wrapped(l.trim_start(), &indent, &format!("{indent}  "))
+            propbet_api::console::wrapped(l.trim_start(), &indent, &format!("{indent}  "))
         })
         .collect::<Vec<_>>()
         .join("\n")
         + if text.ends_with('\n') { "\n" } else { "" }
-}
-
-/// The terminal's width for propbet's sentences (and clap's help: `max_term_width`).
-pub const TERM_WIDTH: usize = 100;
-
-/// `text` wrapped at [`TERM_WIDTH`] columns, its first line after `first`, the others after
-/// `rest` (each an indent): a long sentence a person reads on a terminal.
-pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
-    let opts = textwrap::Options::new(TERM_WIDTH)
-        .initial_indent(first)
-        .subsequent_indent(rest)
-        .break_words(false)
-        .word_splitter(textwrap::WordSplitter::NoHyphenation);
-    textwrap::fill(text, opts)
-}
-
-/// A Markdown page on the terminal: its tables as they are (data), its sentences wrapped.
-pub(crate) fn print_page(md: &str) {
-    for line in md.lines() {
-        if line.starts_with('|') {
-            println!("{line}");
-        } else {
-            println!("{}", wrapped(line, "", ""));
-        }
-    }
 }

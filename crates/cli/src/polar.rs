@@ -1,20 +1,13 @@
 //! `propbet polar` (polars of one section) and `propbet polars` (polars of every station of a
 //! blade at its operating Reynolds and Mach numbers, reduced to a QPROP prop file).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
-use propbet_api::polar::{Airfoil, Polar, QpropFit};
-use propbet_api::qprop::write_prop;
-use propbet_api::settings::values::parse_list;
-use propbet_pipeline::case::parse_fraction;
-use propbet_pipeline::spec::{PolarsSpec, XfoilSpec};
-use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
-use propbet_plot::Figure;
+use propbet_api::spec::{PolarsSpec, XfoilSpec};
 
-pub use crate::engine::{Bar, DesignArgs, XfoilProcess};
-use crate::output::emit;
+pub use crate::engine::{DesignArgs, XfoilProcess};
 use crate::predict::FluidArgs;
 
 /// How XFOIL runs, and the cache.
@@ -68,18 +61,6 @@ pub struct AirfoilArgs {
     pub thickness: Option<String>,
 }
 
-impl AirfoilArgs {
-    /// The section, normalised (and scaled), printing what was repaired in the file.
-    pub fn load(&self) -> Result<Airfoil> {
-        let t = self.thickness.as_deref().map(parse_fraction).transpose()?;
-        let (foil, notes) = stages::load_airfoil(&self.airfoil, t)?;
-        for n in notes {
-            eprintln!("propbet: {n}");
-        }
-        Ok(foil)
-    }
-}
-
 /// Arguments of `propbet polar`.
 #[derive(Debug, Args)]
 pub struct PolarArgs {
@@ -107,131 +88,21 @@ pub struct PolarArgs {
 }
 
 /// Runs `propbet polar`; false when some polar failed (the others are written).
-pub fn run_polar(args: &PolarArgs) -> Result<bool> {
-    let outputs: Vec<&Path> = [&args.out, &args.fit_out, &args.plot]
-        .into_iter()
-        .flatten()
-        .map(|p| p.as_path())
-        .collect();
-    propbet_api::files::refuse_outputs_over_inputs(&outputs, &input_paths(&args.section))?;
-    let foil = args.section.load()?;
-    let spec = SectionSpec {
-        res: parse_list("--re", &args.re)?,
-        mach: args.mach,
-        xfoil: args.xfoil.spec(propbet_api::settings::AIRFOIL_NCRIT.default, None)?,
+pub fn run_polar(a: &PolarArgs) -> Result<bool> {
+    let command = propbet_api::commands::polar::PolarCommand {
+        airfoil: a.section.airfoil.clone(),
+        thickness: a.section.thickness.clone(),
+        re: a.re.clone(),
+        mach: a.mach,
+        xfoil: a.xfoil.request(),
+        out: a.out.clone(),
+        plot: a.plot.clone(),
+        fit_out: a.fit_out.clone(),
     };
-    let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
-    let section = stages::section(&spec, &foil, &|d, t| bar.tick(d, t))?;
-    for (re, r) in &section.runs {
-        match r {
-            Ok(p) => {
-                report_failures(&format!("Re {re:.0}"), p);
-                // An XFOIL that was killed (hung) or crashed leaves a polar with holes: said,
-                // and the exit code is 1.
-                if p.points.is_empty() {
-                    eprintln!("propbet: Re {re:.0}: XFOIL converged at no angle: the polar is empty");
-                }
-            }
-            Err(e) => eprintln!("propbet: error: {e}"),
-        }
-    }
-    if let Some(e) = &section.cache_error {
-        eprintln!(
-            "propbet: warning: {e}: the cache could not store the polars XFOIL computed; they were used, and the next run computes them again"
-        );
-    }
-    section.check()?;
-    for (re, f) in &section.fits {
-        match f {
-            Ok(f) => eprintln!("{}", fit_summary(*re, f)),
-            Err(e) => eprintln!("propbet: Re {re:.0}: no QPROP fit: {e}"),
-        }
-    }
-    let inputs = input_paths(&args.section);
-    emit(args.out.as_deref(), &[section.csv().as_bytes()], &inputs)?;
-    let fits = section.fitted();
-    if let Some(path) = &args.fit_out {
-        let json = serde_json::to_vec_pretty(&fits)?;
-        propbet_api::files::write_atomic(path, &[json.as_slice()], &inputs)?;
-    }
-    if let Some(path) = &args.plot {
-        let fig = Figure {
-            panels: propbet_report::polar::panels(&foil.name, &section.polars(), &fits),
-            columns: 2,
-            width: 1400,
-            height: 560,
-        };
-        propbet_api::files::write_figure(path, &fig, &inputs)?;
-    }
-    Ok(section.clean())
-}
-
-/// The files `polars` reads: the geometry, the airfoil file (not a NACA name) and the scanned
-/// sections' directory.
-fn polars_inputs(spec: &PolarsSpec) -> Vec<&Path> {
-    let mut inputs: Vec<&Path> = vec![spec.geometry.as_path()];
-    if let Some(foil) = spec.airfoil.as_deref().map(Path::new).filter(|f| f.exists()) {
-        inputs.push(foil);
-    }
-    inputs.extend(spec.station_airfoils.as_deref());
-    inputs
-}
-
-fn input_paths(a: &AirfoilArgs) -> Vec<&Path> {
-    let p = Path::new(&a.airfoil);
-    if p.exists() {
-        vec![p]
-    } else {
-        vec![]
-    }
-}
-
-fn report_failures(what: &str, p: &Polar) {
-    if !p.unconverged_deg.is_empty() {
-        let list: Vec<String> = p.unconverged_deg.iter().map(|a| format!("{a}")).collect();
-        eprintln!(
-            "propbet: {what}: XFOIL did not converge at alpha {} deg",
-            list.join(", ")
-        );
-    }
-    if let Some(text) = p.hysteresis_text() {
-        eprintln!("propbet: {what}: {text}");
-    }
-    for f in &p.faults {
-        eprintln!("propbet: {what}: {f}");
-    }
-    if let Some(why) = &p.not_filled {
-        eprintln!("propbet: {what}: {why}: XFOIL's polar kept with its gaps");
-    }
-}
-
-fn fit_summary(re: f64, f: &QpropFit) -> String {
-    let c = &f.coeffs;
-    let mut s = format!(
-        "Re {re:.0}: CL0 {:.4} CL_a {:.4}/rad CLmin {:.3} CLmax {:.3} CD0 {:.5} CD2u {:.5} CD2l {:.5} CLCD0 {:.3} REref {:.0} REexp {:.3}\n  linear range {:.1}..{:.1} deg ({} points): cl error <= {:.3}, cd error <= {:.1} %",
-        c.cl0,
-        c.cl_a,
-        c.cl_min,
-        c.cl_max,
-        c.cd0,
-        c.cd2u,
-        c.cd2l,
-        c.clcd0,
-        c.re_ref,
-        c.re_exp,
-        f.linear_range_deg[0],
-        f.linear_range_deg[1],
-        f.linear_points,
-        f.cl_max_error,
-        f.cd_max_rel_error * 100.0
-    );
-    for u in &f.unfit {
-        s.push_str(&format!("\n  UNFIT: {u}"));
-    }
-    for n in &f.notes {
-        s.push_str(&format!("\n  note: {n}"));
-    }
-    s
+    Ok(propbet_api::commands::polar::polar(
+        &command,
+        &crate::output::Terminal::default(),
+    )?)
 }
 
 /// Arguments of `propbet polars`.
@@ -306,87 +177,8 @@ impl PolarsArgs {
 /// Runs `propbet polars`; false when a station has no fit (its coefficients are kept from the
 /// geometry file, and it is reported).
 pub fn run_polars(args: &PolarsArgs) -> Result<bool> {
-    run_polars_spec(&args.spec()?)
-}
-
-/// Runs a polars stage: its files written, every station's fit printed.
-pub fn run_polars_spec(spec: &PolarsSpec) -> Result<bool> {
-    let outputs: Vec<&Path> = std::iter::once(spec.out_prop.as_path())
-        .chain(spec.out_polars.as_deref())
-        .collect();
-    propbet_api::files::refuse_outputs_over_inputs(&outputs, &polars_inputs(spec))?;
-    let input = stages::polars_input(spec)?;
-    for w in &input.geometry.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    let engine = stages::polar_engine(&spec.xfoil.process)?;
-    let bar = Bar::new(spec.xfoil.process.quiet, spec.xfoil.process.engine);
-    let p = stages::polars(spec, &input, &engine, &|d, t| bar.tick(d, t))?;
-    print_polars(spec, &input, &p);
-    write_polars(spec, &p)?;
-    Ok(p.clean())
-}
-
-/// Every station's polar faults and fit on the terminal.
-pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars) {
-    for n in &input.notes {
-        eprintln!("propbet: {n}");
-    }
-    for (i, s) in p.blade.stations.iter().enumerate() {
-        for pol in &s.polars {
-            report_failures(&format!("station r = {:.4} m, Re {:.0}", s.r, pol.re), pol);
-        }
-        match &s.fit {
-            Some(f) => eprintln!(
-                "{}",
-                crate::output::wrapped(
-                    &format!(
-                        "station {} (r = {:.4} m, alpha {:.1} deg): {}",
-                        i + 1,
-                        s.r,
-                        s.alpha_deg,
-                        fit_summary(s.re, f)
-                    ),
-                    "",
-                    "  "
-                )
-            ),
-            None => eprintln!(
-                "{}",
-                crate::output::wrapped(&format!(
-                "propbet: station {} (r = {:.4} m, Re {:.0}-{:.0}, alpha {:.1}..{:.1} deg): {}; fallback: {}, and the exported prop file keeps the coefficients of {} there",
-                i + 1,
-                s.r,
-                s.re_range[0],
-                s.re_range[1],
-                s.alpha_range_deg[0],
-                s.alpha_range_deg[1],
-                s.problem.as_deref().unwrap_or("no fit"),
-                if s.polars.is_empty() {
-                    "the tables use the neighbouring stations' polars"
-                } else {
-                    "the tables use this station's polars as XFOIL gave them"
-                },
-                spec.geometry.display()
-                ), "", "  ")
-            ),
-        }
-    }
-    if let Some(e) = &p.export {
-        eprintln!("{}", e.sentence());
-    }
-    if let Some(w) = &p.cache_warning {
-        eprintln!("propbet: warning: {w}");
-    }
-}
-
-/// Writes the polars stage's outputs: the fitted prop file and the polars (JSON).
-pub fn write_polars(spec: &PolarsSpec, p: &Polars) -> Result<()> {
-    let inputs = polars_inputs(spec);
-    propbet_api::files::write_atomic(&spec.out_prop, &[write_prop(&p.prop.file).as_bytes()], &inputs)?;
-    if let Some(path) = &spec.out_polars {
-        let json = serde_json::to_vec(&p.blade)?;
-        propbet_api::files::write_atomic(path, &[json.as_slice()], &inputs)?;
-    }
-    Ok(())
+    Ok(propbet_api::commands::polar::polars(
+        &args.spec()?,
+        &crate::output::Terminal::default(),
+    )?)
 }

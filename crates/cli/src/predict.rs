@@ -4,11 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
+use propbet_api::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
 use propbet_api::{AirRequest, ModelRequest, SweepRequest, Values};
-use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
-
-use crate::output::emit;
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -56,7 +53,7 @@ fn band_help() -> String {
          `cp_lo`, `cp_hi`, `eta_lo`, `eta_hi`; `band` in JSON): {} (`--polars`), each solved at both \
          ends, their root-sum-square (docs/studies/uncertainty-band.md). Solves every point seven (nine) \
          times.",
-        propbet_pipeline::band::SOURCES_TEXT
+        propbet_api::BAND_SOURCES
     )
 }
 
@@ -169,45 +166,6 @@ impl BladeArgs {
     }
 }
 
-/// Reads the model a spec names, printing what a person is told of it (the prop file's
-/// warnings; a blade file's polars, computed over `points`, with a progress bar).
-pub fn load_model_at(
-    spec: &ModelSpec,
-    points: impl FnOnce() -> propbet_api::CommandResult<(Vec<f64>, SweepAxis)>,
-    keep_stations: bool,
-) -> Result<Model> {
-    let bar = spec
-        .design
-        .as_ref()
-        .map(|d| crate::engine::Bar::new(d.process.quiet, d.process.engine));
-    let tick = |d, t| {
-        if let Some(b) = &bar {
-            b.tick(d, t);
-        }
-    };
-    let loaded = propbet_api::model::load(spec, points, keep_stations, &tick);
-    if let Some(b) = &bar {
-        b.clear();
-    }
-    let loaded = loaded?;
-    if let Some(p) = &loaded.polars {
-        eprintln!("{}", crate::output::wrapped(&format!("propbet: {p}"), "", "  "));
-    }
-    for w in &loaded.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    Ok(loaded.model)
-}
-
-/// Reads a QPROP prop file's model, printing its warnings.
-pub fn load_model(spec: &ModelSpec, keep_stations: bool) -> Result<Model> {
-    let m = propbet_api::model::prop_file(spec, keep_stations)?;
-    for w in &m.loaded.warnings {
-        eprintln!("propbet: warning: {w}");
-    }
-    Ok(m)
-}
-
 /// Air properties from flags: --rho/--mu/--a (QPROP's defaults), or --temp/--pressure
 /// [--humidity] through the atmosphere model.
 #[derive(Debug, Args)]
@@ -303,46 +261,9 @@ impl SweepArgs {
 
 /// Runs `propbet predict`; returns whether every station of every point converged.
 pub fn run(args: &PredictArgs) -> Result<bool> {
-    let spec = args.spec()?;
-    let keep = spec.stations.is_some();
-    let model = load_model_at(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), keep)?;
-    let t = propbet_api::outputs::predict::tables(&spec, &model, keep)?;
-    let inputs = spec.model.inputs();
-    emit(spec.out.as_deref(), &t.body, &inputs)?;
-    if let (Some(path), Some(table)) = (&spec.stations, &t.stations) {
-        emit(Some(path), std::slice::from_ref(table), &inputs)?;
-    }
-    let (failed, failed_points) = t.failed;
-    if failed > 0 {
-        eprintln!(
-            "propbet: {failed} station solutions at {failed_points} operating points did not converge; \
-             they are flagged in the per-station table"
-        );
-    }
-    // What it wrote, in one line (a table on standard output speaks for itself).
-    if let Some(out) = &spec.out {
-        let speeds = spec.omegas.len();
-        let points = speeds
-            * match &spec.axis {
-                SweepAxis::J(v) | SweepAxis::V(v) => v.len().max(1),
-            };
-        eprintln!(
-            "propbet predict: {points} operating points at {speeds} speed{} -> {}{}{}",
-            if speeds == 1 { "" } else { "s" },
-            out.display(),
-            spec.stations
-                .as_ref()
-                .map_or(String::new(), |s| format!(", stations -> {}", s.display())),
-            if spec.band { " (with the uncertainty band)" } else { "" }
-        );
-    }
-    // How close a prediction of an APC prop of this family came on propbet's validation.
-    let file = spec.model.prop.file_name().and_then(|n| n.to_str());
-    if file.and_then(propbet_api::compare::expected::family_of_file).is_some() {
-        let table = propbet_api::compare::expected::shipped();
-        if let Some(e) = propbet_api::compare::expected::sentence(file, &table) {
-            eprintln!("{}", crate::output::wrapped(&format!("propbet: {e}"), "", "  "));
-        }
-    }
-    Ok(failed == 0)
+    let term = crate::output::Terminal::default();
+    Ok(match args.motor.motor {
+        Some(_) => propbet_api::commands::predict::powered(&args.powered_spec()?, &term)?,
+        None => propbet_api::commands::predict::predict(&args.spec()?, &term)?,
+    })
 }

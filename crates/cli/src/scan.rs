@@ -3,13 +3,12 @@
 //! prop file, per-station airfoil files (Selig), plots, the cleaned surface split by blade
 //! (STL per blade for meshes, a PLY with a `blade` property for clouds), and a JSON summary.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
 use propbet_api::settings::scan::ScanSettings;
-use propbet_pipeline::spec::ScanSpec;
-use propbet_pipeline::stages::{self, Scanned};
+use propbet_api::spec::ScanSpec;
 
 /// Arguments of `propbet scan`.
 #[derive(Debug, Args)]
@@ -123,44 +122,8 @@ impl ScanArgs {
 
 /// Runs `propbet scan`.
 pub fn run(a: &ScanArgs) -> Result<bool> {
-    run_spec(&a.spec()?)
-}
-
-/// Runs a scan stage: its files written, its summary printed.
-pub fn run_spec(spec: &ScanSpec) -> Result<bool> {
-    propbet_api::files::refuse_inputs_inside(&spec.out, &inputs(spec))?;
-    let s = stages::scan(spec)?;
-    write(spec, &s)?;
-    print_summary(&s);
-    println!("wrote {}", spec.out.display());
-    Ok(s.clean())
-}
-
-/// The files a scan reads (none may be overwritten).
-fn inputs(spec: &ScanSpec) -> Vec<&Path> {
-    std::iter::once(spec.input.as_path())
-        .chain(spec.reference.as_deref())
-        .collect()
-}
-
-/// Writes the scan stage's outputs into `spec.out` (`propbet_api::outputs::scan`).
-pub fn write(spec: &ScanSpec, sc: &Scanned) -> Result<()> {
-    let command = crate::argv::command(&propbet_pipeline::spec::StageSpec::Scan(spec.clone()));
-    Ok(propbet_api::outputs::scan::outputs(spec, sc)?.write(&spec.out, &command, &inputs(spec))?)
-}
-
-/// The scan on the terminal.
-pub fn print_summary(sc: &Scanned) {
-    let (g, reference) = (&sc.geometry, sc.reference.as_deref());
-    println!("{}", propbet_report::scan::summary(g));
-    println!("  {}", propbet_report::scan::accuracy(g));
-    for n in &g.notes {
-        println!("  {n}");
-    }
-    for f in &g.failed {
-        println!("  r/R {:.3}: {}", f.r_r, f.reason);
-    }
-    if let Some(line) = reference.and_then(|t| propbet_report::scan::reference_check(g, t)) {
-        println!("{line}");
-    }
+    Ok(propbet_api::commands::scan::run(
+        &a.spec()?,
+        &crate::output::Terminal::default(),
+    )?)
 }

@@ -5,12 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_pipeline::stages::{self, SynthSpec};
+use propbet_api::commands::synth::SynthFormat as Format;
 
-use propbet_api::files::write_atomic;
-use propbet_api::settings::values::parse_list;
-
-use crate::predict::{load_model, ModelArgs};
+use crate::predict::ModelArgs;
 
 /// Output format of `propbet synth`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -52,58 +49,21 @@ pub struct SynthArgs {
 
 /// Runs `propbet synth`.
 pub fn run(args: &SynthArgs) -> Result<bool> {
-    let mspec = args.model.spec()?;
-    let mut answer_path = args.out.as_os_str().to_owned();
-    answer_path.push(".answer.json");
-    let answer_path = PathBuf::from(answer_path);
-    match args.format {
-        SynthFormat::Uiuc => propbet_api::files::refuse_inputs_inside(&args.out, &mspec.inputs())?,
-        _ => propbet_api::files::refuse_outputs_over_inputs(&[&args.out, &answer_path], &mspec.inputs())?,
-    }
-    let m = load_model(&mspec, false)?;
-    let spec = SynthSpec {
-        noise: stages::parse_noise(&args.noise)?,
+    let command = propbet_api::commands::synth::SynthCommand {
+        model: args.model.spec()?,
+        noise: args.noise.clone(),
         format: match args.format {
-            SynthFormat::Generic => stages::SynthFormat::Generic,
-            SynthFormat::Uiuc => stages::SynthFormat::Uiuc,
-            SynthFormat::Rcbenchmark => stages::SynthFormat::Rcbenchmark,
+            SynthFormat::Generic => Format::Generic,
+            SynthFormat::Uiuc => Format::Uiuc,
+            SynthFormat::Rcbenchmark => Format::Rcbenchmark,
         },
-        rpms: args.rpm.as_deref().map(|r| parse_list("--rpm", r)).transpose()?,
-        js: args.j.as_deref().map(|j| parse_list("--j", j)).transpose()?,
+        rpm: args.rpm.clone(),
+        j: args.j.clone(),
         seed: args.seed,
-        prop: args.model.prop.display().to_string(),
-        stem: args
-            .model
-            .prop
-            .file_stem()
-            .map_or("synth".into(), |s| s.to_string_lossy().replace('_', "-")),
+        out: args.out.clone(),
     };
-    let made = stages::synth(&spec, &m)?;
-    let inputs = mspec.inputs();
-    let mut answer_bytes = serde_json::to_vec_pretty(&made.answer)?;
-    answer_bytes.push(b'\n');
-    match &made.files {
-        stages::SynthFiles::Named(files) => {
-            std::fs::create_dir_all(&args.out)
-                .map_err(|e| anyhow::anyhow!("{}: cannot create the directory: {e}", args.out.display()))?;
-            for (name, text) in files {
-                write_atomic(&args.out.join(name), &[text.as_bytes()], &inputs)?;
-            }
-            write_atomic(&args.out.join("answer.json"), &[&answer_bytes], &inputs)?;
-        }
-        stages::SynthFiles::One(text) => {
-            write_atomic(&args.out, &[text.as_bytes()], &inputs)?;
-            write_atomic(&answer_path, &[&answer_bytes], &inputs)?;
-        }
-    }
-    eprintln!(
-        "propbet: {} points ({} RPMs x {} J) with {} and {:.2} % noise -> {}",
-        made.points,
-        made.plan.rpms.len(),
-        made.plan.js.len(),
-        made.effects,
-        100.0 * spec.noise,
-        args.out.display()
-    );
-    Ok(true)
+    Ok(propbet_api::commands::synth::synth(
+        &command,
+        &crate::output::Terminal::default(),
+    )?)
 }

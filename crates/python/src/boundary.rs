@@ -27,11 +27,11 @@ pyo3::create_exception!(
 pub(crate) fn guarded<T, E>(py: Python<'_>, f: impl FnOnce() -> Result<T, E> + Send) -> PyResult<T>
 where
     T: Send,
-    E: std::fmt::Display + Send,
+    E: Into<Box<dyn std::error::Error + Send + Sync>> + Send,
 {
     match py.detach(|| catch_unwind(AssertUnwindSafe(f))) {
         Ok(Ok(v)) => Ok(v),
-        Ok(Err(e)) => Err(InputError::new_err(format!("{e:#}"))),
+        Ok(Err(e)) => Err(InputError::new_err(propbet_api::with_causes(&*e.into()))),
         Err(panic) => {
             let what = panic
                 .downcast_ref::<&str>()

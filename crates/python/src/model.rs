@@ -215,7 +215,7 @@ pub fn predict<'py>(
             stations: None,
             band,
         };
-        propbet_cli::api::predict(&spec, stations)
+        propbet_api::commands::predict::columns(&spec, stations, &propbet_cli::Terminal::default())
     })?;
     Ok((
         columns(py, table)?,
@@ -229,7 +229,9 @@ pub fn predict<'py>(
 #[pyfunction]
 pub fn stations<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyBytes>> {
     let spec = model.spec.clone();
-    let t = guarded(py, move || propbet_cli::api::stations(&spec))?;
+    let t = guarded(py, move || {
+        propbet_api::commands::synth::stations(&spec, &propbet_cli::Terminal::default())
+    })?;
     Ok(PyBytes::new(py, &t))
 }
 
@@ -244,7 +246,12 @@ pub fn case_model(
     out: PathBuf,
 ) -> PyResult<(Model, Option<(PathBuf, Option<String>, Option<PathBuf>)>)> {
     let (predict, polars) = guarded(py, move || {
-        propbet_cli::api::case_prediction(&case, &out, &ProcessRequest::default())
+        propbet_api::commands::run::case_prediction(
+            &case,
+            &out,
+            &ProcessRequest::default(),
+            &propbet_cli::Terminal::default(),
+        )
     })?;
     let spec = predict.model;
     Ok((
@@ -330,7 +337,7 @@ pub fn compare<'py>(
             motor,
             out,
         };
-        propbet_cli::api::compare(&spec)
+        propbet_api::commands::compare::compare(&spec, &propbet_cli::Terminal::default())
     })?;
     Ok((
         ok,
@@ -374,7 +381,7 @@ pub fn diagnose<'py>(
     };
     let (ok, w) = guarded(py, move || {
         let spec = request.spec(model, measured.spec()?, out)?;
-        propbet_cli::api::diagnose(&spec)
+        propbet_api::commands::diagnose::diagnose(&spec, &propbet_cli::Terminal::default())
     })?;
     Ok((ok, PyBytes::new(py, &w.diagnosis), PyBytes::new(py, &w.summary)))
 }
@@ -403,7 +410,14 @@ pub fn run<'py>(
 ) -> PyResult<RunOutput<'py>> {
     let process = process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget);
     let (ok, f) = guarded(py, move || {
-        propbet_cli::api::run(case, Some(out), &process, verbose, inputs_anywhere)
+        let request = propbet_api::commands::run::RunRequest {
+            case,
+            out: Some(out),
+            xfoil: process.spec()?,
+            verbose,
+            inputs_anywhere,
+        };
+        propbet_api::commands::run::run(&request, &propbet_cli::Terminal::default())
     })?;
     let bytes = |b: Option<Vec<u8>>| b.map(|b| PyBytes::new(py, &b));
     Ok((
@@ -444,6 +458,13 @@ pub fn scan(
     let settings: propbet_api::ScanSettings = serde_json::from_str(settings)
         .map_err(|e| pyo3::exceptions::PyTypeError::new_err(format!("from_scan(): {e}")))?;
     guarded(py, move || {
-        propbet_cli::api::scan(path, &settings, reference, name, out)
+        let spec = propbet_api::ScanSpec {
+            input: path,
+            options: settings.options()?,
+            reference,
+            name,
+            out,
+        };
+        propbet_api::commands::scan::run(&spec, &propbet_cli::Terminal::default())
     })
 }

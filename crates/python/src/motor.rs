@@ -207,7 +207,7 @@ pub fn powered<'py>(
             stations: None,
             band,
         };
-        propbet_cli::api::powered(&spec, &m, stations)
+        propbet_api::commands::predict::powered_columns(&spec, &m, stations, &propbet_cli::Terminal::default())
     })?;
     let per_station = per_station.map(|t| columns(py, t)).transpose()?;
     Ok((columns(py, table)?, problems, per_station))
@@ -282,7 +282,16 @@ pub fn compare_props<'py>(
     let (file, text, supply) = (motor.file.clone(), battery.text.clone(), battery.supply);
     let (table, answer) = guarded(py, move || {
         let speeds = speeds.map(|v| v.numbers("v")).transpose()?;
-        propbet_cli::api::compare_props(&models, &file, &supply, &text, hover, speeds, &air.spec()?)
+        propbet_api::commands::motor::compare_props_columns(
+            &models,
+            &file,
+            &supply,
+            &text,
+            hover,
+            speeds,
+            &air.spec()?,
+            &propbet_cli::Terminal::default(),
+        )
     })?;
     Ok((columns(py, table)?, answer))
 }

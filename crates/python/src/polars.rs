@@ -76,7 +76,9 @@ pub fn polars<'py>(
         out_prop,
         out_polars: Some(out_polars),
     };
-    guarded(py, move || propbet_cli::api::polars(&request.spec()?))
+    guarded(py, move || {
+        propbet_api::commands::polar::polars(&request.spec()?, &propbet_cli::Terminal::default())
+    })
 }
 
 /// ``propbet validate`` on UIUC's measurements, APC's design files and airfoils, into ``out``:
@@ -115,33 +117,30 @@ pub fn validate(
     quiet: bool,
     xfoil_budget: Option<f64>,
 ) -> PyResult<(bool, String, Bound<'_, pyo3::types::PyBytes>)> {
-    use propbet_cli::api::{ValidateArgs, XfoilProcess, DEFAULT_GENERIC_SECTION, NCRIT, SECTION_MODEL};
-    let args = ValidateArgs {
+    let request = propbet_api::commands::validate::ValidateRequest {
         uiuc,
         pe0,
         airfoils,
         only,
         out,
-        xfoil: XfoilProcess::from(&process(
-            engine,
-            neuralfoil_size,
-            xfoil,
-            cache,
-            no_cache,
-            quiet,
-            xfoil_budget,
-        )),
-        section_model: section_model.unwrap_or_else(|| SECTION_MODEL.default.to_string()),
+        section: propbet_api::SectionRequest {
+            process: process(engine, neuralfoil_size, xfoil, cache, no_cache, quiet, xfoil_budget),
+            ncrit,
+            trip,
+            ..Default::default()
+        },
+        section_model,
         per3,
-        ncrit: ncrit.unwrap_or(NCRIT.default),
         ncrit_effect,
         rotation,
         drag_factor,
-        trip,
-        geometry: geometry.unwrap_or_else(|| "uiuc".to_string()),
-        generic_section: generic_section.unwrap_or_else(|| DEFAULT_GENERIC_SECTION.to_string()),
+        geometry,
+        generic_section,
         user_effects,
     };
-    let (ok, written) = guarded(py, move || propbet_cli::api::validate(&args))?;
+    let (ok, written) = guarded(py, move || {
+        let (spec, props, generic) = request.spec()?;
+        propbet_api::commands::validate::validate(&spec, &props, generic.as_ref(), &propbet_cli::Terminal::default())
+    })?;
     Ok((ok, written.markdown, pyo3::types::PyBytes::new(py, &written.csv)))
 }

@@ -129,18 +129,16 @@ pub struct Validation {
     pub clean: bool,
 }
 
-/// The progress callback of one prop's polars (done, total).
-pub type PropProgress = Box<dyn Fn(usize, usize) + Sync>;
-
 /// Validates each of `props` (sections from [`sections_for`]): `start` is told of each prop as
-/// it starts (its index, the count, its name) and returns the progress callback of its polars;
+/// it starts (its index, the count, its name), `progress` of each prop's polars (done, total);
 /// `done` gets each validated prop to write, and its error (or the prop's) lists the prop as
 /// not validated. An error when no prop could be validated.
 pub fn validate_all(
     spec: &ValidateSpec,
     props: &[String],
     generic: Option<&Sections>,
-    start: &mut dyn FnMut(usize, usize, &str) -> PropProgress,
+    start: &mut dyn FnMut(usize, usize, &str),
+    progress: &propbet_polar::Progress<'_>,
     done: &mut dyn FnMut(&str, &Validated) -> std::result::Result<(), String>,
 ) -> Result<Validation> {
     let mut out = Validation {
@@ -155,8 +153,8 @@ pub fn validate_all(
                 continue;
             }
         };
-        let progress = start(k, props.len(), prop);
-        let result = validate_prop(spec, prop, &sections, &*progress)
+        start(k, props.len(), prop);
+        let result = validate_prop(spec, prop, &sections, progress)
             .map_err(|e| with_causes(&e))
             .and_then(|v| done(prop, &v).map(|()| v));
         match result {
