@@ -11,8 +11,6 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 
-use crate::polar::XfoilProcess;
-
 /// Arguments of `propbet validate`.
 // Fields without a doc comment are documented by their declared setting's help (`settings`).
 #[allow(missing_docs)]
@@ -35,9 +33,9 @@ pub struct ValidateArgs {
     /// Output directory.
     #[arg(long, short)]
     pub out: PathBuf,
-    /// XFOIL executable, polar cache, progress bars (passed on to the polars stages).
+    /// XFOIL, its cache and how each section's polar is asked (passed on to the polars stages).
     #[command(flatten)]
-    pub xfoil: XfoilProcess,
+    pub xfoil: crate::polar::XfoilArgs,
     #[arg(
         long = propbet_api::settings::SECTION_MODEL.flag,
         help = propbet_api::settings::SECTION_MODEL.help,
@@ -49,16 +47,12 @@ pub struct ValidateArgs {
     /// points beside propbet's.
     #[arg(long)]
     pub per3: Option<PathBuf>,
-    #[arg(long = propbet_api::settings::NCRIT.flag, help = propbet_api::settings::NCRIT.help, default_value_t = propbet_api::settings::NCRIT.default)]
-    pub ncrit: f64,
     #[arg(long = propbet_api::settings::NCRIT_EFFECT.flag, help = propbet_api::settings::NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
     #[arg(long = propbet_api::settings::ROTATION.flag, help = propbet_api::settings::ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
     #[arg(long = propbet_api::settings::DRAG_FACTOR.flag, help = propbet_api::settings::DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
-    #[arg(long = propbet_api::settings::TRIP.flag, help = propbet_api::settings::TRIP.help, value_name = "X/C|free")]
-    pub trip: Option<String>,
     /// Where each station's chord and twist come from: `uiuc` (UIUC's measured geometry file) or
     /// `pe0` (APC's design chord and twist, at UIUC's stations).
     #[arg(long, value_parser = ["uiuc", "pe0"], default_value = "uiuc")]
@@ -84,12 +78,7 @@ pub(crate) fn request(a: &ValidateArgs) -> propbet_api::commands::validate::Vali
         airfoils: a.airfoils.clone(),
         only: a.only.clone(),
         out: a.out.clone(),
-        section: propbet_api::SectionRequest {
-            process: a.xfoil.request(),
-            ncrit: Some(a.ncrit),
-            trip: a.trip.clone(),
-            ..Default::default()
-        },
+        section: a.xfoil.request(),
         section_model: Some(a.section_model.clone()),
         per3: a.per3.clone(),
         ncrit_effect: a.ncrit_effect.clone(),
