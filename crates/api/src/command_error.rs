@@ -83,14 +83,4 @@ macro_rules! refuse {
 }
 pub(crate) use refuse;
 
-/// An error and its causes in one line, "error: cause: cause" (as the binary prints errors).
-pub fn with_causes(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut cause = e.source();
-    while let Some(c) = cause {
-        text.push_str(": ");
-        text.push_str(&c.to_string());
-        cause = c.source();
-    }
-    text
-}
+pub use propbet_units::with_causes;

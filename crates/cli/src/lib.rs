@@ -1,7 +1,9 @@
-//! The `propbet` commands: thin glue over the library crates. Parses flags, converts them once
-//! to SI, runs, and says how it went: done, done with problems it reported, or an error (the
-//! binary's exit codes 0, 1, 2). A library so that the binary (`main.rs`) and the Python
-//! package (`crates/python`) run the same commands.
+//! The `propbet` command line: parses flags into the typed API's requests and specs, runs the
+//! API's commands (`propbet_api::commands`) with the terminal as their console ([`Terminal`]:
+//! its lines, the polars' progress bar, each stage's equivalent command line), and says how it
+//! went: done, done with problems it reported, or an error (the binary's exit codes 0, 1, 2). A
+//! library so that the Python package (`crates/python`) prints to the same terminal and runs
+//! `propbet` itself (`execute`).
 
 use clap::{Parser, Subcommand};
 

@@ -1,6 +1,7 @@
 //! `propbet._native`, the Python package's native module: propbet's typed API in the
 //! interpreter's process. Keyword arguments become the API's requests ([`propbet_api`]), never
-//! a command line; the results come back as columns (`propbet_api::commands`, telling the terminal as the binary does), with the GIL released
+//! a command line; the API's commands run them (`propbet_api::commands`, telling the terminal
+//! what the binary tells it) and the results come back as columns, with the GIL released
 //! while they compute, errors raised as `propbet.InputError` naming the value and a panic,
 //! should one happen, as `propbet.InternalError` instead of an abort. The Python side
 //! (`python/propbet/__init__.py`) makes the columns pandas DataFrames: nothing is computed

@@ -77,7 +77,7 @@ pub fn brief(p: &Polars) -> Vec<String> {
     }
     if unconverged + faults > 0 {
         out.push(format!(
-            "XFOIL missed some angles in {unconverged} polars and failed {faults} times: the tables interpolate across"
+            "XFOIL missed some angles in {unconverged} polars and failed {faults} times: the tables interpolate across the gaps"
         ));
     }
     if let Some(e) = &p.export {

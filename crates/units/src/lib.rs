@@ -94,6 +94,19 @@ pub fn printable(text: &str) -> String {
         .collect()
 }
 
+/// An error and its causes in one line, "error: cause: cause" (as the binary prints errors):
+/// how a message that goes on as text (a prop not validated, an error to Python) keeps them.
+pub fn with_causes(e: &dyn std::error::Error) -> String {
+    let mut text = e.to_string();
+    let mut cause = e.source();
+    while let Some(c) = cause {
+        text.push_str(": ");
+        text.push_str(&c.to_string());
+        cause = c.source();
+    }
+    text
+}
+
 /// Where in `text` the byte `offset` lies, as "line L, column C" (1-based): how a parser's
 /// error names its place without echoing the line (a 10 KB line would be 10 KB of message).
 pub fn place(text: &str, offset: usize) -> String {

@@ -155,7 +155,7 @@ pub fn validate_all(
         };
         start(k, props.len(), prop);
         let result = validate_prop(spec, prop, &sections, progress)
-            .map_err(|e| with_causes(&e))
+            .map_err(|e| propbet_units::with_causes(&e))
             .and_then(|v| done(prop, &v).map(|()| v));
         match result {
             Ok(v) => {
@@ -180,16 +180,4 @@ pub fn validate_all(
         );
     }
     Ok(out)
-}
-
-/// An error and its causes in one line, "error: cause: cause" (as the binary prints errors).
-fn with_causes(e: &dyn std::error::Error) -> String {
-    let mut text = e.to_string();
-    let mut cause = e.source();
-    while let Some(c) = cause {
-        text.push_str(": ");
-        text.push_str(&c.to_string());
-        cause = c.source();
-    }
-    text
 }
