@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use crate::command_error::refuse;
 use crate::{CommandError, CommandResult as Result};
 use propbet_pipeline::case::{read_case, RunPlan};
-use propbet_pipeline::spec::XfoilProcessSpec;
+use propbet_settings::spec::XfoilProcessSpec;
 
 /// The shipped default case: `props/apcsp_10x7` under the current directory or beside the
 /// executable's repository (`target/release/propbet` → `../../props`).

@@ -3,7 +3,7 @@
 //! tells its answer and its problems here, line by line, as it has them.
 
 use crate::diagnose::Diagnosis;
-use propbet_pipeline::spec::{PredictSpec, StageSpec, XfoilProcessSpec};
+use propbet_settings::spec::{PredictSpec, StageSpec, XfoilProcessSpec};
 
 /// A door's terminal and command lines, as a command running below it uses them.
 pub trait Console: Sync {

@@ -48,9 +48,10 @@ pub use request::{
 
 /// The sources of the uncertainty band, in words (`--band`'s help).
 pub use propbet_pipeline::band::SOURCES_TEXT as BAND_SOURCES;
-pub use propbet_pipeline::spec::{
+pub use propbet_pipeline::{Error, Result};
+pub use propbet_settings::scan::ScanSettings;
+pub use propbet_settings::spec;
+pub use propbet_settings::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PoweredSpec, PredictSpec, ScanSpec, SweepAxis,
     TableFormat,
 };
-pub use propbet_pipeline::{spec, Error, Result};
-pub use propbet_settings::scan::ScanSettings;

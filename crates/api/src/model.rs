@@ -3,7 +3,7 @@
 //! the operating points a command needs; what a person is told of it is returned, not printed.
 
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, SweepAxis};
+use propbet_settings::spec::{MeasuredSpec, ModelSpec, SweepAxis};
 
 use crate::command_error::refuse;
 use crate::CommandResult as Result;

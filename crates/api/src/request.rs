@@ -3,10 +3,10 @@
 use std::path::PathBuf;
 
 use crate::motor::{Battery, Drive, Supply};
-use propbet_pipeline::spec::{
+use propbet_pipeline::{Error, Result};
+use propbet_settings::spec::{
     AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis, XfoilProcessSpec, XfoilSpec,
 };
-use propbet_pipeline::{Error, Result};
 use propbet_settings::values::{
     parse_atmosphere, parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature,
 };

@@ -1,9 +1,7 @@
-//! The `propbet` command line: parses flags into the typed API's requests and specs, runs the
-//! API's commands (`propbet_api::commands`) with the terminal as their console ([`Terminal`]:
-//! its lines, the polars' progress bar, each stage's equivalent command line), and says how it
-//! went: done, done with problems it reported, or an error (the binary's exit codes 0, 1, 2). A
-//! library so that the Python package (`crates/python`) prints to the same terminal and runs
-//! `propbet` itself (`execute`).
+//! The `propbet` command line: flags parsed into the typed API's requests, its commands run with
+//! the terminal as their console ([`Terminal`]), and how it went: exit 0 done, 1 done with
+//! problems it reported, 2 an error. A library so that the Python package (`crates/python`)
+//! prints to the same terminal and runs `propbet` itself (`execute`).
 
 use clap::{Parser, Subcommand};
 

@@ -242,7 +242,7 @@ mod tests {
     /// QPROP's example prop (shipped in `props/cam6x3`) at 6000 rpm over its J range.
     fn cam6x3() -> (Model, Fluid, Vec<OperatingPoint>) {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../props/cam6x3/cam6x3.qprop");
-        let model = Model::load(&crate::spec::ModelSpec::prop(path), false).unwrap();
+        let model = Model::load(&propbet_settings::spec::ModelSpec::prop(path), false).unwrap();
         let omega = 6000.0 * std::f64::consts::PI / 30.0;
         let j: Vec<f64> = (0..6).map(|k| 0.1 * k as f64).collect();
         let points = propbet_bemt::grid_omega_j(&[omega], &j, model.rotor.tip_radius);

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use crate::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec};
 use crate::{read_text, Error, Result};
 use propbet_settings::scan::ScanSettings;
+use propbet_settings::spec::{CompareSpec, DiagnoseSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSpec, StageSpec};
 use propbet_settings::values::parse_list;
 
 /// `case.toml`.

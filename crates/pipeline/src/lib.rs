@@ -1,10 +1,10 @@
 //! propbet's stages as typed functions, under the `propbet` command.
 //!
-//! * [`spec`]: what each stage is asked ([`spec::StageSpec`]), in SI.
+//! * what each stage is asked, in SI: `propbet_settings::spec`.
 //! * [`case`]: case files (`case.toml`) and the plan of stages they ask for.
 //! * [`stages`]: scan, polars, predict, compare, diagnose as functions returning artifacts.
 //! * [`run`]: a case's plan run in memory ([`run::run_case`]).
-//! * [`model`]: a prop file turned into the model a stage solves; the air.
+//! * [`model`]: a prop file turned into the model a stage solves.
 //! * [`design`]: blade files other than QPROP's (APC's PE0, UIUC tables, blade tables).
 //! * [`band`]: a prediction's uncertainty band, from its model.
 //!
@@ -19,7 +19,6 @@ pub mod design;
 mod error;
 pub mod model;
 pub mod run;
-pub mod spec;
 pub mod stages;
 
 pub(crate) use error::read_bytes;

@@ -3,13 +3,13 @@
 
 use std::path::Path;
 
-use propbet_bemt::{Discretization, Fluid, Rotor, SolverOptions};
+use propbet_bemt::{Discretization, Rotor, SolverOptions};
 use propbet_effects::spec::Registry;
 use propbet_effects::{parse_spec, Stack};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 
-use crate::spec::{AirSpec, ModelSpec};
 use crate::{out_of_range, read_text, Error, Result};
+use propbet_settings::spec::ModelSpec;
 
 /// A prop file read and checked, with its warnings (each naming the file).
 #[derive(Debug, Clone)]
@@ -195,16 +195,6 @@ pub fn effect_registry(user_effects: Option<&Path>) -> Result<Registry> {
     Registry::with_user(user).map_err(|e| Error::input(path, e.to_string()))
 }
 
-impl ModelSpec {
-    /// The files the model reads (never to be overwritten).
-    pub fn inputs(&self) -> Vec<&Path> {
-        std::iter::once(self.prop.as_path())
-            .chain(self.polars.as_deref())
-            .chain(self.user_effects.as_deref())
-            .collect()
-    }
-}
-
 /// The `transition` effect of polars that have tables at other Ncrit values than their own
 /// (`others`, their tables `models_at` each: `propbet polars --ncrit-effect`, or the band's),
 /// about the tables at their own (`base`); None when they have none.
@@ -264,54 +254,4 @@ fn tabulate(rotor: &mut Rotor, (r, models): &propbet_polar::blade::StationModels
     }
     propbet_polar::tabulated::apply_to_rotor(rotor, r, models);
     Ok(())
-}
-
-impl AirSpec {
-    /// The fluid, and a note of where it came from.
-    pub fn fluid(&self) -> Result<(Fluid, String)> {
-        use propbet_units::air;
-        for (flag, x, range, unit) in [
-            ("--rho", self.rho, &air::DENSITY, "kg/m^3"),
-            ("--mu", self.mu, &air::VISCOSITY, "Pa s"),
-            ("--a", self.a, &air::SOUND_SPEED, "m/s"),
-        ] {
-            if let Some(x) = x {
-                air::check(flag, x, range, unit).map_err(Error::Range)?;
-            }
-        }
-        if let Some(state) = &self.state {
-            let mut f = state.fluid();
-            if let Some(rho) = self.rho {
-                f.rho = rho;
-            }
-            if let Some(mu) = self.mu {
-                f.mu = mu;
-            }
-            if let Some(a) = self.a {
-                f.a = a;
-            }
-            return Ok((
-                f,
-                format!(
-                    "from T = {:.2} K, p = {:.0} Pa, RH = {:.0} %",
-                    state.temperature,
-                    state.pressure,
-                    state.relative_humidity * 100.0
-                ),
-            ));
-        }
-        let d = Fluid::QPROP_DEFAULT;
-        let f = Fluid {
-            rho: self.rho.unwrap_or(d.rho),
-            mu: self.mu.unwrap_or(d.mu),
-            a: self.a.unwrap_or(d.a),
-        };
-        f.validate().map_err(|e| Error::Range(format!("air: {e}")))?;
-        let source = if self.rho.is_none() && self.mu.is_none() && self.a.is_none() {
-            "QPROP defaults (standard air, not measured)".to_string()
-        } else {
-            "given".to_string()
-        };
-        Ok((f, source))
-    }
 }

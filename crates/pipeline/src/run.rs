@@ -7,9 +7,9 @@ use propbet_bemt::{Fluid, PointResult};
 
 use crate::case::RunPlan;
 use crate::model::{LoadedProp, Model};
-use crate::spec::StageSpec;
 use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput, Scanned};
 use crate::{Error, Result};
+use propbet_settings::spec::StageSpec;
 
 /// A stage that has run.
 #[derive(Debug, Clone)]
@@ -212,12 +212,12 @@ pub fn run_case(
     // 3. Sweeps: the polars' prop file in memory, else the case's own.
     let spec = &plan.predict;
     let t = book.start(StageSpec::Predict(spec.clone()));
-    let build = |m: &crate::spec::ModelSpec| match &polars {
+    let build = |m: &propbet_settings::spec::ModelSpec| match &polars {
         Some(p) => Model::from_parts(m, p.prop.clone(), Some(&p.blade), false),
         None => Model::load(m, false),
     };
     let model = build(&spec.model).map_err(|e| stage_err("predict", e))?;
-    let fluid = spec.air.fluid().map_err(|e| stage_err("predict", e))?;
+    let fluid = spec.air.fluid().map_err(|e| stage_err("predict", e.into()))?;
     let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
     let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
     let clean = sweep.iter().all(|p| p.not_converged == 0);
@@ -279,7 +279,7 @@ pub fn run_case(
 /// The polars stage's inputs from a scan's blade in memory: each station's scanned section
 /// (`scanned_sections`), or the spec's airfoil at every station.
 fn scan_input(
-    spec: &crate::spec::PolarsSpec,
+    spec: &propbet_settings::spec::PolarsSpec,
     geometry: &LoadedProp,
     scanned_sections: bool,
     scanned: Option<&Scanned>,

@@ -21,8 +21,10 @@ use propbet_qprop::{GeometryAccuracy, PropFile, PropRow};
 use rayon::prelude::*;
 
 use crate::model::{as_written, load_prop, LoadedProp, Model};
-use crate::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec};
 use crate::{conflict, nothing, out_of_range, read_bytes, read_text, Error, Result};
+use propbet_settings::spec::{
+    DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec,
+};
 
 // ---------------------------------------------------------------------------------------
 // scan

@@ -425,7 +425,7 @@ fn case_files() {
             let _ = case.plan(
                 Path::new("case"),
                 Path::new("out"),
-                &propbet_pipeline::spec::XfoilProcessSpec::default(),
+                &propbet_settings::spec::XfoilProcessSpec::default(),
             );
         }
         true

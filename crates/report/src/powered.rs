@@ -3,8 +3,8 @@
 
 use std::fmt::Write as _;
 
-use propbet_pipeline::spec::PoweredSpec;
 use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
+use propbet_settings::spec::PoweredSpec;
 
 use crate::page::{esc, sig};
 

@@ -8,6 +8,7 @@
 #![deny(missing_docs)]
 
 pub mod scan;
+pub mod spec;
 pub mod values;
 
 /// A value as written does not read, or a declared setting's value is outside what it allows.
@@ -29,6 +30,10 @@ pub enum Error {
     /// Settings that cannot go together, or a setting missing that another needs.
     #[error("{0}")]
     Conflict(String),
+    /// A value outside what propbet can compute with (an angle XFOIL cannot be asked for, a
+    /// density no air has).
+    #[error("{0}")]
+    Range(String),
 }
 
 impl Error {

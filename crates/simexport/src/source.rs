@@ -3,8 +3,8 @@
 
 use super::{blade_ixx, export, gazebo, Exported, Point, Source, Target, IXX_ASSUMED};
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
 use propbet_pipeline::{conflict, out_of_range, Error, Result};
+use propbet_settings::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
 use propbet_settings::values::{list_text, rpm_list_text, rpm_text};
 
 /// Where the exported points come from.
@@ -54,7 +54,7 @@ pub enum Said {
 /// polars computed over `points` (the export's operating points).
 fn load(
     spec: &ModelSpec,
-    points: impl FnOnce() -> Result<(Vec<f64>, propbet_pipeline::spec::SweepAxis)>,
+    points: impl FnOnce() -> Result<(Vec<f64>, propbet_settings::spec::SweepAxis)>,
     say: &dyn Fn(Said),
 ) -> Result<Model> {
     if spec.design.is_some() {
@@ -188,7 +188,7 @@ fn measured(
         .map(|s| {
             load(
                 s,
-                || propbet_pipeline::stages::cover(measured).map(|(o, j)| (o, propbet_pipeline::spec::SweepAxis::J(j))),
+                || propbet_pipeline::stages::cover(measured).map(|(o, j)| (o, propbet_settings::spec::SweepAxis::J(j))),
                 say,
             )
         })

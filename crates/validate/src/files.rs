@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use super::ValidateSpec;
 use propbet_pipeline::design::first_file;
-use propbet_pipeline::spec::MeasuredSpec;
 use propbet_pipeline::stages;
 use propbet_pipeline::{Error, Result};
+use propbet_settings::spec::MeasuredSpec;
 
 /// The UIUC name of a file of a UIUC directory: `<family>_<D>x<P>` from `<family>_<D>x<P>_*.txt`
 /// (`apcsf_10x4.7_static_kt0835.txt` → `apcsf_10x4.7`); None for a file that is not one.

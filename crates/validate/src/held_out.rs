@@ -11,9 +11,9 @@ use propbet_measure::MeasuredSet;
 
 use super::row::{ladder_text, median_p90};
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::DiagnoseSpec;
 use propbet_pipeline::stages;
 use propbet_pipeline::{Error, Result};
+use propbet_settings::spec::DiagnoseSpec;
 
 /// One half's held-out CT and CP errors and its rung in words.
 type HeldOutHalf = (Vec<f64>, Vec<f64>, String);

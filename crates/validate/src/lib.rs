@@ -13,11 +13,11 @@ use propbet_qprop::{PropFile, PropRow};
 
 use propbet_pipeline::model::{as_written, LoadedProp, Model};
 use propbet_pipeline::run::{timed, StageRecord};
-use propbet_pipeline::spec::{
-    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilSpec,
-};
 use propbet_pipeline::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
 use propbet_pipeline::{Error, Result};
+use propbet_settings::spec::{
+    AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilSpec,
+};
 
 mod all;
 mod blade;
@@ -239,7 +239,7 @@ fn polars_spec(spec: &ValidateSpec, dir: &Path, omegas: Vec<f64>, js: Vec<f64>) 
         sections_from: None,
         airfoils: None,
         omegas,
-        axis: propbet_pipeline::spec::SweepAxis::J(js),
+        axis: propbet_settings::spec::SweepAxis::J(js),
         air: AirSpec::default(),
         xfoil: spec.xfoil.clone(),
         ncrit_effect: spec.ncrit_effect.clone(),

@@ -5,9 +5,9 @@
 use std::path::Path;
 
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{CompareSpec, StageSpec};
 use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_report::answer::ReferenceScore;
+use propbet_settings::spec::{CompareSpec, StageSpec};
 
 use super::predict::load_model_at;
 use crate::compare::ComparedPoint;

@@ -1,9 +1,9 @@
 //! `propbet diagnose`: which physical effect is missing from the model, its report written
 //! and its ranking told; `propbet effects`: the effects there are.
 
-use propbet_pipeline::spec::{DiagnoseSpec, StageSpec};
 use propbet_pipeline::stages::{self, Diagnosed};
 use propbet_report::diagnose as report;
+use propbet_settings::spec::{DiagnoseSpec, StageSpec};
 
 use super::compare::{print_measured, warn_faulty_rows};
 use super::predict::load_model_at;

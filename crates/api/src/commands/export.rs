@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_pipeline::spec::{PredictSpec, TableFormat};
+use propbet_settings::spec::{PredictSpec, TableFormat};
 use propbet_simexport::{ExportFrom, ExportSpec, Said, Target};
 
 use crate::command_error::refuse;

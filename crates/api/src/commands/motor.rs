@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_pipeline::spec::{AirSpec, MeasuredSpec, ModelSpec, SweepAxis};
 use propbet_pipeline::stages::SideProp;
 use propbet_report::table::columns::Table;
+use propbet_settings::spec::{AirSpec, MeasuredSpec, ModelSpec, SweepAxis};
 
 use crate::console::{emit, wrapped, Console};
 use crate::motor::{FitKind, Motor, MotorFile, Supply};

@@ -3,10 +3,10 @@
 //! person is told of them.
 
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{ModelSpec, PoweredSpec, PredictSpec, SweepAxis};
 use propbet_pipeline::stages::polar_omegas;
 use propbet_report::table::columns::Table;
 use propbet_report::table::powered::PoweredRun;
+use propbet_settings::spec::{ModelSpec, PoweredSpec, PredictSpec, SweepAxis};
 
 use crate::console::{emit, wrapped, Console};
 use crate::motor::MotorFile;

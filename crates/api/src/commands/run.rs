@@ -9,7 +9,7 @@ use std::time::Instant;
 
 use propbet_pipeline::case::RunPlan;
 use propbet_pipeline::run::{run_case, Event, Finished, RunOutcome, StageRecord};
-use propbet_pipeline::spec::{PredictSpec, StageSpec, XfoilProcessSpec};
+use propbet_settings::spec::{PredictSpec, StageSpec, XfoilProcessSpec};
 
 use crate::console::{emit, Console};
 use crate::files::write_atomic;

@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
-use propbet_pipeline::spec::{ScanSpec, StageSpec};
 use propbet_pipeline::stages::{self, Scanned};
+use propbet_settings::spec::{ScanSpec, StageSpec};
 
 use crate::console::Console;
 use crate::CommandResult as Result;

@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_pipeline::spec::ModelSpec;
 use propbet_pipeline::stages;
 pub use propbet_pipeline::stages::SynthFormat;
+use propbet_settings::spec::ModelSpec;
 use propbet_settings::values::parse_list;
 
 use crate::console::Console;

@@ -6,7 +6,7 @@
 //! diagnosis finds them.
 
 use propbet_pipeline::run::StageRecord;
-use propbet_pipeline::spec::StageSpec;
+use propbet_settings::spec::StageSpec;
 use std::path::{Path, PathBuf};
 
 use propbet_validate::{

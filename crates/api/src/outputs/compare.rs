@@ -3,11 +3,11 @@
 
 use crate::CommandResult as Result;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::CompareSpec;
 use propbet_pipeline::stages::{Compared, Reference};
 use propbet_report::answer::ReferenceScore;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
 use propbet_report::table::csv_rows;
+use propbet_settings::spec::CompareSpec;
 
 use crate::files::Outputs;
 

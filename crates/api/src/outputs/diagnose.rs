@@ -2,10 +2,10 @@
 //! plots.
 
 use crate::CommandResult as Result;
-use propbet_pipeline::spec::DiagnoseSpec;
 use propbet_pipeline::stages::Diagnosed;
 use propbet_report::compare::FileEntry;
 use propbet_report::diagnose::{self as report, JsonOut};
+use propbet_settings::spec::DiagnoseSpec;
 
 use crate::files::Outputs;
 

@@ -1,6 +1,6 @@
 //! Measured files as `compare` reads them, as two tables: the points and the rows dropped.
 
-use propbet_pipeline::spec::MeasuredSpec;
+use propbet_settings::spec::MeasuredSpec;
 
 use crate::CommandResult as Result;
 

@@ -20,7 +20,7 @@ pub struct Fitted {
 /// Fits a motor of `kind` to the logs of `spec` (`kv` [rpm/V] the maker's, or None: from the
 /// ESC command's duty); `name` the motor's (None: the first log's name).
 pub fn fitted(
-    spec: &propbet_pipeline::spec::MeasuredSpec,
+    spec: &propbet_settings::spec::MeasuredSpec,
     kv: Option<f64>,
     kind: FitKind,
     name: Option<String>,
@@ -117,7 +117,7 @@ pub fn fitted(
 /// `propbet motor fit` in memory (`kq`: a type 2 motor, its Kq fitted on its own): the fit,
 /// the motor file's text, and the fitted steps as a table.
 pub fn fit(
-    spec: &propbet_pipeline::spec::MeasuredSpec,
+    spec: &propbet_settings::spec::MeasuredSpec,
     kv: Option<f64>,
     kq: bool,
     name: Option<String>,

@@ -5,9 +5,9 @@ use crate::CommandResult as Result;
 use propbet_bemt::PointResult;
 use propbet_pipeline::band::BandSpec;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::{PredictSpec, TableFormat};
 use propbet_report::table::columns::Table;
 use propbet_report::table::sweep;
+use propbet_settings::spec::{PredictSpec, TableFormat};
 
 /// A prediction's tables as `propbet predict` writes them.
 pub struct Tables {

@@ -2,8 +2,8 @@
 //! and scan.json.
 
 use crate::CommandResult as Result;
-use propbet_pipeline::spec::ScanSpec;
 use propbet_pipeline::stages::Scanned;
+use propbet_settings::spec::ScanSpec;
 use serde_json::json;
 
 use crate::files::Outputs;

@@ -6,12 +6,12 @@ use propbet_bemt::units::rpm_to_omega;
 use propbet_measure::RpmSource;
 
 use super::{at_key, parse_fraction, Case, NumberOrList, RunPlan};
-use crate::spec::{
+use crate::{Error, Result};
+use propbet_settings::scan::ScanSettings;
+use propbet_settings::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSpec,
     SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
-use crate::{Error, Result};
-use propbet_settings::scan::ScanSettings;
 use propbet_settings::values::{parse_atmosphere, parse_length_unit, parse_list};
 
 impl Case {

@@ -4,7 +4,7 @@ use super::*;
 use propbet_bemt::units::rpm_to_omega;
 use propbet_geometry::scan::SectionKind;
 
-use crate::spec::{SweepAxis, XfoilProcessSpec};
+use propbet_settings::spec::{SweepAxis, XfoilProcessSpec};
 
 fn plan(polars: &str) -> RunPlan {
     let text = format!(

@@ -151,17 +151,6 @@ fn read_measured(path: &Path, opts: &ReadOptions) -> Result<Vec<MeasuredSet>> {
     propbet_measure::read_file(&bytes, &opts).map_err(|e| Error::input(path, e))
 }
 
-impl MeasuredSpec {
-    /// The files read (never to be overwritten).
-    pub fn inputs(&self) -> Vec<&Path> {
-        self.files
-            .iter()
-            .map(PathBuf::as_path)
-            .chain(self.columns.as_deref())
-            .collect()
-    }
-}
-
 /// What the compare stage makes.
 pub struct Compared {
     /// The measured sets as read.

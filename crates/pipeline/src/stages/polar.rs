@@ -449,9 +449,9 @@ pub fn polars(spec: &PolarsSpec, input: &PolarsInput, engine: &PolarEngine, prog
 /// the model with them as its section tables, as `propbet run` models such a blade. None for a
 /// QPROP prop file (read as it is, by [`Model::load`]).
 pub fn design_model(
-    spec: &crate::spec::ModelSpec,
+    spec: &propbet_settings::spec::ModelSpec,
     omegas: Vec<f64>,
-    axis: crate::spec::SweepAxis,
+    axis: propbet_settings::spec::SweepAxis,
     keep_stations: bool,
     progress: &propbet_polar::Progress<'_>,
 ) -> Result<Option<(crate::model::Model, Polars)>> {
@@ -464,7 +464,7 @@ pub fn design_model(
             spec.prop.display()
         )));
     }
-    let pspec = crate::spec::PolarsSpec {
+    let pspec = propbet_settings::spec::PolarsSpec {
         geometry: spec.prop.clone(),
         units: spec.units,
         airfoil: design.airfoil.clone(),
@@ -474,8 +474,8 @@ pub fn design_model(
         airfoils: design.airfoils.clone(),
         omegas,
         axis,
-        air: crate::spec::AirSpec::default(),
-        xfoil: crate::spec::XfoilSpec {
+        air: propbet_settings::spec::AirSpec::default(),
+        xfoil: propbet_settings::spec::XfoilSpec {
             process: design.process.clone(),
             section: xfoil_runner::SectionSettings {
                 ncrit: propbet_settings::NCRIT.default,
@@ -493,7 +493,7 @@ pub fn design_model(
     let input = polars_input(&pspec)?;
     let engine = polar_engine(&design.process)?;
     let polars = polars(&pspec, &input, &engine, progress)?;
-    let mspec = crate::spec::ModelSpec {
+    let mspec = propbet_settings::spec::ModelSpec {
         units: None,
         polars: Some(spec.prop.with_extension("polars.json")),
         ..spec.clone()

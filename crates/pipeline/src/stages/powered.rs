@@ -140,7 +140,11 @@ pub fn powered_table(
 }
 
 /// The powered table a spec asks for, with `model` (loaded from `spec.model`) in `fluid`.
-pub(crate) fn powered_stage(model: &Model, fluid: &Fluid, spec: &crate::spec::PoweredSpec) -> Result<PoweredTable> {
+pub(crate) fn powered_stage(
+    model: &Model,
+    fluid: &Fluid,
+    spec: &propbet_settings::spec::PoweredSpec,
+) -> Result<PoweredTable> {
     let motor = read_motor(&spec.motor)?;
     powered_table(
         model,
@@ -200,7 +204,7 @@ pub struct FittedMotor {
 /// and current (`kv_rpm` the maker's Kv when given), each step also predicted with itself
 /// left out.
 pub fn fit_motor(
-    spec: &crate::spec::MeasuredSpec,
+    spec: &propbet_settings::spec::MeasuredSpec,
     kv_rpm: Option<f64>,
     kind: propbet_motor::FitKind,
 ) -> Result<FittedMotor> {

@@ -6,7 +6,7 @@ use propbet_qprop::apc::Per3;
 use propbet_qprop::output::QpropOutput;
 
 use super::*;
-use crate::spec::CompareSpec;
+use propbet_settings::spec::CompareSpec;
 
 /// Another code's prediction a comparison names, read once.
 pub struct Reference {

@@ -3,8 +3,8 @@
 
 use propbet_polar::{fit_qprop, Airfoil, AlphaWeights, Polar, PolarJob, Progress, QpropFit, DEFAULT_RE_EXP};
 
-use crate::spec::XfoilSpec;
 use crate::{nothing, out_of_range, Result};
+use propbet_settings::spec::XfoilSpec;
 
 /// What the section stage is asked: Reynolds numbers, Mach number and how XFOIL runs.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,9 +3,9 @@
 
 use propbet_bemt::PointResult;
 use propbet_compare::electric::Electric;
-use propbet_pipeline::spec::PredictSpec;
 use propbet_pipeline::stages::Compared;
 use propbet_qprop::export::{QpropExport, FILE_NAME};
+use propbet_settings::spec::PredictSpec;
 
 use crate::answer::ReferenceScore;
 

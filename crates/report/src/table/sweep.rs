@@ -7,7 +7,7 @@
 use propbet_bemt::{Fluid, PointResult};
 use propbet_compare::band::PointBand;
 use propbet_pipeline::model::Model;
-use propbet_pipeline::spec::PredictSpec;
+use propbet_settings::spec::PredictSpec;
 use serde::Serialize;
 
 use super::columns::{table, Table};

@@ -2,13 +2,15 @@
 //! fills them from its flags and prints each as the `propbet` command that does the same (one
 //! formatter in the CLI, tested to parse back to the same spec).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+
+use propbet_bemt::Fluid;
 
 use propbet_atmosphere::AirState;
 use propbet_geometry::scan::ScanOptions;
 use propbet_measure::RpmSource;
 
-use propbet_settings::Rotation;
+use crate::Rotation;
 
 /// The XFOIL executable, the polar cache and progress.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -21,11 +23,11 @@ pub struct XfoilProcessSpec {
     pub no_cache: bool,
     /// No progress bar.
     pub quiet: bool,
-    /// Total XFOIL time of the command [s] (None: [`propbet_settings::XFOIL_BUDGET`]'s default).
+    /// Total XFOIL time of the command [s] (None: [`crate::XFOIL_BUDGET`]'s default).
     pub budget: Option<f64>,
     /// Which program makes the polars.
     pub engine: propbet_polar::Engine,
-    /// NeuralFoil's network size (None: [`propbet_settings::NEURALFOIL_SIZE`]'s default).
+    /// NeuralFoil's network size (None: [`crate::NEURALFOIL_SIZE`]'s default).
     pub neuralfoil_size: Option<String>,
 }
 
@@ -42,19 +44,19 @@ pub struct XfoilSpec {
 impl XfoilSpec {
     /// The angles are ones XFOIL can be asked for.
     pub fn check(&self) -> crate::Result<()> {
-        propbet_settings::NCRIT.check(self.section.ncrit)?;
+        crate::NCRIT.check(self.section.ncrit)?;
         if let Some(x) = self.section.trip {
-            propbet_settings::TRIP.check(x)?;
+            crate::TRIP.check(x)?;
         }
         if let Some(bad) = self.section.alphas_deg.iter().find(|x| x.abs() > 90.0) {
-            crate::out_of_range!("--alpha: {bad} deg is outside -90..90");
+            return Err(crate::Error::Range(format!("--alpha: {bad} deg is outside -90..90")));
         }
         Ok(())
     }
 
     /// The settings every polar is asked with, `default_panels` where none are given (the
     /// command's: one section's or a blade's).
-    pub(crate) fn section(&self, default_panels: u32) -> xfoil_runner::SectionSettings {
+    pub fn section(&self, default_panels: u32) -> xfoil_runner::SectionSettings {
         xfoil_runner::SectionSettings {
             panels: Some(self.section.panels.unwrap_or(default_panels)),
             ..self.section.clone()
@@ -113,7 +115,7 @@ pub struct ModelSpec {
     /// TOML file of user-defined effects.
     pub user_effects: Option<PathBuf>,
     /// Where `prop` is a blade file other than QPROP's (APC's PE0, a UIUC table, a blade
-    /// table): its sections and how its polars are made ([`crate::model::design_model`]).
+    /// table): its sections and how its polars are made (the pipeline's `design_model`).
     pub design: Option<DesignSpec>,
 }
 
@@ -177,7 +179,7 @@ pub struct PredictSpec {
     pub out: Option<PathBuf>,
     /// Per-station table.
     pub stations: Option<PathBuf>,
-    /// Also the uncertainty band of CT, CP and efficiency ([`crate::band::BandSpec`]'s
+    /// Also the uncertainty band of CT, CP and efficiency (the pipeline's `BandSpec`'s
     /// default sources).
     pub band: bool,
 }
@@ -355,6 +357,77 @@ impl StageSpec {
             StageSpec::Compare(_) => "compare",
             StageSpec::Diagnose(_) => "diagnose",
         }
+    }
+}
+
+impl ModelSpec {
+    /// The files the model reads (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        std::iter::once(self.prop.as_path())
+            .chain(self.polars.as_deref())
+            .chain(self.user_effects.as_deref())
+            .collect()
+    }
+}
+
+impl AirSpec {
+    /// The fluid, and a note of where it came from.
+    pub fn fluid(&self) -> crate::Result<(Fluid, String)> {
+        use propbet_units::air;
+        for (flag, x, range, unit) in [
+            ("--rho", self.rho, &air::DENSITY, "kg/m^3"),
+            ("--mu", self.mu, &air::VISCOSITY, "Pa s"),
+            ("--a", self.a, &air::SOUND_SPEED, "m/s"),
+        ] {
+            if let Some(x) = x {
+                air::check(flag, x, range, unit).map_err(crate::Error::Range)?;
+            }
+        }
+        if let Some(state) = &self.state {
+            let mut f = state.fluid();
+            if let Some(rho) = self.rho {
+                f.rho = rho;
+            }
+            if let Some(mu) = self.mu {
+                f.mu = mu;
+            }
+            if let Some(a) = self.a {
+                f.a = a;
+            }
+            return Ok((
+                f,
+                format!(
+                    "from T = {:.2} K, p = {:.0} Pa, RH = {:.0} %",
+                    state.temperature,
+                    state.pressure,
+                    state.relative_humidity * 100.0
+                ),
+            ));
+        }
+        let d = Fluid::QPROP_DEFAULT;
+        let f = Fluid {
+            rho: self.rho.unwrap_or(d.rho),
+            mu: self.mu.unwrap_or(d.mu),
+            a: self.a.unwrap_or(d.a),
+        };
+        f.validate().map_err(|e| crate::Error::Range(format!("air: {e}")))?;
+        let source = if self.rho.is_none() && self.mu.is_none() && self.a.is_none() {
+            "QPROP defaults (standard air, not measured)".to_string()
+        } else {
+            "given".to_string()
+        };
+        Ok((f, source))
+    }
+}
+
+impl MeasuredSpec {
+    /// The files read (never to be overwritten).
+    pub fn inputs(&self) -> Vec<&Path> {
+        self.files
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(self.columns.as_deref())
+            .collect()
     }
 }
 

@@ -5,11 +5,11 @@ use propbet_geometry::scan::default_stations;
 
 #[test]
 fn trips_read_back_as_written() {
-    use propbet_settings::{trip_text, values::parse_trip};
+    use crate::{trip_text, values::parse_trip};
     assert_eq!(parse_trip("free").unwrap(), None);
     assert_eq!(parse_trip("1").unwrap(), None);
     assert_eq!(parse_trip("0.5").unwrap(), Some(0.5));
-    for t in [None, Some(0.05), Some(0.5), propbet_settings::default_trip()] {
+    for t in [None, Some(0.05), Some(0.5), crate::default_trip()] {
         assert_eq!(parse_trip(&trip_text(t)).unwrap(), t);
     }
     for bad in ["0", "-0.1", "1.5", "nan", "mid"] {
@@ -20,13 +20,13 @@ fn trips_read_back_as_written() {
 
 #[test]
 fn the_declared_stations_are_the_scans_default() {
-    let stations = propbet_settings::values::parse_list("--stations", propbet_settings::STATIONS.default).unwrap();
+    let stations = crate::values::parse_list("--stations", crate::STATIONS.default).unwrap();
     assert_eq!(stations, default_stations());
 }
 
 #[test]
 fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {
-    assert_eq!(Rotation::or_default(None, true), propbet_settings::ROTATION.default);
+    assert_eq!(Rotation::or_default(None, true), crate::ROTATION.default);
     assert_eq!(Rotation::or_default(None, false), Rotation::Off);
     assert_eq!(Rotation::or_default(Some(Rotation::Off), true), Rotation::Off);
     for r in Rotation::ALL {
@@ -39,10 +39,7 @@ fn rotation_defaults_to_snel_with_tables_and_off_with_qprops_law() {
 
 #[test]
 fn the_drag_factor_defaults_with_tables_only() {
-    assert_eq!(
-        propbet_settings::drag_factor_or_default(None, true),
-        propbet_settings::DRAG_FACTOR.default
-    );
-    assert_eq!(propbet_settings::drag_factor_or_default(None, false), 1.0);
-    assert_eq!(propbet_settings::drag_factor_or_default(Some(1.0), true), 1.0);
+    assert_eq!(crate::drag_factor_or_default(None, true), crate::DRAG_FACTOR.default);
+    assert_eq!(crate::drag_factor_or_default(None, false), 1.0);
+    assert_eq!(crate::drag_factor_or_default(Some(1.0), true), 1.0);
 }
