@@ -511,7 +511,7 @@ impl PolarsRequest {
             thickness: self
                 .thickness
                 .as_deref()
-                .map(propbet_pipeline::case::parse_fraction)
+                .map(propbet_settings::values::parse_fraction)
                 .transpose()?,
             station_airfoils: self.station_airfoils.clone(),
             sections_from: self.sections_from.clone(),

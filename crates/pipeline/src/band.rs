@@ -182,10 +182,12 @@ impl BandSpec {
     pub fn with_sources(
         &self,
         model: &Model,
-        compared: &crate::stages::Compared,
+        air: AirChoice,
+        sets: &[MeasuredSet],
+        points: &[ComparedPoint],
     ) -> Result<(Vec<PointBand>, Vec<(&'static str, [Vec<ComparedPoint>; 2])>)> {
-        let ends = self.at_compared_by_source(model, compared.air, &compared.sets)?;
-        let bands = propbet_compare::band::of_points(&compared.points, &ends, &self.weights());
+        let ends = self.at_compared_by_source(model, air, sets)?;
+        let bands = propbet_compare::band::of_points(points, &ends, &self.weights());
         Ok((bands, self.names(model).into_iter().zip(ends).collect()))
     }
 
@@ -197,7 +199,7 @@ impl BandSpec {
         sets: &[MeasuredSet],
     ) -> Result<Vec<[Vec<ComparedPoint>; 2]>> {
         self.at_both_ends(model, |s| {
-            propbet_compare::compare(&crate::stages::setup(model, air, s), sets)
+            propbet_compare::compare(&crate::solve::setup(model, air, s), sets)
         })
     }
 
@@ -211,7 +213,7 @@ impl BandSpec {
         base: &propbet_compare::curves::Curves,
     ) -> Result<propbet_compare::band::BandCurves> {
         let variants = self.at_both_ends(model, |s| {
-            propbet_compare::curves::curves(&crate::stages::setup(model, air, s), points)
+            propbet_compare::curves::curves(&crate::solve::setup(model, air, s), points)
         })?;
         Ok(propbet_compare::band::of_curves(base, &variants, &self.weights()))
     }
@@ -225,7 +227,7 @@ impl BandSpec {
         points: &[OperatingPoint],
         base: &[propbet_bemt::PointResult],
     ) -> Result<Vec<PointBand>> {
-        let solved = self.at_both_ends(model, |s| crate::stages::sweep_with(model, &s, fluid, points))?;
+        let solved = self.at_both_ends(model, |s| crate::solve::sweep_with(model, &s, fluid, points))?;
         Ok(propbet_compare::band::of_rows(
             base,
             &solved,
@@ -271,7 +273,7 @@ mod tests {
     #[test]
     fn the_band_holds_the_prediction_and_widens_with_each_source() {
         let (model, fluid, points) = cam6x3();
-        let base = crate::stages::sweep(&model, &fluid, &points).unwrap();
+        let base = crate::solve::sweep(&model, &fluid, &points).unwrap();
         let band = |spec: BandSpec| spec.at_points(&model, &fluid, &points, &base).unwrap();
         let full = band(BandSpec::default());
         let angle_only = band(BandSpec {
@@ -300,7 +302,7 @@ mod tests {
             assert!((none[i].ct.hi - none[i].ct.lo).abs() < 1e-12 * ct, "{i}: {:?}", none[i]);
         }
         // Thrust rises with the blade angle: the high end of the angle is the band's top.
-        let raised = crate::stages::sweep_with(
+        let raised = crate::solve::sweep_with(
             &model,
             &{
                 let mut s = model.effects.clone();

@@ -495,20 +495,6 @@ fn at_key(case_file: &Path, key: &str, e: impl Into<Error>) -> Error {
     }
 }
 
-/// A thickness ratio written as `0.06` or `6%`.
-pub fn parse_fraction(text: &str) -> Result<f64> {
-    let t = text.trim();
-    let (num, scale) = match t.strip_suffix('%') {
-        Some(n) => (n, 0.01),
-        None => (t, 1.0),
-    };
-    let v: f64 = num
-        .trim()
-        .parse()
-        .map_err(|_| Error::value("--thickness", t, "not a number (a fraction as 0.06 or 6%)"))?;
-    Ok(v * scale)
-}
-
 mod plan;
 
 #[cfg(test)]

@@ -159,15 +159,15 @@ pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
     }
     if let Some(dir) = dir {
         if let Some(file) = first_dat(dir, &k)? {
-            return Ok(crate::stages::read_airfoil(&file)?.0);
+            return Ok(read_airfoil(&file)?.0);
         }
     }
     if let Some((n, text)) = LIBRARY.iter().find(|(n, _)| *n == k) {
-        return Ok(crate::stages::parse_airfoil(text, Path::new(&format!("{n}.dat")))?.0);
+        return Ok(parse_airfoil(text, Path::new(&format!("{n}.dat")))?.0);
     }
     let path = Path::new(name);
     if path.is_file() {
-        return Ok(crate::stages::read_airfoil(path)?.0);
+        return Ok(read_airfoil(path)?.0);
     }
     let names: Vec<&str> = LIBRARY.iter().map(|(n, _)| *n).collect();
     Err(Error::Nothing(format!(
@@ -184,7 +184,7 @@ pub(crate) fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>
     LIBRARY
         .iter()
         .find(|(n, _)| *n == k)
-        .map(|(n, text)| crate::stages::parse_airfoil(text, Path::new(&format!("{n}.dat"))))
+        .map(|(n, text)| parse_airfoil(text, Path::new(&format!("{n}.dat"))))
 }
 
 /// Whether `name` is an airfoil propbet knows without a file: APC12, a NACA 4-digit name or a
@@ -549,6 +549,25 @@ enum Own {
     Thickness(Vec<Option<f64>>),
     /// An airfoil (and a thickness ratio) per station.
     PerStation(Vec<Option<String>>, Vec<Option<f64>>),
+}
+
+/// An airfoil file, parsed and normalised, with what was repaired in it.
+pub(crate) fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
+    let text = crate::error::read_titled_text(path)?;
+    parse_airfoil(&text, path)
+}
+
+/// An airfoil file's text, parsed and normalised, with what was repaired in it.
+pub fn parse_airfoil(text: &str, path: &Path) -> Result<(Airfoil, Vec<String>)> {
+    let (mut foil, repairs) = Airfoil::parse(text, &path.display().to_string())?;
+    foil.normalise();
+    Ok((
+        foil,
+        repairs
+            .into_iter()
+            .map(|r| format!("{}: {}", path.display(), r.0))
+            .collect(),
+    ))
 }
 
 mod table;

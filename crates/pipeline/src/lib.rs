@@ -19,6 +19,7 @@ pub mod design;
 mod error;
 pub mod model;
 pub mod run;
+mod solve;
 pub mod stages;
 
 pub(crate) use error::read_bytes;

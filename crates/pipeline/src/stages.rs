@@ -4,9 +4,9 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_bemt::{grid_omega_j, grid_omega_v, Fluid, OperatingPoint, PointResult, Solver};
+use propbet_bemt::{Fluid, OperatingPoint, Solver};
 use propbet_compare::metrics::{metrics, Metrics};
-use propbet_compare::{AirChoice, ComparedPoint, Setup};
+use propbet_compare::{AirChoice, ComparedPoint};
 use propbet_diagnose::discover::{diagnose as discover, Diagnosis, Options};
 use propbet_diagnose::Data;
 use propbet_effects::Stack;
@@ -18,13 +18,11 @@ use propbet_measure::{MeasuredSet, ReadOptions, Refused};
 use propbet_polar::blade::{compute_blade, BladeJob, XfoilSettings, BLADE_PANELS};
 use propbet_polar::{naca4_from_name, Airfoil, BladePolars, PolarCache, PolarEngine, Progress};
 use propbet_qprop::{GeometryAccuracy, PropFile, PropRow};
-use rayon::prelude::*;
 
+use crate::design::{parse_airfoil, read_airfoil};
 use crate::model::{as_written, load_prop, LoadedProp, Model};
 use crate::{conflict, nothing, out_of_range, read_bytes, read_text, Error, Result};
-use propbet_settings::spec::{
-    DiagnoseSpec, MeasuredSpec, PolarsSpec, PredictSpec, ScanSpec, SweepAxis, XfoilProcessSpec,
-};
+use propbet_settings::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, ScanSpec, XfoilProcessSpec};
 
 // ---------------------------------------------------------------------------------------
 // scan
@@ -205,122 +203,6 @@ pub(crate) fn station_airfoils(name: &str, g: &Geometry) -> (Vec<(usize, String)
     (files, notes)
 }
 
-// ---------------------------------------------------------------------------------------
-// predict
-
-/// Most operating points one sweep may hold (RPM values times J or V values): about 200 MB of
-/// results, 50 times the largest sweep of the benchmarks.
-pub(crate) const MAX_POINTS: usize = 1_000_000;
-
-/// The operating points of a predict spec, for a rotor of tip radius `tip_radius` [m].
-pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
-    grid(&spec.omegas, &spec.axis, tip_radius)
-}
-
-/// Every rotation speed with every J or V, checked, for a rotor of tip radius `tip_radius` [m].
-pub(crate) fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
-    let other = match axis {
-        SweepAxis::J(v) | SweepAxis::V(v) => v.len(),
-    };
-    let n = omegas.len().saturating_mul(other);
-    if n > MAX_POINTS {
-        out_of_range!(
-            "the sweep has {} RPM values x {other} J or V values = {n} operating points; at most {MAX_POINTS} in one sweep",
-            omegas.len()
-        );
-    }
-    if let Some(bad) = omegas.iter().find(|&&w| w > propbet_measure::limits::OMEGA) {
-        out_of_range!(
-            "--rpm: {} is beyond any small propeller's speed (at most 500000)",
-            propbet_units::show(propbet_units::omega_to_rpm(*bad))
-        );
-    }
-    if let Some(bad) = omegas
-        .iter()
-        .find(|&&w| w > 0.0 && w < propbet_measure::limits::OMEGA_MIN)
-    {
-        out_of_range!(
-            "--rpm: {} is below 1 rpm, where the coefficients divide by almost nothing (0 is allowed: the propeller at rest)",
-            propbet_units::show(propbet_units::omega_to_rpm(*bad))
-        );
-    }
-    let speeds = match axis {
-        SweepAxis::J(j) => j.iter().any(|j| j.abs() > propbet_measure::limits::ADVANCE_RATIO),
-        SweepAxis::V(v) => v.iter().any(|v| v.abs() > propbet_measure::limits::AIRSPEED),
-    };
-    if speeds {
-        out_of_range!(
-            "--j / --v: beyond any small propeller's operating range (|J| at most {}, |V| at most {} m/s)",
-            propbet_measure::limits::ADVANCE_RATIO,
-            propbet_measure::limits::AIRSPEED
-        );
-    }
-    if let Some(bad) = omegas.iter().find(|&&w| w.is_nan() || w < 0.0) {
-        out_of_range!(
-            "--rpm: rotation speed must not be negative, found {}",
-            propbet_settings::values::rpm_text(*bad)
-        );
-    }
-    Ok(match axis {
-        SweepAxis::J(j) => {
-            if omegas.contains(&0.0) {
-                conflict!("--j needs a non-zero --rpm (J = V/(nD) is undefined at 0 rpm)");
-            }
-            grid_omega_j(omegas, j, tip_radius)
-        }
-        SweepAxis::V(v) => grid_omega_v(omegas, v),
-    })
-}
-
-/// Solves `points` with the model (its effects included), in order.
-pub fn solve(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
-    solve_with(model, &model.effects, fluid, points)
-}
-
-/// Solves `points` with the model's rotor and `effects` instead of the model's, in order.
-pub(crate) fn solve_with(
-    model: &Model,
-    effects: &Stack,
-    fluid: &Fluid,
-    points: &[OperatingPoint],
-) -> Result<Vec<PointResult>> {
-    if effects.is_empty() {
-        return Ok(Solver::new(&model.rotor, fluid, &model.opts).solve_many(points));
-    }
-    points
-        .iter()
-        .map(|&op| {
-            let p = effects.predict(&model.rotor, &model.opts, fluid, model.diameter, op)?;
-            Ok(p.result.with_loads(
-                p.loads.thrust,
-                p.loads.torque,
-                op.omega,
-                fluid.rho,
-                model.rotor.tip_radius,
-            ))
-        })
-        .collect()
-}
-
-/// Solves `points` in parallel chunks of 128 (in order).
-pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
-    sweep_with(model, &model.effects, fluid, points)
-}
-
-/// [`sweep`] with `effects` instead of the model's.
-pub(crate) fn sweep_with(
-    model: &Model,
-    effects: &Stack,
-    fluid: &Fluid,
-    points: &[OperatingPoint],
-) -> Result<Vec<PointResult>> {
-    let chunks: Vec<Vec<PointResult>> = points
-        .par_chunks(128)
-        .map(|c| solve_with(model, effects, fluid, c))
-        .collect::<Result<_>>()?;
-    Ok(chunks.into_iter().flatten().collect())
-}
-
 mod measured;
 mod polar;
 mod powered;
@@ -329,6 +211,8 @@ mod section;
 mod side;
 mod synth;
 
+pub(crate) use crate::solve::grid;
+pub use crate::solve::{operating_points, setup, solve, sweep};
 pub use measured::*;
 pub use polar::*;
 pub use powered::{

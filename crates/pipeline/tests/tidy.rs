@@ -55,15 +55,22 @@ fn grouped(text: &str) -> Vec<String> {
     out
 }
 
-/// The module graph of one crate: file → files it imports from.
+/// The module graph of one crate: file → files it imports from. A module's folder
+/// (`design/table.rs` beside `design.rs`) is part of the module: its imports are the module's.
 fn graph(src: &Path) -> BTreeMap<String, BTreeSet<String>> {
+    let inner = sources();
     let files: BTreeMap<String, String> = std::fs::read_dir(src)
         .unwrap()
         .filter_map(|e| {
             let p = e.ok()?.path();
             (p.extension()? == "rs").then(|| {
                 let stem = p.file_stem().unwrap().to_string_lossy().into_owned();
-                (stem, code(&std::fs::read_to_string(&p).unwrap()))
+                let mut text = code(&std::fs::read_to_string(&p).unwrap());
+                for (_, t) in inner.iter().filter(|(f, _)| f.starts_with(src.join(&stem))) {
+                    text.push('\n');
+                    text.push_str(&code(t));
+                }
+                (stem, text)
             })
         })
         .collect();

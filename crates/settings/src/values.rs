@@ -305,6 +305,20 @@ pub fn rpm_text(omega: f64) -> String {
     scaled_text(omega, omega_to_rpm, rpm_to_omega)
 }
 
+/// A thickness ratio written as `0.06` or `6%`.
+pub fn parse_fraction(text: &str) -> crate::Result<f64> {
+    let t = text.trim();
+    let (num, scale) = match t.strip_suffix('%') {
+        Some(n) => (n, 0.01),
+        None => (t, 1.0),
+    };
+    let v: f64 = num
+        .trim()
+        .parse()
+        .map_err(|_| crate::Error::value("--thickness", t, "not a number (a fraction as 0.06 or 6%)"))?;
+    Ok(v * scale)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

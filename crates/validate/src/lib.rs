@@ -215,7 +215,7 @@ fn geometry_and_sections(
         .map(|(i, t)| Some((foil_dir.join(format!("station_{i:02}.dat")), t.clone())))
         .collect();
     let mut notes = Vec::new();
-    let first = stages::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
+    let first = propbet_pipeline::design::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
     let foils = stages::station_foils(&foil_dir, texts, Some(&first), &mut notes)?;
     let input = PolarsInput {
         geometry: geometry.clone(),
@@ -451,7 +451,12 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let (bands, band_sources) = propbet_pipeline::band::BandSpec::for_model(&model).with_sources(&model, &compared)?;
+    let (bands, band_sources) = propbet_pipeline::band::BandSpec::for_model(&model).with_sources(
+        &model,
+        compared.air,
+        &compared.sets,
+        &compared.points,
+    )?;
     let per3 = per3_file
         .as_ref()
         .map(|f| propbet_pipeline::stages::read_per3(f))

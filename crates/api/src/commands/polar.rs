@@ -4,10 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
-use propbet_pipeline::case::parse_fraction;
 use propbet_pipeline::stages::{self, Polars, PolarsInput, SectionSpec};
 use propbet_plot::Figure;
 use propbet_settings::spec::PolarsSpec;
+use propbet_settings::values::parse_fraction;
 use propbet_settings::values::parse_list;
 
 use crate::console::{emit, wrapped, Console};

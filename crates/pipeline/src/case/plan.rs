@@ -5,13 +5,14 @@ use std::path::Path;
 use propbet_bemt::units::rpm_to_omega;
 use propbet_measure::RpmSource;
 
-use super::{at_key, parse_fraction, Case, NumberOrList, RunPlan};
+use super::{at_key, Case, NumberOrList, RunPlan};
 use crate::{Error, Result};
 use propbet_settings::scan::ScanSettings;
 use propbet_settings::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, PoweredSpec, PredictSpec, ScanSpec,
     SweepAxis, TableFormat, XfoilProcessSpec, XfoilSpec,
 };
+use propbet_settings::values::parse_fraction;
 use propbet_settings::values::{parse_atmosphere, parse_length_unit, parse_list};
 
 impl Case {
@@ -86,7 +87,7 @@ impl Case {
                     .as_deref()
                     .map(parse_fraction)
                     .transpose()
-                    .map_err(|e| at("[polars] thickness", e))?;
+                    .map_err(|e| at("[polars] thickness", e.into()))?;
                 let sections = p.sections.as_deref().unwrap_or("airfoil");
                 let scanned = sections == "scan";
                 let g = &self.geometry;

@@ -110,7 +110,7 @@ pub(super) fn read_table(text: &str, units: Option<f64>) -> std::result::Result<
         t.rows.push((r, chord, beta));
         t.thickness.push(match c.thickness {
             Some(k) if f.get(k).is_some_and(|s| !s.is_empty()) => {
-                let v = crate::case::parse_fraction(f[k]).map_err(|e| bad(e.to_string()))?;
+                let v = propbet_settings::values::parse_fraction(f[k]).map_err(|e| bad(e.to_string()))?;
                 if !(v > 0.0 && v < 0.5) {
                     return Err(bad(format!("t/c {v} is not between 0 and 0.5")));
                 }

@@ -223,17 +223,6 @@ pub fn batch_warnings(names: &[String], sets: &[MeasuredSet], refused: &[Refused
     out
 }
 
-/// The solver setup of a model for the comparison (with the model's effects or without).
-pub fn setup<'a>(model: &'a Model, air: AirChoice, effects: Stack) -> Setup<'a> {
-    Setup {
-        rotor: &model.rotor,
-        diameter: model.diameter,
-        opts: model.opts,
-        air,
-        effects,
-    }
-}
-
 /// Runs the compare stage.
 pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
     let Batch {

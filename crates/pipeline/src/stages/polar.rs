@@ -8,25 +8,6 @@ use propbet_qprop::export::Differences;
 // ---------------------------------------------------------------------------------------
 // polars
 
-/// An airfoil file, parsed and normalised, with what was repaired in it.
-pub(crate) fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
-    let text = crate::error::read_titled_text(path)?;
-    parse_airfoil(&text, path)
-}
-
-/// An airfoil file's text, parsed and normalised, with what was repaired in it.
-pub fn parse_airfoil(text: &str, path: &Path) -> Result<(Airfoil, Vec<String>)> {
-    let (mut foil, repairs) = Airfoil::parse(text, &path.display().to_string())?;
-    foil.normalise();
-    Ok((
-        foil,
-        repairs
-            .into_iter()
-            .map(|r| format!("{}: {}", path.display(), r.0))
-            .collect(),
-    ))
-}
-
 /// A section: a NACA 4-digit name or a coordinate file, optionally scaled to a thickness ratio;
 /// with the file's repairs.
 pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<String>)> {
