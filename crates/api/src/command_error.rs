@@ -7,7 +7,7 @@
 pub enum CommandError {
     /// The pipeline's (reading inputs, a stage).
     #[error(transparent)]
-    Pipeline(#[from] propbet_pipeline::Error),
+    Pipeline(#[from] propbet_model::Error),
     /// A value or setting out of its range.
     #[error(transparent)]
     Settings(#[from] propbet_settings::Error),

@@ -47,8 +47,8 @@ pub use request::{
 };
 
 /// The sources of the uncertainty band, in words (`--band`'s help).
-pub use propbet_pipeline::band::SOURCES_TEXT as BAND_SOURCES;
-pub use propbet_pipeline::{Error, Result};
+pub use propbet_model::band::SOURCES_TEXT as BAND_SOURCES;
+pub use propbet_model::{Error, Result};
 pub use propbet_settings::scan::ScanSettings;
 pub use propbet_settings::spec;
 pub use propbet_settings::spec::{

@@ -2,7 +2,7 @@
 //! section coefficients (APC's PE0, a UIUC table, a blade table) with its polars computed over
 //! the operating points a command needs; what a person is told of it is returned, not printed.
 
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
 use propbet_settings::spec::{MeasuredSpec, ModelSpec, SweepAxis};
 
 use crate::command_error::refuse;

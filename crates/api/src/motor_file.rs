@@ -3,7 +3,7 @@
 use std::path::Path;
 
 use crate::motor::{write_motor, Motor, MotorFile};
-use propbet_pipeline::{Error, Result};
+use propbet_model::{Error, Result};
 
 /// A QPROP motor file, read as QPROP 1.22 reads it.
 pub fn read_motor(path: &Path) -> Result<MotorFile> {

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use crate::motor::{Battery, Drive, Supply};
-use propbet_pipeline::{Error, Result};
+use propbet_model::{Error, Result};
 use propbet_settings::spec::{
     AirSpec, DesignSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, SweepAxis, XfoilProcessSpec, XfoilSpec,
 };
@@ -167,7 +167,7 @@ impl ModelRequest {
     /// The sections of a blade file without coefficients; None for a QPROP prop file (where
     /// the sections' settings are refused).
     fn design(&self) -> Result<Option<DesignSpec>> {
-        use propbet_pipeline::design::{format_of_file, BladeFormat};
+        use propbet_model::design::{format_of_file, BladeFormat};
         if format_of_file(&self.prop) == BladeFormat::Qprop {
             if self.airfoil.is_some() || self.sections_from.is_some() {
                 return Err(Error::Conflict(format!(

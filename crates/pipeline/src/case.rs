@@ -304,9 +304,9 @@ pub fn read_case(dir: &Path) -> Result<Case> {
     }
     // A blade file other than QPROP's has no section coefficients: its polars are computed.
     let design = g.pe0.is_some()
-        || g.prop
-            .as_ref()
-            .is_some_and(|p| crate::design::format_of_file(&dir.join(p)) != crate::design::BladeFormat::Qprop);
+        || g.prop.as_ref().is_some_and(|p| {
+            propbet_model::design::format_of_file(&dir.join(p)) != propbet_model::design::BladeFormat::Qprop
+        });
     if design && case.polars.is_none() {
         case.polars = Some(toml::from_str("").map_err(|e| Error::input(&path, e.message()))?);
     }
@@ -421,7 +421,7 @@ impl RunPlan {
         }
         if let Some(a) = self.polars.as_ref().and_then(|(p, _)| p.airfoil.as_ref()) {
             // Its names that are files (the plan wrote them as paths), not propbet's own.
-            v.extend(crate::design::resolve_in(a, Path::new("")).1);
+            v.extend(propbet_model::design::resolve_in(a, Path::new("")).1);
         }
         if let Some(s) = self.polars.as_ref().and_then(|(p, _)| p.sections_from.as_ref()) {
             v.push(s.clone());

@@ -1,14 +1,15 @@
 //! `run_case`: a case's plan of stages run in memory, each stage handed the artifacts of the
 //! ones before it, returning every artifact; the caller writes the files.
 
+use propbet_model::solve;
 use std::time::Instant;
 
 use propbet_bemt::{Fluid, PointResult};
 
 use crate::case::RunPlan;
-use crate::model::{LoadedProp, Model};
 use crate::stages::{self, Compared, Diagnosed, Polars, PolarsInput, Scanned};
 use crate::{Error, Result};
+use propbet_model::{LoadedProp, Model};
 use propbet_settings::spec::StageSpec;
 
 /// A stage that has run.
@@ -218,8 +219,8 @@ pub fn run_case(
     };
     let model = build(&spec.model).map_err(|e| stage_err("predict", e))?;
     let fluid = spec.air.fluid().map_err(|e| stage_err("predict", e.into()))?;
-    let points = stages::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
-    let sweep = stages::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
+    let points = solve::operating_points(spec, model.rotor.tip_radius).map_err(|e| stage_err("predict", e))?;
+    let sweep = solve::sweep(&model, &fluid.0, &points).map_err(|e| stage_err("predict", e))?;
     let clean = sweep.iter().all(|p| p.not_converged == 0);
     let qprop_export = propbet_qprop::export::qprop_export(
         propbet_qprop::export::Model {
@@ -318,7 +319,7 @@ fn calibrated(
     if !d.diagnosis.found {
         return None;
     }
-    let setup = stages::setup(model, c.air, d.diagnosis.final_stack.clone());
+    let setup = solve::setup(model, c.air, d.diagnosis.final_stack.clone());
     propbet_compare::compare(&setup, &c.sets)
         .ok()
         .map(|p| propbet_compare::metrics::metrics(&p))

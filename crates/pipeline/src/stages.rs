@@ -19,9 +19,9 @@ use propbet_polar::blade::{compute_blade, BladeJob, XfoilSettings, BLADE_PANELS}
 use propbet_polar::{naca4_from_name, Airfoil, BladePolars, PolarCache, PolarEngine, Progress};
 use propbet_qprop::{GeometryAccuracy, PropFile, PropRow};
 
-use crate::design::{parse_airfoil, read_airfoil};
-use crate::model::{as_written, load_prop, LoadedProp, Model};
 use crate::{conflict, nothing, out_of_range, read_bytes, read_text, Error, Result};
+use propbet_model::design::{parse_airfoil, read_airfoil};
+use propbet_model::{as_written, load_prop, LoadedProp, Model};
 use propbet_settings::spec::{DiagnoseSpec, MeasuredSpec, PolarsSpec, ScanSpec, XfoilProcessSpec};
 
 // ---------------------------------------------------------------------------------------
@@ -108,7 +108,7 @@ pub fn scan(spec: &ScanSpec) -> Result<Scanned> {
 /// blade angle to the blades' spread of it (the largest minus the smallest blade's), the chord
 /// to twice the section fit's RMS distance (each edge that far off), relative to the chord (the
 /// CST fit's, the NACA fit's where a station has none). The prop file carries it; the
-/// uncertainty band adds it to its stated ranges ([`crate::band::BandSpec::for_file`]).
+/// uncertainty band adds it to its stated ranges ([`propbet_model::band::BandSpec::for_file`]).
 pub fn scan_accuracy(g: &Geometry) -> GeometryAccuracy {
     // A station whose blades could not be compared (a spread of -inf) says nothing; no value
     // beyond what the file's line may hold ([`GeometryAccuracy`]'s maxima).
@@ -211,14 +211,14 @@ mod section;
 mod side;
 mod synth;
 
-pub(crate) use crate::solve::grid;
-pub use crate::solve::{operating_points, setup, solve, sweep};
 pub use measured::*;
 pub use polar::*;
 pub use powered::{
     electric, fit_motor, polar_omegas, powered, powered_table, read_motor, FittedMotor, PoweredPoint, PoweredTable,
 };
 pub(crate) use powered::{omega_ceiling, powered_stage};
+use propbet_model::solve::grid;
+use propbet_model::solve::{setup, solve};
 pub use reference::Reference;
 pub use section::{section, SectionPolars, SectionSpec};
 pub use side::{overall_efficiency, side_by_side, FullRange, SideProp};

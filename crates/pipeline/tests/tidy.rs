@@ -197,7 +197,7 @@ fn no_file_level_import_cycle_in_any_crate() {
 }
 
 /// The data flow, bottom up: a crate may depend only on crates of a lower rank.
-const RANKS: [(&str, u32); 22] = [
+const RANKS: [(&str, u32); 23] = [
     ("propbet-units", 0),
     ("propbet-plot", 0),
     ("xfoil-runner", 1),
@@ -213,13 +213,14 @@ const RANKS: [(&str, u32); 22] = [
     ("propbet-compare", 3),
     ("propbet-diagnose", 4),
     ("propbet-settings", 4),
-    ("propbet-pipeline", 5),
-    ("propbet-validate", 6),
-    ("propbet-simexport", 6),
-    ("propbet-report", 7),
-    ("propbet-api", 8),
-    ("propbet-cli", 9),
-    ("propbet-python", 10),
+    ("propbet-model", 5),
+    ("propbet-pipeline", 6),
+    ("propbet-validate", 7),
+    ("propbet-simexport", 7),
+    ("propbet-report", 8),
+    ("propbet-api", 9),
+    ("propbet-cli", 10),
+    ("propbet-python", 11),
 ];
 
 /// A crate's manifest: its package name and the names of its `[dependencies]`.

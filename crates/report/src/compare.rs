@@ -45,7 +45,7 @@ pub struct ReportInput<'a> {
     pub curves: &'a Curves,
     /// The uncertainty band along them (shaded in the figures), if computed.
     pub band: Option<&'a propbet_compare::band::BandCurves>,
-    /// The band's sources in words (`propbet_pipeline::band::BandSpec::sources_text`).
+    /// The band's sources in words (`propbet_model::band::BandSpec::sources_text`).
     pub band_sources: String,
     /// The command that made the report.
     pub command: String,

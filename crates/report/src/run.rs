@@ -273,7 +273,7 @@ fn outputs_html(plan: &RunPlan, run: &RunOutcome, commands: &Commands) -> String
             if plan.predict.band {
                 format!(
                     ", with an uncertainty band for CT, CP and efficiency ({}: the columns ct_lo to eta_hi)",
-                    propbet_pipeline::band::BandSpec::sources_text(&run.model.loaded.file)
+                    propbet_model::band::BandSpec::sources_text(&run.model.loaded.file)
                 )
             } else {
                 String::new()

@@ -286,7 +286,7 @@ fn regime_intro() -> String {
          with twice the measurements' repeatability where they repeat a point): the share of the \
          measured CT and CP inside it over the scored points, and its median half-width relative to \
          the prediction.",
-        propbet_pipeline::band::SOURCES_TEXT
+        propbet_model::band::SOURCES_TEXT
     )
 }
 

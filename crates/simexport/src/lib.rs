@@ -22,7 +22,7 @@ use std::fmt::Write as _;
 
 use propbet_units::rpm_to_rev_per_s;
 
-use propbet_pipeline::{nothing, out_of_range, unsuited, Result};
+use propbet_model::{nothing, out_of_range, unsuited, Result};
 
 /// One operating point in coefficients.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -459,14 +459,14 @@ fn curve_at(c: &Curve, j: f64, col: usize) -> f64 {
     lookup(&t, j)
 }
 
-fn too_few_curves(src: &Source, what: &str) -> propbet_pipeline::Error {
+fn too_few_curves(src: &Source, what: &str) -> propbet_model::Error {
     let js = distinct_j(&src.points);
     let why = if js <= 1 {
         "these data have only static points (J = 0)".to_string()
     } else {
         "no RPM of these data has 3 or more advance ratios".to_string()
     };
-    propbet_pipeline::Error::Unsuited(format!(
+    propbet_model::Error::Unsuited(format!(
         "{what} needs curves over J (3 or more advance ratios at one RPM); {why}: {}",
         sweep_advice(src)
     ))
@@ -590,7 +590,7 @@ pub fn map(src: &Source) -> Result<Exported> {
         "fit": fit,
         "curves": json_curves,
     });
-    let mut json = serde_json::to_string_pretty(&doc).map_err(|e| propbet_pipeline::Error::Unsuited(e.to_string()))?;
+    let mut json = serde_json::to_string_pretty(&doc).map_err(|e| propbet_model::Error::Unsuited(e.to_string()))?;
     json.push('\n');
     Ok(Exported {
         target: Target::Map,

@@ -2,8 +2,8 @@
 //! reduced to coefficients; and the exports of a spec, each made before any is written.
 
 use super::{blade_ixx, export, gazebo, Exported, Point, Source, Target, IXX_ASSUMED};
-use propbet_pipeline::model::Model;
-use propbet_pipeline::{conflict, out_of_range, Error, Result};
+use propbet_model::Model;
+use propbet_model::{conflict, out_of_range, Error, Result};
 use propbet_settings::spec::{MeasuredSpec, ModelSpec, PredictSpec, SweepAxis};
 use propbet_settings::values::{list_text, rpm_list_text, rpm_text};
 
@@ -60,7 +60,7 @@ fn load(
     if spec.design.is_some() {
         let (omegas, axis) = points()?;
         let (model, _) = propbet_pipeline::stages::design_model(spec, omegas, axis, false, &|_, _| {})?
-            .ok_or_else(|| propbet_pipeline::Error::Nothing("no design blade".into()))?;
+            .ok_or_else(|| propbet_model::Error::Nothing("no design blade".into()))?;
         return Ok(model);
     }
     let model = Model::load(spec, false)?;
@@ -116,8 +116,8 @@ fn rpms_text(omegas: &[f64]) -> String {
 fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
     let model = load(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), say)?;
     let (fluid, fluid_source) = spec.air.fluid()?;
-    let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
-    let results = propbet_pipeline::stages::sweep(&model, &fluid, &ops)?;
+    let ops = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
+    let results = propbet_model::solve::sweep(&model, &fluid, &ops)?;
     let unconverged = results.iter().filter(|p| p.not_converged > 0).count();
     if unconverged > 0 {
         say(Said::LeftOut(format!(

@@ -7,7 +7,7 @@ use std::path::Path;
 use propbet_qprop::apc::{pe0_name, pe0_unknown};
 
 use super::{find_apc_file, uiuc_props, validate_prop, Row, Sections, ValidateSpec, Validated};
-use propbet_pipeline::{nothing, Result};
+use propbet_model::{nothing, Result};
 
 /// The props of the UIUC directory `uiuc` to validate: all of them, or those whose name
 /// contains one of `only`'s comma-separated keys.
@@ -63,7 +63,7 @@ impl ValidateSpec {
     /// polars stage's), and the user-effects file reads: before any prop.
     pub fn check(&self) -> Result<()> {
         self.xfoil.check()?;
-        propbet_pipeline::model::effect_registry(self.user_effects.as_deref())?;
+        propbet_model::effect_registry(self.user_effects.as_deref())?;
         Ok(())
     }
 

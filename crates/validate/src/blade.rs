@@ -9,14 +9,14 @@ use propbet_qprop::apc::{read_pe0, uiuc_diameter, Pe0};
 use propbet_qprop::PropRow;
 
 use super::{GeometrySource, Sections, ValidateSpec};
+use propbet_model::{read_text, Error, Result};
 use propbet_pipeline::stages;
-use propbet_pipeline::{read_text, Error, Result};
 
-pub use propbet_pipeline::design::pe0_table;
+pub use propbet_model::design::pe0_table;
 
-/// APC's airfoil name → a section ([`propbet_pipeline::design::airfoil_by_name`], `dir` looked in first).
+/// APC's airfoil name → a section ([`propbet_model::design::airfoil_by_name`], `dir` looked in first).
 pub(super) fn apc_airfoil(name: &str, dir: &Path) -> Result<Airfoil> {
-    propbet_pipeline::design::airfoil_by_name(name, Some(dir))
+    propbet_model::design::airfoil_by_name(name, Some(dir))
 }
 
 /// A PE0 file in memory for a prop whose sections are assumed: UIUC's chord and twist, one
@@ -109,7 +109,7 @@ pub(super) fn blade(spec: &ValidateSpec, prop: &str, sections: &Sections) -> Res
         });
         // APC scales its sections "based on thickness ratio" and defines pitch on a flat bottom
         // (docs/studies/section-scaling.md).
-        let foil = propbet_pipeline::design::pe0_section(&pe0, &f1, &f2, r)?;
+        let foil = propbet_model::design::pe0_section(&pe0, &f1, &f2, r)?;
         airfoils.push((i, foil.to_selig()));
     }
     Ok(Blade {

@@ -4,9 +4,9 @@
 use std::path::{Path, PathBuf};
 
 use super::ValidateSpec;
-use propbet_pipeline::design::first_file;
+use propbet_model::design::first_file;
+use propbet_model::{Error, Result};
 use propbet_pipeline::stages;
-use propbet_pipeline::{Error, Result};
 use propbet_settings::spec::MeasuredSpec;
 
 /// The UIUC name of a file of a UIUC directory: `<family>_<D>x<P>` from `<family>_<D>x<P>_*.txt`

@@ -10,9 +10,9 @@ use propbet_effects::{parse_spec, Active, Stack};
 use propbet_measure::MeasuredSet;
 
 use super::row::{ladder_text, median_p90};
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
+use propbet_model::{Error, Result};
 use propbet_pipeline::stages;
-use propbet_pipeline::{Error, Result};
 use propbet_settings::spec::DiagnoseSpec;
 
 /// One half's held-out CT and CP errors and its rung in words.
@@ -138,7 +138,7 @@ fn rung_stacks(model: &Model, d: &propbet_diagnose::discover::Diagnosis) -> Resu
 /// The comparison of `sets` with the model under `stack`.
 fn compare_with(model: &Model, air: AirChoice, stack: &Stack, sets: &[MeasuredSet]) -> Result<Vec<ComparedPoint>> {
     Ok(propbet_compare::compare(
-        &stages::setup(model, air, stack.clone()),
+        &propbet_model::solve::setup(model, air, stack.clone()),
         sets,
     )?)
 }

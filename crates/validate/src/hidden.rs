@@ -17,8 +17,8 @@ use propbet_diagnose::Data;
 use propbet_effects::Effect;
 
 use super::{ladder_spec, prepare, Prepared, Sections, ValidateSpec};
+use propbet_model::Result;
 use propbet_pipeline::stages;
-use propbet_pipeline::Result;
 
 /// Whether an injection's ladders run with the files' provenance bounds (the tares) or as a
 /// stand log that allows the effect (the RPM scale, the density).

@@ -11,10 +11,10 @@ use propbet_compare::metrics::{
 };
 use propbet_qprop::{PropFile, PropRow};
 
-use propbet_pipeline::model::{as_written, LoadedProp, Model};
+use propbet_model::{as_written, LoadedProp, Model};
+use propbet_model::{Error, Result};
 use propbet_pipeline::run::{timed, StageRecord};
 use propbet_pipeline::stages::{self, Compared, Diagnosed, Polars, PolarsInput};
-use propbet_pipeline::{Error, Result};
 use propbet_settings::spec::{
     AirSpec, CompareSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PolarsSpec, StageSpec, XfoilSpec,
 };
@@ -118,7 +118,7 @@ pub struct Validated {
     /// The table's row.
     pub row: Row,
     /// The uncertainty band's sources by name, each with the compared points predicted at its
-    /// two ends (the band's makings, [`propbet_pipeline::band::BandSpec::at_compared_by_source`]).
+    /// two ends (the band's makings, [`propbet_model::band::BandSpec::at_compared_by_source`]).
     pub band_sources: Vec<(&'static str, [Vec<propbet_compare::ComparedPoint>; 2])>,
 }
 
@@ -215,7 +215,7 @@ fn geometry_and_sections(
         .map(|(i, t)| Some((foil_dir.join(format!("station_{i:02}.dat")), t.clone())))
         .collect();
     let mut notes = Vec::new();
-    let first = propbet_pipeline::design::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
+    let first = propbet_model::design::parse_airfoil(&airfoils[0].1, &foil_dir.join("station_00.dat"))?.0;
     let foils = stages::station_foils(&foil_dir, texts, Some(&first), &mut notes)?;
     let input = PolarsInput {
         geometry: geometry.clone(),
@@ -451,7 +451,7 @@ pub fn validate_prop(
     let cal = calibration?;
     let (ct1, cp1, held_out_ladders) = held?;
     let (ct0, cp0) = window_errors(&compared.points, VALIDATION_J_WINDOW);
-    let (bands, band_sources) = propbet_pipeline::band::BandSpec::for_model(&model).with_sources(
+    let (bands, band_sources) = propbet_model::band::BandSpec::for_model(&model).with_sources(
         &model,
         compared.air,
         &compared.sets,

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
 use propbet_pipeline::stages::{self, Compared, Reference};
 use propbet_report::answer::ReferenceScore;
 use propbet_settings::spec::{CompareSpec, StageSpec};

@@ -98,7 +98,7 @@ pub fn print_result(d: &crate::diagnose::Diagnosis, console: &dyn Console) {
 /// `propbet effects`: the effects (built-in, and those of a user file) with their
 /// parameters, bounds and physics, line by line.
 pub fn effects(user_effects: Option<&std::path::Path>, console: &dyn Console) -> Result<bool> {
-    let registry = propbet_pipeline::model::effect_registry(user_effects)?;
+    let registry = propbet_model::effect_registry(user_effects)?;
     let value = crate::effects::fmt_value;
     for e in &registry.effects {
         let hooks: Vec<String> = e.hooks().iter().map(|h| format!("{h:?}").to_lowercase()).collect();

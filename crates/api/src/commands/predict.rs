@@ -2,7 +2,7 @@
 //! currents, thrusts or throttles; its tables written (or on standard output) and what a
 //! person is told of them.
 
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
 use propbet_pipeline::stages::polar_omegas;
 use propbet_report::table::columns::Table;
 use propbet_report::table::powered::PoweredRun;

@@ -86,18 +86,18 @@ pub fn synth(c: &SynthCommand, console: &dyn Console) -> Result<bool> {
 /// The blade file's model as `propbet prop` shows it, of a model's spec (its file, units and
 /// reading): a QPROP file as it is; APC's PE0, a UIUC table or a blade table as its stations
 /// with QPROP's generic coefficients (the polars of `predict` replace them).
-pub fn prop_model(spec: &ModelSpec, console: &dyn Console) -> Result<propbet_pipeline::model::Model> {
+pub fn prop_model(spec: &ModelSpec, console: &dyn Console) -> Result<propbet_model::Model> {
     let spec = ModelSpec {
         units: spec.units,
         qprop_compat: spec.qprop_compat,
         ..ModelSpec::prop(spec.prop.clone())
     };
-    let opts = propbet_pipeline::design::DesignOptions {
+    let opts = propbet_model::design::DesignOptions {
         units: spec.units,
         ..Default::default()
     };
-    match propbet_pipeline::design::read_design(&spec.prop, &opts)? {
-        Some(d) => Ok(propbet_pipeline::model::Model::from_loaded(
+    match propbet_model::design::read_design(&spec.prop, &opts)? {
+        Some(d) => Ok(propbet_model::Model::from_loaded(
             &ModelSpec { units: None, ..spec },
             d.geometry,
             false,

@@ -2,7 +2,7 @@
 //! points.csv, electric.csv (with a motor) and the plots.
 
 use crate::CommandResult as Result;
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
 use propbet_pipeline::stages::{Compared, Reference};
 use propbet_report::answer::ReferenceScore;
 use propbet_report::compare::{self as report, FileEntry, ReferenceInput, ReportInput};
@@ -62,7 +62,7 @@ pub fn outputs(
         warnings: c.warnings(),
         points: &c.points,
         band: Some(&band),
-        band_sources: propbet_pipeline::band::BandSpec::sources_text(&model.loaded.file),
+        band_sources: propbet_model::band::BandSpec::sources_text(&model.loaded.file),
         metrics: &c.metrics,
         diameter: model.diameter,
         curves: &curves,

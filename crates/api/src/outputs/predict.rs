@@ -3,8 +3,8 @@
 
 use crate::CommandResult as Result;
 use propbet_bemt::PointResult;
-use propbet_pipeline::band::BandSpec;
-use propbet_pipeline::model::Model;
+use propbet_model::band::BandSpec;
+use propbet_model::Model;
 use propbet_report::table::columns::Table;
 use propbet_report::table::sweep;
 use propbet_settings::spec::{PredictSpec, TableFormat};
@@ -25,10 +25,10 @@ pub struct Tables {
 pub fn columns(spec: &PredictSpec, model: &Model, stations: bool) -> Result<(Table, Option<Table>, (usize, usize))> {
     use rayon::prelude::*;
     let (fluid, source) = spec.air.fluid()?;
-    let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+    let points = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
     let chunks: Vec<Vec<PointResult>> = points
         .par_chunks(128)
-        .map(|c| propbet_pipeline::stages::solve(model, &fluid, c))
+        .map(|c| propbet_model::solve::solve(model, &fluid, c))
         .collect::<std::result::Result<_, _>>()?;
     let results: Vec<PointResult> = chunks.into_iter().flatten().collect();
     let (rho, tip) = (fluid.rho, model.rotor.tip_radius);
@@ -48,7 +48,7 @@ pub fn columns(spec: &PredictSpec, model: &Model, stations: bool) -> Result<(Tab
 /// per-station table when `stations`.
 pub fn tables(spec: &PredictSpec, model: &Model, stations: bool) -> Result<Tables> {
     let (fluid, fluid_source) = spec.air.fluid()?;
-    let points = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+    let points = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
     // Solve and format chunk by chunk in the same parallel task, so the table is written
     // while the data is still in cache; the results themselves are kept only when the output
     // needs them (JSON, the band, the station table).
@@ -66,7 +66,7 @@ pub fn tables(spec: &PredictSpec, model: &Model, stations: bool) -> Result<Table
             .par_chunks(128)
             .enumerate()
             .map(|(k, c)| {
-                let r = propbet_pipeline::stages::solve(model, &fluid, c)?;
+                let r = propbet_model::solve::solve(model, &fluid, c)?;
                 Ok(Chunk {
                     text: if streamed {
                         sweep::rows(&r, k == 0, fluid.rho, &fluid_source, model.rotor.tip_radius)
@@ -118,7 +118,7 @@ pub fn tables(spec: &PredictSpec, model: &Model, stations: bool) -> Result<Table
 pub fn sweep_table(spec: &PredictSpec, model: &Model, points: &[PointResult]) -> Result<Vec<u8>> {
     let (fluid, source) = spec.air.fluid()?;
     Ok(if spec.band {
-        let ops = propbet_pipeline::stages::operating_points(spec, model.rotor.tip_radius)?;
+        let ops = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
         let band = BandSpec::for_model(model).at_points(model, &fluid, &ops, points)?;
         sweep::band_rows(points, &band, fluid.rho, &source, model.rotor.tip_radius)?
     } else {

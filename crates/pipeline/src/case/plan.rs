@@ -65,7 +65,7 @@ impl Case {
         Ok(match &self.polars {
             None => None,
             Some(p) => {
-                let airfoil = p.airfoil.as_ref().map(|a| crate::design::resolve_in(a, dir).0);
+                let airfoil = p.airfoil.as_ref().map(|a| propbet_model::design::resolve_in(a, dir).0);
                 let alpha = p.alpha.as_deref().unwrap_or(propbet_settings::ALPHA.default);
                 let mut alphas = parse_list("--alpha", alpha).map_err(|e| at("[polars] alpha", e.into()))?;
                 alphas.sort_by(f64::total_cmp);
@@ -181,7 +181,8 @@ impl Case {
                 };
                 // A user-effects file that does not read stops the run before its first stage.
                 let user_effects = m.user_effects.as_deref().map(f);
-                crate::model::effect_registry(user_effects.as_deref()).map_err(|e| at("[measured] user_effects", e))?;
+                propbet_model::effect_registry(user_effects.as_deref())
+                    .map_err(|e| at("[measured] user_effects", e))?;
                 let measured = MeasuredSpec {
                     files: m.files.iter().map(|x| f(x)).collect(),
                     poles: m.poles,

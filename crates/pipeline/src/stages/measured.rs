@@ -176,7 +176,8 @@ impl Compared {
     ) -> Result<(propbet_compare::curves::Curves, propbet_compare::band::BandCurves)> {
         let setup = setup(model, self.air, model.effects.clone());
         let curves = propbet_compare::curves::curves(&setup, &self.points)?;
-        let band = crate::band::BandSpec::for_model(model).along_curves(model, self.air, &self.points, &curves)?;
+        let band =
+            propbet_model::band::BandSpec::for_model(model).along_curves(model, self.air, &self.points, &curves)?;
         Ok((curves, band))
     }
 

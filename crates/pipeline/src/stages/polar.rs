@@ -18,7 +18,7 @@ pub fn load_airfoil(name: &str, thickness: Option<f64>) -> Result<(Airfoil, Vec<
             (foil, Vec::new())
         }
         // A file of that name first, then propbet's built-in sections (`e63`).
-        None => match crate::design::library_airfoil(name).filter(|_| !Path::new(name).is_file()) {
+        None => match propbet_model::design::library_airfoil(name).filter(|_| !Path::new(name).is_file()) {
             Some(read) => read?,
             None => read_airfoil(Path::new(name))?,
         },
@@ -96,12 +96,12 @@ pub fn polars_input(spec: &PolarsSpec) -> Result<PolarsInput> {
     let geometry = load_prop(&spec.geometry, spec.units)?;
     // Airfoils blended along the blade (`E63@0.25,APC12@0.45`) on a prop file's stations.
     if let Some(a) = spec.airfoil.as_deref().filter(|a| a.contains('@')) {
-        let plan = crate::design::SectionPlan::parse(a, "--airfoil")?;
+        let plan = propbet_model::design::SectionPlan::parse(a, "--airfoil")?;
         let blade = geometry.file.to_blade(propbet_qprop::RadiusReading::Documented);
         let radii: Vec<f64> = blade.r.clone();
         let tip = geometry.file.tip_radius(propbet_qprop::RadiusReading::Documented);
         let tcs = vec![spec.thickness; radii.len()];
-        let foils = crate::design::plan_sections(&plan, &radii, tip, &tcs, spec.airfoils.as_deref())?;
+        let foils = propbet_model::design::plan_sections(&plan, &radii, tip, &tcs, spec.airfoils.as_deref())?;
         let foils = reread(&spec.geometry, foils.iter().map(Airfoil::to_selig).collect())?;
         return Ok(PolarsInput {
             geometry,
@@ -145,9 +145,9 @@ fn design_input(spec: &PolarsSpec) -> Result<Option<PolarsInput>> {
     let plan = spec
         .airfoil
         .as_deref()
-        .map(|a| crate::design::SectionPlan::parse(a, "--airfoil"))
+        .map(|a| propbet_model::design::SectionPlan::parse(a, "--airfoil"))
         .transpose()?;
-    let opts = crate::design::DesignOptions {
+    let opts = propbet_model::design::DesignOptions {
         units: spec.units,
         blades: None,
         sections: plan,
@@ -155,7 +155,7 @@ fn design_input(spec: &PolarsSpec) -> Result<Option<PolarsInput>> {
         sections_from: spec.sections_from.clone(),
         airfoils: spec.airfoils.clone(),
     };
-    let Some(d) = crate::design::read_design(&spec.geometry, &opts)? else {
+    let Some(d) = propbet_model::design::read_design(&spec.geometry, &opts)? else {
         return Ok(None);
     };
     let Some(texts) = d.sections else {
@@ -435,7 +435,7 @@ pub fn design_model(
     axis: propbet_settings::spec::SweepAxis,
     keep_stations: bool,
     progress: &propbet_polar::Progress<'_>,
-) -> Result<Option<(crate::model::Model, Polars)>> {
+) -> Result<Option<(propbet_model::Model, Polars)>> {
     let Some(design) = &spec.design else {
         return Ok(None);
     };
@@ -479,6 +479,6 @@ pub fn design_model(
         polars: Some(spec.prop.with_extension("polars.json")),
         ..spec.clone()
     };
-    let model = crate::model::Model::from_parts(&mspec, polars.prop.clone(), Some(&polars.blade), keep_stations)?;
+    let model = propbet_model::Model::from_parts(&mspec, polars.prop.clone(), Some(&polars.blade), keep_stations)?;
     Ok(Some((model, polars)))
 }

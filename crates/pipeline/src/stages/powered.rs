@@ -8,8 +8,8 @@ use propbet_bemt::{Fluid, OperatingPoint, PointResult};
 use propbet_motor::{operate, Drive, MotorFile, OperateError, Powered, PropLoads, Supply, SupplyPoint};
 use rayon::prelude::*;
 
-use crate::model::Model;
 use crate::{read_text, Error, Result};
+use propbet_model::Model;
 
 /// Reads a QPROP motor file (its constants checked: a bad one names its line and value).
 pub fn read_motor(path: &Path) -> Result<MotorFile> {
@@ -174,7 +174,7 @@ pub(crate) fn powered_band(
         .collect();
     let ops: Vec<OperatingPoint> = solved.iter().map(|x| x.1).collect();
     let base: Vec<PointResult> = solved.iter().map(|x| x.2.clone()).collect();
-    let bands = crate::band::BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
+    let bands = propbet_model::band::BandSpec::for_model(model).at_points(model, fluid, &ops, &base)?;
     let mut out = vec![None; points.len()];
     for ((i, ..), b) in solved.iter().zip(bands) {
         out[*i] = Some(b);

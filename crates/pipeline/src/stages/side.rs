@@ -5,9 +5,9 @@
 use propbet_bemt::{Fluid, PointResult};
 use propbet_motor::{Drive, Motor, Powered, Supply, SupplyPoint};
 
-use crate::model::Model;
 use crate::stages::{powered, PoweredPoint};
 use crate::Result;
+use propbet_model::Model;
 
 /// One propeller's operating point on the powertrain: the motor's side, the propeller's, the
 /// battery's; or why there is none.
@@ -120,7 +120,8 @@ fn hover_band(model: &Model, fluid: &Fluid, prop: &SideProp) -> Result<Option<(f
         return Ok(None);
     };
     let point = propbet_bemt::OperatingPoint { v: 0.0, omega: m.omega };
-    let band = crate::band::BandSpec::for_model(model).at_points(model, fluid, &[point], std::slice::from_ref(r))?;
+    let band =
+        propbet_model::band::BandSpec::for_model(model).at_points(model, fluid, &[point], std::slice::from_ref(r))?;
     let (Some(b), Some(ct), Some(cp)) = (band.first(), r.ct, r.cp) else {
         return Ok(None);
     };

@@ -8,8 +8,8 @@ use propbet_diagnose::synth::{self, Plan};
 use propbet_effects::Stack;
 use serde::Serialize;
 
-use crate::model::Model;
 use crate::{out_of_range, Error, Result};
+use propbet_model::Model;
 
 /// The format of synthetic measurements.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -4,8 +4,8 @@
 
 use propbet_bemt::{Fluid, PointResult};
 use propbet_compare::band::PointBand;
+use propbet_model::Model;
 use propbet_motor::{Drive, Powered};
-use propbet_pipeline::model::Model;
 use propbet_pipeline::stages::{PoweredPoint, PoweredTable};
 use propbet_settings::spec::TableFormat;
 use propbet_units::{omega_to_rpm, seconds_to_minutes};

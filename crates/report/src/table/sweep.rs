@@ -6,7 +6,7 @@
 
 use propbet_bemt::{Fluid, PointResult};
 use propbet_compare::band::PointBand;
-use propbet_pipeline::model::Model;
+use propbet_model::Model;
 use propbet_settings::spec::PredictSpec;
 use serde::Serialize;
 

@@ -8,8 +8,8 @@ use propbet_effects::Stack;
 use propbet_settings::spec::{PredictSpec, SweepAxis};
 use rayon::prelude::*;
 
-use crate::model::Model;
-use crate::{conflict, out_of_range, Result};
+use crate::Model;
+use crate::Result;
 
 /// Most operating points one sweep may hold (RPM values times J or V values): about 200 MB of
 /// results, 50 times the largest sweep of the benchmarks.
@@ -21,7 +21,7 @@ pub fn operating_points(spec: &PredictSpec, tip_radius: f64) -> Result<Vec<Opera
 }
 
 /// Every rotation speed with every J or V, checked, for a rotor of tip radius `tip_radius` [m].
-pub(crate) fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
+pub fn grid(omegas: &[f64], axis: &SweepAxis, tip_radius: f64) -> Result<Vec<OperatingPoint>> {
     let other = match axis {
         SweepAxis::J(v) | SweepAxis::V(v) => v.len(),
     };

@@ -11,14 +11,14 @@ use propbet_polar::{naca4_from_name, Airfoil};
 use propbet_qprop::apc::{read_pe0, Pe0};
 use propbet_qprop::{PropFile, PropRow};
 
-use crate::model::{as_written, LoadedProp};
+use crate::{as_written, LoadedProp};
 use crate::{Error, Result};
 use table::{read_table, table_columns};
 
 /// What a blade file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BladeFormat {
-    /// A QPROP prop file (read by [`crate::model::load_prop`]).
+    /// A QPROP prop file (read by [`crate::load_prop`]).
     Qprop,
     /// APC's design file (`*-PERF.PE0`).
     Pe0,
@@ -82,7 +82,7 @@ pub struct SectionPlan {
 
 impl SectionPlan {
     /// Reads `e63` or `E63@0.25,APC12@0.45`; `what` names the flag or key in errors.
-    pub(crate) fn parse(text: &str, what: &str) -> Result<SectionPlan> {
+    pub fn parse(text: &str, what: &str) -> Result<SectionPlan> {
         let parts: Vec<&str> = text.split(',').map(str::trim).collect();
         if parts.len() == 1 && !parts[0].contains('@') {
             if parts[0].is_empty() {
@@ -179,7 +179,7 @@ pub fn airfoil_by_name(name: &str, dir: Option<&Path>) -> Result<Airfoil> {
 
 /// A section of the [`LIBRARY`] by name (`e63`, `Clark-Y`), with what reading its coordinates
 /// notes, as the file's own would be read; None for a name it does not hold.
-pub(crate) fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
+pub fn library_airfoil(name: &str) -> Option<Result<(Airfoil, Vec<String>)>> {
     let k = key(name);
     LIBRARY
         .iter()
@@ -197,7 +197,7 @@ pub(crate) fn is_known_name(name: &str) -> bool {
 /// A section text (`--airfoil`, a case's `airfoil`) with each name that is a file of `dir`
 /// written as that file's path (a case's files are relative to it), the others as they are;
 /// and the files it names (each a file of `dir`, or neither a known name nor found there).
-pub(crate) fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
+pub fn resolve_in(text: &str, dir: &Path) -> (String, Vec<PathBuf>) {
     let mut files = Vec::new();
     let mut resolve = |name: &str| -> String {
         let n = name.trim();
@@ -493,7 +493,7 @@ fn stations_of(
 
 /// The sections of a plan at each station: an airfoil, or two blended, scaled to the station's
 /// thickness ratio where the table gives one.
-pub(crate) fn plan_sections(
+pub fn plan_sections(
     plan: &SectionPlan,
     radii: &[f64],
     big_r: f64,
@@ -552,7 +552,7 @@ enum Own {
 }
 
 /// An airfoil file, parsed and normalised, with what was repaired in it.
-pub(crate) fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
+pub fn read_airfoil(path: &Path) -> Result<(Airfoil, Vec<String>)> {
     let text = crate::error::read_titled_text(path)?;
     parse_airfoil(&text, path)
 }

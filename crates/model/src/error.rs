@@ -147,7 +147,7 @@ pub(crate) const INPUT_LIMIT: u64 = 4 << 30;
 /// Reads an input file's bytes, naming it in the error. Only a regular file (or a link to
 /// one) is read: a FIFO would block for ever and a device like /dev/zero never ends; a file
 /// growing past [`INPUT_LIMIT`] as it is read is refused.
-pub(crate) fn read_bytes(path: &std::path::Path) -> Result<Vec<u8>> {
+pub fn read_bytes(path: &std::path::Path) -> Result<Vec<u8>> {
     use std::io::Read;
     let read_error = |reason| Error::Read {
         path: path.to_path_buf(),
@@ -203,7 +203,7 @@ fn e_at(bytes: &[u8]) -> usize {
 
 /// A text file whose first line is a free-text title (prop files, airfoil coordinates): the
 /// title may be Latin-1 (older tools write it so) and is decoded as such; the rest must be UTF-8.
-pub(crate) fn read_titled_text(path: &std::path::Path) -> Result<String> {
+pub fn read_titled_text(path: &std::path::Path) -> Result<String> {
     let bytes = read_bytes(path)?;
     match String::from_utf8(bytes) {
         Ok(s) => Ok(s),

@@ -1,5 +1,17 @@
-//! The propeller model a stage solves: a prop file read and discretised, optionally with
-//! tabulated polars as the section model and effects on top, and the air.
+//! A propeller's model, as every stage of the pipeline solves it: a prop file read and
+//! discretised ([`Model`]), optionally with tabulated polars as the section model and effects on
+//! top; the blade files other than QPROP's it is read from ([`design`]: APC's PE0, UIUC tables,
+//! blade tables); its solves at operating points ([`solve`]); its uncertainty band ([`band`]);
+//! and the error of reading and running it ([`Error`], the pipeline's).
+#![deny(missing_docs)]
+
+#[macro_use]
+mod error;
+pub mod band;
+pub mod design;
+pub mod solve;
+
+pub use error::{read_bytes, read_text, read_titled_text, Error, Result};
 
 use std::path::Path;
 
@@ -8,7 +20,6 @@ use propbet_effects::spec::Registry;
 use propbet_effects::{parse_spec, Stack};
 use propbet_qprop::{parse_prop, PropFile, RadiusReading};
 
-use crate::{out_of_range, read_text, Error, Result};
 use propbet_settings::spec::ModelSpec;
 
 /// A prop file read and checked, with its warnings (each naming the file).
@@ -22,7 +33,7 @@ pub struct LoadedProp {
 
 /// Reads a prop file, naming the file in every error; `units` [m per unit] replaces its Rfac
 /// and Cfac.
-pub(crate) fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
+pub fn load_prop(path: &Path, units: Option<f64>) -> Result<LoadedProp> {
     let text = crate::error::read_titled_text(path).map_err(|e| match e {
         Error::Input { path, message } => Error::input(path, format!("{message} (is it a QPROP prop file?)")),
         e => e,

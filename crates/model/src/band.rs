@@ -15,7 +15,7 @@ use propbet_compare::{AirChoice, ComparedPoint};
 use propbet_effects::{parse_spec, Stack};
 use propbet_measure::MeasuredSet;
 
-use crate::model::Model;
+use crate::Model;
 use crate::Result;
 
 /// The band's sources in words, as the help and the reports say them: [`BandSpec::default`]'s
@@ -205,7 +205,7 @@ impl BandSpec {
 
     /// The band along a comparison's model curves (`base`: the model's own,
     /// [`propbet_compare::curves::curves`] of `points`).
-    pub(crate) fn along_curves(
+    pub fn along_curves(
         &self,
         model: &Model,
         air: AirChoice,
