@@ -10,6 +10,7 @@ pub mod export;
 pub mod motor;
 pub mod polar;
 pub mod predict;
+pub mod prop;
 pub mod run;
 pub mod scan;
 pub mod synth;

@@ -41,7 +41,7 @@ impl PropArgs {
 /// Runs `propbet prop`.
 pub fn run(args: &PropArgs) -> Result<bool> {
     let term = crate::output::Terminal::default();
-    Ok(propbet_api::commands::synth::prop(
+    Ok(propbet_api::commands::prop::prop(
         &args.model_spec()?,
         args.write.as_deref(),
         &term,

@@ -230,7 +230,7 @@ pub fn predict<'py>(
 pub fn stations<'py>(py: Python<'py>, model: &Model) -> PyResult<Bound<'py, PyBytes>> {
     let spec = model.spec.clone();
     let t = guarded(py, move || {
-        propbet_api::commands::synth::stations(&spec, &propbet_cli::Terminal::default())
+        propbet_api::commands::prop::stations(&spec, &propbet_cli::Terminal::default())
     })?;
     Ok(PyBytes::new(py, &t))
 }
