@@ -42,8 +42,8 @@ pub use types::{
 };
 
 pub use request::{
-    supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, PolarsRequest, ProcessRequest,
-    SectionRequest, SweepRequest, Values,
+    rpm_sources, supply, AirRequest, DiagnoseRequest, DriveRequest, MeasuredRequest, ModelRequest, PolarsRequest,
+    ProcessRequest, SectionRequest, SweepRequest, Values,
 };
 
 /// The sources of the uncertainty band, in words (`--band`'s help).

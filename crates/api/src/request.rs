@@ -10,7 +10,10 @@ use propbet_settings::spec::{
 use propbet_settings::values::{
     parse_atmosphere, parse_humidity, parse_length_unit, parse_list, parse_pressure, parse_temperature,
 };
-use propbet_settings::{Rotation, ENGINE, NEURALFOIL_SIZE};
+use propbet_settings::{
+    Rotation, AIR, ALPHA, ENGINE, NCRIT, NCRIT_EFFECT, NEURALFOIL_SIZE, POLES, RHO, RPM_SOURCE, TRIP, UNITS,
+    XFOIL_BUDGET,
+};
 
 use crate::atmosphere::AirState;
 use crate::measure::RpmSource;
@@ -24,6 +27,15 @@ pub enum Values {
     Numbers(Vec<f64>),
     /// A list or a range as the command line writes it.
     Text(String),
+}
+
+/// A flag's text, as it is (read into numbers by [`Values::numbers`]).
+impl std::str::FromStr for Values {
+    type Err = std::convert::Infallible;
+
+    fn from_str(text: &str) -> std::result::Result<Self, Self::Err> {
+        Ok(Values::Text(text.to_string()))
+    }
 }
 
 impl Values {
@@ -56,23 +68,41 @@ impl Values {
     }
 }
 
-/// The polar engine, XFOIL's executable and the polar cache, as asked.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// The polar engine, XFOIL's executable and the polar cache, as asked (the flags of every
+/// command that makes polars, passed on by `run` and `validate` to their `polars` stages).
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct ProcessRequest {
-    /// `xfoil`, `neuralfoil` or `auto` (None: [`ENGINE`]'s default).
-    pub engine: Option<String>,
-    /// NeuralFoil's network size (None: [`NEURALFOIL_SIZE`]'s default).
-    pub neuralfoil_size: Option<String>,
-    /// XFOIL executable (None: `xfoil` on PATH).
+    /// XFOIL executable (default: `xfoil` on PATH).
+    #[arg(long)]
     pub xfoil: Option<PathBuf>,
-    /// Polar cache directory (None: the default one).
+    /// Polar cache directory (default: $PROPBET_CACHE_DIR, $XDG_CACHE_HOME/propbet/polars or
+    /// ~/.cache/propbet/polars).
+    #[arg(long, conflicts_with = "no_cache")]
     pub cache: Option<PathBuf>,
     /// Compute every polar afresh and store nothing.
+    #[arg(long)]
     pub no_cache: bool,
     /// No progress bar.
+    #[arg(long)]
     pub quiet: bool,
     /// Total XFOIL time [s].
+    #[arg(long = XFOIL_BUDGET.flag, help = XFOIL_BUDGET.help, value_name = "SECONDS")]
     pub budget: Option<f64>,
+    /// `xfoil`, `neuralfoil` or `auto` (None: [`ENGINE`]'s default).
+    #[arg(
+        long = ENGINE.flag,
+        help = ENGINE.help,
+        value_parser = ENGINE.choices(),
+        default_value = ENGINE.default,
+    )]
+    pub engine: Option<String>,
+    /// NeuralFoil's network size (None: [`NEURALFOIL_SIZE`]'s default).
+    #[arg(
+        long = NEURALFOIL_SIZE.flag,
+        help = NEURALFOIL_SIZE.help,
+        value_parser = NEURALFOIL_SIZE.choices(),
+    )]
+    pub neuralfoil_size: Option<String>,
 }
 
 impl ProcessRequest {
@@ -186,14 +216,18 @@ impl ModelRequest {
     }
 }
 
-/// Operating points: every rotation speed with every advance ratio or airspeed.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// Operating points: every rotation speed with every advance ratio or airspeed (the flags of
+/// `predict` and `polars`).
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct SweepRequest {
-    /// Rotation speeds [rpm].
+    /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
+    #[arg(long, allow_hyphen_values = true)]
     pub rpm: Option<Values>,
-    /// Advance ratios J = V/(nD) [-].
+    /// Advance ratios J = V/(nD), same syntax.
+    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
     pub j: Option<Values>,
-    /// Airspeeds [m/s] (neither: static).
+    /// Axial speeds [m/s], same syntax (default: 0, static).
+    #[arg(long, allow_hyphen_values = true)]
     pub v: Option<Values>,
 }
 
@@ -240,19 +274,25 @@ impl SweepRequest {
 
 /// The air: density, viscosity and speed of sound (QPROP's defaults where not given), or
 /// temperature, pressure and humidity through the atmosphere model.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct AirRequest {
     /// Density [kg/m^3].
+    #[arg(long = RHO.flag, help = RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
-    /// Dynamic viscosity [Pa s].
+    /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
     pub mu: Option<f64>,
-    /// Speed of sound [m/s].
+    /// Speed of sound [m/s] (default 340, QPROP's).
+    #[arg(long, allow_negative_numbers = true)]
     pub a: Option<f64>,
-    /// Temperature with its unit (`20C`, `293.15K`, `68F`).
+    /// Air temperature with unit (20C, 293.15K, 68F); sets rho, mu and a.
+    #[arg(long, requires = "pressure")]
     pub temp: Option<String>,
-    /// Pressure (Pa unless suffixed: `hPa`, `mbar`, `kPa`, `inHg`, `psi`).
+    /// Air pressure (Pa unless suffixed: hPa, mbar, kPa, inHg, psi).
+    #[arg(long, requires = "temp")]
     pub pressure: Option<String>,
-    /// Relative humidity in percent.
+    /// Relative humidity in percent (with --temp and --pressure).
+    #[arg(long, requires = "temp")]
     pub humidity: Option<String>,
 }
 
@@ -280,21 +320,36 @@ impl AirRequest {
     }
 }
 
-/// Measured files and how to read them.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// Measured files and how to read them (the flags of `compare`, `diagnose` and `motor fit`).
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct MeasuredRequest {
-    /// RCbenchmark / Tyto logs, UIUC files, generic CSV.
+    /// Measured files: RCbenchmark/Tyto CSV, UIUC .txt, or generic CSV.
+    #[arg(id = "measured", long = "measured", value_name = "MEASURED", required = true, num_args = 1..)]
     pub files: Vec<PathBuf>,
     /// Motor poles, for logs whose RPM is the ESC's electrical speed.
+    #[arg(long = POLES.flag, help = POLES.help)]
     pub poles: Option<u32>,
     /// Which of a log's speeds to use (`optical`, `electrical`).
+    #[arg(long = RPM_SOURCE.flag, help = RPM_SOURCE.help, value_parser = rpm_sources())]
     pub rpm_source: Option<String>,
     /// The air in the room as `T,P,RH`.
+    #[arg(long = AIR.flag, help = AIR.help)]
     pub atmosphere: Option<String>,
     /// The air's density [kg/m^3].
+    #[arg(long = RHO.flag, help = RHO.help, allow_negative_numbers = true)]
     pub rho: Option<f64>,
     /// Column map (TOML) for generic CSV files.
+    #[arg(long)]
     pub columns: Option<PathBuf>,
+}
+
+/// The RPM columns a log may be read by, each with what it is (`--rpm-source`'s values).
+pub fn rpm_sources() -> clap::builder::PossibleValuesParser {
+    use clap::builder::PossibleValue;
+    clap::builder::PossibleValuesParser::new([
+        PossibleValue::new("optical").help("The optical (once-per-revolution) sensor"),
+        PossibleValue::new("electrical").help("The ESC's electrical speed"),
+    ])
 }
 
 impl MeasuredRequest {
@@ -423,26 +478,31 @@ impl DiagnoseRequest {
 /// How XFOIL (or NeuralFoil) is asked for a section's polars: the engine and its process, the
 /// transition (Ncrit, trip), the angles, the panels and iterations; every field optional, its
 /// default the setting's.
-#[derive(Debug, Clone, Default, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct SectionRequest {
     /// The engine, XFOIL's executable, the cache.
+    #[command(flatten)]
     pub process: ProcessRequest,
     /// Transition amplification ratio.
+    #[arg(long = NCRIT.flag, help = NCRIT.help)]
     pub ncrit: Option<f64>,
     /// Forced transition x/c on both surfaces, or `free`.
+    #[arg(long = TRIP.flag, help = TRIP.help, value_name = "X/C|free")]
     pub trip: Option<String>,
     /// Angles of attack [deg].
+    #[arg(long = ALPHA.flag, help = ALPHA.help, default_value = ALPHA.default, allow_hyphen_values = true)]
     pub alpha: Option<Values>,
-    /// XFOIL's panels.
+    /// XFOIL panel nodes (default: XFOIL's 160 for `polar`, 120 for `polars`).
+    #[arg(long)]
     pub panels: Option<u32>,
-    /// XFOIL's iterations.
+    /// XFOIL's viscous iteration limit per angle (None: [`DEFAULT_MAX_ITER`](crate::xfoil::DEFAULT_MAX_ITER)).
+    #[arg(long, help = format!("XFOIL's viscous iteration limit per angle [default: {}]", crate::xfoil::DEFAULT_MAX_ITER))]
     pub iter: Option<u32>,
 }
 
 impl SectionRequest {
     /// The spec; `default_ncrit` and `default_trip` where Ncrit and the trip are not given.
     pub fn spec(&self, default_ncrit: f64, default_trip: Option<f64>) -> Result<XfoilSpec> {
-        use propbet_settings::ALPHA;
         let mut alphas = match &self.alpha {
             Some(a) => a.numbers("alpha")?,
             None => parse_list("--alpha", ALPHA.default)?,
@@ -468,41 +528,65 @@ impl SectionRequest {
 }
 
 /// `propbet polars`: every station's polars over the operating points, written as a prop
-/// file with fitted coefficients and (optionally) the tables.
-#[derive(Debug, Clone, Default, PartialEq)]
+/// file with fitted coefficients and (optionally) the tables. Its flags.
+#[derive(Debug, Clone, Default, PartialEq, clap::Args)]
 pub struct PolarsRequest {
-    /// Blade geometry: a QPROP prop file, APC's PE0, a UIUC table or a blade table.
+    /// Blade geometry: a QPROP prop file (its radii, chords and twists are used; its
+    /// coefficients only for the first estimate of each station's inflow), APC's design file
+    /// (PE0: its blade and sections), a UIUC geometry table or a blade table (CSV).
+    #[arg(long)]
     pub geometry: PathBuf,
     /// Length unit of its radii and chords.
+    #[arg(long = UNITS.flag, help = UNITS.help)]
     pub units: Option<String>,
-    /// The section at every station (or blended along the blade).
+    /// The section used at every station (with --station-airfoils, at the stations without
+    /// their own): a coordinate file (Selig or Lednicer), a NACA 4-digit name, APC12 or a name
+    /// of propbet's library (e63, clarky, sd7037, ...), or airfoils blended along the blade
+    /// (`E63@0.25,APC12@0.45`). Not needed for a PE0 file or a table naming its sections.
+    #[arg(long)]
     pub airfoil: Option<String>,
-    /// Scale the airfoil to this thickness ratio (`0.06` or `6%`).
+    /// Scale the --airfoil section to this thickness ratio t/c (0.06 or 6%), keeping its
+    /// camber line.
+    #[arg(long, requires = "airfoil")]
     pub thickness: Option<String>,
-    /// A directory of `station_NN.dat`, one section per station.
+    /// Per-station sections: a directory of `station_NN.dat` (NN = 00, 01, ... in the
+    /// geometry's station order, as `propbet scan` writes them); a station without its file
+    /// uses `--airfoil`, or without it the nearest station's section.
+    #[arg(long)]
     pub station_airfoils: Option<PathBuf>,
-    /// APC's design file whose sections a table takes.
+    /// APC's design file (PE0) whose sections a UIUC geometry table or blade table takes:
+    /// APC's airfoils blended across its transition and scaled to its thickness at each
+    /// station, as `propbet validate` models APC's propellers.
+    #[arg(long, value_name = "PE0")]
     pub sections_from: Option<PathBuf>,
-    /// Airfoil coordinates looked in before propbet's library.
+    /// A directory of airfoil coordinates (`e63.dat`, ...) looked in before propbet's own.
+    #[arg(long, value_name = "DIR")]
     pub airfoils: Option<PathBuf>,
-    /// The operating points the polars cover.
+    /// The operating points whose Reynolds numbers the polars cover (give the sweep's, or the
+    /// measured range).
+    #[command(flatten)]
     pub sweep: SweepRequest,
     /// The air.
+    #[command(flatten)]
     pub air: AirRequest,
     /// How the polars are made.
+    #[command(flatten)]
     pub section: SectionRequest,
     /// More Ncrit values to compute the same polars at.
+    #[arg(long = NCRIT_EFFECT.flag, help = NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
-    /// The prop file to write.
+    /// QPROP prop file with the fitted per-station coefficients.
+    #[arg(long)]
     pub out_prop: PathBuf,
-    /// The tables to write (JSON).
+    /// Every station's polars and fit (JSON), for `propbet predict --polars`.
+    #[arg(long)]
     pub out_polars: Option<PathBuf>,
 }
 
 impl PolarsRequest {
     /// The stage's spec, in SI.
     pub fn spec(&self) -> Result<PolarsSpec> {
-        use propbet_settings::{default_trip, NCRIT};
+        use propbet_settings::default_trip;
         let (omegas, axis) = self.sweep.spec()?;
         Ok(PolarsSpec {
             geometry: self.geometry.clone(),

@@ -458,14 +458,10 @@ fn each_case_key_and_its_flag_give_the_same_spec() {
     let repo = repo();
     let case = repo.join("props/apcsf_10x4.7").display().to_string();
     let base = base(&repo);
-    let xfoil = crate::polar::XfoilProcess {
-        xfoil: None,
-        cache: None,
-        no_cache: false,
+    let xfoil = propbet_api::ProcessRequest {
         quiet: true,
-        xfoil_budget: None,
-        engine: "xfoil".into(),
-        neuralfoil_size: None,
+        engine: Some("xfoil".into()),
+        ..Default::default()
     };
     let plan_of = |text: &str| {
         let dir = tempfile::tempdir().unwrap();

@@ -7,7 +7,7 @@ use anyhow::Result;
 use clap::Args;
 use propbet_api::settings::values::parse_list;
 
-use crate::predict::{BladeArgs, FluidArgs};
+use crate::predict::BladeArgs;
 
 /// Arguments of `propbet compare-props`.
 #[derive(Debug, Args)]
@@ -36,7 +36,7 @@ pub struct ComparePropsArgs {
     pub v: Option<String>,
     /// Air properties.
     #[command(flatten)]
-    pub air: FluidArgs,
+    pub air: propbet_api::AirRequest,
     /// Output directory (report.html, props.csv, plots/).
     #[arg(long, short)]
     pub out: PathBuf,

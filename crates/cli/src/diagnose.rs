@@ -7,7 +7,6 @@ use anyhow::Result;
 use clap::Args;
 use propbet_api::spec::DiagnoseSpec;
 
-use crate::compare::MeasuredArgs;
 use crate::predict::ModelArgs;
 
 /// Arguments of `propbet diagnose`.
@@ -18,7 +17,7 @@ pub struct DiagnoseArgs {
     pub model: ModelArgs,
     /// The measurements.
     #[command(flatten)]
-    pub data: MeasuredArgs,
+    pub data: propbet_api::MeasuredRequest,
     /// Candidate effects: `all` (default) or a comma-separated list of ids (user effects too).
     #[arg(long, default_value = "all")]
     pub effects: String,

@@ -1,67 +1,9 @@
-//! How polars are made, shared by every command that makes them: the engine, XFOIL and its
-//! cache (`XfoilProcess`), the progress bar, where a blade file's sections come from
-//! (`DesignArgs`).
+//! How polars are made, shared by every command that makes them: the progress bar, where a
+//! blade file's sections come from (`DesignArgs`).
 
 use std::path::PathBuf;
 
 use clap::Args;
-use propbet_api::spec::XfoilProcessSpec;
-
-/// The XFOIL executable, the polar cache and the progress bar (shared by every command that
-/// runs XFOIL, and passed on by `run` and `validate` to their `polars` stages).
-// Fields without a doc comment are documented by their declared setting's help (`settings`).
-#[allow(missing_docs)]
-#[derive(Debug, Args)]
-pub struct XfoilProcess {
-    /// XFOIL executable (default: `xfoil` on PATH).
-    #[arg(long)]
-    pub xfoil: Option<PathBuf>,
-    /// Polar cache directory (default: $PROPBET_CACHE_DIR, $XDG_CACHE_HOME/propbet/polars or
-    /// ~/.cache/propbet/polars).
-    #[arg(long, conflicts_with = "no_cache")]
-    pub cache: Option<PathBuf>,
-    /// Compute every polar afresh and store nothing.
-    #[arg(long)]
-    pub no_cache: bool,
-    /// No progress bar.
-    #[arg(long)]
-    pub quiet: bool,
-    #[arg(long = propbet_api::settings::XFOIL_BUDGET.flag, help = propbet_api::settings::XFOIL_BUDGET.help, value_name = "SECONDS")]
-    pub xfoil_budget: Option<f64>,
-    #[arg(
-        long = propbet_api::settings::ENGINE.flag,
-        help = propbet_api::settings::ENGINE.help,
-        value_parser = clap::builder::PossibleValuesParser::new(propbet_api::settings::ENGINE.names().iter().copied()),
-        default_value = propbet_api::settings::ENGINE.default,
-    )]
-    pub engine: String,
-    #[arg(
-        long = propbet_api::settings::NEURALFOIL_SIZE.flag,
-        help = propbet_api::settings::NEURALFOIL_SIZE.help,
-        value_parser = clap::builder::PossibleValuesParser::new(propbet_api::settings::NEURALFOIL_SIZE.names().iter().copied()),
-    )]
-    pub neuralfoil_size: Option<String>,
-}
-
-impl XfoilProcess {
-    /// What the flags ask for.
-    pub fn request(&self) -> propbet_api::ProcessRequest {
-        propbet_api::ProcessRequest {
-            engine: Some(self.engine.clone()),
-            neuralfoil_size: self.neuralfoil_size.clone(),
-            xfoil: self.xfoil.clone(),
-            cache: self.cache.clone(),
-            no_cache: self.no_cache,
-            quiet: self.quiet,
-            budget: self.xfoil_budget,
-        }
-    }
-
-    /// The same settings as a spec.
-    pub fn spec(&self) -> anyhow::Result<XfoilProcessSpec> {
-        Ok(self.request().spec()?)
-    }
-}
 
 /// A progress bar on stderr for polar jobs, drawn only when stderr is a terminal, hidden with
 /// `quiet`: made at the first job of a batch and cleared when the batch is done (or the bar is

@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::Args;
+use propbet_api::settings::RPM_SOURCE;
 
-use crate::compare::RpmSourceArg;
-use crate::predict::{FluidArgs, SweepArgs};
+use propbet_api::{AirRequest, SweepRequest, Values};
 
 /// Arguments of `propbet export`.
 #[derive(Debug, Args)]
@@ -42,14 +42,14 @@ pub struct ExportArgs {
     pub v: Option<String>,
     /// Air of the prediction; --rho also overrides the measured files' density.
     #[command(flatten)]
-    pub air: FluidArgs,
+    pub air: AirRequest,
     /// Measured files instead of a prediction: RCbenchmark/Tyto CSV, UIUC .txt, generic CSV.
     #[arg(long, num_args = 1..)]
     pub measured: Vec<PathBuf>,
     #[arg(long = propbet_api::settings::POLES.flag, help = propbet_api::settings::POLES.help, requires = "measured")]
     pub poles: Option<u32>,
-    #[arg(long = propbet_api::settings::RPM_SOURCE.flag, help = propbet_api::settings::RPM_SOURCE.help, value_enum, requires = "measured")]
-    pub rpm_source: Option<RpmSourceArg>,
+    #[arg(long = RPM_SOURCE.flag, help = RPM_SOURCE.help, value_parser = propbet_api::rpm_sources(), requires = "measured")]
+    pub rpm_source: Option<String>,
     #[arg(long = propbet_api::settings::AIR.flag, help = propbet_api::settings::AIR.help, requires = "measured")]
     pub atmosphere: Option<String>,
     /// Column map (TOML) for generic CSV files.
@@ -77,20 +77,20 @@ pub struct ExportArgs {
 impl ExportArgs {
     /// What the flags ask for.
     pub fn request(&self) -> propbet_api::commands::export::ExportRequest {
-        let sweep = SweepArgs {
-            rpm: self.rpm.clone(),
-            j: self.j.clone(),
-            v: self.v.clone(),
-        };
+        let text = |t: &Option<String>| t.clone().map(Values::Text);
         propbet_api::commands::export::ExportRequest {
             to: self.to.clone(),
             model: self.prop.as_deref().map(|p| self.model.request(p)),
-            sweep: sweep.request(),
-            air: self.air.request(),
+            sweep: SweepRequest {
+                rpm: text(&self.rpm),
+                j: text(&self.j),
+                v: text(&self.v),
+            },
+            air: self.air.clone(),
             measured: propbet_api::MeasuredRequest {
                 files: self.measured.clone(),
                 poles: self.poles,
-                rpm_source: self.rpm_source.map(|s| s.name().to_string()),
+                rpm_source: self.rpm_source.clone(),
                 atmosphere: self.atmosphere.clone(),
                 rho: self.air.rho,
                 columns: self.columns.clone(),

@@ -5,14 +5,14 @@ use anyhow::Result;
 use clap::Args;
 use propbet_api::diagnose::inject::Injection;
 
-use crate::validate::ValidateArgs;
+use propbet_api::commands::validate::ValidateRequest;
 
 /// Arguments of `propbet hidden`.
 #[derive(Debug, Args)]
 pub struct HiddenArgs {
     /// The props, their files and the model, as `propbet validate` takes them.
     #[command(flatten)]
-    pub validate: ValidateArgs,
+    pub validate: ValidateRequest,
     /// The effects added to the measurements, each at every size.
     #[arg(
         long,
@@ -38,7 +38,7 @@ pub fn run(a: &HiddenArgs) -> Result<bool> {
             injections.push(Injection::new(e.trim(), s).map_err(|why| anyhow::anyhow!("--inject/--sizes: {why}"))?);
         }
     }
-    let (spec, props, generic) = crate::validate::request(&a.validate).spec()?;
+    let (spec, props, generic) = a.validate.spec()?;
     let term = crate::output::Terminal::default();
     Ok(propbet_api::commands::validate::hidden(
         &spec,

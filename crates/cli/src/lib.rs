@@ -85,7 +85,7 @@ pub enum Command {
         "    --airfoil props/airfoils/e63.dat --rpm 4000,6000 --j 0:0.6:0.1 --out-prop apc.qprop --out-polars apc.json\n\n",
         "Exit status: 0 done; 1 done, with unfit stations or XFOIL faults it reports; 2 error."
     ))]
-    Polars(Box<polar::PolarsArgs>),
+    Polars(Box<propbet_api::PolarsRequest>),
     /// Polars of one section from XFOIL at given Reynolds numbers, with their QPROP fit.
     #[command(after_help = concat!(
         "Example:\n  propbet polar --airfoil naca4412 --re 5e4,1e5 -o naca4412.csv\n\n",
@@ -145,7 +145,7 @@ pub enum Command {
         "    --per3 ../shared/data/apc/PER3 -o validation\n\n",
         "Exit status: 0 done; 1 done, with problems it reports; 2 error."
     ))]
-    Validate(Box<validate::ValidateArgs>),
+    Validate(Box<propbet_api::commands::validate::ValidateRequest>),
     /// Hidden effects in real measurements: known effects (thrust and torque tares, an RPM
     /// scale, the air's density) added to validate's measured files at several sizes, and how
     /// often the diagnosis finds each with its size.
@@ -377,13 +377,13 @@ mod tests {
 
     #[test]
     fn every_stage_of_the_shipped_cases_is_a_command_that_parses_back() {
-        let xfoil = polar::XfoilProcess {
+        let xfoil = propbet_api::ProcessRequest {
             xfoil: Some("/usr/bin/xfoil".into()),
             cache: Some("/tmp/cache dir".into()),
             no_cache: false,
             quiet: true,
-            xfoil_budget: Some(600.0),
-            engine: "auto".into(),
+            budget: Some(600.0),
+            engine: Some("auto".into()),
             neuralfoil_size: Some("large".into()),
         };
         let mut n = 0;

@@ -8,8 +8,6 @@ use anyhow::Result;
 use clap::{Args, Subcommand};
 use propbet_api::motor::FitKind;
 
-use crate::compare::MeasuredArgs;
-
 /// `propbet motor`'s subcommands.
 #[derive(Debug, Subcommand)]
 pub enum MotorCommand {
@@ -23,7 +21,7 @@ pub enum MotorCommand {
 pub struct FitArgs {
     /// The logs.
     #[command(flatten)]
-    pub measured: MeasuredArgs,
+    pub measured: propbet_api::MeasuredRequest,
     /// The maker's Kv [rpm/V]: R and Io are fitted for it (without it Kv is found from the
     /// ESC command's duty).
     #[arg(long)]

@@ -42,13 +42,13 @@ pub struct MotorArgs {
 
 impl MotorArgs {
     /// The drivers the flags give (`rpm` the sweep's --rpm).
-    pub fn drives(&self, rpm: Option<&str>, supply: Option<&Supply>) -> Result<Vec<Drive>> {
+    pub fn drives(&self, rpm: Option<&Values>, supply: Option<&Supply>) -> Result<Vec<Drive>> {
         let text = |t: &Option<String>| t.clone().map(Values::Text);
         let request = DriveRequest {
             volts: text(&self.volts),
             amps: text(&self.amps),
             thrust: text(&self.thrust),
-            rpm: rpm.map(|r| Values::Text(r.to_string())),
+            rpm: rpm.cloned(),
             throttle: text(&self.throttle),
         };
         Ok(request.drives(supply)?)

@@ -16,9 +16,9 @@ impl PredictArgs {
         Ok(propbet_api::spec::PoweredSpec {
             model: self.model.spec()?,
             motor: motor.clone(),
-            drives: self.motor.drives(self.points.rpm.as_deref(), supply.as_ref())?,
+            drives: self.motor.drives(self.points.rpm.as_ref(), supply.as_ref())?,
             supply,
-            speeds: self.points.request().airspeeds()?,
+            speeds: self.points.airspeeds()?,
             air: self.air.spec()?,
             format: match self.format {
                 crate::predict::Format::Csv => TableFormat::Csv,

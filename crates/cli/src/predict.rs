@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use anyhow::Result;
 use clap::{Args, ValueEnum};
-use propbet_api::spec::{AirSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat};
-use propbet_api::{AirRequest, ModelRequest, SweepRequest, Values};
+use propbet_api::spec::{ModelSpec, PredictSpec, TableFormat};
+use propbet_api::{AirRequest, ModelRequest, SweepRequest};
 
 /// Output format.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
@@ -24,13 +24,13 @@ pub struct PredictArgs {
     pub model: ModelArgs,
     /// The operating points.
     #[command(flatten)]
-    pub points: SweepArgs,
+    pub points: SweepRequest,
     /// The motor (optional).
     #[command(flatten)]
     pub motor: crate::motor_flags::MotorArgs,
     /// Air properties.
     #[command(flatten)]
-    pub air: FluidArgs,
+    pub air: AirRequest,
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Csv)]
     pub format: Format,
@@ -120,7 +120,7 @@ pub struct BladeArgs {
     pub design: crate::engine::DesignArgs,
     /// The polar engine, XFOIL and its cache.
     #[command(flatten)]
-    pub process: crate::engine::XfoilProcess,
+    pub process: propbet_api::ProcessRequest,
 }
 
 impl ModelArgs {
@@ -160,51 +160,9 @@ impl BladeArgs {
             airfoil: self.airfoil.clone(),
             sections_from: self.design.sections_from.clone(),
             airfoils: self.design.airfoils.clone(),
-            process: self.process.request(),
+            process: self.process.clone(),
             ..ModelRequest::file(prop)
         }
-    }
-}
-
-/// Air properties from flags: --rho/--mu/--a (QPROP's defaults), or --temp/--pressure
-/// [--humidity] through the atmosphere model.
-#[derive(Debug, Args)]
-pub struct FluidArgs {
-    #[arg(long = propbet_api::settings::RHO.flag, help = propbet_api::settings::RHO.help, allow_negative_numbers = true)]
-    pub rho: Option<f64>,
-    /// Dynamic viscosity [Pa s] (default 1.78e-5, QPROP's).
-    #[arg(long, allow_negative_numbers = true)]
-    pub mu: Option<f64>,
-    /// Speed of sound [m/s] (default 340, QPROP's).
-    #[arg(long, allow_negative_numbers = true)]
-    pub a: Option<f64>,
-    /// Air temperature with unit (20C, 293.15K, 68F); sets rho, mu and a.
-    #[arg(long, requires = "pressure")]
-    pub temp: Option<String>,
-    /// Air pressure (Pa unless suffixed: hPa, mbar, kPa, inHg, psi).
-    #[arg(long, requires = "temp")]
-    pub pressure: Option<String>,
-    /// Relative humidity in percent (with --temp and --pressure).
-    #[arg(long, requires = "temp")]
-    pub humidity: Option<String>,
-}
-
-impl FluidArgs {
-    /// What the flags ask for.
-    pub fn request(&self) -> AirRequest {
-        AirRequest {
-            rho: self.rho,
-            mu: self.mu,
-            a: self.a,
-            temp: self.temp.clone(),
-            pressure: self.pressure.clone(),
-            humidity: self.humidity.clone(),
-        }
-    }
-
-    /// The air's spec (flags in SI).
-    pub fn spec(&self) -> Result<AirSpec> {
-        Ok(self.request().spec()?)
     }
 }
 
@@ -225,37 +183,6 @@ impl PredictArgs {
             stations: self.stations.clone(),
             band: self.band,
         })
-    }
-}
-
-/// Operating points as `predict` and `polars` take them: every RPM with every J or V.
-#[derive(Debug, Args)]
-pub struct SweepArgs {
-    /// Rotation speeds [rpm]: a list, `start:stop:step` or `start:stop/N`.
-    #[arg(long, allow_hyphen_values = true)]
-    pub rpm: Option<String>,
-    /// Advance ratios J = V/(nD), same syntax.
-    #[arg(long, conflicts_with = "v", allow_hyphen_values = true)]
-    pub j: Option<String>,
-    /// Axial speeds [m/s], same syntax (default: 0, static).
-    #[arg(long, allow_hyphen_values = true)]
-    pub v: Option<String>,
-}
-
-impl SweepArgs {
-    /// What the flags ask for.
-    pub fn request(&self) -> SweepRequest {
-        let text = |t: &Option<String>| t.clone().map(Values::Text);
-        SweepRequest {
-            rpm: text(&self.rpm),
-            j: text(&self.j),
-            v: text(&self.v),
-        }
-    }
-
-    /// Rotation speeds [rad/s] and the second axis (neither `--j` nor `--v`: static).
-    pub fn spec(&self) -> Result<(Vec<f64>, SweepAxis)> {
-        Ok(self.request().spec()?)
     }
 }
 

@@ -9,8 +9,6 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Args;
 
-use crate::polar::XfoilProcess;
-
 /// Arguments of `propbet run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -22,7 +20,7 @@ pub struct RunArgs {
     pub out: Option<PathBuf>,
     /// XFOIL executable, polar cache, progress bars (passed on to the polars stage).
     #[command(flatten)]
-    pub xfoil: XfoilProcess,
+    pub xfoil: propbet_api::ProcessRequest,
     /// Print every stage's full terminal output (each station's polar fit, the measured files
     /// again for the diagnosis), as the stages' own commands do; by default a summary per stage.
     #[arg(long)]

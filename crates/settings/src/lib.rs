@@ -156,6 +156,11 @@ impl<T> Setting<T> {
             _ => &[],
         }
     }
+
+    /// The names a choice takes, as its flag's parser (`value_parser = ENGINE.choices()`).
+    pub fn choices(&self) -> clap::builder::PossibleValuesParser {
+        clap::builder::PossibleValuesParser::new(self.names().iter().copied())
+    }
 }
 
 impl<T> Setting<T> {

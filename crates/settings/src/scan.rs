@@ -24,47 +24,71 @@ pub const DEFAULT_OUTLIERS: &str = "8,2.5";
 pub const DEFAULT_ROTATE: &str = "0,0,0";
 
 /// The scan's settings, as text where the flag takes text. Every field is a flag of
-/// `propbet scan` (`box_dims` is `--box`) and a key of a case's `[geometry]` (`box`).
-#[derive(Debug, Clone, Default, PartialEq, Deserialize)]
+/// `propbet scan` (`box_dims` is `--box`) and a key of a case's `[geometry]` (`box`): the
+/// binary parses its flags into this struct, a case file deserializes into it.
+#[derive(Debug, Clone, Default, PartialEq, Deserialize, clap::Args)]
 #[serde(deny_unknown_fields)]
 pub struct ScanSettings {
     /// Length unit of the file (m, cm, mm, in; None: mm, assumed).
+    #[arg(long = crate::UNITS.flag, help = crate::UNITS.help)]
     pub units: Option<String>,
     /// Stations as r/R (None: [`default_stations`]).
+    #[arg(long = crate::STATIONS.flag, help = crate::STATIONS.help)]
     pub stations: Option<String>,
-    /// Planar sections instead of cylindrical.
+    /// Planar sections (the plane x = r across the blade) instead of cylindrical (r = const).
     #[serde(default)]
+    #[arg(long)]
     pub planar: bool,
-    /// Slab thickness of a cloud's sections [mm].
+    /// Slab thickness of a cloud's sections [mm] (None: [`DEFAULT_SLAB_MM`]).
+    #[arg(long, help = format!("Slab thickness of a cloud's sections [mm] [default: {DEFAULT_SLAB_MM}]"))]
     pub slab: Option<f64>,
-    /// Points per blade a sparse cloud's slab is widened to (0: keep the slab).
+    /// Points per blade a sparse cloud's slab is widened to (0: keep the slab; None:
+    /// [`DEFAULT_SLAB_POINTS`]).
+    #[arg(long, help = format!("Widen a sparse cloud's slab (up to 4 times) until a section holds this many points \
+        per blade (0: keep the slab as given) [default: {DEFAULT_SLAB_POINTS}]"))]
     pub slab_points: Option<usize>,
-    /// Blade colours to keep.
+    /// Blade colours to keep (clouds): names (orange, black, ...), #rrggbb or r/g/b, comma-separated.
+    #[arg(long)]
     pub blade_colour: Option<String>,
-    /// Colour-distance threshold.
+    /// Colour-distance threshold (default: Otsu's suggestion from the histogram).
+    #[arg(long)]
     pub colour_threshold: Option<f64>,
-    /// Reference box edge lengths [mm]: `50.8x48.26x50.8`.
+    /// Reference box edge lengths along the propeller's x, y, z [mm]: 50.8x48.26x50.8.
     #[serde(rename = "box")]
+    #[arg(long = "box")]
     pub box_dims: Option<String>,
-    /// The box centre in the propeller frame [mm]: `x,y,z`.
+    /// The box centre in the propeller frame [mm]: x,y,z (the box is fixed to the hub).
+    #[arg(long, default_value = DEFAULT_BOX_OFFSET, allow_hyphen_values = true)]
     pub box_offset: Option<String>,
     /// Colours of the box faces.
+    #[arg(long, default_value = DEFAULT_BOX_COLOUR)]
     pub box_colour: Option<String>,
-    /// One point on each visible box face (file units), `x,y,z;x,y,z;...`.
+    /// One point on each visible box face (file units), `x,y,z;x,y,z;...`, instead of finding
+    /// the faces automatically.
+    #[arg(long, allow_hyphen_values = true)]
     pub box_seeds: Option<String>,
-    /// Region of interest in file units: `xmin,ymin,zmin,xmax,ymax,zmax`.
+    /// Region of interest in file units: xmin,ymin,zmin,xmax,ymax,zmax.
+    #[arg(long, allow_hyphen_values = true)]
     pub crop: Option<String>,
-    /// Statistical outlier removal: `neighbours,sigmas` or `off`.
+    /// Statistical outlier removal for clouds: neighbours,sigmas, or `off`.
+    #[arg(long, default_value = DEFAULT_OUTLIERS)]
     pub outliers: Option<String>,
-    /// Manual alignment: a point at the root of blade 0.
+    /// Manual alignment: a point at the root of blade 0 (file units) x,y,z.
+    #[arg(long, allow_hyphen_values = true, requires = "tip_point")]
     pub root_point: Option<String>,
     /// Manual alignment: a point at the tip of blade 0.
+    #[arg(long, allow_hyphen_values = true, requires = "root_point")]
     pub tip_point: Option<String>,
-    /// Manual alignment: the hub centre.
+    /// Manual alignment: the hub centre (default: the root point moved along the blade axis to
+    /// the station of the scan's centroid).
+    #[arg(long, allow_hyphen_values = true)]
     pub origin: Option<String>,
     /// Manual alignment: rotations about the frame's x, y, z [deg].
+    #[arg(long, allow_hyphen_values = true, default_value = DEFAULT_ROTATE)]
     pub rotate: Option<String>,
-    /// Manual scale from a known length: `x1,y1,z1,x2,y2,z2,L` (L in mm).
+    /// Manual scale from a known length: `x1,y1,z1,x2,y2,z2,L` (two points in file units and
+    /// their true distance in mm).
+    #[arg(long, allow_hyphen_values = true)]
     pub known_length: Option<String>,
 }
 

@@ -14,7 +14,7 @@ use propbet_validate::{
     Validated,
 };
 
-use crate::settings::Rotation;
+use crate::settings::{Rotation, DRAG_FACTOR, NCRIT_EFFECT, ROTATION, SECTION_MODEL};
 pub use propbet_validate::DEFAULT_GENERIC_SECTION;
 
 use crate::command_error::with_causes;
@@ -23,36 +23,65 @@ use crate::diagnose::inject::{Finding, Injection};
 use crate::files::write_atomic;
 use crate::{CommandError, CommandResult as Result};
 
-/// What `propbet validate` (and `propbet hidden`) is asked.
-#[derive(Debug, Clone, Default)]
+/// What `propbet validate` (and `propbet hidden`) is asked: its flags.
+// Fields without a help are documented by their declared setting's (`settings`).
+#[derive(Debug, Clone, Default, clap::Args)]
 pub struct ValidateRequest {
-    /// UIUC's directory: each prop's measured files and its geometry table.
+    /// UIUC directory: each prop's static and J-sweep files and its `<prop>_geom.txt` (without
+    /// one, the blade is APC's design from the PE0 file).
+    #[arg(long)]
     pub uiuc: PathBuf,
-    /// APC's PE0 directory.
+    /// APC PE0 directory (`<D><P><type>-PERF.PE0`, in any case, with or without the size's point).
+    #[arg(long)]
     pub pe0: PathBuf,
-    /// Airfoil coordinates of APC's sections.
+    /// Airfoil coordinates of APC's sections: `e63.dat`, `clarky.dat`, or `<name>.dat` for
+    /// another (APC12 is NACA 4412, and NACA 4-digit names are generated).
+    #[arg(long)]
     pub airfoils: PathBuf,
     /// Only the props whose name contains one of these (comma-separated).
+    #[arg(long)]
     pub only: Option<String>,
-    /// The output directory.
+    /// Output directory.
+    #[arg(long, short)]
     pub out: PathBuf,
-    /// How the sections' polars are asked (the engine, Ncrit, the trip).
+    /// XFOIL, its cache and how each section's polar is asked (passed on to the polars stages).
+    #[command(flatten)]
     pub section: crate::SectionRequest,
     /// `qprop` or `tables` (None: the setting's default).
+    #[arg(
+        long = SECTION_MODEL.flag,
+        help = SECTION_MODEL.help,
+        value_parser = SECTION_MODEL.choices(),
+        default_value = SECTION_MODEL.default,
+    )]
     pub section_model: Option<String>,
-    /// APC's PER3 directory, its predictions scored beside propbet's.
+    /// APC's PER3 directory (`PER3_<D><P><type>.dat`): APC's own predictions scored on the same
+    /// points beside propbet's.
+    #[arg(long)]
     pub per3: Option<PathBuf>,
     /// Other Ncrit values the transition effect may move to.
+    #[arg(long = NCRIT_EFFECT.flag, help = NCRIT_EFFECT.help, value_delimiter = ',')]
     pub ncrit_effect: Vec<f64>,
     /// Rotational augmentation (`off`, `snel`; None: the section model's default).
+    #[arg(long = ROTATION.flag, help = ROTATION.help, value_name = "off|snel")]
     pub rotation: Option<String>,
     /// The drag factor (None: the section model's default).
+    #[arg(long = DRAG_FACTOR.flag, help = DRAG_FACTOR.help, value_name = "K")]
     pub drag_factor: Option<f64>,
-    /// `uiuc` or `pe0`: where the chord and twist come from (None: `uiuc`).
+    /// Where each station's chord and twist come from: `uiuc` (UIUC's measured geometry file) or
+    /// `pe0` (APC's design chord and twist, at UIUC's stations).
+    #[arg(long, value_parser = ["uiuc", "pe0"], default_value = "uiuc")]
     pub geometry: Option<String>,
-    /// The section of a prop without APC's (None: the default).
+    /// The section of a prop without APC's (another maker's, or no PE0 file for it): an airfoil
+    /// of `--airfoils` (or a NACA 4-digit name) at every station of UIUC's blade, `NAME` (as
+    /// drawn) or `NAME:T/C`; `none` lists such props as not validated. Their rows are marked
+    /// and kept out of the median over props (docs/studies/other-makers.md).
+    #[arg(long, value_name = "NAME[:T/C]|none", default_value = DEFAULT_GENERIC_SECTION)]
     pub generic_section: Option<String>,
-    /// User-defined effects, candidates of every prop's ladders.
+    /// TOML file of user-defined effects (docs/effects.md): candidates of every prop's ladders
+    /// (all files and each held-out half) beside the built-ins, to measure a new effect on
+    /// every prop at once.
+    #[arg(long)]
     pub user_effects: Option<PathBuf>,
 }
 
