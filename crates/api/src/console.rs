@@ -11,7 +11,8 @@ pub trait Console: Sync {
     fn out(&self, text: &str);
     /// A line on how it went: a warning, a note, a stage's status (standard error).
     fn err(&self, text: &str);
-    /// A table as it is, bytes on standard output (no file given for it).
+    /// A table as it is, bytes on standard output (no file given for it), in the chunks it was
+    /// made in.
     fn data(&self, bytes: &[u8]) -> std::io::Result<()>;
     /// `done` of `total` polars made by `process`'s engine (a progress bar).
     fn progress(&self, process: &XfoilProcessSpec, done: usize, total: usize);
@@ -60,11 +61,9 @@ pub fn emit<B: AsRef<[u8]>>(
 ) -> crate::CommandResult<()> {
     match path {
         Some(p) if p != std::path::Path::new("-") => crate::files::write_atomic(p, chunks, inputs),
-        _ => {
-            let bytes: Vec<u8> = chunks.iter().flat_map(|c| c.as_ref().iter().copied()).collect();
-            console
-                .data(&bytes)
-                .map_err(|e| crate::CommandError::io("writing to standard output", e))
-        }
+        _ => chunks
+            .iter()
+            .try_for_each(|c| console.data(c.as_ref()))
+            .map_err(|e| crate::CommandError::io("writing to standard output", e)),
     }
 }
