@@ -33,13 +33,13 @@ pub struct ExportArgs {
         conflicts_with = "measured",
         required_unless_present = "measured"
     )]
-    pub rpm: Option<String>,
+    pub rpm: Option<Values>,
     /// Advance ratios of the prediction, same syntax (default: static only).
     #[arg(long, conflicts_with_all = ["v", "measured"], allow_hyphen_values = true)]
-    pub j: Option<String>,
+    pub j: Option<Values>,
     /// Axial speeds of the prediction [m/s], same syntax.
     #[arg(long, conflicts_with = "measured", allow_hyphen_values = true)]
-    pub v: Option<String>,
+    pub v: Option<Values>,
     /// Air of the prediction; --rho also overrides the measured files' density.
     #[command(flatten)]
     pub air: AirRequest,
@@ -77,14 +77,13 @@ pub struct ExportArgs {
 impl ExportArgs {
     /// What the flags ask for.
     pub fn request(&self) -> propbet_api::commands::export::ExportRequest {
-        let text = |t: &Option<String>| t.clone().map(Values::Text);
         propbet_api::commands::export::ExportRequest {
             to: self.to.clone(),
             model: self.prop.as_deref().map(|p| self.model.request(p)),
             sweep: SweepRequest {
-                rpm: text(&self.rpm),
-                j: text(&self.j),
-                v: text(&self.v),
+                rpm: self.rpm.clone(),
+                j: self.j.clone(),
+                v: self.v.clone(),
             },
             air: self.air.clone(),
             measured: propbet_api::MeasuredRequest {

@@ -18,13 +18,13 @@ pub struct MotorArgs {
     pub motor: Option<PathBuf>,
     /// Terminal voltages [V] (list or range syntax, as --rpm), with --motor.
     #[arg(long, requires = "motor", conflicts_with_all = ["amps", "thrust", "rpm"])]
-    pub volts: Option<String>,
+    pub volts: Option<Values>,
     /// Motor currents [A], with --motor.
     #[arg(long, requires = "motor", conflicts_with_all = ["volts", "thrust", "rpm"])]
-    pub amps: Option<String>,
+    pub amps: Option<Values>,
     /// Thrusts [N] (hover: the weight carried by this propeller), with --motor.
     #[arg(long, requires = "motor", conflicts_with_all = ["volts", "amps", "rpm"])]
-    pub thrust: Option<String>,
+    pub thrust: Option<Values>,
     /// The battery, with --motor: `3S` (cells in series), then any of `2200mAh`, `R=5mOhm`
     /// (per cell), `V=3.7` (open-circuit volts per cell), `cutoff=3.3`, `usable=80%`, separated
     /// by commas (LiPo defaults: 3.7 V, 5 mOhm, cutoff 3.3 V, 80 % usable). Adds the throttle,
@@ -37,19 +37,18 @@ pub struct MotorArgs {
     /// Throttles (0 to 1, list or range syntax), with --battery: the battery through the ESC
     /// drives the motor.
     #[arg(long, requires = "battery", conflicts_with_all = ["volts", "amps", "thrust", "rpm"])]
-    pub throttle: Option<String>,
+    pub throttle: Option<Values>,
 }
 
 impl MotorArgs {
     /// The drivers the flags give (`rpm` the sweep's --rpm).
     pub fn drives(&self, rpm: Option<&Values>, supply: Option<&Supply>) -> Result<Vec<Drive>> {
-        let text = |t: &Option<String>| t.clone().map(Values::Text);
         let request = DriveRequest {
-            volts: text(&self.volts),
-            amps: text(&self.amps),
-            thrust: text(&self.thrust),
+            volts: self.volts.clone(),
+            amps: self.amps.clone(),
+            thrust: self.thrust.clone(),
             rpm: rpm.cloned(),
-            throttle: text(&self.throttle),
+            throttle: self.throttle.clone(),
         };
         Ok(request.drives(supply)?)
     }

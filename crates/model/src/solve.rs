@@ -105,7 +105,11 @@ pub(crate) fn solve_with(
         .collect()
 }
 
-/// Solves `points` in parallel chunks of 128 (in order).
+/// Operating points one parallel task solves at once (the sweeps here, and the predict table
+/// that is formatted chunk by chunk as it is solved).
+pub const CHUNK: usize = 128;
+
+/// Solves `points` in parallel chunks of [`CHUNK`] (in order).
 pub fn sweep(model: &Model, fluid: &Fluid, points: &[OperatingPoint]) -> Result<Vec<PointResult>> {
     sweep_with(model, &model.effects, fluid, points)
 }
@@ -118,7 +122,7 @@ pub(crate) fn sweep_with(
     points: &[OperatingPoint],
 ) -> Result<Vec<PointResult>> {
     let chunks: Vec<Vec<PointResult>> = points
-        .par_chunks(128)
+        .par_chunks(CHUNK)
         .map(|c| solve_with(model, effects, fluid, c))
         .collect::<Result<_>>()?;
     Ok(chunks.into_iter().flatten().collect())

@@ -23,14 +23,9 @@ pub struct Tables {
 /// when the spec asks) and, when `stations`, the per-station table's; the same columns as the
 /// CSV files, the numbers unrounded. The spec's format and output files are not used.
 pub fn columns(spec: &PredictSpec, model: &Model, stations: bool) -> Result<(Table, Option<Table>, (usize, usize))> {
-    use rayon::prelude::*;
     let (fluid, source) = spec.air.fluid()?;
     let points = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
-    let chunks: Vec<Vec<PointResult>> = points
-        .par_chunks(128)
-        .map(|c| propbet_model::solve::solve(model, &fluid, c))
-        .collect::<std::result::Result<_, _>>()?;
-    let results: Vec<PointResult> = chunks.into_iter().flatten().collect();
+    let results = propbet_model::solve::sweep(model, &fluid, &points)?;
     let (rho, tip) = (fluid.rho, model.rotor.tip_radius);
     let sweep = if spec.band {
         let band = BandSpec::for_model(model).at_points(model, &fluid, &points, &results)?;
@@ -63,7 +58,7 @@ pub fn tables(spec: &PredictSpec, model: &Model, stations: bool) -> Result<Table
     let chunks: Vec<Chunk> = {
         use rayon::prelude::*;
         points
-            .par_chunks(128)
+            .par_chunks(propbet_model::solve::CHUNK)
             .enumerate()
             .map(|(k, c)| {
                 let r = propbet_model::solve::solve(model, &fluid, c)?;
