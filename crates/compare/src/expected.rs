@@ -145,6 +145,17 @@ pub fn family_of_file(name: &str) -> Option<&'static str> {
     }
 }
 
+/// The validated family of the first of `names` (file or folder names: the prop file, the
+/// folder it is in, the measured files) that names one, with the shipped table's numbers for
+/// it: (median CT error, median CP error, props, the family in words). None where no name says
+/// a validated family (a scan, a QPROP file of another maker).
+pub fn usual_error<'a>(names: impl IntoIterator<Item = &'a str>) -> Option<(f64, f64, usize, &'static str)> {
+    let fam = names.into_iter().find_map(family_of_file)?;
+    let table = shipped();
+    let e = table.iter().find(|e| e.family == fam)?;
+    Some((e.ct_median, e.cp_median, e.props, family_words(fam)))
+}
+
 /// What to expect of a prediction of the prop whose file is `name` (None: a scan, a table),
 /// in one sentence, from `table` (the shipped one: [`shipped`]).
 pub fn sentence(name: Option<&str>, table: &[Expected]) -> Option<String> {

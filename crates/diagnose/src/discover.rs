@@ -40,6 +40,7 @@ use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{bounds, fit, stack_at, FitOutcome, FittedParam};
 use crate::signature::{signatures, Response, Signature};
+use crate::limits::{self, Judge, ModelError, Separability, Verdict};
 use crate::{rms, Data, DiagnoseError, Model, Repeatability};
 
 /// Smallest relative fall of the held-out RMS error that counts.
@@ -62,6 +63,9 @@ pub struct Options {
     /// candidate probed on both models): a diagnosis whose ladder alone is wanted (validate's
     /// held-out halves) skips them.
     pub signatures: bool,
+    /// The default model's usual error on props of this kind, a term of the detection limits
+    /// ([`crate::limits`]; None: no validated props of this kind).
+    pub model_error: Option<ModelError>,
 }
 
 impl Default for Options {
@@ -72,6 +76,7 @@ impl Default for Options {
             max_steps: 3,
             seed: 7,
             signatures: true,
+            model_error: None,
         }
     }
 }
@@ -181,6 +186,12 @@ pub struct Diagnosis {
     pub alike: Vec<String>,
     /// The measurement that would tell the alike candidates apart (None without any).
     pub tell_apart: Option<String>,
+    /// What these data can separate: the noise, each candidate's detection limit and the
+    /// pairs they cannot tell apart ([`crate::limits`]).
+    pub separability: Separability,
+    /// The answer, respecting it: each effect of the ladder found, one of a group, or below
+    /// the detection limit.
+    pub verdict: Verdict,
     /// The final stack.
     #[serde(skip)]
     pub final_stack: Stack,
@@ -574,6 +585,26 @@ pub fn diagnose(
         .map_or_else(Vec::new, |id| alike(&ranking, id, repeatability.as_ref()));
     let tell_apart = (!alike.is_empty()).then(|| tell_apart(data));
     let final_residuals = current.fit.residuals.clone();
+    // What the data can tell, on the baseline's signatures; then the answer that respects it.
+    let judge = Judge::new(data, &final_residuals, repeatability.as_ref(), opts.model_error);
+    let sigs = limits::signatures(model, data, &Stack::baseline(), &r0, candidates);
+    let separability = limits::separability(&judge, &sigs);
+    let mut verdict = limits::verdict(model, data, &current.fit.stack, &final_residuals, &r0, &judge, &sigs)?;
+    // A one-effect answer with alike candidates (as good held out) is a group too.
+    if let ([a], false) = (verdict.answers.as_mut_slice(), alike.is_empty()) {
+        if a.kind != limits::AnswerKind::BelowLimit {
+            for id in &alike {
+                if !a.group.contains(id) {
+                    a.group.push(id.clone());
+                }
+            }
+            if a.group.first() != Some(&a.id) {
+                a.group.insert(0, a.id.clone());
+            }
+            a.kind = limits::AnswerKind::Group;
+            a.tell_apart = Some(limits::tell_apart(data, &a.group));
+        }
+    }
     // The candidates' responses on the baseline, and on the final model where the ladder
     // added something (the same ones otherwise).
     let (before, after) = if opts.signatures {
@@ -598,6 +629,8 @@ pub fn diagnose(
         not_taken: dropped.into_iter().map(|(id, why)| NotTaken { id, why }).collect(),
         alike,
         tell_apart,
+        separability,
+        verdict,
         final_stack: current.fit.stack.clone(),
         ranking,
         ladder,

@@ -197,15 +197,55 @@ pub struct Finding {
     /// The ladder holds the effect and its rise over the clean value is the injected change
     /// within `ci95`.
     pub found: bool,
-    /// Not found, but named beside the ladder's one effect as explaining the data as well (a
-    /// tie the diagnosis tells as a tie, [`Diagnosis::alike`]).
+    /// Not found, but answered as one of a group the data cannot tell apart (the verdict's
+    /// [`crate::limits::AnswerKind::Group`], alike candidates included).
     pub tied: bool,
+    /// The smallest change of the injected parameter these data detect, from the injected
+    /// diagnosis' limits (None: none within its bounds).
+    pub limit: Option<f64>,
+    /// Effects the injected verdict names as found physics that were neither injected nor in
+    /// the clean ladder: wrong answers.
+    pub wrong: Vec<String>,
+    /// How the injection was answered.
+    pub outcome: Outcome,
+    /// The injected verdict's answers, one per effect of its ladder ("drag-scale: one of
+    /// drag-scale, torque-tare; re-lift: below limit").
+    pub answers: String,
     /// The clean ladder, as `--effect` arguments.
     pub clean_ladder: String,
     /// The injected ladder.
     pub ladder: String,
     /// In words, when not found: what the ladder answered instead.
     pub note: String,
+}
+
+/// How an injection was answered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Outcome {
+    /// Named alone with its size.
+    Found,
+    /// Answered as one of a group that contains it.
+    Group,
+    /// Said to be below the detection limit the diagnosis states, and nothing else named.
+    BelowLimit,
+    /// Not found, nothing wrong named.
+    Missed,
+    /// Another effect named as physics: neither injected nor in the clean ladder.
+    Wrong,
+}
+
+impl Outcome {
+    /// Its name in the tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Found => "found",
+            Self::Group => "group",
+            Self::BelowLimit => "below limit",
+            Self::Missed => "missed",
+            Self::Wrong => "wrong",
+        }
+    }
 }
 
 /// The value of `param` of `effect` in a fit's parameters, with its 95 % half-width.
@@ -249,9 +289,19 @@ pub fn score(
     // The clean value, and the injected one on top of it.
     let clean_value = before.map_or(neutral, |b| b.0);
     let expected = injection.expected(clean_value, injected_value);
+    // The fits' intervals assume independent rows; neighbouring points of a sweep leave alike
+    // errors, which widens them by sqrt((1 + rho) / (1 - rho)) (rho: the injected diagnosis'
+    // residual correlation between neighbours, of the load that correlates more).
+    let rho = injected
+        .separability
+        .noise
+        .neighbour_correlation
+        .iter()
+        .fold(0.0f64, |a, b| a.max(*b));
+    let widen = ((1.0 + rho) / (1.0 - rho)).sqrt();
     let ci95 = after.and_then(|a| {
         let ci_b = before.map_or(Some(0.0), |b| b.1)?;
-        Some((a.1? * a.1? + ci_b * ci_b).sqrt())
+        Some(widen * (a.1? * a.1? + ci_b * ci_b).sqrt())
     });
     // A parameter whose interval the data cannot set is held to 10 % of the injected change.
     let tolerance = ci95.unwrap_or(0.1 * (expected - clean_value).abs());
@@ -268,6 +318,41 @@ pub fn score(
         }
         Some((v, _)) => format!("{param} {v:.4} where {expected:.4} ± {tolerance:.4} was injected"),
     };
+    use crate::limits::AnswerKind;
+    let answer = injected.verdict.answers.iter().find(|a| a.id == effect);
+    // Found: named alone (physics or a calibration factor) with its size.
+    let found = found && answer.is_some_and(|a| matches!(a.kind, AnswerKind::Found | AnswerKind::Calibration));
+    let group = injected
+        .verdict
+        .answers
+        .iter()
+        .any(|a| a.kind == AnswerKind::Group && a.group.iter().any(|g| g == effect));
+    let clean_ids: Vec<&str> = clean.final_stack.active.iter().map(|a| a.effect.id()).collect();
+    let wrong: Vec<String> = injected
+        .verdict
+        .physics()
+        .into_iter()
+        .filter(|id| *id != effect && !clean_ids.contains(id))
+        .map(str::to_string)
+        .collect();
+    let limit = injected
+        .separability
+        .limits
+        .iter()
+        .find(|l| l.effect == effect && l.param == param)
+        .and_then(|l| l.limit);
+    let below = limit.is_none_or(|l| (injected_value - neutral).abs() < l);
+    let outcome = if !wrong.is_empty() {
+        Outcome::Wrong
+    } else if found {
+        Outcome::Found
+    } else if group {
+        Outcome::Group
+    } else if below {
+        Outcome::BelowLimit
+    } else {
+        Outcome::Missed
+    };
     Ok(Finding {
         injection: injection.clone(),
         injected: injected_value,
@@ -275,7 +360,22 @@ pub fn score(
         fitted: after.map(|a| a.0),
         ci95,
         found,
-        tied: !found && injected.alike.iter().any(|a| a == effect),
+        tied: !found && group,
+        limit,
+        wrong,
+        outcome,
+        answers: injected
+            .verdict
+            .answers
+            .iter()
+            .map(|a| match a.kind {
+                AnswerKind::Group => format!("{}: one of {}", a.id, a.group.join(", ")),
+                AnswerKind::Found => format!("{}: found", a.id),
+                AnswerKind::Calibration => format!("{}: calibration", a.id),
+                AnswerKind::BelowLimit => format!("{}: below limit", a.id),
+            })
+            .collect::<Vec<_>>()
+            .join("; "),
         clean_ladder: clean.final_effects().join(" + "),
         ladder,
         note,

@@ -7,6 +7,8 @@
 //! - [`discover`]: every candidate fitted and scored by held-out error (k-fold and
 //!   leave-one-RPM-out), an F test against the noise, a parsimony penalty, the ranking and the
 //!   greedy ladder.
+//! - [`limits`]: what the data can tell (detection limits, effects they cannot separate) and
+//!   the verdict that respects it.
 //! - [`signature`]: residual patterns in words.
 //! - [`synth`]: measurements made by the model with hidden effects and noise.
 #![deny(missing_docs)]
@@ -14,6 +16,7 @@
 pub mod discover;
 pub mod fit;
 pub mod inject;
+pub mod limits;
 pub mod provenance;
 
 pub mod signature;

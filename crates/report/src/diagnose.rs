@@ -6,6 +6,7 @@ use std::fmt::Write as _;
 
 use propbet_diagnose::discover::{Diagnosis, Scored};
 use propbet_diagnose::fit::FittedParam;
+use propbet_diagnose::limits::AnswerKind;
 use propbet_diagnose::signature::{Part, Signature};
 use propbet_diagnose::{Data, Row};
 use propbet_effects::fmt_value;
@@ -157,15 +158,19 @@ fn nothing_found(d: &Diagnosis) -> String {
     text
 }
 
-/// The one-paragraph verdict.
+/// The one-paragraph verdict: the ladder's effects as [`Diagnosis::verdict`] answers them
+/// (found, one of a group the data cannot separate, a calibration factor, or below the
+/// detection limit and not named), the fall of the held-out error, what is left, and how much
+/// of the error is within what the model usually misses.
 pub fn verdict(d: &Diagnosis) -> String {
     let base = &d.ladder[0];
     if !d.found {
-        return nothing_found(d);
+        let mut text = nothing_found(d);
+        if let Some(w) = &d.verdict.within_model_error {
+            let _ = write!(text, " {w}.");
+        }
+        return text;
     }
-    // The ladder's final answer, with its values: what the user should add. Effects whose
-    // fitted value lies outside their physically expected range are calibration factors: they
-    // imitate something the model misses, and are not called found physics.
     let last = d.ladder.last().expect("found implies a rung");
     let (physics, calibration) = answer_parts(d);
     let named = |v: &[&str]| -> Vec<String> {
@@ -174,35 +179,29 @@ pub fn verdict(d: &Diagnosis) -> String {
             .collect()
     };
     let mut text = String::new();
-    // Alike candidates (the answer is one effect and others explain the data as well): the
-    // verdict names them all, not one.
-    let alike = !d.alike.is_empty() && d.ladder.len() == 2;
-    if alike {
-        let first = &d.ladder[1].added;
+    if !physics.is_empty() {
+        let _ = write!(text, "Missing: {}.", named(&physics).join(" and "));
+    }
+    for a in d.verdict.answers.iter().filter(|a| a.kind == AnswerKind::Group) {
         let err = |id: &str| {
             d.ranking
                 .iter()
                 .find(|s| s.id == id)
-                .map_or("–".to_string(), |s| pct(s.kfold_rms))
+                .map_or(String::new(), |s| format!(", {} held out alone", pct(s.kfold_rms)))
         };
-        let others: Vec<String> = d
-            .alike
-            .iter()
-            .map(|id| format!("{id} ({} held out)", err(id)))
-            .collect();
+        let others: Vec<String> = a.group[1..].iter().map(|id| format!("{id}{}", err(id))).collect();
         let _ = write!(
             text,
-            "Missing: one of {} ({}; {} held out) or {}: the data cannot tell them apart; {} would.",
-            first,
-            params_text(&last.params, Some(first)),
-            err(first),
+            "{}Missing: one of {} ({}{}) or {}: these data cannot tell them apart; {} would.",
+            if text.is_empty() { "" } else { " " },
+            a.id,
+            params_text(&last.params, Some(&a.id)),
+            err(&a.id),
             others.join(" or "),
-            d.tell_apart.as_deref().unwrap_or("another measurement")
+            a.tell_apart.as_deref().unwrap_or("another measurement")
         );
-    } else if !physics.is_empty() {
-        let _ = write!(text, "Missing: {}.", named(&physics).join(" and "));
     }
-    if !calibration.is_empty() && !alike {
+    if !calibration.is_empty() {
         let ranges: Vec<String> = calibration
             .iter()
             .flat_map(|id| {
@@ -234,6 +233,24 @@ pub fn verdict(d: &Diagnosis) -> String {
             if calibration.len() == 1 { "s" } else { "" },
         );
     }
+    let below: Vec<String> = d
+        .verdict
+        .answers
+        .iter()
+        .filter(|a| a.kind == AnswerKind::BelowLimit)
+        .map(|a| format!("{} ({})", a.id, params_text(&last.params, Some(&a.id))))
+        .collect();
+    if !below.is_empty() {
+        let _ = write!(
+            text,
+            "{}Not named: {}: {} change of the loads is below what these data can detect (the detection limits \
+             below), so {} may be the model's own error or the scatter.",
+            if text.is_empty() { "" } else { " " },
+            below.join(" and "),
+            if below.len() == 1 { "its" } else { "their" },
+            if below.len() == 1 { "it" } else { "they" },
+        );
+    }
     let _ = write!(
         text,
         " With {} the held-out error falls from {} to {} ({:.0} % less); {}.",
@@ -243,6 +260,9 @@ pub fn verdict(d: &Diagnosis) -> String {
         100.0 * (1.0 - last.kfold_rms / base.kfold_rms.max(1e-300)),
         d.unexplained()
     );
+    if let Some(w) = &d.verdict.within_model_error {
+        let _ = write!(text, " {w}.");
+    }
     text
 }
 
@@ -332,22 +352,31 @@ pub fn brief(d: &Diagnosis) -> Vec<String> {
             pct(s.after)
         ));
     }
-    out.extend(alike_clause(d));
+    out.extend(group_clauses(d));
     out.push(unexplained_clause(d));
     out
 }
 
-/// "the data cannot tell a from b or c: <measurement> would tell them apart", where the answer
-/// has alike candidates.
-fn alike_clause(d: &Diagnosis) -> Option<String> {
-    (!d.alike.is_empty() && d.ladder.len() > 1).then(|| {
-        format!(
-            "the data cannot tell {} from {}: {} would tell them apart",
-            d.ladder[1].added,
-            d.alike.join(" or "),
-            d.tell_apart.as_deref().unwrap_or("another measurement")
-        )
-    })
+/// "the data cannot tell a from b or c: <measurement> would tell them apart" for each group
+/// the verdict answers, and "not named: x (below the detection limit)" for each effect below it.
+fn group_clauses(d: &Diagnosis) -> Vec<String> {
+    d.verdict
+        .answers
+        .iter()
+        .filter_map(|a| match a.kind {
+            AnswerKind::Group => Some(format!(
+                "the data cannot tell {} from {}: {} would tell them apart",
+                a.id,
+                a.group[1..].join(" or "),
+                a.tell_apart.as_deref().unwrap_or("another measurement")
+            )),
+            AnswerKind::BelowLimit => Some(format!(
+                "{} not named: its change is below what these data detect",
+                a.id
+            )),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The first clause of [`Diagnosis::unexplained`] ("2.2 % unexplained, above the 0.3 % ...").
@@ -356,16 +385,20 @@ fn unexplained_clause(d: &Diagnosis) -> String {
     left.split(": ").next().unwrap_or(&left).to_string()
 }
 
-/// The ladder's effects, split into found physics (every fitted value inside its physically
-/// expected range) and calibration factors (some value outside it), in ladder order.
+/// The ladder's effects the verdict names alone: found physics (told apart from every other
+/// candidate, above its detection limit, every fitted value inside its physically expected
+/// range) and calibration factors (the same, some value outside it), in ladder order. Effects
+/// answered as a group or below the detection limit are in neither.
 pub fn answer_parts(d: &Diagnosis) -> (Vec<&str>, Vec<&str>) {
-    let Some(last) = d.ladder.last() else {
-        return (Vec::new(), Vec::new());
+    let pick = |kind: AnswerKind| -> Vec<&str> {
+        d.verdict
+            .answers
+            .iter()
+            .filter(|a| a.kind == kind)
+            .map(|a| a.id.as_str())
+            .collect()
     };
-    d.ladder[1..]
-        .iter()
-        .map(|r| r.added.as_str())
-        .partition(|id| !last.params.iter().any(|p| p.effect == *id && p.outside_expected))
+    (pick(AnswerKind::Found), pick(AnswerKind::Calibration))
 }
 
 /// What the ranking's line of a candidate (fitted alone on the baseline) must add when the
@@ -517,9 +550,10 @@ pub fn build(
         d.points,
         d.rows,
         esc(command),
-        diagnosis_html(d),
+        format!("<p class=\"note\">{}</p>\n{}", esc(&can_tell(d)), diagnosis_html(d)),
         esc(&verdict)
     );
+    h.push_str(&limits_html(d));
     h.push_str("<h2>Where the model fails</h2>\n<ul>\n");
     for s in &d.before {
         h.push_str(&signature_html(s));
@@ -597,11 +631,7 @@ pub fn diagnosis_html(d: &Diagnosis) -> String {
                 if s.calibration { " class=\"calibration\"" } else { "" },
                 i + 1,
                 esc(&s.id),
-                if s.calibration {
-                    "<br><span class=\"note\">a calibration factor, not found physics</span>"
-                } else {
-                    ""
-                },
+                step_note(d, s),
                 esc(&s.values),
                 esc(&s.expected),
                 100.0 * s.after
@@ -611,6 +641,120 @@ pub fn diagnosis_html(d: &Diagnosis) -> String {
     }
     let _ = writeln!(h, "<p class=\"verdict\">{}</p>", esc(&meaning(d)));
     h
+}
+
+/// The pairs of candidates these data cannot tell apart (either way), each once.
+pub fn tied_pairs(d: &Diagnosis) -> Vec<(String, String)> {
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for t in &d.separability.ties {
+        let (a, b) = if t.effect < t.imitated_by {
+            (t.effect.clone(), t.imitated_by.clone())
+        } else {
+            (t.imitated_by.clone(), t.effect.clone())
+        };
+        if !pairs.contains(&(a.clone(), b.clone())) {
+            pairs.push((a, b));
+        }
+    }
+    pairs
+}
+
+/// What these data can tell, in two sentences, before the answer: the sizes a change must
+/// reach, and the pairs they cannot tell apart.
+pub fn can_tell(d: &Diagnosis) -> String {
+    let n = &d.separability.noise;
+    let mut text = format!(
+        "What these data can tell: a change of the thrust (torque) beyond a level and an RPM trend is seen above {} ({}) RMS",
+        pct(n.shape_threshold[0]),
+        if n.rows[1] > 0 { pct(n.shape_threshold[1]) } else { "not measured".into() }
+    );
+    match n.model_error {
+        Some(m) => {
+            let _ = write!(
+                text,
+                "; a level or an RPM trend only above what the default model usually misses on {} props, {} ({}) \
+                 (validate's median over {} props).",
+                m.kind,
+                pct(m.thrust),
+                pct(m.torque),
+                m.props
+            );
+        }
+        None => text.push_str(
+            "; propbet has no validated props of this kind, so the model's own error is not a term: an effect found \
+             here may be some of the model's error.",
+        ),
+    }
+    let pairs = tied_pairs(d);
+    if pairs.is_empty() {
+        text.push_str(" They tell every pair of candidates apart within physical sizes.");
+    } else {
+        let _ = write!(
+            text,
+            " They cannot tell apart, within physical sizes: {}.",
+            pairs
+                .iter()
+                .map(|(a, b)| format!("{a} and {b}"))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
+    text
+}
+
+/// The detection limit of every candidate parameter, as a table.
+fn limits_html(d: &Diagnosis) -> String {
+    let mut h = String::from(
+        "<h2>What these data can tell</h2>\n<p class=\"note\">Each candidate's smallest detectable size: its change of the \
+         residual rows (from its Jacobian on these points) must exceed, load by load, the scatter beyond a level and an RPM \
+         trend (3 standard errors of the fit's residuals, and 3 times the repeatability where the data show it) or, for \
+         its level and RPM trend, the model's usual error on props of this kind. An effect below its limit is never named as \
+         found.</p>\n<table><tr><th class=\"text\">effect</th><th class=\"text\">parameter</th><th class=\"text\">moves</th>\
+         <th>detectable from</th><th class=\"text\">physically expected</th><th class=\"text\">cannot be told from</th></tr>\n",
+    );
+    for l in &d.separability.limits {
+        let ties: Vec<&str> = d
+            .separability
+            .ties
+            .iter()
+            .filter(|t| t.effect == l.effect && d.separability.limits.iter().find(|x| x.effect == l.effect).is_some_and(|x| x.param == l.param))
+            .map(|t| t.imitated_by.as_str())
+            .collect();
+        let _ = writeln!(
+            h,
+            "<tr><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"text\">{} to {}</td><td class=\"text\">{}</td></tr>",
+            esc(&l.effect),
+            esc(&l.param),
+            esc(&l.moves),
+            l.limit.map_or("not within its bounds".into(), |x| format!(
+                "{} {} {}",
+                if l.reference == 0.0 { "±".to_string() } else { format!("{} ±", fmt_value(l.reference)) },
+                fmt_value(x),
+                esc(&l.unit)
+            )),
+            fmt_value(l.expected.0),
+            fmt_value(l.expected.1),
+            esc(&ties.join(", "))
+        );
+    }
+    h.push_str("</table>\n");
+    h
+}
+
+/// The note under a step's effect: how the verdict answers it when not as found physics.
+fn step_note(d: &Diagnosis, s: &Step) -> String {
+    let answer = d.verdict.answers.iter().find(|a| a.id == s.id);
+    let note = match answer.map(|a| a.kind) {
+        Some(AnswerKind::Group) => format!(
+            "one of {}: these data cannot tell them apart",
+            answer.map_or(String::new(), |a| a.group.join(", "))
+        ),
+        Some(AnswerKind::BelowLimit) => "below the detection limit: not named".into(),
+        _ if s.calibration => "a calibration factor, not found physics".into(),
+        _ => return String::new(),
+    };
+    format!("<br><span class=\"note\">{}</span>", esc(&note))
 }
 
 /// What the diagnosis means, in one sentence: what the model misses, what only imitates it,
@@ -632,7 +776,7 @@ pub fn meaning(d: &Diagnosis) -> String {
             if physics.is_empty() { "the model" } else { "it" }
         ));
     }
-    parts.extend(alike_clause(d));
+    parts.extend(group_clauses(d));
     let mut text = parts.join("; ");
     if let Some(first) = text.get(..1) {
         text = first.to_uppercase() + &text[1..];

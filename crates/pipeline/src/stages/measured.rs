@@ -331,9 +331,29 @@ pub fn diagnosis_inputs<'m>(
         folds: spec.folds,
         max_steps: spec.max_steps,
         signatures,
+        model_error: model_error(spec),
         ..Options::default()
     };
     Ok((data, dmodel, opts))
+}
+
+/// The default model's usual error on props of the kind `spec` diagnoses: validate's median
+/// errors of the APC family that the prop file, its folder or a measured file names.
+fn model_error(spec: &DiagnoseSpec) -> Option<propbet_diagnose::limits::ModelError> {
+    let name = |p: &Path| p.file_name().and_then(|n| n.to_str()).map(str::to_string);
+    let names: Vec<String> = std::iter::once(name(&spec.model.prop))
+        .chain(std::iter::once(spec.model.prop.parent().and_then(name)))
+        .chain(spec.measured.files.iter().map(|f| name(f)))
+        .flatten()
+        .collect();
+    propbet_compare::expected::usual_error(names.iter().map(String::as_str)).map(|(thrust, torque, props, kind)| {
+        propbet_diagnose::limits::ModelError {
+            thrust,
+            torque,
+            props,
+            kind,
+        }
+    })
 }
 
 /// The diagnosis of a batch of measurements read, over `candidates`.

@@ -1,0 +1,622 @@
+//! What the data can tell, worked out before any answer, and the answer that respects it.
+//!
+//! **Signatures.** Each candidate's signature is the Jacobian of the residual rows with
+//! respect to its parameters, at its neutral value on top of the baseline (a forward
+//! difference of one step of the parameter's scale, towards the inside of its bounds).
+//!
+//! **What a change must exceed to be seen.** A change of the residual rows is split, load by
+//! load (thrust rows, torque rows), into the part a level and a trend with RPM make (its
+//! least-squares projection on a constant and ln RPM) and the rest. The level-and-trend part
+//! is the shape of the default model's own error on props of this kind (validate's median
+//! error of their family, [`ModelError`]): it must exceed that error to be told from it. The
+//! rest must exceed [`Z`] standard errors of the fit's residual RMS over the load's rows and
+//! [`crate::discover::REPEATABILITY_FACTOR`] times the measurements' repeatability, where they
+//! show it. Where no validated props of this kind exist (a QPROP file, a scan), the model's
+//! error is not a term (said as such) and the whole change is judged as the rest.
+//! [`Judge::strength`] is the larger of the two ratios: 1 or more is detectable.
+//!
+//! **Detection limit.** The smallest parameter change from neutral whose signature is
+//! detectable: 1 / strength of the unit signature (the change is linear in it to first order).
+//!
+//! **Telling two apart.** Candidate B imitates A's signature as well as its own parameters
+//! allow (least squares); the remainder is what tells them apart, and A can be told from B
+//! above the size at which that remainder becomes detectable. A pair whose separating size lies
+//! beyond A's physically expected range is one the data cannot separate ([`Tie`]).
+//!
+//! **The answer** ([`verdict`]). Each effect of the ladder's final stack is judged on its own
+//! change of the residual rows (the final stack's residuals against the same stack without it):
+//! below the detection limit it is not named; where another candidate, inside its bounds,
+//! reproduces that change up to an undetectable remainder, the answer is the group, with the
+//! measurement that would separate them; otherwise it is found (physics inside its expected
+//! range, else a calibration factor).
+
+use std::sync::Arc;
+
+use propbet_effects::{Effect, Stack};
+use serde::Serialize;
+
+use crate::fit::stack_at;
+use crate::{rms, Data, DiagnoseError, Model, Repeatability};
+
+/// Standard errors a change must make on a load's rows to be detected against the fit's
+/// residual scatter.
+pub const Z: f64 = 3.0;
+
+/// The default model's usual error on props of this kind: validate's median errors over the
+/// validated props of the same family.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct ModelError {
+    /// Median relative thrust (CT) error [-].
+    pub thrust: f64,
+    /// Median relative torque (CP) error [-].
+    pub torque: f64,
+    /// Validated props it rests on.
+    pub props: usize,
+    /// The kind of prop, in words ("APC Electric").
+    pub kind: &'static str,
+}
+
+/// The scatter a change is judged against, load by load.
+#[derive(Debug, Clone, Serialize)]
+pub struct Noise {
+    /// Thrust rows, torque rows.
+    pub rows: [usize; 2],
+    /// RMS of the final model's residuals on the thrust rows and on the torque rows.
+    pub fit_rms: [f64; 2],
+    /// The measurements' repeatability, where they show it.
+    pub repeatability: Option<f64>,
+    /// The default model's usual error on props of this kind (None: no validated props of this
+    /// kind; the term is left out, and the report says so).
+    pub model_error: Option<ModelError>,
+    /// What the rest of a change (beyond a level and an RPM trend) must exceed, by load.
+    pub shape_threshold: [f64; 2],
+    /// The final residuals' correlation between neighbouring points of a file, by load (what
+    /// makes the rows count as fewer independent ones).
+    pub neighbour_correlation: [f64; 2],
+}
+
+/// The smallest detectable size of one parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Limit {
+    /// Effect id.
+    pub effect: String,
+    /// Parameter name.
+    pub param: String,
+    /// Unit.
+    pub unit: String,
+    /// The value the change is counted from (neutral, else the start).
+    pub reference: f64,
+    /// Smallest detectable change of the parameter from `reference` (None: no change within
+    /// its bounds is detectable, or the data do not respond to it).
+    pub limit: Option<f64>,
+    /// The physically expected range.
+    pub expected: (f64, f64),
+    /// The loads it moves, in words ("thrust", "torque", "thrust and torque").
+    pub moves: String,
+}
+
+/// Two candidates the data cannot tell apart within the first's physically expected range.
+#[derive(Debug, Clone, Serialize)]
+pub struct Tie {
+    /// The effect imitated.
+    pub effect: String,
+    /// The candidate that imitates it.
+    pub imitated_by: String,
+    /// Size of `effect`'s first parameter above which the two are told apart (None: never
+    /// within its bounds).
+    pub apart_above: Option<f64>,
+}
+
+/// What these data can separate, before any answer.
+#[derive(Debug, Clone, Serialize)]
+pub struct Separability {
+    /// The scatter changes are judged against.
+    pub noise: Noise,
+    /// Every candidate parameter's detection limit.
+    pub limits: Vec<Limit>,
+    /// The pairs the data cannot separate within physical sizes.
+    pub ties: Vec<Tie>,
+}
+
+/// How an effect of the ladder is answered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AnswerKind {
+    /// Found physics: detectable, told apart from every other candidate, inside its expected
+    /// range.
+    Found,
+    /// Detectable and told apart, but outside its expected range: a calibration factor.
+    Calibration,
+    /// Detectable, but other candidates reproduce its change: one of a group.
+    Group,
+    /// Its change is below what these data detect: not named.
+    BelowLimit,
+}
+
+/// The answer about one effect of the ladder.
+#[derive(Debug, Clone, Serialize)]
+pub struct Answer {
+    /// The ladder's effect (`--effect` form, with its values).
+    pub effect: String,
+    /// Its id.
+    pub id: String,
+    /// How it is answered.
+    pub kind: AnswerKind,
+    /// Its change over the detection threshold (1 or more: detectable).
+    pub strength: f64,
+    /// The candidates that reproduce its change (its own id first), for a group.
+    pub group: Vec<String>,
+    /// The measurement that would tell the group apart (None unless a group).
+    pub tell_apart: Option<String>,
+}
+
+/// The verdict: the answers, and how much of the residual is within what the model usually
+/// misses.
+#[derive(Debug, Clone, Serialize)]
+pub struct Verdict {
+    /// One answer per effect of the ladder's final stack.
+    pub answers: Vec<Answer>,
+    /// The baseline's RMS thrust and torque errors against the model's usual error on props of
+    /// this kind, in words (None without validated props of this kind).
+    pub within_model_error: Option<String>,
+}
+
+impl Verdict {
+    /// The effects named as found physics.
+    pub fn physics(&self) -> Vec<&str> {
+        self.answers
+            .iter()
+            .filter(|a| a.kind == AnswerKind::Found)
+            .map(|a| a.id.as_str())
+            .collect()
+    }
+}
+
+/// Judges changes of the residual rows of one set of data.
+#[derive(Debug, Clone)]
+pub struct Judge {
+    /// Row kinds (torque or thrust) in [`Data::rows`]' order.
+    torque: Vec<bool>,
+    /// ln RPM of each row's point, centred per load (0 where the RPM hardly varies).
+    ln_rpm: Vec<f64>,
+    noise: Noise,
+}
+
+/// Smallest spread of ln RPM over a load's rows for a trend with RPM to be a term (3 %).
+const RPM_SPREAD: f64 = 0.03;
+
+impl Judge {
+    /// The judge of `data`, whose final model leaves `final_residuals`.
+    pub fn new(
+        data: &Data,
+        final_residuals: &[f64],
+        repeatability: Option<&Repeatability>,
+        model_error: Option<ModelError>,
+    ) -> Self {
+        let rows = data.rows();
+        let torque: Vec<bool> = rows.iter().map(|r| r.torque).collect();
+        let mut ln_rpm: Vec<f64> = rows.iter().map(|r| data.obs[r.point].rpm().max(1.0).ln()).collect();
+        let mut counts = [0usize; 2];
+        let mut fit_rms = [0.0; 2];
+        let mut shape_threshold = [0.0; 2];
+        let mut lag = [0.0; 2];
+        for load in [false, true] {
+            let idx: Vec<usize> = (0..rows.len()).filter(|&i| torque[i] == load).collect();
+            let k = usize::from(load);
+            counts[k] = idx.len();
+            if idx.is_empty() {
+                continue;
+            }
+            let mean = idx.iter().map(|&i| ln_rpm[i]).sum::<f64>() / idx.len() as f64;
+            let spread = idx.iter().fold(0.0f64, |a, &i| a.max((ln_rpm[i] - mean).abs()));
+            for &i in &idx {
+                ln_rpm[i] = if spread < RPM_SPREAD { 0.0 } else { ln_rpm[i] - mean };
+            }
+            let r: Vec<f64> = idx.iter().map(|&i| final_residuals.get(i).copied().unwrap_or(0.0)).collect();
+            fit_rms[k] = rms(&r);
+            // Neighbouring points of one sweep leave errors alike (the model's error is smooth
+            // in J): the rows count as fewer independent ones, n (1 - rho) / (1 + rho), with rho
+            // the residuals' correlation between neighbours of the same file.
+            let files: Vec<usize> = idx.iter().map(|&i| data.obs[rows[i].point].file).collect();
+            let rho = neighbour_correlation(&r, &files);
+            let n_eff = (idx.len() as f64 * (1.0 - rho) / (1.0 + rho)).max(1.0);
+            lag[k] = rho;
+            let rep = repeatability.map_or(0.0, |r| crate::discover::REPEATABILITY_FACTOR * r.sd);
+            shape_threshold[k] = (Z * fit_rms[k] / n_eff.sqrt()).max(rep).max(1e-9);
+        }
+        Self {
+            torque,
+            ln_rpm,
+            noise: Noise {
+                rows: counts,
+                fit_rms,
+                repeatability: repeatability.map(|r| r.sd),
+                model_error,
+                shape_threshold,
+                neighbour_correlation: lag,
+            },
+        }
+    }
+
+    /// The scatter it judges against.
+    pub fn noise(&self) -> &Noise {
+        &self.noise
+    }
+
+    /// A change of the residual rows over what these data detect (1 or more: detectable):
+    /// the larger, over the loads, of its level-and-RPM-trend part over the model's usual error
+    /// (or the shape threshold, whichever is larger) and its rest over the shape threshold.
+    pub fn strength(&self, change: &[f64]) -> f64 {
+        let mut most = 0.0f64;
+        for load in [false, true] {
+            let k = usize::from(load);
+            let idx: Vec<usize> = (0..change.len().min(self.torque.len()))
+                .filter(|&i| self.torque[i] == load)
+                .collect();
+            if idx.is_empty() {
+                continue;
+            }
+            let c: Vec<f64> = idx.iter().map(|&i| change[i]).collect();
+            let t = self.noise.shape_threshold[k];
+            let ratio = match self.noise.model_error {
+                None => rms(&c) / t,
+                Some(m) => {
+                    let x: Vec<f64> = idx.iter().map(|&i| self.ln_rpm[i]).collect();
+                    let (fitted, rest) = level_and_trend(&c, &x);
+                    let usual = if load { m.torque } else { m.thrust };
+                    (rms(&fitted) / usual.max(t)).max(rms(&rest) / t)
+                }
+            };
+            most = most.max(ratio);
+        }
+        most
+    }
+}
+
+/// The correlation of `r` between neighbours with the same `files` entry, in [0, 0.95]
+/// (negative correlation counts as none).
+fn neighbour_correlation(r: &[f64], files: &[usize]) -> f64 {
+    let ss: f64 = r.iter().map(|x| x * x).sum();
+    if ss <= 0.0 {
+        return 0.0;
+    }
+    let lagged: f64 = (1..r.len())
+        .filter(|&i| files[i] == files[i - 1])
+        .map(|i| r[i] * r[i - 1])
+        .sum();
+    (lagged / ss).clamp(0.0, 0.95)
+}
+
+/// Splits `c` into its least-squares fit on a constant and `x` (centred) and the rest.
+fn level_and_trend(c: &[f64], x: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = c.len() as f64;
+    let mean = c.iter().sum::<f64>() / n;
+    let xm = x.iter().sum::<f64>() / n;
+    let sxx: f64 = x.iter().map(|v| (v - xm) * (v - xm)).sum();
+    let slope = if sxx > 1e-12 {
+        x.iter().zip(c).map(|(v, y)| (v - xm) * (y - mean)).sum::<f64>() / sxx
+    } else {
+        0.0
+    };
+    let fitted: Vec<f64> = x.iter().map(|v| mean + slope * (v - xm)).collect();
+    let rest = c.iter().zip(&fitted).map(|(a, b)| a - b).collect();
+    (fitted, rest)
+}
+
+/// One candidate's signature: a column per parameter (change of the residual rows per unit of
+/// the parameter), with its reference values and bounds.
+#[derive(Debug, Clone)]
+pub struct Signature {
+    /// The effect.
+    pub effect: Arc<dyn Effect>,
+    /// The parameters' reference values.
+    pub reference: Vec<f64>,
+    /// Columns, one per parameter (None where the data do not respond or it cannot be solved).
+    pub columns: Vec<Option<Vec<f64>>>,
+}
+
+/// The signatures of `candidates` on top of `base` (the baseline, or a stack), whose residual
+/// rows are `r_base`.
+pub fn signatures(
+    model: &Model,
+    data: &Data,
+    base: &Stack,
+    r_base: &[f64],
+    candidates: &[Arc<dyn Effect>],
+) -> Vec<Signature> {
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let base_effects: Vec<Arc<dyn Effect>> = base.active.iter().map(|a| a.effect.clone()).collect();
+    let base_p: Vec<f64> = base.active.iter().flat_map(|a| a.values.clone()).collect();
+    candidates
+        .iter()
+        .filter(|c| !base.active.iter().any(|a| a.effect.id() == c.id()))
+        .map(|c| {
+            let params = c.params();
+            let reference: Vec<f64> = params.iter().map(|p| p.neutral.unwrap_or(p.start)).collect();
+            let columns = params
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    let h = if reference[k] + p.scale <= p.upper { p.scale } else { -p.scale };
+                    let mut v = reference.clone();
+                    v[k] += h;
+                    let mut effects = base_effects.clone();
+                    effects.push(c.clone());
+                    let mut pv = base_p.clone();
+                    pv.extend(v);
+                    let r = model.residuals(data, &stack_at(&effects, &pv), &all).ok()?;
+                    let col: Vec<f64> = r.iter().zip(r_base).map(|(a, b)| (a - b) / h).collect();
+                    col.iter().all(|x| x.is_finite()).then_some(col)
+                })
+                .collect();
+            Signature {
+                effect: c.clone(),
+                reference,
+                columns,
+            }
+        })
+        .collect()
+}
+
+/// Which rows a column moves, in words.
+fn moves(judge: &Judge, col: &[f64]) -> String {
+    let most = |load: bool| {
+        col.iter()
+            .zip(&judge.torque)
+            .filter(|(_, t)| **t == load)
+            .fold(0.0f64, |a, (x, _)| a.max(x.abs()))
+    };
+    let (t, q) = (most(false), most(true));
+    let tiny = 1e-9 * t.max(q);
+    match (t > tiny, q > tiny) {
+        (true, true) => "thrust and torque".into(),
+        (true, false) => "thrust".into(),
+        (false, true) => "torque".into(),
+        (false, false) => "nothing".into(),
+    }
+}
+
+/// The best imitation of `target` by `sig`'s columns, each parameter kept within
+/// `[lo, hi]` (changes from its reference; unbounded for the table of ties): the remainder.
+fn imitate(target: &[f64], sig: &Signature, bounded: bool) -> Vec<f64> {
+    let cols: Vec<(&Vec<f64>, f64, f64)> = sig
+        .columns
+        .iter()
+        .zip(sig.effect.params())
+        .zip(&sig.reference)
+        .filter_map(|((c, p), r)| {
+            let c = c.as_ref()?;
+            let (lo, hi) = if bounded {
+                (p.lower - r, p.upper - r)
+            } else {
+                (f64::NEG_INFINITY, f64::INFINITY)
+            };
+            Some((c, lo, hi))
+        })
+        .collect();
+    let mut rest = target.to_vec();
+    let mut beta = vec![0.0; cols.len()];
+    // Coordinate descent on a box: converges for a convex least-squares problem.
+    for _ in 0..60 {
+        let mut moved = 0.0f64;
+        for (j, (c, lo, hi)) in cols.iter().enumerate() {
+            let cc: f64 = c.iter().map(|x| x * x).sum();
+            if cc <= 0.0 {
+                continue;
+            }
+            let step = c.iter().zip(&rest).map(|(a, b)| a * b).sum::<f64>() / cc;
+            let new = (beta[j] + step).clamp(*lo, *hi);
+            let d = new - beta[j];
+            if d != 0.0 {
+                for (r, a) in rest.iter_mut().zip(c.iter()) {
+                    *r -= d * a;
+                }
+                beta[j] = new;
+                moved = moved.max(d.abs() * cc.sqrt());
+            }
+        }
+        if moved < 1e-12 {
+            break;
+        }
+    }
+    rest
+}
+
+/// The detection limits and the ties of `signatures` (on the baseline) under `judge`.
+pub fn separability(judge: &Judge, sigs: &[Signature]) -> Separability {
+    let mut limits = Vec::new();
+    for s in sigs {
+        for ((p, r), col) in s.effect.params().iter().zip(&s.reference).zip(&s.columns) {
+            let reach = (p.upper - r).abs().max((r - p.lower).abs());
+            let limit = col.as_ref().and_then(|c| {
+                let st = judge.strength(c);
+                (st > 0.0 && 1.0 / st <= reach).then(|| 1.0 / st)
+            });
+            limits.push(Limit {
+                effect: s.effect.id().to_string(),
+                param: p.name.clone(),
+                unit: p.unit.clone(),
+                reference: *r,
+                limit,
+                expected: p.expected_range(),
+                moves: col.as_ref().map_or_else(|| "nothing".into(), |c| moves(judge, c)),
+            });
+        }
+    }
+    let mut ties = Vec::new();
+    for a in sigs {
+        let (Some(Some(col)), Some(p)) = (a.columns.first(), a.effect.params().first()) else {
+            continue;
+        };
+        let r = a.reference[0];
+        let (lo, hi) = p.expected_range();
+        let span = (hi - r).abs().max((r - lo).abs());
+        if judge.strength(col) * span < 1.0 {
+            // Not detectable anywhere in its expected range: its limit says so already.
+            continue;
+        }
+        for b in sigs {
+            if b.effect.id() == a.effect.id() {
+                continue;
+            }
+            let rest = imitate(col, b, false);
+            let st = judge.strength(&rest);
+            let apart = (st > 0.0).then(|| 1.0 / st);
+            if apart.is_none_or(|x| x > span) {
+                ties.push(Tie {
+                    effect: a.effect.id().to_string(),
+                    imitated_by: b.effect.id().to_string(),
+                    apart_above: apart.filter(|x| *x <= (p.upper - r).abs().max((r - p.lower).abs())),
+                });
+            }
+        }
+    }
+    Separability {
+        noise: judge.noise.clone(),
+        limits,
+        ties,
+    }
+}
+
+/// The measurement that would tell the effects `ids` apart, from what each needs and what the
+/// data lack.
+pub fn tell_apart(data: &Data, ids: &[String]) -> String {
+    let has = |id: &str| ids.iter().any(|i| i == id);
+    let (lo, hi) = data
+        .obs
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
+    let all_static = data.obs.iter().all(|o| o.j < 0.01);
+    let mut ways = Vec::new();
+    if has("torque-tare") {
+        ways.push(format!(
+            "a static run down to {:.0} rpm (a bearing's torque grows as 1/RPM² against the propeller's) or a run \
+             without the propeller",
+            (lo / 2.0 / 500.0).round().max(1.0) * 500.0
+        ));
+    }
+    if has("thrust-tare") {
+        ways.push("the stand's thrust read with the motor running and the propeller off (the slipstream's drag)".into());
+    }
+    if has("rpm-scale") || has("density") {
+        ways.push("an optical RPM and a logged air temperature and pressure".into());
+    }
+    if has("chord-scale") || has("pitch-offset") || has("elastic-twist") {
+        ways.push("the blade's chord and angle measured at a few stations".into());
+    }
+    if ways.is_empty() || ids.iter().any(|i| i.contains("stall") || i.contains("re-") || i == "drag-scale") {
+        if all_static {
+            ways.push("forward-flight sweeps (J above 0)".into());
+        } else if hi < 1.5 * lo {
+            ways.push(format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)"));
+        }
+    }
+    if ways.is_empty() {
+        ways.push("repeated points to measure the scatter".into());
+    }
+    ways.join("; or ")
+}
+
+/// The answer about each effect of `final_stack` (the ladder's, leaving `final_residuals`),
+/// against the candidates' signatures on the baseline.
+pub fn verdict(
+    model: &Model,
+    data: &Data,
+    final_stack: &Stack,
+    final_residuals: &[f64],
+    baseline_residuals: &[f64],
+    judge: &Judge,
+    sigs: &[Signature],
+) -> Result<Verdict, DiagnoseError> {
+    let all: Vec<usize> = (0..data.obs.len()).collect();
+    let mut answers = Vec::new();
+    for (i, a) in final_stack.active.iter().enumerate() {
+        let mut without = final_stack.clone();
+        without.active.remove(i);
+        let r = model.residuals(data, &without, &all)?;
+        // The residual rows this effect removes: its change as the data see it.
+        let change: Vec<f64> = r.iter().zip(final_residuals).map(|(x, y)| x - y).collect();
+        let strength = judge.strength(&change);
+        let id = a.effect.id().to_string();
+        let (kind, group) = if strength < 1.0 {
+            (AnswerKind::BelowLimit, Vec::new())
+        } else {
+            let mut group = vec![id.clone()];
+            for s in sigs {
+                let other = s.effect.id();
+                if other == id || final_stack.active.iter().any(|x| x.effect.id() == other) {
+                    continue;
+                }
+                if judge.strength(&imitate(&change, s, true)) < 1.0 {
+                    group.push(other.to_string());
+                }
+            }
+            if group.len() > 1 {
+                (AnswerKind::Group, group)
+            } else {
+                let outside = a
+                    .effect
+                    .params()
+                    .iter()
+                    .zip(&a.values)
+                    .any(|(p, v)| crate::fit::outside_expected(*v, p));
+                (
+                    if outside {
+                        AnswerKind::Calibration
+                    } else {
+                        AnswerKind::Found
+                    },
+                    Vec::new(),
+                )
+            }
+        };
+        answers.push(Answer {
+            effect: a.describe(),
+            tell_apart: (kind == AnswerKind::Group).then(|| tell_apart(data, &group)),
+            id,
+            kind,
+            strength,
+            group,
+        });
+    }
+    let within_model_error = judge.noise.model_error.map(|m| {
+        let by_load = |load: bool| -> Vec<f64> {
+            baseline_residuals
+                .iter()
+                .zip(&judge.torque)
+                .filter(|(_, t)| **t == load)
+                .map(|(x, _)| *x)
+                .collect()
+        };
+        let pct = |x: f64| format!("{:.1} %", 100.0 * x);
+        let part = |name: &str, r: &[f64], usual: f64| {
+            let e = rms(r);
+            format!(
+                "{name} {} ({})",
+                pct(e),
+                if e <= usual {
+                    format!("within the {} the model usually misses", pct(usual))
+                } else {
+                    format!("{} of it beyond the {} the model usually misses", pct(e - usual), pct(usual))
+                }
+            )
+        };
+        let t = by_load(false);
+        let q = by_load(true);
+        let mut s = format!(
+            "Before any effect, the error is {}",
+            part("thrust", &t, m.thrust)
+        );
+        if !q.is_empty() {
+            s += &format!(", {}", part("torque", &q, m.torque));
+        }
+        s + &format!(
+            ", against the default model's median error on the {} validated {} props",
+            m.props, m.kind
+        )
+    });
+    Ok(Verdict {
+        answers,
+        within_model_error,
+    })
+}
