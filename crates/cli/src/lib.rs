@@ -147,11 +147,14 @@ pub enum Command {
     ))]
     Validate(Box<propbet_api::commands::validate::ValidateRequest>),
     /// Hidden effects in real measurements: known effects (thrust and torque tares, an RPM
-    /// scale, the air's density) added to validate's measured files at several sizes, and how
-    /// often the diagnosis finds each with its size.
-    #[command(after_help = concat!(
+    /// scale, the air's density) added to validate's measured files (or one stand log: `hidden
+    /// log`) at several sizes, and how the diagnosis answers each: found with its size, one of a
+    /// group it cannot separate, below its detection limit, or another effect named.
+    #[command(subcommand_negates_reqs = true, args_conflicts_with_subcommands = true, after_help = concat!(
         "Example:\n  propbet hidden --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",
-        "    --only apce_10x5,apcsp_10x7 --sizes 0.05 -o hidden\n\n",
+        "    --only apce_10x5,apcsp_10x7 --sizes 0.05 -o hidden\n",
+        "  propbet hidden log --prop ../shared/data/photofoil/QProp_8x4_5.txt \\\n",
+        "    --measured ../shared/data/photofoil/StepsTestV2_2022-01-18_153833.csv --inject torque-tare -o hidden_log\n\n",
         "Exit status: 0 done; 1 done, with props it could not diagnose; 2 error."
     ))]
     Hidden(Box<hidden::HiddenArgs>),

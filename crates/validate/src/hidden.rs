@@ -17,7 +17,8 @@ use propbet_diagnose::Data;
 use propbet_effects::Effect;
 
 use super::{ladder_spec, prepare, Prepared, Sections, ValidateSpec};
-use propbet_model::Result;
+use propbet_model::{Model, Result};
+use propbet_settings::spec::DiagnoseSpec;
 use propbet_pipeline::stages;
 
 /// Whether an injection's ladders run with the files' provenance bounds (the tares) or as a
@@ -43,11 +44,17 @@ pub fn hidden_prop(
         ..
     } = prepare(spec, prop, sections, progress)?;
     let dspec = ladder_spec(&model_spec, &measured, &dir);
-    let batch = stages::load_batch(&measured)?;
-    let wide = stages::candidates(&model, &dspec)?;
+    hidden_measured(&model, &dspec, injections)
+}
+
+/// Each injection on the measured files of `dspec` (a stand log, wind-tunnel files) with
+/// `model`, scored against the clean ladder.
+pub fn hidden_measured(model: &Model, dspec: &DiagnoseSpec, injections: &[Injection]) -> Result<Vec<Finding>> {
+    let batch = stages::load_batch(&dspec.measured)?;
+    let wide = stages::candidates(model, dspec)?;
     let mut narrow = wide.clone();
     Provenance::of(&batch.sets).narrow(&mut narrow);
-    let (data, dmodel, opts) = stages::diagnosis_inputs(&model, &dspec, batch.air, &batch.sets, false)?;
+    let (data, dmodel, opts) = stages::diagnosis_inputs(model, dspec, batch.air, &batch.sets, false)?;
     let run = |data: &Data, candidates: &[Arc<dyn Effect>]| -> Result<Diagnosis> {
         Ok(diagnose(&dmodel, data, candidates, &opts)?)
     };

@@ -259,14 +259,60 @@ pub fn hidden(
             "no prop could be diagnosed: {skipped:?}"
         )));
     }
-    let md = propbet_report::hidden::markdown(&rows, &skipped);
-    write_atomic(
-        &spec.out.join("hidden.csv"),
-        &[propbet_report::hidden::csv(&rows)?],
-        &[],
-    )?;
-    write_atomic(&spec.out.join("hidden.md"), &[md.as_bytes()], &[])?;
+    write_hidden(&spec.out, &rows, &skipped, console)?;
     lock.finish()?;
-    print_page(console, &md);
     Ok(skipped.is_empty())
+}
+
+/// hidden.csv and hidden.md into `out`, and the page on the console.
+fn write_hidden(
+    out: &Path,
+    rows: &[(String, Finding)],
+    skipped: &[(String, String)],
+    console: &dyn Console,
+) -> Result<()> {
+    let md = propbet_report::hidden::markdown(rows, skipped);
+    write_atomic(&out.join("hidden.csv"), &[propbet_report::hidden::csv(rows)?], &[])?;
+    write_atomic(&out.join("hidden.md"), &[md.as_bytes()], &[])?;
+    print_page(console, &md);
+    Ok(())
+}
+
+/// Runs `propbet hidden log`: each of `injections` added to the measured files of `measured`
+/// (a stand log with its propeller's file) and diagnosed with the model of `model`, beside the
+/// clean files.
+pub fn hidden_log(
+    model: &propbet_settings::spec::ModelSpec,
+    measured: &propbet_settings::spec::MeasuredSpec,
+    injections: &[Injection],
+    out: &Path,
+    console: &dyn Console,
+) -> Result<()> {
+    let lock = crate::files::claim_folder(out, "propbet hidden log")?;
+    let loaded = propbet_model::Model::load(model, false)?;
+    let dspec = propbet_settings::spec::DiagnoseSpec {
+        model: model.clone(),
+        measured: measured.clone(),
+        effects: vec!["all".into()],
+        folds: propbet_settings::FOLDS.default,
+        max_steps: propbet_settings::MAX_STEPS.default,
+        window: propbet_settings::WINDOW.default,
+        out: out.join("diagnose"),
+    };
+    let name = model
+        .prop
+        .file_stem()
+        .map_or_else(|| "prop".to_string(), |s| s.to_string_lossy().into_owned());
+    let rows: Vec<(String, Finding)> = propbet_validate::hidden_measured(&loaded, &dspec, injections)?
+        .into_iter()
+        .map(|f| (name.clone(), f))
+        .collect();
+    if rows.is_empty() {
+        return Err(CommandError::Message(
+            "no injection applies to these measurements (a torque tare needs a measured torque)".into(),
+        ));
+    }
+    write_hidden(out, &rows, &[], console)?;
+    lock.finish()?;
+    Ok(())
 }
