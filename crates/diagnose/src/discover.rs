@@ -39,8 +39,8 @@ use serde::Serialize;
 use statrs::distribution::{ContinuousCDF, FisherSnedecor};
 
 use crate::fit::{bounds, fit, stack_at, FitOutcome, FittedParam};
-use crate::signature::{signatures, Response, Signature};
 use crate::limits::{self, Judge, ModelError, Separability, Verdict};
+use crate::signature::{signatures, Response, Signature};
 use crate::{rms, Data, DiagnoseError, Model, Repeatability};
 
 /// Smallest relative fall of the held-out RMS error that counts.

@@ -544,13 +544,14 @@ pub fn build(
     let _ = write!(
         h,
         "<h1>Which effect is missing?</h1>\n<p class=\"note\">prop <code>{}</code> against {}; {} points, {} residual rows \
-         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n{}<p>{}</p>\n",
+         (relative thrust and torque errors).<br>command: <code>{}</code></p>\n<p class=\"note\">{}</p>\n{}<p>{}</p>\n",
         esc(prop),
         esc(&measured.join(", ")),
         d.points,
         d.rows,
         esc(command),
-        format!("<p class=\"note\">{}</p>\n{}", esc(&can_tell(d)), diagnosis_html(d)),
+        esc(&can_tell(d)),
+        diagnosis_html(d),
         esc(&verdict)
     );
     h.push_str(&limits_html(d));
@@ -717,7 +718,14 @@ fn limits_html(d: &Diagnosis) -> String {
             .separability
             .ties
             .iter()
-            .filter(|t| t.effect == l.effect && d.separability.limits.iter().find(|x| x.effect == l.effect).is_some_and(|x| x.param == l.param))
+            .filter(|t| {
+                t.effect == l.effect
+                    && d.separability
+                        .limits
+                        .iter()
+                        .find(|x| x.effect == l.effect)
+                        .is_some_and(|x| x.param == l.param)
+            })
             .map(|t| t.imitated_by.as_str())
             .collect();
         let _ = writeln!(

@@ -122,7 +122,11 @@ pub fn markdown(rows: &[(String, Finding)], skipped: &[(String, String)]) -> Str
                 format!(" ({} named)", f.wrong.join(", "))
             },
             if f.ladder.is_empty() { "none" } else { &f.ladder },
-            if f.answers.is_empty() { "nothing named" } else { &f.answers },
+            if f.answers.is_empty() {
+                "nothing named"
+            } else {
+                &f.answers
+            },
         ));
     }
     for (prop, why) in skipped {

@@ -18,8 +18,8 @@ use propbet_effects::Effect;
 
 use super::{ladder_spec, prepare, Prepared, Sections, ValidateSpec};
 use propbet_model::{Model, Result};
-use propbet_settings::spec::DiagnoseSpec;
 use propbet_pipeline::stages;
+use propbet_settings::spec::DiagnoseSpec;
 
 /// Whether an injection's ladders run with the files' provenance bounds (the tares) or as a
 /// stand log that allows the effect (the RPM scale, the density).

@@ -391,7 +391,7 @@ fn candidates_the_data_cannot_tell_apart_are_named_together() {
         diagnose(&prop, &[&data], &[], dir.path())
     };
     let (o, j) = friction("friction.csv", &["--rpm", "8000:10000/11", "--j", "0"]);
-    let out = String::from_utf8_lossy(&o.stdout);
+    let out = String::from_utf8_lossy(&o.stdout).replace('\n', " ");
     let alike: Vec<&str> = j["diagnosis"]["alike"]
         .as_array()
         .unwrap()
@@ -405,9 +405,17 @@ fn candidates_the_data_cannot_tell_apart_are_named_together() {
         "the friction is neither the answer nor alike to it: {out}"
     );
     assert!(!alike.is_empty(), "{out}");
+    // An inseparable pair: answered as a group that holds the friction.
+    let answer = &j["diagnosis"]["verdict"]["answers"][0];
+    assert_eq!(answer["kind"], "group", "{answer}");
+    assert!(
+        answer["group"].as_array().unwrap().iter().any(|g| g == "torque-tare"),
+        "{answer}"
+    );
     assert!(
         out.starts_with("Missing: one of ")
-            && out.contains("the data cannot tell them apart; forward-flight sweeps (J above 0) would."),
+            && out.contains("these data cannot tell them apart; a static run down to")
+            && out.contains("or forward-flight sweeps (J above 0) would."),
         "{out}"
     );
     // On the same prop with forward-flight sweeps the friction is told from the drag.
@@ -426,4 +434,17 @@ fn candidates_the_data_cannot_tell_apart_are_named_together() {
         "{}",
         String::from_utf8_lossy(&o.stdout)
     );
+    // A separable pair: the friction answered alone, as found physics.
+    let answers = &j["diagnosis"]["verdict"]["answers"];
+    assert_eq!(answers[0]["id"], "torque-tare", "{answers}");
+    assert_eq!(answers[0]["kind"], "found", "{answers}");
+    // The data's limits are in the JSON before any answer: the friction's is far below 0.003 N m.
+    let limit = j["diagnosis"]["separability"]["limits"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|l| l["effect"] == "torque-tare" && l["param"] == "q0")
+        .and_then(|l| l["limit"].as_f64())
+        .unwrap();
+    assert!(limit < 0.001, "{limit}");
 }
