@@ -2,28 +2,58 @@
 //! one stand log with its propeller's file: `propbet hidden log`), and how the diagnosis
 //! answers them.
 
-use std::path::PathBuf;
-
 use anyhow::Result;
-use clap::{Args, Subcommand};
-use propbet_api::diagnose::inject::Injection;
+use clap::{ArgMatches, Args, FromArgMatches, Subcommand};
 
-use propbet_api::commands::validate::ValidateRequest;
+use propbet_api::commands::validate::{InjectRequest, ValidateRequest};
 
-use crate::predict::ModelArgs;
-
-/// Arguments of `propbet hidden`.
-#[derive(Debug, Args)]
+/// Arguments of `propbet hidden`: validate's flags, or the `log` subcommand. (Parsed by hand:
+/// clap's derive gives `None` for an optional group whose struct flattens others.)
+#[derive(Debug)]
 pub struct HiddenArgs {
     /// One stand log instead of validate's props.
-    #[command(subcommand)]
     pub log: Option<HiddenCommand>,
     /// The props, their files and the model, as `propbet validate` takes them.
-    #[command(flatten)]
     pub validate: Option<ValidateRequest>,
     /// What is added.
-    #[command(flatten)]
-    pub inject: InjectArgs,
+    pub inject: InjectRequest,
+}
+
+impl FromArgMatches for HiddenArgs {
+    fn from_arg_matches(m: &ArgMatches) -> Result<Self, clap::Error> {
+        Self::from_arg_matches_mut(&mut m.clone())
+    }
+
+    fn update_from_arg_matches(&mut self, m: &ArgMatches) -> Result<(), clap::Error> {
+        *self = Self::from_arg_matches(m)?;
+        Ok(())
+    }
+
+    fn from_arg_matches_mut(m: &mut ArgMatches) -> Result<Self, clap::Error> {
+        let log = match m.subcommand_name() {
+            Some(_) => Some(HiddenCommand::from_arg_matches_mut(m)?),
+            None => None,
+        };
+        Ok(Self {
+            validate: if log.is_none() {
+                Some(ValidateRequest::from_arg_matches_mut(m)?)
+            } else {
+                None
+            },
+            inject: InjectRequest::from_arg_matches_mut(m)?,
+            log,
+        })
+    }
+}
+
+impl Args for HiddenArgs {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        InjectRequest::augment_args(ValidateRequest::augment_args(HiddenCommand::augment_subcommands(cmd)))
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
 }
 
 /// `propbet hidden`'s subcommands.
@@ -39,68 +69,32 @@ pub enum HiddenCommand {
 pub struct HiddenLogArgs {
     /// The propeller model.
     #[command(flatten)]
-    pub model: ModelArgs,
+    pub model: crate::predict::ModelArgs,
     /// The measurements.
     #[command(flatten)]
     pub data: propbet_api::MeasuredRequest,
     /// What is added.
     #[command(flatten)]
-    pub inject: InjectArgs,
+    pub inject: InjectRequest,
     /// Output directory (created if missing).
     #[arg(long, short)]
-    pub out: PathBuf,
-}
-
-/// The effects added and their sizes.
-#[derive(Debug, Args)]
-pub struct InjectArgs {
-    /// The effects added to the measurements, each at every size.
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "thrust-tare,torque-tare,rpm-scale,density"
-    )]
-    pub inject: Vec<String>,
-    /// Sizes: each effect's relative change of the static loads (0.05: 5 %).
-    #[arg(
-        long,
-        value_delimiter = ',',
-        default_value = "0.03,0.05,0.1",
-        allow_negative_numbers = true
-    )]
-    pub sizes: Vec<f64>,
-}
-
-impl InjectArgs {
-    fn injections(&self) -> Result<Vec<Injection>> {
-        let mut injections = Vec::new();
-        for e in &self.inject {
-            for &s in &self.sizes {
-                injections.push(Injection::new(e.trim(), s).map_err(|why| anyhow::anyhow!("--inject/--sizes: {why}"))?);
-            }
-        }
-        Ok(injections)
-    }
+    pub out: std::path::PathBuf,
 }
 
 /// Runs `propbet hidden`.
 pub fn run(a: &HiddenArgs) -> Result<bool> {
     let term = crate::output::Terminal::default();
-    if let Some(HiddenCommand::Log(l)) = &a.log {
-        propbet_api::commands::validate::hidden_log(
-            &l.model.spec()?,
-            &l.data.spec()?,
-            &l.inject.injections()?,
-            &l.out,
-            &term,
-        )?;
-        return Ok(true);
-    }
-    let injections = a.inject.injections()?;
-    let Some(validate) = &a.validate else {
-        anyhow::bail!("propbet hidden needs --uiuc, --pe0, --airfoils and --out (or `propbet hidden log`)");
+    let validate = match (&a.log, &a.validate) {
+        (Some(HiddenCommand::Log(l)), _) => {
+            let (model, data) = (l.model.spec()?, l.data.spec()?);
+            propbet_api::commands::validate::hidden_log(&model, &data, &l.inject.injections()?, &l.out, &term)?;
+            return Ok(true);
+        }
+        (None, Some(v)) => v,
+        (None, None) => unreachable!("clap parses validate's flags without a subcommand"),
     };
     let (spec, props, generic) = validate.spec()?;
+    let injections = a.inject.injections()?;
     Ok(propbet_api::commands::validate::hidden(
         &spec,
         &props,

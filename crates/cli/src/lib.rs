@@ -152,8 +152,8 @@ pub enum Command {
     /// group it cannot separate, below its detection limit, or another effect named.
     #[command(subcommand_negates_reqs = true, args_conflicts_with_subcommands = true, after_help = concat!(
         "Example:\n  propbet hidden --uiuc ../shared/data/uiuc --pe0 ../shared/data/apc/PE0 --airfoils props/airfoils \\\n",
-        "    --only apce_10x5,apcsp_10x7 --sizes 0.05 -o hidden\n",
-        "  propbet hidden log --prop ../shared/data/photofoil/QProp_8x4_5.txt \\\n",
+        "    --only apce_10x5,apcsp_10x7 --sizes 0.05 -o hidden\n\n",
+        "One stand log with its propeller's file:\n  propbet hidden log --prop ../shared/data/photofoil/QProp_8x4_5.txt \\\n",
         "    --measured ../shared/data/photofoil/StepsTestV2_2022-01-18_153833.csv --inject torque-tare -o hidden_log\n\n",
         "Exit status: 0 done; 1 done, with props it could not diagnose; 2 error."
     ))]

@@ -45,8 +45,7 @@ use crate::{rms, Data, DiagnoseError, Model, Repeatability};
 
 /// Smallest relative fall of the held-out RMS error that counts.
 pub const MIN_GAIN: f64 = 0.10;
-/// How many times the measured repeatability an effect must change the loads by.
-pub const REPEATABILITY_FACTOR: f64 = 3.0;
+pub use crate::limits::REPEATABILITY_FACTOR;
 
 /// How a diagnosis is run.
 #[derive(Debug, Clone, Copy, PartialEq)]

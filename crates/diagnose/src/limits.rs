@@ -10,7 +10,7 @@
 //! is the shape of the default model's own error on props of this kind (validate's median
 //! error of their family, [`ModelError`]): it must exceed that error to be told from it. The
 //! rest must exceed [`Z`] standard errors of the fit's residual RMS over the load's rows and
-//! [`crate::discover::REPEATABILITY_FACTOR`] times the measurements' repeatability, where they
+//! [`REPEATABILITY_FACTOR`] times the measurements' repeatability, where they
 //! show it. Where no validated props of this kind exist (a QPROP file, a scan), the model's
 //! error is not a term (said as such) and the whole change is judged as the rest.
 //! [`Judge::strength`] is the larger of the two ratios: 1 or more is detectable.
@@ -37,6 +37,10 @@ use serde::Serialize;
 
 use crate::fit::stack_at;
 use crate::{rms, Data, DiagnoseError, Model, Repeatability};
+
+/// How many times the measured repeatability an effect must change the loads by (the ladder's
+/// rule too, [`crate::discover`]).
+pub const REPEATABILITY_FACTOR: f64 = 3.0;
 
 /// Standard errors a change must make on a load's rows to be detected against the fit's
 /// residual scatter.
@@ -224,7 +228,7 @@ impl Judge {
             let rho = neighbour_correlation(&r, &files);
             let n_eff = (idx.len() as f64 * (1.0 - rho) / (1.0 + rho)).max(1.0);
             lag[k] = rho;
-            let rep = repeatability.map_or(0.0, |r| crate::discover::REPEATABILITY_FACTOR * r.sd);
+            let rep = repeatability.map_or(0.0, |r| REPEATABILITY_FACTOR * r.sd);
             shape_threshold[k] = (Z * fit_rms[k] / n_eff.sqrt()).max(rep).max(1e-9);
         }
         Self {
@@ -246,28 +250,30 @@ impl Judge {
         &self.noise
     }
 
-    /// The effect `id`'s own id and the candidates of `sigs` (not in `in_stack`) that reproduce
-    /// `change`, inside their bounds, up to an undetectable remainder.
-    pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature], in_stack: &[&str]) -> Vec<String> {
-        let mut group = vec![id.to_string()];
-        for s in sigs {
-            let other = s.effect.id();
-            if other == id || in_stack.contains(&other) {
-                continue;
-            }
-            if self.strength(&imitate(change, s, true)) < 1.0 {
-                group.push(other.to_string());
-            }
-        }
-        group
+    /// The effect `id`'s own id and the candidates of `sigs` that reproduce `change`, inside
+    /// their bounds, up to an undetectable remainder (an effect of the same stack among them: a
+    /// pair fitted together that can stand in for each other, a density and an RPM scale that
+    /// cancel, is no answer either).
+    pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature]) -> Vec<String> {
+        let mut close: Vec<(f64, String)> = sigs
+            .iter()
+            .filter(|s| s.effect.id() != id)
+            .map(|s| (self.strength(&imitate(change, s, true)), s.effect.id().to_string()))
+            .filter(|(st, _)| *st < 1.0)
+            .collect();
+        // The closest imitation first.
+        close.sort_by(|a, b| a.0.total_cmp(&b.0));
+        std::iter::once(id.to_string())
+            .chain(close.into_iter().map(|c| c.1))
+            .collect()
     }
 
     /// How a change the effect `id` makes is answered, before its expected range is looked at:
     /// below the limit, one of a group, or (None) alone.
-    pub fn answer(&self, change: &[f64], id: &str, sigs: &[Signature], in_stack: &[&str]) -> Option<AnswerKind> {
+    pub fn answer(&self, change: &[f64], id: &str, sigs: &[Signature]) -> Option<AnswerKind> {
         if self.strength(change) < 1.0 {
             Some(AnswerKind::BelowLimit)
-        } else if self.group(change, id, sigs, in_stack).len() > 1 {
+        } else if self.group(change, id, sigs).len() > 1 {
             Some(AnswerKind::Group)
         } else {
             None
@@ -513,9 +519,11 @@ pub fn separability(judge: &Judge, sigs: &[Signature]) -> Separability {
     }
 }
 
-/// The measurement that would tell the effects `ids` apart, from what each needs and what the
-/// data lack.
+/// The measurement that would tell the effects `ids` apart (an answer and its closest
+/// imitations, first: the first two are looked at), from what each needs and what the data
+/// lack.
 pub fn tell_apart(data: &Data, ids: &[String]) -> String {
+    let ids = &ids[..ids.len().min(2)];
     let has = |id: &str| ids.iter().any(|i| i == id);
     let (lo, hi) = data
         .obs
@@ -579,10 +587,9 @@ pub fn verdict(
         let change: Vec<f64> = r.iter().zip(final_residuals).map(|(x, y)| x - y).collect();
         let strength = judge.strength(&change);
         let id = a.effect.id().to_string();
-        let in_stack: Vec<&str> = final_stack.active.iter().map(|x| x.effect.id()).collect();
-        let (kind, group) = match judge.answer(&change, &id, sigs, &in_stack) {
+        let (kind, group) = match judge.answer(&change, &id, sigs) {
             Some(AnswerKind::BelowLimit) => (AnswerKind::BelowLimit, Vec::new()),
-            Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs, &in_stack)),
+            Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs)),
             None => {
                 let outside = a
                     .effect
@@ -619,32 +626,30 @@ pub fn verdict(
                 .collect()
         };
         let pct = |x: f64| format!("{:.1} %", 100.0 * x);
-        let part = |name: &str, r: &[f64], usual: f64| {
-            let e = rms(r);
-            format!(
-                "{name} {} ({})",
-                pct(e),
-                if e <= usual {
-                    format!("within the {} the model usually misses", pct(usual))
-                } else {
-                    format!(
-                        "{} of it beyond the {} the model usually misses",
-                        pct(e - usual),
-                        pct(usual)
-                    )
-                }
+        let (t, q) = (rms(&by_load(false)), rms(&by_load(true)));
+        let measured_torque = judge.noise.rows[1] > 0;
+        let (errors, usual) = if measured_torque {
+            (
+                format!("thrust {}, torque {} RMS", pct(t), pct(q)),
+                format!("{} / {}", pct(m.thrust), pct(m.torque)),
             )
+        } else {
+            (format!("thrust {} RMS", pct(t)), pct(m.thrust))
         };
-        let t = by_load(false);
-        let q = by_load(true);
-        let mut s = format!("Before any effect, the error is {}", part("thrust", &t, m.thrust));
-        if !q.is_empty() {
-            s += &format!(", {}", part("torque", &q, m.torque));
+        let within = t <= m.thrust && (!measured_torque || q <= m.torque);
+        if within {
+            format!(
+                "The error before any effect ({errors}) is within what the default model usually misses on {} props \
+                 ({usual}, {} validated): what is named may be the model's own error",
+                m.kind, m.props
+            )
+        } else {
+            format!(
+                "Of the error before any effect ({errors}), up to {usual} is what the default model usually misses on \
+                 {} props ({} validated)",
+                m.kind, m.props
+            )
         }
-        s + &format!(
-            ", against the default model's median error on the {} validated {} props",
-            m.props, m.kind
-        )
     });
     Ok(Verdict {
         answers,
@@ -653,166 +658,4 @@ pub fn verdict(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::Observation;
-    use propbet_effects::{Hook, Param};
-
-    /// A stand-in effect: only its id and parameters matter to the judge.
-    #[derive(Debug)]
-    struct Named(&'static str, Vec<Param>);
-
-    impl Effect for Named {
-        fn id(&self) -> &str {
-            self.0
-        }
-        fn params(&self) -> &[Param] {
-            &self.1
-        }
-        fn hooks(&self) -> &[Hook] {
-            &[Hook::Loads]
-        }
-        fn explanation(&self) -> &str {
-            ""
-        }
-    }
-
-    fn named(id: &'static str) -> Arc<dyn Effect> {
-        Arc::new(Named(id, vec![Param::new("x", "-", 0.0, (-1.0, 1.0), 0.01, "")]))
-    }
-
-    /// Thrust-only points: 4 RPMs x 8 J, one file per RPM.
-    fn data() -> Data {
-        let mut obs = Vec::new();
-        for (f, rpm) in [3000.0, 4000.0, 5000.0, 6000.0].into_iter().enumerate() {
-            for k in 0..8 {
-                let j = 0.1 * f64::from(k);
-                obs.push(Observation {
-                    index: obs.len(),
-                    file: f,
-                    label: String::new(),
-                    omega: propbet_units::rpm_to_omega(rpm),
-                    v: 0.0,
-                    j,
-                    fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
-                    thrust: 1.0,
-                    torque: None,
-                    rpm_group: rpm as i64,
-                    rpm_name: String::new(),
-                    mach_tip: 0.1,
-                });
-            }
-        }
-        Data {
-            obs,
-            thrust_floor: 0.05,
-            torque_floor: 1e-12,
-        }
-    }
-
-    /// White residuals of RMS `sd` (alternating signs: no correlation between neighbours).
-    fn noise(n: usize, sd: f64) -> Vec<f64> {
-        (0..n).map(|i| if i % 2 == 0 { sd } else { -sd }).collect()
-    }
-
-    fn sig(id: &'static str, col: Vec<f64>) -> Signature {
-        Signature {
-            effect: named(id),
-            reference: vec![0.0],
-            columns: vec![Some(col)],
-        }
-    }
-
-    #[test]
-    fn a_change_below_the_detection_limit_is_never_named() {
-        let d = data();
-        let n = d.obs.len();
-        let judge = Judge::new(&d, &noise(n, 0.01), None, None);
-        // 3 standard errors of 1 % over 32 uncorrelated rows: 0.53 %.
-        let t = judge.noise().shape_threshold[0];
-        assert!((t - 3.0 * 0.01 / (n as f64).sqrt()).abs() < 1e-12, "{t}");
-        let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
-        let weak: Vec<f64> = j.iter().map(|x| 0.5 * t * x / rms(&j)).collect();
-        let strong: Vec<f64> = j.iter().map(|x| 3.0 * t * x / rms(&j)).collect();
-        assert_eq!(judge.answer(&weak, "a", &[], &[]), Some(AnswerKind::BelowLimit));
-        assert_eq!(judge.answer(&strong, "a", &[], &[]), None);
-        // Its detection limit: the size whose change is just detectable.
-        let sep = separability(&judge, &[sig("a", j.iter().map(|x| x / rms(&j)).collect())]);
-        assert!((sep.limits[0].limit.unwrap() - t).abs() < 1e-9, "{:?}", sep.limits[0]);
-    }
-
-    #[test]
-    fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
-        let d = data();
-        let n = d.obs.len();
-        let judge = Judge::new(&d, &noise(n, 0.01), None, None);
-        let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
-        let change: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
-        // B moves the rows as the change does (2x per unit): it reproduces it inside its bounds.
-        let alike = sig("b", j.iter().map(|x| 2.0 * x).collect());
-        // C moves them with the square of J around its mean: orthogonal to the change.
-        let q: Vec<f64> = j.iter().map(|x| x * x - 0.0525).collect();
-        let other = sig("c", q);
-        assert_eq!(judge.answer(&change, "a", std::slice::from_ref(&other), &[]), None);
-        assert_eq!(
-            judge.answer(&change, "a", &[alike.clone(), other.clone()], &[]),
-            Some(AnswerKind::Group)
-        );
-        assert_eq!(judge.group(&change, "a", &[alike.clone(), other], &[]), ["a", "b"]);
-        // An effect already in the stack is fitted with it, not a rival.
-        assert_eq!(judge.answer(&change, "a", std::slice::from_ref(&alike), &["b"]), None);
-        // B needs x = 0.025 for it; bounded to 0.01 it cannot follow: told apart.
-        let bounded = Signature {
-            effect: Arc::new(Named("b", vec![Param::new("x", "-", 0.0, (0.0, 0.01), 0.001, "")])),
-            ..alike
-        };
-        assert_eq!(judge.answer(&change, "a", &[bounded], &[]), None);
-    }
-
-    #[test]
-    fn the_model_error_holds_a_level_and_an_rpm_trend_not_a_shape_in_j() {
-        let d = data();
-        let n = d.obs.len();
-        let usual = ModelError {
-            thrust: 0.07,
-            torque: 0.07,
-            props: 10,
-            kind: "APC Sport",
-        };
-        let with = Judge::new(&d, &noise(n, 0.01), None, Some(usual));
-        let without = Judge::new(&d, &noise(n, 0.01), None, None);
-        // A 4 % level (a density error, a chord scale): seen against the scatter alone, within
-        // the 7 % the model usually misses.
-        let level = vec![0.04; n];
-        assert!(without.strength(&level) > 1.0);
-        assert_eq!(with.answer(&level, "density", &[], &[]), Some(AnswerKind::BelowLimit));
-        // A trend with RPM of the same size: the same.
-        let trend: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.rpm() / 4500.0).ln()).collect();
-        assert!(rms(&trend) < 0.07 && without.strength(&trend) > 1.0);
-        assert_eq!(with.answer(&trend, "re-lift", &[], &[]), Some(AnswerKind::BelowLimit));
-        // A change with J at every RPM is no level and no RPM trend: judged on the scatter.
-        let shape: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.j - 0.35)).collect();
-        assert!(rms(&shape) < 0.07 && with.strength(&shape) > 1.0);
-    }
-
-    #[test]
-    fn correlated_residuals_count_as_fewer_rows() {
-        let d = data();
-        let n = d.obs.len();
-        // A smooth error along each sweep: neighbours alike.
-        let smooth: Vec<f64> = d.obs.iter().map(|o| 0.01 * (3.0 * o.j).sin()).collect();
-        let white = noise(n, rms(&smooth));
-        let a = Judge::new(&d, &smooth, None, None);
-        let b = Judge::new(&d, &white, None, None);
-        assert!(a.noise().neighbour_correlation[0] > 0.5, "{:?}", a.noise());
-        assert_eq!(b.noise().neighbour_correlation[0], 0.0);
-        assert!(a.noise().shape_threshold[0] > 2.0 * b.noise().shape_threshold[0]);
-    }
-
-    #[test]
-    fn a_torque_tare_and_more_drag_are_told_apart_by_a_run_at_lower_rpm() {
-        let ids = vec!["torque-tare".to_string(), "drag-scale".to_string()];
-        let how = tell_apart(&data(), &ids);
-        assert!(how.contains("static run down to 1500 rpm"), "{how}");
-    }
-}
+mod tests;

@@ -183,21 +183,13 @@ pub fn verdict(d: &Diagnosis) -> String {
         let _ = write!(text, "Missing: {}.", named(&physics).join(" and "));
     }
     for a in d.verdict.answers.iter().filter(|a| a.kind == AnswerKind::Group) {
-        let err = |id: &str| {
-            d.ranking
-                .iter()
-                .find(|s| s.id == id)
-                .map_or(String::new(), |s| format!(", {} held out alone", pct(s.kfold_rms)))
-        };
-        let others: Vec<String> = a.group[1..].iter().map(|id| format!("{id}{}", err(id))).collect();
         let _ = write!(
             text,
-            "{}Missing: one of {} ({}{}) or {}: these data cannot tell them apart; {} would.",
+            "{}Missing: one of {} ({}) or {}: these data cannot tell them apart; {} would.",
             if text.is_empty() { "" } else { " " },
             a.id,
             params_text(&last.params, Some(&a.id)),
-            err(&a.id),
-            others.join(" or "),
+            others(&a.group[1..]),
             a.tell_apart.as_deref().unwrap_or("another measurement")
         );
     }
@@ -355,28 +347,6 @@ pub fn brief(d: &Diagnosis) -> Vec<String> {
     out.extend(group_clauses(d));
     out.push(unexplained_clause(d));
     out
-}
-
-/// "the data cannot tell a from b or c: <measurement> would tell them apart" for each group
-/// the verdict answers, and "not named: x (below the detection limit)" for each effect below it.
-fn group_clauses(d: &Diagnosis) -> Vec<String> {
-    d.verdict
-        .answers
-        .iter()
-        .filter_map(|a| match a.kind {
-            AnswerKind::Group => Some(format!(
-                "the data cannot tell {} from {}: {} would tell them apart",
-                a.id,
-                a.group[1..].join(" or "),
-                a.tell_apart.as_deref().unwrap_or("another measurement")
-            )),
-            AnswerKind::BelowLimit => Some(format!(
-                "{} not named: its change is below what these data detect",
-                a.id
-            )),
-            _ => None,
-        })
-        .collect()
 }
 
 /// The first clause of [`Diagnosis::unexplained`] ("2.2 % unexplained, above the 0.3 % ...").
@@ -644,112 +614,6 @@ pub fn diagnosis_html(d: &Diagnosis) -> String {
     h
 }
 
-/// The pairs of candidates these data cannot tell apart (either way), each once.
-pub fn tied_pairs(d: &Diagnosis) -> Vec<(String, String)> {
-    let mut pairs: Vec<(String, String)> = Vec::new();
-    for t in &d.separability.ties {
-        let (a, b) = if t.effect < t.imitated_by {
-            (t.effect.clone(), t.imitated_by.clone())
-        } else {
-            (t.imitated_by.clone(), t.effect.clone())
-        };
-        if !pairs.contains(&(a.clone(), b.clone())) {
-            pairs.push((a, b));
-        }
-    }
-    pairs
-}
-
-/// What these data can tell, in two sentences, before the answer: the sizes a change must
-/// reach, and the pairs they cannot tell apart.
-pub fn can_tell(d: &Diagnosis) -> String {
-    let n = &d.separability.noise;
-    let mut text = format!(
-        "What these data can tell: a change of the thrust (torque) beyond a level and an RPM trend is seen above {} ({}) RMS",
-        pct(n.shape_threshold[0]),
-        if n.rows[1] > 0 { pct(n.shape_threshold[1]) } else { "not measured".into() }
-    );
-    match n.model_error {
-        Some(m) => {
-            let _ = write!(
-                text,
-                "; a level or an RPM trend only above what the default model usually misses on {} props, {} ({}) \
-                 (validate's median over {} props).",
-                m.kind,
-                pct(m.thrust),
-                pct(m.torque),
-                m.props
-            );
-        }
-        None => text.push_str(
-            "; propbet has no validated props of this kind, so the model's own error is not a term: an effect found \
-             here may be some of the model's error.",
-        ),
-    }
-    let pairs = tied_pairs(d);
-    if pairs.is_empty() {
-        text.push_str(" They tell every pair of candidates apart within physical sizes.");
-    } else {
-        let _ = write!(
-            text,
-            " They cannot tell apart, within physical sizes: {}.",
-            pairs
-                .iter()
-                .map(|(a, b)| format!("{a} and {b}"))
-                .collect::<Vec<_>>()
-                .join("; ")
-        );
-    }
-    text
-}
-
-/// The detection limit of every candidate parameter, as a table.
-fn limits_html(d: &Diagnosis) -> String {
-    let mut h = String::from(
-        "<h2>What these data can tell</h2>\n<p class=\"note\">Each candidate's smallest detectable size: its change of the \
-         residual rows (from its Jacobian on these points) must exceed, load by load, the scatter beyond a level and an RPM \
-         trend (3 standard errors of the fit's residuals, and 3 times the repeatability where the data show it) or, for \
-         its level and RPM trend, the model's usual error on props of this kind. An effect below its limit is never named as \
-         found.</p>\n<table><tr><th class=\"text\">effect</th><th class=\"text\">parameter</th><th class=\"text\">moves</th>\
-         <th>detectable from</th><th class=\"text\">physically expected</th><th class=\"text\">cannot be told from</th></tr>\n",
-    );
-    for l in &d.separability.limits {
-        let ties: Vec<&str> = d
-            .separability
-            .ties
-            .iter()
-            .filter(|t| {
-                t.effect == l.effect
-                    && d.separability
-                        .limits
-                        .iter()
-                        .find(|x| x.effect == l.effect)
-                        .is_some_and(|x| x.param == l.param)
-            })
-            .map(|t| t.imitated_by.as_str())
-            .collect();
-        let _ = writeln!(
-            h,
-            "<tr><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"num\">{}</td>\
-             <td class=\"text\">{} to {}</td><td class=\"text\">{}</td></tr>",
-            esc(&l.effect),
-            esc(&l.param),
-            esc(&l.moves),
-            l.limit.map_or("not within its bounds".into(), |x| format!(
-                "{} {} {}",
-                if l.reference == 0.0 { "±".to_string() } else { format!("{} ±", fmt_value(l.reference)) },
-                fmt_value(x),
-                esc(&l.unit)
-            )),
-            fmt_value(l.expected.0),
-            fmt_value(l.expected.1),
-            esc(&ties.join(", "))
-        );
-    }
-    h.push_str("</table>\n");
-    h
-}
-
 /// The note under a step's effect: how the verdict answers it when not as found physics.
 fn step_note(d: &Diagnosis, s: &Step) -> String {
     let answer = d.verdict.answers.iter().find(|a| a.id == s.id);
@@ -792,9 +656,12 @@ pub fn meaning(d: &Diagnosis) -> String {
     format!("{text}. {}.", unexplained_clause(d))
 }
 
+mod limits;
 mod parts;
 mod words;
 
+pub use limits::{can_tell, tied_pairs};
+use limits::{group_clauses, limits_html, others};
 use parts::{ladder_figure, residual_panels, signature_html, trend};
 pub use words::{part_words, signature_text, EffectWords};
 

@@ -224,6 +224,42 @@ fn write_prop_outputs(spec: &ValidateSpec, prop: &str, v: &Validated, console: &
     )
 }
 
+/// What `propbet hidden` adds to the measurements: its flags.
+#[derive(Debug, Clone, clap::Args)]
+pub struct InjectRequest {
+    /// The effects added to the measurements, each at every size.
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "thrust-tare,torque-tare,rpm-scale,density"
+    )]
+    pub inject: Vec<String>,
+    /// Sizes: each effect's relative change of the static loads (0.05: 5 %).
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "0.03,0.05,0.1",
+        allow_negative_numbers = true
+    )]
+    pub sizes: Vec<f64>,
+}
+
+impl InjectRequest {
+    /// Every effect at every size, refused (naming the flag) before anything runs.
+    pub fn injections(&self) -> Result<Vec<Injection>> {
+        let mut injections = Vec::new();
+        for e in &self.inject {
+            for &s in &self.sizes {
+                injections.push(
+                    Injection::new(e.trim(), s)
+                        .map_err(|why| CommandError::Message(format!("--inject/--sizes: {why}")))?,
+                );
+            }
+        }
+        Ok(injections)
+    }
+}
+
 /// Runs `propbet hidden`: each of `injections` added to each prop's measured files and
 /// diagnosed; false when a prop could not be diagnosed (said in hidden.md).
 pub fn hidden(

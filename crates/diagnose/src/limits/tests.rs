@@ -1,0 +1,161 @@
+//! The rules of what the data can tell, on made-up signatures and residuals.
+
+use super::*;
+use crate::Observation;
+use propbet_effects::{Hook, Param};
+
+/// A stand-in effect: only its id and parameters matter to the judge.
+#[derive(Debug)]
+struct Named(&'static str, Vec<Param>);
+
+impl Effect for Named {
+    fn id(&self) -> &str {
+        self.0
+    }
+    fn params(&self) -> &[Param] {
+        &self.1
+    }
+    fn hooks(&self) -> &[Hook] {
+        &[Hook::Loads]
+    }
+    fn explanation(&self) -> &str {
+        ""
+    }
+}
+
+fn named(id: &'static str) -> Arc<dyn Effect> {
+    Arc::new(Named(id, vec![Param::new("x", "-", 0.0, (-1.0, 1.0), 0.01, "")]))
+}
+
+/// Thrust-only points: 4 RPMs x 8 J, one file per RPM.
+fn data() -> Data {
+    let mut obs = Vec::new();
+    for (f, rpm) in [3000.0, 4000.0, 5000.0, 6000.0].into_iter().enumerate() {
+        for k in 0..8 {
+            let j = 0.1 * f64::from(k);
+            obs.push(Observation {
+                index: obs.len(),
+                file: f,
+                label: String::new(),
+                omega: propbet_units::rpm_to_omega(rpm),
+                v: 0.0,
+                j,
+                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
+                thrust: 1.0,
+                torque: None,
+                rpm_group: rpm as i64,
+                rpm_name: String::new(),
+                mach_tip: 0.1,
+            });
+        }
+    }
+    Data {
+        obs,
+        thrust_floor: 0.05,
+        torque_floor: 1e-12,
+    }
+}
+
+/// White residuals of RMS `sd` (alternating signs: no correlation between neighbours).
+fn noise(n: usize, sd: f64) -> Vec<f64> {
+    (0..n).map(|i| if i % 2 == 0 { sd } else { -sd }).collect()
+}
+
+fn sig(id: &'static str, col: Vec<f64>) -> Signature {
+    Signature {
+        effect: named(id),
+        reference: vec![0.0],
+        columns: vec![Some(col)],
+    }
+}
+
+#[test]
+fn a_change_below_the_detection_limit_is_never_named() {
+    let d = data();
+    let n = d.obs.len();
+    let judge = Judge::new(&d, &noise(n, 0.01), None, None);
+    // 3 standard errors of 1 % over 32 uncorrelated rows: 0.53 %.
+    let t = judge.noise().shape_threshold[0];
+    assert!((t - 3.0 * 0.01 / (n as f64).sqrt()).abs() < 1e-12, "{t}");
+    let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
+    let weak: Vec<f64> = j.iter().map(|x| 0.5 * t * x / rms(&j)).collect();
+    let strong: Vec<f64> = j.iter().map(|x| 3.0 * t * x / rms(&j)).collect();
+    assert_eq!(judge.answer(&weak, "a", &[]), Some(AnswerKind::BelowLimit));
+    assert_eq!(judge.answer(&strong, "a", &[]), None);
+    // Its detection limit: the size whose change is just detectable.
+    let sep = separability(&judge, &[sig("a", j.iter().map(|x| x / rms(&j)).collect())]);
+    assert!((sep.limits[0].limit.unwrap() - t).abs() < 1e-9, "{:?}", sep.limits[0]);
+}
+
+#[test]
+fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
+    let d = data();
+    let n = d.obs.len();
+    let judge = Judge::new(&d, &noise(n, 0.01), None, None);
+    let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
+    let change: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
+    // B moves the rows as the change does (2x per unit): it reproduces it inside its bounds.
+    let alike = sig("b", j.iter().map(|x| 2.0 * x).collect());
+    // C moves them with the square of J around its mean: orthogonal to the change.
+    let q: Vec<f64> = j.iter().map(|x| x * x - 0.0525).collect();
+    let other = sig("c", q);
+    assert_eq!(judge.answer(&change, "a", std::slice::from_ref(&other)), None);
+    assert_eq!(
+        judge.answer(&change, "a", &[alike.clone(), other.clone()]),
+        Some(AnswerKind::Group)
+    );
+    assert_eq!(judge.group(&change, "a", &[alike.clone(), other]), ["a", "b"]);
+    // B needs x = 0.025 for it; bounded to 0.01 it cannot follow: told apart.
+    let bounded = Signature {
+        effect: Arc::new(Named("b", vec![Param::new("x", "-", 0.0, (0.0, 0.01), 0.001, "")])),
+        ..alike
+    };
+    assert_eq!(judge.answer(&change, "a", &[bounded]), None);
+}
+
+#[test]
+fn the_model_error_holds_a_level_and_an_rpm_trend_not_a_shape_in_j() {
+    let d = data();
+    let n = d.obs.len();
+    let usual = ModelError {
+        thrust: 0.07,
+        torque: 0.07,
+        props: 10,
+        kind: "APC Sport",
+    };
+    let with = Judge::new(&d, &noise(n, 0.01), None, Some(usual));
+    let without = Judge::new(&d, &noise(n, 0.01), None, None);
+    // A 4 % level (a density error, a chord scale): seen against the scatter alone, within
+    // the 7 % the model usually misses.
+    let level = vec![0.04; n];
+    assert!(without.strength(&level) > 1.0);
+    assert_eq!(with.answer(&level, "density", &[]), Some(AnswerKind::BelowLimit));
+    // A trend with RPM of the same size: the same.
+    let trend: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.rpm() / 4500.0).ln()).collect();
+    assert!(rms(&trend) < 0.07 && without.strength(&trend) > 1.0);
+    assert_eq!(with.answer(&trend, "re-lift", &[]), Some(AnswerKind::BelowLimit));
+    // A change with J at every RPM is no level and no RPM trend: judged on the scatter.
+    let shape: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.j - 0.35)).collect();
+    assert!(rms(&shape) < 0.07 && with.strength(&shape) > 1.0);
+}
+
+#[test]
+fn correlated_residuals_count_as_fewer_rows() {
+    let d = data();
+    let n = d.obs.len();
+    // A smooth error along each sweep: neighbours alike.
+    let smooth: Vec<f64> = d.obs.iter().map(|o| 0.01 * (3.0 * o.j).sin()).collect();
+    let white = noise(n, rms(&smooth));
+    let a = Judge::new(&d, &smooth, None, None);
+    let b = Judge::new(&d, &white, None, None);
+    assert!(a.noise().neighbour_correlation[0] > 0.5, "{:?}", a.noise());
+    assert_eq!(b.noise().neighbour_correlation[0], 0.0);
+    assert!(a.noise().shape_threshold[0] > 2.0 * b.noise().shape_threshold[0]);
+}
+
+#[test]
+fn a_torque_tare_and_more_drag_are_told_apart_by_a_run_at_lower_rpm() {
+    let ids = vec!["torque-tare".to_string(), "drag-scale".to_string()];
+    let how = tell_apart(&data(), &ids);
+    assert!(how.contains("static run down to 1500 rpm"), "{how}");
+}

@@ -1,0 +1,150 @@
+//! What the data can tell, as the report says it before the answer: the one-sentence summary
+//! and the table of detection limits.
+
+use std::fmt::Write as _;
+
+use propbet_diagnose::discover::Diagnosis;
+use propbet_diagnose::limits::AnswerKind;
+use propbet_effects::fmt_value;
+
+use super::pct;
+use crate::page::esc;
+
+/// The pairs of candidates these data cannot tell apart (either way), each once.
+pub fn tied_pairs(d: &Diagnosis) -> Vec<(String, String)> {
+    let mut pairs: Vec<(String, String)> = Vec::new();
+    for t in &d.separability.ties {
+        let (a, b) = if t.effect < t.imitated_by {
+            (t.effect.clone(), t.imitated_by.clone())
+        } else {
+            (t.imitated_by.clone(), t.effect.clone())
+        };
+        if !pairs.contains(&(a.clone(), b.clone())) {
+            pairs.push((a, b));
+        }
+    }
+    pairs
+}
+
+/// What these data can tell, in two sentences, before the answer: the sizes a change must
+/// reach, and the pairs they cannot tell apart.
+pub fn can_tell(d: &Diagnosis) -> String {
+    let n = &d.separability.noise;
+    let mut text = format!(
+        "What these data can tell: a change of the thrust (torque) beyond a level and an RPM trend is seen above {} ({}) RMS",
+        pct(n.shape_threshold[0]),
+        if n.rows[1] > 0 { pct(n.shape_threshold[1]) } else { "not measured".into() }
+    );
+    match n.model_error {
+        Some(m) => {
+            let _ = write!(
+                text,
+                "; a level or an RPM trend only above what the default model usually misses on {} props, {} ({}) \
+                 (validate's median over {} props).",
+                m.kind,
+                pct(m.thrust),
+                pct(m.torque),
+                m.props
+            );
+        }
+        None => text.push_str(
+            "; propbet has no validated props of this kind, so the model's own error is not a term: an effect found \
+             here may be some of the model's error.",
+        ),
+    }
+    let pairs = tied_pairs(d);
+    if pairs.is_empty() {
+        text.push_str(" They tell every pair of candidates apart within physical sizes.");
+    } else {
+        let _ = write!(
+            text,
+            " They cannot tell apart, within physical sizes: {}.",
+            pairs
+                .iter()
+                .map(|(a, b)| format!("{a} and {b}"))
+                .collect::<Vec<_>>()
+                .join("; ")
+        );
+    }
+    text
+}
+
+/// The detection limit of every candidate parameter, as a table.
+pub(super) fn limits_html(d: &Diagnosis) -> String {
+    let mut h = String::from(
+        "<h2>What these data can tell</h2>\n<p class=\"note\">Each candidate's smallest detectable size: its change of the \
+         residual rows (from its Jacobian on these points) must exceed, load by load, the scatter beyond a level and an RPM \
+         trend (3 standard errors of the fit's residuals, and 3 times the repeatability where the data show it) or, for \
+         its level and RPM trend, the model's usual error on props of this kind. An effect below its limit is never named as \
+         found.</p>\n<table><tr><th class=\"text\">effect</th><th class=\"text\">parameter</th><th class=\"text\">moves</th>\
+         <th>detectable from</th><th class=\"text\">physically expected</th><th class=\"text\">cannot be told from</th></tr>\n",
+    );
+    for l in &d.separability.limits {
+        let ties: Vec<&str> = d
+            .separability
+            .ties
+            .iter()
+            .filter(|t| {
+                t.effect == l.effect
+                    && d.separability
+                        .limits
+                        .iter()
+                        .find(|x| x.effect == l.effect)
+                        .is_some_and(|x| x.param == l.param)
+            })
+            .map(|t| t.imitated_by.as_str())
+            .collect();
+        let _ = writeln!(
+            h,
+            "<tr><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"text\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"text\">{} to {}</td><td class=\"text\">{}</td></tr>",
+            esc(&l.effect),
+            esc(&l.param),
+            esc(&l.moves),
+            l.limit.map_or("not within its bounds".into(), |x| format!(
+                "{} {} {}",
+                if l.reference == 0.0 { "±".to_string() } else { format!("{} ±", fmt_value(l.reference)) },
+                fmt_value(x),
+                esc(&l.unit)
+            )),
+            fmt_value(l.expected.0),
+            fmt_value(l.expected.1),
+            esc(&ties.join(", "))
+        );
+    }
+    h.push_str("</table>\n");
+    h
+}
+
+/// The closest of the candidates `ids` by name, the rest counted: "tip-loss, re-scaling or 5
+/// others".
+pub(super) fn others(ids: &[String]) -> String {
+    const NAMED: usize = 2;
+    match ids.len() {
+        0 => String::new(),
+        n if n <= NAMED + 1 => ids.join(" or "),
+        n => format!("{} or {} others", ids[..NAMED].join(", "), n - NAMED),
+    }
+}
+
+/// "the data cannot tell a from b or c: <measurement> would tell them apart" for each group
+/// the verdict answers, and "not named: x (below the detection limit)" for each effect below it.
+pub(super) fn group_clauses(d: &Diagnosis) -> Vec<String> {
+    d.verdict
+        .answers
+        .iter()
+        .filter_map(|a| match a.kind {
+            AnswerKind::Group => Some(format!(
+                "the data cannot tell {} from {}: {} would tell them apart",
+                a.id,
+                others(&a.group[1..]),
+                a.tell_apart.as_deref().unwrap_or("another measurement")
+            )),
+            AnswerKind::BelowLimit => Some(format!(
+                "{} not named: its change is below what these data detect",
+                a.id
+            )),
+            _ => None,
+        })
+        .collect()
+}
