@@ -307,6 +307,21 @@ fn every_builtin_effect_is_found_on_two_props() {
             "{spec} on {name}: held-out error falls by only {:.0} %",
             100.0 * fall(&j)
         );
+        // The verdict names it (alone, or in a group the data cannot split) and nothing else.
+        let answers = j["diagnosis"]["verdict"]["answers"].as_array().unwrap();
+        let named: Vec<&str> = answers
+            .iter()
+            .filter(|a| a["kind"] == "found" || a["kind"] == "calibration")
+            .map(|a| a["id"].as_str().unwrap())
+            .collect();
+        let grouped = answers
+            .iter()
+            .any(|a| a["kind"] == "group" && a["group"].as_array().unwrap().iter().any(|g| g == id));
+        assert!(
+            named == [id] || (named.is_empty() && grouped),
+            "{spec} on {name}: the verdict answers {answers:?}"
+        );
+        eprintln!("{spec} on {name}: {}", if grouped { "group" } else { "alone" });
         *seen.entry(id).or_default() += 1;
     }
     assert_eq!(seen.len(), 15, "every built-in effect is tested");
