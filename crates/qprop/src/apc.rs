@@ -69,9 +69,16 @@ pub fn pe0_unknown(uiuc: &str) -> String {
     }
 }
 
-/// The diameter [m] from a UIUC size in inches (`apcsf_10x4.7` → 10 in).
+/// Largest number a UIUC name's size gives in inches: UIUC's tunnel takes props up to about 22
+/// inches, and volume 2 names its micro props in millimetres (`pl_57x20`: 57 mm, 2.2 in), so a
+/// size of this or more is millimetres.
+pub const UIUC_MM_ABOVE: f64 = 30.0;
+
+/// The diameter [m] from a UIUC size: inches (`apcsf_10x4.7` → 10 in), or millimetres where
+/// the number cannot be inches ([`UIUC_MM_ABOVE`]: `pl_57x20` → 57 mm).
 pub fn uiuc_diameter(uiuc: &str) -> Option<f64> {
-    diameter_before_x(uiuc.split_once('_')?.1)
+    let d = diameter_before_x(uiuc.split_once('_')?.1)?;
+    Some(if d / 0.0254 >= UIUC_MM_ABOVE { d / 0.0254 * 1e-3 } else { d })
 }
 
 /// The diameter a propeller's size names (`10x4.7SF`, `4.2x4`: inches before the `x`, as
@@ -307,6 +314,10 @@ mod tests {
         assert_eq!(pe0_name("apcff_4.2x4").as_deref(), Some("42x4-PERF.PE0"));
         assert_eq!(pe0_name("gwsdd_9x5"), None);
         assert!((uiuc_diameter("apcff_4.2x4").unwrap() - 4.2 * 0.0254).abs() < 1e-15);
+        // Volume 2's micro props are named in millimetres.
+        assert!((uiuc_diameter("pl_57x20").unwrap() - 0.057).abs() < 1e-15);
+        assert!((uiuc_diameter("pl_57x20_geom.txt").unwrap() - 0.057).abs() < 1e-15);
+        assert!((uiuc_diameter("apce_21x14").unwrap() - 21.0 * 0.0254).abs() < 1e-15);
         assert_eq!(per3_name("apcsf_10x4.7").as_deref(), Some("PER3_10x47SF.dat"));
         assert_eq!(pe0_name("apc29ff_9x5").as_deref(), Some("9x5-PERF.PE0"));
         assert_eq!(pe0_name("apcmr_10x4.5").as_deref(), Some("10x45MR-PERF.PE0"));
