@@ -105,8 +105,10 @@ fn every_documented_command_runs() {
                 "{}: not a propbet command: {cmd}",
                 page.display()
             );
-            let o = Command::new("bash")
-                .args(["-c", &cmd])
+            // Under a terminal (util-linux's `script`), as a person reads it: long sentences are
+            // wrapped there (into a pipe each message is one line).
+            let o = Command::new("script")
+                .args(["-qefc", &cmd, "/dev/null"])
                 .env("PATH", &path)
                 .env("PROPBET_CACHE_DIR", root.path().join("cache"))
                 .current_dir(&dir)
@@ -118,11 +120,12 @@ fn every_documented_command_runs() {
                 "{}: `{cmd}` exited {:?}: {}",
                 page.display(),
                 o.status.code(),
-                stderr(&o)
+                String::from_utf8_lossy(&o.stdout)
             );
             // A terminal a person reads: no line over 160 characters (a table on standard
-            // output, CSV or Markdown, is data, not a sentence).
-            let printed = format!("{}\n{}", String::from_utf8_lossy(&o.stdout), stderr(&o));
+            // output, CSV or Markdown, is data, not a sentence). `script` gives both streams on
+            // standard output.
+            let printed = String::from_utf8_lossy(&o.stdout).into_owned();
             for line in printed.split(['\n', '\r']) {
                 // A table row is data; an error or a warning is read whole by scripts and the
                 // Python package (`output::for_terminal` leaves them so).

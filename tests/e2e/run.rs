@@ -30,11 +30,15 @@ fn the_scanned_case_from_scan_to_report() {
     );
     let text = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(text.contains("APC 10x4.7 Slow Flyer: 6 stages"), "{text}");
-    // A short terminal: at most 25 lines, none over 160 characters.
+    // A short answer: at most 25 lines; into a pipe each message is one line, never wrapped
+    // (the widths under a terminal: `the_tours_commands_under_a_terminal`).
     let terminal = format!("{}{text}", stderr(&o));
     let lines: Vec<&str> = terminal.lines().collect();
     assert!(lines.len() <= 25, "{} lines:\n{terminal}", lines.len());
-    assert!(lines.iter().all(|l| l.chars().count() <= 160), "{terminal}");
+    assert!(
+        lines.iter().all(|l| !l.starts_with("    ")),
+        "a wrapped continuation in a pipe: {terminal}"
+    );
     assert!(terminal.contains("APC's prediction: +14.4 %"), "{terminal}");
     // The report leads with the answer: the headline, the diagnosis and the outputs before the
     // geometry; the ranking, the ladder and the verdict agree.
@@ -697,4 +701,53 @@ fn the_readmes_claims_about_outputs_hold() {
     assert!(std::fs::read_to_string(dir.path().join("p.csv"))
         .unwrap()
         .starts_with("rpm,"));
+}
+
+/// Into a pipe or a file every message of propbet's is one line, whatever its length (a script
+/// reads standard error line by line); under a terminal the same sentence is wrapped.
+#[test]
+fn a_message_is_one_line_except_under_a_terminal() {
+    let dir = tempfile::tempdir().unwrap();
+    let pe0 = repo().join("props/apcsp_10x7/10x7-PERF.PE0").display().to_string();
+    let args = [
+        "predict",
+        "--prop",
+        &pe0,
+        "--rpm",
+        "5000",
+        "--engine",
+        "neuralfoil",
+        "--out",
+        "p.csv",
+    ];
+    let o = run(&args, dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let err = stderr(&o);
+    let line = err
+        .lines()
+        .find(|l| l.starts_with("propbet: Expected accuracy"))
+        .unwrap_or_else(|| panic!("{err}"));
+    assert!(
+        line.contains("uncertainty band held") && line.chars().count() > 160,
+        "{err}"
+    );
+    let cmd = format!(
+        "{} {}",
+        env!("CARGO_BIN_EXE_propbet"),
+        args.join(" ").replace("p.csv", "q.csv")
+    );
+    let t = std::process::Command::new("script")
+        .args(["-qefc", &cmd, "/dev/null"])
+        .current_dir(dir.path())
+        .output()
+        .expect("script (util-linux) gives the command a terminal");
+    let shown = String::from_utf8_lossy(&t.stdout).replace('\r', "");
+    let first = shown
+        .lines()
+        .find(|l| l.starts_with("propbet: Expected accuracy"))
+        .unwrap_or_else(|| panic!("{shown}"));
+    assert!(
+        first.chars().count() <= 100 && !first.contains("uncertainty band held"),
+        "{shown}"
+    );
 }

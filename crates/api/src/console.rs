@@ -24,6 +24,30 @@ pub trait Console: Sync {
     fn export_command(&self, spec: &PredictSpec, out: &std::path::Path) -> String;
     /// A diagnosis's final model as the `--effect` arguments that add it to a model.
     fn effect_args(&self, diagnosis: &Diagnosis) -> Vec<String>;
+    /// Whether standard output (`stdout`) or standard error is a terminal a person reads: long
+    /// sentences are wrapped there, and only there (a script or a log file reads each message
+    /// as one line).
+    fn is_terminal(&self, _stdout: bool) -> bool {
+        false
+    }
+    /// A sentence on standard output: wrapped at [`TERM_WIDTH`] after the indents `first` and
+    /// `rest` on a terminal, one line after `first` otherwise.
+    fn out_sentence(&self, text: &str, first: &str, rest: &str) {
+        self.out(&sentence(text, first, rest, self.is_terminal(true)));
+    }
+    /// The same on standard error.
+    fn err_sentence(&self, text: &str, first: &str, rest: &str) {
+        self.err(&sentence(text, first, rest, self.is_terminal(false)));
+    }
+}
+
+/// `text` after `first`, wrapped ([`wrapped`]) when `terminal`.
+fn sentence(text: &str, first: &str, rest: &str, terminal: bool) -> String {
+    if terminal {
+        wrapped(text, first, rest)
+    } else {
+        format!("{first}{text}")
+    }
 }
 
 /// The terminal's width for propbet's sentences.
@@ -41,13 +65,13 @@ pub fn wrapped(text: &str, first: &str, rest: &str) -> String {
 }
 
 /// A Markdown page line by line on standard output: its tables as they are (data), its
-/// sentences wrapped.
+/// sentences wrapped on a terminal.
 pub fn print_page(console: &dyn Console, md: &str) {
     for line in md.lines() {
         if line.starts_with('|') {
             console.out(line);
         } else {
-            console.out(&wrapped(line, "", ""));
+            console.out_sentence(line, "", "");
         }
     }
 }

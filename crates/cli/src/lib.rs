@@ -8,12 +8,14 @@ use clap::{Parser, Subcommand};
 /// `eprintln!` that does not panic when standard error is closed (`propbet ... 2>&- `, or a
 /// pipe whose reader has gone): a message nobody can read is not a reason to abort. Defined
 /// before the modules, so it replaces the standard macro in all of them.
-/// A sentence longer than a terminal line (160 characters) is wrapped at 100 columns
-/// (`output::for_terminal`); a table row is data and stays whole.
+/// On a terminal, a sentence longer than a terminal line (160 characters) is wrapped at 100
+/// columns (`output::for_terminal`); a table row is data and stays whole; into a pipe or a
+/// file every message stays one line.
 macro_rules! eprintln {
     ($($t:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stderr(), "{}", $crate::output::for_terminal(&format!($($t)*)));
+        let tty = std::io::IsTerminal::is_terminal(&std::io::stderr());
+        let _ = writeln!(std::io::stderr(), "{}", $crate::output::for_terminal(&format!($($t)*), tty));
     }};
 }
 
@@ -21,7 +23,8 @@ macro_rules! eprintln {
 macro_rules! println {
     ($($t:tt)*) => {{
         use std::io::Write as _;
-        let _ = writeln!(std::io::stdout(), "{}", $crate::output::for_terminal(&format!($($t)*)));
+        let tty = std::io::IsTerminal::is_terminal(&std::io::stdout());
+        let _ = writeln!(std::io::stdout(), "{}", $crate::output::for_terminal(&format!($($t)*), tty));
     }};
 }
 

@@ -52,14 +52,24 @@ impl propbet_api::console::Console for Terminal {
     fn effect_args(&self, diagnosis: &Diagnosis) -> Vec<String> {
         crate::argv::effect_args(diagnosis)
     }
+
+    fn is_terminal(&self, stdout: bool) -> bool {
+        use std::io::IsTerminal;
+        if stdout {
+            std::io::stdout().is_terminal()
+        } else {
+            std::io::stderr().is_terminal()
+        }
+    }
 }
 
-/// `text` as the terminal gets it: each line longer than 160 characters wrapped at
-/// [`TERM_WIDTH`](propbet_api::console::TERM_WIDTH) (its continuation indented by two spaces
+/// `text` as the stream gets it: on a `terminal`, each line longer than 160 characters wrapped
+/// at [`TERM_WIDTH`](propbet_api::console::TERM_WIDTH) (its continuation indented by two spaces
 /// more than it), unless it is a table row (CSV, or Markdown's `|`), which is data, or an
-/// error or a warning, which is read whole.
-pub fn for_terminal(text: &str) -> String {
-    if text.lines().all(|l| l.chars().count() <= 160) {
+/// error or a warning, which is read whole; into a pipe or a file, as it is (a script reads
+/// each message as one line).
+pub fn for_terminal(text: &str, terminal: bool) -> String {
+    if !terminal || text.lines().all(|l| l.chars().count() <= 160) {
         return text.to_string();
     }
     text.lines()

@@ -78,7 +78,11 @@ pub const UIUC_MM_ABOVE: f64 = 30.0;
 /// the number cannot be inches ([`UIUC_MM_ABOVE`]: `pl_57x20` → 57 mm).
 pub fn uiuc_diameter(uiuc: &str) -> Option<f64> {
     let d = diameter_before_x(uiuc.split_once('_')?.1)?;
-    Some(if d / 0.0254 >= UIUC_MM_ABOVE { d / 0.0254 * 1e-3 } else { d })
+    Some(if d / 0.0254 >= UIUC_MM_ABOVE {
+        d / 0.0254 * 1e-3
+    } else {
+        d
+    })
 }
 
 /// The diameter a propeller's size names (`10x4.7SF`, `4.2x4`: inches before the `x`, as

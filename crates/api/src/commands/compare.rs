@@ -11,7 +11,7 @@ use propbet_settings::spec::{CompareSpec, StageSpec};
 
 use super::predict::load_model_at;
 use crate::compare::ComparedPoint;
-use crate::console::{wrapped, Console};
+use crate::console::Console;
 use crate::measure::{MeasuredSet, Refused};
 use crate::CommandResult as Result;
 
@@ -74,7 +74,7 @@ pub fn compare(spec: &CompareSpec, console: &dyn Console) -> Result<(bool, Writt
     let written = write(spec, &model, &c, other.as_ref(), electric.as_ref(), console)?;
     print(spec, &c, written.reference.as_ref(), console);
     if let Some(e) = &electric {
-        console.out(&wrapped(&propbet_report::compare::electric_sentence(e), "", "  "));
+        console.out_sentence(&propbet_report::compare::electric_sentence(e), "", "  ");
     }
     Ok((c.clean(), written))
 }

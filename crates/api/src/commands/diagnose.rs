@@ -7,7 +7,7 @@ use propbet_settings::spec::{DiagnoseSpec, StageSpec};
 
 use super::compare::{print_measured, warn_faulty_rows};
 use super::predict::load_model_at;
-use crate::console::{wrapped, Console};
+use crate::console::Console;
 use crate::CommandResult as Result;
 
 /// Runs a diagnose stage of `spec`: its files written, its answer told; whether it ran clean
@@ -59,10 +59,10 @@ pub fn print(spec: &DiagnoseSpec, d: &Diagnosed, console: &dyn Console) {
 
 /// The diagnosis told: verdict, where the baseline fails, ranking, ladder.
 pub fn print_result(d: &crate::diagnose::Diagnosis, console: &dyn Console) {
-    console.out(&wrapped(&report::verdict(d), "", ""));
+    console.out_sentence(&report::verdict(d), "", "");
     console.out("where the baseline fails:");
     for s in &d.before {
-        console.out(&wrapped(&report::signature_text(s), "  ", "    "));
+        console.out_sentence(&report::signature_text(s), "  ", "    ");
     }
     console.out("ranking (held-out RMS, p, significant):");
     for (i, s) in d.ranking.iter().enumerate() {
@@ -79,7 +79,7 @@ pub fn print_result(d: &crate::diagnose::Diagnosis, console: &dyn Console) {
             )),
         }
         if let Some(r) = remark {
-            console.out(&wrapped(&format!("({r})"), "      ", "       "));
+            console.out_sentence(&format!("({r})"), "      ", "       ");
         }
     }
     console.out("ladder (held-out error; the thrust error's trend with J at fixed RPM and with RPM at fixed J):");

@@ -7,7 +7,7 @@ use propbet_pipeline::stages::SideProp;
 use propbet_report::table::columns::Table;
 use propbet_settings::spec::{AirSpec, MeasuredSpec, ModelSpec, SweepAxis};
 
-use crate::console::{emit, wrapped, Console};
+use crate::console::{emit, Console};
 use crate::motor::{FitKind, Motor, MotorFile, Supply};
 use crate::CommandResult as Result;
 
@@ -30,14 +30,10 @@ pub fn fit(
         console.err(&format!("propbet motor fit: {l}"));
     }
     for n in &f.notes {
-        console.err(&wrapped(&format!("propbet: note: {n}"), "", "  "));
+        console.err_sentence(&format!("propbet: note: {n}"), "", "  ");
     }
     if let Some(w) = &f.misses {
-        console.err(&wrapped(
-            &format!("propbet: where the motor model misses: {w}"),
-            "",
-            "  ",
-        ));
+        console.err_sentence(&format!("propbet: where the motor model misses: {w}"), "", "  ");
     }
     if let Some(out) = out {
         console.err(&format!("propbet motor fit: -> {}", out.display()));
@@ -129,7 +125,7 @@ pub fn compare_props(c: &PropsCommand, console: &dyn Console) -> Result<bool> {
     crate::files::refuse_inputs_inside(&c.out, &inputs)?;
     crate::outputs::props::outputs(&props, &setup)?.write(&c.out, &c.command, &inputs)?;
     for a in propbet_report::props::answer(&props, &setup) {
-        console.out(&wrapped(&a, "", "  "));
+        console.out_sentence(&a, "", "  ");
     }
     console.out(&format!(
         "{:>4}  {:<28} {:>9} {:>9} {:>10} {:>8}",

@@ -10,7 +10,7 @@ use propbet_settings::spec::PolarsSpec;
 use propbet_settings::values::parse_fraction;
 use propbet_settings::values::parse_list;
 
-use crate::console::{emit, wrapped, Console};
+use crate::console::{emit, Console};
 use crate::polar::{Polar, QpropFit};
 use crate::qprop::write_prop;
 use crate::CommandResult as Result;
@@ -220,7 +220,7 @@ pub fn print_polars(spec: &PolarsSpec, input: &PolarsInput, p: &Polars, console:
                 spec.geometry.display()
             ),
         };
-        console.err(&wrapped(&line, "", "  "));
+        console.err_sentence(&line, "", "  ");
     }
     if let Some(e) = &p.export {
         console.err(&e.sentence());

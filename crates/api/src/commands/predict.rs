@@ -8,7 +8,7 @@ use propbet_report::table::columns::Table;
 use propbet_report::table::powered::PoweredRun;
 use propbet_settings::spec::{ModelSpec, PoweredSpec, PredictSpec, SweepAxis};
 
-use crate::console::{emit, wrapped, Console};
+use crate::console::{emit, Console};
 use crate::motor::MotorFile;
 use crate::CommandResult as Result;
 
@@ -31,7 +31,7 @@ pub fn load_model_at(
     }
     let loaded = loaded?;
     if let Some(p) = &loaded.polars {
-        console.err(&wrapped(&format!("propbet: {p}"), "", "  "));
+        console.err_sentence(&format!("propbet: {p}"), "", "  ");
     }
     for w in &loaded.warnings {
         console.err(&format!("propbet: warning: {w}"));
@@ -92,7 +92,7 @@ pub fn predict(spec: &PredictSpec, console: &dyn Console) -> Result<bool> {
     if file.and_then(crate::compare::expected::family_of_file).is_some() {
         let table = crate::compare::expected::shipped();
         if let Some(e) = crate::compare::expected::sentence(file, &table) {
-            console.err(&wrapped(&format!("propbet: {e}"), "", "  "));
+            console.err_sentence(&format!("propbet: {e}"), "", "  ");
         }
     }
     Ok(failed == 0)
