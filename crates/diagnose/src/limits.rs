@@ -5,9 +5,9 @@
 //! difference of one step of the parameter's scale, towards the inside of its bounds).
 //!
 //! **What a change must exceed to be seen.** A change of the residual rows is split, load by
-//! load (thrust rows, torque rows), into the part a level and a trend with RPM make (its
-//! least-squares projection on a constant and ln RPM) and the rest. The level-and-trend part
-//! is the shape of the default model's own error on props of this kind (validate's median
+//! load (thrust rows, torque rows), into the part a level and trends with RPM and with J make
+//! (its least-squares projection on a constant, ln RPM and J) and the rest. The
+//! level-and-trend part is the shape of the default model's own error on props of this kind (validate's median
 //! error of their family, [`ModelError`]): it must exceed that error to be told from it. The
 //! rest must exceed [`Z`] standard errors of the fit's residual RMS over the load's rows and
 //! [`REPEATABILITY_FACTOR`] times the measurements' repeatability, where they
@@ -72,7 +72,8 @@ pub struct Noise {
     /// The default model's usual error on props of this kind (None: no validated props of this
     /// kind; the term is left out, and the report says so).
     pub model_error: Option<ModelError>,
-    /// What the rest of a change (beyond a level and an RPM trend) must exceed, by load.
+    /// What the rest of a change (beyond a level and trends with RPM and J, where the model's
+    /// usual error is a term) must exceed, by load.
     pub shape_threshold: [f64; 2],
     /// The final residuals' correlation between neighbouring points of a file, by load (what
     /// makes the rows count as fewer independent ones).
@@ -181,13 +182,10 @@ impl Verdict {
 pub struct Judge {
     /// Row kinds (torque or thrust) in [`Data::rows`]' order.
     torque: Vec<bool>,
-    /// ln RPM of each row's point, centred per load (0 where the RPM hardly varies).
-    ln_rpm: Vec<f64>,
+    /// ln RPM and J of each row's point: the trends of the model's usual error.
+    trends: Vec<[f64; 2]>,
     noise: Noise,
 }
-
-/// Smallest spread of ln RPM over a load's rows for a trend with RPM to be a term (3 %).
-const RPM_SPREAD: f64 = 0.03;
 
 impl Judge {
     /// The judge of `data`, whose final model leaves `final_residuals`.
@@ -199,7 +197,10 @@ impl Judge {
     ) -> Self {
         let rows = data.rows();
         let torque: Vec<bool> = rows.iter().map(|r| r.torque).collect();
-        let mut ln_rpm: Vec<f64> = rows.iter().map(|r| data.obs[r.point].rpm().max(1.0).ln()).collect();
+        let trends: Vec<[f64; 2]> = rows
+            .iter()
+            .map(|r| [data.obs[r.point].rpm().max(1.0).ln(), data.obs[r.point].j])
+            .collect();
         let mut counts = [0usize; 2];
         let mut fit_rms = [0.0; 2];
         let mut shape_threshold = [0.0; 2];
@@ -210,11 +211,6 @@ impl Judge {
             counts[k] = idx.len();
             if idx.is_empty() {
                 continue;
-            }
-            let mean = idx.iter().map(|&i| ln_rpm[i]).sum::<f64>() / idx.len() as f64;
-            let spread = idx.iter().fold(0.0f64, |a, &i| a.max((ln_rpm[i] - mean).abs()));
-            for &i in &idx {
-                ln_rpm[i] = if spread < RPM_SPREAD { 0.0 } else { ln_rpm[i] - mean };
             }
             let r: Vec<f64> = idx
                 .iter()
@@ -233,7 +229,7 @@ impl Judge {
         }
         Self {
             torque,
-            ln_rpm,
+            trends,
             noise: Noise {
                 rows: counts,
                 fit_rms,
@@ -251,17 +247,27 @@ impl Judge {
     }
 
     /// The effect `id`'s own id and the candidates of `sigs` that reproduce `change`, inside
-    /// their bounds, up to an undetectable remainder (an effect of the same stack among them: a
-    /// pair fitted together that can stand in for each other, a density and an RPM scale that
-    /// cancel, is no answer either).
-    pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature]) -> Vec<String> {
+    /// their bounds, up to an undetectable remainder, with the other effects of the stack
+    /// (`stack`: id and current values) free to move within theirs as a refit would (an effect
+    /// of the stack among the candidates: a pair fitted together that can stand in for each
+    /// other, a density and an RPM scale that cancel, is no answer either). The closest first.
+    pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Vec<String> {
+        let at = |name: &str| stack.iter().find(|(i, _)| *i == name).map(|(_, v)| *v);
         let mut close: Vec<(f64, String)> = sigs
             .iter()
             .filter(|s| s.effect.id() != id)
-            .map(|s| (self.strength(&imitate(change, s, true)), s.effect.id().to_string()))
+            .map(|s| {
+                let mut cols = columns(s, at(s.effect.id()), true);
+                for o in sigs {
+                    let other = o.effect.id();
+                    if other != id && other != s.effect.id() && at(other).is_some() {
+                        cols.extend(columns(o, at(other), true));
+                    }
+                }
+                (self.strength(&imitate_by(change, &cols)), s.effect.id().to_string())
+            })
             .filter(|(st, _)| *st < 1.0)
             .collect();
-        // The closest imitation first.
         close.sort_by(|a, b| a.0.total_cmp(&b.0));
         std::iter::once(id.to_string())
             .chain(close.into_iter().map(|c| c.1))
@@ -270,10 +276,10 @@ impl Judge {
 
     /// How a change the effect `id` makes is answered, before its expected range is looked at:
     /// below the limit, one of a group, or (None) alone.
-    pub fn answer(&self, change: &[f64], id: &str, sigs: &[Signature]) -> Option<AnswerKind> {
+    pub fn answer(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Option<AnswerKind> {
         if self.strength(change) < 1.0 {
             Some(AnswerKind::BelowLimit)
-        } else if self.group(change, id, sigs).len() > 1 {
+        } else if self.group(change, id, sigs, stack).len() > 1 {
             Some(AnswerKind::Group)
         } else {
             None
@@ -281,7 +287,7 @@ impl Judge {
     }
 
     /// A change of the residual rows over what these data detect (1 or more: detectable):
-    /// the larger, over the loads, of its level-and-RPM-trend part over the model's usual error
+    /// the larger, over the loads, of its level-and-trends part over the model's usual error
     /// (or the shape threshold, whichever is larger) and its rest over the shape threshold.
     pub fn strength(&self, change: &[f64]) -> f64 {
         let mut most = 0.0f64;
@@ -298,8 +304,10 @@ impl Judge {
             let ratio = match self.noise.model_error {
                 None => rms(&c) / t,
                 Some(m) => {
-                    let x: Vec<f64> = idx.iter().map(|&i| self.ln_rpm[i]).collect();
-                    let (fitted, rest) = level_and_trend(&c, &x);
+                    let x: Vec<Vec<f64>> = (0..2)
+                        .map(|t| idx.iter().map(|&i| self.trends[i][t]).collect())
+                        .collect();
+                    let (fitted, rest) = level_and_trends(&c, &x);
                     let usual = if load { m.torque } else { m.thrust };
                     (rms(&fitted) / usual.max(t)).max(rms(&rest) / t)
                 }
@@ -324,18 +332,29 @@ fn neighbour_correlation(r: &[f64], files: &[usize]) -> f64 {
     (lagged / ss).clamp(0.0, 0.95)
 }
 
-/// Splits `c` into its least-squares fit on a constant and `x` (centred) and the rest.
-fn level_and_trend(c: &[f64], x: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let n = c.len() as f64;
-    let mean = c.iter().sum::<f64>() / n;
-    let xm = x.iter().sum::<f64>() / n;
-    let sxx: f64 = x.iter().map(|v| (v - xm) * (v - xm)).sum();
-    let slope = if sxx > 1e-12 {
-        x.iter().zip(c).map(|(v, y)| (v - xm) * (y - mean)).sum::<f64>() / sxx
-    } else {
-        0.0
-    };
-    let fitted: Vec<f64> = x.iter().map(|v| mean + slope * (v - xm)).collect();
+/// Splits `c` into its least-squares fit on a constant and the trends `x` (each a column; one
+/// that hardly varies, or repeats the others, is left out) and the rest.
+fn level_and_trends(c: &[f64], x: &[Vec<f64>]) -> (Vec<f64>, Vec<f64>) {
+    let n = c.len();
+    // An orthonormal basis of the constant and the trends (modified Gram-Schmidt).
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    for col in std::iter::once(vec![1.0; n]).chain(x.iter().cloned()) {
+        let scale = col.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let mut v = col;
+        for b in &basis {
+            let d: f64 = v.iter().zip(b).map(|(a, b)| a * b).sum();
+            v.iter_mut().zip(b).for_each(|(a, b)| *a -= d * b);
+        }
+        let norm = v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        if norm > 1e-6 * scale.max(1e-300) && norm > 1e-9 * (n as f64).sqrt() {
+            basis.push(v.into_iter().map(|a| a / norm).collect());
+        }
+    }
+    let mut fitted = vec![0.0; n];
+    for b in &basis {
+        let d: f64 = c.iter().zip(b).map(|(a, b)| a * b).sum();
+        fitted.iter_mut().zip(b).for_each(|(f, b)| *f += d * b);
+    }
     let rest = c.iter().zip(&fitted).map(|(a, b)| a - b).collect();
     (fitted, rest)
 }
@@ -417,24 +436,35 @@ fn moves(judge: &Judge, col: &[f64]) -> String {
     }
 }
 
-/// The best imitation of `target` by `sig`'s columns, each parameter kept within
-/// `[lo, hi]` (changes from its reference; unbounded for the table of ties): the remainder.
-fn imitate(target: &[f64], sig: &Signature, bounded: bool) -> Vec<f64> {
-    let cols: Vec<(&Vec<f64>, f64, f64)> = sig
-        .columns
+/// `sig`'s columns with how far each parameter may move: from `at` (its current values; its
+/// reference where None) to its bounds, or without bounds (`bounded` false, for the table of
+/// ties).
+fn columns<'a>(sig: &'a Signature, at: Option<&[f64]>, bounded: bool) -> Vec<(&'a [f64], f64, f64)> {
+    sig.columns
         .iter()
         .zip(sig.effect.params())
-        .zip(&sig.reference)
-        .filter_map(|((c, p), r)| {
+        .enumerate()
+        .filter_map(|(k, (c, p))| {
             let c = c.as_ref()?;
+            let from = at.and_then(|v| v.get(k).copied()).unwrap_or(sig.reference[k]);
             let (lo, hi) = if bounded {
-                (p.lower - r, p.upper - r)
+                (p.lower - from, p.upper - from)
             } else {
                 (f64::NEG_INFINITY, f64::INFINITY)
             };
-            Some((c, lo, hi))
+            Some((c.as_slice(), lo, hi))
         })
-        .collect();
+        .collect()
+}
+
+/// The best imitation of `target` by `sig`'s columns (each parameter kept within its bounds
+/// when `bounded`): the remainder.
+fn imitate(target: &[f64], sig: &Signature, bounded: bool) -> Vec<f64> {
+    imitate_by(target, &columns(sig, None, bounded))
+}
+
+/// The best imitation of `target` by `cols` (column, lowest and highest step): the remainder.
+fn imitate_by(target: &[f64], cols: &[(&[f64], f64, f64)]) -> Vec<f64> {
     let mut rest = target.to_vec();
     let mut beta = vec![0.0; cols.len()];
     // Coordinate descent on a box: converges for a convex least-squares problem.
@@ -587,9 +617,14 @@ pub fn verdict(
         let change: Vec<f64> = r.iter().zip(final_residuals).map(|(x, y)| x - y).collect();
         let strength = judge.strength(&change);
         let id = a.effect.id().to_string();
-        let (kind, group) = match judge.answer(&change, &id, sigs) {
+        let stack: Vec<(&str, &[f64])> = final_stack
+            .active
+            .iter()
+            .map(|x| (x.effect.id(), x.values.as_slice()))
+            .collect();
+        let (kind, group) = match judge.answer(&change, &id, sigs, &stack) {
             Some(AnswerKind::BelowLimit) => (AnswerKind::BelowLimit, Vec::new()),
-            Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs)),
+            Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs, &stack)),
             None => {
                 let outside = a
                     .effect

@@ -31,16 +31,20 @@ pub fn tied_pairs(d: &Diagnosis) -> Vec<(String, String)> {
 pub fn can_tell(d: &Diagnosis) -> String {
     let n = &d.separability.noise;
     let mut text = format!(
-        "What these data can tell: a change of the thrust (torque) beyond a level and an RPM trend is seen above {} ({}) RMS",
+        "What these data can tell: a change of the thrust (torque) errors is seen above {} ({}) RMS",
         pct(n.shape_threshold[0]),
-        if n.rows[1] > 0 { pct(n.shape_threshold[1]) } else { "not measured".into() }
+        if n.rows[1] > 0 {
+            pct(n.shape_threshold[1])
+        } else {
+            "not measured".into()
+        }
     );
     match n.model_error {
         Some(m) => {
             let _ = write!(
                 text,
-                "; a level or an RPM trend only above what the default model usually misses on {} props, {} ({}) \
-                 (validate's median over {} props).",
+                " beyond a level and trends with RPM and J, which must exceed what the default model usually misses on \
+                 {} props, {} ({}) (validate's median over {} props).",
                 m.kind,
                 pct(m.thrust),
                 pct(m.torque),
@@ -73,9 +77,9 @@ pub fn can_tell(d: &Diagnosis) -> String {
 pub(super) fn limits_html(d: &Diagnosis) -> String {
     let mut h = String::from(
         "<h2>What these data can tell</h2>\n<p class=\"note\">Each candidate's smallest detectable size: its change of the \
-         residual rows (from its Jacobian on these points) must exceed, load by load, the scatter beyond a level and an RPM \
-         trend (3 standard errors of the fit's residuals, and 3 times the repeatability where the data show it) or, for \
-         its level and RPM trend, the model's usual error on props of this kind. An effect below its limit is never named as \
+         residual rows (from its Jacobian on these points) must exceed, load by load, the scatter (3 standard errors of the \
+         fit's residuals, and 3 times the repeatability where the data show it) or, for its level and trends with RPM and \
+         J, the model's usual error on props of this kind. An effect below its limit is never named as \
          found.</p>\n<table><tr><th class=\"text\">effect</th><th class=\"text\">parameter</th><th class=\"text\">moves</th>\
          <th>detectable from</th><th class=\"text\">physically expected</th><th class=\"text\">cannot be told from</th></tr>\n",
     );
