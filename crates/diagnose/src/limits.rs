@@ -25,10 +25,11 @@
 //!
 //! **The answer** ([`verdict`]). Each effect of the ladder's final stack is judged on its own
 //! change of the residual rows (the final stack's residuals against the same stack without it):
-//! below the detection limit it is not named; where another candidate, inside its bounds,
-//! reproduces that change up to an undetectable remainder, the answer is the group, with the
-//! measurement that would separate them; otherwise it is found (physics inside its expected
-//! range, else a calibration factor).
+//! below the detection limit it is not named; fitted outside its expected range it is a
+//! calibration factor (no physics is named); where another candidate, inside its bounds,
+//! reproduces that change up to an undetectable remainder (the stack's other effects free to
+//! move), the answer is the group, with the measurement that would separate them; otherwise it
+//! is found physics.
 
 use std::sync::Arc;
 
@@ -130,7 +131,8 @@ pub enum AnswerKind {
     /// Found physics: detectable, told apart from every other candidate, inside its expected
     /// range.
     Found,
-    /// Detectable and told apart, but outside its expected range: a calibration factor.
+    /// Detectable, but fitted outside its expected range: a calibration factor (whatever else
+    /// could imitate it).
     Calibration,
     /// Detectable, but other candidates reproduce its change: one of a group.
     Group,
@@ -622,25 +624,19 @@ pub fn verdict(
             .iter()
             .map(|x| (x.effect.id(), x.values.as_slice()))
             .collect();
+        // A value outside its expected range is a calibration factor whatever imitates it (it
+        // names no physics); below its limit nothing is named; else a group or found physics.
+        let outside = a
+            .effect
+            .params()
+            .iter()
+            .zip(&a.values)
+            .any(|(p, v)| crate::fit::outside_expected(*v, p));
         let (kind, group) = match judge.answer(&change, &id, sigs, &stack) {
             Some(AnswerKind::BelowLimit) => (AnswerKind::BelowLimit, Vec::new()),
+            _ if outside => (AnswerKind::Calibration, Vec::new()),
             Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs, &stack)),
-            None => {
-                let outside = a
-                    .effect
-                    .params()
-                    .iter()
-                    .zip(&a.values)
-                    .any(|(p, v)| crate::fit::outside_expected(*v, p));
-                (
-                    if outside {
-                        AnswerKind::Calibration
-                    } else {
-                        AnswerKind::Found
-                    },
-                    Vec::new(),
-                )
-            }
+            None => (AnswerKind::Found, Vec::new()),
         };
         answers.push(Answer {
             effect: a.describe(),
