@@ -558,4 +558,57 @@ fn hidden_effects_injected_into_real_measurements_are_scored() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("injected size 0"), "{}", stderr(&o));
     assert!(!dir.path().join("h2").exists() && !dir.path().join("h3").exists());
+    // Every row has an outcome, and a wrong answer names what was named.
+    for r in &rows {
+        let outcome = r[col(&header, "outcome")].as_str();
+        assert!(
+            ["found", "group", "below limit", "missed", "wrong"].contains(&outcome),
+            "{r:?}"
+        );
+        assert_eq!(outcome == "wrong", !r[col(&header, "wrong")].is_empty(), "{r:?}");
+        assert_eq!(outcome == "found", r[col(&header, "found")] == "yes", "{r:?}");
+    }
+}
+
+/// A torque tare of 10 % of the lowest step's torque in the PhotoFoil step test (6,000-12,400
+/// rpm), with its propeller's file: found, or said to be below the detection limit the
+/// diagnosis states; never answered as another effect.
+#[test]
+fn a_torque_tare_in_a_real_step_test_is_found_or_below_its_stated_limit() {
+    let dir = tempfile::tempdir().unwrap();
+    let pf = repo().join("props/photofoil_8x4.5");
+    let (prop, log) = (pf.join("QProp_8x4_5.txt"), pf.join("StepsTestV2_2022-01-18_153833.csv"));
+    let o = run(
+        &[
+            "hidden",
+            "log",
+            "--prop",
+            prop.to_str().unwrap(),
+            "--measured",
+            log.to_str().unwrap(),
+            "--rho",
+            "1.1648",
+            "--inject",
+            "torque-tare,thrust-tare",
+            "--sizes",
+            "0.1",
+            "-o",
+            "hl",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let (header, rows) = read_csv(&dir.path().join("hl/hidden.csv"));
+    assert_eq!(rows.len(), 2);
+    for r in &rows {
+        let outcome = r[col(&header, "outcome")].as_str();
+        assert!(["found", "below limit"].contains(&outcome), "{r:?}");
+        if outcome == "below limit" {
+            let limit: f64 = r[col(&header, "limit")].parse().unwrap_or(f64::INFINITY);
+            let injected: f64 = r[col(&header, "injected")].parse().unwrap();
+            assert!(injected < limit, "{r:?}");
+        }
+    }
+    let md = std::fs::read_to_string(dir.path().join("hl/hidden.md")).unwrap();
+    assert!(md.contains("| torque-tare | +10 % |"), "{md}");
 }
