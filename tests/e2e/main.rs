@@ -240,6 +240,7 @@ mod run;
 mod scan;
 mod sim_export;
 mod stand_logs;
+mod terminal;
 mod validate;
 
 #[test]

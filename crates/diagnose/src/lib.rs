@@ -365,7 +365,9 @@ pub fn rms(r: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
-    fn obs(file: usize, rpm: f64, j: f64, thrust: f64) -> Observation {
+    /// A static-air point of file `file` at `rpm` and `j` measuring `thrust` (no torque): the
+    /// tests' point (`limits`' too).
+    pub(crate) fn obs(file: usize, rpm: f64, j: f64, thrust: f64) -> Observation {
         Observation {
             index: 0,
             file,
@@ -376,7 +378,7 @@ mod tests {
             fluid: Fluid::QPROP_DEFAULT,
             thrust,
             torque: None,
-            rpm_group: 0,
+            rpm_group: rpm as i64,
             rpm_name: String::new(),
             mach_tip: 0.1,
         }

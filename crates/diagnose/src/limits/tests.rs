@@ -1,7 +1,6 @@
 //! The rules of what the data can tell, on made-up signatures and residuals.
 
 use super::*;
-use crate::Observation;
 use propbet_effects::{Hook, Param};
 
 /// A stand-in effect: only its id and parameters matter to the judge.
@@ -32,21 +31,7 @@ fn data() -> Data {
     let mut obs = Vec::new();
     for (f, rpm) in [3000.0, 4000.0, 5000.0, 6000.0].into_iter().enumerate() {
         for k in 0..8 {
-            let j = 0.1 * f64::from(k);
-            obs.push(Observation {
-                index: obs.len(),
-                file: f,
-                label: String::new(),
-                omega: propbet_units::rpm_to_omega(rpm),
-                v: 0.0,
-                j,
-                fluid: propbet_bemt::Fluid::QPROP_DEFAULT,
-                thrust: 1.0,
-                torque: None,
-                rpm_group: rpm as i64,
-                rpm_name: String::new(),
-                mach_tip: 0.1,
-            });
+            obs.push(crate::tests::obs(f, rpm, 0.1 * f64::from(k), 1.0));
         }
     }
     Data {
