@@ -57,17 +57,34 @@ pub fn can_tell(d: &Diagnosis) -> String {
         ),
     }
     let pairs = tied_pairs(d);
+    // The pairs of the ladder's effects by name, the others counted (the table lists them).
+    let ladder: Vec<&str> = d.final_stack.active.iter().map(|a| a.effect.id()).collect();
+    let (named, rest): (Vec<_>, Vec<_>) = pairs
+        .iter()
+        .partition(|(a, b)| ladder.contains(&a.as_str()) || ladder.contains(&b.as_str()));
     if pairs.is_empty() {
         text.push_str(" They tell every pair of candidates apart within physical sizes.");
+    } else if named.is_empty() {
+        let _ = write!(
+            text,
+            " They cannot tell apart {} pair{} of candidates within physical sizes (the table below).",
+            rest.len(),
+            if rest.len() == 1 { "" } else { "s" }
+        );
     } else {
         let _ = write!(
             text,
-            " They cannot tell apart, within physical sizes: {}.",
-            pairs
+            " They cannot tell apart, within physical sizes: {}{}.",
+            named
                 .iter()
                 .map(|(a, b)| format!("{a} and {b}"))
                 .collect::<Vec<_>>()
-                .join("; ")
+                .join("; "),
+            if rest.is_empty() {
+                String::new()
+            } else {
+                format!("; and {} other pairs (the table below)", rest.len())
+            }
         );
     }
     text
@@ -83,20 +100,20 @@ pub(super) fn limits_html(d: &Diagnosis) -> String {
          found.</p>\n<table><tr><th class=\"text\">effect</th><th class=\"text\">parameter</th><th class=\"text\">moves</th>\
          <th>detectable from</th><th class=\"text\">physically expected</th><th class=\"text\">cannot be told from</th></tr>\n",
     );
+    let pairs = tied_pairs(d);
     for l in &d.separability.limits {
-        let ties: Vec<&str> = d
-            .separability
-            .ties
+        // Either way round: the candidates it cannot be told from.
+        let ties: Vec<String> = pairs
             .iter()
-            .filter(|t| {
-                t.effect == l.effect
-                    && d.separability
-                        .limits
-                        .iter()
-                        .find(|x| x.effect == l.effect)
-                        .is_some_and(|x| x.param == l.param)
+            .filter_map(|(a, b)| {
+                if *a == l.effect {
+                    Some(b.clone())
+                } else if *b == l.effect {
+                    Some(a.clone())
+                } else {
+                    None
+                }
             })
-            .map(|t| t.imitated_by.as_str())
             .collect();
         let _ = writeln!(
             h,
@@ -109,7 +126,7 @@ pub(super) fn limits_html(d: &Diagnosis) -> String {
                 "{} {} {}",
                 if l.reference == 0.0 { "±".to_string() } else { format!("{} ±", fmt_value(l.reference)) },
                 fmt_value(x),
-                esc(&l.unit)
+                esc(if l.unit == "-" { "" } else { &l.unit })
             )),
             fmt_value(l.expected.0),
             fmt_value(l.expected.1),
