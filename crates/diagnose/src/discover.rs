@@ -417,18 +417,8 @@ fn alike(ranking: &[Scored], first: &str, rep: Option<&Repeatability>) -> Vec<St
 /// flight (static points only), a second RPM range (speeds within a factor 1.5), else logged
 /// air and repeated points.
 fn tell_apart(data: &Data) -> String {
-    let all_static = data.obs.iter().all(|o| o.j < 0.01);
-    let (lo, hi) = data
-        .obs
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
-    if all_static {
-        "forward-flight sweeps (J above 0)".into()
-    } else if hi < 1.5 * lo {
-        format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)")
-    } else {
-        "a logged air temperature and pressure, and repeated points to measure the scatter".into()
-    }
+    limits::what_the_data_lack(data)
+        .unwrap_or_else(|| "a logged air temperature and pressure, and repeated points to measure the scatter".into())
 }
 
 /// Checks that the measurements are in the propeller's operating range and of its size (the

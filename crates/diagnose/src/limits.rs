@@ -184,8 +184,11 @@ impl Verdict {
 pub struct Judge {
     /// Row kinds (torque or thrust) in [`Data::rows`]' order.
     torque: Vec<bool>,
-    /// ln RPM and J of each row's point: the trends of the model's usual error.
-    trends: Vec<[f64; 2]>,
+    /// The thrust rows' and the torque rows' indices.
+    load_rows: [Vec<usize>; 2],
+    /// On each load's rows, an orthonormal basis of a level and the trends with ln RPM and J:
+    /// the shapes of the model's usual error.
+    bases: [Vec<Vec<f64>>; 2],
     noise: Noise,
 }
 
@@ -199,18 +202,22 @@ impl Judge {
     ) -> Self {
         let rows = data.rows();
         let torque: Vec<bool> = rows.iter().map(|r| r.torque).collect();
-        let trends: Vec<[f64; 2]> = rows
-            .iter()
-            .map(|r| [data.obs[r.point].rpm().max(1.0).ln(), data.obs[r.point].j])
-            .collect();
         let mut counts = [0usize; 2];
         let mut fit_rms = [0.0; 2];
         let mut shape_threshold = [0.0; 2];
         let mut lag = [0.0; 2];
+        let mut load_rows: [Vec<usize>; 2] = Default::default();
+        let mut bases: [Vec<Vec<f64>>; 2] = Default::default();
         for load in [false, true] {
             let idx: Vec<usize> = (0..rows.len()).filter(|&i| torque[i] == load).collect();
             let k = usize::from(load);
             counts[k] = idx.len();
+            let point = |i: usize| &data.obs[rows[i].point];
+            bases[k] = level_and_trends_basis(&[
+                idx.iter().map(|&i| point(i).rpm().max(1.0).ln()).collect(),
+                idx.iter().map(|&i| point(i).j).collect(),
+            ]);
+            load_rows[k] = idx.clone();
             if idx.is_empty() {
                 continue;
             }
@@ -231,7 +238,8 @@ impl Judge {
         }
         Self {
             torque,
-            trends,
+            load_rows,
+            bases,
             noise: Noise {
                 rows: counts,
                 fit_rms,
@@ -276,15 +284,29 @@ impl Judge {
             .collect()
     }
 
-    /// How a change the effect `id` makes is answered, before its expected range is looked at:
-    /// below the limit, one of a group, or (None) alone.
-    pub fn answer(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Option<AnswerKind> {
+    /// How the change the effect `id` makes is answered, with the group where it is one: below
+    /// the limit (nothing named); a calibration factor when its value is `outside` its expected
+    /// range, whatever imitates it; one of a group where a rival reproduces it ([`Judge::group`]);
+    /// else found physics.
+    pub fn answer(
+        &self,
+        change: &[f64],
+        id: &str,
+        sigs: &[Signature],
+        stack: &[(&str, &[f64])],
+        outside: bool,
+    ) -> (AnswerKind, Vec<String>) {
         if self.strength(change) < 1.0 {
-            Some(AnswerKind::BelowLimit)
-        } else if self.group(change, id, sigs, stack).len() > 1 {
-            Some(AnswerKind::Group)
+            return (AnswerKind::BelowLimit, Vec::new());
+        }
+        if outside {
+            return (AnswerKind::Calibration, Vec::new());
+        }
+        let group = self.group(change, id, sigs, stack);
+        if group.len() > 1 {
+            (AnswerKind::Group, group)
         } else {
-            None
+            (AnswerKind::Found, Vec::new())
         }
     }
 
@@ -295,9 +317,7 @@ impl Judge {
         let mut most = 0.0f64;
         for load in [false, true] {
             let k = usize::from(load);
-            let idx: Vec<usize> = (0..change.len().min(self.torque.len()))
-                .filter(|&i| self.torque[i] == load)
-                .collect();
+            let idx = &self.load_rows[k];
             if idx.is_empty() {
                 continue;
             }
@@ -306,10 +326,7 @@ impl Judge {
             let ratio = match self.noise.model_error {
                 None => rms(&c) / t,
                 Some(m) => {
-                    let x: Vec<Vec<f64>> = (0..2)
-                        .map(|t| idx.iter().map(|&i| self.trends[i][t]).collect())
-                        .collect();
-                    let (fitted, rest) = level_and_trends(&c, &x);
+                    let (fitted, rest) = project(&c, &self.bases[k]);
                     let usual = if load { m.torque } else { m.thrust };
                     (rms(&fitted) / usual.max(t)).max(rms(&rest) / t)
                 }
@@ -334,11 +351,10 @@ fn neighbour_correlation(r: &[f64], files: &[usize]) -> f64 {
     (lagged / ss).clamp(0.0, 0.95)
 }
 
-/// Splits `c` into its least-squares fit on a constant and the trends `x` (each a column; one
-/// that hardly varies, or repeats the others, is left out) and the rest.
-fn level_and_trends(c: &[f64], x: &[Vec<f64>]) -> (Vec<f64>, Vec<f64>) {
-    let n = c.len();
-    // An orthonormal basis of the constant and the trends (modified Gram-Schmidt).
+/// An orthonormal basis (modified Gram-Schmidt) of a constant and the trends `x` (each a
+/// column over the same rows; one that hardly varies, or repeats the others, is left out).
+fn level_and_trends_basis(x: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let n = x.first().map_or(0, Vec::len);
     let mut basis: Vec<Vec<f64>> = Vec::new();
     for col in std::iter::once(vec![1.0; n]).chain(x.iter().cloned()) {
         let scale = col.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -352,8 +368,13 @@ fn level_and_trends(c: &[f64], x: &[Vec<f64>]) -> (Vec<f64>, Vec<f64>) {
             basis.push(v.into_iter().map(|a| a / norm).collect());
         }
     }
-    let mut fitted = vec![0.0; n];
-    for b in &basis {
+    basis
+}
+
+/// Splits `c` into its least-squares fit on the orthonormal `basis` and the rest.
+fn project(c: &[f64], basis: &[Vec<f64>]) -> (Vec<f64>, Vec<f64>) {
+    let mut fitted = vec![0.0; c.len()];
+    for b in basis {
         let d: f64 = c.iter().zip(b).map(|(a, b)| a * b).sum();
         fitted.iter_mut().zip(b).for_each(|(f, b)| *f += d * b);
     }
@@ -438,63 +459,6 @@ fn moves(judge: &Judge, col: &[f64]) -> String {
     }
 }
 
-/// `sig`'s columns with how far each parameter may move: from `at` (its current values; its
-/// reference where None) to its bounds, or without bounds (`bounded` false, for the table of
-/// ties).
-fn columns<'a>(sig: &'a Signature, at: Option<&[f64]>, bounded: bool) -> Vec<(&'a [f64], f64, f64)> {
-    sig.columns
-        .iter()
-        .zip(sig.effect.params())
-        .enumerate()
-        .filter_map(|(k, (c, p))| {
-            let c = c.as_ref()?;
-            let from = at.and_then(|v| v.get(k).copied()).unwrap_or(sig.reference[k]);
-            let (lo, hi) = if bounded {
-                (p.lower - from, p.upper - from)
-            } else {
-                (f64::NEG_INFINITY, f64::INFINITY)
-            };
-            Some((c.as_slice(), lo, hi))
-        })
-        .collect()
-}
-
-/// The best imitation of `target` by `sig`'s columns (each parameter kept within its bounds
-/// when `bounded`): the remainder.
-fn imitate(target: &[f64], sig: &Signature, bounded: bool) -> Vec<f64> {
-    imitate_by(target, &columns(sig, None, bounded))
-}
-
-/// The best imitation of `target` by `cols` (column, lowest and highest step): the remainder.
-fn imitate_by(target: &[f64], cols: &[(&[f64], f64, f64)]) -> Vec<f64> {
-    let mut rest = target.to_vec();
-    let mut beta = vec![0.0; cols.len()];
-    // Coordinate descent on a box: converges for a convex least-squares problem.
-    for _ in 0..60 {
-        let mut moved = 0.0f64;
-        for (j, (c, lo, hi)) in cols.iter().enumerate() {
-            let cc: f64 = c.iter().map(|x| x * x).sum();
-            if cc <= 0.0 {
-                continue;
-            }
-            let step = c.iter().zip(&rest).map(|(a, b)| a * b).sum::<f64>() / cc;
-            let new = (beta[j] + step).clamp(*lo, *hi);
-            let d = new - beta[j];
-            if d != 0.0 {
-                for (r, a) in rest.iter_mut().zip(c.iter()) {
-                    *r -= d * a;
-                }
-                beta[j] = new;
-                moved = moved.max(d.abs() * cc.sqrt());
-            }
-        }
-        if moved < 1e-12 {
-            break;
-        }
-    }
-    rest
-}
-
 /// The detection limits and the ties of `signatures` (on the baseline) under `judge`.
 pub fn separability(judge: &Judge, sigs: &[Signature]) -> Separability {
     let mut limits = Vec::new();
@@ -551,17 +515,29 @@ pub fn separability(judge: &Judge, sigs: &[Signature]) -> Separability {
     }
 }
 
+/// What these data lack to tell effects apart, if it is a range: forward flight (static points
+/// only) or a second RPM range (speeds within a factor 1.5).
+pub fn what_the_data_lack(data: &Data) -> Option<String> {
+    let (lo, hi) = data
+        .obs
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
+    if data.obs.iter().all(|o| o.j < 0.01) {
+        Some("forward-flight sweeps (J above 0)".into())
+    } else if hi < 1.5 * lo {
+        Some(format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)"))
+    } else {
+        None
+    }
+}
+
 /// The measurement that would tell the effects `ids` apart (an answer and its closest
 /// imitations, first: the first two are looked at), from what each needs and what the data
 /// lack.
 pub fn tell_apart(data: &Data, ids: &[String]) -> String {
     let ids = &ids[..ids.len().min(2)];
     let has = |id: &str| ids.iter().any(|i| i == id);
-    let (lo, hi) = data
-        .obs
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), o| (a.min(o.rpm()), b.max(o.rpm())));
-    let all_static = data.obs.iter().all(|o| o.j < 0.01);
+    let lo = data.obs.iter().fold(f64::INFINITY, |a, o| a.min(o.rpm()));
     let mut ways = Vec::new();
     if has("torque-tare") {
         ways.push(format!(
@@ -586,11 +562,7 @@ pub fn tell_apart(data: &Data, ids: &[String]) -> String {
             .iter()
             .any(|i| i.contains("stall") || i.contains("re-") || i == "drag-scale")
     {
-        if all_static {
-            ways.push("forward-flight sweeps (J above 0)".into());
-        } else if hi < 1.5 * lo {
-            ways.push(format!("a second RPM range (these data span {lo:.0}-{hi:.0} rpm)"));
-        }
+        ways.extend(what_the_data_lack(data));
     }
     if ways.is_empty() {
         ways.push("repeated points to measure the scatter".into());
@@ -617,33 +589,25 @@ pub fn verdict(
         let r = model.residuals(data, &without, &all)?;
         // The residual rows this effect removes: its change as the data see it.
         let change: Vec<f64> = r.iter().zip(final_residuals).map(|(x, y)| x - y).collect();
-        let strength = judge.strength(&change);
         let id = a.effect.id().to_string();
         let stack: Vec<(&str, &[f64])> = final_stack
             .active
             .iter()
             .map(|x| (x.effect.id(), x.values.as_slice()))
             .collect();
-        // A value outside its expected range is a calibration factor whatever imitates it (it
-        // names no physics); below its limit nothing is named; else a group or found physics.
         let outside = a
             .effect
             .params()
             .iter()
             .zip(&a.values)
             .any(|(p, v)| crate::fit::outside_expected(*v, p));
-        let (kind, group) = match judge.answer(&change, &id, sigs, &stack) {
-            Some(AnswerKind::BelowLimit) => (AnswerKind::BelowLimit, Vec::new()),
-            _ if outside => (AnswerKind::Calibration, Vec::new()),
-            Some(_) => (AnswerKind::Group, judge.group(&change, &id, sigs, &stack)),
-            None => (AnswerKind::Found, Vec::new()),
-        };
+        let (kind, group) = judge.answer(&change, &id, sigs, &stack, outside);
         answers.push(Answer {
             effect: a.describe(),
             tell_apart: (kind == AnswerKind::Group).then(|| tell_apart(data, &group)),
             id,
             kind,
-            strength,
+            strength: judge.strength(&change),
             group,
         });
     }
@@ -688,5 +652,8 @@ pub fn verdict(
     })
 }
 
+mod imitate;
 #[cfg(test)]
 mod tests;
+
+use imitate::{columns, imitate, imitate_by};

@@ -267,8 +267,9 @@ struct Calibration {
     model: Model,
 }
 
-/// The ladder validate runs on a prop's files: every effect, the defaults of a diagnosis.
-fn ladder_spec(model_spec: &ModelSpec, measured: &MeasuredSpec, dir: &Path) -> DiagnoseSpec {
+/// The ladder validate (and `hidden`) runs on a prop's files: every effect, the defaults of a
+/// diagnosis, its report into `dir/diagnose`.
+pub fn ladder_spec(model_spec: &ModelSpec, measured: &MeasuredSpec, dir: &Path) -> DiagnoseSpec {
     DiagnoseSpec {
         model: model_spec.clone(),
         measured: measured.clone(),

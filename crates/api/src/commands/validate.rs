@@ -326,15 +326,7 @@ pub fn hidden_log(
 ) -> Result<()> {
     let lock = crate::files::claim_folder(out, "propbet hidden log")?;
     let loaded = propbet_model::Model::load(model, false)?;
-    let dspec = propbet_settings::spec::DiagnoseSpec {
-        model: model.clone(),
-        measured: measured.clone(),
-        effects: vec!["all".into()],
-        folds: propbet_settings::FOLDS.default,
-        max_steps: propbet_settings::MAX_STEPS.default,
-        window: propbet_settings::WINDOW.default,
-        out: out.join("diagnose"),
-    };
+    let dspec = propbet_validate::ladder_spec(model, measured, out);
     let name = model
         .prop
         .file_stem()

@@ -65,8 +65,8 @@ fn a_change_below_the_detection_limit_is_never_named() {
     let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
     let weak: Vec<f64> = j.iter().map(|x| 0.5 * t * x / rms(&j)).collect();
     let strong: Vec<f64> = j.iter().map(|x| 3.0 * t * x / rms(&j)).collect();
-    assert_eq!(judge.answer(&weak, "a", &[], &[]), Some(AnswerKind::BelowLimit));
-    assert_eq!(judge.answer(&strong, "a", &[], &[]), None);
+    assert_eq!(judge.answer(&weak, "a", &[], &[], false).0, AnswerKind::BelowLimit);
+    assert_eq!(judge.answer(&strong, "a", &[], &[], false).0, AnswerKind::Found);
     // Its detection limit: the size whose change is just detectable.
     let sep = separability(&judge, &[sig("a", j.iter().map(|x| x / rms(&j)).collect())]);
     assert!((sep.limits[0].limit.unwrap() - t).abs() < 1e-9, "{:?}", sep.limits[0]);
@@ -84,10 +84,15 @@ fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
     // C moves them with the square of J around its mean: orthogonal to the change.
     let q: Vec<f64> = j.iter().map(|x| x * x - 0.0525).collect();
     let other = sig("c", q);
-    assert_eq!(judge.answer(&change, "a", std::slice::from_ref(&other), &[]), None);
     assert_eq!(
-        judge.answer(&change, "a", &[alike.clone(), other.clone()], &[]),
-        Some(AnswerKind::Group)
+        judge.answer(&change, "a", std::slice::from_ref(&other), &[], false).0,
+        AnswerKind::Found
+    );
+    assert_eq!(
+        judge
+            .answer(&change, "a", &[alike.clone(), other.clone()], &[], false)
+            .0,
+        AnswerKind::Group
     );
     assert_eq!(judge.group(&change, "a", &[alike.clone(), other], &[]), ["a", "b"]);
     // B and C together make it, where neither alone does: with C in the stack (free to move as
@@ -108,7 +113,7 @@ fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
         effect: Arc::new(Named("b", vec![Param::new("x", "-", 0.0, (0.0, 0.01), 0.001, "")])),
         ..alike
     };
-    assert_eq!(judge.answer(&change, "a", &[bounded], &[]), None);
+    assert_eq!(judge.answer(&change, "a", &[bounded], &[], false).0, AnswerKind::Found);
 }
 
 #[test]
@@ -127,17 +132,23 @@ fn the_model_error_holds_a_level_and_trends_with_rpm_and_j_not_a_bend() {
     // the 7 % the model usually misses.
     let level = vec![0.04; n];
     assert!(without.strength(&level) > 1.0);
-    assert_eq!(with.answer(&level, "density", &[], &[]), Some(AnswerKind::BelowLimit));
+    assert_eq!(
+        with.answer(&level, "density", &[], &[], false).0,
+        AnswerKind::BelowLimit
+    );
     // A trend with RPM of the same size: the same.
     let trend: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.rpm() / 4500.0).ln()).collect();
     assert!(rms(&trend) < 0.07 && without.strength(&trend) > 1.0);
-    assert_eq!(with.answer(&trend, "re-lift", &[], &[]), Some(AnswerKind::BelowLimit));
+    assert_eq!(
+        with.answer(&trend, "re-lift", &[], &[], false).0,
+        AnswerKind::BelowLimit
+    );
     // A trend with J (the model's usual error has one: a pitch-like error) likewise.
     let j_trend: Vec<f64> = d.obs.iter().map(|o| 0.1 * (o.j - 0.35)).collect();
     assert!(rms(&j_trend) < 0.07 && without.strength(&j_trend) > 1.0);
     assert_eq!(
-        with.answer(&j_trend, "pitch-offset", &[], &[]),
-        Some(AnswerKind::BelowLimit)
+        with.answer(&j_trend, "pitch-offset", &[], &[], false).0,
+        AnswerKind::BelowLimit
     );
     // A change that bends with J (a tare growing towards zero thrust) is none of these: judged
     // on the scatter.
