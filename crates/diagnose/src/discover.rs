@@ -579,17 +579,17 @@ pub fn diagnose(
     let sigs = limits::signatures(model, data, &Stack::baseline(), &r0, candidates);
     let separability = limits::separability(&judge, &sigs);
     let mut verdict = limits::verdict(model, data, &current.fit.stack, &final_residuals, &r0, &judge, &sigs)?;
-    // A one-effect answer with alike candidates (as good held out) is a group too.
+    // A one-effect answer with alike candidates (as good held out) is a group too (a
+    // calibration factor stays one, whatever imitates it).
     if let ([a], false) = (verdict.answers.as_mut_slice(), alike.is_empty()) {
-        if a.kind != limits::AnswerKind::BelowLimit {
-            for id in &alike {
-                if !a.group.contains(id) {
-                    a.group.push(id.clone());
-                }
-            }
-            if a.group.first() != Some(&a.id) {
-                a.group.insert(0, a.id.clone());
-            }
+        if matches!(a.kind, limits::AnswerKind::Found | limits::AnswerKind::Group) {
+            // The answer first, then what the ladder found as good held out (the closest
+            // rivals), then the rest of the group.
+            let rest: Vec<String> = a.group.drain(..).filter(|g| *g != a.id && !alike.contains(g)).collect();
+            a.group = std::iter::once(a.id.clone())
+                .chain(alike.iter().filter(|g| **g != a.id).cloned())
+                .chain(rest)
+                .collect();
             a.kind = limits::AnswerKind::Group;
             a.tell_apart = Some(limits::tell_apart(data, &a.group));
         }

@@ -322,11 +322,12 @@ pub fn score(
     let answer = injected.verdict.answers.iter().find(|a| a.id == effect);
     // Found: named alone (physics or a calibration factor) with its size.
     let found = found && answer.is_some_and(|a| matches!(a.kind, AnswerKind::Found | AnswerKind::Calibration));
-    let group = injected
-        .verdict
-        .answers
-        .iter()
-        .any(|a| a.kind == AnswerKind::Group && a.group.iter().any(|g| g == effect));
+    let group = injected.verdict.answers.iter().any(|a| {
+        a.kind == AnswerKind::Group
+            && a.group
+                .iter()
+                .any(|g| g.split(crate::limits::PAIR).any(|e| e == effect))
+    });
     let clean_ids: Vec<&str> = clean.final_stack.active.iter().map(|a| a.effect.id()).collect();
     let wrong: Vec<String> = injected
         .verdict

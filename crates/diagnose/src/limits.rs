@@ -47,6 +47,9 @@ pub const REPEATABILITY_FACTOR: f64 = 3.0;
 /// residual scatter.
 pub const Z: f64 = 3.0;
 
+/// How a group names two candidates that reproduce a change together.
+pub const PAIR: &str = " + ";
+
 /// The default model's usual error on props of this kind: validate's median errors over the
 /// validated props of the same family.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -261,23 +264,39 @@ impl Judge {
     /// (`stack`: id and current values) free to move within theirs as a refit would (an effect
     /// of the stack among the candidates: a pair fitted together that can stand in for each
     /// other, a density and an RPM scale that cancel, is no answer either). The closest first.
+    /// Where no one candidate does, two together that do are a rival too ("a + b"): one effect
+    /// standing in for what two did is no more an answer than one for one.
     pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Vec<String> {
         let at = |name: &str| stack.iter().find(|(i, _)| *i == name).map(|(_, v)| *v);
-        let mut close: Vec<(f64, String)> = sigs
-            .iter()
-            .filter(|s| s.effect.id() != id)
-            .map(|s| {
-                let mut cols = columns(s, at(s.effect.id()), true);
-                for o in sigs {
-                    let other = o.effect.id();
-                    if other != id && other != s.effect.id() && at(other).is_some() {
-                        cols.extend(columns(o, at(other), true));
-                    }
+        let rivals: Vec<&Signature> = sigs.iter().filter(|s| s.effect.id() != id).collect();
+        // How closely `those` (with the stack's other effects free) reproduce the change.
+        let closeness = |those: &[&Signature]| {
+            let mut cols = Vec::new();
+            for s in those {
+                cols.extend(columns(s, at(s.effect.id()), true));
+            }
+            for o in &rivals {
+                if at(o.effect.id()).is_some() && !those.iter().any(|s| s.effect.id() == o.effect.id()) {
+                    cols.extend(columns(o, at(o.effect.id()), true));
                 }
-                (self.strength(&imitate_by(change, &cols)), s.effect.id().to_string())
-            })
+            }
+            self.strength(&imitate_by(change, &cols))
+        };
+        let mut close: Vec<(f64, String)> = rivals
+            .iter()
+            .map(|s| (closeness(&[s]), s.effect.id().to_string()))
             .filter(|(st, _)| *st < 1.0)
             .collect();
+        if close.is_empty() {
+            for (k, a) in rivals.iter().enumerate() {
+                for b in &rivals[k + 1..] {
+                    let st = closeness(&[a, b]);
+                    if st < 1.0 {
+                        close.push((st, format!("{}{PAIR}{}", a.effect.id(), b.effect.id())));
+                    }
+                }
+            }
+        }
         close.sort_by(|a, b| a.0.total_cmp(&b.0));
         std::iter::once(id.to_string())
             .chain(close.into_iter().map(|c| c.1))
@@ -535,8 +554,8 @@ pub fn what_the_data_lack(data: &Data) -> Option<String> {
 /// imitations, first: the first two are looked at), from what each needs and what the data
 /// lack.
 pub fn tell_apart(data: &Data, ids: &[String]) -> String {
-    let ids = &ids[..ids.len().min(2)];
-    let has = |id: &str| ids.iter().any(|i| i == id);
+    let ids: Vec<&str> = ids.iter().take(2).flat_map(|i| i.split(PAIR)).collect();
+    let has = |id: &str| ids.iter().any(|i| *i == id);
     let lo = data.obs.iter().fold(f64::INFINITY, |a, o| a.min(o.rpm()));
     let mut ways = Vec::new();
     if has("torque-tare") {
@@ -560,7 +579,7 @@ pub fn tell_apart(data: &Data, ids: &[String]) -> String {
     if ways.is_empty()
         || ids
             .iter()
-            .any(|i| i.contains("stall") || i.contains("re-") || i == "drag-scale")
+            .any(|i| i.contains("stall") || i.contains("re-") || *i == "drag-scale")
     {
         ways.extend(what_the_data_lack(data));
     }

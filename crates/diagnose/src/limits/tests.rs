@@ -107,6 +107,8 @@ fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
     let bend = sig("c2", d.obs.iter().map(|o| -(o.j - 0.35).powi(2)).collect());
     let pair = [half, bend];
     assert_eq!(judge.group(&change, "a", &pair[..1], &[]), ["a"]);
+    // Neither alone, both together without the stack: a pair rival.
+    assert_eq!(judge.group(&change, "a", &pair, &[]), ["a", "b2 + c2"]);
     assert_eq!(judge.group(&change, "a", &pair, &[("c2", &[0.0])]), ["a", "b2"]);
     // B needs x = 0.025 for it; bounded to 0.01 it cannot follow: told apart.
     let bounded = Signature {
