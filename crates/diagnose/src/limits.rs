@@ -555,7 +555,7 @@ pub fn what_the_data_lack(data: &Data) -> Option<String> {
 /// lack.
 pub fn tell_apart(data: &Data, ids: &[String]) -> String {
     let ids: Vec<&str> = ids.iter().take(2).flat_map(|i| i.split(PAIR)).collect();
-    let has = |id: &str| ids.iter().any(|i| *i == id);
+    let has = |id: &str| ids.contains(&id);
     let lo = data.obs.iter().fold(f64::INFINITY, |a, o| a.min(o.rpm()));
     let mut ways = Vec::new();
     if has("torque-tare") {
