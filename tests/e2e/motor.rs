@@ -402,12 +402,13 @@ fn fitted(log: &str, extra: &[&str], dir: &Path) -> (String, f64) {
 fn a_motor_fitted_to_real_stand_logs_predicts_their_held_out_currents() {
     let dir = tempfile::tempdir().unwrap();
     // The shared RCbenchmark step logs that carry speed, torque, voltage and current. Kv from
-    // the ESC's duty where the steps reach half throttle; the maker's where they do not (the
-    // PhotoFoil test stops at 1400 µs; a number of the right size: the held-out current needs
-    // R Kv^2 and Io/Kv only). The Series 1580 logs the ESC's electrical speed: 14 poles.
+    // the ESC's duty where 3 steps reach half throttle; the maker's where they do not (the
+    // PhotoFoil test stops at 1400 µs, the 1585 steps log has 2 above; a number of the right
+    // size: the held-out current needs R Kv^2 and Io/Kv only). The Series 1580 logs the ESC's
+    // electrical speed: 14 poles.
     let mut medians = Vec::new();
     for (log, extra) in [
-        ("thrust_stand/series1585_newton_steps.csv", &[][..]),
+        ("thrust_stand/series1585_newton_steps.csv", &["--kv", "2500"][..]),
         ("thrust_stand/series1585_newton_nobom.csv", &[][..]),
         ("photofoil/StepsTestV2_2022-01-18_153833.csv", &["--kv", "1000"][..]),
         (
@@ -435,8 +436,9 @@ fn a_motor_fitted_to_real_stand_logs_predicts_their_held_out_currents() {
         assert!(matches!(o.status.code(), Some(0 | 1)), "{log}: {}", stderr(&o));
     }
     eprintln!("held-out median current error per log [%]: {medians:?}");
-    // A log without voltage and current, and one whose RPM is the motor's electrical speed
-    // read as the shaft's, are refused with the reason.
+    // A log without voltage and current, and one whose ESC's duty is not its command's line
+    // (its motor's voltage gives a negative R, whatever the speed's scale), are refused with
+    // the reason.
     let log = super::repo().join("../shared/data/thrust_stand/series1520_no_torque.csv");
     let o = run(&["motor", "fit", "--measured", log.to_str().unwrap()], dir.path());
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
@@ -444,7 +446,21 @@ fn a_motor_fitted_to_real_stand_logs_predicts_their_held_out_currents() {
     let log = super::repo().join("../shared/data/thrust_stand/series1580_gf_steps.csv");
     let o = run(&["motor", "fit", "--measured", log.to_str().unwrap()], dir.path());
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
-    assert!(stderr(&o).contains("--poles"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("the ESC's duty is not (command - 1000 µs) / 1000 µs here; give the maker's Kv"),
+        "{}",
+        stderr(&o)
+    );
+    // A log whose two sides disagree (the 1585 without BOM: its speed column a quarter of what
+    // its torque constant needs) is fitted for the supply's current and says so.
+    let log = super::repo().join("../shared/data/thrust_stand/series1585_newton_nobom.csv");
+    let o = run(&["motor", "fit", "--measured", log.to_str().unwrap()], dir.path());
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("from its torque constant") && stderr(&o).contains("they disagree"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 #[test]

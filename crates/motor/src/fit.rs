@@ -6,10 +6,12 @@
 //! combinations a log determines, $a = R K_v^2$ and $b = I_0 / K_v$ (the no-load torque):
 //! $$V_b I_b = Q\Omega + b\,\Omega + a\,(Q + b)^2,$$
 //! fitted by Gauss-Newton with 95 % intervals from the covariance. The supply side alone
-//! cannot separate Kv from R and Io; Kv comes either from the user (a maker's number) or from
-//! the voltage the motor sees, $d V_b = I_m R + \Omega/K_v = (a (Q + b) + \Omega)/K_v$, with
-//! the duty $d$ read from the ESC command as a linear ESC calibrated to 1000-2000 µs does
-//! (an assumption, said in the fit's notes), over the steps at half throttle and above.
+//! cannot separate Kv from R and Io: with the maker's Kv it is fitted so. Where the ESC command
+//! is logged, the constants come from both sides of the motor instead ([`sides`]): Kv and R
+//! from the voltage the motor sees, $d V_b = \Omega/K_v + R I_m$, Io from its current,
+//! $I_m = K_v Q + I_0$, with $I_m = I_b / d$ and the duty $d$ read from the ESC command as a
+//! linear ESC calibrated to 1000-2000 µs does (an assumption, said in the fit's notes), over
+//! the steps at half throttle and above; the torque side's own constant, $1/K_t$, is the check.
 //!
 //! The current this model predicts at a point, $I_b = (Q\Omega + b\Omega + a(Q+b)^2)/V_b$,
 //! needs a and b only: it is what the held-out check scores.
@@ -17,6 +19,10 @@
 use thiserror::Error;
 
 use crate::model::Motor;
+
+pub mod sides;
+
+pub use sides::Sides;
 
 /// One steady point of a stand log.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,6 +76,9 @@ pub struct MotorFit {
     pub points: usize,
     /// The motor.
     pub motor: Motor,
+    /// Kv from both sides of the motor, where the ESC command is logged at 3 steps of half
+    /// throttle and above (the check of a given Kv too).
+    pub sides: Option<Sides>,
 }
 
 /// Why a fit cannot be made.
@@ -84,6 +93,12 @@ pub enum FitError {
     /// Type 2 without the ESC command: the motor's own voltage and current are not known.
     #[error("a fit of Kq needs the ESC command (the motor's own voltage and current, at half throttle and above); the log has none there")]
     NoDuty,
+    /// Too few steps with an ESC command at half throttle and above to find Kv from.
+    #[error("{0} steps with the ESC command at half throttle and above: Kv from the motor's voltage needs at least 3; give the maker's Kv (--kv)")]
+    FewDuty(usize),
+    /// The motor's voltage at the ESC's duty makes no motor: the duty map is not this ESC's.
+    #[error("{0}; give the maker's Kv (--kv)")]
+    DutyMap(String),
     /// No Kv: neither given nor an ESC command logged.
     #[error("the log has no ESC command at half throttle or above to find Kv from; give the maker's Kv")]
     NoKv,
@@ -198,28 +213,6 @@ pub fn fit_power(points: &[FitPoint]) -> Result<PowerFit, FitError> {
     Ok(out)
 }
 
-/// The slope through the origin of the ESC's voltage against the back-EMF's speed: d V_b =
-/// x / Kv with x = a (Q + b) / c + Omega (I_m R = a (Q + b) / Kq), over the steps at half
-/// throttle and above; the slope, its standard deviation from the scatter, and the points used.
-fn duty_slope(points: &[FitPoint], k: &Combos) -> Option<(f64, f64, usize)> {
-    let used: Vec<(f64, f64)> = points
-        .iter()
-        .filter_map(|p| {
-            let d = (p.esc? - 1000.0) / 1000.0;
-            (0.5..=1.0)
-                .contains(&d)
-                .then_some((k.a * (p.torque + k.b) / k.c + p.omega, d * p.volts))
-        })
-        .collect();
-    if used.len() < 2 {
-        return None;
-    }
-    let sxx: f64 = used.iter().map(|(x, _)| x * x).sum();
-    let slope = used.iter().map(|(x, y)| x * y).sum::<f64>() / sxx;
-    let ss: f64 = used.iter().map(|(x, y)| (y - slope * x).powi(2)).sum();
-    Some((slope, (ss / (used.len() - 1) as f64 / sxx).sqrt(), used.len()))
-}
-
 /// The standard deviation of `g` at `x` (a, b, c, Kv) under the covariance `cov` of (a, b, c)
 /// and Kv's own standard deviation, independent: the delta method with a numerical gradient.
 fn propagated(g: &dyn Fn([f64; 4]) -> f64, x: [f64; 4], cov: &[[f64; 3]; 3], kv_sd: f64) -> f64 {
@@ -254,6 +247,7 @@ pub fn fit_motor(points: &[FitPoint], kv_rpm: Option<f64>, kind: FitKind) -> Res
         kq_rpm,
         source,
         combos,
+        sides,
     } = fit;
     if io.value < 0.0 {
         return Err(FitError::Unphysical(format!(
@@ -281,6 +275,7 @@ pub fn fit_motor(points: &[FitPoint], kv_rpm: Option<f64>, kind: FitKind) -> Res
         rms_current,
         points: points.len(),
         motor,
+        sides,
     })
 }
 
@@ -293,52 +288,77 @@ struct Constants {
     kq_rpm: Estimate,
     source: KvSource,
     combos: Combos,
+    sides: Option<Sides>,
 }
 
-/// Type 1: a and b from the supply power over every point, Kv given or from the duty's slope.
+/// Type 1: a and b from the supply power over every point; Kv given, or from the motor's
+/// voltage at the ESC's duty with Io from its current ([`sides`]).
 fn fit_type1(points: &[FitPoint], kv_rpm: Option<f64>) -> Result<Constants, FitError> {
+    if points.len() < 4 {
+        return Err(FitError::TooFew(points.len()));
+    }
     let PowerFit { combos: k, cov, .. } = fit_power(points)?;
     let t = t975(points.len().saturating_sub(2));
-    // Kv [rad/s per V] and its standard deviation.
-    let (kv, kv_sd, source) = match kv_rpm {
-        Some(given) => (propbet_units::rpm_to_omega(given), 0.0, KvSource::Given),
+    let rpm_per_rad = propbet_units::omega_to_rpm(1.0);
+    // Kv [rad/s per V], its standard deviation, and both sides where the command allows them
+    // (without the maker's Kv, their Kv and Io are the fit's; with it, they check it).
+    let (kv, kv_sd, sides) = match kv_rpm {
+        Some(given) => (
+            propbet_units::rpm_to_omega(given),
+            0.0,
+            sides::both_sides(points).ok().flatten(),
+        ),
         None => {
-            let (slope, scatter, used) = duty_slope(points, &k).ok_or(FitError::NoKv)?;
-            // The combinations' own uncertainty, carried through the slope.
-            let of = |x: [f64; 4]| {
-                duty_slope(
-                    points,
-                    &Combos {
-                        a: x[0],
-                        b: x[1],
-                        c: x[2],
-                    },
-                )
-                .map_or(slope, |s| s.0)
-            };
-            let from_combos = propagated(&of, [k.a, k.b, k.c, 0.0], &cov, 0.0);
-            let slope_sd = (scatter * scatter + from_combos * from_combos).sqrt();
-            (1.0 / slope, slope_sd / (slope * slope), KvSource::EscDuty(used))
+            let s = sides::both_sides(points)?.ok_or_else(|| match points.iter().filter_map(sides::duty).count() {
+                0 => FitError::NoKv,
+                n => FitError::FewDuty(n),
+            })?;
+            let sd = s.kv_rpm.plus_minus / t975(s.steps - 2) / rpm_per_rad;
+            (s.kv_rpm.value / rpm_per_rad, sd, Some(s))
         }
     };
-    // The constants of (a, b, c, Kv): Kq = c Kv, R = a / Kq^2, Io = b Kq.
+    // The constants of (a, b, c, Kv): Kq = c Kv, R = a / Kq^2, Io = b Kq (the torque side's
+    // where Kv is the sides' too).
     let x = [k.a, k.b, k.c, kv];
-    let rpm_per_rad = propbet_units::omega_to_rpm(1.0);
-    let estimate = |g: &dyn Fn([f64; 4]) -> f64, unit: f64| Estimate {
-        value: g(x) * unit,
-        plus_minus: t * propagated(g, x, &cov, kv_sd) * unit,
+    let estimate = |g: &dyn Fn([f64; 4]) -> f64| Estimate {
+        value: g(x),
+        plus_minus: t * propagated(g, x, &cov, kv_sd),
     };
-    let kv_rpm = Estimate {
-        value: kv * rpm_per_rad,
-        plus_minus: t * kv_sd * rpm_per_rad,
+    let kv_est = match (&sides, kv_rpm) {
+        (Some(s), None) => s.kv_rpm,
+        _ => Estimate {
+            value: kv * rpm_per_rad,
+            plus_minus: 0.0,
+        },
+    };
+    // The torque side's Io where the sides agree; where not, the supply power's (which holds
+    // the supply's current whatever Kv is).
+    let (io, source, combos) = match (&sides, kv_rpm) {
+        (Some(s), None) if s.disagreement().abs() <= sides::DISAGREE => (
+            s.io,
+            KvSource::EscDuty(s.steps),
+            Combos {
+                b: s.io.value / kv,
+                ..k
+            },
+        ),
+        (s, _) => (
+            estimate(&|x| x[1] * x[2] * x[3]),
+            match (s, kv_rpm) {
+                (Some(s), None) => KvSource::EscDuty(s.steps),
+                _ => KvSource::Given,
+            },
+            k,
+        ),
     };
     Ok(Constants {
-        r: estimate(&|x| x[0] / (x[2] * x[3]).powi(2), 1.0),
-        io: estimate(&|x| x[1] * x[2] * x[3], 1.0),
-        kv_rpm,
-        kq_rpm: kv_rpm,
+        r: estimate(&|x| x[0] / (x[2] * x[3]).powi(2)),
+        io,
+        kv_rpm: kv_est,
+        kq_rpm: kv_est,
         source,
-        combos: k,
+        combos,
+        sides,
     })
 }
 
@@ -448,6 +468,7 @@ fn fit_type2(points: &[FitPoint], kv_rpm: Option<f64>) -> Result<Constants, FitE
             b: io / kq,
             c: kq / kv,
         },
+        sides: None,
     })
 }
 
@@ -466,7 +487,7 @@ pub fn held_out_amps(points: &[FitPoint], step: &[usize], kv_rpm: Option<f64>, k
                 .map(|(q, _)| *q)
                 .collect();
             let combos = match kind {
-                FitKind::Type1 => fit_power(&others).ok().map(|f| f.combos),
+                FitKind::Type1 => fit_type1(&others, kv_rpm).ok().map(|c| c.combos),
                 FitKind::Type2 => fit_type2(&others, kv_rpm).ok().map(|c| c.combos),
             };
             combos.map(|k| predicted_amps(p, &k))
@@ -475,158 +496,4 @@ pub fn held_out_amps(points: &[FitPoint], step: &[usize], kv_rpm: Option<f64>, k
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn t_quantiles_are_students() {
-        // Tables: t(0.975; 5) = 2.571, t(0.975; 30) = 2.042, infinity 1.960.
-        assert!((t975(5) - 2.571).abs() < 0.03, "{}", t975(5));
-        assert!((t975(30) - 2.042).abs() < 0.005);
-        assert!((t975(100_000) - 1.960).abs() < 0.001);
-    }
-
-    /// `m` at `volts` on a propeller of Q = c w^2: its speed and its torque and current there.
-    fn on_quadratic_prop(m: &Motor, volts: f64, c: f64) -> (f64, crate::model::MotorPoint) {
-        let (mut lo, mut hi) = (0.0, m.free_speed(volts).unwrap());
-        for _ in 0..200 {
-            let w = 0.5 * (lo + hi);
-            if c * w * w < m.at(w, volts).torque {
-                lo = w;
-            } else {
-                hi = w;
-            }
-        }
-        let w = 0.5 * (lo + hi);
-        (w, m.at(w, volts))
-    }
-
-    /// A generated step log of `m` on a propeller Q = c w^2 (a 7 A load at full throttle) at 12 V through an ideal ESC,
-    /// five samples per step, each reading with `noise` relative Gaussian noise.
-    fn generated(m: &Motor, noise: f64, seed: u64) -> Vec<FitPoint> {
-        let mut state = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        let mut uniform = move || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((state >> 11) as f64 + 0.5) / (1u64 << 53) as f64
-        };
-        let mut gauss = move || (-2.0 * uniform().ln()).sqrt() * (2.0 * std::f64::consts::PI * uniform()).cos();
-        let vb = 12.0;
-        let mut out = Vec::new();
-        for k in 3..=10 {
-            let d = k as f64 / 10.0;
-            let (w, at) = on_quadratic_prop(m, d * vb, 2e-8);
-            for _ in 0..5 {
-                out.push(FitPoint {
-                    omega: w * (1.0 + noise * gauss()),
-                    torque: at.torque * (1.0 + noise * gauss()),
-                    volts: vb * (1.0 + noise * gauss()),
-                    amps: d * at.amps * (1.0 + noise * gauss()),
-                    esc: Some(1000.0 + 1000.0 * d),
-                });
-            }
-        }
-        out
-    }
-
-    #[test]
-    fn generated_logs_with_one_percent_noise_give_their_constants_within_the_intervals() {
-        let m = Motor::dc1(0.12, 0.9, 1400.0).unwrap();
-        let truth = [0.12, 0.9, 1400.0];
-        let mut inside = [0usize; 3];
-        let runs = 40;
-        for seed in 0..runs {
-            let f = fit_motor(&generated(&m, 0.01, seed), None, FitKind::Type1).unwrap();
-            for (k, e) in [f.r, f.io, f.kv_rpm].iter().enumerate() {
-                if (e.value - truth[k]).abs() <= e.plus_minus {
-                    inside[k] += 1;
-                }
-                // The intervals say something: under a third of the value.
-                assert!(e.plus_minus < 0.34 * truth[k], "seed {seed}: {k} {e:?}");
-            }
-        }
-        // 95 % intervals: at least 34 of 40 (a binomial 95 % of 40 falls below 34 with
-        // probability 1.6 %).
-        eprintln!("intervals holding R, Io, Kv: {inside:?} of {runs}");
-        for (k, n) in inside.iter().enumerate() {
-            assert!(*n >= 34, "parameter {k}: {n} of {runs} intervals hold the truth");
-        }
-    }
-
-    #[test]
-    fn a_type_2_fit_finds_a_torque_constant_of_its_own_within_its_interval() {
-        // Kq 10 % above Kv: the supply pays 10 % more than the shaft power's share.
-        let m = Motor::from_params(2, &[0.12, 0.9, 1400.0, 1540.0, 0.0, 0.0, 0.0, 0.0]).unwrap();
-        let truth = [0.12, 0.9, 1400.0, 1540.0];
-        let mut inside = [0usize; 4];
-        let mut inside_given = 0;
-        let runs = 40;
-        for seed in 0..runs {
-            let f = fit_motor(&generated(&m, 0.01, seed), None, FitKind::Type2).unwrap();
-            let kq = f.kq_rpm.expect("type 2 fits Kq");
-            for (k, e) in [f.r, f.io, f.kv_rpm, kq].iter().enumerate() {
-                if (e.value - truth[k]).abs() <= e.plus_minus {
-                    inside[k] += 1;
-                }
-            }
-            // Kq and Io are told apart well; R and Kv trade against each other on a
-            // propeller's load (the current and the speed rise together): wide, but holding.
-            assert!(
-                kq.plus_minus < 0.03 * truth[3] && f.io.plus_minus < 0.15 * truth[1],
-                "seed {seed}: {kq:?} {:?}",
-                f.io
-            );
-            assert_eq!(f.motor.kind, crate::MotorKind::Dc2);
-            // With the maker's Kv, R is found as well as type 1 finds it.
-            let given = fit_motor(&generated(&m, 0.01, seed), Some(1400.0), FitKind::Type2).unwrap();
-            if (given.r.value - truth[0]).abs() <= given.r.plus_minus {
-                inside_given += 1;
-            }
-            assert!(given.r.plus_minus < 0.34 * truth[0], "seed {seed}: {:?}", given.r);
-        }
-        assert!(inside_given >= 34, "R with Kv given: {inside_given} of {runs}");
-        eprintln!("intervals holding R, Io, Kv, Kq: {inside:?} of {runs}");
-        for (k, n) in inside.iter().enumerate() {
-            assert!(*n >= 34, "parameter {k}: {n} of {runs} intervals hold the truth");
-        }
-        // A type 1 fit of the same logs cannot hold both: it puts the extra power in R and Io.
-        let one = fit_motor(&generated(&m, 0.0, 1), None, FitKind::Type1).unwrap();
-        assert!(one.rms_current > 1e-4, "{}", one.rms_current);
-        let two = fit_motor(&generated(&m, 0.0, 1), None, FitKind::Type2).unwrap();
-        assert!(two.rms_current < 1e-9, "{}", two.rms_current);
-        assert!((two.kq_rpm.unwrap().value / 1540.0 - 1.0).abs() < 1e-6);
-    }
-
-    #[test]
-    fn a_noiseless_log_gives_its_motor_back() {
-        let m = Motor::dc1(0.12, 0.9, 1400.0).unwrap();
-        let vb = 12.0;
-        let points: Vec<FitPoint> = (5..=10)
-            .map(|k| {
-                let d = k as f64 / 10.0;
-                let (w, at) = on_quadratic_prop(&m, d * vb, 2e-9);
-                FitPoint {
-                    omega: w,
-                    torque: at.torque,
-                    volts: vb,
-                    amps: d * at.amps,
-                    esc: Some(1000.0 + 1000.0 * d),
-                }
-            })
-            .collect();
-        let f = fit_motor(&points, None, FitKind::Type1).unwrap();
-        assert!((f.r.value / 0.12 - 1.0).abs() < 1e-6, "{:?}", f.r);
-        assert!((f.io.value / 0.9 - 1.0).abs() < 1e-6, "{:?}", f.io);
-        assert!((f.kv_rpm.value / 1400.0 - 1.0).abs() < 1e-6, "{:?}", f.kv_rpm);
-        assert!(f.rms_current < 1e-9);
-        let given = fit_motor(&points, Some(1400.0), FitKind::Type1).unwrap();
-        assert!((given.r.value / 0.12 - 1.0).abs() < 1e-6);
-        assert!(matches!(
-            fit_motor(&points[..3], None, FitKind::Type1),
-            Err(FitError::TooFew(3))
-        ));
-        let no_esc: Vec<FitPoint> = points.iter().map(|p| FitPoint { esc: None, ..*p }).collect();
-        assert_eq!(fit_motor(&no_esc, None, FitKind::Type1), Err(FitError::NoKv));
-    }
-}
+mod tests;

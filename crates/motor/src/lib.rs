@@ -24,7 +24,7 @@ pub mod operate;
 pub mod power;
 
 pub use file::{parse_motor, write_motor, MotorFile, ParseMotorError};
-pub use fit::{fit_motor, held_out_amps, FitError, FitKind, FitPoint, MotorFit};
+pub use fit::{fit_motor, held_out_amps, FitError, FitKind, FitPoint, MotorFit, Sides};
 pub use model::{Motor, MotorError, MotorKind};
 pub use operate::{operate, Drive, OperateError, Powered, PropLoads};
 pub use power::{drives, Battery, DriveRule, Driver, PowerError, Supply, SupplyPoint};

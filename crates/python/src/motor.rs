@@ -249,6 +249,12 @@ pub fn fit_motor<'py>(
             propbet_api::KvSource::EscDuty(_) => "esc_duty",
         },
     )?;
+    summary.set_item(
+        "torque_kv",
+        m.sides
+            .as_ref()
+            .map(|s| (s.torque_kv_rpm.value, s.torque_kv_rpm.plus_minus)),
+    )?;
     summary.set_item("steps", m.points)?;
     summary.set_item("rms_current", m.rms_current)?;
     summary.set_item("held_out_median", f.fit.held_out_median)?;

@@ -280,6 +280,11 @@ pub fn fit_motor(
         }
         _ => {}
     }
+    notes.extend(
+        fit.sides
+            .as_ref()
+            .map(|s| both_sides(s, fit.kv_source != propbet_motor::fit::KvSource::Given)),
+    );
     notes.push(
         match kind {
             propbet_motor::FitKind::Type1 => {
@@ -313,6 +318,40 @@ pub fn fit_motor(
         held_out_median,
         notes,
     })
+}
+
+/// Kv from both sides of the motor, in words: the agreement, a disagreement above 10 % with
+/// what may cause it, and the steps left out.
+fn both_sides(s: &propbet_motor::Sides, io_from_torque: bool) -> String {
+    let apart = s.disagreement();
+    let mut text = format!(
+        "both sides of the motor at {} steps: Kv = {:.0} ± {:.0} rpm/V from its voltage, {:.0} ± {:.0} rpm/V from \
+         its torque constant (1/Kt, Kt = {:.4} N m/A): {:.1} % apart",
+        s.steps,
+        s.kv_rpm.value,
+        s.kv_rpm.plus_minus,
+        s.torque_kv_rpm.value,
+        s.torque_kv_rpm.plus_minus,
+        propbet_units::omega_to_rpm(1.0) / s.torque_kv_rpm.value,
+        100.0 * apart
+    );
+    if apart.abs() > propbet_motor::fit::sides::DISAGREE {
+        text.push_str(
+            "; they disagree: the logged speed (an electrical speed needs --poles), the torque's scale or the ESC's \
+             duty map is not what it seems, and the fitted motor holds the supply's current only",
+        );
+    } else if io_from_torque {
+        text.push_str("; Io is the torque side's (the motor's current at zero torque)");
+    }
+    if !s.left_out.is_empty() {
+        let us: Vec<String> = s.left_out.iter().map(|u| format!("{u:.0} µs")).collect();
+        text.push_str(&format!(
+            "; left out: the steps at {} (off the line the motor's voltage makes at the others: an ESC at full \
+             duty before its command, or a supply at its current limit)",
+            us.join(", ")
+        ));
+    }
+    text
 }
 
 /// The held-out current error's straight-line trend over speed, in words, when it exceeds

@@ -594,7 +594,8 @@ class FittedMotor:
     """A motor fitted to stand logs (:func:`fit_motor`): the ``motor`` (:class:`Motor`), its
     QPROP motor file's ``text`` (the fit's numbers in its comments), ``r``, ``io`` and ``kv``
     each as (value, 95 % half-width) [ohm, A, rpm/V], ``kq`` too for a type 2 fit (None for
-    type 1, whose Kq is Kv), ``kv_from`` ("given" or "esc_duty"), the
+    type 1, whose Kq is Kv), ``kv_from`` ("given" or "esc_duty"), ``torque_kv`` (the torque
+    side's Kv, 1/Kt, where the ESC command allows it; None otherwise), the
     supply current's ``rms_current`` error and ``held_out_median`` (each step predicted with
     itself left out), ``notes`` and ``misses`` in words, and the fitted ``steps``
     (DataFrame: ``rpm``, ``torque_nm``, ``volts``, ``amps``, ``esc_us``, ``amps_held_out``)."""
@@ -606,6 +607,7 @@ class FittedMotor:
     kv: tuple
     kq: Optional[tuple]
     kv_from: str
+    torque_kv: Optional[tuple]
     rms_current: float
     held_out_median: Optional[float]
     notes: list
@@ -622,7 +624,7 @@ def fit_motor(measured: Union[PathLike, Sequence[PathLike]], *, kv: Optional[flo
     motor, text, summary, steps = _relayed(lambda: _native.fit_motor(_files(measured), kv=kv, kq=kq, name=name, **options))
     return FittedMotor(
         motor=motor, text=text, r=summary["r"], io=summary["io"], kv=summary["kv"], kq=summary["kq"],
-        kv_from=summary["kv_from"], rms_current=summary["rms_current"],
+        kv_from=summary["kv_from"], torque_kv=summary["torque_kv"], rms_current=summary["rms_current"],
         held_out_median=summary["held_out_median"], notes=summary["notes"], misses=summary["misses"],
         steps=_frame(steps),
     )
