@@ -619,3 +619,42 @@ fn a_torque_tare_in_a_real_step_test_is_found_or_below_its_stated_limit() {
     let md = std::fs::read_to_string(dir.path().join("hl/hidden.md")).unwrap();
     assert!(md.contains("| torque-tare | +10 % |"), "{md}");
 }
+
+/// The smallest props of the 88 (volume 2's micro props, one named in millimetres) are read
+/// and predicted, each at its own diameter: `pl_57x20` is 57 mm across, and read as 57 inches
+/// its CT would be off by orders of magnitude.
+#[test]
+fn the_micro_props_and_a_millimetre_name_are_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let shared = repo().join("../shared/data");
+    let o = run(
+        &[
+            "validate",
+            "--uiuc",
+            shared.join("uiuc").to_str().unwrap(),
+            "--pe0",
+            shared.join("apc/PE0").to_str().unwrap(),
+            "--airfoils",
+            repo().join("props/airfoils").to_str().unwrap(),
+            "--only",
+            "pl_57x20,gwsdd_2.5x0.8,mi_3.2x2.2,mit_4.3x3.5",
+            "--engine",
+            "neuralfoil",
+            "--quiet",
+            "-o",
+            "v",
+        ],
+        dir.path(),
+    );
+    // Done (1: done, with problems a stage reports).
+    assert!(matches!(o.status.code(), Some(0 | 1)), "{}", stderr(&o));
+    let (header, rows) = read_csv(&dir.path().join("v/validation.csv"));
+    let props: Vec<&str> = rows.iter().map(|r| r[col(&header, "prop")].as_str()).collect();
+    assert_eq!(props.len(), 4, "{props:?}");
+    for r in &rows {
+        let n: usize = r[col(&header, "points")].parse().unwrap();
+        let ct: f64 = r[col(&header, "ct_median")].parse().unwrap();
+        // Within a factor of two of the measurement on the median: the right diameter.
+        assert!(n >= 40 && ct < 0.5, "{r:?}");
+    }
+}
