@@ -39,14 +39,39 @@ pub(crate) const COLUMNS: [&str; 9] = [
     "band_ct_half_width",
 ];
 
-/// A family's name in words.
+/// Other makers' lines UIUC measured, by their file names' prefix, in words: validated with a
+/// section assumed (no maker publishes theirs), each its own group.
+pub const LINES: [(&str, &str); 16] = [
+    ("da4002", "UIUC DA4002"),
+    ("da4022", "UIUC DA4022"),
+    ("da4052", "UIUC DA4052"),
+    ("grcp", "Graupner CAM"),
+    ("grcsp", "Graupner CAM Slim"),
+    ("grsn", "Graupner Super Nylon"),
+    ("gwsdd", "GWS Direct Drive"),
+    ("gwssf", "GWS Slow Flyer"),
+    ("kyosho", "Kyosho"),
+    ("ma", "Master Airscrew"),
+    ("mae", "Master Airscrew Electric"),
+    ("mas", "Master Airscrew Scimitar"),
+    ("magf", "Master Airscrew GF"),
+    ("mi", "Micro Invent"),
+    ("mit", "MIT micro"),
+    ("pl", "Plantraco"),
+];
+
+/// The group of every prop validated with a section assumed.
+pub const ASSUMED: &str = "sections assumed";
+
+/// A family's or maker line's name in words.
 pub(crate) fn family_words(family: &str) -> &'static str {
     match family {
         "E" => "APC Electric",
         "SF" => "APC Slow Flyer",
         "SP" => "APC Sport",
         "FF" => "APC Free Flight",
-        _ => "APC",
+        ASSUMED => "other makers'",
+        f => LINES.iter().find(|l| l.0 == f).map_or("APC", |l| l.1),
     }
 }
 
@@ -119,14 +144,20 @@ pub fn family(prop: &str) -> String {
     }
 }
 
-/// The APC family a file name says, if any: a UIUC name (`apcsf_10x4.7_geom.txt` → `SF`) or an
+/// The APC family or maker line a file name says, if any: a UIUC name (`apcsf_10x4.7_geom.txt` →
+/// `SF`, `gwsdd_9x5_geom.txt` → `gwsdd`) or an
 /// APC design or performance file (`10x47SF-PERF.PE0` → `SF`, `10x7-PERF.PE0` → `SP`,
 /// `PER3_11x7E.dat` → `E`). Sizes APC gives other letters (MR, C, W, ...) name no family
 /// validated here.
 pub fn family_of_file(name: &str) -> Option<&'static str> {
     let lower = name.to_ascii_lowercase();
     if lower.contains('_') {
-        if let Some(f) = ["E", "SF", "SP", "FF"].into_iter().find(|f| *f == family(&lower)) {
+        let f = family(&lower);
+        if let Some(f) = ["E", "SF", "SP", "FF"]
+            .into_iter()
+            .chain(LINES.iter().map(|l| l.0))
+            .find(|x| *x == f)
+        {
             return Some(f);
         }
     }
@@ -176,13 +207,21 @@ pub fn sentence(name: Option<&str>, table: &[Expected]) -> Option<String> {
             pct(e.band_cp_inside)
         )
     };
+    let assumed = |e: &Expected| {
+        if LINES.iter().any(|l| l.0 == e.family) {
+            " with a section assumed (no maker's section data)"
+        } else {
+            ""
+        }
+    };
     Some(match fam {
         Some(e) => format!(
-            "Expected accuracy: on the {} {} props propbet is validated on (UIUC's wind tunnel), the default \
+            "Expected accuracy: on the {} {} props propbet is validated on (UIUC's wind tunnel){}, the default \
              model's median error was {} in CT and {} in CP ({} of them above 15 %; over all {} APC props {} / {}); \
              {}.",
             e.props,
             family_words(&e.family),
+            assumed(e),
             pct(e.ct_median),
             pct(e.cp_median),
             e.above_15,
@@ -192,7 +231,8 @@ pub fn sentence(name: Option<&str>, table: &[Expected]) -> Option<String> {
             band(e)
         ),
         None => format!(
-            "Expected accuracy: on the {} APC props propbet is validated on (UIUC's wind tunnel), the default \
+            "Expected accuracy: no prop of this maker line is in propbet's validation. On the {} APC props it is \
+             validated on (UIUC's wind tunnel), the default \
              model's median error was {} in CT and {} in CP, {} of them above 15 %{}; {}.",
             all.props,
             pct(all.ct_median),

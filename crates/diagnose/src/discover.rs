@@ -578,16 +578,7 @@ pub fn diagnose(
     let judge = Judge::new(data, &final_residuals, repeatability.as_ref(), opts.model_error);
     let sigs = limits::signatures(model, data, &Stack::baseline(), &r0, candidates);
     let separability = limits::separability(&judge, &sigs);
-    let at_stack = limits::signatures_at(model, data, &current.fit.stack, &final_residuals, candidates);
-    let mut verdict = limits::verdict(
-        model,
-        data,
-        &current.fit.stack,
-        &final_residuals,
-        &r0,
-        &judge,
-        &at_stack,
-    )?;
+    let mut verdict = limits::verdict(model, data, &current.fit.stack, &final_residuals, &r0, &judge, &sigs)?;
     // A one-effect answer with alike candidates (as good held out) is a group too (a
     // calibration factor stays one, whatever imitates it).
     if let ([a], false) = (verdict.answers.as_mut_slice(), alike.is_empty()) {

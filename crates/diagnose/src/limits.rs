@@ -615,4 +615,4 @@ mod signature;
 mod tests;
 
 use imitate::{columns, imitate, imitate_by};
-pub use signature::{signatures, signatures_at, Signature};
+pub use signature::{signatures, Signature};

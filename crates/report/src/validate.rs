@@ -172,10 +172,9 @@ fn table(rows: &[Row], skipped: &[Skipped]) -> (Vec<&'static str>, Vec<(Vec<Stri
             true,
         ));
     }
-    let assumed: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_some()).collect();
-    if assumed.len() >= 2 {
+    for (f, members) in propbet_validate::line_groups(rows) {
         out.push((
-            median_row(format!("sections assumed (median of {})", assumed.len()), &assumed, apc),
+            median_row(format!("{f} (median of {})", members.len()), &members, apc),
             true,
         ));
     }

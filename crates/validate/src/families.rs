@@ -5,12 +5,16 @@
 use propbet_compare::expected::Expected;
 use propbet_units::stats::{median, quantile};
 
-use crate::{family_groups, Row};
+use crate::{family_groups, line_groups, Row};
 
-/// The families' numbers (those with two or more props) and `all`, over the rows of APC's
-/// sections (a row whose section was assumed is left out, as from validate's medians).
+/// The APC families' numbers (those with two or more props), other makers' lines' (with a
+/// section assumed) and all of those together, and `all` over the rows of APC's sections.
 pub fn summarise(rows: &[Row]) -> Vec<Expected> {
-    let mut out: Vec<Expected> = family_groups(rows).into_iter().map(|(f, m)| over(f, &m)).collect();
+    let mut out: Vec<Expected> = family_groups(rows)
+        .into_iter()
+        .chain(line_groups(rows))
+        .map(|(f, m)| over(f, &m))
+        .collect();
     let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
     if !apc.is_empty() {
         out.push(over("all".into(), &apc));

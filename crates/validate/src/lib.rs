@@ -36,7 +36,9 @@ pub use files::{find_apc_file, uiuc_name, uiuc_props};
 use held_out::held_out;
 pub use hidden::{hidden_measured, hidden_prop};
 use row::{band_coverage, beyond_polars, ladder_text, median_p90};
-pub use row::{family_groups, forward_rpm_trend, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread};
+pub use row::{
+    family_groups, forward_rpm_trend, line_groups, per3_score, twist_gap, BeforeAfter, Per3Score, Row, Spread,
+};
 
 /// Where validate reads and what it asks.
 #[derive(Debug, Clone)]

@@ -179,6 +179,27 @@ pub struct Per3Score {
     pub cp: Spread,
 }
 
+/// Other makers' lines (their props predicted with a section assumed) with two or more props,
+/// then all such props together ([`propbet_compare::expected::ASSUMED`]).
+pub fn line_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {
+    let assumed: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_some()).collect();
+    let mut lines: Vec<String> = assumed.iter().map(|r| family(&r.prop)).collect();
+    lines.sort();
+    lines.dedup();
+    let mut out: Vec<(String, Vec<&Row>)> = lines
+        .into_iter()
+        .map(|f| {
+            let members: Vec<&Row> = assumed.iter().copied().filter(|r| family(&r.prop) == f).collect();
+            (f, members)
+        })
+        .filter(|(_, members)| members.len() >= 2)
+        .collect();
+    if assumed.len() >= 2 {
+        out.push((propbet_compare::expected::ASSUMED.to_string(), assumed));
+    }
+    out
+}
+
 /// The rows of APC's sections (a row whose section was assumed left out, as from validate's
 /// medians) grouped by [`family`], in name order, the families of two or more props only.
 pub fn family_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {

@@ -1,6 +1,5 @@
-//! Each candidate's signature: the change of the residual rows per unit of each parameter,
-//! on the baseline (what the data can tell before any answer) or at a fitted stack (the
-//! verdict's rivals, where the ladder's answer is).
+//! Each candidate's signature: the change of the residual rows per unit of each parameter, on
+//! the baseline (what the data can tell before any answer, and the verdict's rivals).
 
 use std::sync::Arc;
 
@@ -66,51 +65,4 @@ pub fn signatures(
             }
         })
         .collect()
-}
-
-/// The signatures of `candidates` at the fitted `stack` (whose residual rows are `r_stack`):
-/// those in it perturbed from their fitted values (their reference), the others added at
-/// their neutral values. A change the verdict weighs is the fitted model's, so its rivals are
-/// linearised there: on the baseline a pair fitted far from neutral (a drag scale of 1.8 with
-/// a pitch offset) moves the rows otherwise.
-pub fn signatures_at(
-    model: &Model,
-    data: &Data,
-    stack: &Stack,
-    r_stack: &[f64],
-    candidates: &[Arc<dyn Effect>],
-) -> Vec<Signature> {
-    let all: Vec<usize> = (0..data.obs.len()).collect();
-    let mut out = signatures(model, data, stack, r_stack, candidates);
-    let effects: Vec<Arc<dyn Effect>> = stack.active.iter().map(|a| a.effect.clone()).collect();
-    let p: Vec<f64> = stack.active.iter().flat_map(|a| a.values.clone()).collect();
-    let mut offset = 0;
-    for a in &stack.active {
-        let params = a.effect.params();
-        let columns = params
-            .iter()
-            .enumerate()
-            .map(|(k, q)| {
-                let h = if a.values[k] + q.scale <= q.upper {
-                    q.scale
-                } else {
-                    -q.scale
-                };
-                let mut v = p.clone();
-                v[offset + k] += h;
-                let r = model.residuals(data, &stack_at(&effects, &v), &all).ok()?;
-                let col: Vec<f64> = r.iter().zip(r_stack).map(|(x, y)| (x - y) / h).collect();
-                col.iter().all(|x| x.is_finite()).then_some(col)
-            })
-            .collect();
-        offset += params.len();
-        if candidates.iter().any(|c| c.id() == a.effect.id()) {
-            out.push(Signature {
-                effect: a.effect.clone(),
-                reference: a.values.clone(),
-                columns,
-            });
-        }
-    }
-    out
 }

@@ -1,7 +1,9 @@
 //! The rules of what the data can tell, on made-up signatures and residuals.
 
 use super::*;
-use propbet_effects::{Hook, Param};
+use std::sync::Arc;
+
+use propbet_effects::{Effect, Hook, Param};
 
 /// A stand-in effect: only its id and parameters matter to the judge.
 #[derive(Debug)]
