@@ -657,4 +657,10 @@ fn the_micro_props_and_a_millimetre_name_are_read() {
         // Within a factor of two of the measurement on the median: the right diameter.
         assert!(n >= 40 && ct < 0.5, "{r:?}");
     }
+    // What to expect of other makers' props: one line each here (none of two props), and the
+    // four together.
+    let families = std::fs::read_to_string(dir.path().join("v/families.csv")).unwrap();
+    let groups: Vec<&str> = families.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(groups, ["sections assumed"], "{families}");
+    assert!(families.contains("sections assumed,4,"), "{families}");
 }

@@ -268,6 +268,9 @@ mod tests {
             ("apcsf_10x4.7.stl", Some("SF")),
             ("blade.stl", None),
             ("x-PERF.PE0", None),
+            ("gwsdd_9x5_geom.txt", Some("gwsdd")),
+            ("MA_9x4_static_0740rd.txt", Some("ma")),
+            ("xyz_9x4_geom.txt", None),
         ] {
             assert_eq!(family_of_file(name), f, "{name}");
         }
@@ -330,7 +333,33 @@ mod tests {
         );
         let scan = sentence(None, &t).unwrap();
         assert!(scan.contains("the worst family, APC Slow Flyer"), "{scan}");
+        assert!(
+            scan.starts_with("Expected accuracy: no prop of this maker line is in propbet's validation"),
+            "{scan}"
+        );
         assert!(sentence(None, &[]).is_none());
+        // A maker line the table holds: its own numbers, and that its section was assumed.
+        let mut with_line = t.clone();
+        with_line.insert(
+            0,
+            Expected {
+                family: "gwsdd".into(),
+                props: 6,
+                ct_median: 0.12,
+                cp_median: 0.2,
+                ..t[0].clone()
+            },
+        );
+        let gws = sentence(Some("gwsdd_9x5_geom.txt"), &with_line).unwrap();
+        assert!(
+            gws.contains("on the 6 GWS Direct Drive props")
+                && gws.contains("with a section assumed")
+                && gws.contains("12.0 % in CT and 20.0 % in CP"),
+            "{gws}"
+        );
+        // One the table does not hold: told so.
+        let unseen = sentence(Some("gwsdd_9x5_geom.txt"), &t).unwrap();
+        assert!(unseen.contains("no prop of this maker line"), "{unseen}");
     }
 
     /// The headline accuracy on the README and the validation page is the book's validation
