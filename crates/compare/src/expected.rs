@@ -64,7 +64,7 @@ pub const LINES: [(&str, &str); 16] = [
 pub const ASSUMED: &str = "sections assumed";
 
 /// A family's or maker line's name in words.
-pub(crate) fn family_words(family: &str) -> &'static str {
+pub fn family_words(family: &str) -> &'static str {
     match family {
         "E" => "APC Electric",
         "SF" => "APC Slow Flyer",
@@ -185,6 +185,13 @@ pub fn usual_error<'a>(names: impl IntoIterator<Item = &'a str>) -> Option<(f64,
     let table = shipped();
     let e = table.iter().find(|e| e.family == fam)?;
     Some((e.ct_median, e.cp_median, e.props, family_words(fam)))
+}
+
+/// The validated group of the prop whose file is `name` (its APC family or maker line), where
+/// `table` holds it.
+pub fn group_of<'a>(name: Option<&str>, table: &'a [Expected]) -> Option<&'a Expected> {
+    let f = family_of_file(name?)?;
+    table.iter().find(|e| e.family == f)
 }
 
 /// What to expect of a prediction of the prop whose file is `name` (None: a scan, a table),

@@ -31,6 +31,27 @@ fn format_number(v: f64) -> String {
     propbet_report::table::text(v)
 }
 
+/// What to expect of a prediction of the prop whose file is `name` before any measurement, from
+/// the validation shipped with propbet: the sentence `predict` prints, and the numbers of its
+/// APC family or maker line (None where the validation holds none of its kind).
+#[pyfunction]
+#[pyo3(signature = (name=None))]
+fn expected_accuracy(py: Python<'_>, name: Option<String>) -> PyResult<Bound<'_, pyo3::types::PyDict>> {
+    use propbet_api::compare::expected;
+    use pyo3::types::PyDictMethods;
+    let table = expected::shipped();
+    let d = pyo3::types::PyDict::new(py);
+    d.set_item("sentence", expected::sentence(name.as_deref(), &table))?;
+    let group = expected::group_of(name.as_deref(), &table);
+    d.set_item("group", group.map(|e| expected::family_words(&e.family)))?;
+    d.set_item("props", group.map(|e| e.props))?;
+    d.set_item("ct_median", group.map(|e| e.ct_median))?;
+    d.set_item("cp_median", group.map(|e| e.cp_median))?;
+    d.set_item("band_ct_inside", group.map(|e| e.band_ct_inside))?;
+    d.set_item("band_cp_inside", group.map(|e| e.band_cp_inside))?;
+    Ok(d)
+}
+
 /// The module.
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -39,6 +60,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(execute, m)?)?;
     m.add_function(wrap_pyfunction!(format_number, m)?)?;
+    m.add_function(wrap_pyfunction!(expected_accuracy, m)?)?;
     m.add_class::<model::Model>()?;
     m.add_function(wrap_pyfunction!(model::predict, m)?)?;
     m.add_function(wrap_pyfunction!(model::stations, m)?)?;

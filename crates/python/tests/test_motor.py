@@ -100,3 +100,4 @@ def test_props_side_by_side_are_the_command_lines_table(cli, tmp_path, same_as_f
     same_as_file(table, tmp_path / "side" / "props.csv")
     assert list(table["rank_"]) == [1, 2, 3]  # `rank` is a DataFrame method
     assert any("Most grams per watt at hover" in a for a in table.attrs["answer"])
+

@@ -119,3 +119,13 @@ def test_the_propeller_you_own_from_apcs_design_file(cli, tmp_path, same_as_file
     cli("predict", "--prop", pe0, "--engine", "neuralfoil", "--rpm", "5000", "--j", "0,0.2,0.4,0.6", "-o", tmp_path / "s.csv")
     same_as_file(sweep, tmp_path / "s.csv")
     assert sweep.ct.is_monotonic_decreasing and sweep.ct.iloc[0] > 0.1
+
+
+def test_the_expected_accuracy_of_a_family_and_of_a_maker_never_validated():
+    sport = propbet.expected_accuracy("10x7-PERF.PE0")
+    assert sport["group"] == "APC Sport" and sport["props"] >= 3
+    assert 0 < sport["ct_median"] < 0.5 and 0 < sport["band_ct_inside"] <= 1
+    assert "APC Sport props" in sport["sentence"]
+    scan = propbet.expected_accuracy(None)
+    assert scan["group"] is None and scan["props"] is None
+    assert "no prop of this maker line" in scan["sentence"]

@@ -43,6 +43,7 @@ from . import _native
 from ._native import Battery, InputError, InternalError, Motor
 
 __all__ = [
+    "expected_accuracy",
     "Prop",
     "Motor",
     "Battery",
@@ -613,6 +614,17 @@ class FittedMotor:
     notes: list
     misses: Optional[str]
     steps: pd.DataFrame
+
+
+def expected_accuracy(prop: Optional[PathLike] = None) -> dict:
+    """What to expect of a prediction of ``prop`` (its file: a PE0 file, a UIUC geometry table,
+    a QPROP file; None for a scan) before any measurement, from the validation shipped with
+    propbet: ``sentence`` (what ``predict`` prints), and its APC family's or maker line's
+    ``group``, ``props``, ``ct_median``, ``cp_median``, ``band_ct_inside`` and
+    ``band_cp_inside`` (None where the validation holds no prop of its kind, which the
+    sentence says)."""
+    name = None if prop is None else Path(prop).name
+    return dict(_native.expected_accuracy(name))
 
 
 def fit_motor(measured: Union[PathLike, Sequence[PathLike]], *, kv: Optional[float] = None, kq: bool = False, name: Optional[str] = None, **options: Any) -> FittedMotor:
