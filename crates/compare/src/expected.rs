@@ -60,6 +60,9 @@ pub const LINES: [(&str, &str); 16] = [
     ("pl", "Plantraco"),
 ];
 
+/// APC's families, as [`family`] names them.
+pub const APC_FAMILIES: [&str; 4] = ["E", "SF", "SP", "FF"];
+
 /// The group of every prop validated with a section assumed.
 pub const ASSUMED: &str = "sections assumed";
 
@@ -153,7 +156,7 @@ pub fn family_of_file(name: &str) -> Option<&'static str> {
     let lower = name.to_ascii_lowercase();
     if lower.contains('_') {
         let f = family(&lower);
-        if let Some(f) = ["E", "SF", "SP", "FF"]
+        if let Some(f) = APC_FAMILIES
             .into_iter()
             .chain(LINES.iter().map(|l| l.0))
             .find(|x| *x == f)
@@ -204,7 +207,7 @@ pub fn sentence(name: Option<&str>, table: &[Expected]) -> Option<String> {
     let pct = |x: f64| format!("{:.1} %", 100.0 * x);
     let worst = table
         .iter()
-        .filter(|e| ["E", "SF", "SP", "FF"].contains(&e.family.as_str()))
+        .filter(|e| APC_FAMILIES.contains(&e.family.as_str()))
         .max_by(|a, b| a.ct_median.max(a.cp_median).total_cmp(&b.ct_median.max(b.cp_median)));
     let band = |e: &Expected| {
         format!(

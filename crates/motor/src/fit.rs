@@ -7,11 +7,12 @@
 //! $$V_b I_b = Q\Omega + b\,\Omega + a\,(Q + b)^2,$$
 //! fitted by Gauss-Newton with 95 % intervals from the covariance. The supply side alone
 //! cannot separate Kv from R and Io: with the maker's Kv it is fitted so. Where the ESC command
-//! is logged, the constants come from both sides of the motor instead ([`sides`]): Kv and R
-//! from the voltage the motor sees, $d V_b = \Omega/K_v + R I_m$, Io from its current,
-//! $I_m = K_v Q + I_0$, with $I_m = I_b / d$ and the duty $d$ read from the ESC command as a
+//! is logged, Kv and Io come from both sides of the motor instead ([`sides`]): Kv from the
+//! voltage the motor sees, $d V_b = \Omega/K_v + R I_m$, Io from its current against the torque,
+//! $I_m = Q/K_t + I_0$, with $I_m = I_b / d$ and the duty $d$ read from the ESC command as a
 //! linear ESC calibrated to 1000-2000 µs does (an assumption, said in the fit's notes), over
-//! the steps at half throttle and above; the torque side's own constant, $1/K_t$, is the check.
+//! the steps at half throttle and above; the torque side's own constant, $1/K_t$, is the check
+//! of Kv, and R stays the supply power's, $a / K_v^2$.
 //!
 //! The current this model predicts at a point, $I_b = (Q\Omega + b\Omega + a(Q+b)^2)/V_b$,
 //! needs a and b only: it is what the held-out check scores.
@@ -331,25 +332,24 @@ fn fit_type1(points: &[FitPoint], kv_rpm: Option<f64>) -> Result<Constants, FitE
             plus_minus: 0.0,
         },
     };
-    // The torque side's Io where the sides agree; where not, the supply power's (which holds
-    // the supply's current whatever Kv is).
-    let (io, source, combos) = match (&sides, kv_rpm) {
-        (Some(s), None) if s.disagreement().abs() <= sides::DISAGREE => (
+    let source = match (&sides, kv_rpm) {
+        (Some(s), None) => KvSource::EscDuty(s.steps),
+        _ => KvSource::Given,
+    };
+    // The torque side's Io where Kv is the sides' and they agree; else the supply power's
+    // (which holds the supply's current whatever Kv is).
+    let (io, combos) = match sides
+        .as_ref()
+        .filter(|s| kv_rpm.is_none() && s.disagreement().abs() <= sides::DISAGREE)
+    {
+        Some(s) => (
             s.io,
-            KvSource::EscDuty(s.steps),
             Combos {
                 b: s.io.value / kv,
                 ..k
             },
         ),
-        (s, _) => (
-            estimate(&|x| x[1] * x[2] * x[3]),
-            match (s, kv_rpm) {
-                (Some(s), None) => KvSource::EscDuty(s.steps),
-                _ => KvSource::Given,
-            },
-            k,
-        ),
+        None => (estimate(&|x| x[1] * x[2] * x[3]), k),
     };
     Ok(Constants {
         r: estimate(&|x| x[0] / (x[2] * x[3]).powi(2)),
@@ -362,9 +362,12 @@ fn fit_type1(points: &[FitPoint], kv_rpm: Option<f64>) -> Result<Constants, FitE
     })
 }
 
-/// Ordinary least squares of `y` on the columns of `x`: the coefficients and their
-/// covariance.
-fn ols(x: &nalgebra::DMatrix<f64>, y: &nalgebra::DVector<f64>) -> Result<(Vec<f64>, nalgebra::DMatrix<f64>), FitError> {
+/// A least-squares fit: the coefficients, their covariance and the residuals.
+type Ols = (Vec<f64>, nalgebra::DMatrix<f64>, Vec<f64>);
+
+/// Ordinary least squares of `y` on the columns of `x` (more rows than columns): the
+/// coefficients, their covariance and the residuals.
+fn ols_with_rest(x: &nalgebra::DMatrix<f64>, y: &nalgebra::DVector<f64>) -> Result<Ols, FitError> {
     let xtx = x.transpose() * x;
     let inv = xtx
         .try_inverse()
@@ -373,7 +376,13 @@ fn ols(x: &nalgebra::DMatrix<f64>, y: &nalgebra::DVector<f64>) -> Result<(Vec<f6
     let beta = &inv * (x.transpose() * y);
     let res = y - x * &beta;
     let s2 = res.norm_squared() / (y.len() - x.ncols()) as f64;
-    Ok((beta.iter().copied().collect(), inv * s2))
+    Ok((beta.iter().copied().collect(), inv * s2, res.iter().copied().collect()))
+}
+
+/// Ordinary least squares of `y` on the columns of `x`: the coefficients and their
+/// covariance.
+fn ols(x: &nalgebra::DMatrix<f64>, y: &nalgebra::DVector<f64>) -> Result<(Vec<f64>, nalgebra::DMatrix<f64>), FitError> {
+    ols_with_rest(x, y).map(|(b, c, _)| (b, c))
 }
 
 /// Type 2: the motor's own current from the ESC's duty d (an ideal switch: I_m = I_b / d), at
@@ -384,10 +393,7 @@ fn ols(x: &nalgebra::DMatrix<f64>, y: &nalgebra::DVector<f64>) -> Result<(Vec<f6
 fn fit_type2(points: &[FitPoint], kv_rpm: Option<f64>) -> Result<Constants, FitError> {
     let used: Vec<(f64, f64)> = points
         .iter()
-        .filter_map(|p| {
-            let d = (p.esc? - 1000.0) / 1000.0;
-            (0.5..=1.0).contains(&d).then_some((p.amps / d, p.torque))
-        })
+        .filter_map(|p| sides::duty(p).map(|d| (p.amps / d, p.torque)))
         .collect();
     if used.is_empty() {
         return Err(FitError::NoDuty);

@@ -183,17 +183,7 @@ pub struct Per3Score {
 /// then all such props together ([`propbet_compare::expected::ASSUMED`]).
 pub fn line_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {
     let assumed: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_some()).collect();
-    let mut lines: Vec<String> = assumed.iter().map(|r| family(&r.prop)).collect();
-    lines.sort();
-    lines.dedup();
-    let mut out: Vec<(String, Vec<&Row>)> = lines
-        .into_iter()
-        .map(|f| {
-            let members: Vec<&Row> = assumed.iter().copied().filter(|r| family(&r.prop) == f).collect();
-            (f, members)
-        })
-        .filter(|(_, members)| members.len() >= 2)
-        .collect();
+    let mut out = by_family(&assumed);
     if assumed.len() >= 2 {
         out.push((propbet_compare::expected::ASSUMED.to_string(), assumed));
     }
@@ -204,13 +194,18 @@ pub fn line_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {
 /// medians) grouped by [`family`], in name order, the families of two or more props only.
 pub fn family_groups(rows: &[Row]) -> Vec<(String, Vec<&Row>)> {
     let apc: Vec<&Row> = rows.iter().filter(|r| r.assumed_section.is_none()).collect();
-    let mut families: Vec<String> = apc.iter().map(|r| family(&r.prop)).collect();
+    by_family(&apc)
+}
+
+/// `rows` grouped by [`family`], in name order, the groups of two or more rows only.
+fn by_family<'a>(rows: &[&'a Row]) -> Vec<(String, Vec<&'a Row>)> {
+    let mut families: Vec<String> = rows.iter().map(|r| family(&r.prop)).collect();
     families.sort();
     families.dedup();
     families
         .into_iter()
         .map(|f| {
-            let members: Vec<&Row> = apc.iter().copied().filter(|r| family(&r.prop) == f).collect();
+            let members: Vec<&Row> = rows.iter().copied().filter(|r| family(&r.prop) == f).collect();
             (f, members)
         })
         .filter(|(_, members)| members.len() >= 2)

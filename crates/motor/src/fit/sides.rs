@@ -53,21 +53,15 @@ pub fn duty(p: &FitPoint) -> Option<f64> {
     (LOWEST_DUTY..=1.0).contains(&d).then_some(d)
 }
 
-/// Least squares of `y` on the columns `x` (rows): coefficients, covariance, residuals.
-fn lsq(x: &[Vec<f64>], y: &[f64]) -> Option<(Vec<f64>, nalgebra::DMatrix<f64>, Vec<f64>)> {
+/// Least squares of `y` on the columns `x` (rows): coefficients, covariance, residuals; None
+/// with too few rows or a singular system.
+fn lsq(x: &[Vec<f64>], y: &[f64]) -> Option<super::Ols> {
     let (n, k) = (y.len(), x.first()?.len());
     if n <= k {
         return None;
     }
     let a = nalgebra::DMatrix::from_fn(n, k, |i, j| x[i][j]);
-    let b = nalgebra::DVector::from_column_slice(y);
-    let inv = (a.transpose() * &a)
-        .try_inverse()
-        .filter(|m| m.iter().all(|v| v.is_finite()))?;
-    let beta = &inv * (a.transpose() * &b);
-    let res = &b - &a * &beta;
-    let s2 = res.norm_squared() / (n - k) as f64;
-    Some((beta.iter().copied().collect(), inv * s2, res.iter().copied().collect()))
+    super::ols_with_rest(&a, &nalgebra::DVector::from_column_slice(y)).ok()
 }
 
 /// Kv from both sides, or None where fewer than [`FEWEST`] steps hold an ESC command at half
