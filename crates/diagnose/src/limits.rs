@@ -265,6 +265,10 @@ impl Judge {
     /// standing in for what two did is no more an answer than one for one.
     pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Vec<String> {
         let at = |name: &str| stack.iter().find(|(i, _)| *i == name).map(|(_, v)| *v);
+        // `change` is what the effect removes from the residual rows (without it minus with
+        // it); a rival stands in for it by moving the rows the other way, from its reference
+        // towards its bounds: the rows it must make are the negated change.
+        let made: Vec<f64> = change.iter().map(|x| -x).collect();
         let rivals: Vec<&Signature> = sigs.iter().filter(|s| s.effect.id() != id).collect();
         // How closely `those` (with the stack's other effects free) reproduce the change.
         let closeness = |those: &[&Signature]| {
@@ -277,7 +281,7 @@ impl Judge {
                     cols.extend(columns(o, at(o.effect.id()), true));
                 }
             }
-            self.strength(&imitate_by(change, &cols))
+            self.strength(&imitate_by(&made, &cols))
         };
         let mut close: Vec<(f64, String)> = rivals
             .iter()

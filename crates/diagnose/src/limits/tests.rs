@@ -180,3 +180,26 @@ fn a_torque_tare_and_more_drag_are_told_apart_by_a_run_at_lower_rpm() {
     let how = tell_apart(&data(), &ids);
     assert!(how.contains("static run down to 1500 rpm"), "{how}");
 }
+
+#[test]
+fn a_rival_stands_in_only_in_the_direction_its_bounds_allow() {
+    let d = data();
+    let n = d.obs.len();
+    let judge = Judge::new(&d, &noise(n, 0.01), None, None);
+    let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
+    // A's change as the verdict measures it: the rows without A minus the rows with it. A made
+    // the rows lower by 0.05 j.
+    let removed: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
+    // A one-sided parameter (a tare: 0 or more) whose unit raises the rows by j cannot lower
+    // them; one whose unit lowers them can.
+    let one_sided = |id: &'static str, sign: f64| Signature {
+        effect: Arc::new(Named(id, vec![Param::new("k", "-", 0.0, (0.0, 1.0), 0.01, "")])),
+        reference: vec![0.0],
+        columns: vec![Some(j.iter().map(|x| sign * x).collect())],
+    };
+    assert_eq!(judge.group(&removed, "a", &[one_sided("up", 1.0)], &[]), ["a"]);
+    assert_eq!(
+        judge.group(&removed, "a", &[one_sided("down", -1.0)], &[]),
+        ["a", "down"]
+    );
+}
