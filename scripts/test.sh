@@ -3,7 +3,8 @@
 #   scripts/test.sh          everything, the slow tests included (real XFOIL, whole cases,
 #                            headless Chromium), in the release profile, then the Python
 #                            package's tests (its wheel built and installed into .venv, pytest
-#                            against the binary just built): what CI runs
+#                            against the binary just built) and the workbench's browser tests:
+#                            what CI runs
 #   scripts/test.sh --fast   without the slow tests (they are marked #[ignore = "slow: ..."]
 #                            and listed as ignored), in the `fast` profile (optimised, no LTO,
 #                            incremental): no XFOIL, no Chromium, no timed assertion, no
@@ -23,4 +24,6 @@ else
   cargo test --workspace --locked --release --no-fail-fast -- --include-ignored
   scripts/python-package.sh
   PROPBET_BIN="$PWD/target/release/propbet" .venv/bin/python -m pytest -q -p no:cacheprovider crates/python/tests
+  # The workbench in a real browser (Debian's chromium, driven by Playwright).
+  PROPBET_BIN="$PWD/target/release/propbet" .venv/bin/python -m pytest -q -p no:cacheprovider tests/browser
 fi

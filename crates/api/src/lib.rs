@@ -33,6 +33,7 @@ mod motor_file;
 pub mod outputs;
 mod request;
 mod types;
+pub mod workbench;
 
 pub use command_error::{with_causes, CommandError, CommandResult};
 pub use motor_file::{motor, motor_text, read_motor};

@@ -132,6 +132,14 @@ pub enum Command {
         "Exit status: 0 done; 1 done, with dropped rows it reports; 2 error."
     ))]
     Diagnose(Box<diagnose::DiagnoseArgs>),
+    /// The workbench: a page on 127.0.0.1 that drives the model against a case's measurements
+    /// (effects on sliders, fit, the ladder step by step, pin, save).
+    #[command(after_help = concat!(
+        "Example:\n  propbet serve props/apcsp_10x7 --open\n\n",
+        "It prints one URL carrying a random token; Ctrl-C ends it.\n",
+        "Exit status: 2 error before it listens."
+    ))]
+    Serve(Box<propbet_serve::ServeRequest>),
     /// List the effects (built-in and user-defined) with their parameters and physics.
     #[command(after_help = concat!("Example:\n  propbet effects\n\n", "Exit status: 0 done; 2 error."))]
     Effects(diagnose::EffectsArgs),
@@ -265,6 +273,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Polars(a) => polar::run_polars(&a),
         Command::Compare(a) => compare::run(&a),
         Command::Diagnose(a) => diagnose::run(&a),
+        Command::Serve(a) => Ok(propbet_serve::run(&a).map(|()| true)?),
         Command::Effects(a) => diagnose::list(&a),
         Command::Synth(a) => synth::run(&a),
         Command::Scan(a) => scan::run(&a),

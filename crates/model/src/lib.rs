@@ -73,6 +73,7 @@ pub fn as_written(file: &PropFile, path: &Path) -> Result<LoadedProp> {
 }
 
 /// A model ready to solve.
+#[derive(Clone)]
 pub struct Model {
     /// The prop file as read.
     pub loaded: LoadedProp,
@@ -183,6 +184,16 @@ impl Model {
             .map(|s| registry.resolve(&parse_spec(s)?))
             .collect::<Result<Vec<_>, _>>()
             .map_err(|e| Error::about("--effect", e))?;
+        // One value per parameter: an effect given twice would stack on itself.
+        for (k, a) in active.iter().enumerate() {
+            if active[..k].iter().any(|b| b.effect.id() == a.effect.id()) {
+                return Err(Error::value(
+                    "--effect",
+                    &a.describe(),
+                    format!("{} is given twice (each effect once)", a.effect.id()),
+                ));
+            }
+        }
         Ok(Model {
             loaded,
             rotor,

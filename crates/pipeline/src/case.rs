@@ -21,6 +21,10 @@ pub struct Case {
     pub description: String,
     /// Blade count, checked against the scan when given.
     pub blades: Option<usize>,
+    /// Effects added to the model of every stage, as `--effect` writes them
+    /// (`["pitch-offset:deg=-0.8"]`): what the workbench's Save keeps.
+    #[serde(default)]
+    pub effects: Vec<String>,
     /// The blade.
     pub(crate) geometry: GeometrySection,
     /// XFOIL polars (without: the prop file's coefficients are used).

@@ -246,22 +246,13 @@ pub fn run_case(
     }
 
     // 4-5. Comparison and diagnosis.
-    let (mut compared, mut diagnosed) = (None, None);
-    if let Some((cspec, dspec)) = &plan.compare {
-        let t = book.start(StageSpec::Compare(cspec.clone()));
-        let c = stages::compare(&model, &cspec.measured).map_err(|e| stage_err("compare", e))?;
-        book.done(t, c.clean(), Finished::Compare(&c, &model));
-        compared = Some(c);
-        let t = book.start(StageSpec::Diagnose(dspec.clone()));
-        // The case's user effects (`[measured] user_effects`) are the diagnosis's alone.
-        let d = match dspec.model.user_effects {
-            Some(_) => build(&dspec.model).and_then(|m| stages::diagnose(&m, dspec)),
-            None => stages::diagnose(&model, dspec),
+    let (compared, diagnosed) = match &plan.compare {
+        Some(specs) => {
+            let (c, d) = compare_and_diagnose(specs, &model, &build, &mut book)?;
+            (Some(c), Some(d))
         }
-        .map_err(|e| stage_err("diagnose", e))?;
-        book.done(t, true, Finished::Diagnose(&d));
-        diagnosed = Some(d);
-    }
+        None => (None, None),
+    };
     Ok(RunOutcome {
         calibrated: calibrated(&model, compared.as_ref(), diagnosed.as_ref()),
         scanned,
@@ -275,6 +266,35 @@ pub fn run_case(
         diagnosed,
         stages: book.records,
     })
+}
+
+/// The compare and diagnose stages of a case, in `book`; `build` makes the diagnosis's own
+/// model where the case gives it user effects.
+fn compare_and_diagnose(
+    (cspec, dspec): &(
+        propbet_settings::spec::CompareSpec,
+        propbet_settings::spec::DiagnoseSpec,
+    ),
+    model: &Model,
+    build: &dyn Fn(&propbet_settings::spec::ModelSpec) -> Result<Model>,
+    book: &mut Book<'_>,
+) -> Result<(Compared, Diagnosed)> {
+    let stage_err = |name: &str, e: Error| Error::about(format!("{name} stage"), e);
+    let t = book.start(StageSpec::Compare(cspec.clone()));
+    let compare = |b| stages::compare(model, b);
+    let c = stages::load_batch(&cspec.measured)
+        .and_then(compare)
+        .map_err(|e| stage_err("compare", e))?;
+    book.done(t, c.clean(), Finished::Compare(&c, model));
+    let t = book.start(StageSpec::Diagnose(dspec.clone()));
+    // The case's user effects (`[measured] user_effects`) are the diagnosis's alone.
+    let d = match dspec.model.user_effects {
+        Some(_) => build(&dspec.model).and_then(|m| stages::diagnose(&m, dspec)),
+        None => stages::diagnose(model, dspec),
+    }
+    .map_err(|e| stage_err("diagnose", e))?;
+    book.done(t, true, Finished::Diagnose(&d));
+    Ok((c, d))
 }
 
 /// The polars stage's inputs from a scan's blade in memory: each station's scanned section

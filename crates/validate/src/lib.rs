@@ -255,7 +255,7 @@ fn compare_stage(spec: CompareSpec, model: &Model, records: &mut Vec<StageRecord
     timed(
         records,
         StageSpec::Compare(spec.clone()),
-        || stages::compare(model, &spec.measured),
+        || stages::load_batch(&spec.measured).and_then(|b| stages::compare(model, b)),
         |c: &Compared| c.clean(),
     )
 }

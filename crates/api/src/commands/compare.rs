@@ -58,7 +58,7 @@ pub fn compare(spec: &CompareSpec, console: &dyn Console) -> Result<(bool, Writt
     let model = load_model_at(&spec.model, || crate::model::cover(&spec.measured), false, console)?;
     // A reference that cannot be read stops the command before anything is computed.
     let other = reference(spec, model.diameter, console)?;
-    let c = stages::compare(&model, &spec.measured)?;
+    let c = stages::compare(&model, stages::load_batch(&spec.measured)?)?;
     let electric = match &spec.motor {
         Some(m) => {
             let e = stages::electric(&c, &model, m)?;

@@ -358,8 +358,16 @@ impl Case {
                 self.polars.as_ref().and_then(|p| p.drag_factor),
                 tables,
             ),
+            effects: self.effects.clone(),
             ..ModelSpec::prop(prop)
         };
+        // Each effect is checked against the built-ins before any stage runs.
+        let registry = propbet_model::effect_registry(None).map_err(|e| at("effects", e))?;
+        for e in &self.effects {
+            propbet_effects::parse_spec(e)
+                .and_then(|spec| registry.resolve(&spec))
+                .map_err(|err| at("effects", Error::about(format!("{e:?}"), err)))?;
+        }
         let a = &self.atmosphere;
         // Checked with the case, before any stage runs (a NaN would otherwise reach predict).
         if let Some(r) = a.rho {

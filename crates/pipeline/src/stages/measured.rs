@@ -224,14 +224,16 @@ pub fn batch_warnings(names: &[String], sets: &[MeasuredSet], refused: &[Refused
     out
 }
 
-/// Runs the compare stage.
-pub fn compare(model: &Model, measured: &MeasuredSpec) -> Result<Compared> {
-    let Batch {
+/// Runs the compare stage on measurements read ([`load_batch`]; the workbench reads them once).
+pub fn compare(
+    model: &Model,
+    Batch {
         air,
         sets,
         names,
         refused,
-    } = load_batch(measured)?;
+    }: Batch,
+) -> Result<Compared> {
     let points = propbet_compare::compare(&setup(model, air, model.effects.clone()), &sets)?;
     let metrics = metrics(&points);
     Ok(Compared {
