@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The guide's pictures of the report (docs/guide/img/*.png): the shipped cases run and their
-# reports photographed in headless Chromium. Run it after changing the report:
+# The guide's pictures of the report and the workbench (docs/guide/img/*.png): the shipped cases
+# run and their reports (and `propbet serve`'s page) photographed in headless Chromium. Run it after changing the report:
 #   scripts/screenshots.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,4 +19,13 @@ repo=$PWD
 shoot "$tmp/run_apcsp_10x7/report.html" docs/guide/img/report_top.png 900
 shoot "$tmp/run_apcsp_10x7/compare/report.html" docs/guide/img/compare_top.png 1300
 shoot "$tmp/run_photofoil_8x4.5/diagnose/report.html" docs/guide/img/diagnose_top.png 1300
+# The workbench's first screen: `propbet serve` on the default case, the page photographed
+# once its first evaluation is drawn.
+"$repo/target/release/propbet" serve "$repo/props/apcsp_10x7" --save-to "$tmp" > "$tmp/serve.out" 2>/dev/null &
+serve=$!
+for _ in $(seq 300); do [ -s "$tmp/serve.out" ] && break; sleep 0.2; done
+chromium --headless --no-sandbox --disable-gpu --hide-scrollbars --window-size=1400,900 \
+  --user-data-dir="$tmp/profile" --virtual-time-budget=8000 \
+  --screenshot="$repo/docs/guide/img/workbench.png" "$(head -1 "$tmp/serve.out")" >/dev/null 2>&1
+kill "$serve"
 ls -l docs/guide/img

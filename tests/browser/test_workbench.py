@@ -90,6 +90,14 @@ def test_the_page_loads_with_no_console_error_and_draws_four_figures(server, bro
     for sel in ["#numbers", "#fig-a", "#fig-d", "#effects"]:
         box = page.locator(sel).bounding_box()
         assert box and box["y"] < 900, sel
+    # Each figure downloads as SVG, drawn from the figure's own data.
+    with page.expect_download() as d:
+        page.click("#cap-a a:text('SVG')")
+    svg = Path(d.value.path()).read_text()
+    assert svg.startswith("<svg") and svg.count("<polyline") >= 4 and svg.count("<circle") > 50, svg[:300]
+    with page.expect_download() as d:
+        page.click("#cap-d a:text('PNG')")
+    assert Path(d.value.path()).read_bytes()[:4] == b"\x89PNG"
     assert errors == []
 
 

@@ -238,6 +238,7 @@ mod powertrain;
 mod qprop_real;
 mod run;
 mod scan;
+mod serve;
 mod sim_export;
 mod stand_logs;
 mod terminal;

@@ -16,6 +16,10 @@ use serde::{Deserialize, Serialize};
 use crate::command_error::refuse;
 use crate::{CommandError, CommandResult as Result};
 
+/// Intervals of the band along each curve (the curves have
+/// [`propbet_compare::curves::SAMPLES`]).
+pub const BAND_SAMPLES: usize = 10;
+
 /// The page's state: what a case file's keys hold that the page can change.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -166,7 +170,13 @@ impl Workbench {
             None,
             None,
         );
-        let (curves, band) = c.curves(&m)?;
+        // The curves at the report's sampling, the band (each source's two ends solved again)
+        // at a quarter of it: the page redraws on every change.
+        let setup = propbet_model::solve::setup(&m, c.air, m.effects.clone());
+        let effect = |e| CommandError::from(propbet_model::Error::from(e));
+        let curves = propbet_compare::curves::curves(&setup, &c.points).map_err(effect)?;
+        let coarse = propbet_compare::curves::sampled(&setup, &c.points, BAND_SAMPLES).map_err(effect)?;
+        let band = propbet_model::band::BandSpec::for_model(&m).along_curves(&m, c.air, &c.points, &coarse)?;
         if let serde_json::Value::Object(o) = &mut summary {
             o.insert("state".into(), serde_json::to_value(state)?);
             o.insert("curves".into(), curves_json(&curves, &band));
@@ -238,18 +248,19 @@ impl Workbench {
             if let Some(parent) = to.parent() {
                 std::fs::create_dir_all(parent).map_err(|e| CommandError::io(parent.display().to_string(), e))?;
             }
-            std::fs::copy(&f, &to).map_err(|e| CommandError::io(&f.display().to_string(), e))?;
+            std::fs::copy(&f, &to).map_err(|e| CommandError::io(format!("save: copying {}", f.display()), e))?;
         }
         let case_file = self.dir.join("case.toml");
-        let text =
-            std::fs::read_to_string(&case_file).map_err(|e| CommandError::io(&case_file.display().to_string(), e))?;
+        let text = std::fs::read_to_string(&case_file)
+            .map_err(|e| CommandError::io(format!("save: reading {}", case_file.display()), e))?;
         crate::files::write_atomic(
             &tmp.path().join("case.toml"),
             &[with_effects(&text, &state.effects)],
             &[case_file.as_path()],
         )?;
         let kept = tmp.keep();
-        std::fs::rename(&kept, &target).map_err(|e| CommandError::io(&target.display().to_string(), e))?;
+        std::fs::rename(&kept, &target)
+            .map_err(|e| CommandError::io(format!("save: naming {}", target.display()), e))?;
         Ok(target)
     }
 }
@@ -287,25 +298,32 @@ pub fn with_effects(text: &str, effects: &[String]) -> String {
     s
 }
 
-/// The model's curves and band as the page draws them: per J sweep its speed and (J, CT, CP,
-/// band), and the static curve against RPM (thrust, torque, band of CT and CP).
+/// The model's curves and band as the page draws them: per J sweep its speed, (J, CT, CP,
+/// thrust, torque) and the band of CT and CP on its own grid; the static curve against RPM
+/// likewise.
 fn curves_json(
     curves: &propbet_compare::curves::Curves,
     band: &propbet_compare::band::BandCurves,
 ) -> serde_json::Value {
     let num = |x: Option<f64>| x.filter(|v| v.is_finite());
-    let rows = |c: &propbet_compare::curves::Curve, b: Option<&propbet_compare::band::BandCurve>| {
+    let rows = |c: &propbet_compare::curves::Curve| {
         c.iter()
-            .enumerate()
-            .map(|(i, (x, q))| {
-                let pb = b.and_then(|b| b.get(i)).map(|(_, p)| *p);
+            .map(|(x, q)| {
                 serde_json::json!({
                     "x": x, "ct": num(q.ct), "cp": num(q.cp), "thrust": num(q.thrust), "torque": num(q.torque),
-                    "ct_lo": pb.map(|p| p.ct.lo), "ct_hi": pb.map(|p| p.ct.hi),
-                    "cp_lo": pb.map(|p| p.cp.lo), "cp_hi": pb.map(|p| p.cp.hi),
                 })
             })
             .collect::<Vec<_>>()
+    };
+    let band_rows = |b: Option<&propbet_compare::band::BandCurve>| {
+        b.map(|b| {
+            b.iter()
+                .map(|(x, p)| {
+                    serde_json::json!({"x": x, "ct_lo": p.ct.lo, "ct_hi": p.ct.hi, "cp_lo": p.cp.lo, "cp_hi": p.cp.hi})
+                })
+                .collect::<Vec<_>>()
+        })
+        .unwrap_or_default()
     };
     let sweeps: Vec<serde_json::Value> = curves
         .j_sweeps
@@ -314,17 +332,16 @@ fn curves_json(
         .filter_map(|(k, s)| {
             let (rpm, c) = s.as_ref()?;
             let b = band.j_sweeps.get(k).and_then(Option::as_ref);
-            Some(serde_json::json!({"rpm": rpm, "rows": rows(c, b)}))
+            Some(serde_json::json!({"rpm": rpm, "rows": rows(c), "band": band_rows(b)}))
         })
         .collect();
     let statics = curves
         .statics
         .as_ref()
-        .map(|c| serde_json::json!({"rows": rows(c, band.statics.as_ref())}));
+        .map(|c| serde_json::json!({"rows": rows(c), "band": band_rows(band.statics.as_ref())}));
     serde_json::json!({"j_sweeps": sweeps, "statics": statics})
 }
 
-/// The measured points with the prediction at each and the relative errors.
 /// `scored`: inside the window validate scores (below 85 % of the sweep's zero-thrust J) and
 /// not flagged.
 fn points_json(points: &[ComparedPoint]) -> serde_json::Value {

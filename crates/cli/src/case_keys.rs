@@ -33,6 +33,13 @@ pub(crate) const KEYS: &[(&str, &str, &str, &str, &str)] = &[
         "the run page's blade count, checked against the scan's",
     ),
     (
+        "",
+        "effects",
+        "effects = [\"pitch-offset:deg=-0.8\"]",
+        "predict",
+        "--effect pitch-offset:deg=-0.8",
+    ),
+    (
         "geometry",
         "scan",
         "scan = \"{case}/../apcsf_10x4.7/apcsf_10x4.7.stl\"",

@@ -3,12 +3,13 @@
 //! model (a user formula that fails) are returned, never replaced by empty curves.
 
 use propbet_effects::EffectError;
+use rayon::prelude::*;
 
 use crate::metrics::{group_points, sweep_group};
 use crate::{predict, ComparedPoint, Quantities, Setup};
 
-/// Points per curve.
-const SAMPLES: usize = 40;
+/// Intervals per curve (the figures').
+pub const SAMPLES: usize = 40;
 
 /// A predicted curve: (x, predicted quantities) pairs.
 pub type Curve = Vec<(f64, Quantities)>;
@@ -32,6 +33,12 @@ fn mean(xs: impl Iterator<Item = f64>) -> f64 {
 
 /// The curves of `setup` for `points`.
 pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectError> {
+    sampled(setup, points, SAMPLES)
+}
+
+/// [`curves`] with `samples` intervals per curve (a band drawn on fewer points than its curve).
+pub fn sampled(setup: &Setup, points: &[ComparedPoint], samples: usize) -> Result<Curves, EffectError> {
+    let samples = samples.max(1);
     let mut j_sweeps = Vec::new();
     for (_, pts) in group_points(points, sweep_group) {
         if pts.iter().all(|p| p.is_static()) {
@@ -43,9 +50,10 @@ pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectE
         let jmax = pts.iter().map(|p| p.j).fold(0.0, f64::max) * 1.08;
         let omega = propbet_units::rpm_to_omega(rpm);
         let n = propbet_units::omega_to_rev_per_s(omega);
-        let curve = (0..=SAMPLES)
+        let curve = (0..=samples)
+            .into_par_iter()
             .map(|i| {
-                let j = jmax * i as f64 / SAMPLES as f64;
+                let j = jmax * i as f64 / samples as f64;
                 Ok((j, predict(setup, omega, j * n * setup.diameter, &fluid)?.0))
             })
             .collect::<Result<_, EffectError>>()?;
@@ -60,9 +68,10 @@ pub fn curves(setup: &Setup, points: &[ComparedPoint]) -> Result<Curves, EffectE
             .fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.rpm), b.max(p.rpm)));
         let fluid = stat[0].air.fluid;
         Some(
-            (0..=SAMPLES)
+            (0..=samples)
+                .into_par_iter()
                 .map(|i| {
-                    let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / SAMPLES as f64;
+                    let rpm = (0.9 * lo) + (1.1 * hi - 0.9 * lo) * i as f64 / samples as f64;
                     Ok((rpm, predict(setup, propbet_units::rpm_to_omega(rpm), 0.0, &fluid)?.0))
                 })
                 .collect::<Result<_, EffectError>>()?,

@@ -204,7 +204,8 @@ impl BandSpec {
     }
 
     /// The band along a comparison's model curves (`base`: the model's own,
-    /// [`propbet_compare::curves::curves`] of `points`).
+    /// [`propbet_compare::curves::sampled`] of `points` at any number of samples: the ends are
+    /// solved at the same).
     pub fn along_curves(
         &self,
         model: &Model,
@@ -212,8 +213,16 @@ impl BandSpec {
         points: &[ComparedPoint],
         base: &propbet_compare::curves::Curves,
     ) -> Result<propbet_compare::band::BandCurves> {
+        let samples = base
+            .j_sweeps
+            .iter()
+            .flatten()
+            .map(|(_, c)| c.len())
+            .chain(base.statics.iter().map(Vec::len))
+            .next()
+            .map_or(propbet_compare::curves::SAMPLES, |n| n.saturating_sub(1));
         let variants = self.at_both_ends(model, |s| {
-            propbet_compare::curves::curves(&crate::solve::setup(model, air, s), points)
+            propbet_compare::curves::sampled(&crate::solve::setup(model, air, s), points, samples)
         })?;
         Ok(propbet_compare::band::of_curves(base, &variants, &self.weights()))
     }

@@ -153,7 +153,11 @@ async function changed() {
 }
 
 function pct(x) { return x === null || x === undefined || !isFinite(x) ? "–" : `${(100 * x).toFixed(1)} %`; }
-function signed(x) { return x === null || x === undefined || !isFinite(x) ? "–" : `${x >= 0 ? "+" : ""}${(100 * x).toFixed(1)} %`; }
+function signed(x) {
+  if (x === null || x === undefined || !isFinite(x)) return "–";
+  const t = (100 * x).toFixed(1);
+  return t === "0.0" || t === "-0.0" ? "0.0 %" : `${x > 0 ? "+" : ""}${t} %`;
+}
 
 function numbers(s) {
   const items = [
@@ -180,7 +184,8 @@ function numbers(s) {
       b.className = better ? "better" : worse ? "worse" : "";
     }
     const small = document.createElement("small");
-    small.textContent = label + (abs ? ` (${s.accuracy.points} points)` : "");
+    small.textContent = label;
+    if (abs) d.title = `over ${s.accuracy.points} points: ${s.accuracy.measure}`;
     d.append(b, small);
     if (p !== null && p !== undefined) {
       const pin = document.createElement("span");
@@ -195,24 +200,32 @@ function numbers(s) {
 // One figure's uPlot data: the model's curves (each with its band), the measured points, the
 // pinned curves, joined on one x axis.
 function figure(id, s, pick) {
-  const tables = [], series = [{ label: pick.xlabel }], bands = [];
+  const tables = [], series = [{ label: pick.xlabel }], bands = [], kinds = ["x"];
   const groups = pick.groups(s);
   groups.forEach((g, k) => {
     const color = COLORS[k % COLORS.length];
     if (pick.model && g.rows.length) {
       const r = g.rows.filter((row) => row[pick.y] !== null);
-      tables.push([r.map((x) => x.x), r.map((x) => x[pick.y]), r.map((x) => x[pick.y + "_lo"]), r.map((x) => x[pick.y + "_hi"])]);
-      const base = series.length;
+      tables.push([r.map((x) => x.x), r.map((x) => x[pick.y])]);
       series.push({ label: `${g.label} model`, stroke: color, width: 2, spanGaps: true, points: { show: false } });
-      series.push({ label: "band", stroke: "transparent", spanGaps: true, points: { show: false } });
-      series.push({ label: "band", stroke: "transparent", spanGaps: true, points: { show: false } });
-      bands.push({ series: [base + 2, base + 1], fill: color + "22" });
+      kinds.push("line");
+      // The band on its own (coarser) grid, where the figure is of a coefficient.
+      const b = (g.band || []).filter((row) => row[pick.y + "_lo"] !== undefined);
+      if (b.length) {
+        tables.push([b.map((x) => x.x), b.map((x) => x[pick.y + "_lo"]), b.map((x) => x[pick.y + "_hi"])]);
+        const lo = series.length;
+        series.push({ label: "band", stroke: "transparent", spanGaps: true, points: { show: false } });
+        series.push({ label: "band", stroke: "transparent", spanGaps: true, points: { show: false } });
+        kinds.push("band", "band");
+        bands.push({ series: [lo + 1, lo], fill: color + "22" });
+      }
     }
     const m = g.points.filter((p) => p.y !== null && p.y !== undefined && isFinite(p.y));
     if (m.length) {
       const sorted = m.slice().sort((a, b) => a.x - b.x);
       tables.push([sorted.map((p) => p.x), sorted.map((p) => p.y)]);
       series.push({ label: `${g.label} measured`, stroke: color, paths: () => null, points: { show: true, size: 6, fill: color } });
+      kinds.push("points");
     }
   });
   if (pinned && pick.model) {
@@ -221,6 +234,7 @@ function figure(id, s, pick) {
       if (!r.length) return;
       tables.push([r.map((x) => x.x), r.map((x) => x[pick.y])]);
       series.push({ label: `${g.label} pinned`, stroke: "#888", dash: [6, 4], width: 1.5, spanGaps: true, points: { show: false } });
+      kinds.push("pinned");
     });
   }
   if (!tables.length) return;
@@ -253,7 +267,10 @@ function figure(id, s, pick) {
   };
   if (plots[id]) plots[id].destroy();
   el.innerHTML = "";
+  // What the SVG export draws, kept as given (uPlot turns colours into functions).
+  const drawn = { bands: bands.map((b) => ({ series: b.series.slice(), fill: b.fill })), kinds, colors: series.map((x) => x.stroke) };
   plots[id] = new uPlot(opts, data, el);
+  plots[id].propbet = drawn;
 }
 
 function groupsByRpm(s, y, model) {
@@ -264,6 +281,7 @@ function groupsByRpm(s, y, model) {
     return {
       label: `${Math.round(sw.rpm / 100) * 100} rpm`,
       rows: model ? sw.rows : [],
+      band: model ? sw.band : [],
       points: s.points_measured.filter((p) => near(p) && (model || p.scored)).map((p) => ({ x: p.j, y: y(p) })),
     };
   });
@@ -271,7 +289,7 @@ function groupsByRpm(s, y, model) {
 
 function staticGroups(s, y, model) {
   const st = s.curves.statics;
-  return [{ label: "static", rows: st ? st.rows : [], points: s.points_measured.filter((p) => p.static && (model || p.scored)).map((p) => ({ x: p.rpm, y: y(p) })) }];
+  return [{ label: "static", rows: st ? st.rows : [], band: [], points: s.points_measured.filter((p) => p.static && (model || p.scored)).map((p) => ({ x: p.rpm, y: y(p) })) }];
 }
 
 // The colours of the RPM groups, in the first figure's caption.
@@ -388,24 +406,94 @@ async function save() {
   } catch (e) { say(e.message, true); }
 }
 
+// A figure as SVG: its series, band and points drawn from the uPlot instance's own scales,
+// with round ticks on each axis.
+function svgOf(u, title) {
+  const W = u.width, H = u.height, L = 70, T = 24, R = 16, B = 46;
+  const w = W - L - R, h = H - T - B;
+  const sx = u.scales.x, sy = u.scales.y;
+  const X = (v) => L + (w * (v - sx.min)) / (sx.max - sx.min);
+  const Y = (v) => T + h - (h * (v - sy.min)) / (sy.max - sy.min);
+  const inside = (v) => v !== null && v !== undefined && isFinite(v) && v >= sy.min && v <= sy.max;
+  const esc = (t) => String(t).replace(/&/g, "&amp;").replace(/</g, "&lt;");
+  const parts = [`<svg xmlns="http://www.w3.org/2000/svg" width="${W}" height="${H}" font-family="sans-serif" font-size="12">`,
+    `<rect width="${W}" height="${H}" fill="white"/>`, `<text x="${L}" y="16" font-weight="bold">${esc(title)}</text>`];
+  // Ticks at 1, 2 or 5 times a power of ten, four to ten of them.
+  const ticks = (min, max) => {
+    const raw = (max - min) / 5, p = Math.pow(10, Math.floor(Math.log10(raw)));
+    const step = [1, 2, 5, 10].map((m) => m * p).find((st) => (max - min) / st <= 6) || 10 * p;
+    const out = [];
+    for (let v = Math.ceil(min / step) * step; v <= max + 1e-9 * step; v += step) out.push(Math.abs(v) < 1e-12 * step ? 0 : v);
+    return out;
+  };
+  for (const v of ticks(sx.min, sx.max)) parts.push(`<line x1="${X(v)}" x2="${X(v)}" y1="${T}" y2="${T + h}" stroke="#e5e5e5"/><text x="${X(v)}" y="${T + h + 16}" text-anchor="middle">${Number(v.toPrecision(3))}</text>`);
+  for (const v of ticks(sy.min, sy.max)) parts.push(`<line x1="${L}" x2="${L + w}" y1="${Y(v)}" y2="${Y(v)}" stroke="#e5e5e5"/><text x="${L - 6}" y="${Y(v) + 4}" text-anchor="end">${Number(v.toPrecision(3))}</text>`);
+  parts.push(`<text x="${L + w / 2}" y="${H - 8}" text-anchor="middle">${esc(u.axes[0].label)}</text>`);
+  parts.push(`<text transform="translate(14 ${T + h / 2}) rotate(-90)" text-anchor="middle">${esc(u.axes[1].label)}</text>`);
+  const xs = u.data[0];
+  const own = u.propbet;
+  for (const b of own.bands) {
+    const [hi, lo] = b.series;
+    const up = [], down = [];
+    xs.forEach((x, i) => { if (inside(u.data[hi][i]) && inside(u.data[lo][i])) { up.push(`${X(x)},${Y(u.data[hi][i])}`); down.unshift(`${X(x)},${Y(u.data[lo][i])}`); } });
+    if (up.length) parts.push(`<polygon points="${up.concat(down).join(" ")}" fill="${b.fill.slice(0, 7)}" fill-opacity="0.13"/>`);
+  }
+  u.series.forEach((s, k) => {
+    const kind = own.kinds[k];
+    if (kind === "x" || kind === "band" || !u.data[k]) return;
+    const color = own.colors[k];
+    const pts = xs.map((x, i) => [x, u.data[k][i]]).filter(([, y]) => inside(y));
+    if (kind === "points") {
+      for (const [x, y] of pts) parts.push(`<circle cx="${X(x)}" cy="${Y(y)}" r="3" fill="${color}"/>`);
+    } else if (pts.length) {
+      const dash = kind === "pinned" ? ` stroke-dasharray="6 4"` : "";
+      parts.push(`<polyline points="${pts.map(([x, y]) => `${X(x)},${Y(y)}`).join(" ")}" fill="none" stroke="${color}" stroke-width="${kind === "pinned" ? 1.5 : 2}"${dash}/>`);
+    }
+  });
+  // The legend: each group's colour, beside the title.
+  let lx = L + 12 + 8 * title.length;
+  u.series.forEach((s, k) => {
+    if (own.kinds[k] !== "points" && own.kinds[k] !== "line") return;
+    const label = String(s.label).replace(/ (model|measured)$/, "");
+    if (parts.some((p) => p.includes(`data-legend="${label}"`))) return;
+    parts.push(`<text data-legend="${esc(label)}" x="${lx}" y="16" fill="${own.colors[k]}">● ${esc(label)}</text>`);
+    lx += 14 + 7 * label.length;
+  });
+  parts.push(`<rect x="${L}" y="${T}" width="${w}" height="${h}" fill="none" stroke="#999"/></svg>`);
+  return parts.join("\n");
+}
+
 function downloads() {
   for (const id of ["a", "b", "c", "d"]) {
-    const a = document.createElement("a");
-    a.href = "#";
-    a.textContent = "PNG";
-    a.addEventListener("click", (e) => {
+    const name = () => $(`cap-${id}`).firstChild.textContent.trim().replace(/[^A-Za-z0-9]+/g, "_");
+    const save = (href, ext) => {
+      const link = document.createElement("a");
+      link.download = `${name()}.${ext}`;
+      link.href = href;
+      link.click();
+    };
+    const png = document.createElement("a");
+    png.href = "#";
+    png.textContent = "PNG";
+    png.addEventListener("click", (e) => {
       e.preventDefault();
       const canvas = $(`fig-${id}`).querySelector("canvas");
-      if (!canvas) return;
-      const link = document.createElement("a");
-      link.download = `${$(`cap-${id}`).firstChild.textContent.replace(/[^A-Za-z0-9]+/g, "_")}.png`;
-      link.href = canvas.toDataURL("image/png");
-      link.click();
+      if (canvas) save(canvas.toDataURL("image/png"), "png");
+    });
+    const svg = document.createElement("a");
+    svg.href = "#";
+    svg.textContent = "SVG";
+    svg.addEventListener("click", (e) => {
+      e.preventDefault();
+      const u = plots[`fig-${id}`];
+      if (!u) return;
+      const blob = new Blob([svgOf(u, $(`cap-${id}`).firstChild.textContent.trim())], { type: "image/svg+xml" });
+      save(URL.createObjectURL(blob), "svg");
     });
     const note = document.createElement("small");
     note.id = `note-${id}`;
     note.className = "note";
-    $(`cap-${id}`).append(a, note);
+    $(`cap-${id}`).append(png, svg, note);
   }
 }
 

@@ -1,0 +1,199 @@
+//! `propbet serve` over HTTP: the guards (loopback Host, token, body size), every bad request a
+//! 4xx with the command line's message and the server still answering, and an evaluation equal
+//! to `propbet compare --effect` of the same state. On the PhotoFoil case (a QPROP file: no
+//! XFOIL).
+
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Stdio};
+
+use super::*;
+
+/// A running `propbet serve`, killed when dropped.
+struct Server {
+    child: Child,
+    port: u16,
+    token: String,
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn start(case: &Path, save_to: &Path) -> Server {
+    let mut child = bin()
+        .args(["serve", case.to_str().unwrap(), "--save-to", save_to.to_str().unwrap()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("propbet serve starts");
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let url = line.trim();
+    let rest = url
+        .strip_prefix("http://127.0.0.1:")
+        .unwrap_or_else(|| panic!("printed {url:?}"));
+    let (port, token) = rest.split_once("/?token=").unwrap();
+    Server {
+        child,
+        port: port.parse().unwrap(),
+        token: token.to_string(),
+    }
+}
+
+/// One HTTP/1.1 request: (status, body).
+fn request(port: u16, method: &str, path: &str, headers: &[(&str, &str)], body: &[u8]) -> (u16, String) {
+    let mut s = TcpStream::connect(("127.0.0.1", port)).unwrap();
+    let mut head = format!(
+        "{method} {path} HTTP/1.1\r\nConnection: close\r\nContent-Length: {}\r\n",
+        body.len()
+    );
+    if !headers.iter().any(|(k, _)| *k == "Host") {
+        head.push_str(&format!("Host: 127.0.0.1:{port}\r\n"));
+    }
+    for (k, v) in headers {
+        head.push_str(&format!("{k}: {v}\r\n"));
+    }
+    head.push_str("\r\n");
+    s.write_all(head.as_bytes()).unwrap();
+    let _ = s.write_all(body);
+    let mut answer = Vec::new();
+    let _ = s.read_to_end(&mut answer);
+    let text = String::from_utf8_lossy(&answer).to_string();
+    let status = text.split(' ').nth(1).and_then(|c| c.parse().ok()).unwrap_or(0);
+    let body = text
+        .split_once("\r\n\r\n")
+        .map_or(String::new(), |(_, b)| b.to_string());
+    (status, body)
+}
+
+fn evaluate(s: &Server, body: &[u8]) -> (u16, String) {
+    request(s.port, "POST", "/api/evaluate", &[("X-Propbet-Token", &s.token)], body)
+}
+
+fn photofoil() -> PathBuf {
+    repo().join("props/photofoil_8x4.5")
+}
+
+#[test]
+fn requests_without_the_token_or_from_another_host_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = start(&photofoil(), dir.path());
+    let state = br#"{"effects": []}"#;
+    assert_eq!(request(s.port, "POST", "/api/evaluate", &[], state).0, 401);
+    let wrong = [("X-Propbet-Token", "0123"), ("Host", "")];
+    assert_eq!(request(s.port, "POST", "/api/evaluate", &wrong[..1], state).0, 401);
+    // A name another site rebinds to 127.0.0.1 carries its own Host.
+    let rebound = [("X-Propbet-Token", s.token.as_str()), ("Host", "attacker.example:80")];
+    let (code, body) = request(s.port, "POST", "/api/evaluate", &rebound, state);
+    assert_eq!(code, 403, "{body}");
+    assert!(body.contains("not this machine's loopback"), "{body}");
+    // The page needs the token too; the token in the query string is taken.
+    assert_eq!(request(s.port, "GET", "/", &[], b"").0, 401);
+    let (code, page) = request(s.port, "GET", &format!("/?token={}", s.token), &[], b"");
+    assert_eq!(code, 200);
+    assert!(page.contains("propbet workbench"));
+    assert_eq!(evaluate(&s, state).0, 200);
+}
+
+#[test]
+fn a_bad_request_gets_the_command_lines_message_and_the_server_goes_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = start(&photofoil(), dir.path());
+    for (body, says) in [
+        (&b"{not json"[..], "not a state"),
+        (br#"{"effects": ["nope:x=1"]}"#, "unknown effect `nope`"),
+        (br#"{"effects": ["pitch-offset:deg=-80"]}"#, "outside its bounds"),
+        (
+            br#"{"effects": ["pitch-offset:deg=1", "pitch-offset:deg=1"]}"#,
+            "given twice",
+        ),
+        (br#"{"effects": ["pitch-offset:deg=NaN"]}"#, "pitch-offset"),
+        (br#"{"effect": []}"#, "unknown field"),
+    ] {
+        let (code, answer) = evaluate(&s, body);
+        assert_eq!(code, 400, "{}: {answer}", String::from_utf8_lossy(body));
+        assert!(answer.contains(says), "{}: {answer}", String::from_utf8_lossy(body));
+    }
+    let big = vec![b' '; propbet_serve_max_body() + 10];
+    assert_eq!(evaluate(&s, &big).0, 413);
+    // Save refuses a name that is not one plain folder name, and writes nothing.
+    let save = |name: &str| {
+        let body = format!(r#"{{"state": {{"effects": []}}, "name": "{name}"}}"#);
+        request(
+            s.port,
+            "POST",
+            "/api/save",
+            &[("X-Propbet-Token", &s.token)],
+            body.as_bytes(),
+        )
+    };
+    assert_eq!(save("../escape").0, 400);
+    assert_eq!(save("a/b").0, 400);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    // Random bytes and mangled states: an answer each, never a dropped connection.
+    let seed = br#"{"effects": ["drag-scale:factor=1.2", "tip-loss:strength=1.5"]}"#;
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    for k in 0..150 {
+        let mut b = seed.to_vec();
+        for _ in 0..(1 + k % 6) {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let at = (x as usize) % b.len();
+            b[at] = (x >> 32) as u8;
+        }
+        let (code, _) = evaluate(&s, &b);
+        assert!(code == 200 || code == 400, "{code} for {}", String::from_utf8_lossy(&b));
+    }
+    assert_eq!(evaluate(&s, br#"{"effects": []}"#).0, 200);
+}
+
+/// The bound `propbet_serve::MAX_BODY` (1 MiB), as the guide states it.
+fn propbet_serve_max_body() -> usize {
+    1 << 20
+}
+
+#[test]
+fn an_evaluation_is_what_compare_gives_for_the_same_effects() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = start(&photofoil(), dir.path());
+    let effects = ["drag-scale:factor=1.6", "tip-loss:strength=2.2"];
+    let state = serde_json::json!({ "effects": effects }).to_string();
+    let (code, body) = evaluate(&s, state.as_bytes());
+    assert_eq!(code, 200, "{body}");
+    let api: serde_json::Value = serde_json::from_str(&body).unwrap();
+    let case = photofoil();
+    let mut args = vec![
+        "compare".to_string(),
+        "--prop".into(),
+        case.join("QProp_8x4_5.txt").display().to_string(),
+        "--measured".into(),
+        case.join("StepsTestV2_2022-01-18_153833.csv").display().to_string(),
+        "--rho".into(),
+        "1.1648".into(),
+        "-o".into(),
+        "cmp".into(),
+    ];
+    for e in effects {
+        args.push("--effect".into());
+        args.push(e.into());
+    }
+    let out = run(&args.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    assert!(
+        out.status.code().unwrap_or(2) < 2,
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let cli: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("cmp/summary.json")).unwrap()).unwrap();
+    for k in ["ct_median_error", "cp_median_error", "points"] {
+        assert_eq!(api["accuracy"][k], cli["accuracy"][k], "{k}");
+    }
+    assert_eq!(api["headline"], cli["headline"]);
+}
