@@ -169,3 +169,19 @@ def test_a_refused_request_leaves_the_page_working(server, browser):
     assert page.evaluate("() => last.state.effects") == ["drag-scale:factor=1.3"]
     # The only console error is the refused request's own.
     assert all("400" in e for e in errors), errors
+
+
+def test_two_tabs_at_once_each_get_their_own_state(server, browser):
+    errors = []
+    a = open_page(browser, server[0], errors)
+    b = open_page(browser, server[0], errors)
+    settled(a, "baseline")
+    settled(b, "baseline")
+    move(a, "pitch-offset", "deg", 0.6)
+    move(b, "chord-scale", "factor", 1.05)
+    settled(a, "pitch-offset:deg=0.6")
+    settled(b, "chord-scale:factor=1.05")
+    assert a.evaluate("() => last.state.effects") == ["pitch-offset:deg=0.6"]
+    assert b.evaluate("() => last.state.effects") == ["chord-scale:factor=1.05"]
+    assert shown(a, "CT median") != shown(b, "CT median")
+    assert errors == []

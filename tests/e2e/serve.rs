@@ -197,3 +197,55 @@ fn an_evaluation_is_what_compare_gives_for_the_same_effects() {
     }
     assert_eq!(api["headline"], cli["headline"]);
 }
+
+#[test]
+fn the_cases_user_effects_are_offered_and_a_saved_case_keeps_the_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = dir.path().join("case");
+    std::fs::create_dir(&case).unwrap();
+    for f in ["QProp_8x4_5.txt", "StepsTestV2_2022-01-18_153833.csv", "case.toml"] {
+        std::fs::copy(photofoil().join(f), case.join(f)).unwrap();
+    }
+    std::fs::copy(repo().join("docs/user_effects.toml"), case.join("effects.toml")).unwrap();
+    let text = std::fs::read_to_string(case.join("case.toml")).unwrap();
+    let text = text.replace(
+        "files = [\"StepsTestV2_2022-01-18_153833.csv\"]",
+        "files = [\"StepsTestV2_2022-01-18_153833.csv\"]\nuser_effects = \"effects.toml\"",
+    );
+    std::fs::write(case.join("case.toml"), text).unwrap();
+    let saves = dir.path().join("saves");
+    std::fs::create_dir(&saves).unwrap();
+    let s = start(&case, &saves);
+    let (code, session) = request(s.port, "GET", "/api/session", &[("X-Propbet-Token", &s.token)], b"");
+    assert_eq!(code, 200, "{session}");
+    let session: serde_json::Value = serde_json::from_str(&session).unwrap();
+    let ids: Vec<&str> = session["effects"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|e| e["id"].as_str().unwrap())
+        .collect();
+    assert!(ids.contains(&"windage") && ids.contains(&"pitch-offset"), "{ids:?}");
+    let body = r#"{"state": {"effects": ["drag-scale:factor=1.5"]}, "name": "kept"}"#;
+    let (code, answer) = request(
+        s.port,
+        "POST",
+        "/api/save",
+        &[("X-Propbet-Token", &s.token)],
+        body.as_bytes(),
+    );
+    assert_eq!(code, 200, "{answer}");
+    let saved = std::fs::read_to_string(saves.join("kept/case.toml")).unwrap();
+    assert!(saved.contains("effects = [\"drag-scale:factor=1.5\"]"), "{saved}");
+    assert!(saves.join("kept/effects.toml").is_file());
+    // A second save of the same name writes nothing over the first.
+    let (code, answer) = request(
+        s.port,
+        "POST",
+        "/api/save",
+        &[("X-Propbet-Token", &s.token)],
+        body.as_bytes(),
+    );
+    assert_eq!(code, 400);
+    assert!(answer.contains("exists"), "{answer}");
+}

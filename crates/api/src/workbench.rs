@@ -82,7 +82,15 @@ impl Workbench {
             names: compared.names,
             refused: compared.refused,
         };
-        let model = outcome.model;
+        let mut model = outcome.model;
+        // The case's user effects (`[measured] user_effects`) are offered beside the built-ins.
+        if let Some(file) = &diagnose.model.user_effects {
+            for e in propbet_model::effect_registry(Some(file))?.effects {
+                if model.registry.get(e.id()).is_none() {
+                    model.registry.effects.push(e);
+                }
+            }
+        }
         let start = State {
             effects: plan.predict.model.effects.clone(),
         };
@@ -258,9 +266,12 @@ impl Workbench {
             &[with_effects(&text, &state.effects)],
             &[case_file.as_path()],
         )?;
+        // Named only once complete: a folder that cannot be named is removed with its files.
         let kept = tmp.keep();
-        std::fs::rename(&kept, &target)
-            .map_err(|e| CommandError::io(format!("save: naming {}", target.display()), e))?;
+        if let Err(e) = std::fs::rename(&kept, &target) {
+            let _ = std::fs::remove_dir_all(&kept);
+            return Err(CommandError::io(format!("save: naming {}", target.display()), e));
+        }
         Ok(target)
     }
 }

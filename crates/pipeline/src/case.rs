@@ -430,10 +430,11 @@ impl RunPlan {
         if let Some(s) = self.polars.as_ref().and_then(|(p, _)| p.sections_from.as_ref()) {
             v.push(s.clone());
         }
-        if let Some((c, _)) = &self.compare {
+        if let Some((c, d)) = &self.compare {
             v.extend(c.measured.inputs().into_iter().map(Path::to_path_buf));
             v.extend(c.per3.clone());
             v.extend(c.motor.clone());
+            v.extend(d.model.user_effects.clone());
         }
         if let Some(p) = &self.powered {
             v.push(p.motor.clone());
