@@ -227,25 +227,22 @@ fn the_cases_user_effects_are_offered_and_a_saved_case_keeps_the_state() {
         .collect();
     assert!(ids.contains(&"windage") && ids.contains(&"pitch-offset"), "{ids:?}");
     let body = r#"{"state": {"effects": ["drag-scale:factor=1.5"]}, "name": "kept"}"#;
-    let (code, answer) = request(
-        s.port,
-        "POST",
-        "/api/save",
-        &[("X-Propbet-Token", &s.token)],
-        body.as_bytes(),
-    );
+    let save = || {
+        request(
+            s.port,
+            "POST",
+            "/api/save",
+            &[("X-Propbet-Token", &s.token)],
+            body.as_bytes(),
+        )
+    };
+    let (code, answer) = save();
     assert_eq!(code, 200, "{answer}");
     let saved = std::fs::read_to_string(saves.join("kept/case.toml")).unwrap();
     assert!(saved.contains("effects = [\"drag-scale:factor=1.5\"]"), "{saved}");
     assert!(saves.join("kept/effects.toml").is_file());
     // A second save of the same name writes nothing over the first.
-    let (code, answer) = request(
-        s.port,
-        "POST",
-        "/api/save",
-        &[("X-Propbet-Token", &s.token)],
-        body.as_bytes(),
-    );
+    let (code, answer) = save();
     assert_eq!(code, 400);
     assert!(answer.contains("exists"), "{answer}");
 }

@@ -309,25 +309,18 @@ function draw(s) {
   const sweeps = s.curves.j_sweeps.length > 0;
   const err = (k) => (p) => (p[k] === null ? null : 100 * p[k]);
   legend(sweeps ? groupsByRpm(s, () => null, false).map((g) => g.label) : ["static"]);
-  if (sweeps) {
-    $("cap-a").firstChild.textContent = "CT against J";
-    $("cap-b").firstChild.textContent = "CP against J";
-    $("cap-c").firstChild.textContent = "CT error [%] against J";
-    $("cap-d").firstChild.textContent = "CP error [%] against J";
-    figure("fig-a", s, { xlabel: "J", ylabel: "CT", y: "ct", model: true, groups: (d) => groupsByRpm(d, (p) => p.ct, true) });
-    figure("fig-b", s, { xlabel: "J", ylabel: "CP", y: "cp", model: true, groups: (d) => groupsByRpm(d, (p) => p.cp, true) });
-    figure("fig-c", s, { xlabel: "J", ylabel: "CT error [%]", y: "ct", model: false, groups: (d) => groupsByRpm(d, err("ct_error"), false) });
-    figure("fig-d", s, { xlabel: "J", ylabel: "CP error [%]", y: "cp", model: false, groups: (d) => groupsByRpm(d, err("cp_error"), false) });
-  } else {
-    $("cap-a").firstChild.textContent = "Thrust [N] against RPM";
-    $("cap-b").firstChild.textContent = "Torque [N m] against RPM";
-    $("cap-c").firstChild.textContent = "CT error [%] against RPM";
-    $("cap-d").firstChild.textContent = "CP error [%] against RPM";
-    figure("fig-a", s, { xlabel: "RPM", ylabel: "thrust [N]", y: "thrust", model: true, groups: (d) => staticGroups(d, (p) => p.thrust, true) });
-    figure("fig-b", s, { xlabel: "RPM", ylabel: "torque [N m]", y: "torque", model: true, groups: (d) => staticGroups(d, (p) => p.torque, true) });
-    figure("fig-c", s, { xlabel: "RPM", ylabel: "CT error [%]", y: "ct", model: false, groups: (d) => staticGroups(d, err("ct_error"), false) });
-    figure("fig-d", s, { xlabel: "RPM", ylabel: "CP error [%]", y: "cp", model: false, groups: (d) => staticGroups(d, err("cp_error"), false) });
-  }
+  // Per figure: caption, y label, the quantity, and whether it draws the model.
+  const x = sweeps ? "J" : "RPM";
+  const groups = sweeps ? groupsByRpm : staticGroups;
+  const specs = sweeps
+    ? [["CT", "ct", (p) => p.ct, true], ["CP", "cp", (p) => p.cp, true]]
+    : [["Thrust [N]", "thrust", (p) => p.thrust, true], ["Torque [N m]", "torque", (p) => p.torque, true]];
+  specs.push(["CT error [%]", "ct", err("ct_error"), false], ["CP error [%]", "cp", err("cp_error"), false]);
+  specs.forEach(([label, y, value, model], k) => {
+    const id = "abcd"[k];
+    $(`cap-${id}`).firstChild.textContent = `${label} against ${x}`;
+    figure(`fig-${id}`, s, { xlabel: x, ylabel: label, y, model, groups: (d) => groups(d, value, model) });
+  });
 }
 
 // ---- fit, diagnose, pin, save -----------------------------------------------------------
