@@ -72,8 +72,13 @@ fn request(port: u16, method: &str, path: &str, headers: &[(&str, &str)], body: 
     (status, body)
 }
 
+/// A POST to `path` carrying the server's token.
+fn post(s: &Server, path: &str, body: &[u8]) -> (u16, String) {
+    request(s.port, "POST", path, &[("X-Propbet-Token", &s.token)], body)
+}
+
 fn evaluate(s: &Server, body: &[u8]) -> (u16, String) {
-    request(s.port, "POST", "/api/evaluate", &[("X-Propbet-Token", &s.token)], body)
+    post(s, "/api/evaluate", body)
 }
 
 fn photofoil() -> PathBuf {
@@ -125,13 +130,7 @@ fn a_bad_request_gets_the_command_lines_message_and_the_server_goes_on() {
     // Save refuses a name that is not one plain folder name, and writes nothing.
     let save = |name: &str| {
         let body = format!(r#"{{"state": {{"effects": []}}, "name": "{name}"}}"#);
-        request(
-            s.port,
-            "POST",
-            "/api/save",
-            &[("X-Propbet-Token", &s.token)],
-            body.as_bytes(),
-        )
+        post(&s, "/api/save", body.as_bytes())
     };
     assert_eq!(save("../escape").0, 400);
     assert_eq!(save("a/b").0, 400);
@@ -227,15 +226,7 @@ fn the_cases_user_effects_are_offered_and_a_saved_case_keeps_the_state() {
         .collect();
     assert!(ids.contains(&"windage") && ids.contains(&"pitch-offset"), "{ids:?}");
     let body = r#"{"state": {"effects": ["drag-scale:factor=1.5"]}, "name": "kept"}"#;
-    let save = || {
-        request(
-            s.port,
-            "POST",
-            "/api/save",
-            &[("X-Propbet-Token", &s.token)],
-            body.as_bytes(),
-        )
-    };
+    let save = || post(&s, "/api/save", body.as_bytes());
     let (code, answer) = save();
     assert_eq!(code, 200, "{answer}");
     let saved = std::fs::read_to_string(saves.join("kept/case.toml")).unwrap();
