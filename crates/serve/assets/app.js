@@ -504,8 +504,15 @@ async function main() {
     $("pin").addEventListener("click", pin);
     $("reset").addEventListener("click", () => { setState(startState); changed(); });
     $("save").addEventListener("click", save);
-    let resize;
-    window.addEventListener("resize", () => { clearTimeout(resize); resize = setTimeout(() => last && draw(last), 150); });
+    // Redrawn when the figures' area changes size (the window, the header's numbers wrapping).
+    let resize, size = "";
+    new ResizeObserver(() => {
+      const r = $("figures").getBoundingClientRect(), now = `${Math.round(r.width)}x${Math.round(r.height)}`;
+      if (now === size) return;
+      size = now;
+      clearTimeout(resize);
+      resize = setTimeout(() => last && draw(last), 100);
+    }).observe($("figures"));
     await changed();
   } catch (e) { say(e.message, true); }
 }
