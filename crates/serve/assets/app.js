@@ -11,6 +11,7 @@ let startState = { effects: [] };
 let pinned = null;        // the pinned evaluation
 let last = null;          // the last evaluation
 let plots = {};
+let ladder = null;        // the last diagnosis' ladder (its held-out errors join the numbers)
 let busy = false, again = false;
 
 async function api(path, body) {
@@ -171,6 +172,11 @@ function numbers(s) {
       const where = g.points.startsWith("forward") ? "forward" : g.points;
       items.push([`${where} ${q}, mean error`, g.errors[q].mean_error, pg && pg.errors[q] && pg.errors[q].mean_error, signed, false]);
     }
+  }
+  if (ladder && ladder.length) {
+    // The diagnosis' held-out error: before any effect, and after its last rung.
+    items.push(["held out, before the ladder", ladder[0].kfold_rms, null, pct, false]);
+    items.push(["held out, after it", ladder[ladder.length - 1].kfold_rms, null, pct, false]);
   }
   $("numbers").innerHTML = "";
   for (const [label, v, p, f, abs] of items) {
@@ -355,6 +361,8 @@ async function diagnose() {
 }
 
 function showLadder(d, base) {
+  ladder = d.ladder;
+  if (last) numbers(last);
   const root = $("ladder");
   root.innerHTML = "<h2>The ladder</h2>";
   const ol = document.createElement("ol");
