@@ -137,7 +137,7 @@ pub enum Command {
     #[command(after_help = concat!(
         "Example:\n  propbet serve props/apcsp_10x7 --open\n\n",
         "It prints one URL carrying a random token; Ctrl-C ends it.\n",
-        "Exit status: 0 never (Ctrl-C ends it with the signal's status); 2 error before it listens."
+        "Exit status: 0 is never returned (Ctrl-C ends it, with the signal's status); 2 error before it listens."
     ))]
     Serve(Box<propbet_serve::ServeRequest>),
     /// List the effects (built-in and user-defined) with their parameters and physics.
