@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use propbet_compare::ComparedPoint;
-use propbet_effects::{parse_spec, Stack};
+use propbet_effects::Stack;
 use propbet_model::Model;
 use propbet_pipeline::stages::{self, Batch, Compared};
 use propbet_settings::spec::{DiagnoseSpec, XfoilProcessSpec};
@@ -16,9 +16,10 @@ use serde::{Deserialize, Serialize};
 use crate::command_error::refuse;
 use crate::{CommandError, CommandResult as Result};
 
-/// Intervals of the band along each curve (the curves have
-/// [`propbet_compare::curves::SAMPLES`]).
-pub const BAND_SAMPLES: usize = 10;
+/// The band is solved at every this-th of the curves' samples
+/// ([`propbet_compare::curves::SAMPLES`] intervals: at a quarter of them), the page redrawing
+/// on every change.
+pub const BAND_EVERY: usize = 4;
 
 /// The page's state: what a case file's keys hold that the page can change.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -40,6 +41,8 @@ pub struct Workbench {
     /// The measurements, read.
     batch: Batch,
     diagnose: DiagnoseSpec,
+    /// The files the case reads (what Save copies).
+    inputs: Vec<PathBuf>,
     /// The state the case starts from (its `effects`).
     pub start: State,
 }
@@ -100,6 +103,7 @@ impl Workbench {
             model,
             batch,
             diagnose,
+            inputs: plan.inputs(),
             start,
         })
     }
@@ -111,7 +115,6 @@ impl Workbench {
             .registry
             .effects
             .iter()
-            .filter(|e| e.id() != "transition" || !e.params().is_empty())
             .map(|e| Offer {
                 id: e.id().to_string(),
                 explanation: e.explanation().to_string(),
@@ -120,26 +123,14 @@ impl Workbench {
             .collect()
     }
 
-    /// The stack of `state`'s effects, each checked (an unknown effect, a value out of its
-    /// bounds: the error `--effect` gives).
+    /// The stack of `state`'s effects, each checked as `--effect` checks them (an unknown
+    /// effect, a value out of its bounds, an effect given twice: the command line's error).
     pub fn stack(&self, state: &State) -> Result<Stack> {
-        let mut active = Vec::new();
-        for e in &state.effects {
-            let spec = parse_spec(e).map_err(|err| CommandError::from(propbet_model::Error::from(err)))?;
-            let a = self
-                .model
-                .registry
-                .resolve(&spec)
-                .map_err(|err| CommandError::from(propbet_model::Error::from(err)))?;
-            if active
-                .iter()
-                .any(|x: &propbet_effects::Active| x.effect.id() == a.effect.id())
-            {
-                refuse!("effect {} given twice", a.effect.id());
-            }
-            active.push(a);
-        }
-        Ok(Stack { active })
+        Ok(propbet_model::stack_of(
+            &self.model.registry,
+            &state.effects,
+            "--effect",
+        )?)
     }
 
     /// The model under `state`.
@@ -178,13 +169,7 @@ impl Workbench {
             None,
             None,
         );
-        // The curves at the report's sampling, the band (each source's two ends solved again)
-        // at a quarter of it: the page redraws on every change.
-        let setup = propbet_model::solve::setup(&m, c.air, m.effects.clone());
-        let effect = |e| CommandError::from(propbet_model::Error::from(e));
-        let curves = propbet_compare::curves::curves(&setup, &c.points).map_err(effect)?;
-        let coarse = propbet_compare::curves::sampled(&setup, &c.points, BAND_SAMPLES).map_err(effect)?;
-        let band = propbet_model::band::BandSpec::for_model(&m).along_curves(&m, c.air, &c.points, &coarse)?;
+        let (curves, band) = c.curves(&m, BAND_EVERY)?;
         if let serde_json::Value::Object(o) = &mut summary {
             o.insert("state".into(), serde_json::to_value(state)?);
             o.insert("curves".into(), curves_json(&curves, &band));
@@ -194,9 +179,10 @@ impl Workbench {
     }
 
     /// Fits the effect `id` alone on top of `state`'s other effects, as the diagnosis fits a
-    /// candidate (its bounds narrowed by the files' provenance): its `--effect` spec.
-    pub fn fit(&self, state: &State, id: &str) -> Result<String> {
-        let others = State {
+    /// candidate (its bounds narrowed by the files' provenance): its `--effect` spec, and the
+    /// state with it in place of the one given.
+    pub fn fit(&self, state: &State, id: &str) -> Result<(String, State)> {
+        let mut others = State {
             effects: state
                 .effects
                 .iter()
@@ -217,7 +203,9 @@ impl Workbench {
             .collect();
         let fitted = propbet_diagnose::fit::fit(&dmodel, &data, &candidates, &start)
             .map_err(|e| CommandError::from(propbet_model::Error::from(e)))?;
-        Ok(fitted.stack.describe())
+        let spec = fitted.stack.describe();
+        others.effects.push(spec.clone());
+        Ok((spec, others))
     }
 
     /// Runs the diagnosis' ladder on the measurements with `state`'s effects as the baseline:
@@ -249,14 +237,13 @@ impl Workbench {
             .prefix(".propbet-save-")
             .tempdir_in(root)
             .map_err(|e| CommandError::io(root.display().to_string(), e))?;
-        let plan = crate::case::plan(&self.dir, &self.dir.join("run"), &XfoilProcessSpec::default())?;
-        for f in plan.inputs() {
+        for f in &self.inputs {
             let Ok(rel) = f.strip_prefix(&self.dir) else { continue };
             let to = tmp.path().join(rel);
             if let Some(parent) = to.parent() {
                 std::fs::create_dir_all(parent).map_err(|e| CommandError::io(parent.display().to_string(), e))?;
             }
-            std::fs::copy(&f, &to).map_err(|e| CommandError::io(format!("save: copying {}", f.display()), e))?;
+            std::fs::copy(f, &to).map_err(|e| CommandError::io(format!("save: copying {}", f.display()), e))?;
         }
         let case_file = self.dir.join("case.toml");
         let text = std::fs::read_to_string(&case_file)

@@ -26,6 +26,24 @@ pub struct Curves {
     pub statics: Option<Curve>,
 }
 
+impl Curves {
+    /// Every `every`-th sample of each curve, the ends kept where `every` divides the curves'
+    /// intervals: the curves [`sampled`] at that many times fewer intervals, without solving
+    /// again.
+    pub fn thinned(&self, every: usize) -> Curves {
+        let every = every.max(1);
+        let thin = |c: &Curve| c.iter().step_by(every).copied().collect::<Curve>();
+        Curves {
+            j_sweeps: self
+                .j_sweeps
+                .iter()
+                .map(|s| s.as_ref().map(|(rpm, c)| (*rpm, thin(c))))
+                .collect(),
+            statics: self.statics.as_ref().map(thin),
+        }
+    }
+}
+
 fn mean(xs: impl Iterator<Item = f64>) -> f64 {
     let (s, n) = xs.fold((0.0, 0usize), |(s, n), x| (s + x, n + 1));
     s / n.max(1) as f64

@@ -204,8 +204,8 @@ impl BandSpec {
     }
 
     /// The band along a comparison's model curves (`base`: the model's own,
-    /// [`propbet_compare::curves::sampled`] of `points` at any number of samples: the ends are
-    /// solved at the same).
+    /// [`propbet_compare::curves::curves`] of `points`, or those curves `thinned`: the ends are
+    /// solved at the same samples).
     pub fn along_curves(
         &self,
         model: &Model,

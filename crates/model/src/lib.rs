@@ -178,32 +178,38 @@ impl Model {
         let diameter = 2.0 * loaded.file.tip_radius(RadiusReading::Documented);
         let mut registry = effect_registry(spec.user_effects.as_deref())?;
         registry.effects.extend(transition);
-        let active = spec
-            .effects
-            .iter()
-            .map(|s| registry.resolve(&parse_spec(s)?))
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(|e| Error::about("--effect", e))?;
-        // One value per parameter: an effect given twice would stack on itself.
-        for (k, a) in active.iter().enumerate() {
-            if active[..k].iter().any(|b| b.effect.id() == a.effect.id()) {
-                return Err(Error::value(
-                    "--effect",
-                    &a.describe(),
-                    format!("{} is given twice (each effect once)", a.effect.id()),
-                ));
-            }
-        }
+        let effects = stack_of(&registry, &spec.effects, "--effect")?;
         Ok(Model {
             loaded,
             rotor,
             opts,
             diameter,
             registry,
-            effects: Stack { active },
+            effects,
             band_sections,
         })
     }
+}
+
+/// The stack of effects written as `--effect` writes them (`pitch-offset:deg=-0.8`), each
+/// resolved among `registry`'s; an effect given twice is refused (it would stack on itself).
+/// `named`: what the specs were given as, in the errors (`--effect`).
+pub fn stack_of(registry: &Registry, specs: &[String], named: &str) -> Result<Stack> {
+    let mut active: Vec<propbet_effects::Active> = Vec::new();
+    for s in specs {
+        let a = parse_spec(s)
+            .and_then(|spec| registry.resolve(&spec))
+            .map_err(|e| Error::about(named, e))?;
+        if active.iter().any(|b| b.effect.id() == a.effect.id()) {
+            return Err(Error::value(
+                named,
+                &a.describe(),
+                format!("{} is given twice (each effect once)", a.effect.id()),
+            ));
+        }
+        active.push(a);
+    }
+    Ok(Stack { active })
 }
 
 /// The built-in effects and those of a user file (read, parsed and checked against the

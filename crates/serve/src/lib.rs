@@ -254,16 +254,8 @@ fn answer(bench: &Bench, request: &mut Request) -> Answer {
     let result = match path {
         "/api/evaluate" => parse::<State>(&body).and_then(|s| w.evaluate(&s).map_err(|e| e.to_string())),
         "/api/fit" => parse::<FitRequest>(&body).and_then(|f| {
-            let spec = w.fit(&f.state, &f.effect).map_err(|e| e.to_string())?;
-            let mut effects: Vec<String> = f
-                .state
-                .effects
-                .iter()
-                .filter(|e| e.split(':').next() != Some(f.effect.as_str()))
-                .cloned()
-                .collect();
-            effects.push(spec.clone());
-            Ok(serde_json::json!({"effect": spec, "state": State { effects }}))
+            let (spec, state) = w.fit(&f.state, &f.effect).map_err(|e| e.to_string())?;
+            Ok(serde_json::json!({"effect": spec, "state": state}))
         }),
         "/api/diagnose" => parse::<State>(&body).and_then(|s| w.diagnose(&s).map_err(|e| e.to_string())),
         "/api/save" => parse::<SaveRequest>(&body).and_then(|r| {

@@ -33,7 +33,7 @@ pub fn outputs(
     electric: Option<&crate::compare::electric::Electric>,
     command: &str,
 ) -> Result<Comparison> {
-    let (curves, band) = c.curves(model)?;
+    let (curves, band) = c.curves(model, 1)?;
     let mut prop_notes = model.loaded.warnings.clone();
     if spec.model.qprop_compat {
         prop_notes.push(format!(

@@ -361,13 +361,9 @@ impl Case {
             effects: self.effects.clone(),
             ..ModelSpec::prop(prop)
         };
-        // Each effect is checked against the built-ins before any stage runs.
+        // The effects are checked against the built-ins before any stage runs.
         let registry = propbet_model::effect_registry(None).map_err(|e| at("effects", e))?;
-        for e in &self.effects {
-            propbet_effects::parse_spec(e)
-                .and_then(|spec| registry.resolve(&spec))
-                .map_err(|err| at("effects", Error::about(format!("{e:?}"), err)))?;
-        }
+        propbet_model::stack_of(&registry, &self.effects, "effects").map_err(|e| Error::input(&case_file, e))?;
         let a = &self.atmosphere;
         // Checked with the case, before any stage runs (a NaN would otherwise reach predict).
         if let Some(r) = a.rho {

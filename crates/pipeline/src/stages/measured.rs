@@ -169,15 +169,22 @@ pub struct Compared {
 
 impl Compared {
     /// The model's curves through the measured points (`propbet_compare::curves`) and the
-    /// uncertainty band along them: what the comparison's figures draw.
+    /// uncertainty band along them, at every `band_every`-th of the curves' samples (1: at
+    /// each; the workbench, which redraws on every change, takes fewer): what the comparison's
+    /// figures draw.
     pub fn curves(
         &self,
         model: &Model,
+        band_every: usize,
     ) -> Result<(propbet_compare::curves::Curves, propbet_compare::band::BandCurves)> {
         let setup = setup(model, self.air, model.effects.clone());
         let curves = propbet_compare::curves::curves(&setup, &self.points)?;
-        let band =
-            propbet_model::band::BandSpec::for_model(model).along_curves(model, self.air, &self.points, &curves)?;
+        let band = propbet_model::band::BandSpec::for_model(model).along_curves(
+            model,
+            self.air,
+            &self.points,
+            &curves.thinned(band_every),
+        )?;
         Ok((curves, band))
     }
 
