@@ -48,6 +48,14 @@ fn noise(n: usize, sd: f64) -> Vec<f64> {
     (0..n).map(|i| if i % 2 == 0 { sd } else { -sd }).collect()
 }
 
+/// The data, the judge of white residuals of 1 % on them, and J about its mean over the rows.
+fn white() -> (Data, Judge, Vec<f64>) {
+    let d = data();
+    let judge = Judge::new(&d, &noise(d.obs.len(), 0.01), None, None);
+    let j = d.obs.iter().map(|o| o.j - 0.35).collect();
+    (d, judge, j)
+}
+
 fn sig(id: &'static str, col: Vec<f64>) -> Signature {
     Signature {
         effect: named(id),
@@ -76,10 +84,7 @@ fn a_change_below_the_detection_limit_is_never_named() {
 
 #[test]
 fn a_separable_pair_is_answered_alone_and_an_inseparable_one_as_a_group() {
-    let d = data();
-    let n = d.obs.len();
-    let judge = Judge::new(&d, &noise(n, 0.01), None, None);
-    let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
+    let (d, judge, j) = white();
     let change: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
     // B moves the rows as the change does (2x per unit): it reproduces it inside its bounds.
     let alike = sig("b", j.iter().map(|x| 2.0 * x).collect());
@@ -183,10 +188,7 @@ fn a_torque_tare_and_more_drag_are_told_apart_by_a_run_at_lower_rpm() {
 
 #[test]
 fn a_rival_stands_in_only_in_the_direction_its_bounds_allow() {
-    let d = data();
-    let n = d.obs.len();
-    let judge = Judge::new(&d, &noise(n, 0.01), None, None);
-    let j: Vec<f64> = d.obs.iter().map(|o| o.j - 0.35).collect();
+    let (_, judge, j) = white();
     // A's change as the verdict measures it: the rows without A minus the rows with it. A made
     // the rows lower by 0.05 j.
     let removed: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
