@@ -198,7 +198,8 @@ pub struct Finding {
     /// within `ci95`.
     pub found: bool,
     /// Not found, but answered as one of a group the data cannot tell apart (the verdict's
-    /// [`crate::limits::AnswerKind::Group`], alike candidates included).
+    /// [`crate::limits::AnswerKind::Group`], alike candidates included), or among a calibration
+    /// factor's physical stand-ins.
     pub tied: bool,
     /// The smallest change of the injected parameter these data detect, from the injected
     /// diagnosis' limits (None: none within its bounds).
@@ -322,8 +323,9 @@ pub fn score(
     let answer = injected.verdict.answers.iter().find(|a| a.id == effect);
     // Found: named alone (physics or a calibration factor) with its size.
     let found = found && answer.is_some_and(|a| matches!(a.kind, AnswerKind::Found | AnswerKind::Calibration));
+    // A group, or a calibration factor with the injection among its physical stand-ins.
     let group = injected.verdict.answers.iter().any(|a| {
-        a.kind == AnswerKind::Group
+        matches!(a.kind, AnswerKind::Group | AnswerKind::Calibration)
             && a.group
                 .iter()
                 .any(|g| g.split(crate::limits::PAIR).any(|e| e == effect))
@@ -372,6 +374,9 @@ pub fn score(
             .map(|a| match a.kind {
                 AnswerKind::Group => format!("{}: one of {}", a.id, a.group.join(", ")),
                 AnswerKind::Found => format!("{}: found", a.id),
+                AnswerKind::Calibration if a.group.len() > 1 => {
+                    format!("{}: calibration, or one of {}", a.id, a.group[1..].join(", "))
+                }
                 AnswerKind::Calibration => format!("{}: calibration", a.id),
                 AnswerKind::BelowLimit => format!("{}: below limit", a.id),
             })

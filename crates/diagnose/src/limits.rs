@@ -26,7 +26,8 @@
 //! **The answer** ([`verdict`]). Each effect of the ladder's final stack is judged on its own
 //! change of the residual rows (the final stack's residuals against the same stack without it):
 //! below the detection limit it is not named; fitted outside its expected range it is a
-//! calibration factor (no physics is named); where another candidate, inside its bounds,
+//! calibration factor (no physics is named; the candidates that make the same change inside
+//! their expected ranges are said beside it, its physical stand-ins); where another candidate, inside its bounds,
 //! reproduces that change up to an undetectable remainder (the stack's other effects free to
 //! move), the answer is the group, with the measurement that would separate them; otherwise it
 //! is found physics.
@@ -131,8 +132,9 @@ pub enum AnswerKind {
     /// Found physics: detectable, told apart from every other candidate, inside its expected
     /// range.
     Found,
-    /// Detectable, but fitted outside its expected range: a calibration factor (whatever else
-    /// could imitate it).
+    /// Detectable, but fitted outside its expected range: a calibration factor, with the
+    /// candidates that make the same change inside their expected ranges where there are
+    /// (its physical stand-ins, in [`Answer::group`]).
     Calibration,
     /// Detectable, but other candidates reproduce its change: one of a group.
     Group,
@@ -151,9 +153,10 @@ pub struct Answer {
     pub kind: AnswerKind,
     /// Its change over the detection threshold (1 or more: detectable).
     pub strength: f64,
-    /// The candidates that reproduce its change (its own id first), for a group.
+    /// The candidates that reproduce its change (its own id first), for a group; for a
+    /// calibration factor, those that do inside their expected ranges (empty: none).
     pub group: Vec<String>,
-    /// The measurement that would tell the group apart (None unless a group).
+    /// The measurement that would tell the group apart (None without a group).
     pub tell_apart: Option<String>,
 }
 
@@ -264,6 +267,19 @@ impl Judge {
     /// Where no one candidate does, two together that do are a rival too ("a + b"): one effect
     /// standing in for what two did is no more an answer than one for one.
     pub fn group(&self, change: &[f64], id: &str, sigs: &[Signature], stack: &[(&str, &[f64])]) -> Vec<String> {
+        self.group_within(change, id, sigs, stack, Reach::Bounds)
+    }
+
+    /// [`Judge::group`] with the rivals moving as far as `reach` lets them (the stack's other
+    /// effects within their bounds).
+    fn group_within(
+        &self,
+        change: &[f64],
+        id: &str,
+        sigs: &[Signature],
+        stack: &[(&str, &[f64])],
+        reach: Reach,
+    ) -> Vec<String> {
         let at = |name: &str| stack.iter().find(|(i, _)| *i == name).map(|(_, v)| *v);
         // `change` is what the effect removes from the residual rows (without it minus with
         // it); a rival stands in for it by moving the rows the other way, from its reference
@@ -274,11 +290,11 @@ impl Judge {
         let closeness = |those: &[&Signature]| {
             let mut cols = Vec::new();
             for s in those {
-                cols.extend(columns(s, at(s.effect.id()), true));
+                cols.extend(columns(s, at(s.effect.id()), reach));
             }
             for o in &rivals {
                 if at(o.effect.id()).is_some() && !those.iter().any(|s| s.effect.id() == o.effect.id()) {
-                    cols.extend(columns(o, at(o.effect.id()), true));
+                    cols.extend(columns(o, at(o.effect.id()), Reach::Bounds));
                 }
             }
             self.strength(&imitate_by(&made, &cols))
@@ -306,8 +322,9 @@ impl Judge {
 
     /// How the change the effect `id` makes is answered, with the group where it is one: below
     /// the limit (nothing named); a calibration factor when its value is `outside` its expected
-    /// range, whatever imitates it; one of a group where a rival reproduces it ([`Judge::group`]);
-    /// else found physics.
+    /// range, with the candidates that make its change inside their own expected ranges (its
+    /// physical stand-ins; none: the group is empty); one of a group where a rival reproduces
+    /// it inside its bounds ([`Judge::group`]); else found physics.
     pub fn answer(
         &self,
         change: &[f64],
@@ -320,7 +337,11 @@ impl Judge {
             return (AnswerKind::BelowLimit, Vec::new());
         }
         if outside {
-            return (AnswerKind::Calibration, Vec::new());
+            let stand_ins = self.group_within(change, id, sigs, stack, Reach::Expected);
+            return (
+                AnswerKind::Calibration,
+                if stand_ins.len() > 1 { stand_ins } else { Vec::new() },
+            );
         }
         let group = self.group(change, id, sigs, stack);
         if group.len() > 1 {
@@ -457,7 +478,7 @@ pub fn separability(judge: &Judge, sigs: &[Signature]) -> Separability {
             if b.effect.id() == a.effect.id() {
                 continue;
             }
-            let rest = imitate(col, b, false);
+            let rest = imitate(col, b, Reach::Free);
             let st = judge.strength(&rest);
             let apart = (st > 0.0).then(|| 1.0 / st);
             if apart.is_none_or(|x| x > span) {
@@ -565,7 +586,7 @@ pub fn verdict(
         let (kind, group) = judge.answer(&change, &id, sigs, &stack, outside);
         answers.push(Answer {
             effect: a.describe(),
-            tell_apart: (kind == AnswerKind::Group).then(|| tell_apart(data, &group)),
+            tell_apart: (group.len() > 1).then(|| tell_apart(data, &group)),
             id,
             kind,
             strength: judge.strength(&change),
@@ -618,5 +639,5 @@ mod signature;
 #[cfg(test)]
 mod tests;
 
-use imitate::{columns, imitate, imitate_by};
+use imitate::{columns, imitate, imitate_by, Reach};
 pub use signature::{signatures, Signature};

@@ -214,6 +214,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
     let mut dropped = Vec::new();
     let s = samples(&table, &cols, false, &mut dropped, &mut notes);
     let rows = table.rows.len();
+    let at_rest = cols.time.is_some().then(|| crate::rest::at_rest(&s)).flatten();
     let (reduction, points) = reduce_log(s, cols.time.is_none(), &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
@@ -230,6 +231,7 @@ pub fn read(text: &str, opts: &ReadOptions) -> Result<MeasuredSet, ReadError> {
         notes,
         series: None,
         warnings: Vec::new(),
+        at_rest,
     })
 }
 

@@ -20,6 +20,7 @@ pub mod generic;
 mod options;
 pub mod plausible;
 pub mod reduce;
+pub mod rest;
 mod set;
 pub mod stand;
 pub mod table;

@@ -119,7 +119,7 @@ fn check_rows(samples: Vec<Sample>, dropped: &mut Vec<Dropped>) -> Vec<Sample> {
 /// The sign that makes `pick` positive on the rows at the top of the RPM range (at least 90 %
 /// of the highest RPM): there the propeller pulls and absorbs power. When they read zero,
 /// the sign of the trend against RPM squared (thrust grows with it). +1 when neither tells.
-fn pull_sign(samples: &[Sample], pick: impl Fn(&Sample) -> Option<f64>) -> f64 {
+pub(crate) fn pull_sign(samples: &[Sample], pick: impl Fn(&Sample) -> Option<f64>) -> f64 {
     let top = samples.iter().map(|s| s.omega).fold(0.0, f64::max);
     let high: Vec<f64> = samples
         .iter()

@@ -343,6 +343,9 @@ pub struct MeasuredSet {
     /// Why the data may not be a propeller's (thrust not rising with RPM, torque against
     /// thrust): said on the terminal and in the reports, exit 1.
     pub warnings: Vec<String>,
+    /// What the sensors read with the propeller at rest, where the log has such rows (a time
+    /// log's; [`crate::rest`]).
+    pub at_rest: Option<crate::rest::AtRest>,
 }
 
 /// A file of a batch that could not be read: the others are read, this one named with why.

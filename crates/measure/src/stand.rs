@@ -398,6 +398,7 @@ fn read_series(table: &CsvTable, s: &Series, format: Format, opts: &ReadOptions)
         ));
     }
     let rows = table.rows.len();
+    let at_rest = crate::rest::at_rest(&samples);
     let (reduction, points) = reduce_log(samples, false, &mut dropped, &mut notes, &opts.reduce);
     dropped.sort_by_key(|d| d.line);
     if points.is_empty() {
@@ -414,6 +415,7 @@ fn read_series(table: &CsvTable, s: &Series, format: Format, opts: &ReadOptions)
         notes,
         series: s.name.clone(),
         warnings: Vec::new(),
+        at_rest,
     };
     set.warnings = crate::plausible::warnings(&set);
     Ok(set)

@@ -190,6 +190,7 @@ pub fn read(text: &str, name: Option<&str>) -> Result<MeasuredSet, ReadError> {
         notes,
         series: None,
         warnings: Vec::new(),
+        at_rest: None,
     })
 }
 

@@ -224,6 +224,24 @@ pub fn verdict(d: &Diagnosis) -> String {
             if calibration.len() == 1 { "this effect" } else { "these effects" },
             if calibration.len() == 1 { "s" } else { "" },
         );
+        for a in d
+            .verdict
+            .answers
+            .iter()
+            .filter(|a| a.kind == AnswerKind::Calibration && a.group.len() > 1)
+        {
+            let _ = write!(
+                text,
+                " Inside {} expected range{}, {} make{} {}'s change too: the physical cause may be {}; {} would tell.",
+                if a.group.len() == 2 { "its" } else { "their" },
+                if a.group.len() == 2 { "" } else { "s" },
+                others(&a.group[1..]),
+                if a.group.len() == 2 { "s" } else { "" },
+                a.id,
+                if a.group.len() == 2 { "it" } else { "one of them" },
+                a.tell_apart.as_deref().unwrap_or("another measurement")
+            );
+        }
     }
     let below: Vec<String> = d
         .verdict
@@ -623,6 +641,10 @@ fn step_note(d: &Diagnosis, s: &Step) -> String {
             answer.map_or(String::new(), |a| a.group.join(", "))
         ),
         Some(AnswerKind::BelowLimit) => "below the detection limit: not named".into(),
+        Some(AnswerKind::Calibration) if answer.is_some_and(|a| a.group.len() > 1) => format!(
+            "a calibration factor, not found physics; inside their expected ranges {} make its change too",
+            answer.map_or(String::new(), |a| a.group[1..].join(", "))
+        ),
         _ if s.calibration => "a calibration factor, not found physics".into(),
         _ => return String::new(),
     };

@@ -3,10 +3,20 @@
 
 use super::Signature;
 
+/// How far a parameter may move when it imitates a change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Reach {
+    /// Without bounds (the table of ties).
+    Free,
+    /// To its physical bounds.
+    Bounds,
+    /// To its physically expected range (a physical stand-in for a calibration factor).
+    Expected,
+}
+
 /// `sig`'s columns with how far each parameter may move: from `at` (its current values; its
-/// reference where None) to its bounds, or without bounds (`bounded` false, for the table of
-/// ties).
-pub(super) fn columns<'a>(sig: &'a Signature, at: Option<&[f64]>, bounded: bool) -> Vec<(&'a [f64], f64, f64)> {
+/// reference where None) as far as `reach` lets it.
+pub(super) fn columns<'a>(sig: &'a Signature, at: Option<&[f64]>, reach: Reach) -> Vec<(&'a [f64], f64, f64)> {
     sig.columns
         .iter()
         .zip(sig.effect.params())
@@ -14,20 +24,22 @@ pub(super) fn columns<'a>(sig: &'a Signature, at: Option<&[f64]>, bounded: bool)
         .filter_map(|(k, (c, p))| {
             let c = c.as_ref()?;
             let from = at.and_then(|v| v.get(k).copied()).unwrap_or(sig.reference[k]);
-            let (lo, hi) = if bounded {
-                (p.lower - from, p.upper - from)
-            } else {
-                (f64::NEG_INFINITY, f64::INFINITY)
+            let (lo, hi) = match reach {
+                Reach::Free => (f64::NEG_INFINITY, f64::INFINITY),
+                Reach::Bounds => (p.lower, p.upper),
+                Reach::Expected => p.expected_range(),
             };
-            Some((c.as_slice(), lo, hi))
+            // A range that holds `from` (an expected range may not hold a stack member's
+            // value): the step never forces a move.
+            Some((c.as_slice(), (lo - from).min(0.0), (hi - from).max(0.0)))
         })
         .collect()
 }
 
-/// The best imitation of `target` by `sig`'s columns (each parameter kept within its bounds
-/// when `bounded`): the remainder.
-pub(super) fn imitate(target: &[f64], sig: &Signature, bounded: bool) -> Vec<f64> {
-    imitate_by(target, &columns(sig, None, bounded))
+/// The best imitation of `target` by `sig`'s columns (each parameter as far as `reach` lets
+/// it): the remainder.
+pub(super) fn imitate(target: &[f64], sig: &Signature, reach: Reach) -> Vec<f64> {
+    imitate_by(target, &columns(sig, None, reach))
 }
 
 /// The best imitation of `target` by `cols` (column, lowest and highest step): the remainder.

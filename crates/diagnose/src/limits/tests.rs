@@ -205,3 +205,28 @@ fn a_rival_stands_in_only_in_the_direction_its_bounds_allow() {
         ["a", "down"]
     );
 }
+
+#[test]
+fn a_calibration_factor_names_the_candidates_that_make_its_change_inside_their_expected_ranges() {
+    let (_, judge, j) = white();
+    let change: Vec<f64> = j.iter().map(|x| 0.05 * x).collect();
+    // B makes the change at x = -0.025 (its column 2 J, the rows to make -0.05 J).
+    let within = |lo: f64| Signature {
+        effect: Arc::new(Named(
+            "b",
+            vec![Param::new("x", "-", 0.0, (-1.0, 1.0), 0.01, "").expecting(lo, 0.1)],
+        )),
+        ..sig("b", j.iter().map(|x| 2.0 * x).collect())
+    };
+    // Expected down to -0.1: a physical stand-in, said beside the calibration factor.
+    let (kind, group) = judge.answer(&change, "a", &[within(-0.1)], &[], true);
+    assert_eq!(
+        (kind, group.as_slice()),
+        (AnswerKind::Calibration, &["a".to_string(), "b".into()][..])
+    );
+    // Expected down to -0.01 only: it makes the change only beyond its expected range, as a
+    // calibration factor itself; none is said (a plain group would hold it, inside its bounds).
+    let (kind, group) = judge.answer(&change, "a", &[within(-0.01)], &[], true);
+    assert_eq!((kind, group.len()), (AnswerKind::Calibration, 0));
+    assert_eq!(judge.group(&change, "a", &[within(-0.01)], &[]), ["a", "b"]);
+}

@@ -161,6 +161,12 @@ pub(super) fn group_clauses(d: &Diagnosis) -> Vec<String> {
                 others(&a.group[1..]),
                 a.tell_apart.as_deref().unwrap_or("another measurement")
             )),
+            AnswerKind::Calibration if a.group.len() > 1 => Some(format!(
+                "{} is a calibration factor, and {} make its change inside their expected ranges: {} would tell them apart",
+                a.id,
+                others(&a.group[1..]),
+                a.tell_apart.as_deref().unwrap_or("another measurement")
+            )),
             AnswerKind::BelowLimit => Some(format!(
                 "{} not named: its change is below what these data detect",
                 a.id
