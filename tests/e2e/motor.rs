@@ -486,10 +486,7 @@ fn a_logs_zero_at_rest_is_taken_off_before_the_motor_is_fitted() {
         );
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(0), "Kv {kv}: {e}");
-        assert!(
-            e.contains("at rest (") && e.contains("the current -1.236 A"),
-            "{e}"
-        );
+        assert!(e.contains("at rest (") && e.contains("the current -1.236 A"), "{e}");
         let io: f64 = e
             .split("Io = ")
             .nth(1)

@@ -222,14 +222,24 @@ pub fn fit_motor(
         // current below zero the meter's offset. A current above zero at rest may be the ESC's
         // own draw, which the supply gives while the motor runs too: kept (in Io).
         let zero = set.at_rest.filter(|_| set.points.iter().any(|p| p.electric.is_some()));
-        let (amps0, torque0) = zero.map_or((0.0, 0.0), |z| (z.amps.unwrap_or(0.0).min(0.0), z.torque.unwrap_or(0.0)));
+        let (amps0, torque0) = zero.map_or((0.0, 0.0), |z| {
+            (z.amps.unwrap_or(0.0).min(0.0), z.torque.unwrap_or(0.0))
+        });
         if let Some(z) = zero {
             notes.push(format!(
                 "{name}: at rest ({} rows) the torque read {torque0:.4} N m{}: taken off every step (the torque \
                  cell's zero{}: not the motor's)",
                 z.rows,
-                if amps0 < 0.0 { format!(" and the current {amps0:.3} A") } else { String::new() },
-                if amps0 < 0.0 { ", the current meter's offset" } else { "" },
+                if amps0 < 0.0 {
+                    format!(" and the current {amps0:.3} A")
+                } else {
+                    String::new()
+                },
+                if amps0 < 0.0 {
+                    ", the current meter's offset"
+                } else {
+                    ""
+                },
             ));
         }
         for p in &set.points {
