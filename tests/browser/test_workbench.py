@@ -185,3 +185,27 @@ def test_two_tabs_at_once_each_get_their_own_state(server, browser):
     assert b.evaluate("() => last.state.effects") == ["chord-scale:factor=1.05"]
     assert shown(a, "CT median") != shown(b, "CT median")
     assert errors == []
+
+
+def test_a_workbench_of_compares_flags_loads_and_says_it_cannot_save(browser, tmp_path):
+    """Started from `compare`'s flags (the PhotoFoil prop and log, no XFOIL): the page loads
+    with no console error, shows compare's numbers for the same flags, and Save is off."""
+    case = REPO / "props" / "photofoil_8x4.5"
+    flags = ["--prop", case / "QProp_8x4_5.txt", "--measured", case / "StepsTestV2_2022-01-18_153833.csv",
+             "--rho", "1.1648"]
+    proc = subprocess.Popen([str(BINARY), "serve", *map(str, flags), "--save-to", str(tmp_path)], cwd=REPO,
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    try:
+        url = proc.stdout.readline().strip()
+        assert url.startswith("http://127.0.0.1:"), url
+        errors = []
+        page = open_page(browser, url, errors)
+        propbet("compare", *flags, "-o", tmp_path / "cmp")
+        cli = json.loads((tmp_path / "cmp" / "summary.json").read_text())
+        assert abs(shown(page, "CT") - cli["accuracy"]["ct_median_error"]) < 0.0006
+        assert page.locator("#save").is_disabled()
+        assert errors == []
+        page.close()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=10)

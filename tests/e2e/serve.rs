@@ -24,8 +24,15 @@ impl Drop for Server {
 }
 
 fn start(case: &Path, save_to: &Path) -> Server {
+    start_with(&[case.to_str().unwrap()], save_to)
+}
+
+/// `propbet serve` with `args` (a case, or `compare`'s flags) and `--save-to save_to`.
+fn start_with(args: &[&str], save_to: &Path) -> Server {
     let mut child = bin()
-        .args(["serve", case.to_str().unwrap(), "--save-to", save_to.to_str().unwrap()])
+        .arg("serve")
+        .args(args)
+        .args(["--save-to", save_to.to_str().unwrap()])
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
         .spawn()
@@ -158,43 +165,69 @@ fn propbet_serve_max_body() -> usize {
     1 << 20
 }
 
-#[test]
-fn an_evaluation_is_what_compare_gives_for_the_same_effects() {
-    let dir = tempfile::tempdir().unwrap();
-    let s = start(&photofoil(), dir.path());
-    let effects = ["drag-scale:factor=1.6", "tip-loss:strength=2.2"];
-    let state = serde_json::json!({ "effects": effects }).to_string();
-    let (code, body) = evaluate(&s, state.as_bytes());
-    assert_eq!(code, 200, "{body}");
-    let api: serde_json::Value = serde_json::from_str(&body).unwrap();
+/// `compare`'s flags for the PhotoFoil case's prop and log.
+fn photofoil_flags() -> Vec<String> {
     let case = photofoil();
-    let mut args = vec![
-        "compare".to_string(),
+    vec![
         "--prop".into(),
         case.join("QProp_8x4_5.txt").display().to_string(),
         "--measured".into(),
         case.join("StepsTestV2_2022-01-18_153833.csv").display().to_string(),
         "--rho".into(),
         "1.1648".into(),
-        "-o".into(),
-        "cmp".into(),
-    ];
+    ]
+}
+
+/// The server's evaluation of `effects` against `propbet compare --effect ...` of the same
+/// prop and log: the accuracy and the headline equal.
+fn evaluation_is_compares(s: &Server, effects: &[&str], dir: &Path) {
+    let state = serde_json::json!({ "effects": effects }).to_string();
+    let (code, body) = evaluate(s, state.as_bytes());
+    assert_eq!(code, 200, "{body}");
+    let api: serde_json::Value = serde_json::from_str(&body).unwrap();
+    let mut args = vec!["compare".to_string()];
+    args.extend(photofoil_flags());
+    args.extend(["-o".into(), "cmp".into()]);
     for e in effects {
         args.push("--effect".into());
-        args.push(e.into());
+        args.push(e.to_string());
     }
-    let out = run(&args.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    let out = run(&args.iter().map(String::as_str).collect::<Vec<_>>(), dir);
     assert!(
         out.status.code().unwrap_or(2) < 2,
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let cli: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(dir.path().join("cmp/summary.json")).unwrap()).unwrap();
+    let cli: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("cmp/summary.json")).unwrap()).unwrap();
     for k in ["ct_median_error", "cp_median_error", "points"] {
-        assert_eq!(api["accuracy"][k], cli["accuracy"][k], "{k}");
+        assert_eq!(api["accuracy"][k], cli["accuracy"][k], "{effects:?}: {k}");
     }
     assert_eq!(api["headline"], cli["headline"]);
+}
+
+#[test]
+fn an_evaluation_is_what_compare_gives_for_the_same_effects() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = start(&photofoil(), dir.path());
+    evaluation_is_compares(&s, &["drag-scale:factor=1.6", "tip-loss:strength=2.2"], dir.path());
+}
+
+#[test]
+fn a_workbench_of_compares_flags_evaluates_as_compare_and_saves_no_case() {
+    let dir = tempfile::tempdir().unwrap();
+    let flags = photofoil_flags();
+    let s = start_with(&flags.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    for effects in [
+        &[][..],
+        &["pitch-offset:deg=-0.8"][..],
+        &["drag-scale:factor=1.3", "thrust-tare:k=0.02"][..],
+    ] {
+        evaluation_is_compares(&s, effects, dir.path());
+    }
+    let (code, answer) = post(&s, "/api/save", br#"{"state": {"effects": []}, "name": "kept"}"#);
+    assert_eq!(code, 400, "{answer}");
+    assert!(answer.contains("start `propbet serve CASE_DIR`"), "{answer}");
+    assert!(!dir.path().join("kept").exists());
 }
 
 #[test]

@@ -10,10 +10,12 @@ use propbet_compare::ComparedPoint;
 use propbet_effects::Stack;
 use propbet_model::Model;
 use propbet_pipeline::stages::{self, Batch, Compared};
-use propbet_settings::spec::{DiagnoseSpec, XfoilProcessSpec};
+use propbet_settings::spec::{DiagnoseSpec, MeasuredSpec, ModelSpec, XfoilProcessSpec};
 use serde::{Deserialize, Serialize};
 
 use crate::command_error::refuse;
+use crate::commands::predict::load_model_at;
+use crate::console::Console;
 use crate::{CommandError, CommandResult as Result};
 
 /// The band is solved at every this-th of the curves' samples
@@ -45,6 +47,8 @@ pub struct Workbench {
     inputs: Vec<PathBuf>,
     /// The state the case starts from (its `effects`).
     pub start: State,
+    /// Whether it was started from a case folder (Save writes one only then).
+    pub from_case: bool,
 }
 
 /// One effect the page offers: its parameters with their bounds and expected range.
@@ -86,14 +90,7 @@ impl Workbench {
             refused: compared.refused,
         };
         let mut model = outcome.model;
-        // The case's user effects (`[measured] user_effects`) are offered beside the built-ins.
-        if let Some(file) = &diagnose.model.user_effects {
-            for e in propbet_model::effect_registry(Some(file))?.effects {
-                if model.registry.get(e.id()).is_none() {
-                    model.registry.effects.push(e);
-                }
-            }
-        }
+        offer_user_effects(&mut model, &diagnose)?;
         let start = State {
             effects: plan.predict.model.effects.clone(),
         };
@@ -105,6 +102,44 @@ impl Workbench {
             diagnose,
             inputs: plan.inputs(),
             start,
+            from_case: true,
+        })
+    }
+
+    /// The workbench of `compare`'s flags: the blade of `model` (its polars made to cover the
+    /// measurements, as `compare` makes them) against `measured`, the diagnosis at its
+    /// defaults. Save needs a case folder and refuses such a workbench.
+    pub fn of_specs(model: &ModelSpec, measured: &MeasuredSpec, console: &dyn Console) -> Result<Self> {
+        let mut m = load_model_at(model, || crate::model::cover(measured), false, console)?;
+        let batch = stages::load_batch(measured)?;
+        if let Some(r) = batch.refused.first() {
+            refuse!("{}: not read: {}", r.file, r.reason);
+        }
+        let diagnose = DiagnoseSpec {
+            model: model.clone(),
+            measured: measured.clone(),
+            effects: vec!["all".into()],
+            folds: propbet_settings::FOLDS.default,
+            max_steps: propbet_settings::MAX_STEPS.default,
+            window: propbet_compare::metrics::VALIDATION_J_WINDOW,
+            out: std::env::temp_dir().join("propbet-serve-plan"),
+        };
+        offer_user_effects(&mut m, &diagnose)?;
+        let name = model
+            .prop
+            .file_stem()
+            .map_or_else(|| "propbet".into(), |n| n.to_string_lossy().into_owned());
+        Ok(Self {
+            name,
+            dir: std::env::current_dir().map_err(|e| CommandError::io(".", e))?,
+            start: State {
+                effects: model.effects.clone(),
+            },
+            model: m,
+            batch,
+            diagnose,
+            inputs: Vec::new(),
+            from_case: false,
         })
     }
 
@@ -228,6 +263,12 @@ impl Workbench {
         if !plain {
             refuse!("save: {name:?} is not a plain folder name (letters, digits, '-', '_', '.')");
         }
+        if !self.from_case {
+            refuse!(
+                "save: this workbench was started from compare's flags; Save writes a case folder from a case: \
+                 start `propbet serve CASE_DIR`"
+            );
+        }
         self.stack(state)?;
         let target = root.join(name);
         if target.exists() {
@@ -261,6 +302,19 @@ impl Workbench {
         }
         Ok(target)
     }
+}
+
+/// The user effects the diagnosis of `diagnose` reads (a case's `[measured] user_effects`,
+/// `--user-effects`), offered beside the built-ins.
+fn offer_user_effects(model: &mut Model, diagnose: &DiagnoseSpec) -> Result<()> {
+    if let Some(file) = &diagnose.model.user_effects {
+        for e in propbet_model::effect_registry(Some(file))?.effects {
+            if model.registry.get(e.id()).is_none() {
+                model.registry.effects.push(e);
+            }
+        }
+    }
+    Ok(())
 }
 
 /// `text` (a case.toml) with its top-level `effects` key set to `effects`: a line of its own

@@ -44,6 +44,7 @@ mod predict;
 mod prop;
 mod run;
 mod scan;
+mod serve;
 mod synth;
 mod validate;
 
@@ -135,11 +136,12 @@ pub enum Command {
     /// The workbench: a page on 127.0.0.1 that drives the model against a case's measurements
     /// (effects on sliders, fit, the ladder step by step, pin, save).
     #[command(after_help = concat!(
-        "Example:\n  propbet serve props/apcsp_10x7 --open\n\n",
+        "Example:\n  propbet serve props/apcsp_10x7 --open\n",
+        "  propbet serve --prop props/apcsp_10x7/10x7-PERF.PE0 --airfoils props/airfoils --measured props/apcsp_10x7/uiuc/*.txt\n\n",
         "It prints one URL carrying a random token; Ctrl-C ends it.\n",
         "Exit status: 0 is never returned (Ctrl-C ends it, with the signal's status); 2 error before it listens."
     ))]
-    Serve(Box<propbet_serve::ServeRequest>),
+    Serve(Box<serve::ServeArgs>),
     /// List the effects (built-in and user-defined) with their parameters and physics.
     #[command(after_help = concat!("Example:\n  propbet effects\n\n", "Exit status: 0 done; 2 error."))]
     Effects(diagnose::EffectsArgs),
@@ -273,7 +275,7 @@ fn dispatch(command: Command) -> anyhow::Result<bool> {
         Command::Polars(a) => polar::run_polars(&a),
         Command::Compare(a) => compare::run(&a),
         Command::Diagnose(a) => diagnose::run(&a),
-        Command::Serve(a) => Ok(propbet_serve::run(&a).map(|()| true)?),
+        Command::Serve(a) => serve::run(&a),
         Command::Effects(a) => diagnose::list(&a),
         Command::Synth(a) => synth::run(&a),
         Command::Scan(a) => scan::run(&a),

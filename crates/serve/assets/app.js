@@ -512,6 +512,12 @@ async function main() {
     $("pin").addEventListener("click", pin);
     $("reset").addEventListener("click", () => { setState(startState); changed(); });
     $("save").addEventListener("click", save);
+    if (!s.can_save) {
+      // Started from compare's flags: no case folder to write from.
+      $("save").disabled = true;
+      $("save-name").disabled = true;
+      $("save").title = "Save writes a case folder: start `propbet serve CASE_DIR` to save";
+    }
     // Redrawn when the figures' area changes size (the window, the header's numbers wrapping).
     let resize, size = "";
     new ResizeObserver(() => {

@@ -8,7 +8,7 @@
 //!
 //! | request | body | answer |
 //! |---|---|---|
-//! | `GET /api/session` | | the case, its starting state, the effects offered |
+//! | `GET /api/session` | | the case, its starting state, the effects offered, whether Save can write a case |
 //! | `POST /api/evaluate` | a state | `compare`'s `summary.json` for it, the curves and points |
 //! | `POST /api/fit` | `{"state": ..., "effect": id}` | the effect fitted, the new state |
 //! | `POST /api/diagnose` | a state | `diagnosis.json`'s document (the ladder from the state) |
@@ -21,6 +21,8 @@ use std::io::{Read as _, Write as _};
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use propbet_api::console::Console;
+use propbet_api::spec::{MeasuredSpec, ModelSpec, XfoilProcessSpec};
 use propbet_api::workbench::{State, Workbench};
 use propbet_api::{CommandError, CommandResult};
 use serde::Deserialize;
@@ -39,12 +41,19 @@ const UPLOT_JS: &str = include_str!("../assets/vendor/uplot/uPlot.iife.min.js");
 const UPLOT_CSS: &str = include_str!("../assets/vendor/uplot/uPlot.min.css");
 const UPLOT_LICENSE: &str = include_str!("../assets/vendor/uplot/LICENSE");
 
-/// What `propbet serve` is asked.
+/// Where the workbench's model and measurements come from.
+#[derive(Debug)]
+pub enum Source {
+    /// A case folder holding `case.toml` with `[measured]` files (None: the shipped default
+    /// case, `props/apcsp_10x7`).
+    Case(Option<PathBuf>),
+    /// `compare`'s flags: a model and measurements.
+    Flags(Box<(ModelSpec, MeasuredSpec)>),
+}
+
+/// `propbet serve`'s own flags.
 #[derive(Debug, clap::Args)]
-pub struct ServeRequest {
-    /// Case directory holding `case.toml` with `[measured]` files (default: the shipped
-    /// `props/apcsp_10x7`).
-    pub case: Option<PathBuf>,
+pub struct ServeOptions {
     /// Port on 127.0.0.1 (default: a free one).
     #[arg(long, default_value_t = 0)]
     pub port: u16,
@@ -54,17 +63,15 @@ pub struct ServeRequest {
     /// Folder the page's Save writes its case folders into (each a new folder in it).
     #[arg(long, default_value = ".")]
     pub save_to: PathBuf,
-    /// XFOIL executable, polar cache (the case's polars, computed once or read from the cache).
-    #[command(flatten)]
-    pub xfoil: propbet_api::ProcessRequest,
     /// Read files the case names outside its folder.
     #[arg(long)]
     pub inputs_anywhere: bool,
 }
 
-/// Runs `propbet serve`: the case read, the URL printed (one line on standard output), then
-/// requests answered until the process ends; returns only on an error before it listens.
-pub fn run(a: &ServeRequest) -> CommandResult<()> {
+/// Runs `propbet serve`: the model and measurements of `source` read (the polars from the
+/// cache or `xfoil`'s engine), the URL printed (one line on standard output), then requests
+/// answered until the process ends; returns only on an error before it listens.
+pub fn run(source: &Source, xfoil: &XfoilProcessSpec, a: &ServeOptions, console: &dyn Console) -> CommandResult<()> {
     if !a.save_to.is_dir() {
         return Err(CommandError::Message(format!(
             "--save-to {}: not a folder",
@@ -73,8 +80,11 @@ pub fn run(a: &ServeRequest) -> CommandResult<()> {
     }
     let server = bind(a.port).map_err(CommandError::Message)?;
     let port = port_of(&server);
-    eprintln!("propbet serve: reading the case (its polars from the cache or XFOIL) ...");
-    let workbench = Workbench::open(a.case.as_deref(), &a.xfoil.spec()?, a.inputs_anywhere)?;
+    eprintln!("propbet serve: reading the model and the measurements (polars from the cache or XFOIL) ...");
+    let workbench = match source {
+        Source::Case(dir) => Workbench::open(dir.as_deref(), xfoil, a.inputs_anywhere)?,
+        Source::Flags(specs) => Workbench::of_specs(&specs.0, &specs.1, console)?,
+    };
     let token = token().map_err(|e| CommandError::io("/dev/urandom", e))?;
     let url = format!("http://127.0.0.1:{port}/?token={token}");
     println!("{url}");
@@ -240,6 +250,7 @@ fn answer(bench: &Bench, request: &mut Request) -> Answer {
             200,
             &serde_json::json!({
                 "name": w.name, "case": w.dir.display().to_string(), "start": w.start, "effects": w.offers(),
+                "can_save": w.from_case,
             }),
         );
     }
