@@ -204,6 +204,11 @@ def test_a_workbench_of_compares_flags_loads_and_says_it_cannot_save(browser, tm
         cli = json.loads((tmp_path / "cmp" / "summary.json").read_text())
         assert abs(shown(page, "CT") - cli["accuracy"]["ct_median_error"]) < 0.0006
         assert page.locator("#save").is_disabled()
+        # Export writes the simulator files of the state, even where Save cannot write a case.
+        page.fill("#save-name", "flags")
+        page.click("#export")
+        settled(page, "exported to")
+        assert (tmp_path / "flags_export" / "map.csv").exists()
         assert errors == []
         page.close()
     finally:

@@ -270,3 +270,58 @@ fn the_cases_user_effects_are_offered_and_a_saved_case_keeps_the_state() {
     assert_eq!(code, 400);
     assert!(answer.contains("exists"), "{answer}");
 }
+
+#[test]
+fn export_writes_what_propbet_export_writes_for_the_state() {
+    // A static log: the state's prediction at the log's three RPMs (the measurements' cover)
+    // over J 0 to 1, byte for byte what `propbet export --to all` writes of the same flags
+    // and effects.
+    let dir = tempfile::tempdir().unwrap();
+    let flags = photofoil_flags();
+    let s = start_with(&flags.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    let body = br#"{"state": {"effects": ["drag-scale:factor=1.3"]}, "name": "sim"}"#;
+    let (code, answer) = post(&s, "/api/export", body);
+    assert_eq!(code, 200, "{answer}");
+    assert!(answer.contains("gazebo: gazebo_motor_model.sdf"), "{answer}");
+    let map = std::fs::read_to_string(dir.path().join("sim/map.csv")).unwrap();
+    assert!(
+        map.contains("effects drag-scale:factor=1.3) at 6000,9300,12500 rpm"),
+        "{map}"
+    );
+    let mut args = vec!["export".to_string()];
+    args.extend(flags.iter().take(2).cloned());
+    args.extend(
+        [
+            "--rpm",
+            "6000,9300,12500",
+            "--j",
+            "0:1/21",
+            "--rho",
+            "1.1648",
+            "--effect",
+            "drag-scale:factor=1.3",
+            "--to",
+            "all",
+            "-o",
+            "cli",
+        ]
+        .map(String::from),
+    );
+    let out = run(&args.iter().map(String::as_str).collect::<Vec<_>>(), dir.path());
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+    let mut names: Vec<_> = std::fs::read_dir(dir.path().join("cli"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 5, "{names:?}");
+    for n in names {
+        let a = std::fs::read(dir.path().join("sim").join(&n)).unwrap();
+        let b = std::fs::read(dir.path().join("cli").join(&n)).unwrap();
+        assert!(a == b, "{n:?} differs");
+    }
+    // The folder exists now: a second export of that name writes nothing.
+    let (code, answer) = post(&s, "/api/export", body);
+    assert_eq!(code, 400, "{answer}");
+    assert!(answer.contains("exists; nothing was written"), "{answer}");
+}

@@ -10,7 +10,10 @@ use propbet_compare::ComparedPoint;
 use propbet_effects::Stack;
 use propbet_model::Model;
 use propbet_pipeline::stages::{self, Batch, Compared};
-use propbet_settings::spec::{DiagnoseSpec, MeasuredSpec, ModelSpec, XfoilProcessSpec};
+use propbet_settings::spec::{
+    AirSpec, DiagnoseSpec, MeasuredSpec, ModelSpec, PredictSpec, SweepAxis, TableFormat, XfoilProcessSpec,
+};
+use propbet_simexport::{ExportFrom, ExportSpec, Target};
 use serde::{Deserialize, Serialize};
 
 use crate::command_error::refuse;
@@ -22,6 +25,9 @@ use crate::{CommandError, CommandResult as Result};
 /// ([`propbet_compare::curves::SAMPLES`] intervals: at a quarter of them), the page redrawing
 /// on every change.
 pub const BAND_EVERY: usize = 4;
+
+/// Steps of J from 0 to 1 an export of a static log's state is predicted at.
+const STATIC_J_STEPS: usize = 20;
 
 /// The page's state: what a case file's keys hold that the page can change.
 #[derive(Debug, Clone, Default, PartialEq, Deserialize, Serialize)]
@@ -255,14 +261,6 @@ impl Workbench {
     /// with `state`'s effects (`propbet run` on it gives the page's numbers); refused where
     /// the folder exists or the name is not one plain folder name. Returns the folder.
     pub fn save(&self, state: &State, root: &Path, name: &str) -> Result<PathBuf> {
-        let plain = !name.is_empty()
-            && name.len() <= 100
-            && name != "."
-            && name != ".."
-            && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
-        if !plain {
-            refuse!("save: {name:?} is not a plain folder name (letters, digits, '-', '_', '.')");
-        }
         if !self.from_case {
             refuse!(
                 "save: this workbench was started from compare's flags; Save writes a case folder from a case: \
@@ -270,14 +268,7 @@ impl Workbench {
             );
         }
         self.stack(state)?;
-        let target = root.join(name);
-        if target.exists() {
-            refuse!("save: {} exists; nothing was written", target.display());
-        }
-        let tmp = tempfile::Builder::new()
-            .prefix(".propbet-save-")
-            .tempdir_in(root)
-            .map_err(|e| CommandError::io(root.display().to_string(), e))?;
+        let (tmp, target) = new_folder(root, name, "save")?;
         for f in &self.inputs {
             let Ok(rel) = f.strip_prefix(&self.dir) else { continue };
             let to = tmp.path().join(rel);
@@ -294,14 +285,98 @@ impl Workbench {
             &[with_effects(&text, &state.effects)],
             &[case_file.as_path()],
         )?;
-        // Named only once complete: a folder that cannot be named is removed with its files.
-        let kept = tmp.keep();
-        if let Err(e) = std::fs::rename(&kept, &target) {
-            let _ = std::fs::remove_dir_all(&kept);
-            return Err(CommandError::io(format!("save: naming {}", target.display()), e));
-        }
-        Ok(target)
+        name_folder(tmp, &target, "save")
     }
+
+    /// Writes the flight-simulator files (Gazebo's motor model, PX4 SIH's parameters, a JSBSim
+    /// propeller, the CT/CP map) of `state`'s prediction, its effects included, over the
+    /// measurements' RPMs and advance ratios (a static log's: J from 0 to 1 in steps of 0.05),
+    /// into a new folder `name` under `root`: what
+    /// `propbet export --to all` writes of the same model and effects over those points (the
+    /// air: the measurements' `--rho` or `--air` where given, else ISA sea level). Returns the
+    /// folder and one line per export (its files and values).
+    pub fn export(&self, state: &State, root: &Path, name: &str) -> Result<(PathBuf, Vec<String>)> {
+        let model = self.model_at(state)?;
+        let measured = &self.diagnose.measured;
+        let (omegas, mut js) = stages::cover(measured)?;
+        // A static log: forward flight over the J a small propeller's thrust reaches zero by
+        // (the exports keep the points with thrust).
+        if js.len() < 3 {
+            js = (0..=STATIC_J_STEPS).map(|k| k as f64 / STATIC_J_STEPS as f64).collect();
+        }
+        let predict = PredictSpec {
+            model: ModelSpec {
+                effects: state.effects.clone(),
+                ..self.diagnose.model.clone()
+            },
+            omegas,
+            axis: SweepAxis::J(js),
+            air: AirSpec {
+                rho: measured.rho,
+                mu: None,
+                a: None,
+                state: measured.atmosphere,
+            },
+            format: TableFormat::Csv,
+            out: None,
+            stations: None,
+            band: false,
+        };
+        let spec = ExportSpec {
+            from: ExportFrom::Prediction(predict.clone()),
+            targets: Target::ALL.to_vec(),
+            rpm_range: None,
+            ixx: None,
+            name: Some(self.name.clone()),
+        };
+        let exported = propbet_simexport::predicted_by(&model, &predict, &spec, &|_| {})
+            .and_then(|src| propbet_simexport::exports_of(&src, &spec))
+            .map_err(|e| CommandError::from(propbet_model::Error::from(e)))?;
+        let (tmp, target) = new_folder(root, name, "export")?;
+        let mut lines = Vec::new();
+        for e in &exported {
+            for (file, text) in &e.files {
+                crate::files::write_atomic(&tmp.path().join(file), &[text.as_bytes()], &[])?;
+            }
+            let files: Vec<&str> = e.files.iter().map(|f| f.0.as_str()).collect();
+            lines.push(format!("{}: {}: {}", e.target.name(), files.join(", "), e.values));
+        }
+        Ok((name_folder(tmp, &target, "export")?, lines))
+    }
+}
+
+/// A temporary folder under `root` that becomes `root/name` once complete ([`name_folder`]);
+/// refused where `name` is not one plain folder name or the folder exists (`what`: the
+/// action, in the message).
+fn new_folder(root: &Path, name: &str, what: &str) -> Result<(tempfile::TempDir, PathBuf)> {
+    let plain = !name.is_empty()
+        && name.len() <= 100
+        && name != "."
+        && name != ".."
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+    if !plain {
+        refuse!("{what}: {name:?} is not a plain folder name (letters, digits, '-', '_', '.')");
+    }
+    let target = root.join(name);
+    if target.exists() {
+        refuse!("{what}: {} exists; nothing was written", target.display());
+    }
+    let tmp = tempfile::Builder::new()
+        .prefix(".propbet-save-")
+        .tempdir_in(root)
+        .map_err(|e| CommandError::io(root.display().to_string(), e))?;
+    Ok((tmp, target))
+}
+
+/// Names the complete folder `tmp` as `target`: a folder that cannot be named is removed with
+/// its files.
+fn name_folder(tmp: tempfile::TempDir, target: &Path, what: &str) -> Result<PathBuf> {
+    let kept = tmp.keep();
+    if let Err(e) = std::fs::rename(&kept, target) {
+        let _ = std::fs::remove_dir_all(&kept);
+        return Err(CommandError::io(format!("{what}: naming {}", target.display()), e));
+    }
+    Ok(target.to_path_buf())
 }
 
 /// The user effects the diagnosis of `diagnose` reads (a case's `[measured] user_effects`,

@@ -407,6 +407,14 @@ async function save() {
   } catch (e) { say(e.message, true); }
 }
 
+async function exportSim() {
+  const name = `${$("save-name").value.trim()}_export`;
+  try {
+    const r = await api("/api/export", { state: currentState(), name });
+    say(`exported to ${r.folder}: ${r.files.map((f) => f.split(":")[0]).join(", ")}`);
+  } catch (e) { say(e.message, true); }
+}
+
 // A figure as SVG: its series, band and points drawn from the uPlot instance's own scales,
 // with round ticks on each axis.
 function svgOf(u, title) {
@@ -512,10 +520,10 @@ async function main() {
     $("pin").addEventListener("click", pin);
     $("reset").addEventListener("click", () => { setState(startState); changed(); });
     $("save").addEventListener("click", save);
+    $("export").addEventListener("click", exportSim);
     if (!s.can_save) {
       // Started from compare's flags: no case folder to write from.
       $("save").disabled = true;
-      $("save-name").disabled = true;
       $("save").title = "Save writes a case folder: start `propbet serve CASE_DIR` to save";
     }
     // Redrawn when the figures' area changes size (the window, the header's numbers wrapping).

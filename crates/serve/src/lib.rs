@@ -13,6 +13,7 @@
 //! | `POST /api/fit` | `{"state": ..., "effect": id}` | the effect fitted, the new state |
 //! | `POST /api/diagnose` | a state | `diagnosis.json`'s document (the ladder from the state) |
 //! | `POST /api/save` | `{"state": ..., "name": folder}` | the case folder written |
+//! | `POST /api/export` | `{"state": ..., "name": folder}` | the simulator files written, one line each |
 //!
 //! A state is `{"effects": ["pitch-offset:deg=-0.8"]}` (a case file's keys). An error is a
 //! 4xx answer `{"error": message}`, the message the command line prints.
@@ -272,6 +273,12 @@ fn answer(bench: &Bench, request: &mut Request) -> Answer {
         "/api/save" => parse::<SaveRequest>(&body).and_then(|r| {
             let folder = w.save(&r.state, &bench.save_root, &r.name).map_err(|e| e.to_string())?;
             Ok(serde_json::json!({"folder": folder.display().to_string()}))
+        }),
+        "/api/export" => parse::<SaveRequest>(&body).and_then(|r| {
+            let (folder, files) = w
+                .export(&r.state, &bench.save_root, &r.name)
+                .map_err(|e| e.to_string())?;
+            Ok(serde_json::json!({"folder": folder.display().to_string(), "files": files}))
         }),
         _ => return Answer::error(404, format!("no such API: {path}")),
     };

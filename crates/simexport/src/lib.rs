@@ -612,7 +612,7 @@ mod jsbsim;
 mod source;
 
 pub use jsbsim::{blade_ixx, jsbsim, IXX_ASSUMED};
-pub use source::{exports, source, ExportFrom, ExportSpec, Said};
+pub use source::{exports, exports_of, predicted_by, source, ExportFrom, ExportSpec, Said};
 
 #[cfg(test)]
 mod tests;

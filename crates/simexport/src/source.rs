@@ -115,9 +115,15 @@ fn rpms_text(omegas: &[f64]) -> String {
 /// The prediction's points (those that converged at every station).
 fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
     let model = load(&spec.model, || Ok((spec.omegas.clone(), spec.axis.clone())), say)?;
+    predicted_by(&model, spec, ex, say)
+}
+
+/// The points `model` (loaded, its effects included) predicts over `spec`'s operating points
+/// and air (those that converged at every station); `spec.model` names its file and sections.
+pub fn predicted_by(model: &Model, spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
     let (fluid, fluid_source) = spec.air.fluid()?;
     let ops = propbet_model::solve::operating_points(spec, model.rotor.tip_radius)?;
-    let results = propbet_model::solve::sweep(&model, &fluid, &ops)?;
+    let results = propbet_model::solve::sweep(model, &fluid, &ops)?;
     let unconverged = results.iter().filter(|p| p.not_converged > 0).count();
     if unconverged > 0 {
         say(Said::LeftOut(format!(
@@ -138,13 +144,18 @@ fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<
         .collect();
     let m = &spec.model;
     let section = format!(
-        "{}, drag factor {}, rotation {}",
+        "{}, drag factor {}, rotation {}{}",
         m.polars.as_ref().map_or_else(
             || "the prop file's QPROP coefficients".to_string(),
             |p| format!("XFOIL polars {} as tables", p.display())
         ),
         m.drag_factor,
-        m.rotation.name()
+        m.rotation.name(),
+        if model.effects.is_empty() {
+            String::new()
+        } else {
+            format!(", effects {}", model.effects.describe())
+        }
     );
     let axis = match &spec.axis {
         SweepAxis::J(j) if j.iter().all(|x| *x == 0.0) => "static".to_string(),
@@ -155,7 +166,7 @@ fn predicted(spec: &PredictSpec, ex: &ExportSpec, say: &dyn Fn(Said)) -> Result<
         points,
         diameter: model.diameter,
         blades: model.rotor.blades,
-        ixx: inertia(ex.ixx, Some(&model))?,
+        ixx: inertia(ex.ixx, Some(model))?,
         origin: format!(
             "propbet's prediction of {} ({section}) at {} rpm, {axis} ({fluid_source}, rho {} kg/m^3)",
             m.prop.display(),
@@ -303,12 +314,16 @@ pub fn source(spec: &ExportSpec, say: &dyn Fn(Said)) -> Result<Source> {
 /// Every export of a spec, each made before any is written: one the data cannot support
 /// stops them all.
 pub fn exports(spec: &ExportSpec, say: &dyn Fn(Said)) -> Result<Vec<Exported>> {
-    let src = source(spec, say)?;
+    exports_of(&source(spec, say)?, spec)
+}
+
+/// Every export `spec` names of the points `src`, each made before any is written.
+pub fn exports_of(src: &Source, spec: &ExportSpec) -> Result<Vec<Exported>> {
     spec.targets
         .iter()
         .map(|&t| match t {
-            Target::Gazebo => gazebo(&src, spec.rpm_range),
-            t => export(t, &src),
+            Target::Gazebo => gazebo(src, spec.rpm_range),
+            t => export(t, src),
         })
         .collect()
 }
