@@ -464,40 +464,6 @@ fn a_motor_fitted_to_real_stand_logs_predicts_their_held_out_currents() {
 }
 
 #[test]
-fn a_logs_zero_at_rest_is_taken_off_before_the_motor_is_fitted() {
-    // The Series 1780 script log's current sensor reads -1.24 A with the propeller at rest:
-    // taken as the motor's, every Kv gives a negative no-load current. Its zero taken off, the
-    // maker's-Kv fit holds a motor (a Kv of the right size for its 4,500 rpm at 30 V).
-    let dir = tempfile::tempdir().unwrap();
-    let log = super::repo().join("../shared/data/thrust_stand/series1780_script_columns.csv");
-    for kv in ["150", "250", "400"] {
-        let o = run(
-            &[
-                "motor",
-                "fit",
-                "--measured",
-                log.to_str().unwrap(),
-                "--kv",
-                kv,
-                "-o",
-                "m.motor",
-            ],
-            dir.path(),
-        );
-        let e = stderr(&o);
-        assert_eq!(o.status.code(), Some(0), "Kv {kv}: {e}");
-        assert!(e.contains("at rest (") && e.contains("the current -1.236 A"), "{e}");
-        let io: f64 = e
-            .split("Io = ")
-            .nth(1)
-            .and_then(|t| t.split(' ').next())
-            .and_then(|t| t.parse().ok())
-            .unwrap_or_else(|| panic!("{e}"));
-        assert!((0.1..=5.0).contains(&io), "Kv {kv}: Io = {io} A");
-    }
-}
-
-#[test]
 fn compare_with_a_motor_scores_the_logs_current_and_electrical_power() {
     let dir = tempfile::tempdir().unwrap();
     let log = super::repo().join("props/photofoil_8x4.5/StepsTestV2_2022-01-18_153833.csv");

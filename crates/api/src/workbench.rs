@@ -331,7 +331,7 @@ impl Workbench {
         };
         let exported = propbet_simexport::predicted_by(&model, &predict, &spec, &|_| {})
             .and_then(|src| propbet_simexport::exports_of(&src, &spec))
-            .map_err(|e| CommandError::from(propbet_model::Error::from(e)))?;
+            .map_err(CommandError::from)?;
         let (tmp, target) = new_folder(root, name, "export")?;
         let mut lines = Vec::new();
         for e in &exported {

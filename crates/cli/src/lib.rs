@@ -136,7 +136,8 @@ pub enum Command {
     /// The workbench: a page on 127.0.0.1 that drives the model against a case's measurements
     /// (effects on sliders, fit, the ladder step by step, pin, save).
     #[command(after_help = concat!(
-        "Example:\n  propbet serve props/apcsp_10x7 --open\n",
+        "Example:\n  propbet serve props/apcsp_10x7 --open\n\n",
+        "Or with compare's flags instead of a case:\n",
         "  propbet serve --prop props/apcsp_10x7/10x7-PERF.PE0 --airfoils props/airfoils --measured props/apcsp_10x7/uiuc/*.txt\n\n",
         "It prints one URL carrying a random token; Ctrl-C ends it.\n",
         "Exit status: 0 is never returned (Ctrl-C ends it, with the signal's status); 2 error before it listens."

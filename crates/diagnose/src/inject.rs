@@ -258,6 +258,31 @@ fn find<'a>(params: &'a [FittedParam], effect: &str, param: &str) -> Option<&'a 
     params.iter().find(|p| p.effect == effect && p.name == param)
 }
 
+/// How the injected diagnosis' verdict answers the injected `effect`: named alone (found
+/// physics or a calibration factor), in a group (or among a calibration factor's physical
+/// stand-ins), and the effects it names as found physics that were neither injected nor in
+/// the `clean` ladder (wrong answers).
+fn answered(clean: &Diagnosis, injected: &Diagnosis, effect: &str) -> (bool, bool, Vec<String>) {
+    use crate::limits::AnswerKind;
+    let answer = injected.verdict.answers.iter().find(|a| a.id == effect);
+    let alone = answer.is_some_and(|a| matches!(a.kind, AnswerKind::Found | AnswerKind::Calibration));
+    let group = injected.verdict.answers.iter().any(|a| {
+        matches!(a.kind, AnswerKind::Group | AnswerKind::Calibration)
+            && a.group
+                .iter()
+                .any(|g| g.split(crate::limits::PAIR).any(|e| e == effect))
+    });
+    let clean_ids: Vec<&str> = clean.final_stack.active.iter().map(|a| a.effect.id()).collect();
+    let wrong = injected
+        .verdict
+        .physics()
+        .into_iter()
+        .filter(|id| *id != effect && !clean_ids.contains(id))
+        .map(str::to_string)
+        .collect();
+    (alone, group, wrong)
+}
+
 /// Scores an injection: `clean` is the diagnosis of `data` (the measurements), `injected` that
 /// of the same measurements with the effect added (`injected_value` its parameter). The clean
 /// value of the parameter is the injected ladder's stack refitted to the clean measurements
@@ -320,24 +345,8 @@ pub fn score(
         Some((v, _)) => format!("{param} {v:.4} where {expected:.4} ± {tolerance:.4} was injected"),
     };
     use crate::limits::AnswerKind;
-    let answer = injected.verdict.answers.iter().find(|a| a.id == effect);
-    // Found: named alone (physics or a calibration factor) with its size.
-    let found = found && answer.is_some_and(|a| matches!(a.kind, AnswerKind::Found | AnswerKind::Calibration));
-    // A group, or a calibration factor with the injection among its physical stand-ins.
-    let group = injected.verdict.answers.iter().any(|a| {
-        matches!(a.kind, AnswerKind::Group | AnswerKind::Calibration)
-            && a.group
-                .iter()
-                .any(|g| g.split(crate::limits::PAIR).any(|e| e == effect))
-    });
-    let clean_ids: Vec<&str> = clean.final_stack.active.iter().map(|a| a.effect.id()).collect();
-    let wrong: Vec<String> = injected
-        .verdict
-        .physics()
-        .into_iter()
-        .filter(|id| *id != effect && !clean_ids.contains(id))
-        .map(str::to_string)
-        .collect();
+    let (alone, group, wrong) = answered(clean, injected, effect);
+    let found = found && alone;
     let limit = injected
         .separability
         .limits

@@ -8,26 +8,14 @@
 //! for certain; above zero it may be the ESC's own draw, which the supply gives while the
 //! motor runs too).
 
-use serde::Serialize;
-
 use propbet_units::stats::median;
 
 use crate::set::limits::ZERO_THRUST;
+pub use crate::set::AtRest;
 use crate::table::Sample;
 
 /// Fewest rows at rest that make a zero.
 pub const MIN_ROWS: usize = 5;
-
-/// The sensors' readings with the propeller at rest (medians over the rows).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct AtRest {
-    /// Rows at rest.
-    pub rows: usize,
-    /// The supply current at rest [A] (the meter's offset and the ESC's own draw).
-    pub amps: Option<f64>,
-    /// The torque at rest [N m], in the sign the points carry (the cell's zero).
-    pub torque: Option<f64>,
-}
 
 /// The zero of a log's samples (as read, before any row is left out): the rows that read no
 /// rotation while the loads read what a stopped propeller's do (thrust and torque within

@@ -344,8 +344,19 @@ pub struct MeasuredSet {
     /// thrust): said on the terminal and in the reports, exit 1.
     pub warnings: Vec<String>,
     /// What the sensors read with the propeller at rest, where the log has such rows (a time
-    /// log's; [`crate::rest`]).
-    pub at_rest: Option<crate::rest::AtRest>,
+    /// log's; `rest::at_rest`).
+    pub at_rest: Option<AtRest>,
+}
+
+/// The sensors' readings with the propeller at rest (medians over the rows).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AtRest {
+    /// Rows at rest.
+    pub rows: usize,
+    /// The supply current at rest [A] (the meter's offset and the ESC's own draw).
+    pub amps: Option<f64>,
+    /// The torque at rest [N m], in the sign the points carry (the cell's zero).
+    pub torque: Option<f64>,
 }
 
 /// A file of a batch that could not be read: the others are read, this one named with why.

@@ -208,67 +208,11 @@ pub fn fit_motor(
     kv_rpm: Option<f64>,
     kind: propbet_motor::FitKind,
 ) -> Result<FittedMotor> {
-    use propbet_measure::Loads;
     let batch = crate::stages::load_batch(spec)?;
     if let Some(r) = batch.refused.first() {
         return Err(Error::input(Path::new(&r.file), r.reason.clone()));
     }
-    let mut points = Vec::new();
-    let mut names = Vec::new();
-    let mut notes = Vec::new();
-    let mut without = 0;
-    for (set, name) in batch.sets.iter().zip(&batch.names) {
-        // The log's zero, taken off every step: at rest the torque is the cell's zero, and a
-        // current below zero the meter's offset. A current above zero at rest may be the ESC's
-        // own draw, which the supply gives while the motor runs too: kept (in Io).
-        let zero = set.at_rest.filter(|_| set.points.iter().any(|p| p.electric.is_some()));
-        let (amps0, torque0) = zero.map_or((0.0, 0.0), |z| {
-            (z.amps.unwrap_or(0.0).min(0.0), z.torque.unwrap_or(0.0))
-        });
-        if let Some(z) = zero {
-            notes.push(format!(
-                "{name}: at rest ({} rows) the torque read {torque0:.4} N m{}: taken off every step (the torque \
-                 cell's zero{}: not the motor's)",
-                z.rows,
-                if amps0 < 0.0 {
-                    format!(" and the current {amps0:.3} A")
-                } else {
-                    String::new()
-                },
-                if amps0 < 0.0 {
-                    ", the current meter's offset"
-                } else {
-                    ""
-                },
-            ));
-        }
-        for p in &set.points {
-            let torque = match &p.loads {
-                Loads::Forces { torque: Some(q), .. } => q.mean - torque0,
-                _ => f64::NAN,
-            };
-            match &p.electric {
-                Some(e)
-                    if torque.is_finite() && e.volts.mean > 0.0 && e.amps.mean - amps0 > 0.0 && p.flags.is_empty() =>
-                {
-                    points.push(propbet_motor::FitPoint {
-                        omega: p.omega.mean,
-                        torque,
-                        volts: e.volts.mean,
-                        amps: e.amps.mean - amps0,
-                        esc: e.esc,
-                    });
-                    names.push(format!("{name}: {}", p.label));
-                }
-                _ => without += 1,
-            }
-        }
-    }
-    if without > 0 {
-        notes.push(format!(
-            "{without} steps without torque, voltage or current (or flagged: unsteady, windmilling) left out"
-        ));
-    }
+    let (points, names, mut notes) = fit_points(&batch);
     let fit = propbet_motor::fit_motor(&points, kv_rpm, kind).map_err(|e| {
         let hint = match e {
             propbet_motor::FitError::Unphysical(_) => {
@@ -344,6 +288,69 @@ pub fn fit_motor(
         held_out_median,
         notes,
     })
+}
+
+/// The steps of `batch` a motor fit takes (speed, torque, voltage and current, unflagged), each
+/// log's zero at rest taken off, with their names and what was taken off or left out.
+fn fit_points(batch: &crate::stages::Batch) -> (Vec<propbet_motor::FitPoint>, Vec<String>, Vec<String>) {
+    use propbet_measure::Loads;
+    let mut points = Vec::new();
+    let mut names = Vec::new();
+    let mut notes = Vec::new();
+    let mut without = 0;
+    for (set, name) in batch.sets.iter().zip(&batch.names) {
+        // The log's zero, taken off every step: at rest the torque is the cell's zero, and a
+        // current below zero the meter's offset. A current above zero at rest may be the ESC's
+        // own draw, which the supply gives while the motor runs too: kept (in Io).
+        let zero = set.at_rest.filter(|_| set.points.iter().any(|p| p.electric.is_some()));
+        let (amps0, torque0) = zero.map_or((0.0, 0.0), |z| {
+            (z.amps.unwrap_or(0.0).min(0.0), z.torque.unwrap_or(0.0))
+        });
+        if let Some(z) = zero {
+            notes.push(format!(
+                "{name}: at rest ({} rows) the torque read {torque0:.4} N m{}: taken off every step (the torque \
+                 cell's zero{}: not the motor's)",
+                z.rows,
+                if amps0 < 0.0 {
+                    format!(" and the current {amps0:.3} A")
+                } else {
+                    String::new()
+                },
+                if amps0 < 0.0 {
+                    ", the current meter's offset"
+                } else {
+                    ""
+                },
+            ));
+        }
+        for p in &set.points {
+            let torque = match &p.loads {
+                Loads::Forces { torque: Some(q), .. } => q.mean - torque0,
+                _ => f64::NAN,
+            };
+            match &p.electric {
+                Some(e)
+                    if torque.is_finite() && e.volts.mean > 0.0 && e.amps.mean - amps0 > 0.0 && p.flags.is_empty() =>
+                {
+                    points.push(propbet_motor::FitPoint {
+                        omega: p.omega.mean,
+                        torque,
+                        volts: e.volts.mean,
+                        amps: e.amps.mean - amps0,
+                        esc: e.esc,
+                    });
+                    names.push(format!("{name}: {}", p.label));
+                }
+                _ => without += 1,
+            }
+        }
+    }
+    if without > 0 {
+        notes.push(format!(
+            "{without} steps without torque, voltage or current (or flagged: unsteady, windmilling) left out"
+        ));
+    }
+    (points, names, notes)
 }
 
 /// Kv from both sides of the motor, in words: the agreement, a disagreement above 10 % with
