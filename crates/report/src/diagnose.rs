@@ -232,13 +232,13 @@ pub fn verdict(d: &Diagnosis) -> String {
         {
             let _ = write!(
                 text,
-                " Inside {} expected range{}, {} make{} {}'s change too: the physical cause may be {}; {} would tell.",
-                if a.group.len() == 2 { "its" } else { "their" },
-                if a.group.len() == 2 { "" } else { "s" },
+                " {} make{} {}'s change inside {} expected range{}: the physical cause may be {} instead; {} would tell.",
                 others(&a.group[1..]),
                 if a.group.len() == 2 { "s" } else { "" },
                 a.id,
-                if a.group.len() == 2 { "it" } else { "one of them" },
+                if a.group.len() == 2 { "its" } else { "their" },
+                if a.group.len() == 2 { "" } else { "s" },
+                if a.group.len() == 2 { "that" } else { "one of those" },
                 a.tell_apart.as_deref().unwrap_or("another measurement")
             );
         }
@@ -641,10 +641,16 @@ fn step_note(d: &Diagnosis, s: &Step) -> String {
             answer.map_or(String::new(), |a| a.group.join(", "))
         ),
         Some(AnswerKind::BelowLimit) => "below the detection limit: not named".into(),
-        Some(AnswerKind::Calibration) if answer.is_some_and(|a| a.group.len() > 1) => format!(
-            "a calibration factor, not found physics; inside their expected ranges {} make its change too",
-            answer.map_or(String::new(), |a| a.group[1..].join(", "))
-        ),
+        Some(AnswerKind::Calibration) if answer.is_some_and(|a| a.group.len() > 1) => {
+            let others = answer.map_or(&[][..], |a| &a.group[1..]);
+            format!(
+                "a calibration factor, not found physics; {} make{} its change too, inside {} expected range{}",
+                others.join(", "),
+                if others.len() == 1 { "s" } else { "" },
+                if others.len() == 1 { "its" } else { "their" },
+                if others.len() == 1 { "" } else { "s" },
+            )
+        }
         _ if s.calibration => "a calibration factor, not found physics".into(),
         _ => return String::new(),
     };

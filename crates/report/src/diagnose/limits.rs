@@ -161,12 +161,19 @@ pub(super) fn group_clauses(d: &Diagnosis) -> Vec<String> {
                 others(&a.group[1..]),
                 a.tell_apart.as_deref().unwrap_or("another measurement")
             )),
-            AnswerKind::Calibration if a.group.len() > 1 => Some(format!(
-                "{} is a calibration factor, and {} make its change inside their expected ranges: {} would tell them apart",
-                a.id,
-                others(&a.group[1..]),
-                a.tell_apart.as_deref().unwrap_or("another measurement")
-            )),
+            AnswerKind::Calibration if a.group.len() > 1 => {
+                let one = a.group.len() == 2;
+                Some(format!(
+                    "{} is a calibration factor, and {} make{} its change inside {} expected range{}: {} would tell them \
+                     apart",
+                    a.id,
+                    others(&a.group[1..]),
+                    if one { "s" } else { "" },
+                    if one { "its" } else { "their" },
+                    if one { "" } else { "s" },
+                    a.tell_apart.as_deref().unwrap_or("another measurement")
+                ))
+            }
             AnswerKind::BelowLimit => Some(format!(
                 "{} not named: its change is below what these data detect",
                 a.id
