@@ -232,12 +232,8 @@ pub fn verdict(d: &Diagnosis) -> String {
         {
             let _ = write!(
                 text,
-                " {} make{} {}'s change inside {} expected range{}: the physical cause may be {} instead; {} would tell.",
-                others(&a.group[1..]),
-                if a.group.len() == 2 { "s" } else { "" },
-                a.id,
-                if a.group.len() == 2 { "its" } else { "their" },
-                if a.group.len() == 2 { "" } else { "s" },
+                " {}: the physical cause may be {} instead; {} would tell.",
+                stand_ins(&others(&a.group[1..]), a.group.len() - 1, &format!("{}'s", a.id)),
                 if a.group.len() == 2 { "that" } else { "one of those" },
                 a.tell_apart.as_deref().unwrap_or("another measurement")
             );
@@ -644,11 +640,8 @@ fn step_note(d: &Diagnosis, s: &Step) -> String {
         Some(AnswerKind::Calibration) if answer.is_some_and(|a| a.group.len() > 1) => {
             let others = answer.map_or(&[][..], |a| &a.group[1..]);
             format!(
-                "a calibration factor, not found physics; {} make{} its change too, inside {} expected range{}",
-                others.join(", "),
-                if others.len() == 1 { "s" } else { "" },
-                if others.len() == 1 { "its" } else { "their" },
-                if others.len() == 1 { "" } else { "s" },
+                "a calibration factor, not found physics; {} too",
+                stand_ins(&others.join(", "), others.len(), "its")
             )
         }
         _ if s.calibration => "a calibration factor, not found physics".into(),
@@ -689,7 +682,7 @@ mod parts;
 mod words;
 
 pub use limits::{can_tell, tied_pairs};
-use limits::{group_clauses, limits_html, others};
+use limits::{group_clauses, limits_html, others, stand_ins};
 use parts::{ladder_figure, residual_panels, signature_html, trend};
 pub use words::{part_words, signature_text, EffectWords};
 

@@ -148,6 +148,18 @@ pub(super) fn others(ids: &[String]) -> String {
     }
 }
 
+/// "`named` make(s) `whose` change inside its (their) expected range(s)": a calibration
+/// factor's physical stand-ins, `count` of them, in words.
+pub(super) fn stand_ins(named: &str, count: usize, whose: &str) -> String {
+    let one = count == 1;
+    format!(
+        "{named} make{} {whose} change inside {} expected range{}",
+        if one { "s" } else { "" },
+        if one { "its" } else { "their" },
+        if one { "" } else { "s" }
+    )
+}
+
 /// "the data cannot tell a from b or c: <measurement> would tell them apart" for each group
 /// the verdict answers, and "not named: x (below the detection limit)" for each effect below it.
 pub(super) fn group_clauses(d: &Diagnosis) -> Vec<String> {
@@ -161,19 +173,12 @@ pub(super) fn group_clauses(d: &Diagnosis) -> Vec<String> {
                 others(&a.group[1..]),
                 a.tell_apart.as_deref().unwrap_or("another measurement")
             )),
-            AnswerKind::Calibration if a.group.len() > 1 => {
-                let one = a.group.len() == 2;
-                Some(format!(
-                    "{} is a calibration factor, and {} make{} its change inside {} expected range{}: {} would tell them \
-                     apart",
-                    a.id,
-                    others(&a.group[1..]),
-                    if one { "s" } else { "" },
-                    if one { "its" } else { "their" },
-                    if one { "" } else { "s" },
-                    a.tell_apart.as_deref().unwrap_or("another measurement")
-                ))
-            }
+            AnswerKind::Calibration if a.group.len() > 1 => Some(format!(
+                "{} is a calibration factor, and {}: {} would tell them apart",
+                a.id,
+                stand_ins(&others(&a.group[1..]), a.group.len() - 1, "its"),
+                a.tell_apart.as_deref().unwrap_or("another measurement")
+            )),
             AnswerKind::BelowLimit => Some(format!(
                 "{} not named: its change is below what these data detect",
                 a.id
